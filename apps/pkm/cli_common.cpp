@@ -1,0 +1,28 @@
+#include "cli_common.hpp"
+
+#include <fmt/format.h>
+
+#include "pkm/io/machine_loader.hpp"
+
+namespace pkm::cli {
+
+void printNotices(const std::vector<std::string>& notices) {
+  for (const auto& n : notices) fmt::print(stderr, "pkm: note: {}\n", n);
+}
+
+void MachineOption::add(CLI::App& cmd) {
+  cmd.add_option("--machine,-m", spec,
+                 "machine: a JSON machine file, a LinuxCNC .hal file, or a built-in name (default: the "
+                 "embedded default machine)");
+  cmd.add_option("--ini", ini, "LinuxCNC INI file for a .hal machine ([TRAJ] HOME, LINEAR_UNITS, joint limits)");
+}
+
+io::HexapodMachine MachineOption::load() const {
+  io::HalReadOptions hal;
+  if (!ini.empty()) hal.ini_path = ini;
+  io::HexapodMachine m = io::loadHexapodMachine(spec, hal);
+  printNotices(m.notices);
+  return m;
+}
+
+}  // namespace pkm::cli

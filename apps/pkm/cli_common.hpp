@@ -1,0 +1,63 @@
+/// @file
+/// @brief Helpers shared by the CLI command groups: buffered stdout, notices, exit codes.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "pkm/io/hexapod_machine.hpp"
+
+namespace pkm::cli {
+
+/// Exit code for usage and input errors.
+inline constexpr int kExitUsage = 2;
+
+/// Buffers text for stdout and writes it in large blocks.
+class Output {
+ public:
+  Output() { buffer_.reserve(kFlushBytes + 4096); }
+  ~Output() { flush(); }
+  Output(const Output&) = delete;
+  Output& operator=(const Output&) = delete;
+  std::string& text() { return buffer_; }
+  /// Writes the buffer once it holds more than kFlushBytes.
+  void maybeFlush() {
+    if (buffer_.size() > kFlushBytes) flush();
+  }
+  void flush() {
+    if (!buffer_.empty()) std::fwrite(buffer_.data(), 1, buffer_.size(), stdout);
+    buffer_.clear();
+    std::fflush(stdout);
+  }
+
+ private:
+  static constexpr std::size_t kFlushBytes = 1 << 20;
+  std::string buffer_;
+};
+
+/// Prints each notice to stderr as "pkm: note: ...".
+void printNotices(const std::vector<std::string>& notices);
+
+/// Options every machine-using command shares.
+struct MachineOption {
+  std::string spec = "default";
+  std::string ini;
+  /// Adds --machine and --ini to `cmd`.
+  void add(CLI::App& cmd);
+  /// Loads the machine (throws pkm::IoError) and prints its notices.
+  [[nodiscard]] io::HexapodMachine load() const;
+};
+
+/// Registers the command groups.
+void addHexapodCommands(CLI::App& app);
+void addDemoCommand(CLI::App& app);
+
+}  // namespace pkm::cli
+
+namespace pkm::cli {
+/// Appends a human-readable description of `machine` (geometry table and home-pose checks).
+void describeMachine(const io::HexapodMachine& machine, std::string& out);
+}  // namespace pkm::cli

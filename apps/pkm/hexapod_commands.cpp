@@ -1,0 +1,235 @@
+// `pkm hexapod ...`: ik, fk, check, describe, hal (docs/cli.md).
+#include <array>
+#include <cmath>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "cli_common.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/io/csv.hpp"
+#include "pkm/io/linuxcnc_hal.hpp"
+#include "pkm/io/machine_loader.hpp"
+#include "pkm/io/number_format.hpp"
+#include "pkm/kinematics/hexapod_checks.hpp"
+#include "pkm/kinematics/hexapod_fk.hpp"
+#include "pkm/kinematics/hexapod_ik.hpp"
+
+namespace pkm::cli {
+
+namespace kin = pkm::kinematics;
+
+namespace {
+
+const std::vector<std::string> kPoseColumns = {"x", "y", "z", "a", "b", "c"};
+const std::vector<std::string> kLengthColumns = {"l0", "l1", "l2", "l3", "l4", "l5"};
+
+kin::PoseRpy poseFromRow(const std::array<double, 6>& v) {
+  kin::PoseRpy p;
+  p.position = {v[0], v[1], v[2]};
+  p.rpy = {degToRad(v[3]), degToRad(v[4]), degToRad(v[5])};
+  return p;
+}
+
+void appendPose(std::string& out, const kin::PoseRpy& pose) {
+  for (int i = 0; i < 3; ++i) {
+    io::appendNumber(out, pose.position[i]);
+    out += ',';
+  }
+  for (int i = 0; i < 3; ++i) {
+    io::appendNumber(out, radToDeg(pose.rpy[i]));
+    out += ',';
+  }
+}
+
+kin::PoseRpy parseSeed(const std::string& text) {
+  std::array<double, 6> v{};
+  std::size_t pos = 0;
+  for (std::size_t i = 0; i < 6; ++i) {
+    const std::size_t comma = text.find(',', pos);
+    if ((comma == std::string::npos) != (i == 5) ||
+        !io::parseFiniteDouble(std::string_view(text).substr(pos, comma == std::string::npos ? std::string::npos : comma - pos), v[i]))
+      throw IoError(fmt::format("--seed '{}': expected six finite numbers x,y,z,a,b,c", text));
+    pos = comma + 1;
+  }
+  return poseFromRow(v);
+}
+
+void runIk(const MachineOption& machine_opt, const std::string& poses) {
+  const io::HexapodMachine machine = machine_opt.load();
+  kin::HexapodData data(machine.model);
+  io::CsvReader reader(poses, kPoseColumns);
+  Output out;
+  out.text() += "l0,l1,l2,l3,l4,l5,status\n";
+  std::array<double, 6> row{};
+  while (reader.next(row)) {
+    const kin::HexapodCheckResult check = kin::checkPose(machine.model, data, poseFromRow(row));
+    for (int i = 0; i < kin::kStruts; ++i) {
+      io::appendNumber(out.text(), check.readings[i]);
+      out.text() += ',';
+    }
+    out.text() += check.status();
+    out.text() += '\n';
+    out.maybeFlush();
+  }
+}
+
+void runFk(const MachineOption& machine_opt, const std::string& lengths, const std::string& seed_text) {
+  const io::HexapodMachine machine = machine_opt.load();
+  const kin::PoseRpy home = machine.model.home;
+  kin::PoseRpy seed = seed_text.empty() ? home : parseSeed(seed_text);
+  kin::HexapodData data(machine.model);
+  io::CsvReader reader(lengths, kLengthColumns);
+  Output out;
+  out.text() += "x,y,z,a,b,c,iterations,status\n";
+  std::array<double, 6> row{};
+  kin::StrutVector q;
+  while (reader.next(row)) {
+    for (int i = 0; i < kin::kStruts; ++i) q[i] = row[static_cast<std::size_t>(i)];
+    const kin::FkSummary s = kin::forwardKinematics(machine.model, data, q, seed, machine.fk);
+    if (s.ok()) {
+      appendPose(out.text(), data.pose);
+      seed = data.pose;
+    } else {
+      out.text() += ",,,,,,";  // no pose on failure: never print a wrong one
+      seed = home;             // as a servo loop does after a failed solve
+    }
+    out.text() += std::to_string(s.iterations);
+    out.text() += ',';
+    out.text() += kin::toString(s.status);
+    out.text() += '\n';
+    out.maybeFlush();
+  }
+}
+
+void appendMargin(std::string& out, double v) {
+  if (!std::isinf(v)) io::appendNumber(out, v);  // empty = limit disabled
+  out += ',';
+}
+
+void runCheck(const MachineOption& machine_opt, const std::string& poses) {
+  const io::HexapodMachine machine = machine_opt.load();
+  kin::HexapodData data(machine.model);
+  io::CsvReader reader(poses, kPoseColumns);
+  Output out;
+  out.text() +=
+      "row,status,min_stroke_margin,stroke_strut,min_base_angle_margin_deg,base_joint,"
+      "min_platform_angle_margin_deg,platform_joint,min_leg_distance,leg_pair,interference_margin,"
+      "condition_number,condition_margin,violations\n";
+  std::array<double, 6> row{};
+  std::size_t index = 0;
+  while (reader.next(row)) {
+    const kin::HexapodCheckResult c = kin::checkPose(machine.model, data, poseFromRow(row));
+    std::string& o = out.text();
+    o += std::to_string(index++);
+    o += ',';
+    o += c.status();
+    o += ',';
+    int k = 0;
+    c.stroke_margin.minCoeff(&k);
+    appendMargin(o, c.stroke_margin[k]);
+    o += std::to_string(k) + ',';
+    for (const kin::StrutVector* margins : {&c.base_angle_margin, &c.platform_angle_margin}) {
+      margins->minCoeff(&k);
+      appendMargin(o, radToDeg((*margins)[k]));
+      o += std::isinf((*margins)[k]) ? std::string(",") : std::to_string(k) + ',';
+    }
+    appendMargin(o, c.min_leg_distance);
+    o += c.closest_pair[0] >= 0 ? fmt::format("{}-{},", c.closest_pair[0], c.closest_pair[1]) : std::string(",");
+    appendMargin(o, c.interference_margin);
+    appendMargin(o, c.condition_number);
+    appendMargin(o, c.condition_margin);
+    std::vector<std::string> parts;
+    for (const auto& v : c.violations)
+      parts.push_back(fmt::format("{} {} (value {:.6g}, limit {:.6g})", kin::toString(v.kind), v.item,
+                                  v.kind == kin::LimitKind::kJointAngle ? radToDeg(v.value) : v.value,
+                                  v.kind == kin::LimitKind::kJointAngle ? radToDeg(v.limit) : v.limit));
+    o += fmt::format("{}\n", fmt::join(parts, "; "));
+    out.maybeFlush();
+  }
+}
+
+}  // namespace
+
+void describeMachine(const io::HexapodMachine& machine, std::string& o) {
+  const kin::HexapodModel& m = machine.model;
+  const std::string u(toString(m.unit));
+  o += fmt::format("machine      {} ({})\n", m.name, machine.source);
+  if (!machine.description.empty()) o += fmt::format("description  {}\n", machine.description);
+  o += fmt::format("units        {} (angles in degrees)\n", u);
+  o += fmt::format("home         x {:g} y {:g} z {:g} a {:g} b {:g} c {:g}\n", m.home.position.x(),
+                   m.home.position.y(), m.home.position.z(), radToDeg(m.home.rpy.x()), radToDeg(m.home.rpy.y()),
+                   radToDeg(m.home.rpy.z()));
+  o += fmt::format("tool offset  [{:g}, {:g}, {:g}] {} (TCP in the platform frame)\n", m.tool_offset.x(),
+                   m.tool_offset.y(), m.tool_offset.z(), u);
+  if (m.spindle_offset != 0.0) o += fmt::format("spindle off. {:g} {} (genhexkins)\n", m.spindle_offset, u);
+  o += fmt::format("strut dia.   {:g} {}{}\n", m.strut_diameter, u, m.strut_diameter > 0 ? "" : " (interference check off)");
+  o += fmt::format("FK           tolerance {:g} {}, at most {} iterations\n", machine.fk.tolerance, u, machine.fk.max_iterations);
+  kin::HexapodData data(m);
+  const kin::HexapodCheckResult home = kin::checkPose(m, data, m.home);
+  o += fmt::format("{:>5} {:>30} {:>30} {:>9} {:>21} {:>12} {:>8} {:>8}\n", "strut", "base joint (world)",
+                   "platform joint (platform)", "offset", "stroke", "home read.", "base°", "plat.°");
+  for (int i = 0; i < kin::kStruts; ++i) {
+    const kin::Strut& s = m.struts[static_cast<std::size_t>(i)];
+    const auto lim = [](double a) { return a > 0 ? fmt::format("{:.1f}", radToDeg(a)) : std::string("-"); };
+    o += fmt::format("{:>5} {:>30} {:>30} {:>9.3f} {:>21} {:>12.6f} {:>8} {:>8}\n", i,
+                     fmt::format("[{:.4f}, {:.4f}, {:.4f}]", s.world_p_base.x(), s.world_p_base.y(), s.world_p_base.z()),
+                     fmt::format("[{:.4f}, {:.4f}, {:.4f}]", s.platform_p_joint.x(), s.platform_p_joint.y(), s.platform_p_joint.z()),
+                     s.length_offset, fmt::format("[{:g}, {:g}]", s.min_reading, s.max_reading), home.readings[i],
+                     lim(s.base_cone.max_angle), lim(s.platform_cone.max_angle));
+  }
+  o += fmt::format("at home      status {}, condition number {:.2f} (limit {:g}), closest struts {:.3f} {}\n",
+                   home.status(), home.condition_number, m.max_condition, home.min_leg_distance, u);
+}
+
+void addHexapodCommands(CLI::App& app) {
+  CLI::App* hex = app.add_subcommand("hexapod", "hexapod (6-UPS Stewart platform) kinematics");
+  hex->require_subcommand(1);
+
+  struct State {
+    MachineOption machine;
+    std::string poses, lengths, seed;
+    bool json = false;
+  };
+  auto st = std::make_shared<State>();
+
+  CLI::App* ik = hex->add_subcommand("ik", "inverse kinematics: poses x,y,z,a,b,c -> strut readings l0..l5,status");
+  st->machine.add(*ik);
+  ik->add_option("--poses,-p", st->poses, "CSV with header x,y,z,a,b,c (lengths in the machine unit, degrees); - = stdin")->required();
+  ik->callback([st] { runIk(st->machine, st->poses); });
+
+  CLI::App* fk = hex->add_subcommand("fk", "forward kinematics: strut readings l0..l5 -> x,y,z,a,b,c,iterations,status");
+  st->machine.add(*fk);
+  fk->add_option("--lengths,-l", st->lengths, "CSV with header l0,...,l5 (machine unit); - = stdin")->required();
+  fk->add_option("--seed", st->seed, "first row's seed pose x,y,z,a,b,c (default: home); later rows use the previous solution");
+  fk->callback([st] { runFk(st->machine, st->lengths, st->seed); });
+
+  CLI::App* check = hex->add_subcommand("check", "per pose: stroke, joint angles, leg interference, conditioning");
+  st->machine.add(*check);
+  check->add_option("--poses,-p", st->poses, "CSV with header x,y,z,a,b,c; - = stdin")->required();
+  check->callback([st] { runCheck(st->machine, st->poses); });
+
+  CLI::App* describe = hex->add_subcommand("describe", "print the machine; --json writes it as a pkm machine file");
+  st->machine.add(*describe);
+  describe->add_flag("--json", st->json, "write the machine as JSON (docs/machine-format.md)");
+  describe->callback([st] {
+    const io::HexapodMachine m = st->machine.load();
+    Output out;
+    if (st->json) out.text() += io::writeHexapodJson(m);
+    else describeMachine(m, out.text());
+  });
+
+  CLI::App* hal = hex->add_subcommand("hal", "write the machine as a LinuxCNC genhexkins setp block");
+  st->machine.add(*hal);
+  hal->callback([st] {
+    Output out;
+    out.text() += io::writeLinuxcncSetp(st->machine.load());
+  });
+
+  CLI::App* list = hex->add_subcommand("machines", "list the built-in machines");
+  list->callback([] {
+    for (const auto& n : io::builtinMachineNames()) fmt::print("{}\n", n);
+  });
+}
+
+}  // namespace pkm::cli

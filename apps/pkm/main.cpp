@@ -1,0 +1,42 @@
+// pkm: command-line interface of the pkm toolkit. Exit codes: 0 success, 2 usage or input error,
+// 1 unexpected internal error.
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "cli_common.hpp"
+#include "pkm/core/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"pkm: kinematics, measurement analysis, calibration and compensation for parallel "
+               "kinematic machine tools"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "pkm 0.1.0");
+  pkm::cli::addHexapodCommands(app);
+  pkm::cli::addDemoCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return pkm::cli::kExitUsage;
+  } catch (const pkm::IoError& e) {
+    std::fflush(stdout);
+    fmt::print(stderr, "pkm: error: {}\n", e.what());
+    return pkm::cli::kExitUsage;
+  } catch (const pkm::InvalidArgument& e) {
+    std::fflush(stdout);
+    fmt::print(stderr, "pkm: error: {}\n", e.what());
+    return pkm::cli::kExitUsage;
+  } catch (const std::exception& e) {
+    std::fflush(stdout);
+    fmt::print(stderr, "pkm: internal error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

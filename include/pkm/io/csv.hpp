@@ -1,0 +1,67 @@
+/// @file
+/// @brief Streaming reader of numeric CSV files with a header row (docs/formats.md, "CSV").
+#pragma once
+
+#include <cstdio>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace pkm::io {
+
+/// Reads a CSV file row by row, picking the columns named at construction by their header names.
+/// Format: a header row, then rows of numbers separated by commas; surrounding spaces, CRLF line
+/// ends, a UTF-8 byte-order mark, blank lines and lines starting with '#' are accepted. Extra columns
+/// are allowed and ignored. Every error throws pkm::IoError with "FILE:LINE: message".
+class CsvReader {
+ public:
+  /// Largest accepted line, in bytes.
+  static constexpr std::size_t kMaxLineBytes = 1 << 20;
+
+  /// Opens `path` ("-" reads standard input) and reads the header. `display_name` is used in error
+  /// messages (defaults to `path`). Throws pkm::IoError if the file cannot be opened, is empty, or
+  /// lacks a required column or repeats a column name.
+  CsvReader(const std::string& path, std::vector<std::string> required_columns, std::string display_name = {});
+  ~CsvReader();
+  CsvReader(const CsvReader&) = delete;
+  CsvReader& operator=(const CsvReader&) = delete;
+
+  /// Reads the next data row into `values` (one per required column, in the order given at
+  /// construction). Returns false at end of file. Throws pkm::IoError on a wrong field count, a
+  /// field that is not a finite number, or an over-long line.
+  bool next(std::span<double> values);
+
+  /// 1-based line number of the last line read.
+  [[nodiscard]] std::size_t line() const { return line_; }
+  /// Name used in messages.
+  [[nodiscard]] const std::string& name() const { return name_; }
+  /// The header fields as read (trimmed).
+  [[nodiscard]] const std::vector<std::string>& header() const { return header_; }
+
+  /// Throws pkm::IoError "NAME:LINE: what" for the current line.
+  [[noreturn]] void fail(const std::string& what) const;
+
+ private:
+  bool readLine(std::string_view& out);
+
+  std::FILE* file_ = nullptr;
+  bool owns_file_ = false;
+  std::string name_;
+  std::vector<char> buffer_;
+  std::size_t begin_ = 0;
+  std::size_t end_ = 0;
+  bool eof_ = false;
+  std::string long_line_;
+  std::size_t line_ = 0;
+  std::vector<std::string> header_;
+  std::vector<int> column_of_field_;  ///< per header field: index into values, or -1
+  std::size_t wanted_ = 0;
+};
+
+/// Parses a whole field as a finite double (leading '+' and surrounding spaces allowed).
+/// Returns false for anything else, including "nan" and "inf".
+[[nodiscard]] bool parseFiniteDouble(std::string_view text, double& value);
+
+}  // namespace pkm::io

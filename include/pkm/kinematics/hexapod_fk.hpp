@@ -1,0 +1,62 @@
+/// @file
+/// @brief Hexapod forward kinematics: Newton-Raphson on SO(3) with a backtracking line search.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "pkm/kinematics/hexapod_data.hpp"
+#include "pkm/kinematics/hexapod_model.hpp"
+
+namespace pkm::kinematics {
+
+/// Outcome of a forward-kinematics solve.
+enum class FkStatus {
+  kOk,             ///< converged: every strut residual <= FkOptions::tolerance
+  kNoConvergence,  ///< iteration cap reached or no step reduced the residual
+  kSingular,       ///< the strut Jacobian is (numerically) singular at an iterate
+  kInvalidInput,   ///< non-finite reading or seed
+};
+
+/// "ok", "no_convergence", "singular", "invalid_input".
+[[nodiscard]] std::string_view toString(FkStatus status);
+
+/// Options of forwardKinematics.
+struct FkOptions {
+  /// Convergence when max_i |reading_i(pose) − reading_i| <= tolerance (model length unit).
+  /// LinuxCNC genhexkins `convergence-criterion` (default 1e-9).
+  double tolerance = 1e-9;
+  /// Largest number of Newton steps (genhexkins `limit-iterations`, default 120).
+  int max_iterations = 120;
+  /// Step halvings tried when a full Newton step does not reduce the residual norm.
+  int max_backtracks = 12;
+  /// A pivot of the LU factorisation smaller than this fraction of the largest one means singular.
+  double singular_pivot_ratio = 1e-12;
+
+  /// True when every field is usable; otherwise false with the reason in *why (if given).
+  [[nodiscard]] bool isValid(std::string* why = nullptr) const;
+};
+
+/// What a forward-kinematics solve did.
+struct FkSummary {
+  FkStatus status = FkStatus::kInvalidInput;
+  int iterations = 0;          ///< Newton steps taken
+  int backtracks = 0;          ///< step halvings over all iterations
+  double max_residual = 0.0;   ///< max_i |residual_i| at the returned pose (model length unit)
+  [[nodiscard]] bool ok() const { return status == FkStatus::kOk; }
+};
+
+/// Solves the platform TCP pose whose strut readings equal `readings`, starting from `seed` (the previous
+/// servo-cycle pose, or home). Newton-Raphson on (p, R): J_q_x·δ = r(x), p ← p − δp,
+/// R ← exp(−[δθ]×)·R (a true SO(3) update, unlike genhexkins' additive angle update), LU with partial
+/// pivoting, and step halving when the full step does not reduce |r|. On success data.pose holds the
+/// pose, with angles chosen nearest to the seed's (continuous along a path); data's leg quantities match
+/// it. On failure data.pose holds the last iterate and must not be used as a result.
+/// Throws pkm::InvalidArgument if `options` is invalid.
+FkSummary forwardKinematics(const HexapodModel& model,
+                            HexapodData& data,
+                            const StrutVector& readings,
+                            const PoseRpy& seed,
+                            const FkOptions& options = {});
+
+}  // namespace pkm::kinematics

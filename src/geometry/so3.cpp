@@ -1,0 +1,95 @@
+#include "pkm/geometry/so3.hpp"
+
+#include <cassert>
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Geometry>
+
+namespace pkm::geometry {
+
+namespace {
+constexpr double kSmallAngle = 1e-8;
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+/// Shifts `angle` by a multiple of 2·pi to lie within pi of `target`.
+double nearestEquivalent(double angle, double target) {
+  return angle + kTwoPi * std::round((target - angle) / kTwoPi);
+}
+}  // namespace
+
+Eigen::Matrix3d hat(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d m;
+  m << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
+  return m;
+}
+
+Eigen::Matrix3d so3Exp(const Eigen::Vector3d& w) {
+  const double theta2 = w.squaredNorm();
+  const double theta = std::sqrt(theta2);
+  const Eigen::Matrix3d W = hat(w);
+  double a;  // sin(theta)/theta
+  double b;  // (1 - cos(theta))/theta^2
+  if (theta < kSmallAngle) {
+    a = 1.0 - theta2 / 6.0;
+    b = 0.5 - theta2 / 24.0;
+  } else {
+    a = std::sin(theta) / theta;
+    b = (1.0 - std::cos(theta)) / theta2;
+  }
+  return Eigen::Matrix3d::Identity() + a * W + b * W * W;
+}
+
+Eigen::Vector3d so3Log(const Eigen::Matrix3d& R) {
+  assert((R * R.transpose() - Eigen::Matrix3d::Identity()).norm() < 1e-6);
+  // Eigen's AngleAxis uses a quaternion path that is accurate near 0 and near pi.
+  const Eigen::AngleAxisd aa(R);
+  double angle = aa.angle();
+  Eigen::Vector3d axis = aa.axis();
+  if (angle > std::numbers::pi) {
+    angle = kTwoPi - angle;
+    axis = -axis;
+  }
+  return axis * angle;
+}
+
+Eigen::Matrix3d rotationFromRpy(const Eigen::Vector3d& rpy) {
+  const double sa = std::sin(rpy.x()), ca = std::cos(rpy.x());
+  const double sb = std::sin(rpy.y()), cb = std::cos(rpy.y());
+  const double sc = std::sin(rpy.z()), cc = std::cos(rpy.z());
+  Eigen::Matrix3d R;
+  R << cc * cb, cc * sb * sa - sc * ca, cc * sb * ca + sc * sa,  //
+      sc * cb, sc * sb * sa + cc * ca, sc * sb * ca - cc * sa,   //
+      -sb, cb * sa, cb * ca;
+  return R;
+}
+
+Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& R) {
+  const double cb = std::hypot(R(0, 0), R(1, 0));
+  const double b = std::atan2(-R(2, 0), cb);
+  if (cb < 1e-12) {
+    // Gimbal lock: only c - a (b = +90 deg) or c + a (b = -90 deg) is defined; put it all in c.
+    return {0.0, b, std::atan2(-R(0, 1), R(1, 1))};
+  }
+  return {std::atan2(R(2, 1), R(2, 2)), b, std::atan2(R(1, 0), R(0, 0))};
+}
+
+Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& R, const Eigen::Vector3d& near) {
+  const Eigen::Vector3d first = rpyFromRotation(R);
+  const Eigen::Vector3d second(first.x() + std::numbers::pi, std::numbers::pi - first.y(),
+                               first.z() + std::numbers::pi);
+  Eigen::Vector3d best;
+  double best_dist = INFINITY;
+  for (const Eigen::Vector3d& cand : {first, second}) {
+    Eigen::Vector3d shifted;
+    for (int i = 0; i < 3; ++i) shifted[i] = nearestEquivalent(cand[i], near[i]);
+    const double d = (shifted - near).squaredNorm();
+    if (d < best_dist) {
+      best_dist = d;
+      best = shifted;
+    }
+  }
+  return best;
+}
+
+}  // namespace pkm::geometry

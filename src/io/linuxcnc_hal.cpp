@@ -1,0 +1,263 @@
+#include "pkm/io/linuxcnc_hal.hpp"
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "pkm/core/error.hpp"
+#include "pkm/io/csv.hpp"
+#include "pkm/io/number_format.hpp"
+#include "pkm/kinematics/hexapod_ik.hpp"
+
+namespace pkm::io {
+
+namespace kin = pkm::kinematics;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::string_view kPrefix = "genhexkins.";
+
+std::vector<std::string_view> splitWords(std::string_view line) {
+  std::vector<std::string_view> words;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    const std::size_t start = i;
+    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i > start) words.push_back(line.substr(start, i - start));
+  }
+  return words;
+}
+
+std::vector<std::string> readLines(const std::string& path) {
+  std::vector<std::string> lines;
+  std::istringstream in(readTextFile(path, 16u << 20));
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
+/// The HALFILE entries of an INI's [HAL] section.
+bool iniLoadsHal(const std::string& ini, const std::string& hal_name) {
+  std::string section;
+  for (const std::string& raw : readLines(ini)) {
+    const auto words = splitWords(raw);
+    if (words.empty() || words[0].front() == '#' || words[0].front() == ';') continue;
+    if (words[0].front() == '[') {
+      section = std::string(words[0]);
+      continue;
+    }
+    if (section == "[HAL]" && words.size() >= 3 && (words[0] == "HALFILE" || words[0] == "POSTGUI_HALFILE") &&
+        words[1] == "=" && fs::path(std::string(words[2])).filename() == hal_name)
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions& options) {
+  HexapodMachine m;
+  m.source = hal_path;
+  m.model.name = fs::path(hal_path).stem().string();
+  m.description = fmt::format("Imported from LinuxCNC genhexkins configuration {}", hal_path);
+  std::array<std::array<bool, 3>, kin::kStruts> base_set{}, platform_set{};
+  const auto lines = readLines(hal_path);
+  double tool_offset = 0.0;
+  for (std::size_t n = 0; n < lines.size(); ++n) {
+    const std::size_t line_no = n + 1;
+    std::string_view text = lines[n];
+    if (const auto hash = text.find('#'); hash != std::string_view::npos) text = text.substr(0, hash);
+    const auto words = splitWords(text);
+    if (words.empty()) continue;
+    auto fail = [&](const std::string& what) { throw IoError(locate(hal_path, line_no, what)); };
+    const bool is_setp = words[0] == "setp" && words.size() >= 2 && words[1].starts_with(kPrefix);
+    if (!is_setp) {
+      m.notices.push_back(locate(hal_path, line_no, fmt::format("ignored: {}", fmt::join(words, " "))));
+      continue;
+    }
+    if (words.size() != 3) fail(fmt::format("expected 'setp {} VALUE'", words[1]));
+    const std::string_view pin = words[1].substr(kPrefix.size());
+    double value = 0.0;
+    if (!parseFiniteDouble(words[2], value)) fail(fmt::format("'{}' is not a finite number", words[2]));
+
+    // base.N.x / platform.N.x
+    const bool is_base = pin.starts_with("base.");
+    const bool is_platform = pin.starts_with("platform.");
+    if ((is_base || is_platform)) {
+      const std::string_view rest = pin.substr(is_base ? 5 : 9);
+      if (rest.size() != 3 || rest[1] != '.' || rest[0] < '0' || rest[0] > '5' || rest[2] < 'x' || rest[2] > 'z')
+        fail(fmt::format("unknown pin genhexkins.{}", pin));
+      const auto i = static_cast<std::size_t>(rest[0] - '0');
+      const int axis = rest[2] - 'x';
+      kin::Strut& s = m.model.struts[i];
+      (is_base ? s.world_p_base : s.platform_p_joint)[axis] = value;
+      (is_base ? base_set : platform_set)[i][static_cast<std::size_t>(axis)] = true;
+    } else if (pin == "spindle-offset") {
+      m.model.spindle_offset += value;
+    } else if (pin == "tool-offset") {
+      tool_offset = value;
+    } else if (pin == "convergence-criterion") {
+      if (!(value > 0.0)) fail("convergence-criterion must be > 0");
+      m.fk.tolerance = value;
+    } else if (pin == "limit-iterations") {
+      if (value < 1 || value > 1e6 || value != std::floor(value)) fail("limit-iterations must be an integer >= 1");
+      m.fk.max_iterations = static_cast<int>(value);
+    } else if (pin == "screw-lead") {
+      if (value != 0.0) fail("screw-lead != 0: the screw-twist strut correction is not supported by pkm");
+    } else if (pin.starts_with("base-n.") || pin.starts_with("platform-n.") || pin == "max-error") {
+      m.notices.push_back(locate(hal_path, line_no, fmt::format("ignored: genhexkins.{} (not used by pkm)", pin)));
+    } else {
+      fail(fmt::format("unknown pin genhexkins.{}", pin));
+    }
+  }
+  std::vector<std::string> missing;
+  for (std::size_t i = 0; i < kin::kStruts; ++i)
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (!base_set[i][a]) missing.push_back(fmt::format("base.{}.{}", i, "xyz"[a]));
+      if (!platform_set[i][a]) missing.push_back(fmt::format("platform.{}.{}", i, "xyz"[a]));
+    }
+  if (!missing.empty())
+    throw IoError(locate(hal_path, 0, fmt::format("genhexkins pins not set: {} (set every joint coordinate "
+                                                  "explicitly; pkm does not assume genhexkins' defaults)",
+                                                  fmt::join(missing, ", "))));
+  m.model.spindle_offset += tool_offset;
+  m.model.linuxcnc_tool_offset = tool_offset;
+
+  std::optional<std::string> ini = options.ini_path;
+  if (!ini && options.discover_ini) {
+    const fs::path dir = fs::path(hal_path).parent_path().empty() ? fs::path(".") : fs::path(hal_path).parent_path();
+    const std::string hal_name = fs::path(hal_path).filename().string();
+    std::vector<std::string> found;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec))
+      if (entry.path().extension() == ".ini" && iniLoadsHal(entry.path().string(), hal_name))
+        found.push_back(entry.path().string());
+    if (found.size() == 1) {
+      ini = found.front();
+      m.notices.push_back(fmt::format("using INI {} (its [HAL] HALFILE loads {})", *ini, hal_name));
+    } else if (found.size() > 1) {
+      m.notices.push_back(fmt::format("several INI files load {}; none used (pass --ini)", hal_name));
+    }
+  }
+  if (ini) {
+    applyLinuxcncIni(*ini, m);
+  } else {
+    m.notices.push_back("no INI file: assuming mm and home 0 0 0 0 0 0 (pass --ini for [TRAJ] HOME and units)");
+  }
+  // Cone axes: the strut direction at home (LinuxCNC has no joint-angle limits; max_angle stays 0).
+  kin::HexapodData data(m.model);
+  kin::inverseKinematics(m.model, data, m.model.home);
+  for (std::size_t i = 0; i < kin::kStruts; ++i) {
+    if (data.unit_leg[i].norm() == 0.0) continue;
+    m.model.struts[i].base_cone.axis = data.unit_leg[i];
+    m.model.struts[i].platform_cone.axis = data.world_R_platform.transpose() * data.unit_leg[i];
+  }
+  try {
+    m.model.validate();
+  } catch (const InvalidArgument& e) {
+    throw IoError(locate(hal_path, 0, e.what()));
+  }
+  return m;
+}
+
+void applyLinuxcncIni(const std::string& ini_path, HexapodMachine& machine) {
+  std::string section;
+  const auto lines = readLines(ini_path);
+  for (std::size_t n = 0; n < lines.size(); ++n) {
+    const std::size_t line_no = n + 1;
+    auto fail = [&](const std::string& what) { throw IoError(locate(ini_path, line_no, what)); };
+    std::string_view text = lines[n];
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+    if (text.empty() || text.front() == '#' || text.front() == ';') continue;
+    if (text.front() == '[') {
+      const auto close = text.find(']');
+      if (close == std::string_view::npos) fail("unterminated section header");
+      section = std::string(text.substr(0, close + 1));
+      continue;
+    }
+    const auto eq = text.find('=');
+    if (eq == std::string_view::npos) continue;
+    const auto key_words = splitWords(text.substr(0, eq));
+    if (key_words.size() != 1) continue;
+    const std::string_view key = key_words[0];
+    const auto values = splitWords(text.substr(eq + 1));
+    if (section == "[TRAJ]" && key == "HOME") {
+      if (values.size() != 6) fail(fmt::format("[TRAJ] HOME: expected 6 numbers (x y z a b c), found {}", values.size()));
+      std::array<double, 6> v{};
+      for (std::size_t i = 0; i < 6; ++i)
+        if (!parseFiniteDouble(values[i], v[i])) fail(fmt::format("[TRAJ] HOME: '{}' is not a finite number", values[i]));
+      machine.model.home.position = {v[0], v[1], v[2]};
+      machine.model.home.rpy = {degToRad(v[3]), degToRad(v[4]), degToRad(v[5])};
+    } else if (section == "[TRAJ]" && key == "LINEAR_UNITS") {
+      const std::string u = values.empty() ? "" : std::string(values[0]);
+      if (u == "mm" || u == "metric") machine.model.unit = LengthUnit::kMillimetre;
+      else if (u == "inch" || u == "in" || u == "imperial") machine.model.unit = LengthUnit::kInch;
+      else fail(fmt::format("[TRAJ] LINEAR_UNITS '{}' not understood (mm, metric, inch, in, imperial)", u));
+    } else if (section.size() == 9 && section.starts_with("[JOINT_") && section[7] >= '0' && section[7] <= '5' &&
+               (key == "MIN_LIMIT" || key == "MAX_LIMIT")) {
+      double v = 0.0;
+      if (values.size() != 1 || !parseFiniteDouble(values[0], v)) fail(fmt::format("{} {}: expected one number", section, key));
+      kin::Strut& s = machine.model.struts[static_cast<std::size_t>(section[7] - '0')];
+      (key == "MIN_LIMIT" ? s.min_reading : s.max_reading) = v;
+    }
+  }
+  for (int i = 0; i < kin::kStruts; ++i) {
+    const kin::Strut& s = machine.model.struts[static_cast<std::size_t>(i)];
+    if (s.min_reading > s.max_reading)
+      throw IoError(locate(ini_path, 0, fmt::format("[JOINT_{}] MIN_LIMIT {} > MAX_LIMIT {}", i, s.min_reading, s.max_reading)));
+  }
+}
+
+std::string writeLinuxcncSetp(const HexapodMachine& machine) {
+  const kin::HexapodModel& model = machine.model;
+  std::string out = fmt::format("# genhexkins geometry written by pkm from {}\n# machine: {}, units: {}\n",
+                                machine.source, model.name, toString(model.unit));
+  const bool tcp = model.tool_offset.norm() > 0.0;
+  if (tcp)
+    out += "# The TCP offset of the pkm model is folded into the platform joints (platform = joint - TCP).\n";
+  auto setp = [&out](const std::string& pin, double v) {
+    out += "setp genhexkins." + pin + " ";
+    appendNumber(out, v);
+    out += '\n';
+  };
+  out += "\n# Base joints positions in base (world) coordinates\n";
+  for (int i = 0; i < kin::kStruts; ++i)
+    for (int a = 0; a < 3; ++a) setp(fmt::format("base.{}.{}", i, "xyz"[a]), model.struts[static_cast<std::size_t>(i)].world_p_base[a]);
+  out += "\n# Platform joints positions in platform coordinates\n";
+  for (int i = 0; i < kin::kStruts; ++i) {
+    const Eigen::Vector3d p = model.struts[static_cast<std::size_t>(i)].platform_p_joint - model.tool_offset;
+    for (int a = 0; a < 3; ++a) setp(fmt::format("platform.{}.{}", i, "xyz"[a]), p[a]);
+  }
+  out += "\n";
+  setp("spindle-offset", model.spindle_offset - model.linuxcnc_tool_offset);
+  if (model.linuxcnc_tool_offset != 0.0) setp("tool-offset", model.linuxcnc_tool_offset);
+  setp("convergence-criterion", machine.fk.tolerance);
+  out += fmt::format("setp genhexkins.limit-iterations {}\n", machine.fk.max_iterations);
+
+  kin::HexapodData data(model);
+  kin::inverseKinematics(model, data, model.home);
+  out += "\n# INI values for this geometry (LinuxCNC joint positions are joint-centre distances):\n";
+  out += fmt::format("# [TRAJ] HOME = {} {} {} {} {} {}\n", formatNumber(model.home.position.x()),
+                     formatNumber(model.home.position.y()), formatNumber(model.home.position.z()),
+                     formatNumber(radToDeg(model.home.rpy.x())), formatNumber(radToDeg(model.home.rpy.y())),
+                     formatNumber(radToDeg(model.home.rpy.z())));
+  out += fmt::format("# [TRAJ] LINEAR_UNITS = {}\n", model.unit == LengthUnit::kInch ? "inch" : "mm");
+  for (int i = 0; i < kin::kStruts; ++i) {
+    const kin::Strut& s = model.struts[static_cast<std::size_t>(i)];
+    out += fmt::format("# [JOINT_{}] HOME = HOME_OFFSET = {}", i, formatNumber(data.joint_distance[i]));
+    if (std::isfinite(s.min_reading)) out += ", MIN_LIMIT = " + formatNumber(s.min_reading + s.length_offset);
+    if (std::isfinite(s.max_reading)) out += ", MAX_LIMIT = " + formatNumber(s.max_reading + s.length_offset);
+    if (s.length_offset != 0.0) out += fmt::format(" (pkm reading + length offset {})", formatNumber(s.length_offset));
+    out += '\n';
+  }
+  return out;
+}
+
+}  // namespace pkm::io

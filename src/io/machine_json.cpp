@@ -1,0 +1,243 @@
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "pkm/core/error.hpp"
+#include "pkm/io/hexapod_machine.hpp"
+#include "pkm/io/json_locator.hpp"
+#include "pkm/io/number_format.hpp"
+#include "pkm/kinematics/hexapod_ik.hpp"
+
+namespace pkm::io {
+
+using nlohmann::json;
+namespace kin = pkm::kinematics;
+
+namespace {
+
+/// Typed access to a parsed JSON document that reports errors as "SOURCE:LINE: POINTER: message".
+class Doc {
+ public:
+  Doc(const std::string& text, std::string source) : source_(std::move(source)), locator_(text) {}
+
+  [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
+    throw IoError(locate(source_, locator_.line(pointer), fmt::format("{}: {}", pointer.empty() ? "/" : pointer, what)));
+  }
+
+  void onlyKeys(const json& obj, const std::string& ptr, std::initializer_list<const char*> keys) const {
+    if (!obj.is_object()) fail(ptr, "expected an object");
+    for (const auto& item : obj.items()) {
+      bool known = false;
+      for (const char* k : keys) known = known || item.key() == k;
+      if (!known) fail(ptr + "/" + item.key(), fmt::format("unknown key '{}'", item.key()));
+    }
+  }
+
+  double number(const json& v, const std::string& ptr) const {
+    if (!v.is_number()) fail(ptr, "expected a number");
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) fail(ptr, "number is not finite");
+    return x;
+  }
+
+  double number(const json& obj, const std::string& ptr, const char* key, double fallback) const {
+    return obj.contains(key) ? number(obj[key], ptr + "/" + key) : fallback;
+  }
+
+  Eigen::Vector3d vec3(const json& v, const std::string& ptr) const {
+    if (!v.is_array() || v.size() != 3) fail(ptr, "expected an array of 3 numbers");
+    return {number(v[0], ptr + "/0"), number(v[1], ptr + "/1"), number(v[2], ptr + "/2")};
+  }
+
+  std::string string(const json& obj, const std::string& ptr, const char* key, const std::string& fallback) const {
+    if (!obj.contains(key)) return fallback;
+    if (!obj[key].is_string()) fail(ptr + "/" + key, "expected a string");
+    return obj[key].get<std::string>();
+  }
+
+ private:
+  std::string source_;
+  JsonLocator locator_;
+};
+
+/// Reads {"axis": [..], "max_angle_deg": ..}; returns whether an axis was given.
+bool readCone(const Doc& doc, const json& v, const std::string& ptr, kin::JointCone& cone) {
+  doc.onlyKeys(v, ptr, {"axis", "max_angle_deg"});
+  cone.max_angle = degToRad(doc.number(v, ptr, "max_angle_deg", 0.0));
+  if (cone.max_angle < 0.0) doc.fail(ptr + "/max_angle_deg", "must be >= 0 (0 = unlimited)");
+  if (!v.contains("axis")) return false;
+  const Eigen::Vector3d axis = doc.vec3(v["axis"], ptr + "/axis");
+  if (axis.norm() < 1e-12) doc.fail(ptr + "/axis", "axis has zero length");
+  cone.axis = axis.normalized();
+  return true;
+}
+
+void writeVec(std::string& out, const Eigen::Vector3d& v) {
+  out += '[';
+  for (int i = 0; i < 3; ++i) {
+    if (i > 0) out += ", ";
+    appendNumber(out, v[i]);
+  }
+  out += ']';
+}
+
+}  // namespace
+
+std::string readTextFile(const std::string& path, std::size_t max_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(locate(path, 0, "cannot open file"));
+  std::string text;
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    text.append(buf, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_bytes) throw IoError(locate(path, 0, fmt::format("file larger than {} bytes", max_bytes)));
+  }
+  if (in.bad()) throw IoError(locate(path, 0, "read error"));
+  return text;
+}
+
+HexapodMachine parseHexapodJson(const std::string& text, const std::string& source) {
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    const std::size_t byte = std::min<std::size_t>(e.byte, text.size());
+    const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(byte > 0 ? byte - 1 : 0), '\n'));
+    std::string what = e.what();
+    if (const auto p = what.find("syntax error"); p != std::string::npos) what = what.substr(p);
+    throw IoError(locate(source, line, "invalid JSON: " + what));
+  }
+  const Doc doc(text, source);
+  doc.onlyKeys(root, "", {"schema", "type", "name", "description", "units", "home", "tool_offset",
+                          "spindle_offset", "linuxcnc_tool_offset", "strut_diameter", "max_condition",
+                          "forward_kinematics", "struts"});
+  if (doc.string(root, "", "type", "hexapod") != "hexapod")
+    doc.fail("/type", "this reader handles \"type\": \"hexapod\" machines");
+  HexapodMachine m;
+  m.source = source;
+  kin::HexapodModel& model = m.model;
+  model.name = doc.string(root, "", "name", "hexapod");
+  m.description = doc.string(root, "", "description", "");
+  const std::string units = doc.string(root, "", "units", "mm");
+  const auto unit = lengthUnitFromString(units);
+  if (!unit) doc.fail("/units", fmt::format("units must be \"mm\" or \"inch\" (got \"{}\")", units));
+  model.unit = *unit;
+
+  if (root.contains("home")) {
+    const json& h = root["home"];
+    doc.onlyKeys(h, "/home", {"x", "y", "z", "a", "b", "c"});
+    model.home.position = {doc.number(h, "/home", "x", 0), doc.number(h, "/home", "y", 0), doc.number(h, "/home", "z", 0)};
+    model.home.rpy = {degToRad(doc.number(h, "/home", "a", 0)), degToRad(doc.number(h, "/home", "b", 0)),
+                      degToRad(doc.number(h, "/home", "c", 0))};
+  }
+  if (root.contains("tool_offset")) model.tool_offset = doc.vec3(root["tool_offset"], "/tool_offset");
+  model.spindle_offset = doc.number(root, "", "spindle_offset", 0.0);
+  model.linuxcnc_tool_offset = doc.number(root, "", "linuxcnc_tool_offset", 0.0);
+  model.strut_diameter = doc.number(root, "", "strut_diameter", 0.0);
+  if (model.strut_diameter < 0.0) doc.fail("/strut_diameter", "must be >= 0");
+  model.max_condition = doc.number(root, "", "max_condition", model.max_condition);
+  if (!(model.max_condition > 1.0)) doc.fail("/max_condition", "must be > 1");
+  if (root.contains("forward_kinematics")) {
+    const json& f = root["forward_kinematics"];
+    doc.onlyKeys(f, "/forward_kinematics", {"tolerance", "max_iterations"});
+    m.fk.tolerance = doc.number(f, "/forward_kinematics", "tolerance", m.fk.tolerance);
+    const double it = doc.number(f, "/forward_kinematics", "max_iterations", m.fk.max_iterations);
+    if (it != std::floor(it) || it < 1 || it > 1e6) doc.fail("/forward_kinematics/max_iterations", "must be an integer in [1, 1e6]");
+    m.fk.max_iterations = static_cast<int>(it);
+    std::string why;
+    if (!m.fk.isValid(&why)) doc.fail("/forward_kinematics", why);
+  }
+
+  if (!root.contains("struts")) doc.fail("", "missing key 'struts'");
+  const json& struts = root["struts"];
+  if (!struts.is_array() || struts.size() != kin::kStruts)
+    doc.fail("/struts", fmt::format("expected an array of {} struts", kin::kStruts));
+  std::array<bool, kin::kStruts> base_axis_given{}, platform_axis_given{};
+  for (std::size_t i = 0; i < struts.size(); ++i) {
+    const std::string ptr = fmt::format("/struts/{}", i);
+    const json& s = struts[i];
+    doc.onlyKeys(s, ptr, {"base", "platform", "length_offset", "stroke", "base_joint", "platform_joint"});
+    kin::Strut& strut = model.struts[i];
+    if (!s.contains("base")) doc.fail(ptr, "missing key 'base'");
+    if (!s.contains("platform")) doc.fail(ptr, "missing key 'platform'");
+    strut.world_p_base = doc.vec3(s["base"], ptr + "/base");
+    strut.platform_p_joint = doc.vec3(s["platform"], ptr + "/platform");
+    strut.length_offset = doc.number(s, ptr, "length_offset", 0.0);
+    if (s.contains("stroke")) {
+      const json& st = s["stroke"];
+      if (!st.is_array() || st.size() != 2) doc.fail(ptr + "/stroke", "expected [min, max]");
+      // null = unbounded on that side
+      if (!st[0].is_null()) strut.min_reading = doc.number(st[0], ptr + "/stroke/0");
+      if (!st[1].is_null()) strut.max_reading = doc.number(st[1], ptr + "/stroke/1");
+      if (strut.min_reading > strut.max_reading) doc.fail(ptr + "/stroke", "min is larger than max");
+    }
+    if (s.contains("base_joint")) base_axis_given[i] = readCone(doc, s["base_joint"], ptr + "/base_joint", strut.base_cone);
+    if (s.contains("platform_joint"))
+      platform_axis_given[i] = readCone(doc, s["platform_joint"], ptr + "/platform_joint", strut.platform_cone);
+  }
+  try {
+    // Default cone axes: the strut direction at home.
+    kin::HexapodData data(model);
+    kin::inverseKinematics(model, data, model.home);
+    for (std::size_t i = 0; i < kin::kStruts; ++i) {
+      const Eigen::Vector3d u = data.unit_leg[i];
+      if (u.norm() == 0.0) continue;  // validate() reports the zero-length strut
+      if (!base_axis_given[i]) model.struts[i].base_cone.axis = u;
+      if (!platform_axis_given[i]) model.struts[i].platform_cone.axis = data.world_R_platform.transpose() * u;
+    }
+    model.validate();
+  } catch (const InvalidArgument& e) {
+    doc.fail("/struts", e.what());
+  }
+  return m;
+}
+
+HexapodMachine readHexapodJson(const std::string& path) { return parseHexapodJson(readTextFile(path), path); }
+
+std::string writeHexapodJson(const HexapodMachine& machine) {
+  const kin::HexapodModel& model = machine.model;
+  std::string out = "{\n  \"schema\": \"pkm.machine/1\",\n  \"type\": \"hexapod\",\n";
+  out += fmt::format("  \"name\": {},\n", json(model.name).dump());
+  out += fmt::format("  \"description\": {},\n", json(machine.description).dump());
+  out += fmt::format("  \"units\": \"{}\",\n", toString(model.unit));
+  out += "  \"home\": {";
+  const char* names[] = {"x", "y", "z", "a", "b", "c"};
+  for (int i = 0; i < 6; ++i) {
+    out += fmt::format("{}\"{}\": ", i ? ", " : "", names[i]);
+    appendNumber(out, i < 3 ? model.home.position[i] : radToDeg(model.home.rpy[i - 3]));
+  }
+  out += "},\n  \"tool_offset\": ";
+  writeVec(out, model.tool_offset);
+  out += ",\n  \"spindle_offset\": " + formatNumber(model.spindle_offset);
+  out += ",\n  \"linuxcnc_tool_offset\": " + formatNumber(model.linuxcnc_tool_offset);
+  out += ",\n  \"strut_diameter\": " + formatNumber(model.strut_diameter);
+  out += ",\n  \"max_condition\": " + formatNumber(model.max_condition);
+  out += ",\n  \"forward_kinematics\": {\"tolerance\": " + formatNumber(machine.fk.tolerance) +
+         ", \"max_iterations\": " + std::to_string(machine.fk.max_iterations) + "},\n  \"struts\": [\n";
+  for (int i = 0; i < kin::kStruts; ++i) {
+    const kin::Strut& s = model.struts[static_cast<std::size_t>(i)];
+    out += "    {\"base\": ";
+    writeVec(out, s.world_p_base);
+    out += ", \"platform\": ";
+    writeVec(out, s.platform_p_joint);
+    out += ", \"length_offset\": " + formatNumber(s.length_offset);
+    if (std::isfinite(s.min_reading) || std::isfinite(s.max_reading)) {
+      const auto bound = [](double v) { return std::isfinite(v) ? formatNumber(v) : std::string("null"); };
+      out += ", \"stroke\": [" + bound(s.min_reading) + ", " + bound(s.max_reading) + "]";
+    }
+    for (const auto& [key, cone] : {std::pair{"base_joint", &s.base_cone}, std::pair{"platform_joint", &s.platform_cone}}) {
+      out += fmt::format(",\n     \"{}\": {{\"axis\": ", key);
+      writeVec(out, cone->axis);
+      out += ", \"max_angle_deg\": " + formatNumber(radToDeg(cone->max_angle)) + "}";
+    }
+    out += i + 1 < kin::kStruts ? "},\n" : "}\n";
+  }
+  out += "  ]\n}\n";
+  return out;
+}
+
+}  // namespace pkm::io
