@@ -13,6 +13,7 @@ all: build
 
 setup:
 	@bash scripts/setup.sh
+	@bash scripts/fetch-linuxcnc.sh
 
 build: setup
 	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(WERROR) $(CMAKE_FLAGS) >/dev/null

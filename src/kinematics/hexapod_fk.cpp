@@ -38,6 +38,9 @@ bool FkOptions::isValid(std::string* why) const {
 
 namespace {
 
+/// Below this fraction of the tolerance no polishing step is taken after convergence.
+constexpr double kPolishFraction = 1e-3;
+
 /// Residual r = readings(p, R) − target; fills data's leg quantities. Returns |r|² (infinite if NaN).
 double evaluate(const HexapodModel& model,
                 HexapodData& data,
@@ -75,6 +78,7 @@ FkSummary forwardKinematics(const HexapodModel& model,
   Eigen::PartialPivLU<Matrix6d> lu;
 
   summary.status = FkStatus::kNoConvergence;
+  bool polishing = false;
   for (int iter = 0;; ++iter) {
     summary.max_residual = r.cwiseAbs().maxCoeff();
     if (!std::isfinite(norm2)) {
@@ -83,7 +87,12 @@ FkSummary forwardKinematics(const HexapodModel& model,
     }
     if (summary.max_residual <= options.tolerance) {
       summary.status = FkStatus::kOk;
-      break;
+      // Strut residuals at the tolerance can still mean a pose error of a few tolerances (the
+      // Jacobian's inverse amplifies them). One more Newton step, quadratically convergent, makes the
+      // pose accurate to far below the tolerance; it is skipped once the residual is already tiny.
+      if (polishing || summary.max_residual <= kPolishFraction * options.tolerance || iter == options.max_iterations)
+        break;
+      polishing = true;
     }
     if (iter == options.max_iterations) break;
 
@@ -114,7 +123,7 @@ FkSummary forwardKinematics(const HexapodModel& model,
       p_try = p - alpha * delta.head<3>();
       R_try = geometry::so3Exp(-alpha * delta.tail<3>()) * R;
       const double n2 = evaluate(model, data, p_try, R_try, readings, r_try);
-      if (n2 < norm2 || r_try.cwiseAbs().maxCoeff() <= options.tolerance) {
+      if (n2 < norm2 || (!polishing && r_try.cwiseAbs().maxCoeff() <= options.tolerance)) {
         accepted = true;
         norm2 = n2;
         break;
@@ -126,12 +135,16 @@ FkSummary forwardKinematics(const HexapodModel& model,
     if (!accepted) {
       evaluate(model, data, p, R, readings, r);  // restore data to the best iterate
       summary.max_residual = r.cwiseAbs().maxCoeff();
-      summary.status = FkStatus::kNoConvergence;
+      if (!polishing) summary.status = FkStatus::kNoConvergence;
       break;
     }
     p = p_try;
     R = R_try;
     r = r_try;
+    if (polishing) {
+      summary.max_residual = r.cwiseAbs().maxCoeff();
+      break;
+    }
   }
   data.pose.position = p;
   data.pose.rpy = geometry::rpyFromRotation(R, seed.rpy);

@@ -1,0 +1,95 @@
+#include "pkm/geometry/so3.hpp"
+
+#include <random>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "support/tolerances.hpp"
+
+namespace pkm::geometry {
+namespace {
+
+using test::kTolExact;
+
+Eigen::Vector3d randomVector(std::mt19937& rng, double scale) {
+  std::uniform_real_distribution<double> u(-scale, scale);
+  return {u(rng), u(rng), u(rng)};
+}
+
+bool isRotation(const Eigen::Matrix3d& R) {
+  return (R * R.transpose() - Eigen::Matrix3d::Identity()).norm() < 1e-12 && std::abs(R.determinant() - 1) < 1e-12;
+}
+
+TEST(So3, HatIsCrossProduct) {
+  std::mt19937 rng(test::kSeed);
+  for (int k = 0; k < 50; ++k) {
+    const Eigen::Vector3d w = randomVector(rng, 3), v = randomVector(rng, 3);
+    EXPECT_LT((hat(w) * v - w.cross(v)).norm(), kTolExact);
+  }
+}
+
+TEST(So3, ExpMatchesAngleAxis) {
+  std::mt19937 rng(test::kSeed);
+  for (int k = 0; k < 100; ++k) {
+    const Eigen::Vector3d w = randomVector(rng, 3);
+    const Eigen::Matrix3d expected = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
+    EXPECT_LT((so3Exp(w) - expected).norm(), kTolExact);
+    EXPECT_TRUE(isRotation(so3Exp(w)));
+  }
+}
+
+TEST(So3, ExpNearIdentityIsFirstOrderAccurate) {
+  const Eigen::Vector3d w(1e-9, -2e-9, 3e-10);
+  EXPECT_LT((so3Exp(w) - (Eigen::Matrix3d::Identity() + hat(w))).norm(), kTolExact);
+  EXPECT_TRUE(so3Exp(Eigen::Vector3d::Zero()).isIdentity(0.0));
+}
+
+TEST(So3, LogInvertsExpIncludingNearPi) {
+  std::mt19937 rng(test::kSeed);
+  for (int k = 0; k < 200; ++k) {
+    Eigen::Vector3d w = randomVector(rng, 1).normalized();
+    w *= (k % 4 == 0) ? std::numbers::pi - 1e-7 : (k % 4 == 1 ? 1e-8 : std::uniform_real_distribution<>(0, 3.1)(rng));
+    EXPECT_LT((so3Log(so3Exp(w)) - w).norm(), 1e-9) << w.transpose();
+  }
+}
+
+TEST(So3, RpyIsFixedAxisRollPitchYaw) {
+  const Eigen::Vector3d rpy(0.3, -0.2, 1.1);
+  const Eigen::Matrix3d expected = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+                                    Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+                                    Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+                                       .toRotationMatrix();
+  EXPECT_LT((rotationFromRpy(rpy) - expected).norm(), kTolExact);
+}
+
+TEST(So3, RpyRoundTrip) {
+  std::mt19937 rng(test::kSeed);
+  std::uniform_real_distribution<double> ang(-3.1, 3.1), pitch(-1.5, 1.5);
+  for (int k = 0; k < 200; ++k) {
+    const Eigen::Vector3d rpy(ang(rng), pitch(rng), ang(rng));
+    EXPECT_LT((rpyFromRotation(rotationFromRpy(rpy)) - rpy).norm(), 1e-12);
+  }
+}
+
+TEST(So3, RpyAtGimbalLockReproducesRotation) {
+  for (double b : {std::numbers::pi / 2, -std::numbers::pi / 2}) {
+    const Eigen::Matrix3d R = rotationFromRpy({0.4, b, -0.7});
+    EXPECT_LT((rotationFromRpy(rpyFromRotation(R)) - R).norm(), 1e-12);
+  }
+}
+
+TEST(So3, RpyNearestKeepsAnglesContinuous) {
+  // c = 200 deg is returned as -160 deg by the plain extraction, as 200 deg near a 190 deg seed.
+  const Eigen::Vector3d rpy(0.1, 0.2, 200.0 * std::numbers::pi / 180.0);
+  const Eigen::Matrix3d R = rotationFromRpy(rpy);
+  EXPECT_LT(rpyFromRotation(R).z(), 0.0);
+  const Eigen::Vector3d near(0.1, 0.2, 190.0 * std::numbers::pi / 180.0);
+  EXPECT_LT((rpyFromRotation(R, near) - rpy).norm(), 1e-12);
+  // The second branch (a+pi, pi-b, c+pi) is chosen when the seed is on it.
+  const Eigen::Vector3d other(rpy.x() + std::numbers::pi, std::numbers::pi - rpy.y(), rpy.z() + std::numbers::pi);
+  EXPECT_LT((rpyFromRotation(R, other) - other).norm(), 1e-12);
+}
+
+}  // namespace
+}  // namespace pkm::geometry

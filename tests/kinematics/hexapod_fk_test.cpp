@@ -1,0 +1,173 @@
+#include "pkm/kinematics/hexapod_fk.hpp"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "pkm/core/error.hpp"
+#include "pkm/geometry/so3.hpp"
+#include "pkm/kinematics/hexapod_ik.hpp"
+#include "support/genhexkins_style.hpp"
+#include "support/sample_models.hpp"
+#include "support/tolerances.hpp"
+
+namespace pkm::kinematics {
+namespace {
+
+double rotationError(const PoseRpy& a, const PoseRpy& b) {
+  return geometry::so3Log(geometry::rotationFromRpy(a.rpy) * geometry::rotationFromRpy(b.rpy).transpose()).norm();
+}
+
+class HexapodFkRoundTrip : public ::testing::TestWithParam<int> {
+ protected:
+  HexapodModel model() const { return GetParam() == 0 ? test::linuxcncSimModel() : test::millingModel(); }
+};
+
+TEST_P(HexapodFkRoundTrip, ColdStartFromHomeRecoversRandomPoses) {
+  const HexapodModel m = model();
+  HexapodData data(m);
+  std::mt19937 rng(test::kSeed);
+  const double reach = 0.3 * m.characteristicLength();
+  for (int k = 0; k < 500; ++k) {
+    const PoseRpy truth = test::randomPose(rng, m.home, reach, degToRad(15));
+    const StrutVector q = inverseKinematics(m, data, truth);
+    const FkSummary s = forwardKinematics(m, data, q, m.home);
+    ASSERT_TRUE(s.ok()) << toString(s.status) << " at pose " << k;
+    EXPECT_LE(s.max_residual, test::kTolRoundTrip);
+    EXPECT_LT((data.pose.position - truth.position).norm(), test::kTolRoundTrip);
+    EXPECT_LT(rotationError(data.pose, truth), test::kTolRoundTrip);
+    EXPECT_LT((data.pose.rpy - truth.rpy).norm(), test::kTolRoundTrip);  // same angle triple (continuity)
+    EXPECT_LE(s.iterations, 8);
+  }
+}
+
+TEST_P(HexapodFkRoundTrip, WarmStartAlongServoPathTakesFewSteps) {
+  const HexapodModel m = model();
+  HexapodData data(m);
+  const double r = 0.2 * m.characteristicLength();
+  PoseRpy seed = m.home;
+  int max_iter = 0;
+  const int n = 2000;
+  for (int k = 0; k <= n; ++k) {
+    const double t = 2 * std::numbers::pi * k / n;
+    PoseRpy truth = m.home;
+    truth.position += Eigen::Vector3d(r * std::sin(t), r * (1 - std::cos(t)), 0.2 * r * std::sin(2 * t));
+    truth.rpy += Eigen::Vector3d(degToRad(10) * std::sin(t), degToRad(8) * std::sin(3 * t), degToRad(30) * std::sin(t));
+    const StrutVector q = inverseKinematics(m, data, truth);
+    const FkSummary s = forwardKinematics(m, data, q, seed);
+    ASSERT_TRUE(s.ok());
+    EXPECT_LT((data.pose.position - truth.position).norm(), test::kTolRoundTrip);
+    EXPECT_LT(rotationError(data.pose, truth), test::kTolRoundTrip);
+    max_iter = std::max(max_iter, s.iterations);
+    seed = data.pose;
+  }
+  EXPECT_LE(max_iter, 3);  // quadratic convergence: two steps from the previous cycle, rarely three
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, HexapodFkRoundTrip, ::testing::Values(0, 1));
+
+TEST(HexapodFk, LinuxcncReferencePosesFromHome) {
+  const HexapodModel m = test::linuxcncSimModel();
+  HexapodData data(m);
+  const PoseRpy poses[] = {{{2, -1, 22}, {degToRad(3), degToRad(-4), degToRad(10)}},
+                           {{-3, 2, 18}, {degToRad(10), degToRad(10), degToRad(-15)}}};
+  for (const PoseRpy& truth : poses) {
+    const StrutVector q = inverseKinematics(m, data, truth);
+    const FkSummary s = forwardKinematics(m, data, q, m.home);
+    ASSERT_TRUE(s.ok());
+    EXPECT_LE(s.iterations, 6);  // genhexkins-style iteration needs 13 and 17 here
+    EXPECT_LT((data.pose.position - truth.position).norm(), test::kTolRoundTrip);
+  }
+}
+
+TEST(HexapodFk, ConvergesWhereGenhexkinsStyleConverges) {
+  const HexapodModel m = test::linuxcncSimModel();
+  HexapodData data(m);
+  std::mt19937 rng(test::kSeed + 1);
+  int both = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const PoseRpy truth = test::randomPose(rng, m.home, 8.0, degToRad(30));
+    const StrutVector q = inverseKinematics(m, data, truth);
+    const test::GenhexkinsResult g = test::genhexkinsStyleFk(m, q, m.home);
+    const FkSummary s = forwardKinematics(m, data, q, m.home);
+    if (!g.converged) continue;
+    ++both;
+    ASSERT_TRUE(s.ok()) << "pose " << k << ": genhexkins-style converged, pkm did not";
+    // Both land on the same assembly mode when the genhexkins-style iteration returns the true pose.
+    if ((g.pose.position - truth.position).norm() < 1e-6) {
+      EXPECT_LT((data.pose.position - truth.position).norm(), test::kTolRoundTrip);
+    }
+  }
+  EXPECT_GT(both, 1500);
+}
+
+TEST(HexapodFk, UnreachableLengthsFailCleanly) {
+  const HexapodModel m = test::linuxcncSimModel();
+  HexapodData data(m);
+  StrutVector q;
+  q << 1000, 1, 1000, 1, 1000, 1;  // no platform pose closes these struts
+  const FkSummary s = forwardKinematics(m, data, q, m.home);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.status, FkStatus::kInvalidInput);
+  EXPECT_GT(s.max_residual, 1.0);
+}
+
+TEST(HexapodFk, IterationCapGivesNoConvergence) {
+  const HexapodModel m = test::millingModel();
+  HexapodData data(m);
+  PoseRpy truth = m.home;
+  truth.position.x() += 80;
+  truth.rpy.z() += 0.3;
+  const StrutVector q = inverseKinematics(m, data, truth);
+  FkOptions opt;
+  opt.max_iterations = 1;
+  const FkSummary s = forwardKinematics(m, data, q, m.home, opt);
+  EXPECT_EQ(s.status, FkStatus::kNoConvergence);
+  EXPECT_EQ(s.iterations, 1);
+}
+
+TEST(HexapodFk, NonFiniteInputIsInvalid) {
+  const HexapodModel m = test::millingModel();
+  HexapodData data(m);
+  StrutVector q = StrutVector::Constant(250);
+  q[2] = NAN;
+  EXPECT_EQ(forwardKinematics(m, data, q, m.home).status, FkStatus::kInvalidInput);
+  PoseRpy seed = m.home;
+  seed.rpy.x() = INFINITY;
+  EXPECT_EQ(forwardKinematics(m, data, StrutVector::Constant(250), seed).status, FkStatus::kInvalidInput);
+}
+
+TEST(HexapodFk, SingularSeedIsReported) {
+  const HexapodModel m = test::linuxcncSimModel();
+  HexapodData data(m);
+  PoseRpy seed = m.home;
+  seed.position.z() = 0;  // every strut in the base plane: no vertical stiffness
+  const StrutVector q = StrutVector::Constant(29.7);
+  EXPECT_EQ(forwardKinematics(m, data, q, seed).status, FkStatus::kSingular);
+}
+
+TEST(HexapodFk, InvalidOptionsThrow) {
+  const HexapodModel m = test::millingModel();
+  HexapodData data(m);
+  FkOptions opt;
+  EXPECT_TRUE(opt.isValid());
+  opt.tolerance = 0;
+  std::string why;
+  EXPECT_FALSE(opt.isValid(&why));
+  EXPECT_NE(why.find("tolerance"), std::string::npos);
+  EXPECT_THROW((void)forwardKinematics(m, data, StrutVector::Constant(250), m.home, opt), InvalidArgument);
+  opt = FkOptions{.max_iterations = 0};
+  EXPECT_FALSE(opt.isValid());
+  opt = FkOptions{.max_backtracks = -1};
+  EXPECT_FALSE(opt.isValid());
+}
+
+TEST(HexapodFk, StatusStrings) {
+  EXPECT_EQ(toString(FkStatus::kOk), "ok");
+  EXPECT_EQ(toString(FkStatus::kNoConvergence), "no_convergence");
+  EXPECT_EQ(toString(FkStatus::kSingular), "singular");
+  EXPECT_EQ(toString(FkStatus::kInvalidInput), "invalid_input");
+}
+
+}  // namespace
+}  // namespace pkm::kinematics
