@@ -1,4 +1,4 @@
-// `pkm hexapod ...`: ik, fk, check, describe, hal (docs/cli.md).
+// `pkm hexapod ...`: ik, fk, check, describe, hal, machines (docs/formats.md).
 #include <array>
 #include <cmath>
 #include <memory>
@@ -125,13 +125,12 @@ void runCheck(const MachineOption& machine_opt, const std::string& poses) {
     o += ',';
     o += c.status();
     o += ',';
-    int k = 0;
-    c.stroke_margin.minCoeff(&k);
-    appendMargin(o, c.stroke_margin[k]);
-    o += std::to_string(k) + ',';
-    for (const kin::StrutVector* margins : {&c.base_angle_margin, &c.platform_angle_margin}) {
+    // Smallest margin and the strut or joint it belongs to; both empty when the limit is disabled.
+    for (const kin::StrutVector* margins : {&c.stroke_margin, &c.base_angle_margin, &c.platform_angle_margin}) {
+      int k = 0;
       margins->minCoeff(&k);
-      appendMargin(o, radToDeg((*margins)[k]));
+      const double scale = margins == &c.stroke_margin ? 1.0 : radToDeg(1.0);
+      appendMargin(o, (*margins)[k] * scale);
       o += std::isinf((*margins)[k]) ? std::string(",") : std::to_string(k) + ',';
     }
     appendMargin(o, c.min_leg_distance);
@@ -141,7 +140,7 @@ void runCheck(const MachineOption& machine_opt, const std::string& poses) {
     appendMargin(o, c.condition_margin);
     std::vector<std::string> parts;
     for (const auto& v : c.violations)
-      parts.push_back(fmt::format("{} {} (value {:.6g}, limit {:.6g})", kin::toString(v.kind), v.item,
+      parts.push_back(fmt::format("{} {} value={:.6g} limit={:.6g}", kin::toString(v.kind), v.item,
                                   v.kind == kin::LimitKind::kJointAngle ? radToDeg(v.value) : v.value,
                                   v.kind == kin::LimitKind::kJointAngle ? radToDeg(v.limit) : v.limit));
     o += fmt::format("{}\n", fmt::join(parts, "; "));

@@ -50,11 +50,15 @@ bool iniLoadsHal(const std::string& ini, const std::string& hal_name) {
     const auto words = splitWords(raw);
     if (words.empty() || words[0].front() == '#' || words[0].front() == ';') continue;
     if (words[0].front() == '[') {
-      section = std::string(words[0]);
+      section = std::string(words[0].substr(0, words[0].find(']') + 1));
       continue;
     }
-    if (section == "[HAL]" && words.size() >= 3 && (words[0] == "HALFILE" || words[0] == "POSTGUI_HALFILE") &&
-        words[1] == "=" && fs::path(std::string(words[2])).filename() == hal_name)
+    const auto eq = raw.find('=');
+    if (section != "[HAL]" || eq == std::string::npos) continue;
+    const auto key = splitWords(std::string_view(raw).substr(0, eq));
+    const auto value = splitWords(std::string_view(raw).substr(eq + 1));
+    if (key.size() == 1 && (key[0] == "HALFILE" || key[0] == "POSTGUI_HALFILE") && !value.empty() &&
+        fs::path(std::string(value[0])).filename() == hal_name)
       return true;
   }
   return false;
@@ -100,7 +104,7 @@ HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions
       (is_base ? s.world_p_base : s.platform_p_joint)[axis] = value;
       (is_base ? base_set : platform_set)[i][static_cast<std::size_t>(axis)] = true;
     } else if (pin == "spindle-offset") {
-      m.model.spindle_offset += value;
+      m.model.spindle_offset = value;  // as in HAL, the last setp wins
     } else if (pin == "tool-offset") {
       tool_offset = value;
     } else if (pin == "convergence-criterion") {
@@ -127,7 +131,7 @@ HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions
     throw IoError(locate(hal_path, 0, fmt::format("genhexkins pins not set: {} (set every joint coordinate "
                                                   "explicitly; pkm does not assume genhexkins' defaults)",
                                                   fmt::join(missing, ", "))));
-  m.model.spindle_offset += tool_offset;
+  m.model.spindle_offset += tool_offset;  // genhexkins adds both to the z of every joint
   m.model.linuxcnc_tool_offset = tool_offset;
 
   std::optional<std::string> ini = options.ini_path;
@@ -162,7 +166,8 @@ HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions
   try {
     m.model.validate();
   } catch (const InvalidArgument& e) {
-    throw IoError(locate(hal_path, 0, e.what()));
+    throw IoError(locate(hal_path, 0, fmt::format("{}{}", e.what(), ini ? "" : " (no INI file was found, so home "
+                                                  "was taken as 0 0 0 0 0 0: pass --ini with [TRAJ] HOME)")));
   }
   return m;
 }

@@ -115,6 +115,8 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
   doc.onlyKeys(root, "", {"schema", "type", "name", "description", "units", "home", "tool_offset",
                           "spindle_offset", "linuxcnc_tool_offset", "strut_diameter", "max_condition",
                           "forward_kinematics", "struts"});
+  if (const std::string schema = doc.string(root, "", "schema", "pkm.machine/1"); schema != "pkm.machine/1")
+    doc.fail("/schema", fmt::format("unsupported schema \"{}\" (this version reads \"pkm.machine/1\")", schema));
   if (doc.string(root, "", "type", "hexapod") != "hexapod")
     doc.fail("/type", "this reader handles \"type\": \"hexapod\" machines");
   HexapodMachine m;

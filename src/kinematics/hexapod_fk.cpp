@@ -2,13 +2,13 @@
 
 #include <cmath>
 
-#include <Eigen/LU>
 #include <fmt/format.h>
 
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "kinematics/detail/hexapod_legs.hpp"
+#include "kinematics/detail/solve6.hpp"
 
 namespace pkm::kinematics {
 
@@ -75,7 +75,6 @@ FkSummary forwardKinematics(const HexapodModel& model,
   StrutVector r;
   double norm2 = evaluate(model, data, p, R, readings, r);
   const double inv_length = 1.0 / model.characteristicLength();
-  Eigen::PartialPivLU<Matrix6d> lu;
 
   summary.status = FkStatus::kNoConvergence;
   bool polishing = false;
@@ -100,13 +99,11 @@ FkSummary forwardKinematics(const HexapodModel& model,
     computeStrutJacobian(model, data);
     Matrix6d J = data.J_q_x;
     J.rightCols<3>() *= inv_length;
-    lu.compute(J);
-    const auto diag = lu.matrixLU().diagonal().cwiseAbs();
-    if (!(diag.minCoeff() > options.singular_pivot_ratio * diag.maxCoeff())) {
+    StrutVector delta = r;
+    if (!(detail::solve6(J, delta) > options.singular_pivot_ratio)) {
       summary.status = FkStatus::kSingular;
       break;
     }
-    StrutVector delta = lu.solve(r);
     delta.tail<3>() *= inv_length;
     if (!delta.allFinite()) {
       summary.status = FkStatus::kSingular;

@@ -1,6 +1,6 @@
 /// @file
 /// @brief LinuxCNC genhexkins interop: read a `kinematics.hal` (+ its INI) into a HexapodMachine and
-/// write the `setp` block back (ecosystem notes §1.2; docs/linuxcnc.md).
+/// write the `setp` block back (docs/machine-format.md, "LinuxCNC").
 #pragma once
 
 #include <optional>

@@ -1,0 +1,59 @@
+// Tests of the internal fixed-size solver src/kinematics/detail/solve6.hpp against Eigen.
+#include "kinematics/detail/solve6.hpp"
+
+#include <random>
+
+#include <Eigen/LU>
+#include <gtest/gtest.h>
+
+#include "support/tolerances.hpp"
+
+namespace pkm::kinematics::detail {
+namespace {
+
+using M6 = Eigen::Matrix<double, 6, 6>;
+using V6 = Eigen::Matrix<double, 6, 1>;
+
+TEST(Solve6, MatchesEigenOnRandomSystems) {
+  std::mt19937 rng(test::kSeed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int k = 0; k < 200; ++k) {
+    M6 A;
+    V6 b;
+    for (int i = 0; i < 36; ++i) A.data()[i] = u(rng);
+    for (int i = 0; i < 6; ++i) b[i] = u(rng);
+    const V6 expected = A.fullPivLu().solve(b);
+    M6 work = A;
+    V6 x = b;
+    const double ratio = solve6(work, x);
+    EXPECT_GT(ratio, 0.0);
+    EXPECT_LT((x - expected).norm(), 1e-9 * (1 + expected.norm()));
+    EXPECT_LT((A * x - b).norm(), 1e-10);
+  }
+}
+
+TEST(Solve6, NeedsPivotingWhenLeadingEntryIsZero) {
+  M6 A = M6::Identity();
+  A.row(0).swap(A.row(3));  // a permutation matrix: zero on the first diagonal entry
+  V6 b;
+  b << 1, 2, 3, 4, 5, 6;
+  const V6 expected = A.transpose() * b;
+  V6 x = b;
+  M6 work = A;
+  EXPECT_EQ(solve6(work, x), 1.0);
+  EXPECT_LT((x - expected).norm(), test::kTolExact);
+}
+
+TEST(Solve6, SingularMatrixGivesZeroOrTinyPivotRatio) {
+  M6 A = M6::Identity();
+  A.row(5) = A.row(4);
+  V6 b = V6::Ones();
+  EXPECT_EQ(solve6(A, b), 0.0);
+  M6 B = M6::Identity();
+  B(5, 5) = 1e-15;
+  V6 c = V6::Ones();
+  EXPECT_LT(solve6(B, c), 1e-12);
+}
+
+}  // namespace
+}  // namespace pkm::kinematics::detail
