@@ -52,8 +52,30 @@ class Scanner {
     return out;
   }
 
+  /// Skips a whole value without recording pointers (nesting deeper than kMaxDepth).
+  void skipValue() {
+    int depth = 0;
+    while (pos_ < text_.size()) {
+      const char c = text_[pos_];
+      if (c == '"') {
+        readString();
+        if (depth == 0) return;
+        continue;
+      }
+      if (depth == 0 && (c == ',' || c == '}' || c == ']')) return;  // end of a scalar
+      if (c == '\n') ++line_;
+      ++pos_;
+      if (c == '{' || c == '[') ++depth;
+      if ((c == '}' || c == ']') && --depth == 0) return;
+    }
+  }
+
   void value(const std::string& pointer) {
-    if (depth_ > 512 || pos_ >= text_.size()) return;
+    if (pos_ >= text_.size()) return;
+    if (depth_ >= kMaxDepth) {
+      skipValue();
+      return;
+    }
     lines_.emplace(pointer, line_);
     const char c = text_[pos_];
     if (c == '{') {
@@ -61,7 +83,10 @@ class Scanner {
       ++pos_;
       skipSpace();
       while (pos_ < text_.size() && text_[pos_] != '}') {
-        if (text_[pos_] != '"') return;
+        if (text_[pos_] != '"') {
+          --depth_;
+          return;
+        }
         const std::string key = readString();
         skipSpace();
         if (pos_ < text_.size() && text_[pos_] == ':') ++pos_;
@@ -78,7 +103,12 @@ class Scanner {
       ++pos_;
       skipSpace();
       for (std::size_t i = 0; pos_ < text_.size() && text_[pos_] != ']'; ++i) {
+        const std::size_t before = pos_;
         value(pointer + "/" + std::to_string(i));
+        if (pos_ == before) {  // invalid input (e.g. "[}"): no progress, stop here
+          --depth_;
+          return;
+        }
         skipSpace();
         if (pos_ < text_.size() && text_[pos_] == ',') ++pos_;
         skipSpace();
@@ -99,6 +129,7 @@ class Scanner {
   std::size_t pos_ = 0;
   std::size_t line_ = 1;
   int depth_ = 0;
+  static constexpr int kMaxDepth = 512;  ///< deeper values are skipped (no recursion without bound)
 };
 
 }  // namespace

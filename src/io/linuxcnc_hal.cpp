@@ -64,6 +64,19 @@ bool iniLoadsHal(const std::string& ini, const std::string& hal_name) {
   return false;
 }
 
+/// Parses "x y z a b c" (length unit, degrees) into a pose; `fail` throws with the location.
+template <typename Fail>
+kin::PoseRpy parseHome(std::string_view label, const std::vector<std::string_view>& values, Fail&& fail) {
+  if (values.size() != 6) fail(fmt::format("{}: expected 6 numbers (x y z a b c), found {}", label, values.size()));
+  std::array<double, 6> v{};
+  for (std::size_t i = 0; i < 6; ++i)
+    if (!parseFiniteDouble(values[i], v[i])) fail(fmt::format("{}: '{}' is not a finite number", label, values[i]));
+  kin::PoseRpy home;
+  home.position = {v[0], v[1], v[2]};
+  home.rpy = {degToRad(v[3]), degToRad(v[4]), degToRad(v[5])};
+  return home;
+}
+
 }  // namespace
 
 HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions& options) {
@@ -74,13 +87,29 @@ HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions
   std::array<std::array<bool, 3>, kin::kStruts> base_set{}, platform_set{};
   const auto lines = readLines(hal_path);
   double tool_offset = 0.0;
+  bool pkm_home = false;
   for (std::size_t n = 0; n < lines.size(); ++n) {
     const std::size_t line_no = n + 1;
     std::string_view text = lines[n];
+    auto fail = [&](const std::string& what) { throw IoError(locate(hal_path, line_no, what)); };
+    if (const auto meta = splitWords(text); meta.size() >= 2 && meta[0] == "#" && meta[1] == "pkm:") {
+      // "# pkm: home = x y z a b c" / "# pkm: units = mm|inch", written by writeLinuxcncSetp so that
+      // its output is loadable on its own; an INI file overrides them.
+      if (meta.size() >= 4 && meta[2] == "home" && meta[3] == "=") {
+        m.model.home = parseHome("# pkm: home", {meta.begin() + 4, meta.end()}, fail);
+        pkm_home = true;
+      } else if (meta.size() == 5 && meta[2] == "units" && meta[3] == "=") {
+        const auto unit = lengthUnitFromString(meta[4]);
+        if (!unit) fail(fmt::format("units '{}': expected mm or inch", meta[4]));
+        m.model.unit = *unit;
+      } else {
+        fail("'# pkm:' lines are 'home = x y z a b c' or 'units = mm|inch'");
+      }
+      continue;
+    }
     if (const auto hash = text.find('#'); hash != std::string_view::npos) text = text.substr(0, hash);
     const auto words = splitWords(text);
     if (words.empty()) continue;
-    auto fail = [&](const std::string& what) { throw IoError(locate(hal_path, line_no, what)); };
     const bool is_setp = words[0] == "setp" && words.size() >= 2 && words[1].starts_with(kPrefix);
     if (!is_setp) {
       m.notices.push_back(locate(hal_path, line_no, fmt::format("ignored: {}", fmt::join(words, " "))));
@@ -152,7 +181,7 @@ HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions
   }
   if (ini) {
     applyLinuxcncIni(*ini, m);
-  } else {
+  } else if (!pkm_home) {
     m.notices.push_back("no INI file: assuming mm and home 0 0 0 0 0 0 (pass --ini for [TRAJ] HOME and units)");
   }
   // Cone axes: the strut direction at home (LinuxCNC has no joint-angle limits; max_angle stays 0).
@@ -166,7 +195,7 @@ HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions
   try {
     m.model.validate();
   } catch (const InvalidArgument& e) {
-    throw IoError(locate(hal_path, 0, fmt::format("{}{}", e.what(), ini ? "" : " (no INI file was found, so home "
+    throw IoError(locate(hal_path, 0, fmt::format("{}{}", e.what(), ini || pkm_home ? "" : " (no INI file was found, so home "
                                                   "was taken as 0 0 0 0 0 0: pass --ini with [TRAJ] HOME)")));
   }
   return m;
@@ -194,12 +223,7 @@ void applyLinuxcncIni(const std::string& ini_path, HexapodMachine& machine) {
     const std::string_view key = key_words[0];
     const auto values = splitWords(text.substr(eq + 1));
     if (section == "[TRAJ]" && key == "HOME") {
-      if (values.size() != 6) fail(fmt::format("[TRAJ] HOME: expected 6 numbers (x y z a b c), found {}", values.size()));
-      std::array<double, 6> v{};
-      for (std::size_t i = 0; i < 6; ++i)
-        if (!parseFiniteDouble(values[i], v[i])) fail(fmt::format("[TRAJ] HOME: '{}' is not a finite number", values[i]));
-      machine.model.home.position = {v[0], v[1], v[2]};
-      machine.model.home.rpy = {degToRad(v[3]), degToRad(v[4]), degToRad(v[5])};
+      machine.model.home = parseHome("[TRAJ] HOME", values, fail);
     } else if (section == "[TRAJ]" && key == "LINEAR_UNITS") {
       const std::string u = values.empty() ? "" : std::string(values[0]);
       if (u == "mm" || u == "metric") machine.model.unit = LengthUnit::kMillimetre;
@@ -248,6 +272,12 @@ std::string writeLinuxcncSetp(const HexapodMachine& machine) {
 
   kin::HexapodData data(model);
   kin::inverseKinematics(model, data, model.home);
+  // Read back by readLinuxcncHal (an INI file, when found, overrides them).
+  out += fmt::format("\n# pkm: units = {}\n", toString(model.unit));
+  out += fmt::format("# pkm: home = {} {} {} {} {} {}\n", formatNumber(model.home.position.x()),
+                     formatNumber(model.home.position.y()), formatNumber(model.home.position.z()),
+                     formatNumber(radToDeg(model.home.rpy.x())), formatNumber(radToDeg(model.home.rpy.y())),
+                     formatNumber(radToDeg(model.home.rpy.z())));
   out += "\n# INI values for this geometry (LinuxCNC joint positions are joint-centre distances):\n";
   out += fmt::format("# [TRAJ] HOME = {} {} {} {} {} {}\n", formatNumber(model.home.position.x()),
                      formatNumber(model.home.position.y()), formatNumber(model.home.position.z()),

@@ -1,3 +1,4 @@
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -76,6 +77,28 @@ bool readCone(const Doc& doc, const json& v, const std::string& ptr, kin::JointC
   return true;
 }
 
+/// 1-based line of the first number token `token` outside strings in `text`; 0 if none.
+std::size_t lineOfNumber(const std::string& text, const std::string& token) {
+  if (token.empty()) return 0;
+  const auto numberChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '+' || c == '-'; };
+  std::size_t line = 1;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') ++line;
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (text.compare(i, token.size(), token) == 0 && (i == 0 || !numberChar(text[i - 1])) &&
+               (i + token.size() == text.size() || !numberChar(text[i + token.size()]))) {
+      return line;
+    }
+  }
+  return 0;
+}
+
 void writeVec(std::string& out, const Eigen::Vector3d& v) {
   out += '[';
   for (int i = 0; i < 3; ++i) {
@@ -110,6 +133,14 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
     std::string what = e.what();
     if (const auto p = what.find("syntax error"); p != std::string::npos) what = what.substr(p);
     throw IoError(locate(source, line, "invalid JSON: " + what));
+  } catch (const json::out_of_range& e) {
+    // A number too large for a double ("1e999"): nlohmann reports the token but not its position.
+    std::string what = e.what();
+    const auto q1 = what.find('\'');
+    const auto q2 = what.rfind('\'');
+    const std::string token = q1 != std::string::npos && q2 > q1 ? what.substr(q1 + 1, q2 - q1 - 1) : std::string();
+    throw IoError(locate(source, lineOfNumber(text, token),
+                         fmt::format("number {} is not finite (out of the range of a double)", token)));
   }
   const Doc doc(text, source);
   doc.onlyKeys(root, "", {"schema", "type", "name", "description", "units", "home", "tool_offset",

@@ -1,1 +1,492 @@
-// placeholder: being written
+// The CLI contract of `pkm hexapod ...` and `pkm demo`, tested by running the built binary (PKM_BINARY)
+// as a subprocess: output headers, values against the LinuxCNC reference, FK failure rows, machine
+// round trips through `hal` and `describe --json`, and exit code 2 with FILE:LINE messages on bad input.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "support/tolerances.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using pkm::test::kTolLinuxcnc;
+using pkm::test::kTolRoundTrip;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+constexpr int kExitUsage = 2;
+
+/// Reference strut lengths of the LinuxCNC hexapod-sim (genhexkins), inch, 6 decimals.
+struct Reference {
+  double pose[6];
+  double lengths[6];
+};
+const Reference kReference[] = {
+    {{0, 0, 20, 0, 0, 0}, {29.746680, 29.746680, 29.746715, 29.746363, 29.746363, 29.746715}},
+    {{2, -1, 22, 3, -4, 10}, {31.597194, 31.713899, 29.975223, 32.850082, 27.921167, 33.441616}},
+    {{-3, 2, 18, 10, 10, -15}, {30.022945, 29.402324, 29.682443, 25.351693, 33.820068, 24.667812}},
+};
+constexpr const char* kSimPoses = "x,y,z,a,b,c\n0,0,20,0,0,0\n2,-1,22,3,-4,10\n-3,2,18,10,10,-15\n";
+constexpr const char* kDefaultPoses = "x,y,z,a,b,c\n0,0,200,0,0,0\n10,-5,210,3,-2,5\n-20,15,180,-4,6,-10\n";
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+std::vector<std::string> splitLines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  return lines;
+}
+
+std::vector<std::string> splitFields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::size_t pos = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', pos);
+    fields.push_back(line.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  return fields;
+}
+
+double num(const std::string& s) {
+  std::size_t used = 0;
+  const double v = std::stod(s, &used);
+  EXPECT_EQ(used, s.size()) << s;
+  return v;
+}
+
+class HexapodCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           (std::string("pkm_cli_test_") + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+
+  /// `s` in single quotes for /bin/sh.
+  static std::string quote(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) {
+      if (c == '\'') q.append("'\\''");
+      else q.push_back(c);
+    }
+    q.push_back('\'');
+    return q;
+  }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  std::string write(const std::string& name, const std::string& content) const {
+    std::ofstream out(dir_ / name, std::ios::binary);
+    out << content;
+    return path(name);
+  }
+
+  static std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+
+  /// Runs `pkm ARGS` (each quoted) with stdin from `stdin_file` (or /dev/null); captures everything.
+  CliRun pkm(const std::vector<std::string>& args, const std::string& stdin_file = "/dev/null") const {
+    std::string cmd = quote(PKM_BINARY);
+    for (const auto& a : args) cmd.append(" ").append(quote(a));
+    cmd.append(" < ").append(quote(stdin_file));
+    cmd.append(" > ").append(quote(path("stdout.txt")));
+    cmd.append(" 2> ").append(quote(path("stderr.txt")));
+    const int status = std::system(cmd.c_str());
+    CliRun r;
+    r.code = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(dir_ / "stdout.txt");
+    r.err = slurp(dir_ / "stderr.txt");
+    return r;
+  }
+
+  /// Expects exit code 2 and "pkm: error: " on stderr containing `where`; returns stderr.
+  static std::string expectUsageError(const CliRun& r, const std::string& where) {
+    EXPECT_EQ(r.code, kExitUsage) << r.err;
+    EXPECT_THAT(r.err, HasSubstr(where));
+    return r.err;
+  }
+
+  fs::path dir_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// ik / fk
+
+TEST_F(HexapodCli, IkMatchesLinuxcncReference) {
+  const CliRun r = pkm({"hexapod", "ik", "--machine", "hexapod-linuxcnc-sim", "--poses", write("P.csv", kSimPoses)});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const auto lines = splitLines(r.out);
+  ASSERT_EQ(lines.size(), 4u) << r.out;
+  EXPECT_EQ(lines[0], "l0,l1,l2,l3,l4,l5,status");
+  for (std::size_t k = 0; k < 3; ++k) {
+    const auto f = splitFields(lines[k + 1]);
+    ASSERT_EQ(f.size(), 7u) << lines[k + 1];
+    for (std::size_t i = 0; i < 6; ++i)
+      EXPECT_NEAR(num(f[i]), kReference[k].lengths[i], kTolLinuxcnc) << "row " << k << " strut " << i;
+    EXPECT_EQ(f[6], "ok");
+  }
+}
+
+TEST_F(HexapodCli, IkReadsStandardInput) {
+  const std::string poses = write("P.csv", kSimPoses);
+  const CliRun from_file = pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", poses});
+  const CliRun from_stdin = pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "--poses", "-"}, poses);
+  ASSERT_EQ(from_stdin.code, 0) << from_stdin.err;
+  EXPECT_EQ(from_stdin.out, from_file.out);
+}
+
+TEST_F(HexapodCli, IkOnDefaultMachineReportsStroke) {
+  const CliRun r = pkm({"hexapod", "ik", "--poses", write("P.csv", "x,y,z,a,b,c\n0,0,200,0,0,0\n0,0,-400,0,0,0\n")});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto lines = splitLines(r.out);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(splitFields(lines[1]).back(), "ok");
+  EXPECT_EQ(splitFields(lines[2]).back(), "stroke");  // readings are printed all the same
+  EXPECT_GT(num(splitFields(lines[2])[0]), 500.0);
+}
+
+TEST_F(HexapodCli, FkHeaderAndRoundTripOfIkOutput) {
+  const CliRun ik = pkm({"hexapod", "ik", "--machine", "hexapod-linuxcnc-sim", "--poses", write("P.csv", kSimPoses)});
+  ASSERT_EQ(ik.code, 0) << ik.err;
+  // The ik output (with its status column) is a valid fk input: extra columns are ignored.
+  const CliRun fk = pkm({"hexapod", "fk", "--machine", "hexapod-linuxcnc-sim", "--lengths", write("L.csv", ik.out)});
+  ASSERT_EQ(fk.code, 0) << fk.err;
+  const auto lines = splitLines(fk.out);
+  ASSERT_EQ(lines.size(), 4u) << fk.out;
+  EXPECT_EQ(lines[0], "x,y,z,a,b,c,iterations,status");
+  for (std::size_t k = 0; k < 3; ++k) {
+    const auto f = splitFields(lines[k + 1]);
+    ASSERT_EQ(f.size(), 8u) << lines[k + 1];
+    for (std::size_t i = 0; i < 6; ++i)
+      EXPECT_NEAR(num(f[i]), kReference[k].pose[i], kTolRoundTrip) << "row " << k << " field " << i;
+    EXPECT_GE(num(f[6]), 0.0);
+    EXPECT_EQ(f[7], "ok");
+  }
+}
+
+TEST_F(HexapodCli, FkRoundTripOnDefaultMachine) {
+  const CliRun ik = pkm({"hexapod", "ik", "--poses", write("P.csv", kDefaultPoses)});
+  ASSERT_EQ(ik.code, 0) << ik.err;
+  const CliRun fk = pkm({"hexapod", "fk", "--lengths", write("L.csv", ik.out)});
+  ASSERT_EQ(fk.code, 0) << fk.err;
+  const auto want = splitLines(kDefaultPoses);
+  const auto got = splitLines(fk.out);
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t k = 1; k < got.size(); ++k) {
+    const auto f = splitFields(got[k]);
+    const auto w = splitFields(want[k]);
+    ASSERT_EQ(f.size(), 8u);
+    for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(num(f[i]), num(w[i]), kTolRoundTrip) << got[k];
+    EXPECT_EQ(f[7], "ok");
+  }
+}
+
+TEST_F(HexapodCli, FkSeedOption) {
+  const CliRun ik = pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", write("P.csv", "x,y,z,a,b,c\n2,-1,22,3,-4,10\n")});
+  ASSERT_EQ(ik.code, 0) << ik.err;
+  const std::string lengths = write("L.csv", ik.out);
+  const CliRun from_home = pkm({"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l", lengths});
+  const CliRun seeded = pkm({"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l", lengths, "--seed", "2,-1,22,3,-4,10"});
+  ASSERT_EQ(from_home.code, 0) << from_home.err;
+  ASSERT_EQ(seeded.code, 0) << seeded.err;
+  const auto a = splitFields(splitLines(from_home.out).at(1));
+  const auto b = splitFields(splitLines(seeded.out).at(1));
+  ASSERT_EQ(a.size(), 8u);
+  ASSERT_EQ(b.size(), 8u);
+  EXPECT_EQ(a[7], "ok");
+  EXPECT_EQ(b[7], "ok");
+  for (std::size_t i = 0; i < 6; ++i) {
+    EXPECT_NEAR(num(b[i]), kReference[1].pose[i], kTolRoundTrip);
+    EXPECT_NEAR(num(a[i]), num(b[i]), kTolRoundTrip);
+  }
+  // Seeded at the answer, the solve needs fewer Newton steps than from home.
+  EXPECT_LT(num(b[6]), num(a[6]));
+  EXPECT_LE(num(b[6]), 1.0);
+}
+
+TEST_F(HexapodCli, FkBadSeedIsUsageError) {
+  const std::string lengths = write("L.csv", "l0,l1,l2,l3,l4,l5\n30,30,30,30,30,30\n");
+  for (const std::string seed : {"1,2,3", "0,0,20,0,0,x", "0,0,20,0,0,0,0", "0,0,nan,0,0,0"}) {
+    SCOPED_TRACE(seed);
+    const CliRun r = pkm({"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l", lengths, "--seed", seed});
+    expectUsageError(r, "--seed");
+  }
+}
+
+TEST_F(HexapodCli, FkImpossibleRowGivesEmptyPoseAndNextRowReseedsFromHome) {
+  // Struts 0 and 1 share no base joint; their base joints are 45.9 apart, their platform joints 2:
+  // lengths of 1 cannot close the loop.
+  const std::string good = "31.597194336721323,31.713899300748924,29.975222906668,32.85008205799862,"
+                           "27.921166698780066,33.44161557269717";
+  const CliRun alone = pkm({"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l",
+                         write("good.csv", "l0,l1,l2,l3,l4,l5\n" + good + "\n")});
+  const CliRun r = pkm({"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l",
+                     write("L.csv", "l0,l1,l2,l3,l4,l5\n1,1,30,30,30,30\n" + good + "\n")});
+  ASSERT_EQ(alone.code, 0) << alone.err;
+  ASSERT_EQ(r.code, 0) << r.err;  // a failed row is a result, not an input error
+  const auto lines = splitLines(r.out);
+  ASSERT_EQ(lines.size(), 3u) << r.out;
+  const auto bad = splitFields(lines[1]);
+  ASSERT_EQ(bad.size(), 8u) << lines[1];
+  for (std::size_t i = 0; i < 6; ++i) EXPECT_EQ(bad[i], "") << lines[1];
+  EXPECT_GT(num(bad[6]), 0.0);
+  EXPECT_NE(bad[7], "ok");
+  EXPECT_THAT(bad[7], ::testing::AnyOf("no_convergence", "singular"));
+  // The next row solves, exactly as it does from home on its own (same pose and iteration count).
+  EXPECT_EQ(lines[2], splitLines(alone.out).at(1));
+  const auto next = splitFields(lines[2]);
+  EXPECT_EQ(next[7], "ok");
+  for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(num(next[i]), kReference[1].pose[i], 1e-6);
+}
+
+// ---------------------------------------------------------------------------------------------
+// check, describe, hal, machines
+
+TEST_F(HexapodCli, CheckRuns) {
+  const CliRun sim = pkm({"hexapod", "check", "-m", "hexapod-linuxcnc-sim", "-p", write("P.csv", kSimPoses)});
+  ASSERT_EQ(sim.code, 0) << sim.err;
+  auto lines = splitLines(sim.out);
+  ASSERT_EQ(lines.size(), 4u);
+  EXPECT_THAT(lines[0], StartsWith("row,status,min_stroke_margin,stroke_strut,"));
+  const std::size_t columns = splitFields(lines[0]).size();
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    EXPECT_THAT(lines[k], StartsWith(std::to_string(k - 1) + ",ok,"));
+    EXPECT_EQ(splitFields(lines[k]).size(), columns) << lines[k];
+  }
+  const CliRun def = pkm({"hexapod", "check", "-p", write("D.csv", "x,y,z,a,b,c\n0,0,200,0,0,0\n0,0,-400,0,0,0\n")});
+  ASSERT_EQ(def.code, 0) << def.err;
+  lines = splitLines(def.out);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_THAT(lines[1], StartsWith("0,ok,"));
+  EXPECT_THAT(lines[2], StartsWith("1,stroke,-"));  // negative stroke margin
+  EXPECT_THAT(lines[2], HasSubstr("stroke strut 0"));
+  EXPECT_EQ(splitFields(lines[2]).size(), columns);
+}
+
+TEST_F(HexapodCli, HalOutputReadBackGivesSameIk) {
+  const std::string poses = write("P.csv", kSimPoses);
+  const CliRun hal = pkm({"hexapod", "hal", "--machine", "hexapod-linuxcnc-sim"});
+  ASSERT_EQ(hal.code, 0) << hal.err;
+  EXPECT_THAT(hal.out, HasSubstr("setp genhexkins.platform.2.x 10.459\n"));
+  const std::string hal_file = write("kinematics.hal", hal.out);
+  // The sim geometry needs its INI (HOME z 20); the setp block lists the values to put there.
+  EXPECT_THAT(hal.out, HasSubstr("# [TRAJ] HOME = 0 0 20 0 0 0"));
+  const std::string ini = write("sim.ini", "[TRAJ]\nHOME = 0 0 20 0 0 0\nLINEAR_UNITS = inch\n");
+  const CliRun builtin = pkm({"hexapod", "ik", "--machine", "hexapod-linuxcnc-sim", "--poses", poses});
+  const CliRun from_hal = pkm({"hexapod", "ik", "--machine", hal_file, "--ini", ini, "--poses", poses});
+  ASSERT_EQ(from_hal.code, 0) << from_hal.err;
+  EXPECT_EQ(from_hal.out, builtin.out);
+  // Notices about ignored lines go to stderr, not into the output.
+  EXPECT_THAT(from_hal.out, ::testing::Not(HasSubstr("note")));
+}
+
+TEST_F(HexapodCli, HalOfDefaultMachineReadBackGivesSameJointDistances) {
+  const CliRun hal = pkm({"hexapod", "hal"});
+  ASSERT_EQ(hal.code, 0) << hal.err;
+  const std::string hal_file = write("kinematics.hal", hal.out);
+  write("machine.ini", "[HAL]\nHALFILE = kinematics.hal\n[TRAJ]\nHOME = 0 0 200 0 0 0\nLINEAR_UNITS = mm\n");
+  const std::string poses = write("P.csv", kDefaultPoses);
+  const CliRun builtin = pkm({"hexapod", "ik", "--poses", poses});
+  const CliRun from_hal = pkm({"hexapod", "ik", "--machine", hal_file, "--poses", poses});
+  ASSERT_EQ(from_hal.code, 0) << from_hal.err;
+  EXPECT_THAT(from_hal.err, HasSubstr("pkm: note: using INI"));
+  const auto a = splitLines(builtin.out), b = splitLines(from_hal.out);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 1; k < a.size(); ++k) {
+    const auto fa = splitFields(a[k]), fb = splitFields(b[k]);
+    // LinuxCNC joint positions are joint-centre distances: the pkm reading plus the 650 length offset.
+    for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(num(fb[i]), num(fa[i]) + 650.0, kTolRoundTrip);
+  }
+}
+
+TEST_F(HexapodCli, HalOutputLoadsOnItsOwn) {
+  const CliRun hal = pkm({"hexapod", "hal", "--machine", "hexapod-linuxcnc-sim"});
+  ASSERT_EQ(hal.code, 0) << hal.err;
+  const std::string poses = write("P.csv", kSimPoses);
+  const CliRun from_hal = pkm({"hexapod", "ik", "--machine", write("alone.hal", hal.out), "--poses", poses});
+  ASSERT_EQ(from_hal.code, 0) << from_hal.err;
+  EXPECT_EQ(from_hal.out, pkm({"hexapod", "ik", "--machine", "hexapod-linuxcnc-sim", "--poses", poses}).out);
+}
+
+TEST_F(HexapodCli, HalWithoutIniExplainsWhy) {
+  const CliRun hal = pkm({"hexapod", "hal", "--machine", "hexapod-linuxcnc-sim"});
+  std::string without_home;  // the setp block without its "# pkm:" lines, as a hand-written file
+  std::istringstream in(hal.out);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("# pkm:", 0) != 0) without_home += line + "\n";
+  const std::string hal_file = write("lonely.hal", without_home);
+  const CliRun r = pkm({"hexapod", "ik", "--machine", hal_file, "--poses", write("P.csv", kSimPoses)});
+  expectUsageError(r, hal_file + ": ");
+  EXPECT_THAT(r.err, HasSubstr("--ini"));
+}
+
+TEST_F(HexapodCli, DescribeJsonReadBackGivesSameIk) {
+  for (const auto& [machine, poses_text] : {std::pair{"hexapod-default", kDefaultPoses},
+                                            std::pair{"hexapod-linuxcnc-sim", kSimPoses}}) {
+    SCOPED_TRACE(machine);
+    const CliRun json = pkm({"hexapod", "describe", "--json", "--machine", machine});
+    ASSERT_EQ(json.code, 0) << json.err;
+    EXPECT_THAT(json.out, StartsWith("{"));
+    const std::string file = write("m.json", json.out);
+    const std::string poses = write("P.csv", poses_text);
+    const CliRun builtin = pkm({"hexapod", "ik", "--machine", machine, "--poses", poses});
+    const CliRun from_json = pkm({"hexapod", "ik", "--machine", file, "--poses", poses});
+    ASSERT_EQ(from_json.code, 0) << from_json.err;
+    EXPECT_EQ(from_json.out, builtin.out);
+    const CliRun check_a = pkm({"hexapod", "check", "--machine", machine, "--poses", poses});
+    const CliRun check_b = pkm({"hexapod", "check", "--machine", file, "--poses", poses});
+    EXPECT_EQ(check_a.out, check_b.out);  // limits, cones and diameters survive too
+  }
+}
+
+TEST_F(HexapodCli, DescribeText) {
+  const CliRun r = pkm({"hexapod", "describe"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("pkm-hx1200"));
+  EXPECT_THAT(r.out, HasSubstr("builtin:hexapod-default"));
+  EXPECT_THAT(r.out, HasSubstr("at home      status ok"));
+}
+
+TEST_F(HexapodCli, MachinesListsBuiltins) {
+  const CliRun r = pkm({"hexapod", "machines"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(splitLines(r.out), ::testing::IsSupersetOf({"hexapod-default", "hexapod-linuxcnc-sim"}));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad input: exit code 2 and a message naming the file and line
+
+TEST_F(HexapodCli, MissingColumn) {
+  const std::string p = write("P.csv", "x,y,z,a,b\n0,0,20,0,0\n");
+  const std::string err = expectUsageError(pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", p}), p + ":1: ");
+  EXPECT_THAT(err, HasSubstr("missing column"));
+  EXPECT_THAT(err, StartsWith("pkm: error: "));
+}
+
+TEST_F(HexapodCli, NonNumber) {
+  const std::string p = write("P.csv", "x,y,z,a,b,c\n0,0,20,0,0,0\n0,0,20,zero,0,0\n");
+  const std::string err = expectUsageError(pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", p}), p + ":3: ");
+  EXPECT_THAT(err, HasSubstr("'zero'"));
+}
+
+TEST_F(HexapodCli, NanIsRejected) {
+  const std::string p = write("P.csv", "x,y,z,a,b,c\nnan,0,20,0,0,0\n");
+  expectUsageError(pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", p}), p + ":2: ");
+}
+
+TEST_F(HexapodCli, InfIsRejected) {
+  const std::string p = write("L.csv", "l0,l1,l2,l3,l4,l5\n30,30,30,30,30,30\n\n30,30,30,inf,30,30\n");
+  expectUsageError(pkm({"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l", p}), p + ":4: ");
+}
+
+TEST_F(HexapodCli, WrongFieldCount) {
+  const std::string p = write("P.csv", "x,y,z,a,b,c\n0,0,20,0,0\n");
+  const std::string err = expectUsageError(pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", p}), p + ":2: ");
+  EXPECT_THAT(err, HasSubstr("expected 6 fields, found 5"));
+  const std::string q = write("Q.csv", "x,y,z,a,b,c\n0,0,20,0,0,0,7\n");
+  expectUsageError(pkm({"hexapod", "check", "-m", "hexapod-linuxcnc-sim", "-p", q}), q + ":2: ");
+}
+
+TEST_F(HexapodCli, EmptyFile) {
+  const std::string p = write("P.csv", "");
+  const std::string err = expectUsageError(pkm({"hexapod", "ik", "-p", p}), p);
+  EXPECT_THAT(err, HasSubstr("empty file"));
+}
+
+TEST_F(HexapodCli, NonexistentFile) {
+  const std::string p = path("no-such-poses.csv");
+  const std::string err = expectUsageError(pkm({"hexapod", "ik", "-p", p}), p);
+  EXPECT_THAT(err, HasSubstr("cannot open"));
+}
+
+TEST_F(HexapodCli, MalformedMachineJson) {
+  const std::string m = write("m.json", "{\n  \"units\": \"mm\",\n  \"struts\": [1, 2,, 3]\n}\n");
+  const std::string err =
+      expectUsageError(pkm({"hexapod", "ik", "--machine", m, "-p", write("P.csv", kSimPoses)}), m + ":3: ");
+  EXPECT_THAT(err, HasSubstr("invalid JSON"));
+}
+
+TEST_F(HexapodCli, InvalidMachineGeometryNamesLine) {
+  const CliRun json = pkm({"hexapod", "describe", "--json", "--machine", "hexapod-linuxcnc-sim"});
+  std::string text = json.out;
+  const auto pos = text.find("\"units\": \"inch\"");
+  ASSERT_NE(pos, std::string::npos);
+  text.replace(pos, 15, "\"units\": \"feet\"");
+  const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
+  const std::string m = write("m.json", text);
+  expectUsageError(pkm({"hexapod", "describe", "--machine", m}), m + ":" + std::to_string(line) + ": /units: ");
+}
+
+TEST_F(HexapodCli, UnknownMachineName) {
+  const std::string err = expectUsageError(pkm({"hexapod", "describe", "--machine", "no-such-machine"}), "no-such-machine");
+  EXPECT_THAT(err, HasSubstr("hexapod-linuxcnc-sim"));
+}
+
+TEST_F(HexapodCli, UnknownOption) {
+  const CliRun r = pkm({"hexapod", "ik", "-p", write("P.csv", kSimPoses), "--bogus"});
+  EXPECT_EQ(r.code, kExitUsage);
+  EXPECT_THAT(r.err, HasSubstr("--bogus"));
+  EXPECT_EQ(r.out, "");
+}
+
+TEST_F(HexapodCli, UnknownSubcommandAndMissingSubcommand) {
+  EXPECT_EQ(pkm({"hexapod", "frobnicate"}).code, kExitUsage);
+  EXPECT_EQ(pkm({"hexapod"}).code, kExitUsage);
+  EXPECT_EQ(pkm({}).code, kExitUsage);
+}
+
+TEST_F(HexapodCli, MissingPoses) {
+  const CliRun r = pkm({"hexapod", "ik", "--machine", "hexapod-linuxcnc-sim"});
+  EXPECT_EQ(r.code, kExitUsage);
+  EXPECT_THAT(r.err, HasSubstr("--poses"));
+  const CliRun f = pkm({"hexapod", "fk"});
+  EXPECT_EQ(f.code, kExitUsage);
+  EXPECT_THAT(f.err, HasSubstr("--lengths"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// demo
+
+TEST_F(HexapodCli, DemoPasses) {
+  const CliRun r = pkm({"demo", "--points", "200"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("PASS"));
+  EXPECT_THAT(r.out, HasSubstr("200 of 200 converged"));
+}
+
+TEST_F(HexapodCli, VersionAndHelpExitZero) {
+  const CliRun v = pkm({"--version"});
+  EXPECT_EQ(v.code, 0);
+  EXPECT_THAT(v.out, HasSubstr("pkm"));
+  const CliRun h = pkm({"hexapod", "ik", "--help"});
+  EXPECT_EQ(h.code, 0);
+  EXPECT_THAT(h.out, HasSubstr("--poses"));
+}
+
+}  // namespace

@@ -14,7 +14,7 @@
 #include <unistd.h>
 
 #include "pkm/core/error.hpp"
-#include "tolerances.hpp"
+#include "support/tolerances.hpp"
 
 namespace {
 

@@ -91,6 +91,16 @@ TEST(JsonLocator, CrlfAndScalarRoot) {
   EXPECT_EQ(scalar.line("/x"), 3u);
 }
 
+TEST(JsonLocator, DeepNestingIsSkippedAndLaterValuesFound) {
+  constexpr int kDepth = 3000;
+  const std::string deep = std::string(kDepth, '[') + "\"x]\\\"[\"" + std::string(kDepth, ']');
+  const JsonLocator loc("{\n \"a\": [1,\n" + deep + "\n],\n \"b\":\n  2\n}\n");
+  EXPECT_EQ(loc.line("/a"), 2u);
+  EXPECT_EQ(loc.line("/a/1"), 3u);
+  EXPECT_EQ(loc.line("/a/1/0/0"), 3u);
+  EXPECT_EQ(loc.line("/b"), 6u);
+}
+
 TEST(JsonLocator, InvalidInputDoesNotThrow) {
   // Truncated input: the root and what came before the cut are still found.
   const JsonLocator loc("{\n \"a\": 1,\n \"b\": [1,\n");
@@ -99,6 +109,12 @@ TEST(JsonLocator, InvalidInputDoesNotThrow) {
   EXPECT_EQ(loc.line("/b"), 3u);
   EXPECT_NO_THROW(JsonLocator("{\"a\" 1 ]]]}}}"));
   EXPECT_NO_THROW(JsonLocator(std::string(2000, '[')));
+  // Inputs on which a scan makes no progress must end (these used to loop forever).
+  EXPECT_NO_THROW(JsonLocator("[}"));
+  EXPECT_NO_THROW(JsonLocator("[1, }, 2]"));
+  EXPECT_NO_THROW(JsonLocator(std::string(600, '[') + "1" + std::string(600, ']')));
+  const JsonLocator loc2("[\n1,\n}");
+  EXPECT_EQ(loc2.line("/0"), 2u);
 }
 
 }  // namespace

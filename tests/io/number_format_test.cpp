@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tolerances.hpp"
+#include "support/tolerances.hpp"
 
 namespace {
 

@@ -20,7 +20,8 @@ struct HalReadOptions {
 };
 
 /// Reads `setp genhexkins.base.N.x|y|z`, `platform.N.x|y|z`, `spindle-offset`, `tool-offset`,
-/// `convergence-criterion`, `limit-iterations`. Other lines become notices; `screw-lead` != 0 is an error
+/// `convergence-criterion`, `limit-iterations`, and the comment lines `# pkm: home = x y z a b c` and
+/// `# pkm: units = mm|inch` that writeLinuxcncSetp emits (an INI overrides them). Other lines become notices; `screw-lead` != 0 is an error
 /// (the screw-twist correction is not modelled). All 36 joint coordinates must be set. Throws
 /// pkm::IoError "FILE:LINE: message" on malformed lines, non-finite values and unusable geometry.
 [[nodiscard]] HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions& options = {});
@@ -31,7 +32,8 @@ void applyLinuxcncIni(const std::string& ini_path, HexapodMachine& machine);
 
 /// The genhexkins `setp` block for `machine`: joints with the TCP offset folded into the platform
 /// points, spindle-offset, tool-offset (when not 0), convergence-criterion, limit-iterations, and the
-/// INI values (HOME, joint HOME_OFFSET and limits) as comments. LinuxCNC joint positions are full
+/// `# pkm: units/home` lines (so the output loads on its own), and the INI values (HOME, joint
+/// HOME_OFFSET and limits) as comments. LinuxCNC joint positions are full
 /// joint-centre distances, so struts with a length offset get a comment saying so.
 [[nodiscard]] std::string writeLinuxcncSetp(const HexapodMachine& machine);
 
