@@ -1,5 +1,6 @@
-// Google Benchmark: hexapod IK, FK warm start (one servo step on a smooth 1 kHz path), FK cold start
-// (from home), and the genhexkins-style iteration (tests/support/genhexkins_style.hpp) as a baseline.
+// Google Benchmark: hexapod IK, FK warm start (one servo step on a smooth 1 kHz path), FK cold
+// start (from home), and the genhexkins-style iteration (tests/support/genhexkins_style.hpp) as a
+// baseline.
 #include <benchmark/benchmark.h>
 
 #include <numbers>
@@ -84,7 +85,8 @@ void BM_HexapodFkWarm(benchmark::State& state) {
     benchmark::DoNotOptimize(data.pose);
     k = k + 1 < f.poses.size() ? k + 1 : 1;
   }
-  state.counters["newton_steps"] = benchmark::Counter(static_cast<double>(iterations), benchmark::Counter::kAvgIterations);
+  state.counters["newton_steps"] =
+      benchmark::Counter(static_cast<double>(iterations), benchmark::Counter::kAvgIterations);
 }
 BENCHMARK(BM_HexapodFkWarm);
 
@@ -99,7 +101,8 @@ void BM_HexapodFkCold(benchmark::State& state) {
     benchmark::DoNotOptimize(data.pose);
     k = (k + 97) % f.poses.size();
   }
-  state.counters["newton_steps"] = benchmark::Counter(static_cast<double>(iterations), benchmark::Counter::kAvgIterations);
+  state.counters["newton_steps"] =
+      benchmark::Counter(static_cast<double>(iterations), benchmark::Counter::kAvgIterations);
 }
 BENCHMARK(BM_HexapodFkCold);
 
@@ -113,7 +116,8 @@ void BM_GenhexkinsStyleFkWarm(benchmark::State& state) {
     benchmark::DoNotOptimize(r);
     k = k + 1 < f.poses.size() ? k + 1 : 1;
   }
-  state.counters["newton_steps"] = benchmark::Counter(static_cast<double>(iterations), benchmark::Counter::kAvgIterations);
+  state.counters["newton_steps"] =
+      benchmark::Counter(static_cast<double>(iterations), benchmark::Counter::kAvgIterations);
 }
 BENCHMARK(BM_GenhexkinsStyleFkWarm);
 
@@ -127,7 +131,8 @@ void BM_GenhexkinsStyleFkCold(benchmark::State& state) {
     benchmark::DoNotOptimize(r);
     k = (k + 97) % f.poses.size();
   }
-  state.counters["newton_steps"] = benchmark::Counter(static_cast<double>(iterations), benchmark::Counter::kAvgIterations);
+  state.counters["newton_steps"] =
+      benchmark::Counter(static_cast<double>(iterations), benchmark::Counter::kAvgIterations);
 }
 BENCHMARK(BM_GenhexkinsStyleFkCold);
 

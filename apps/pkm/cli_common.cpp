@@ -11,10 +11,14 @@ void printNotices(const std::vector<std::string>& notices) {
 }
 
 void MachineOption::add(CLI::App& cmd) {
-  cmd.add_option("--machine,-m", spec,
-                 "machine: a JSON machine file, a LinuxCNC .hal file, or a built-in name (default: the "
-                 "embedded default machine)");
-  cmd.add_option("--ini", ini, "LinuxCNC INI file for a .hal machine ([TRAJ] HOME, LINEAR_UNITS, joint limits)");
+  cmd.add_option(
+      "--machine,-m",
+      spec,
+      "machine: a JSON machine file, a LinuxCNC .hal file, or a built-in name (default: the "
+      "embedded default machine)");
+  cmd.add_option("--ini",
+                 ini,
+                 "LinuxCNC INI file for a .hal machine ([TRAJ] HOME, LINEAR_UNITS, joint limits)");
 }
 
 io::HexapodMachine MachineOption::load() const {

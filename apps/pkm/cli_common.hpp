@@ -2,11 +2,10 @@
 /// @brief Helpers shared by the CLI command groups: buffered stdout, notices, exit codes.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "pkm/io/hexapod_machine.hpp"
 

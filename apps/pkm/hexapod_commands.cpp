@@ -1,9 +1,9 @@
 // `pkm hexapod ...`: ik, fk, check, describe, hal, machines (docs/formats.md).
+#include <fmt/format.h>
+
 #include <array>
 #include <cmath>
 #include <memory>
-
-#include <fmt/format.h>
 
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
@@ -48,7 +48,10 @@ kin::PoseRpy parseSeed(const std::string& text) {
   for (std::size_t i = 0; i < 6; ++i) {
     const std::size_t comma = text.find(',', pos);
     if ((comma == std::string::npos) != (i == 5) ||
-        !io::parseFiniteDouble(std::string_view(text).substr(pos, comma == std::string::npos ? std::string::npos : comma - pos), v[i]))
+        !io::parseFiniteDouble(
+            std::string_view(text).substr(
+                pos, comma == std::string::npos ? std::string::npos : comma - pos),
+            v[i]))
       throw IoError(fmt::format("--seed '{}': expected six finite numbers x,y,z,a,b,c", text));
     pos = comma + 1;
   }
@@ -74,7 +77,9 @@ void runIk(const MachineOption& machine_opt, const std::string& poses) {
   }
 }
 
-void runFk(const MachineOption& machine_opt, const std::string& lengths, const std::string& seed_text) {
+void runFk(const MachineOption& machine_opt,
+           const std::string& lengths,
+           const std::string& seed_text) {
   const io::HexapodMachine machine = machine_opt.load();
   const kin::PoseRpy home = machine.model.home;
   kin::PoseRpy seed = seed_text.empty() ? home : parseSeed(seed_text);
@@ -126,7 +131,8 @@ void runCheck(const MachineOption& machine_opt, const std::string& poses) {
     o += c.status();
     o += ',';
     // Smallest margin and the strut or joint it belongs to; both empty when the limit is disabled.
-    for (const kin::StrutVector* margins : {&c.stroke_margin, &c.base_angle_margin, &c.platform_angle_margin}) {
+    for (const kin::StrutVector* margins :
+         {&c.stroke_margin, &c.base_angle_margin, &c.platform_angle_margin}) {
       int k = 0;
       margins->minCoeff(&k);
       const double scale = margins == &c.stroke_margin ? 1.0 : radToDeg(1.0);
@@ -134,15 +140,19 @@ void runCheck(const MachineOption& machine_opt, const std::string& poses) {
       o += std::isinf((*margins)[k]) ? std::string(",") : std::to_string(k) + ',';
     }
     appendMargin(o, c.min_leg_distance);
-    o += c.closest_pair[0] >= 0 ? fmt::format("{}-{},", c.closest_pair[0], c.closest_pair[1]) : std::string(",");
+    o += c.closest_pair[0] >= 0 ? fmt::format("{}-{},", c.closest_pair[0], c.closest_pair[1])
+                                : std::string(",");
     appendMargin(o, c.interference_margin);
     appendMargin(o, c.condition_number);
     appendMargin(o, c.condition_margin);
     std::vector<std::string> parts;
     for (const auto& v : c.violations)
-      parts.push_back(fmt::format("{} {} value={:.6g} limit={:.6g}", kin::toString(v.kind), v.item,
-                                  v.kind == kin::LimitKind::kJointAngle ? radToDeg(v.value) : v.value,
-                                  v.kind == kin::LimitKind::kJointAngle ? radToDeg(v.limit) : v.limit));
+      parts.push_back(
+          fmt::format("{} {} value={:.6g} limit={:.6g}",
+                      kin::toString(v.kind),
+                      v.item,
+                      v.kind == kin::LimitKind::kJointAngle ? radToDeg(v.value) : v.value,
+                      v.kind == kin::LimitKind::kJointAngle ? radToDeg(v.limit) : v.limit));
     o += fmt::format("{}\n", fmt::join(parts, "; "));
     out.maybeFlush();
   }
@@ -156,29 +166,66 @@ void describeMachine(const io::HexapodMachine& machine, std::string& o) {
   o += fmt::format("machine      {} ({})\n", m.name, machine.source);
   if (!machine.description.empty()) o += fmt::format("description  {}\n", machine.description);
   o += fmt::format("units        {} (angles in degrees)\n", u);
-  o += fmt::format("home         x {:g} y {:g} z {:g} a {:g} b {:g} c {:g}\n", m.home.position.x(),
-                   m.home.position.y(), m.home.position.z(), radToDeg(m.home.rpy.x()), radToDeg(m.home.rpy.y()),
+  o += fmt::format("home         x {:g} y {:g} z {:g} a {:g} b {:g} c {:g}\n",
+                   m.home.position.x(),
+                   m.home.position.y(),
+                   m.home.position.z(),
+                   radToDeg(m.home.rpy.x()),
+                   radToDeg(m.home.rpy.y()),
                    radToDeg(m.home.rpy.z()));
-  o += fmt::format("tool offset  [{:g}, {:g}, {:g}] {} (TCP in the platform frame)\n", m.tool_offset.x(),
-                   m.tool_offset.y(), m.tool_offset.z(), u);
-  if (m.spindle_offset != 0.0) o += fmt::format("spindle off. {:g} {} (genhexkins)\n", m.spindle_offset, u);
-  o += fmt::format("strut dia.   {:g} {}{}\n", m.strut_diameter, u, m.strut_diameter > 0 ? "" : " (interference check off)");
-  o += fmt::format("FK           tolerance {:g} {}, at most {} iterations\n", machine.fk.tolerance, u, machine.fk.max_iterations);
+  o += fmt::format("tool offset  [{:g}, {:g}, {:g}] {} (TCP in the platform frame)\n",
+                   m.tool_offset.x(),
+                   m.tool_offset.y(),
+                   m.tool_offset.z(),
+                   u);
+  if (m.spindle_offset != 0.0)
+    o += fmt::format("spindle off. {:g} {} (genhexkins)\n", m.spindle_offset, u);
+  o += fmt::format("strut dia.   {:g} {}{}\n",
+                   m.strut_diameter,
+                   u,
+                   m.strut_diameter > 0 ? "" : " (interference check off)");
+  o += fmt::format("FK           tolerance {:g} {}, at most {} iterations\n",
+                   machine.fk.tolerance,
+                   u,
+                   machine.fk.max_iterations);
   kin::HexapodData data(m);
   const kin::HexapodCheckResult home = kin::checkPose(m, data, m.home);
-  o += fmt::format("{:>5} {:>30} {:>30} {:>9} {:>21} {:>12} {:>8} {:>8}\n", "strut", "base joint (world)",
-                   "platform joint (platform)", "offset", "stroke", "home read.", "base°", "plat.°");
+  o += fmt::format("{:>5} {:>30} {:>30} {:>9} {:>21} {:>12} {:>8} {:>8}\n",
+                   "strut",
+                   "base joint (world)",
+                   "platform joint (platform)",
+                   "offset",
+                   "stroke",
+                   "home read.",
+                   "base°",
+                   "plat.°");
   for (int i = 0; i < kin::kStruts; ++i) {
     const kin::Strut& s = m.struts[static_cast<std::size_t>(i)];
-    const auto lim = [](double a) { return a > 0 ? fmt::format("{:.1f}", radToDeg(a)) : std::string("-"); };
-    o += fmt::format("{:>5} {:>30} {:>30} {:>9.3f} {:>21} {:>12.6f} {:>8} {:>8}\n", i,
-                     fmt::format("[{:.4f}, {:.4f}, {:.4f}]", s.world_p_base.x(), s.world_p_base.y(), s.world_p_base.z()),
-                     fmt::format("[{:.4f}, {:.4f}, {:.4f}]", s.platform_p_joint.x(), s.platform_p_joint.y(), s.platform_p_joint.z()),
-                     s.length_offset, fmt::format("[{:g}, {:g}]", s.min_reading, s.max_reading), home.readings[i],
-                     lim(s.base_cone.max_angle), lim(s.platform_cone.max_angle));
+    const auto lim = [](double a) {
+      return a > 0 ? fmt::format("{:.1f}", radToDeg(a)) : std::string("-");
+    };
+    o += fmt::format(
+        "{:>5} {:>30} {:>30} {:>9.3f} {:>21} {:>12.6f} {:>8} {:>8}\n",
+        i,
+        fmt::format(
+            "[{:.4f}, {:.4f}, {:.4f}]", s.world_p_base.x(), s.world_p_base.y(), s.world_p_base.z()),
+        fmt::format("[{:.4f}, {:.4f}, {:.4f}]",
+                    s.platform_p_joint.x(),
+                    s.platform_p_joint.y(),
+                    s.platform_p_joint.z()),
+        s.length_offset,
+        fmt::format("[{:g}, {:g}]", s.min_reading, s.max_reading),
+        home.readings[i],
+        lim(s.base_cone.max_angle),
+        lim(s.platform_cone.max_angle));
   }
-  o += fmt::format("at home      status {}, condition number {:.2f} (limit {:g}), closest struts {:.3f} {}\n",
-                   home.status(), home.condition_number, m.max_condition, home.min_leg_distance, u);
+  o += fmt::format(
+      "at home      status {}, condition number {:.2f} (limit {:g}), closest struts {:.3f} {}\n",
+      home.status(),
+      home.condition_number,
+      m.max_condition,
+      home.min_leg_distance,
+      u);
 }
 
 void addHexapodCommands(CLI::App& app) {
@@ -192,33 +239,47 @@ void addHexapodCommands(CLI::App& app) {
   };
   auto st = std::make_shared<State>();
 
-  CLI::App* ik = hex->add_subcommand("ik", "inverse kinematics: poses x,y,z,a,b,c -> strut readings l0..l5,status");
+  CLI::App* ik = hex->add_subcommand(
+      "ik", "inverse kinematics: poses x,y,z,a,b,c -> strut readings l0..l5,status");
   st->machine.add(*ik);
-  ik->add_option("--poses,-p", st->poses, "CSV with header x,y,z,a,b,c (lengths in the machine unit, degrees); - = stdin")->required();
+  ik->add_option("--poses,-p",
+                 st->poses,
+                 "CSV with header x,y,z,a,b,c (lengths in the machine unit, degrees); - = stdin")
+      ->required();
   ik->callback([st] { runIk(st->machine, st->poses); });
 
-  CLI::App* fk = hex->add_subcommand("fk", "forward kinematics: strut readings l0..l5 -> x,y,z,a,b,c,iterations,status");
+  CLI::App* fk = hex->add_subcommand(
+      "fk", "forward kinematics: strut readings l0..l5 -> x,y,z,a,b,c,iterations,status");
   st->machine.add(*fk);
-  fk->add_option("--lengths,-l", st->lengths, "CSV with header l0,...,l5 (machine unit); - = stdin")->required();
-  fk->add_option("--seed", st->seed, "first row's seed pose x,y,z,a,b,c (default: home); later rows use the previous solution");
+  fk->add_option("--lengths,-l", st->lengths, "CSV with header l0,...,l5 (machine unit); - = stdin")
+      ->required();
+  fk->add_option(
+      "--seed",
+      st->seed,
+      "first row's seed pose x,y,z,a,b,c (default: home); later rows use the previous solution");
   fk->callback([st] { runFk(st->machine, st->lengths, st->seed); });
 
-  CLI::App* check = hex->add_subcommand("check", "per pose: stroke, joint angles, leg interference, conditioning");
+  CLI::App* check = hex->add_subcommand(
+      "check", "per pose: stroke, joint angles, leg interference, conditioning");
   st->machine.add(*check);
   check->add_option("--poses,-p", st->poses, "CSV with header x,y,z,a,b,c; - = stdin")->required();
   check->callback([st] { runCheck(st->machine, st->poses); });
 
-  CLI::App* describe = hex->add_subcommand("describe", "print the machine; --json writes it as a pkm machine file");
+  CLI::App* describe =
+      hex->add_subcommand("describe", "print the machine; --json writes it as a pkm machine file");
   st->machine.add(*describe);
   describe->add_flag("--json", st->json, "write the machine as JSON (docs/machine-format.md)");
   describe->callback([st] {
     const io::HexapodMachine m = st->machine.load();
     Output out;
-    if (st->json) out.text() += io::writeHexapodJson(m);
-    else describeMachine(m, out.text());
+    if (st->json)
+      out.text() += io::writeHexapodJson(m);
+    else
+      describeMachine(m, out.text());
   });
 
-  CLI::App* hal = hex->add_subcommand("hal", "write the machine as a LinuxCNC genhexkins setp block");
+  CLI::App* hal =
+      hex->add_subcommand("hal", "write the machine as a LinuxCNC genhexkins setp block");
   st->machine.add(*hal);
   hal->callback([st] {
     Output out;

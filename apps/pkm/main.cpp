@@ -1,17 +1,18 @@
 // pkm: command-line interface of the pkm toolkit. Exit codes: 0 success, 2 usage or input error,
 // 1 unexpected internal error.
-#include <cstdio>
-#include <exception>
+#include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
-#include <fmt/format.h>
+#include <cstdio>
+#include <exception>
 
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"pkm: kinematics, measurement analysis, calibration and compensation for parallel "
-               "kinematic machine tools"};
+  CLI::App app{
+      "pkm: kinematics, measurement analysis, calibration and compensation for parallel "
+      "kinematic machine tools"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "pkm 0.1.0");
   pkm::cli::addHexapodCommands(app);

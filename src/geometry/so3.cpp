@@ -1,10 +1,9 @@
 #include "pkm/geometry/so3.hpp"
 
+#include <Eigen/Geometry>
 #include <cassert>
 #include <cmath>
 #include <numbers>
-
-#include <Eigen/Geometry>
 
 namespace pkm::geometry {
 
@@ -76,8 +75,8 @@ Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& R) {
 
 Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& R, const Eigen::Vector3d& near) {
   const Eigen::Vector3d first = rpyFromRotation(R);
-  const Eigen::Vector3d second(first.x() + std::numbers::pi, std::numbers::pi - first.y(),
-                               first.z() + std::numbers::pi);
+  const Eigen::Vector3d second(
+      first.x() + std::numbers::pi, std::numbers::pi - first.y(), first.z() + std::numbers::pi);
   Eigen::Vector3d best;
   double best_dist = INFINITY;
   for (const Eigen::Vector3d& cand : {first, second}) {

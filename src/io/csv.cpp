@@ -1,11 +1,11 @@
 #include "pkm/io/csv.hpp"
 
+#include <fmt/format.h>
+
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstring>
-
-#include <fmt/format.h>
 
 #include "pkm/core/error.hpp"
 
@@ -16,7 +16,8 @@ constexpr std::size_t kChunk = 1 << 16;
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
   return s;
 }
 }  // namespace
@@ -32,14 +33,17 @@ bool parseFiniteDouble(std::string_view text, double& value) {
   return ec == std::errc() && ptr == text.data() + text.size() && std::isfinite(value);
 }
 
-CsvReader::CsvReader(const std::string& path, std::vector<std::string> required_columns, std::string display_name)
+CsvReader::CsvReader(const std::string& path,
+                     std::vector<std::string> required_columns,
+                     std::string display_name)
     : name_(display_name.empty() ? path : std::move(display_name)), buffer_(kChunk) {
   if (path == "-") {
     file_ = stdin;
   } else {
     file_ = std::fopen(path.c_str(), "rb");
     owns_file_ = true;
-    if (file_ == nullptr) throw IoError(locate(name_, 0, fmt::format("cannot open: {}", std::strerror(errno))));
+    if (file_ == nullptr)
+      throw IoError(locate(name_, 0, fmt::format("cannot open: {}", std::strerror(errno))));
   }
   std::string_view text;
   bool got = false;
@@ -54,14 +58,16 @@ CsvReader::CsvReader(const std::string& path, std::vector<std::string> required_
   std::size_t pos = 0;
   while (true) {
     const std::size_t comma = text.find(',', pos);
-    header_.emplace_back(trim(text.substr(pos, comma == std::string_view::npos ? std::string_view::npos : comma - pos)));
+    header_.emplace_back(trim(
+        text.substr(pos, comma == std::string_view::npos ? std::string_view::npos : comma - pos)));
     if (comma == std::string_view::npos) break;
     pos = comma + 1;
   }
   column_of_field_.assign(header_.size(), -1);
   for (std::size_t f = 0; f < header_.size(); ++f) {
     for (std::size_t g = 0; g < f; ++g)
-      if (header_[g] == header_[f]) fail(fmt::format("column '{}' appears twice in the header", header_[f]));
+      if (header_[g] == header_[f])
+        fail(fmt::format("column '{}' appears twice in the header", header_[f]));
   }
   std::vector<std::string> missing;
   for (std::size_t c = 0; c < required_columns.size(); ++c) {
@@ -75,8 +81,10 @@ CsvReader::CsvReader(const std::string& path, std::vector<std::string> required_
     if (!found) missing.push_back(required_columns[c]);
   }
   if (!missing.empty())
-    fail(fmt::format("missing column(s) {} in header '{}' (expected {})", fmt::join(missing, ", "),
-                     fmt::join(header_, ","), fmt::join(required_columns, ",")));
+    fail(fmt::format("missing column(s) {} in header '{}' (expected {})",
+                     fmt::join(missing, ", "),
+                     fmt::join(header_, ","),
+                     fmt::join(required_columns, ",")));
   wanted_ = required_columns.size();
 }
 
@@ -97,7 +105,8 @@ bool CsvReader::readLine(std::string_view& out) {
       ++line_;
       if (spilled) {
         long_line_.append(start, len);
-        if (long_line_.size() > kMaxLineBytes) fail(fmt::format("line longer than {} bytes", kMaxLineBytes));
+        if (long_line_.size() > kMaxLineBytes)
+          fail(fmt::format("line longer than {} bytes", kMaxLineBytes));
         out = long_line_;
       } else {
         out = std::string_view(start, len);
@@ -129,7 +138,8 @@ bool CsvReader::readLine(std::string_view& out) {
 }
 
 bool CsvReader::next(std::span<double> values) {
-  if (values.size() != wanted_) throw InvalidArgument("CsvReader::next: wrong number of output values");
+  if (values.size() != wanted_)
+    throw InvalidArgument("CsvReader::next: wrong number of output values");
   std::string_view text;
   while (readLine(text)) {
     const std::string_view t = trim(text);

@@ -1,11 +1,11 @@
 #include "pkm/io/linuxcnc_hal.hpp"
 
+#include <fmt/format.h>
+
 #include <array>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/csv.hpp"
@@ -66,11 +66,15 @@ bool iniLoadsHal(const std::string& ini, const std::string& hal_name) {
 
 /// Parses "x y z a b c" (length unit, degrees) into a pose; `fail` throws with the location.
 template <typename Fail>
-kin::PoseRpy parseHome(std::string_view label, const std::vector<std::string_view>& values, Fail&& fail) {
-  if (values.size() != 6) fail(fmt::format("{}: expected 6 numbers (x y z a b c), found {}", label, values.size()));
+kin::PoseRpy parseHome(std::string_view label,
+                       const std::vector<std::string_view>& values,
+                       Fail&& fail) {
+  if (values.size() != 6)
+    fail(fmt::format("{}: expected 6 numbers (x y z a b c), found {}", label, values.size()));
   std::array<double, 6> v{};
   for (std::size_t i = 0; i < 6; ++i)
-    if (!parseFiniteDouble(values[i], v[i])) fail(fmt::format("{}: '{}' is not a finite number", label, values[i]));
+    if (!parseFiniteDouble(values[i], v[i]))
+      fail(fmt::format("{}: '{}' is not a finite number", label, values[i]));
   kin::PoseRpy home;
   home.position = {v[0], v[1], v[2]};
   home.rpy = {degToRad(v[3]), degToRad(v[4]), degToRad(v[5])};
@@ -92,9 +96,10 @@ HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions
     const std::size_t line_no = n + 1;
     std::string_view text = lines[n];
     auto fail = [&](const std::string& what) { throw IoError(locate(hal_path, line_no, what)); };
-    if (const auto meta = splitWords(text); meta.size() >= 2 && meta[0] == "#" && meta[1] == "pkm:") {
-      // "# pkm: home = x y z a b c" / "# pkm: units = mm|inch", written by writeLinuxcncSetp so that
-      // its output is loadable on its own; an INI file overrides them.
+    if (const auto meta = splitWords(text);
+        meta.size() >= 2 && meta[0] == "#" && meta[1] == "pkm:") {
+      // "# pkm: home = x y z a b c" / "# pkm: units = mm|inch", written by writeLinuxcncSetp so
+      // that its output is loadable on its own; an INI file overrides them.
       if (meta.size() >= 4 && meta[2] == "home" && meta[3] == "=") {
         m.model.home = parseHome("# pkm: home", {meta.begin() + 4, meta.end()}, fail);
         pkm_home = true;
@@ -107,25 +112,29 @@ HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions
       }
       continue;
     }
-    if (const auto hash = text.find('#'); hash != std::string_view::npos) text = text.substr(0, hash);
+    if (const auto hash = text.find('#'); hash != std::string_view::npos)
+      text = text.substr(0, hash);
     const auto words = splitWords(text);
     if (words.empty()) continue;
     const bool is_setp = words[0] == "setp" && words.size() >= 2 && words[1].starts_with(kPrefix);
     if (!is_setp) {
-      m.notices.push_back(locate(hal_path, line_no, fmt::format("ignored: {}", fmt::join(words, " "))));
+      m.notices.push_back(
+          locate(hal_path, line_no, fmt::format("ignored: {}", fmt::join(words, " "))));
       continue;
     }
     if (words.size() != 3) fail(fmt::format("expected 'setp {} VALUE'", words[1]));
     const std::string_view pin = words[1].substr(kPrefix.size());
     double value = 0.0;
-    if (!parseFiniteDouble(words[2], value)) fail(fmt::format("'{}' is not a finite number", words[2]));
+    if (!parseFiniteDouble(words[2], value))
+      fail(fmt::format("'{}' is not a finite number", words[2]));
 
     // base.N.x / platform.N.x
     const bool is_base = pin.starts_with("base.");
     const bool is_platform = pin.starts_with("platform.");
     if ((is_base || is_platform)) {
       const std::string_view rest = pin.substr(is_base ? 5 : 9);
-      if (rest.size() != 3 || rest[1] != '.' || rest[0] < '0' || rest[0] > '5' || rest[2] < 'x' || rest[2] > 'z')
+      if (rest.size() != 3 || rest[1] != '.' || rest[0] < '0' || rest[0] > '5' || rest[2] < 'x' ||
+          rest[2] > 'z')
         fail(fmt::format("unknown pin genhexkins.{}", pin));
       const auto i = static_cast<std::size_t>(rest[0] - '0');
       const int axis = rest[2] - 'x';
@@ -140,12 +149,15 @@ HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions
       if (!(value > 0.0)) fail("convergence-criterion must be > 0");
       m.fk.tolerance = value;
     } else if (pin == "limit-iterations") {
-      if (value < 1 || value > 1e6 || value != std::floor(value)) fail("limit-iterations must be an integer >= 1");
+      if (value < 1 || value > 1e6 || value != std::floor(value))
+        fail("limit-iterations must be an integer >= 1");
       m.fk.max_iterations = static_cast<int>(value);
     } else if (pin == "screw-lead") {
-      if (value != 0.0) fail("screw-lead != 0: the screw-twist strut correction is not supported by pkm");
+      if (value != 0.0)
+        fail("screw-lead != 0: the screw-twist strut correction is not supported by pkm");
     } else if (pin.starts_with("base-n.") || pin.starts_with("platform-n.") || pin == "max-error") {
-      m.notices.push_back(locate(hal_path, line_no, fmt::format("ignored: genhexkins.{} (not used by pkm)", pin)));
+      m.notices.push_back(
+          locate(hal_path, line_no, fmt::format("ignored: genhexkins.{} (not used by pkm)", pin)));
     } else {
       fail(fmt::format("unknown pin genhexkins.{}", pin));
     }
@@ -157,15 +169,18 @@ HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions
       if (!platform_set[i][a]) missing.push_back(fmt::format("platform.{}.{}", i, "xyz"[a]));
     }
   if (!missing.empty())
-    throw IoError(locate(hal_path, 0, fmt::format("genhexkins pins not set: {} (set every joint coordinate "
-                                                  "explicitly; pkm does not assume genhexkins' defaults)",
-                                                  fmt::join(missing, ", "))));
+    throw IoError(locate(hal_path,
+                         0,
+                         fmt::format("genhexkins pins not set: {} (set every joint coordinate "
+                                     "explicitly; pkm does not assume genhexkins' defaults)",
+                                     fmt::join(missing, ", "))));
   m.model.spindle_offset += tool_offset;  // genhexkins adds both to the z of every joint
   m.model.linuxcnc_tool_offset = tool_offset;
 
   std::optional<std::string> ini = options.ini_path;
   if (!ini && options.discover_ini) {
-    const fs::path dir = fs::path(hal_path).parent_path().empty() ? fs::path(".") : fs::path(hal_path).parent_path();
+    const fs::path dir =
+        fs::path(hal_path).parent_path().empty() ? fs::path(".") : fs::path(hal_path).parent_path();
     const std::string hal_name = fs::path(hal_path).filename().string();
     std::vector<std::string> found;
     std::error_code ec;
@@ -176,13 +191,15 @@ HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions
       ini = found.front();
       m.notices.push_back(fmt::format("using INI {} (its [HAL] HALFILE loads {})", *ini, hal_name));
     } else if (found.size() > 1) {
-      m.notices.push_back(fmt::format("several INI files load {}; none used (pass --ini)", hal_name));
+      m.notices.push_back(
+          fmt::format("several INI files load {}; none used (pass --ini)", hal_name));
     }
   }
   if (ini) {
     applyLinuxcncIni(*ini, m);
   } else if (!pkm_home) {
-    m.notices.push_back("no INI file: assuming mm and home 0 0 0 0 0 0 (pass --ini for [TRAJ] HOME and units)");
+    m.notices.push_back(
+        "no INI file: assuming mm and home 0 0 0 0 0 0 (pass --ini for [TRAJ] HOME and units)");
   }
   // Cone axes: the strut direction at home (LinuxCNC has no joint-angle limits; max_angle stays 0).
   kin::HexapodData data(m.model);
@@ -195,8 +212,14 @@ HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions
   try {
     m.model.validate();
   } catch (const InvalidArgument& e) {
-    throw IoError(locate(hal_path, 0, fmt::format("{}{}", e.what(), ini || pkm_home ? "" : " (no INI file was found, so home "
-                                                  "was taken as 0 0 0 0 0 0: pass --ini with [TRAJ] HOME)")));
+    throw IoError(locate(
+        hal_path,
+        0,
+        fmt::format("{}{}",
+                    e.what(),
+                    ini || pkm_home ? ""
+                                    : " (no INI file was found, so home "
+                                      "was taken as 0 0 0 0 0 0: pass --ini with [TRAJ] HOME)")));
   }
   return m;
 }
@@ -208,7 +231,8 @@ void applyLinuxcncIni(const std::string& ini_path, HexapodMachine& machine) {
     const std::size_t line_no = n + 1;
     auto fail = [&](const std::string& what) { throw IoError(locate(ini_path, line_no, what)); };
     std::string_view text = lines[n];
-    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front())))
+      text.remove_prefix(1);
     if (text.empty() || text.front() == '#' || text.front() == ';') continue;
     if (text.front() == '[') {
       const auto close = text.find(']');
@@ -226,13 +250,18 @@ void applyLinuxcncIni(const std::string& ini_path, HexapodMachine& machine) {
       machine.model.home = parseHome("[TRAJ] HOME", values, fail);
     } else if (section == "[TRAJ]" && key == "LINEAR_UNITS") {
       const std::string u = values.empty() ? "" : std::string(values[0]);
-      if (u == "mm" || u == "metric") machine.model.unit = LengthUnit::kMillimetre;
-      else if (u == "inch" || u == "in" || u == "imperial") machine.model.unit = LengthUnit::kInch;
-      else fail(fmt::format("[TRAJ] LINEAR_UNITS '{}' not understood (mm, metric, inch, in, imperial)", u));
-    } else if (section.size() == 9 && section.starts_with("[JOINT_") && section[7] >= '0' && section[7] <= '5' &&
-               (key == "MIN_LIMIT" || key == "MAX_LIMIT")) {
+      if (u == "mm" || u == "metric")
+        machine.model.unit = LengthUnit::kMillimetre;
+      else if (u == "inch" || u == "in" || u == "imperial")
+        machine.model.unit = LengthUnit::kInch;
+      else
+        fail(fmt::format("[TRAJ] LINEAR_UNITS '{}' not understood (mm, metric, inch, in, imperial)",
+                         u));
+    } else if (section.size() == 9 && section.starts_with("[JOINT_") && section[7] >= '0' &&
+               section[7] <= '5' && (key == "MIN_LIMIT" || key == "MAX_LIMIT")) {
       double v = 0.0;
-      if (values.size() != 1 || !parseFiniteDouble(values[0], v)) fail(fmt::format("{} {}: expected one number", section, key));
+      if (values.size() != 1 || !parseFiniteDouble(values[0], v))
+        fail(fmt::format("{} {}: expected one number", section, key));
       kin::Strut& s = machine.model.struts[static_cast<std::size_t>(section[7] - '0')];
       (key == "MIN_LIMIT" ? s.min_reading : s.max_reading) = v;
     }
@@ -240,17 +269,25 @@ void applyLinuxcncIni(const std::string& ini_path, HexapodMachine& machine) {
   for (int i = 0; i < kin::kStruts; ++i) {
     const kin::Strut& s = machine.model.struts[static_cast<std::size_t>(i)];
     if (s.min_reading > s.max_reading)
-      throw IoError(locate(ini_path, 0, fmt::format("[JOINT_{}] MIN_LIMIT {} > MAX_LIMIT {}", i, s.min_reading, s.max_reading)));
+      throw IoError(locate(
+          ini_path,
+          0,
+          fmt::format("[JOINT_{}] MIN_LIMIT {} > MAX_LIMIT {}", i, s.min_reading, s.max_reading)));
   }
 }
 
 std::string writeLinuxcncSetp(const HexapodMachine& machine) {
   const kin::HexapodModel& model = machine.model;
-  std::string out = fmt::format("# genhexkins geometry written by pkm from {}\n# machine: {}, units: {}\n",
-                                machine.source, model.name, toString(model.unit));
+  std::string out =
+      fmt::format("# genhexkins geometry written by pkm from {}\n# machine: {}, units: {}\n",
+                  machine.source,
+                  model.name,
+                  toString(model.unit));
   const bool tcp = model.tool_offset.norm() > 0.0;
   if (tcp)
-    out += "# The TCP offset of the pkm model is folded into the platform joints (platform = joint - TCP).\n";
+    out +=
+        "# The TCP offset of the pkm model is folded into the platform joints (platform = joint - "
+        "TCP).\n";
   auto setp = [&out](const std::string& pin, double v) {
     out += "setp genhexkins." + pin + " ";
     appendNumber(out, v);
@@ -258,10 +295,13 @@ std::string writeLinuxcncSetp(const HexapodMachine& machine) {
   };
   out += "\n# Base joints positions in base (world) coordinates\n";
   for (int i = 0; i < kin::kStruts; ++i)
-    for (int a = 0; a < 3; ++a) setp(fmt::format("base.{}.{}", i, "xyz"[a]), model.struts[static_cast<std::size_t>(i)].world_p_base[a]);
+    for (int a = 0; a < 3; ++a)
+      setp(fmt::format("base.{}.{}", i, "xyz"[a]),
+           model.struts[static_cast<std::size_t>(i)].world_p_base[a]);
   out += "\n# Platform joints positions in platform coordinates\n";
   for (int i = 0; i < kin::kStruts; ++i) {
-    const Eigen::Vector3d p = model.struts[static_cast<std::size_t>(i)].platform_p_joint - model.tool_offset;
+    const Eigen::Vector3d p =
+        model.struts[static_cast<std::size_t>(i)].platform_p_joint - model.tool_offset;
     for (int a = 0; a < 3; ++a) setp(fmt::format("platform.{}.{}", i, "xyz"[a]), p[a]);
   }
   out += "\n";
@@ -274,22 +314,34 @@ std::string writeLinuxcncSetp(const HexapodMachine& machine) {
   kin::inverseKinematics(model, data, model.home);
   // Read back by readLinuxcncHal (an INI file, when found, overrides them).
   out += fmt::format("\n# pkm: units = {}\n", toString(model.unit));
-  out += fmt::format("# pkm: home = {} {} {} {} {} {}\n", formatNumber(model.home.position.x()),
-                     formatNumber(model.home.position.y()), formatNumber(model.home.position.z()),
-                     formatNumber(radToDeg(model.home.rpy.x())), formatNumber(radToDeg(model.home.rpy.y())),
+  out += fmt::format("# pkm: home = {} {} {} {} {} {}\n",
+                     formatNumber(model.home.position.x()),
+                     formatNumber(model.home.position.y()),
+                     formatNumber(model.home.position.z()),
+                     formatNumber(radToDeg(model.home.rpy.x())),
+                     formatNumber(radToDeg(model.home.rpy.y())),
                      formatNumber(radToDeg(model.home.rpy.z())));
-  out += "\n# INI values for this geometry (LinuxCNC joint positions are joint-centre distances):\n";
-  out += fmt::format("# [TRAJ] HOME = {} {} {} {} {} {}\n", formatNumber(model.home.position.x()),
-                     formatNumber(model.home.position.y()), formatNumber(model.home.position.z()),
-                     formatNumber(radToDeg(model.home.rpy.x())), formatNumber(radToDeg(model.home.rpy.y())),
+  out +=
+      "\n# INI values for this geometry (LinuxCNC joint positions are joint-centre distances):\n";
+  out += fmt::format("# [TRAJ] HOME = {} {} {} {} {} {}\n",
+                     formatNumber(model.home.position.x()),
+                     formatNumber(model.home.position.y()),
+                     formatNumber(model.home.position.z()),
+                     formatNumber(radToDeg(model.home.rpy.x())),
+                     formatNumber(radToDeg(model.home.rpy.y())),
                      formatNumber(radToDeg(model.home.rpy.z())));
-  out += fmt::format("# [TRAJ] LINEAR_UNITS = {}\n", model.unit == LengthUnit::kInch ? "inch" : "mm");
+  out +=
+      fmt::format("# [TRAJ] LINEAR_UNITS = {}\n", model.unit == LengthUnit::kInch ? "inch" : "mm");
   for (int i = 0; i < kin::kStruts; ++i) {
     const kin::Strut& s = model.struts[static_cast<std::size_t>(i)];
-    out += fmt::format("# [JOINT_{}] HOME = HOME_OFFSET = {}", i, formatNumber(data.joint_distance[i]));
-    if (std::isfinite(s.min_reading)) out += ", MIN_LIMIT = " + formatNumber(s.min_reading + s.length_offset);
-    if (std::isfinite(s.max_reading)) out += ", MAX_LIMIT = " + formatNumber(s.max_reading + s.length_offset);
-    if (s.length_offset != 0.0) out += fmt::format(" (pkm reading + length offset {})", formatNumber(s.length_offset));
+    out += fmt::format(
+        "# [JOINT_{}] HOME = HOME_OFFSET = {}", i, formatNumber(data.joint_distance[i]));
+    if (std::isfinite(s.min_reading))
+      out += ", MIN_LIMIT = " + formatNumber(s.min_reading + s.length_offset);
+    if (std::isfinite(s.max_reading))
+      out += ", MAX_LIMIT = " + formatNumber(s.max_reading + s.length_offset);
+    if (s.length_offset != 0.0)
+      out += fmt::format(" (pkm reading + length offset {})", formatNumber(s.length_offset));
     out += '\n';
   }
   return out;

@@ -1,11 +1,11 @@
+#include <fmt/format.h>
+
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
-
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/hexapod_machine.hpp"
@@ -26,10 +26,14 @@ class Doc {
   Doc(const std::string& text, std::string source) : source_(std::move(source)), locator_(text) {}
 
   [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
-    throw IoError(locate(source_, locator_.line(pointer), fmt::format("{}: {}", pointer.empty() ? "/" : pointer, what)));
+    throw IoError(locate(source_,
+                         locator_.line(pointer),
+                         fmt::format("{}: {}", pointer.empty() ? "/" : pointer, what)));
   }
 
-  void onlyKeys(const json& obj, const std::string& ptr, std::initializer_list<const char*> keys) const {
+  void onlyKeys(const json& obj,
+                const std::string& ptr,
+                std::initializer_list<const char*> keys) const {
     if (!obj.is_object()) fail(ptr, "expected an object");
     for (const auto& item : obj.items()) {
       bool known = false;
@@ -54,7 +58,10 @@ class Doc {
     return {number(v[0], ptr + "/0"), number(v[1], ptr + "/1"), number(v[2], ptr + "/2")};
   }
 
-  std::string string(const json& obj, const std::string& ptr, const char* key, const std::string& fallback) const {
+  std::string string(const json& obj,
+                     const std::string& ptr,
+                     const char* key,
+                     const std::string& fallback) const {
     if (!obj.contains(key)) return fallback;
     if (!obj[key].is_string()) fail(ptr + "/" + key, "expected a string");
     return obj[key].get<std::string>();
@@ -80,15 +87,19 @@ bool readCone(const Doc& doc, const json& v, const std::string& ptr, kin::JointC
 /// 1-based line of the first number token `token` outside strings in `text`; 0 if none.
 std::size_t lineOfNumber(const std::string& text, const std::string& token) {
   if (token.empty()) return 0;
-  const auto numberChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '+' || c == '-'; };
+  const auto numberChar = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '+' || c == '-';
+  };
   std::size_t line = 1;
   bool in_string = false;
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (c == '\n') ++line;
     if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
     } else if (c == '"') {
       in_string = true;
     } else if (text.compare(i, token.size(), token) == 0 && (i == 0 || !numberChar(text[i - 1])) &&
@@ -117,7 +128,8 @@ std::string readTextFile(const std::string& path, std::size_t max_bytes) {
   char buf[1 << 16];
   while (in.read(buf, sizeof buf) || in.gcount() > 0) {
     text.append(buf, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > max_bytes) throw IoError(locate(path, 0, fmt::format("file larger than {} bytes", max_bytes)));
+    if (text.size() > max_bytes)
+      throw IoError(locate(path, 0, fmt::format("file larger than {} bytes", max_bytes)));
   }
   if (in.bad()) throw IoError(locate(path, 0, "read error"));
   return text;
@@ -129,7 +141,11 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
     root = json::parse(text);
   } catch (const json::parse_error& e) {
     const std::size_t byte = std::min<std::size_t>(e.byte, text.size());
-    const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(byte > 0 ? byte - 1 : 0), '\n'));
+    const std::size_t line =
+        1 + static_cast<std::size_t>(
+                std::count(text.begin(),
+                           text.begin() + static_cast<std::ptrdiff_t>(byte > 0 ? byte - 1 : 0),
+                           '\n'));
     std::string what = e.what();
     if (const auto p = what.find("syntax error"); p != std::string::npos) what = what.substr(p);
     throw IoError(locate(source, line, "invalid JSON: " + what));
@@ -138,16 +154,34 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
     std::string what = e.what();
     const auto q1 = what.find('\'');
     const auto q2 = what.rfind('\'');
-    const std::string token = q1 != std::string::npos && q2 > q1 ? what.substr(q1 + 1, q2 - q1 - 1) : std::string();
-    throw IoError(locate(source, lineOfNumber(text, token),
-                         fmt::format("number {} is not finite (out of the range of a double)", token)));
+    const std::string token =
+        q1 != std::string::npos && q2 > q1 ? what.substr(q1 + 1, q2 - q1 - 1) : std::string();
+    throw IoError(
+        locate(source,
+               lineOfNumber(text, token),
+               fmt::format("number {} is not finite (out of the range of a double)", token)));
   }
   const Doc doc(text, source);
-  doc.onlyKeys(root, "", {"schema", "type", "name", "description", "units", "home", "tool_offset",
-                          "spindle_offset", "linuxcnc_tool_offset", "strut_diameter", "max_condition",
-                          "forward_kinematics", "struts"});
-  if (const std::string schema = doc.string(root, "", "schema", "pkm.machine/1"); schema != "pkm.machine/1")
-    doc.fail("/schema", fmt::format("unsupported schema \"{}\" (this version reads \"pkm.machine/1\")", schema));
+  doc.onlyKeys(root,
+               "",
+               {"schema",
+                "type",
+                "name",
+                "description",
+                "units",
+                "home",
+                "tool_offset",
+                "spindle_offset",
+                "linuxcnc_tool_offset",
+                "strut_diameter",
+                "max_condition",
+                "forward_kinematics",
+                "struts"});
+  if (const std::string schema = doc.string(root, "", "schema", "pkm.machine/1");
+      schema != "pkm.machine/1")
+    doc.fail(
+        "/schema",
+        fmt::format("unsupported schema \"{}\" (this version reads \"pkm.machine/1\")", schema));
   if (doc.string(root, "", "type", "hexapod") != "hexapod")
     doc.fail("/type", "this reader handles \"type\": \"hexapod\" machines");
   HexapodMachine m;
@@ -157,17 +191,22 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
   m.description = doc.string(root, "", "description", "");
   const std::string units = doc.string(root, "", "units", "mm");
   const auto unit = lengthUnitFromString(units);
-  if (!unit) doc.fail("/units", fmt::format("units must be \"mm\" or \"inch\" (got \"{}\")", units));
+  if (!unit)
+    doc.fail("/units", fmt::format("units must be \"mm\" or \"inch\" (got \"{}\")", units));
   model.unit = *unit;
 
   if (root.contains("home")) {
     const json& h = root["home"];
     doc.onlyKeys(h, "/home", {"x", "y", "z", "a", "b", "c"});
-    model.home.position = {doc.number(h, "/home", "x", 0), doc.number(h, "/home", "y", 0), doc.number(h, "/home", "z", 0)};
-    model.home.rpy = {degToRad(doc.number(h, "/home", "a", 0)), degToRad(doc.number(h, "/home", "b", 0)),
+    model.home.position = {doc.number(h, "/home", "x", 0),
+                           doc.number(h, "/home", "y", 0),
+                           doc.number(h, "/home", "z", 0)};
+    model.home.rpy = {degToRad(doc.number(h, "/home", "a", 0)),
+                      degToRad(doc.number(h, "/home", "b", 0)),
                       degToRad(doc.number(h, "/home", "c", 0))};
   }
-  if (root.contains("tool_offset")) model.tool_offset = doc.vec3(root["tool_offset"], "/tool_offset");
+  if (root.contains("tool_offset"))
+    model.tool_offset = doc.vec3(root["tool_offset"], "/tool_offset");
   model.spindle_offset = doc.number(root, "", "spindle_offset", 0.0);
   model.linuxcnc_tool_offset = doc.number(root, "", "linuxcnc_tool_offset", 0.0);
   model.strut_diameter = doc.number(root, "", "strut_diameter", 0.0);
@@ -179,7 +218,8 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
     doc.onlyKeys(f, "/forward_kinematics", {"tolerance", "max_iterations"});
     m.fk.tolerance = doc.number(f, "/forward_kinematics", "tolerance", m.fk.tolerance);
     const double it = doc.number(f, "/forward_kinematics", "max_iterations", m.fk.max_iterations);
-    if (it != std::floor(it) || it < 1 || it > 1e6) doc.fail("/forward_kinematics/max_iterations", "must be an integer in [1, 1e6]");
+    if (it != std::floor(it) || it < 1 || it > 1e6)
+      doc.fail("/forward_kinematics/max_iterations", "must be an integer in [1, 1e6]");
     m.fk.max_iterations = static_cast<int>(it);
     std::string why;
     if (!m.fk.isValid(&why)) doc.fail("/forward_kinematics", why);
@@ -193,7 +233,8 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
   for (std::size_t i = 0; i < struts.size(); ++i) {
     const std::string ptr = fmt::format("/struts/{}", i);
     const json& s = struts[i];
-    doc.onlyKeys(s, ptr, {"base", "platform", "length_offset", "stroke", "base_joint", "platform_joint"});
+    doc.onlyKeys(
+        s, ptr, {"base", "platform", "length_offset", "stroke", "base_joint", "platform_joint"});
     kin::Strut& strut = model.struts[i];
     if (!s.contains("base")) doc.fail(ptr, "missing key 'base'");
     if (!s.contains("platform")) doc.fail(ptr, "missing key 'platform'");
@@ -206,11 +247,14 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
       // null = unbounded on that side
       if (!st[0].is_null()) strut.min_reading = doc.number(st[0], ptr + "/stroke/0");
       if (!st[1].is_null()) strut.max_reading = doc.number(st[1], ptr + "/stroke/1");
-      if (strut.min_reading > strut.max_reading) doc.fail(ptr + "/stroke", "min is larger than max");
+      if (strut.min_reading > strut.max_reading)
+        doc.fail(ptr + "/stroke", "min is larger than max");
     }
-    if (s.contains("base_joint")) base_axis_given[i] = readCone(doc, s["base_joint"], ptr + "/base_joint", strut.base_cone);
+    if (s.contains("base_joint"))
+      base_axis_given[i] = readCone(doc, s["base_joint"], ptr + "/base_joint", strut.base_cone);
     if (s.contains("platform_joint"))
-      platform_axis_given[i] = readCone(doc, s["platform_joint"], ptr + "/platform_joint", strut.platform_cone);
+      platform_axis_given[i] =
+          readCone(doc, s["platform_joint"], ptr + "/platform_joint", strut.platform_cone);
   }
   try {
     // Default cone axes: the strut direction at home.
@@ -220,7 +264,8 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
       const Eigen::Vector3d u = data.unit_leg[i];
       if (u.norm() == 0.0) continue;  // validate() reports the zero-length strut
       if (!base_axis_given[i]) model.struts[i].base_cone.axis = u;
-      if (!platform_axis_given[i]) model.struts[i].platform_cone.axis = data.world_R_platform.transpose() * u;
+      if (!platform_axis_given[i])
+        model.struts[i].platform_cone.axis = data.world_R_platform.transpose() * u;
     }
     model.validate();
   } catch (const InvalidArgument& e) {
@@ -229,7 +274,9 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
   return m;
 }
 
-HexapodMachine readHexapodJson(const std::string& path) { return parseHexapodJson(readTextFile(path), path); }
+HexapodMachine readHexapodJson(const std::string& path) {
+  return parseHexapodJson(readTextFile(path), path);
+}
 
 std::string writeHexapodJson(const HexapodMachine& machine) {
   const kin::HexapodModel& model = machine.model;
@@ -250,7 +297,8 @@ std::string writeHexapodJson(const HexapodMachine& machine) {
   out += ",\n  \"strut_diameter\": " + formatNumber(model.strut_diameter);
   out += ",\n  \"max_condition\": " + formatNumber(model.max_condition);
   out += ",\n  \"forward_kinematics\": {\"tolerance\": " + formatNumber(machine.fk.tolerance) +
-         ", \"max_iterations\": " + std::to_string(machine.fk.max_iterations) + "},\n  \"struts\": [\n";
+         ", \"max_iterations\": " + std::to_string(machine.fk.max_iterations) +
+         "},\n  \"struts\": [\n";
   for (int i = 0; i < kin::kStruts; ++i) {
     const kin::Strut& s = model.struts[static_cast<std::size_t>(i)];
     out += "    {\"base\": ";
@@ -259,10 +307,13 @@ std::string writeHexapodJson(const HexapodMachine& machine) {
     writeVec(out, s.platform_p_joint);
     out += ", \"length_offset\": " + formatNumber(s.length_offset);
     if (std::isfinite(s.min_reading) || std::isfinite(s.max_reading)) {
-      const auto bound = [](double v) { return std::isfinite(v) ? formatNumber(v) : std::string("null"); };
+      const auto bound = [](double v) {
+        return std::isfinite(v) ? formatNumber(v) : std::string("null");
+      };
       out += ", \"stroke\": [" + bound(s.min_reading) + ", " + bound(s.max_reading) + "]";
     }
-    for (const auto& [key, cone] : {std::pair{"base_joint", &s.base_cone}, std::pair{"platform_joint", &s.platform_cone}}) {
+    for (const auto& [key, cone] :
+         {std::pair{"base_joint", &s.base_cone}, std::pair{"platform_joint", &s.platform_cone}}) {
       out += fmt::format(",\n     \"{}\": {{\"axis\": ", key);
       writeVec(out, cone->axis);
       out += ", \"max_angle_deg\": " + formatNumber(radToDeg(cone->max_angle)) + "}";

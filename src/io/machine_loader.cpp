@@ -1,10 +1,10 @@
 #include "pkm/io/machine_loader.hpp"
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <string_view>
 #include <utility>
-
-#include <fmt/format.h>
 
 #include "pkm/core/error.hpp"
 
@@ -28,7 +28,8 @@ HexapodMachine builtinMachine(const std::string& name) {
       return m;
     }
   }
-  throw IoError(fmt::format("{}: no such file, and not a built-in machine (built-in: {})", name,
+  throw IoError(fmt::format("{}: no such file, and not a built-in machine (built-in: {})",
+                            name,
                             fmt::join(builtinMachineNames(), ", ")));
 }
 
@@ -37,7 +38,8 @@ HexapodMachine loadHexapodMachine(const std::string& spec, const HalReadOptions&
   std::error_code ec;
   if (spec.ends_with(".hal")) return readLinuxcncHal(spec, hal);
   if (fs::exists(spec, ec)) {
-    if (fs::is_directory(spec, ec)) throw IoError(locate(spec, 0, "is a directory, expected a machine file"));
+    if (fs::is_directory(spec, ec))
+      throw IoError(locate(spec, 0, "is a directory, expected a machine file"));
     return readHexapodJson(spec);
   }
   return builtinMachine(spec);

@@ -1,11 +1,11 @@
 #include "pkm/kinematics/hexapod_checks.hpp"
 
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
-#include <Eigen/Geometry>
-#include <fmt/format.h>
 
 #include "pkm/geometry/segment_distance.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
@@ -23,11 +23,16 @@ double angleTo(const Eigen::Vector3d& u, const Eigen::Vector3d& axis) {
 
 std::string_view toString(LimitKind kind) {
   switch (kind) {
-    case LimitKind::kStroke: return "stroke";
-    case LimitKind::kJointAngle: return "joint_angle";
-    case LimitKind::kInterference: return "interference";
-    case LimitKind::kSingular: return "singular";
-    case LimitKind::kDegenerate: return "degenerate";
+    case LimitKind::kStroke:
+      return "stroke";
+    case LimitKind::kJointAngle:
+      return "joint_angle";
+    case LimitKind::kInterference:
+      return "interference";
+    case LimitKind::kSingular:
+      return "singular";
+    case LimitKind::kDegenerate:
+      return "degenerate";
   }
   return "unknown";
 }
@@ -47,7 +52,8 @@ HexapodCheckResult checkPose(const HexapodModel& model, HexapodData& data, const
     out.stroke_margin[i] = std::min(q - s.min_reading, s.max_reading - q);
     if (out.stroke_margin[i] < 0.0) {
       const double limit = q < s.min_reading ? s.min_reading : s.max_reading;
-      out.violations.push_back({LimitKind::kStroke, fmt::format("strut {}", i), q, limit, out.stroke_margin[i]});
+      out.violations.push_back(
+          {LimitKind::kStroke, fmt::format("strut {}", i), q, limit, out.stroke_margin[i]});
     }
     if (data.joint_distance[i] <= 0.0) {
       out.violations.push_back({LimitKind::kDegenerate, fmt::format("strut {}", i), 0.0, 0.0, 0.0});
@@ -64,11 +70,16 @@ HexapodCheckResult checkPose(const HexapodModel& model, HexapodData& data, const
     out.base_angle_margin[i] = margin(s.base_cone, out.base_angle[i]);
     out.platform_angle_margin[i] = margin(s.platform_cone, out.platform_angle[i]);
     if (out.base_angle_margin[i] < 0.0)
-      angle_violations.push_back({LimitKind::kJointAngle, fmt::format("base joint {}", i), out.base_angle[i],
-                                  s.base_cone.max_angle, out.base_angle_margin[i]});
+      angle_violations.push_back({LimitKind::kJointAngle,
+                                  fmt::format("base joint {}", i),
+                                  out.base_angle[i],
+                                  s.base_cone.max_angle,
+                                  out.base_angle_margin[i]});
     if (out.platform_angle_margin[i] < 0.0)
-      angle_violations.push_back({LimitKind::kJointAngle, fmt::format("platform joint {}", i),
-                                  out.platform_angle[i], s.platform_cone.max_angle,
+      angle_violations.push_back({LimitKind::kJointAngle,
+                                  fmt::format("platform joint {}", i),
+                                  out.platform_angle[i],
+                                  s.platform_cone.max_angle,
                                   out.platform_angle_margin[i]});
   }
   out.violations.insert(out.violations.end(), angle_violations.begin(), angle_violations.end());
@@ -99,13 +110,18 @@ HexapodCheckResult checkPose(const HexapodModel& model, HexapodData& data, const
   if (out.interference_margin < 0.0)
     out.violations.push_back({LimitKind::kInterference,
                               fmt::format("struts {}-{}", out.closest_pair[0], out.closest_pair[1]),
-                              out.min_leg_distance, d, out.interference_margin});
+                              out.min_leg_distance,
+                              d,
+                              out.interference_margin});
 
   computeStrutJacobian(model, data);
   out.condition_number = scaledConditionNumber(model, data);
   out.condition_margin = model.max_condition - out.condition_number;
   if (!(out.condition_margin >= 0.0))
-    out.violations.push_back({LimitKind::kSingular, "jacobian", out.condition_number, model.max_condition,
+    out.violations.push_back({LimitKind::kSingular,
+                              "jacobian",
+                              out.condition_number,
+                              model.max_condition,
                               out.condition_margin});
   return out;
 }

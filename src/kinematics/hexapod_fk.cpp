@@ -1,23 +1,27 @@
 #include "pkm/kinematics/hexapod_fk.hpp"
 
-#include <cmath>
-
 #include <fmt/format.h>
 
+#include <cmath>
+
+#include "kinematics/detail/hexapod_legs.hpp"
+#include "kinematics/detail/solve6.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
-#include "kinematics/detail/hexapod_legs.hpp"
-#include "kinematics/detail/solve6.hpp"
 
 namespace pkm::kinematics {
 
 std::string_view toString(FkStatus status) {
   switch (status) {
-    case FkStatus::kOk: return "ok";
-    case FkStatus::kNoConvergence: return "no_convergence";
-    case FkStatus::kSingular: return "singular";
-    case FkStatus::kInvalidInput: return "invalid_input";
+    case FkStatus::kOk:
+      return "ok";
+    case FkStatus::kNoConvergence:
+      return "no_convergence";
+    case FkStatus::kSingular:
+      return "singular";
+    case FkStatus::kInvalidInput:
+      return "invalid_input";
   }
   return "unknown";
 }
@@ -29,10 +33,13 @@ bool FkOptions::isValid(std::string* why) const {
   };
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
     return fail(fmt::format("tolerance must be finite and > 0 (got {})", tolerance));
-  if (max_iterations < 1) return fail(fmt::format("max_iterations must be >= 1 (got {})", max_iterations));
-  if (max_backtracks < 0) return fail(fmt::format("max_backtracks must be >= 0 (got {})", max_backtracks));
+  if (max_iterations < 1)
+    return fail(fmt::format("max_iterations must be >= 1 (got {})", max_iterations));
+  if (max_backtracks < 0)
+    return fail(fmt::format("max_backtracks must be >= 0 (got {})", max_backtracks));
   if (!(singular_pivot_ratio > 0.0 && singular_pivot_ratio < 1.0))
-    return fail(fmt::format("singular_pivot_ratio must be in (0, 1) (got {})", singular_pivot_ratio));
+    return fail(
+        fmt::format("singular_pivot_ratio must be in (0, 1) (got {})", singular_pivot_ratio));
   return true;
 }
 
@@ -41,7 +48,8 @@ namespace {
 /// Below this fraction of the tolerance no polishing step is taken after convergence.
 constexpr double kPolishFraction = 1e-3;
 
-/// Residual r = readings(p, R) − target; fills data's leg quantities. Returns |r|² (infinite if NaN).
+/// Residual r = readings(p, R) − target; fills data's leg quantities. Returns |r|² (infinite if
+/// NaN).
 double evaluate(const HexapodModel& model,
                 HexapodData& data,
                 const Eigen::Vector3d& p,
@@ -87,9 +95,11 @@ FkSummary forwardKinematics(const HexapodModel& model,
     if (summary.max_residual <= options.tolerance) {
       summary.status = FkStatus::kOk;
       // Strut residuals at the tolerance can still mean a pose error of a few tolerances (the
-      // Jacobian's inverse amplifies them). One more Newton step, quadratically convergent, makes the
-      // pose accurate to far below the tolerance; it is skipped once the residual is already tiny.
-      if (polishing || summary.max_residual <= kPolishFraction * options.tolerance || iter == options.max_iterations)
+      // Jacobian's inverse amplifies them). One more Newton step, quadratically convergent, makes
+      // the pose accurate to far below the tolerance; it is skipped once the residual is already
+      // tiny.
+      if (polishing || summary.max_residual <= kPolishFraction * options.tolerance ||
+          iter == options.max_iterations)
         break;
       polishing = true;
     }

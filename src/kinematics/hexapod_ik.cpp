@@ -1,19 +1,20 @@
 #include "pkm/kinematics/hexapod_ik.hpp"
 
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <cmath>
 #include <limits>
 
-#include <Eigen/Geometry>
-#include <Eigen/SVD>
-
-#include "pkm/geometry/so3.hpp"
 #include "kinematics/detail/hexapod_legs.hpp"
+#include "pkm/geometry/so3.hpp"
 
 namespace pkm::kinematics {
 
 HexapodData::HexapodData(const HexapodModel& /*model*/) {}
 
-const StrutVector& inverseKinematics(const HexapodModel& model, HexapodData& data, const PoseRpy& pose) {
+const StrutVector& inverseKinematics(const HexapodModel& model,
+                                     HexapodData& data,
+                                     const PoseRpy& pose) {
   inverseKinematics(model, data, pose.position, geometry::rotationFromRpy(pose.rpy));
   data.pose = pose;
   return data.readings;

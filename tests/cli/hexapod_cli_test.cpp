@@ -1,6 +1,9 @@
-// The CLI contract of `pkm hexapod ...` and `pkm demo`, tested by running the built binary (PKM_BINARY)
-// as a subprocess: output headers, values against the LinuxCNC reference, FK failure rows, machine
-// round trips through `hal` and `describe --json`, and exit code 2 with FILE:LINE messages on bad input.
+// The CLI contract of `pkm hexapod ...` and `pkm demo`, tested by running the built binary
+// (PKM_BINARY) as a subprocess: output headers, values against the LinuxCNC reference, FK failure
+// rows, machine round trips through `hal` and `describe --json`, and exit code 2 with FILE:LINE
+// messages on bad input.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -11,9 +14,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include "support/tolerances.hpp"
 
@@ -38,7 +38,8 @@ const Reference kReference[] = {
     {{-3, 2, 18, 10, 10, -15}, {30.022945, 29.402324, 29.682443, 25.351693, 33.820068, 24.667812}},
 };
 constexpr const char* kSimPoses = "x,y,z,a,b,c\n0,0,20,0,0,0\n2,-1,22,3,-4,10\n-3,2,18,10,10,-15\n";
-constexpr const char* kDefaultPoses = "x,y,z,a,b,c\n0,0,200,0,0,0\n10,-5,210,3,-2,5\n-20,15,180,-4,6,-10\n";
+constexpr const char* kDefaultPoses =
+    "x,y,z,a,b,c\n0,0,200,0,0,0\n10,-5,210,3,-2,5\n-20,15,180,-4,6,-10\n";
 
 struct CliRun {
   int code = -1;
@@ -57,7 +58,8 @@ std::vector<std::string> splitFields(const std::string& line) {
   std::size_t pos = 0;
   while (true) {
     const std::size_t comma = line.find(',', pos);
-    fields.push_back(line.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
+    fields.push_back(
+        line.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
     if (comma == std::string::npos) break;
     pos = comma + 1;
   }
@@ -89,8 +91,10 @@ class HexapodCli : public ::testing::Test {
   static std::string quote(const std::string& s) {
     std::string q = "'";
     for (char c : s) {
-      if (c == '\'') q.append("'\\''");
-      else q.push_back(c);
+      if (c == '\'')
+        q.append("'\\''");
+      else
+        q.push_back(c);
     }
     q.push_back('\'');
     return q;
@@ -109,8 +113,10 @@ class HexapodCli : public ::testing::Test {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   }
 
-  /// Runs `pkm ARGS` (each quoted) with stdin from `stdin_file` (or /dev/null); captures everything.
-  CliRun pkm(const std::vector<std::string>& args, const std::string& stdin_file = "/dev/null") const {
+  /// Runs `pkm ARGS` (each quoted) with stdin from `stdin_file` (or /dev/null); captures
+  /// everything.
+  CliRun pkm(const std::vector<std::string>& args,
+             const std::string& stdin_file = "/dev/null") const {
     std::string cmd = quote(PKM_BINARY);
     for (const auto& a : args) cmd.append(" ").append(quote(a));
     cmd.append(" < ").append(quote(stdin_file));
@@ -138,7 +144,8 @@ class HexapodCli : public ::testing::Test {
 // ik / fk
 
 TEST_F(HexapodCli, IkMatchesLinuxcncReference) {
-  const CliRun r = pkm({"hexapod", "ik", "--machine", "hexapod-linuxcnc-sim", "--poses", write("P.csv", kSimPoses)});
+  const CliRun r = pkm(
+      {"hexapod", "ik", "--machine", "hexapod-linuxcnc-sim", "--poses", write("P.csv", kSimPoses)});
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   const auto lines = splitLines(r.out);
@@ -148,7 +155,8 @@ TEST_F(HexapodCli, IkMatchesLinuxcncReference) {
     const auto f = splitFields(lines[k + 1]);
     ASSERT_EQ(f.size(), 7u) << lines[k + 1];
     for (std::size_t i = 0; i < 6; ++i)
-      EXPECT_NEAR(num(f[i]), kReference[k].lengths[i], kTolLinuxcnc) << "row " << k << " strut " << i;
+      EXPECT_NEAR(num(f[i]), kReference[k].lengths[i], kTolLinuxcnc)
+          << "row " << k << " strut " << i;
     EXPECT_EQ(f[6], "ok");
   }
 }
@@ -156,13 +164,15 @@ TEST_F(HexapodCli, IkMatchesLinuxcncReference) {
 TEST_F(HexapodCli, IkReadsStandardInput) {
   const std::string poses = write("P.csv", kSimPoses);
   const CliRun from_file = pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", poses});
-  const CliRun from_stdin = pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "--poses", "-"}, poses);
+  const CliRun from_stdin =
+      pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "--poses", "-"}, poses);
   ASSERT_EQ(from_stdin.code, 0) << from_stdin.err;
   EXPECT_EQ(from_stdin.out, from_file.out);
 }
 
 TEST_F(HexapodCli, IkOnDefaultMachineReportsStroke) {
-  const CliRun r = pkm({"hexapod", "ik", "--poses", write("P.csv", "x,y,z,a,b,c\n0,0,200,0,0,0\n0,0,-400,0,0,0\n")});
+  const CliRun r = pkm(
+      {"hexapod", "ik", "--poses", write("P.csv", "x,y,z,a,b,c\n0,0,200,0,0,0\n0,0,-400,0,0,0\n")});
   ASSERT_EQ(r.code, 0) << r.err;
   const auto lines = splitLines(r.out);
   ASSERT_EQ(lines.size(), 3u);
@@ -172,10 +182,12 @@ TEST_F(HexapodCli, IkOnDefaultMachineReportsStroke) {
 }
 
 TEST_F(HexapodCli, FkHeaderAndRoundTripOfIkOutput) {
-  const CliRun ik = pkm({"hexapod", "ik", "--machine", "hexapod-linuxcnc-sim", "--poses", write("P.csv", kSimPoses)});
+  const CliRun ik = pkm(
+      {"hexapod", "ik", "--machine", "hexapod-linuxcnc-sim", "--poses", write("P.csv", kSimPoses)});
   ASSERT_EQ(ik.code, 0) << ik.err;
   // The ik output (with its status column) is a valid fk input: extra columns are ignored.
-  const CliRun fk = pkm({"hexapod", "fk", "--machine", "hexapod-linuxcnc-sim", "--lengths", write("L.csv", ik.out)});
+  const CliRun fk = pkm(
+      {"hexapod", "fk", "--machine", "hexapod-linuxcnc-sim", "--lengths", write("L.csv", ik.out)});
   ASSERT_EQ(fk.code, 0) << fk.err;
   const auto lines = splitLines(fk.out);
   ASSERT_EQ(lines.size(), 4u) << fk.out;
@@ -208,11 +220,17 @@ TEST_F(HexapodCli, FkRoundTripOnDefaultMachine) {
 }
 
 TEST_F(HexapodCli, FkSeedOption) {
-  const CliRun ik = pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", write("P.csv", "x,y,z,a,b,c\n2,-1,22,3,-4,10\n")});
+  const CliRun ik = pkm({"hexapod",
+                         "ik",
+                         "-m",
+                         "hexapod-linuxcnc-sim",
+                         "-p",
+                         write("P.csv", "x,y,z,a,b,c\n2,-1,22,3,-4,10\n")});
   ASSERT_EQ(ik.code, 0) << ik.err;
   const std::string lengths = write("L.csv", ik.out);
   const CliRun from_home = pkm({"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l", lengths});
-  const CliRun seeded = pkm({"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l", lengths, "--seed", "2,-1,22,3,-4,10"});
+  const CliRun seeded = pkm(
+      {"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l", lengths, "--seed", "2,-1,22,3,-4,10"});
   ASSERT_EQ(from_home.code, 0) << from_home.err;
   ASSERT_EQ(seeded.code, 0) << seeded.err;
   const auto a = splitFields(splitLines(from_home.out).at(1));
@@ -234,7 +252,8 @@ TEST_F(HexapodCli, FkBadSeedIsUsageError) {
   const std::string lengths = write("L.csv", "l0,l1,l2,l3,l4,l5\n30,30,30,30,30,30\n");
   for (const std::string seed : {"1,2,3", "0,0,20,0,0,x", "0,0,20,0,0,0,0", "0,0,nan,0,0,0"}) {
     SCOPED_TRACE(seed);
-    const CliRun r = pkm({"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l", lengths, "--seed", seed});
+    const CliRun r =
+        pkm({"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l", lengths, "--seed", seed});
     expectUsageError(r, "--seed");
   }
 }
@@ -242,12 +261,21 @@ TEST_F(HexapodCli, FkBadSeedIsUsageError) {
 TEST_F(HexapodCli, FkImpossibleRowGivesEmptyPoseAndNextRowReseedsFromHome) {
   // Struts 0 and 1 share no base joint; their base joints are 45.9 apart, their platform joints 2:
   // lengths of 1 cannot close the loop.
-  const std::string good = "31.597194336721323,31.713899300748924,29.975222906668,32.85008205799862,"
-                           "27.921166698780066,33.44161557269717";
-  const CliRun alone = pkm({"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l",
-                         write("good.csv", "l0,l1,l2,l3,l4,l5\n" + good + "\n")});
-  const CliRun r = pkm({"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l",
-                     write("L.csv", "l0,l1,l2,l3,l4,l5\n1,1,30,30,30,30\n" + good + "\n")});
+  const std::string good =
+      "31.597194336721323,31.713899300748924,29.975222906668,32.85008205799862,"
+      "27.921166698780066,33.44161557269717";
+  const CliRun alone = pkm({"hexapod",
+                            "fk",
+                            "-m",
+                            "hexapod-linuxcnc-sim",
+                            "-l",
+                            write("good.csv", "l0,l1,l2,l3,l4,l5\n" + good + "\n")});
+  const CliRun r = pkm({"hexapod",
+                        "fk",
+                        "-m",
+                        "hexapod-linuxcnc-sim",
+                        "-l",
+                        write("L.csv", "l0,l1,l2,l3,l4,l5\n1,1,30,30,30,30\n" + good + "\n")});
   ASSERT_EQ(alone.code, 0) << alone.err;
   ASSERT_EQ(r.code, 0) << r.err;  // a failed row is a result, not an input error
   const auto lines = splitLines(r.out);
@@ -269,7 +297,8 @@ TEST_F(HexapodCli, FkImpossibleRowGivesEmptyPoseAndNextRowReseedsFromHome) {
 // check, describe, hal, machines
 
 TEST_F(HexapodCli, CheckRuns) {
-  const CliRun sim = pkm({"hexapod", "check", "-m", "hexapod-linuxcnc-sim", "-p", write("P.csv", kSimPoses)});
+  const CliRun sim =
+      pkm({"hexapod", "check", "-m", "hexapod-linuxcnc-sim", "-p", write("P.csv", kSimPoses)});
   ASSERT_EQ(sim.code, 0) << sim.err;
   auto lines = splitLines(sim.out);
   ASSERT_EQ(lines.size(), 4u);
@@ -279,7 +308,8 @@ TEST_F(HexapodCli, CheckRuns) {
     EXPECT_THAT(lines[k], StartsWith(std::to_string(k - 1) + ",ok,"));
     EXPECT_EQ(splitFields(lines[k]).size(), columns) << lines[k];
   }
-  const CliRun def = pkm({"hexapod", "check", "-p", write("D.csv", "x,y,z,a,b,c\n0,0,200,0,0,0\n0,0,-400,0,0,0\n")});
+  const CliRun def = pkm(
+      {"hexapod", "check", "-p", write("D.csv", "x,y,z,a,b,c\n0,0,200,0,0,0\n0,0,-400,0,0,0\n")});
   ASSERT_EQ(def.code, 0) << def.err;
   lines = splitLines(def.out);
   ASSERT_EQ(lines.size(), 3u);
@@ -298,8 +328,10 @@ TEST_F(HexapodCli, HalOutputReadBackGivesSameIk) {
   // The sim geometry needs its INI (HOME z 20); the setp block lists the values to put there.
   EXPECT_THAT(hal.out, HasSubstr("# [TRAJ] HOME = 0 0 20 0 0 0"));
   const std::string ini = write("sim.ini", "[TRAJ]\nHOME = 0 0 20 0 0 0\nLINEAR_UNITS = inch\n");
-  const CliRun builtin = pkm({"hexapod", "ik", "--machine", "hexapod-linuxcnc-sim", "--poses", poses});
-  const CliRun from_hal = pkm({"hexapod", "ik", "--machine", hal_file, "--ini", ini, "--poses", poses});
+  const CliRun builtin =
+      pkm({"hexapod", "ik", "--machine", "hexapod-linuxcnc-sim", "--poses", poses});
+  const CliRun from_hal =
+      pkm({"hexapod", "ik", "--machine", hal_file, "--ini", ini, "--poses", poses});
   ASSERT_EQ(from_hal.code, 0) << from_hal.err;
   EXPECT_EQ(from_hal.out, builtin.out);
   // Notices about ignored lines go to stderr, not into the output.
@@ -310,7 +342,8 @@ TEST_F(HexapodCli, HalOfDefaultMachineReadBackGivesSameJointDistances) {
   const CliRun hal = pkm({"hexapod", "hal"});
   ASSERT_EQ(hal.code, 0) << hal.err;
   const std::string hal_file = write("kinematics.hal", hal.out);
-  write("machine.ini", "[HAL]\nHALFILE = kinematics.hal\n[TRAJ]\nHOME = 0 0 200 0 0 0\nLINEAR_UNITS = mm\n");
+  write("machine.ini",
+        "[HAL]\nHALFILE = kinematics.hal\n[TRAJ]\nHOME = 0 0 200 0 0 0\nLINEAR_UNITS = mm\n");
   const std::string poses = write("P.csv", kDefaultPoses);
   const CliRun builtin = pkm({"hexapod", "ik", "--poses", poses});
   const CliRun from_hal = pkm({"hexapod", "ik", "--machine", hal_file, "--poses", poses});
@@ -320,7 +353,8 @@ TEST_F(HexapodCli, HalOfDefaultMachineReadBackGivesSameJointDistances) {
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t k = 1; k < a.size(); ++k) {
     const auto fa = splitFields(a[k]), fb = splitFields(b[k]);
-    // LinuxCNC joint positions are joint-centre distances: the pkm reading plus the 650 length offset.
+    // LinuxCNC joint positions are joint-centre distances: the pkm reading plus the 650 length
+    // offset.
     for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(num(fb[i]), num(fa[i]) + 650.0, kTolRoundTrip);
   }
 }
@@ -329,9 +363,11 @@ TEST_F(HexapodCli, HalOutputLoadsOnItsOwn) {
   const CliRun hal = pkm({"hexapod", "hal", "--machine", "hexapod-linuxcnc-sim"});
   ASSERT_EQ(hal.code, 0) << hal.err;
   const std::string poses = write("P.csv", kSimPoses);
-  const CliRun from_hal = pkm({"hexapod", "ik", "--machine", write("alone.hal", hal.out), "--poses", poses});
+  const CliRun from_hal =
+      pkm({"hexapod", "ik", "--machine", write("alone.hal", hal.out), "--poses", poses});
   ASSERT_EQ(from_hal.code, 0) << from_hal.err;
-  EXPECT_EQ(from_hal.out, pkm({"hexapod", "ik", "--machine", "hexapod-linuxcnc-sim", "--poses", poses}).out);
+  EXPECT_EQ(from_hal.out,
+            pkm({"hexapod", "ik", "--machine", "hexapod-linuxcnc-sim", "--poses", poses}).out);
 }
 
 TEST_F(HexapodCli, HalWithoutIniExplainsWhy) {
@@ -341,7 +377,8 @@ TEST_F(HexapodCli, HalWithoutIniExplainsWhy) {
   for (std::string line; std::getline(in, line);)
     if (line.rfind("# pkm:", 0) != 0) without_home += line + "\n";
   const std::string hal_file = write("lonely.hal", without_home);
-  const CliRun r = pkm({"hexapod", "ik", "--machine", hal_file, "--poses", write("P.csv", kSimPoses)});
+  const CliRun r =
+      pkm({"hexapod", "ik", "--machine", hal_file, "--poses", write("P.csv", kSimPoses)});
   expectUsageError(r, hal_file + ": ");
   EXPECT_THAT(r.err, HasSubstr("--ini"));
 }
@@ -376,7 +413,8 @@ TEST_F(HexapodCli, DescribeText) {
 TEST_F(HexapodCli, MachinesListsBuiltins) {
   const CliRun r = pkm({"hexapod", "machines"});
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_THAT(splitLines(r.out), ::testing::IsSupersetOf({"hexapod-default", "hexapod-linuxcnc-sim"}));
+  EXPECT_THAT(splitLines(r.out),
+              ::testing::IsSupersetOf({"hexapod-default", "hexapod-linuxcnc-sim"}));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -384,14 +422,16 @@ TEST_F(HexapodCli, MachinesListsBuiltins) {
 
 TEST_F(HexapodCli, MissingColumn) {
   const std::string p = write("P.csv", "x,y,z,a,b\n0,0,20,0,0\n");
-  const std::string err = expectUsageError(pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", p}), p + ":1: ");
+  const std::string err =
+      expectUsageError(pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", p}), p + ":1: ");
   EXPECT_THAT(err, HasSubstr("missing column"));
   EXPECT_THAT(err, StartsWith("pkm: error: "));
 }
 
 TEST_F(HexapodCli, NonNumber) {
   const std::string p = write("P.csv", "x,y,z,a,b,c\n0,0,20,0,0,0\n0,0,20,zero,0,0\n");
-  const std::string err = expectUsageError(pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", p}), p + ":3: ");
+  const std::string err =
+      expectUsageError(pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", p}), p + ":3: ");
   EXPECT_THAT(err, HasSubstr("'zero'"));
 }
 
@@ -401,13 +441,15 @@ TEST_F(HexapodCli, NanIsRejected) {
 }
 
 TEST_F(HexapodCli, InfIsRejected) {
-  const std::string p = write("L.csv", "l0,l1,l2,l3,l4,l5\n30,30,30,30,30,30\n\n30,30,30,inf,30,30\n");
+  const std::string p =
+      write("L.csv", "l0,l1,l2,l3,l4,l5\n30,30,30,30,30,30\n\n30,30,30,inf,30,30\n");
   expectUsageError(pkm({"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l", p}), p + ":4: ");
 }
 
 TEST_F(HexapodCli, WrongFieldCount) {
   const std::string p = write("P.csv", "x,y,z,a,b,c\n0,0,20,0,0\n");
-  const std::string err = expectUsageError(pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", p}), p + ":2: ");
+  const std::string err =
+      expectUsageError(pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", p}), p + ":2: ");
   EXPECT_THAT(err, HasSubstr("expected 6 fields, found 5"));
   const std::string q = write("Q.csv", "x,y,z,a,b,c\n0,0,20,0,0,0,7\n");
   expectUsageError(pkm({"hexapod", "check", "-m", "hexapod-linuxcnc-sim", "-p", q}), q + ":2: ");
@@ -427,8 +469,8 @@ TEST_F(HexapodCli, NonexistentFile) {
 
 TEST_F(HexapodCli, MalformedMachineJson) {
   const std::string m = write("m.json", "{\n  \"units\": \"mm\",\n  \"struts\": [1, 2,, 3]\n}\n");
-  const std::string err =
-      expectUsageError(pkm({"hexapod", "ik", "--machine", m, "-p", write("P.csv", kSimPoses)}), m + ":3: ");
+  const std::string err = expectUsageError(
+      pkm({"hexapod", "ik", "--machine", m, "-p", write("P.csv", kSimPoses)}), m + ":3: ");
   EXPECT_THAT(err, HasSubstr("invalid JSON"));
 }
 
@@ -438,13 +480,17 @@ TEST_F(HexapodCli, InvalidMachineGeometryNamesLine) {
   const auto pos = text.find("\"units\": \"inch\"");
   ASSERT_NE(pos, std::string::npos);
   text.replace(pos, 15, "\"units\": \"feet\"");
-  const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
+  const std::size_t line =
+      1 + static_cast<std::size_t>(
+              std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
   const std::string m = write("m.json", text);
-  expectUsageError(pkm({"hexapod", "describe", "--machine", m}), m + ":" + std::to_string(line) + ": /units: ");
+  expectUsageError(pkm({"hexapod", "describe", "--machine", m}),
+                   m + ":" + std::to_string(line) + ": /units: ");
 }
 
 TEST_F(HexapodCli, UnknownMachineName) {
-  const std::string err = expectUsageError(pkm({"hexapod", "describe", "--machine", "no-such-machine"}), "no-such-machine");
+  const std::string err = expectUsageError(
+      pkm({"hexapod", "describe", "--machine", "no-such-machine"}), "no-such-machine");
   EXPECT_THAT(err, HasSubstr("hexapod-linuxcnc-sim"));
 }
 

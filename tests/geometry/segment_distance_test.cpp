@@ -1,8 +1,8 @@
 #include "pkm/geometry/segment_distance.hpp"
 
-#include <random>
-
 #include <gtest/gtest.h>
+
+#include <random>
 
 #include "support/tolerances.hpp"
 
@@ -44,16 +44,24 @@ TEST(SegmentDistance, EndpointRegion) {
 }
 
 TEST(SegmentDistance, ParallelAndOverlapping) {
-  EXPECT_NEAR(segmentDistance(V(0, 0, 0), V(2, 0, 0), V(1, 3, 0), V(5, 3, 0)).distance, 3.0, test::kTolExact);
-  EXPECT_NEAR(segmentDistance(V(0, 0, 0), V(2, 0, 0), V(4, 3, 0), V(6, 3, 0)).distance, std::sqrt(13.0),
+  EXPECT_NEAR(segmentDistance(V(0, 0, 0), V(2, 0, 0), V(1, 3, 0), V(5, 3, 0)).distance,
+              3.0,
+              test::kTolExact);
+  EXPECT_NEAR(segmentDistance(V(0, 0, 0), V(2, 0, 0), V(4, 3, 0), V(6, 3, 0)).distance,
+              std::sqrt(13.0),
               test::kTolExact);
 }
 
 TEST(SegmentDistance, DegenerateSegments) {
-  EXPECT_NEAR(segmentDistance(V(0, 0, 0), V(0, 0, 0), V(1, 1, 0), V(1, 1, 0)).distance, std::sqrt(2.0),
+  EXPECT_NEAR(segmentDistance(V(0, 0, 0), V(0, 0, 0), V(1, 1, 0), V(1, 1, 0)).distance,
+              std::sqrt(2.0),
               test::kTolExact);
-  EXPECT_NEAR(segmentDistance(V(0, 2, 0), V(0, 2, 0), V(-1, 0, 0), V(1, 0, 0)).distance, 2.0, test::kTolExact);
-  EXPECT_NEAR(segmentDistance(V(-1, 0, 0), V(1, 0, 0), V(0, 0, 5), V(0, 0, 5)).distance, 5.0, test::kTolExact);
+  EXPECT_NEAR(segmentDistance(V(0, 2, 0), V(0, 2, 0), V(-1, 0, 0), V(1, 0, 0)).distance,
+              2.0,
+              test::kTolExact);
+  EXPECT_NEAR(segmentDistance(V(-1, 0, 0), V(1, 0, 0), V(0, 0, 5), V(0, 0, 5)).distance,
+              5.0,
+              test::kTolExact);
 }
 
 TEST(SegmentDistance, MatchesIndependentSearchOnRandomSegments) {

@@ -1,9 +1,9 @@
 #include "pkm/geometry/so3.hpp"
 
-#include <random>
+#include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
-#include <gtest/gtest.h>
+#include <random>
 
 #include "support/tolerances.hpp"
 
@@ -18,7 +18,8 @@ Eigen::Vector3d randomVector(std::mt19937& rng, double scale) {
 }
 
 bool isRotation(const Eigen::Matrix3d& R) {
-  return (R * R.transpose() - Eigen::Matrix3d::Identity()).norm() < 1e-12 && std::abs(R.determinant() - 1) < 1e-12;
+  return (R * R.transpose() - Eigen::Matrix3d::Identity()).norm() < 1e-12 &&
+         std::abs(R.determinant() - 1) < 1e-12;
 }
 
 TEST(So3, HatIsCrossProduct) {
@@ -49,7 +50,8 @@ TEST(So3, LogInvertsExpIncludingNearPi) {
   std::mt19937 rng(test::kSeed);
   for (int k = 0; k < 200; ++k) {
     Eigen::Vector3d w = randomVector(rng, 1).normalized();
-    w *= (k % 4 == 0) ? std::numbers::pi - 1e-7 : (k % 4 == 1 ? 1e-8 : std::uniform_real_distribution<>(0, 3.1)(rng));
+    w *= (k % 4 == 0) ? std::numbers::pi - 1e-7
+                      : (k % 4 == 1 ? 1e-8 : std::uniform_real_distribution<>(0, 3.1)(rng));
     EXPECT_LT((so3Log(so3Exp(w)) - w).norm(), 1e-9) << w.transpose();
   }
 }
@@ -87,7 +89,8 @@ TEST(So3, RpyNearestKeepsAnglesContinuous) {
   const Eigen::Vector3d near(0.1, 0.2, 190.0 * std::numbers::pi / 180.0);
   EXPECT_LT((rpyFromRotation(R, near) - rpy).norm(), 1e-12);
   // The second branch (a+pi, pi-b, c+pi) is chosen when the seed is on it.
-  const Eigen::Vector3d other(rpy.x() + std::numbers::pi, std::numbers::pi - rpy.y(), rpy.z() + std::numbers::pi);
+  const Eigen::Vector3d other(
+      rpy.x() + std::numbers::pi, std::numbers::pi - rpy.y(), rpy.z() + std::numbers::pi);
   EXPECT_LT((rpyFromRotation(R, other) - other).norm(), 1e-12);
 }
 

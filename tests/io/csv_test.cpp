@@ -1,6 +1,10 @@
 // Tests of pkm::io::CsvReader and parseFiniteDouble (docs: include/pkm/io/csv.hpp).
 #include "pkm/io/csv.hpp"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -8,10 +12,6 @@
 #include <random>
 #include <string>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-#include <unistd.h>
 
 #include "pkm/core/error.hpp"
 #include "support/tolerances.hpp"
@@ -49,7 +49,8 @@ class CsvTest : public ::testing::Test {
 
   /// The message of the pkm::IoError thrown by reading all of `content` with columns `cols`
   /// (empty if none is thrown).
-  std::string errorOf(const std::string& content, const std::vector<std::string>& cols,
+  std::string errorOf(const std::string& content,
+                      const std::vector<std::string>& cols,
                       const std::string& name = "data.csv") const {
     const std::string path = write(name, content);
     try {
@@ -67,7 +68,8 @@ class CsvTest : public ::testing::Test {
 };
 
 TEST_F(CsvTest, ColumnsInAnyOrderWithExtraColumns) {
-  const std::string path = write("p.csv", "c, extra ,a,label,b\n3,99,1,text is ignored,2\n-6, 0 ,-4,x,-5\n");
+  const std::string path =
+      write("p.csv", "c, extra ,a,label,b\n3,99,1,text is ignored,2\n-6, 0 ,-4,x,-5\n");
   CsvReader r(path, {"a", "b", "c"});
   EXPECT_THAT(r.header(), ::testing::ElementsAre("c", "extra", "a", "label", "b"));
   std::array<double, 3> v{};
@@ -93,7 +95,9 @@ TEST_F(CsvTest, CrlfLineEnds) {
 }
 
 TEST_F(CsvTest, ByteOrderMarkIsSkipped) {
-  const std::string path = write("p.csv", "\xEF\xBB\xBF" "a,b\n7,8\n");
+  const std::string path = write("p.csv",
+                                 "\xEF\xBB\xBF"
+                                 "a,b\n7,8\n");
   CsvReader r(path, {"a", "b"});
   EXPECT_THAT(r.header(), ::testing::ElementsAre("a", "b"));
   std::array<double, 2> v{};
@@ -103,17 +107,17 @@ TEST_F(CsvTest, ByteOrderMarkIsSkipped) {
 
 TEST_F(CsvTest, CommentsAndBlankLinesAreSkippedAndLinesCounted) {
   const std::string path = write("p.csv",
-                                 "# written by a test\n"  // 1
-                                 "\n"                     // 2
-                                 "a,b\n"                  // 3
-                                 "# a comment row\n"      // 4
-                                 "   \n"                  // 5
-                                 "\t\n"                   // 6
-                                 "1,2\n"                  // 7
-                                 "  # indented comment\n" // 8
-                                 "\n"                     // 9
-                                 "3,4\n"                  // 10
-                                 "\n");                   // 11
+                                 "# written by a test\n"   // 1
+                                 "\n"                      // 2
+                                 "a,b\n"                   // 3
+                                 "# a comment row\n"       // 4
+                                 "   \n"                   // 5
+                                 "\t\n"                    // 6
+                                 "1,2\n"                   // 7
+                                 "  # indented comment\n"  // 8
+                                 "\n"                      // 9
+                                 "3,4\n"                   // 10
+                                 "\n");                    // 11
   CsvReader r(path, {"a", "b"});
   EXPECT_EQ(r.line(), 3u);
   std::array<double, 2> v{};
@@ -146,7 +150,8 @@ TEST_F(CsvTest, HeaderOnlyHasNoRows) {
 }
 
 TEST_F(CsvTest, MissingColumnNamesColumnAndFileLine) {
-  const std::string msg = errorOf("# comment\nx,y,z,a,c\n1,2,3,4,5\n", {"x", "y", "z", "a", "b", "c"});
+  const std::string msg =
+      errorOf("# comment\nx,y,z,a,c\n1,2,3,4,5\n", {"x", "y", "z", "a", "b", "c"});
   EXPECT_THAT(msg, HasSubstr((dir_ / "data.csv").string() + ":2:"));
   EXPECT_THAT(msg, HasSubstr("missing column"));
   EXPECT_THAT(msg, HasSubstr("b"));
@@ -223,7 +228,8 @@ TEST_F(CsvTest, TrailingCommaIsTooManyFields) {
 }
 
 TEST_F(CsvTest, EmptyFileIsAnError) {
-  for (const std::string content : {"", "\n\n", "# only a comment\n\n# and another\n", "\xEF\xBB\xBF"}) {
+  for (const std::string content :
+       {"", "\n\n", "# only a comment\n\n# and another\n", "\xEF\xBB\xBF"}) {
     SCOPED_TRACE(content);
     const std::string msg = errorOf(content, {"a"});
     EXPECT_THAT(msg, HasSubstr((dir_ / "data.csv").string()));
@@ -286,7 +292,8 @@ TEST_F(CsvTest, ManyChunksAreReadBackExactly) {
     rows[static_cast<std::size_t>(i)] = {static_cast<double>(i), u(rng), u(rng) * 1e-7};
     const auto& r = rows[static_cast<std::size_t>(i)];
     // Alternate line ends so that CRLF pairs also straddle chunk boundaries.
-    std::snprintf(buf, sizeof buf, "%.0f,%.17g, %.17g%s", r[0], r[1], r[2], i % 3 == 0 ? "\r\n" : "\n");
+    std::snprintf(
+        buf, sizeof buf, "%.0f,%.17g, %.17g%s", r[0], r[1], r[2], i % 3 == 0 ? "\r\n" : "\n");
     content += buf;
   }
   ASSERT_GT(content.size(), 50u * 65536u);  // spans many read chunks
@@ -325,8 +332,9 @@ TEST(ParseFiniteDouble, AcceptsNumbers) {
 }
 
 TEST(ParseFiniteDouble, RejectsEverythingElse) {
-  for (const char* bad : {"", " ", "abc", "1.5x", "x1.5", "1 2", "+", "++1", "+-1", "--1", "1,5", "0x10",
-                          "nan", "inf", "-inf", "+inf", "infinity", "NaN", "1e999", "-1e999", "1e"}) {
+  for (const char* bad :
+       {"",     " ",   "abc", "1.5x", "x1.5", "1 2",      "+",   "++1",   "+-1",    "--1", "1,5",
+        "0x10", "nan", "inf", "-inf", "+inf", "infinity", "NaN", "1e999", "-1e999", "1e"}) {
     double v = 42.0;
     EXPECT_FALSE(parseFiniteDouble(bad, v)) << "'" << bad << "'";
   }

@@ -1,6 +1,10 @@
 // Tests of the hexapod machine JSON reader and writer (pkm/io/hexapod_machine.hpp).
 #include "pkm/io/hexapod_machine.hpp"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -9,10 +13,6 @@
 #include <random>
 #include <string>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-#include <unistd.h>
 
 #include "pkm/core/error.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
@@ -35,7 +35,8 @@ using ::testing::StartsWith;
 constexpr double kTolAngleRoundTrip = 1e-15;
 
 /// The LinuxCNC hexapod-sim IK readings at its home pose 0 0 20 0 0 0 (inch).
-const double kSimHomeReadings[6] = {29.746680, 29.746680, 29.746715, 29.746363, 29.746363, 29.746715};
+const double kSimHomeReadings[6] = {
+    29.746680, 29.746680, 29.746715, 29.746363, 29.746363, 29.746715};
 
 std::string machineFile(const char* stem) {
   return std::string(PKM_SOURCE_DIR) + "/data/machines/" + stem + ".json";
@@ -43,19 +44,19 @@ std::string machineFile(const char* stem) {
 
 /// A valid machine file, one entry per line (line n of the text is kLines[n - 1]).
 const std::vector<std::string> kLines = {
-    "{",                                                                               // 1
-    "  \"name\": \"t\",",                                                              // 2
-    "  \"units\": \"inch\",",                                                          // 3
-    "  \"home\": {\"x\": 0, \"y\": 0, \"z\": 20, \"a\": 0, \"b\": 0, \"c\": 0},",      // 4
-    "  \"struts\": [",                                                                 // 5
-    "    {\"base\": [-22.95, 13.25, 0], \"platform\": [-1, 11.5, 0]},",               // 6
-    "    {\"base\": [22.95, 13.25, 0], \"platform\": [1, 11.5, 0]},",                 // 7
-    "    {\"base\": [22.95, 13.25, 0], \"platform\": [10.459, -4.884, 0]},",          // 8
-    "    {\"base\": [0, -26.5, 0], \"platform\": [9.459, -6.616, 0]},",               // 9
-    "    {\"base\": [0, -26.5, 0], \"platform\": [-9.459, -6.616, 0]},",              // 10
-    "    {\"base\": [-22.95, 13.25, 0], \"platform\": [-10.459, -4.884, 0]}",         // 11
-    "  ]",                                                                             // 12
-    "}",                                                                               // 13
+    "{",                                                                           // 1
+    "  \"name\": \"t\",",                                                          // 2
+    "  \"units\": \"inch\",",                                                      // 3
+    "  \"home\": {\"x\": 0, \"y\": 0, \"z\": 20, \"a\": 0, \"b\": 0, \"c\": 0},",  // 4
+    "  \"struts\": [",                                                             // 5
+    "    {\"base\": [-22.95, 13.25, 0], \"platform\": [-1, 11.5, 0]},",            // 6
+    "    {\"base\": [22.95, 13.25, 0], \"platform\": [1, 11.5, 0]},",              // 7
+    "    {\"base\": [22.95, 13.25, 0], \"platform\": [10.459, -4.884, 0]},",       // 8
+    "    {\"base\": [0, -26.5, 0], \"platform\": [9.459, -6.616, 0]},",            // 9
+    "    {\"base\": [0, -26.5, 0], \"platform\": [-9.459, -6.616, 0]},",           // 10
+    "    {\"base\": [-22.95, 13.25, 0], \"platform\": [-10.459, -4.884, 0]}",      // 11
+    "  ]",                                                                         // 12
+    "}",                                                                           // 13
 };
 
 constexpr const char* kSource = "machine-under-test.json";
@@ -65,8 +66,10 @@ std::string text(const std::map<int, std::string>& edits = {}) {
   std::string out;
   for (int n = 1; n <= static_cast<int>(kLines.size()); ++n) {
     const auto it = edits.find(n);
-    if (it == edits.end()) out += kLines[static_cast<std::size_t>(n - 1)] + "\n";
-    else if (!it->second.empty()) out += it->second + "\n";
+    if (it == edits.end())
+      out += kLines[static_cast<std::size_t>(n - 1)] + "\n";
+    else if (!it->second.empty())
+      out += it->second + "\n";
   }
   return out;
 }
@@ -151,7 +154,8 @@ TEST(HexapodMachineJson, ReadsLinuxcncSimFile) {
   }
   kin::HexapodData data(m.model);
   const kin::StrutVector& q = kin::inverseKinematics(m.model, data, m.model.home);
-  for (int i = 0; i < kin::kStruts; ++i) EXPECT_NEAR(q[i], kSimHomeReadings[i], pkm::test::kTolLinuxcnc) << i;
+  for (int i = 0; i < kin::kStruts; ++i)
+    EXPECT_NEAR(q[i], kSimHomeReadings[i], pkm::test::kTolLinuxcnc) << i;
 }
 
 TEST(HexapodMachineJson, ReadsDefaultFile) {
@@ -178,8 +182,10 @@ TEST(HexapodMachineJson, ReadsDefaultFile) {
     EXPECT_NEAR(s.platform_cone.max_angle, pkm::degToRad(45), pkm::test::kTolExact);
     // Axes left out of the file: the strut direction at home.
     EXPECT_NEAR((s.base_cone.axis - data.unit_leg[i]).norm(), 0.0, pkm::test::kTolExact);
-    EXPECT_NEAR((s.platform_cone.axis - data.world_R_platform.transpose() * data.unit_leg[i]).norm(), 0.0,
-                pkm::test::kTolExact);
+    EXPECT_NEAR(
+        (s.platform_cone.axis - data.world_R_platform.transpose() * data.unit_leg[i]).norm(),
+        0.0,
+        pkm::test::kTolExact);
     // At home every reading lies inside the stroke.
     EXPECT_GT(data.readings[static_cast<Eigen::Index>(i)], s.min_reading);
     EXPECT_LT(data.readings[static_cast<Eigen::Index>(i)], s.max_reading);
@@ -187,8 +193,9 @@ TEST(HexapodMachineJson, ReadsDefaultFile) {
 }
 
 TEST(HexapodMachineJson, GivenConeAxisIsNormalisedAndKept) {
-  std::string line6 = "    {\"base\": [-22.95, 13.25, 0], \"platform\": [-1, 11.5, 0], "
-                      "\"base_joint\": {\"axis\": [0, 0, 2], \"max_angle_deg\": 30}},";
+  std::string line6 =
+      "    {\"base\": [-22.95, 13.25, 0], \"platform\": [-1, 11.5, 0], "
+      "\"base_joint\": {\"axis\": [0, 0, 2], \"max_angle_deg\": 30}},";
   const HexapodMachine m = parseHexapodJson(text({{6, line6}}), kSource);
   EXPECT_EQ(m.model.struts[0].base_cone.axis, Eigen::Vector3d(0, 0, 1));
   EXPECT_NEAR(m.model.struts[0].base_cone.max_angle, pkm::degToRad(30), pkm::test::kTolExact);
@@ -233,7 +240,8 @@ TEST(HexapodMachineJson, RandomMachinesRoundTrip) {
     }
     m.model.struts[2].min_reading = -std::numeric_limits<double>::infinity();  // one side unbounded
     m.model.struts[3].max_reading = std::numeric_limits<double>::infinity();
-    m.model.struts[4].min_reading = -std::numeric_limits<double>::infinity();  // unbounded both sides
+    m.model.struts[4].min_reading =
+        -std::numeric_limits<double>::infinity();  // unbounded both sides
     m.model.struts[4].max_reading = std::numeric_limits<double>::infinity();
     m.model.home.position += Eigen::Vector3d(u(rng), u(rng), u(rng));
     m.model.home.rpy = Eigen::Vector3d(u(rng), u(rng), u(rng)) * 0.1;
@@ -267,7 +275,8 @@ TEST(HexapodMachineJson, ReadTextFileNamesMissingFile) {
 }
 
 TEST(HexapodMachineJson, ReadErrorNamesTheFilePath) {
-  const fs::path dir = fs::temp_directory_path() / ("pkm_machine_test_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("pkm_machine_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path file = dir / "bad.json";
   {
@@ -321,8 +330,9 @@ TEST(HexapodMachineJsonErrors, UnknownTopLevelKey) {
 }
 
 TEST(HexapodMachineJsonErrors, UnknownStrutKey) {
-  const std::string msg = errorOf(
-      text({{8, "    {\"base\": [22.95, 13.25, 0], \"platform\": [10.459, -4.884, 0], \"bogus\": 1},"}}));
+  const std::string msg = errorOf(text(
+      {{8,
+        "    {\"base\": [22.95, 13.25, 0], \"platform\": [10.459, -4.884, 0], \"bogus\": 1},"}}));
   EXPECT_THAT(msg, StartsWith(at(8) + "/struts/2/bogus: unknown key 'bogus'"));
 }
 
@@ -337,12 +347,14 @@ TEST(HexapodMachineJsonErrors, WrongTypeString) {
 }
 
 TEST(HexapodMachineJsonErrors, WrongTypeVector) {
-  const std::string msg = errorOf(text({{10, "    {\"base\": \"here\", \"platform\": [-9.459, -6.616, 0]},"}}));
+  const std::string msg =
+      errorOf(text({{10, "    {\"base\": \"here\", \"platform\": [-9.459, -6.616, 0]},"}}));
   EXPECT_THAT(msg, StartsWith(at(10) + "/struts/4/base: expected an array of 3 numbers"));
 }
 
 TEST(HexapodMachineJsonErrors, WrongTypeVectorElement) {
-  const std::string msg = errorOf(text({{10, "    {\"base\": [0, \"-26.5\", 0], \"platform\": [-9.459, -6.616, 0]},"}}));
+  const std::string msg = errorOf(
+      text({{10, "    {\"base\": [0, \"-26.5\", 0], \"platform\": [-9.459, -6.616, 0]},"}}));
   EXPECT_THAT(msg, StartsWith(at(10) + "/struts/4/base/1: expected a number"));
 }
 
@@ -371,7 +383,8 @@ TEST(HexapodMachineJsonErrors, NonFiniteNumber) {
 }
 
 TEST(HexapodMachineJsonErrors, NonFiniteJointCoordinate) {
-  const std::string msg = errorOf(text({{7, "    {\"base\": [22.95, -1e400, 0], \"platform\": [1, 11.5, 0]},"}}));
+  const std::string msg =
+      errorOf(text({{7, "    {\"base\": [22.95, -1e400, 0], \"platform\": [1, 11.5, 0]},"}}));
   EXPECT_THAT(msg, StartsWith(at(7)));
   EXPECT_THAT(msg, HasSubstr("-1e400"));
   EXPECT_THAT(msg, HasSubstr("not finite"));
@@ -379,7 +392,8 @@ TEST(HexapodMachineJsonErrors, NonFiniteJointCoordinate) {
 
 TEST(HexapodMachineJsonErrors, NonFiniteNumberAfterSameDigitsInAString) {
   // The line is that of the number, not of an earlier string holding the same characters.
-  const std::string msg = errorOf(text({{2, "  \"name\": \"1e999\","}, {4, "  \"home\": {\"z\": 1e999},"}}));
+  const std::string msg =
+      errorOf(text({{2, "  \"name\": \"1e999\","}, {4, "  \"home\": {\"z\": 1e999},"}}));
   EXPECT_THAT(msg, StartsWith(at(4)));
 }
 
@@ -387,20 +401,26 @@ TEST(HexapodMachineJsonErrors, DeeplyNestedValueIsReportedNotHung) {
   // Valid JSON nested far deeper than any machine file: a prompt error, not a hang or a crash.
   constexpr int kDepth = 5000;
   const std::string deep = std::string(kDepth, '[') + std::string(kDepth, ']');
-  const std::string msg = errorOf(text({{5, "  \"struts\": " + deep + ","}, {6, ""}, {7, ""}, {8, ""}, {9, ""},
-                                        {10, ""}, {11, ""}, {12, "  \"description\": \"x\""}}));
+  const std::string msg = errorOf(text({{5, "  \"struts\": " + deep + ","},
+                                        {6, ""},
+                                        {7, ""},
+                                        {8, ""},
+                                        {9, ""},
+                                        {10, ""},
+                                        {11, ""},
+                                        {12, "  \"description\": \"x\""}}));
   EXPECT_THAT(msg, StartsWith(at(5) + "/struts: expected an array of 6 struts"));
 }
 
 TEST(HexapodMachineJsonErrors, StrokeMinAboveMax) {
-  const std::string msg = errorOf(
-      text({{7, "    {\"base\": [22.95, 13.25, 0], \"platform\": [1, 11.5, 0], \"stroke\": [5, 1]},"}}));
+  const std::string msg = errorOf(text(
+      {{7, "    {\"base\": [22.95, 13.25, 0], \"platform\": [1, 11.5, 0], \"stroke\": [5, 1]},"}}));
   EXPECT_THAT(msg, StartsWith(at(7) + "/struts/1/stroke: min is larger than max"));
 }
 
 TEST(HexapodMachineJsonErrors, StrokeNotAPair) {
-  const std::string msg = errorOf(
-      text({{7, "    {\"base\": [22.95, 13.25, 0], \"platform\": [1, 11.5, 0], \"stroke\": [5]},"}}));
+  const std::string msg = errorOf(text(
+      {{7, "    {\"base\": [22.95, 13.25, 0], \"platform\": [1, 11.5, 0], \"stroke\": [5]},"}}));
   EXPECT_THAT(msg, StartsWith(at(7) + "/struts/1/stroke: expected [min, max]"));
 }
 
@@ -412,7 +432,8 @@ TEST(HexapodMachineJsonErrors, CoincidentJointsTwoIdenticalStruts) {
 
 TEST(HexapodMachineJsonErrors, ZeroLengthStrutAtHome) {
   // Platform joint 0 at home (z 20) lands exactly on base joint 0.
-  const std::string msg = errorOf(text({{6, "    {\"base\": [-22.95, 13.25, 0], \"platform\": [-22.95, 13.25, -20]},"}}));
+  const std::string msg = errorOf(
+      text({{6, "    {\"base\": [-22.95, 13.25, 0], \"platform\": [-22.95, 13.25, -20]},"}}));
   EXPECT_THAT(msg, StartsWith(at(5) + "/struts: "));
   EXPECT_THAT(msg, HasSubstr("strut 0 has zero length at the home pose"));
 }
@@ -460,20 +481,22 @@ TEST(HexapodMachineJsonErrors, UnsupportedSchema) {
 }
 
 TEST(HexapodMachineJsonErrors, NonIntegerIterationCap) {
-  const std::string msg = errorOf(text({{2, "  \"forward_kinematics\": {\"max_iterations\": 2.5},"}}));
+  const std::string msg =
+      errorOf(text({{2, "  \"forward_kinematics\": {\"max_iterations\": 2.5},"}}));
   EXPECT_THAT(msg, StartsWith(at(2) + "/forward_kinematics/max_iterations: "));
 }
 
 TEST(HexapodMachineJsonErrors, NegativeConeAngle) {
-  const std::string msg = errorOf(text(
-      {{11, "    {\"base\": [-22.95, 13.25, 0], \"platform\": [-10.459, -4.884, 0],"},
-       {12, "     \"platform_joint\": {\"max_angle_deg\": -5}}]"}}));
+  const std::string msg =
+      errorOf(text({{11, "    {\"base\": [-22.95, 13.25, 0], \"platform\": [-10.459, -4.884, 0],"},
+                    {12, "     \"platform_joint\": {\"max_angle_deg\": -5}}]"}}));
   EXPECT_THAT(msg, StartsWith(at(12) + "/struts/5/platform_joint/max_angle_deg: "));
 }
 
 TEST(HexapodMachineJsonErrors, ZeroConeAxis) {
-  const std::string msg = errorOf(text(
-      {{6, "    {\"base\": [-22.95, 13.25, 0], \"platform\": [-1, 11.5, 0], \"base_joint\": {\"axis\": [0, 0, 0]}},"}}));
+  const std::string msg = errorOf(text({{6,
+                                         "    {\"base\": [-22.95, 13.25, 0], \"platform\": [-1, "
+                                         "11.5, 0], \"base_joint\": {\"axis\": [0, 0, 0]}},"}}));
   EXPECT_THAT(msg, StartsWith(at(6) + "/struts/0/base_joint/axis: "));
 }
 

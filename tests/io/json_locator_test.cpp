@@ -1,34 +1,34 @@
 // Tests of pkm::io::JsonLocator: JSON pointer -> line of the value.
 #include "pkm/io/json_locator.hpp"
 
-#include <string>
-
 #include <gtest/gtest.h>
+
+#include <string>
 
 namespace {
 
 using pkm::io::JsonLocator;
 
 const char* const kText =
-    "{\n"                                  // 1
-    "  \"a\": 1,\n"                        // 2
-    "  \"b\": {\n"                         // 3
-    "    \"c\": [10,\n"                    // 4
-    "          20,\n"                      // 5
+    "{\n"                                                // 1
+    "  \"a\": 1,\n"                                      // 2
+    "  \"b\": {\n"                                       // 3
+    "    \"c\": [10,\n"                                  // 4
+    "          20,\n"                                    // 5
     "          {\"d\": true, \"e\": [[1, 2], [3]]}],\n"  // 6
     "    \"s\": \"tricky \\\" } ] { [ , string\"\n"      // 7
-    "  },\n"                               // 8
-    "  \"e/f\": \"slash\",\n"              // 9
-    "  \"t~x\": null,\n"                   // 10
-    "  \"late\":\n"                        // 11
-    "\n"                                   // 12
-    "    -1.5e3,\n"                        // 13
-    "  \"struts\": [\n"                    // 14
-    "    {\"base\": [0, 1, 2]},\n"         // 15
-    "    {\"base\": [3, 4, 5],\n"          // 16
-    "     \"platform\": [6, 7, 8]}\n"      // 17
-    "  ]\n"                                // 18
-    "}\n";                                 // 19
+    "  },\n"                                             // 8
+    "  \"e/f\": \"slash\",\n"                            // 9
+    "  \"t~x\": null,\n"                                 // 10
+    "  \"late\":\n"                                      // 11
+    "\n"                                                 // 12
+    "    -1.5e3,\n"                                      // 13
+    "  \"struts\": [\n"                                  // 14
+    "    {\"base\": [0, 1, 2]},\n"                       // 15
+    "    {\"base\": [3, 4, 5],\n"                        // 16
+    "     \"platform\": [6, 7, 8]}\n"                    // 17
+    "  ]\n"                                              // 18
+    "}\n";                                               // 19
 
 TEST(JsonLocator, LinesOfNestedKeys) {
   const JsonLocator loc(kText);

@@ -2,15 +2,15 @@
 // the spindle-/tool-offset semantics, and writing the setp block back.
 #include "pkm/io/linuxcnc_hal.hpp"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-#include <unistd.h>
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/hexapod_machine.hpp"
@@ -60,9 +60,10 @@ void expectReferenceLengths(const kin::HexapodModel& model) {
   }
 }
 
-/// kinematics.hal as in the hexapod-sim sample configuration (written here, not copied), one entry per
-/// line: line n is lines[n - 1]. `platform_z` moves the platform joints along the platform z axis: -20
-/// gives a geometry that is not singular at home 0 0 0 0 0 0 (used where no INI supplies HOME).
+/// kinematics.hal as in the hexapod-sim sample configuration (written here, not copied), one entry
+/// per line: line n is lines[n - 1]. `platform_z` moves the platform joints along the platform z
+/// axis: -20 gives a geometry that is not singular at home 0 0 0 0 0 0 (used where no INI supplies
+/// HOME).
 std::vector<std::string> simHalLines(double platform_z = 0.0) {
   const kin::HexapodModel sim = pkm::test::linuxcncSimModel();
   std::vector<std::string> lines;
@@ -70,7 +71,11 @@ std::vector<std::string> simHalLines(double platform_z = 0.0) {
   lines.emplace_back("# Base joints positions in base (world) coordinates");  // 1
   for (int i = 0; i < kin::kStruts; ++i)                                      // 2..19
     for (int a = 0; a < 3; ++a) {
-      std::snprintf(buf, sizeof buf, "setp genhexkins.base.%d.%c %7.3f", i, "xyz"[a],
+      std::snprintf(buf,
+                    sizeof buf,
+                    "setp genhexkins.base.%d.%c %7.3f",
+                    i,
+                    "xyz"[a],
                     sim.struts[static_cast<std::size_t>(i)].world_p_base[a]);
       lines.emplace_back(buf);
     }
@@ -78,8 +83,13 @@ std::vector<std::string> simHalLines(double platform_z = 0.0) {
   lines.emplace_back("# Platform joints positions in platform coordinates");  // 21
   for (int i = 0; i < kin::kStruts; ++i)                                      // 22..39
     for (int a = 0; a < 3; ++a) {
-      std::snprintf(buf, sizeof buf, "setp genhexkins.platform.%d.%c %7.3f", i, "xyz"[a],
-                    sim.struts[static_cast<std::size_t>(i)].platform_p_joint[a] + (a == 2 ? platform_z : 0.0));
+      std::snprintf(buf,
+                    sizeof buf,
+                    "setp genhexkins.platform.%d.%c %7.3f",
+                    i,
+                    "xyz"[a],
+                    sim.struts[static_cast<std::size_t>(i)].platform_p_joint[a] +
+                        (a == 2 ? platform_z : 0.0));
       lines.emplace_back(buf);
     }
   lines.emplace_back("");                                                            // 40
@@ -105,17 +115,17 @@ std::string join(const std::vector<std::string>& lines) {
 /// hexapod.ini lines; HOME is line 10, LINEAR_UNITS line 11, [JOINT_n] MIN_LIMIT line 13 + 3n.
 std::vector<std::string> simIniLines(const std::string& halfile = "kinematics.hal") {
   std::vector<std::string> lines = {
-      "[EMC]",                         // 1
-      "MACHINE = pkm test hexapod",    // 2
-      "[KINS]",                        // 3
-      "KINEMATICS = genhexkins",       // 4
-      "JOINTS = 6",                    // 5
-      "[HAL]",                         // 6
-      "HALFILE = LIB:basic_sim.tcl",   // 7
-      "HALFILE = " + halfile,          // 8
-      "[TRAJ]",                        // 9
-      "HOME = 0 0 20 0 0 0",           // 10
-      "LINEAR_UNITS = inch",           // 11
+      "[EMC]",                        // 1
+      "MACHINE = pkm test hexapod",   // 2
+      "[KINS]",                       // 3
+      "KINEMATICS = genhexkins",      // 4
+      "JOINTS = 6",                   // 5
+      "[HAL]",                        // 6
+      "HALFILE = LIB:basic_sim.tcl",  // 7
+      "HALFILE = " + halfile,         // 8
+      "[TRAJ]",                       // 9
+      "HOME = 0 0 20 0 0 0",          // 10
+      "LINEAR_UNITS = inch",          // 11
   };
   for (int j = 0; j < 6; ++j) {
     lines.push_back("[JOINT_" + std::to_string(j) + "]");
@@ -146,10 +156,12 @@ class LinuxcncHalTest : public ::testing::Test {
     out << content;
     return p.string();
   }
-  std::string writeHal(const std::vector<std::string>& lines, const std::string& name = "kinematics.hal") const {
+  std::string writeHal(const std::vector<std::string>& lines,
+                       const std::string& name = "kinematics.hal") const {
     return write(name, join(lines));
   }
-  std::string writeIni(const std::vector<std::string>& lines, const std::string& name = "hexapod.ini") const {
+  std::string writeIni(const std::vector<std::string>& lines,
+                       const std::string& name = "hexapod.ini") const {
     return write(name, join(lines));
   }
 
@@ -223,8 +235,8 @@ TEST_F(LinuxcncHalTest, ExplicitIniPath) {
 }
 
 TEST_F(LinuxcncHalTest, WithoutIniAssumesMillimetresAndZeroHome) {
-  // Platform joints 20 below the platform origin: at home 0 0 0 the legs are those of the sim at z 20,
-  // mirrored in the base plane.
+  // Platform joints 20 below the platform origin: at home 0 0 0 the legs are those of the sim at z
+  // 20, mirrored in the base plane.
   const std::string hal = writeHal(simHalLines(-20.0));
   writeIni(simIniLines());
   HalReadOptions opt;
@@ -237,12 +249,13 @@ TEST_F(LinuxcncHalTest, WithoutIniAssumesMillimetresAndZeroHome) {
   EXPECT_EQ(m.model.struts[0].min_reading, -std::numeric_limits<double>::infinity());
   kin::HexapodData data(m.model);
   const kin::StrutVector& q = kin::inverseKinematics(m.model, data, m.model.home);
-  for (int i = 0; i < kin::kStruts; ++i) EXPECT_NEAR(q[i], kReference[0].lengths[i], kTolLinuxcnc) << i;
+  for (int i = 0; i < kin::kStruts; ++i)
+    EXPECT_NEAR(q[i], kReference[0].lengths[i], kTolLinuxcnc) << i;
 }
 
 TEST_F(LinuxcncHalTest, WithoutIniTheSimGeometryIsSingularAtZeroHome) {
-  // The sample geometry has base and platform joints in one plane at home 0 0 0: without [TRAJ] HOME the
-  // reader must refuse it and say why.
+  // The sample geometry has base and platform joints in one plane at home 0 0 0: without [TRAJ]
+  // HOME the reader must refuse it and say why.
   const std::string hal = writeHal(simHalLines());
   HalReadOptions opt;
   opt.discover_ini = false;
@@ -282,17 +295,18 @@ TEST_F(LinuxcncHalTest, FkSettingsAreRead) {
 
 TEST_F(LinuxcncHalTest, OtherLinesProduceNotices) {
   std::vector<std::string> lines = simHalLines();
-  lines.emplace_back("loadrt genhexkins");                        // 43
-  lines.emplace_back("setp motion.some-pin 1");                   // 44
-  lines.emplace_back("setp genhexkins.max-error 100.0");          // 45
-  lines.emplace_back("setp genhexkins.base-n.0.x 0.5");           // 46
-  lines.emplace_back("   # an indented comment");                 // 47
+  lines.emplace_back("loadrt genhexkins");                         // 43
+  lines.emplace_back("setp motion.some-pin 1");                    // 44
+  lines.emplace_back("setp genhexkins.max-error 100.0");           // 45
+  lines.emplace_back("setp genhexkins.base-n.0.x 0.5");            // 46
+  lines.emplace_back("   # an indented comment");                  // 47
   lines.emplace_back("addf genhexkins servo-thread  # trailing");  // 48
   const std::string hal = writeHal(lines);
   HalReadOptions opt;
   opt.ini_path = writeIni(simIniLines(), "given.ini");
   const HexapodMachine m = readLinuxcncHal(hal, opt);
-  EXPECT_TRUE(anyContains(m.notices, hal + ":41: ignored: net tool-offset genhexkins.tool-offset motion.tooloffset.z"));
+  EXPECT_TRUE(anyContains(
+      m.notices, hal + ":41: ignored: net tool-offset genhexkins.tool-offset motion.tooloffset.z"));
   EXPECT_TRUE(anyContains(m.notices, hal + ":43: ignored: loadrt genhexkins"));
   EXPECT_TRUE(anyContains(m.notices, hal + ":44: ignored: setp motion.some-pin 1"));
   EXPECT_TRUE(anyContains(m.notices, hal + ":45: ignored: genhexkins.max-error"));
@@ -315,7 +329,8 @@ TEST_F(LinuxcncHalTest, CrlfAndTrailingComments) {
   EXPECT_EQ(m.model.unit, pkm::LengthUnit::kInch);
   EXPECT_EQ(m.model.home.position, Eigen::Vector3d(0, 0, 20));
   const kin::HexapodModel ref = pkm::test::linuxcncSimModel();
-  for (std::size_t i = 0; i < kin::kStruts; ++i) EXPECT_EQ(m.model.struts[i].platform_p_joint, ref.struts[i].platform_p_joint);
+  for (std::size_t i = 0; i < kin::kStruts; ++i)
+    EXPECT_EQ(m.model.struts[i].platform_p_joint, ref.struts[i].platform_p_joint);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -339,13 +354,15 @@ TEST_F(LinuxcncHalTest, SpindleAndToolOffsetShiftEveryJointZ) {
   }
   const kin::HexapodModel plain = pkm::test::linuxcncSimModel();
   kin::HexapodData d1(m.model), d2(shifted), d3(plain);
-  const double poses[][6] = {{0, 0, 20, 0, 0, 0}, {1.5, -2, 21, 7, -5, 12}, {-3, 2, 18, 10, 10, -15}};
+  const double poses[][6] = {
+      {0, 0, 20, 0, 0, 0}, {1.5, -2, 21, 7, -5, 12}, {-3, 2, 18, 10, 10, -15}};
   for (const auto& v : poses) {
     const kin::PoseRpy pose = poseOf(v);
     const kin::StrutVector q1 = kin::inverseKinematics(m.model, d1, pose);
     const kin::StrutVector q2 = kin::inverseKinematics(shifted, d2, pose);
     const kin::StrutVector q3 = kin::inverseKinematics(plain, d3, pose);
-    EXPECT_LT((q1 - q2).cwiseAbs().maxCoeff(), kTolExact) << q1.transpose() << " vs " << q2.transpose();
+    EXPECT_LT((q1 - q2).cwiseAbs().maxCoeff(), kTolExact)
+        << q1.transpose() << " vs " << q2.transpose();
     if (v[3] != 0.0) {  // tilted: the offset changes the lengths
       EXPECT_GT((q1 - q3).cwiseAbs().maxCoeff(), 1e-3);
     }
@@ -373,7 +390,9 @@ TEST_F(LinuxcncHalTest, SetpRoundTripGivesIdenticalJoints) {
 
   // Read back with an INI made from the values the block gives as comments.
   const std::string back_path = write("out/written.hal", setp);
-  writeIni({"[HAL]", "HALFILE = written.hal", "[TRAJ]", "HOME = 0 0 20 0 0 0", "LINEAR_UNITS = inch"}, "out/m.ini");
+  writeIni(
+      {"[HAL]", "HALFILE = written.hal", "[TRAJ]", "HOME = 0 0 20 0 0 0", "LINEAR_UNITS = inch"},
+      "out/m.ini");
   const HexapodMachine back = readLinuxcncHal(back_path);
   EXPECT_EQ(back.model.unit, pkm::LengthUnit::kInch);
   for (std::size_t i = 0; i < kin::kStruts; ++i) {
@@ -386,7 +405,8 @@ TEST_F(LinuxcncHalTest, SetpRoundTripGivesIdenticalJoints) {
   EXPECT_EQ(back.fk.max_iterations, 60);
   kin::HexapodData d1(m.model), d2(back.model);
   const kin::PoseRpy pose = poseOf(kReference[2].pose);
-  EXPECT_EQ(kin::inverseKinematics(m.model, d1, pose), kin::inverseKinematics(back.model, d2, pose));
+  EXPECT_EQ(kin::inverseKinematics(m.model, d1, pose),
+            kin::inverseKinematics(back.model, d2, pose));
 }
 
 TEST_F(LinuxcncHalTest, SetpLoadsOnItsOwnThroughPkmCommentLines) {
@@ -402,7 +422,8 @@ TEST_F(LinuxcncHalTest, SetpLoadsOnItsOwnThroughPkmCommentLines) {
   EXPECT_NEAR(back.model.home.rpy.z(), m.model.home.rpy.z(), kTolExact);
   EXPECT_FALSE(anyContains(back.notices, "no INI file"));
   // An INI next to it overrides the comment lines.
-  writeIni({"[HAL]", "HALFILE = k.hal", "[TRAJ]", "HOME = 0 0 21 0 0 0", "LINEAR_UNITS = mm"}, "alone/m.ini");
+  writeIni({"[HAL]", "HALFILE = k.hal", "[TRAJ]", "HOME = 0 0 21 0 0 0", "LINEAR_UNITS = mm"},
+           "alone/m.ini");
   const HexapodMachine with_ini = readLinuxcncHal(dir_.string() + "/alone/k.hal");
   EXPECT_EQ(with_ini.model.unit, pkm::LengthUnit::kMillimetre);
   EXPECT_EQ(with_ini.model.home.position.z(), 21.0);
@@ -412,7 +433,9 @@ TEST_F(LinuxcncHalTest, MalformedPkmCommentLineNamesFileAndLine) {
   std::vector<std::string> lines = simHalLines();
   lines.emplace_back("# pkm: home = 0 0 20");
   const std::string hal = writeHal(lines);
-  EXPECT_THAT(errorOf(hal), HasSubstr(hal + ":" + std::to_string(lines.size()) + ": # pkm: home: expected 6 numbers"));
+  EXPECT_THAT(
+      errorOf(hal),
+      HasSubstr(hal + ":" + std::to_string(lines.size()) + ": # pkm: home: expected 6 numbers"));
   lines.back() = "# pkm: units = furlong";
   EXPECT_THAT(errorOf(writeHal(lines)), HasSubstr("units 'furlong'"));
   lines.back() = "# pkm: colour = red";
@@ -426,7 +449,8 @@ TEST_F(LinuxcncHalTest, SetpOfMachineWithToolOffsetAndLengthOffsets) {
   EXPECT_THAT(setp, HasSubstr("TCP offset of the pkm model is folded into the platform joints"));
   EXPECT_THAT(setp, HasSubstr("length offset 650"));
   EXPECT_THAT(setp, HasSubstr("# [TRAJ] LINEAR_UNITS = mm\n"));
-  writeIni({"[HAL]", "HALFILE = w.hal", "[TRAJ]", "HOME = 0 0 200 0 0 0", "LINEAR_UNITS = mm"}, "w.ini");
+  writeIni({"[HAL]", "HALFILE = w.hal", "[TRAJ]", "HOME = 0 0 200 0 0 0", "LINEAR_UNITS = mm"},
+           "w.ini");
   const HexapodMachine back = readLinuxcncHal(write("w.hal", setp));
   ASSERT_EQ(back.model.tool_offset, Eigen::Vector3d::Zero());
   for (int i = 0; i < kin::kStruts; ++i) {
@@ -481,7 +505,9 @@ TEST_F(LinuxcncHalTest, SetpWithoutValueIsAnError) {
   const std::size_t n = lineOf(lines, "setp genhexkins.base.1.y");
   lines[n - 1] = "setp genhexkins.base.1.y";
   const std::string hal = writeHal(lines);
-  EXPECT_THAT(errorOf(hal), StartsWith(hal + ":" + std::to_string(n) + ": expected 'setp genhexkins.base.1.y VALUE'"));
+  EXPECT_THAT(
+      errorOf(hal),
+      StartsWith(hal + ":" + std::to_string(n) + ": expected 'setp genhexkins.base.1.y VALUE'"));
 }
 
 TEST_F(LinuxcncHalTest, NonzeroScrewLeadIsAnError) {
@@ -494,8 +520,10 @@ TEST_F(LinuxcncHalTest, NonzeroScrewLeadIsAnError) {
 }
 
 TEST_F(LinuxcncHalTest, UnknownGenhexkinsPinIsAnError) {
-  for (const std::string bad : {"setp genhexkins.base.6.x 1", "setp genhexkins.platform.0.w 1",
-                                "setp genhexkins.base.0 1", "setp genhexkins.wobble 1"}) {
+  for (const std::string bad : {"setp genhexkins.base.6.x 1",
+                                "setp genhexkins.platform.0.w 1",
+                                "setp genhexkins.base.0 1",
+                                "setp genhexkins.wobble 1"}) {
     SCOPED_TRACE(bad);
     std::vector<std::string> lines = simHalLines();
     lines.insert(lines.begin() + 2, bad);  // line 3
@@ -506,7 +534,8 @@ TEST_F(LinuxcncHalTest, UnknownGenhexkinsPinIsAnError) {
 }
 
 TEST_F(LinuxcncHalTest, BadFkSettings) {
-  for (const std::string bad : {"setp genhexkins.convergence-criterion 0", "setp genhexkins.limit-iterations 2.5",
+  for (const std::string bad : {"setp genhexkins.convergence-criterion 0",
+                                "setp genhexkins.limit-iterations 2.5",
                                 "setp genhexkins.limit-iterations 0"}) {
     SCOPED_TRACE(bad);
     std::vector<std::string> lines = simHalLines();
@@ -586,8 +615,9 @@ TEST_F(LinuxcncHalTest, IniLimitsAreStroke) {
 // The genuine LinuxCNC sample configuration (scripts/fetch-linuxcnc.sh unpacks it into .cache/)
 
 TEST(LinuxcncGenuineConfig, HexapodSimKinematicsHal) {
-  const fs::path dir = fs::path(PKM_SOURCE_DIR) /
-                       ".cache/linuxcnc/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis/vismach/hexapod-sim";
+  const fs::path dir =
+      fs::path(PKM_SOURCE_DIR) /
+      ".cache/linuxcnc/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis/vismach/hexapod-sim";
   if (!fs::is_directory(dir)) GTEST_SKIP() << dir << " not found (run scripts/fetch-linuxcnc.sh)";
   const std::string hal = (dir / "kinematics.hal").string();
   const HexapodMachine m = readLinuxcncHal(hal);

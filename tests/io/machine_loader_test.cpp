@@ -1,14 +1,14 @@
 // Tests of pkm::io::loadHexapodMachine and the embedded machines (pkm/io/machine_loader.hpp).
 #include "pkm/io/machine_loader.hpp"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-#include <unistd.h>
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/linuxcnc_hal.hpp"
@@ -26,7 +26,9 @@ using pkm::io::loadHexapodMachine;
 using ::testing::Contains;
 using ::testing::HasSubstr;
 
-std::string dataFile(const char* stem) { return std::string(PKM_SOURCE_DIR) + "/data/machines/" + stem + ".json"; }
+std::string dataFile(const char* stem) {
+  return std::string(PKM_SOURCE_DIR) + "/data/machines/" + stem + ".json";
+}
 
 void expectSameGeometry(const kin::HexapodModel& a, const kin::HexapodModel& b) {
   EXPECT_EQ(a.unit, b.unit);
@@ -183,7 +185,8 @@ TEST_F(MachineLoaderTest, HalFileDispatch) {
   EXPECT_EQ(with_ini.model.home.position, Eigen::Vector3d(0, 0, 20));
   expectSameGeometry(with_ini.model, sim);
   // An INI in the same folder that loads the HAL file is found without being named.
-  write("sim.ini", "[HAL]\nHALFILE = machine.hal\n[TRAJ]\nHOME = 0 0 20 0 0 0\nLINEAR_UNITS = inch\n");
+  write("sim.ini",
+        "[HAL]\nHALFILE = machine.hal\n[TRAJ]\nHOME = 0 0 20 0 0 0\nLINEAR_UNITS = inch\n");
   const HexapodMachine discovered = loadHexapodMachine(hal);
   expectSameGeometry(discovered.model, sim);
 }

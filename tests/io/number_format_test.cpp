@@ -1,6 +1,8 @@
 // Tests of pkm::io::appendNumber / formatNumber: shortest decimal output that round-trips exactly.
 #include "pkm/io/number_format.hpp"
 
+#include <gtest/gtest.h>
+
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -8,8 +10,6 @@
 #include <limits>
 #include <random>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "support/tolerances.hpp"
 
@@ -27,7 +27,8 @@ double parseBack(const std::string& text) {
   return v;
 }
 
-/// Bit-exact equality (distinguishes nothing that == would not, except for -0, which is handled apart).
+/// Bit-exact equality (distinguishes nothing that == would not, except for -0, which is handled
+/// apart).
 void expectRoundTrip(double x) {
   std::string s;
   appendNumber(s, x);
@@ -59,11 +60,19 @@ TEST(NumberFormat, RandomMachineSizedValuesRoundTrip) {
 }
 
 TEST(NumberFormat, ExtremesRoundTrip) {
-  for (const double x : {std::numeric_limits<double>::max(), std::numeric_limits<double>::lowest(),
-                         std::numeric_limits<double>::min(), std::numeric_limits<double>::denorm_min(),
-                         -std::numeric_limits<double>::denorm_min(), std::numeric_limits<double>::epsilon(),
-                         1.0 + std::numeric_limits<double>::epsilon(), 0.1, 0.2, 0.30000000000000004, 1e23,
-                         9007199254740993.0, 29.746680487072839})
+  for (const double x : {std::numeric_limits<double>::max(),
+                         std::numeric_limits<double>::lowest(),
+                         std::numeric_limits<double>::min(),
+                         std::numeric_limits<double>::denorm_min(),
+                         -std::numeric_limits<double>::denorm_min(),
+                         std::numeric_limits<double>::epsilon(),
+                         1.0 + std::numeric_limits<double>::epsilon(),
+                         0.1,
+                         0.2,
+                         0.30000000000000004,
+                         1e23,
+                         9007199254740993.0,
+                         29.746680487072839})
     expectRoundTrip(x);
 }
 

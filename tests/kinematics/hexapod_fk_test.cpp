@@ -1,8 +1,8 @@
 #include "pkm/kinematics/hexapod_fk.hpp"
 
-#include <random>
-
 #include <gtest/gtest.h>
+
+#include <random>
 
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/so3.hpp"
@@ -15,12 +15,16 @@ namespace pkm::kinematics {
 namespace {
 
 double rotationError(const PoseRpy& a, const PoseRpy& b) {
-  return geometry::so3Log(geometry::rotationFromRpy(a.rpy) * geometry::rotationFromRpy(b.rpy).transpose()).norm();
+  return geometry::so3Log(geometry::rotationFromRpy(a.rpy) *
+                          geometry::rotationFromRpy(b.rpy).transpose())
+      .norm();
 }
 
 class HexapodFkRoundTrip : public ::testing::TestWithParam<int> {
  protected:
-  HexapodModel model() const { return GetParam() == 0 ? test::linuxcncSimModel() : test::millingModel(); }
+  HexapodModel model() const {
+    return GetParam() == 0 ? test::linuxcncSimModel() : test::millingModel();
+  }
 };
 
 TEST_P(HexapodFkRoundTrip, ColdStartFromHomeRecoversRandomPoses) {
@@ -36,7 +40,8 @@ TEST_P(HexapodFkRoundTrip, ColdStartFromHomeRecoversRandomPoses) {
     EXPECT_LE(s.max_residual, test::kTolRoundTrip);
     EXPECT_LT((data.pose.position - truth.position).norm(), test::kTolRoundTrip);
     EXPECT_LT(rotationError(data.pose, truth), test::kTolRoundTrip);
-    EXPECT_LT((data.pose.rpy - truth.rpy).norm(), test::kTolRoundTrip);  // same angle triple (continuity)
+    EXPECT_LT((data.pose.rpy - truth.rpy).norm(),
+              test::kTolRoundTrip);  // same angle triple (continuity)
     EXPECT_LE(s.iterations, 8);
   }
 }
@@ -51,8 +56,10 @@ TEST_P(HexapodFkRoundTrip, WarmStartAlongServoPathTakesFewSteps) {
   for (int k = 0; k <= n; ++k) {
     const double t = 2 * std::numbers::pi * k / n;
     PoseRpy truth = m.home;
-    truth.position += Eigen::Vector3d(r * std::sin(t), r * (1 - std::cos(t)), 0.2 * r * std::sin(2 * t));
-    truth.rpy += Eigen::Vector3d(degToRad(10) * std::sin(t), degToRad(8) * std::sin(3 * t), degToRad(30) * std::sin(t));
+    truth.position +=
+        Eigen::Vector3d(r * std::sin(t), r * (1 - std::cos(t)), 0.2 * r * std::sin(2 * t));
+    truth.rpy += Eigen::Vector3d(
+        degToRad(10) * std::sin(t), degToRad(8) * std::sin(3 * t), degToRad(30) * std::sin(t));
     const StrutVector q = inverseKinematics(m, data, truth);
     const FkSummary s = forwardKinematics(m, data, q, seed);
     ASSERT_TRUE(s.ok());
@@ -93,7 +100,8 @@ TEST(HexapodFk, ConvergesWhereGenhexkinsStyleConverges) {
     if (!g.converged) continue;
     ++both;
     ASSERT_TRUE(s.ok()) << "pose " << k << ": genhexkins-style converged, pkm did not";
-    // Both land on the same assembly mode when the genhexkins-style iteration returns the true pose.
+    // Both land on the same assembly mode when the genhexkins-style iteration returns the true
+    // pose.
     if ((g.pose.position - truth.position).norm() < 1e-6) {
       EXPECT_LT((data.pose.position - truth.position).norm(), test::kTolRoundTrip);
     }
@@ -134,7 +142,8 @@ TEST(HexapodFk, NonFiniteInputIsInvalid) {
   EXPECT_EQ(forwardKinematics(m, data, q, m.home).status, FkStatus::kInvalidInput);
   PoseRpy seed = m.home;
   seed.rpy.x() = INFINITY;
-  EXPECT_EQ(forwardKinematics(m, data, StrutVector::Constant(250), seed).status, FkStatus::kInvalidInput);
+  EXPECT_EQ(forwardKinematics(m, data, StrutVector::Constant(250), seed).status,
+            FkStatus::kInvalidInput);
 }
 
 TEST(HexapodFk, SingularSeedIsReported) {
@@ -155,7 +164,8 @@ TEST(HexapodFk, InvalidOptionsThrow) {
   std::string why;
   EXPECT_FALSE(opt.isValid(&why));
   EXPECT_NE(why.find("tolerance"), std::string::npos);
-  EXPECT_THROW((void)forwardKinematics(m, data, StrutVector::Constant(250), m.home, opt), InvalidArgument);
+  EXPECT_THROW((void)forwardKinematics(m, data, StrutVector::Constant(250), m.home, opt),
+               InvalidArgument);
   opt = FkOptions{.max_iterations = 0};
   EXPECT_FALSE(opt.isValid());
   opt = FkOptions{.max_backtracks = -1};

@@ -1,8 +1,8 @@
 #include "pkm/kinematics/hexapod_ik.hpp"
 
-#include <random>
-
 #include <gtest/gtest.h>
+
+#include <random>
 
 #include "pkm/geometry/so3.hpp"
 #include "support/sample_models.hpp"
@@ -31,14 +31,17 @@ TEST(HexapodIk, MatchesLinuxcncReferenceTable) {
       {pose(0, 0, 20, 5, 0, 0), {30.432159, 30.432159, 29.450769, 29.378828, 29.378828, 29.450769}},
       {pose(0, 0, 20, 0, 5, 0), {29.808151, 29.690966, 29.158727, 29.186810, 30.295584, 30.383488}},
       {pose(0, 0, 20, 0, 0, 5), {29.025916, 30.494177, 29.025967, 30.493835, 29.025625, 30.494195}},
-      {pose(2, -1, 22, 3, -4, 10), {31.597194, 31.713899, 29.975223, 32.850082, 27.921167, 33.441616}},
-      {pose(-3, 2, 18, 10, 10, -15), {30.022945, 29.402324, 29.682443, 25.351693, 33.820068, 24.667812}},
+      {pose(2, -1, 22, 3, -4, 10),
+       {31.597194, 31.713899, 29.975223, 32.850082, 27.921167, 33.441616}},
+      {pose(-3, 2, 18, 10, 10, -15),
+       {30.022945, 29.402324, 29.682443, 25.351693, 33.820068, 24.667812}},
       {pose(1, -2, 20, 5, -3, 10), {29.89893, 31.41741, 29.21640, 30.24571, 26.02386, 32.41408}},
   };
   for (const Reference& ref : refs) {
     const StrutVector& q = inverseKinematics(model, data, ref.pose);
     for (int i = 0; i < kStruts; ++i)
-      EXPECT_NEAR(q[i], ref.lengths[static_cast<std::size_t>(i)], test::kTolLinuxcnc * 10) << "strut " << i;
+      EXPECT_NEAR(q[i], ref.lengths[static_cast<std::size_t>(i)], test::kTolLinuxcnc * 10)
+          << "strut " << i;
   }
 }
 
@@ -76,8 +79,10 @@ TEST(HexapodIk, JacobianMatchesCentralDifferences) {
         Eigen::Matrix<double, 6, 1> d = Eigen::Matrix<double, 6, 1>::Zero();
         d[j] = j < 3 ? h : hr;
         // Convention: p + dp, R <- exp([dtheta]x) R (docs/conventions.md).
-        const StrutVector plus = inverseKinematics(model, data, p.position + d.head<3>(), geometry::so3Exp(d.tail<3>()) * R);
-        const StrutVector minus = inverseKinematics(model, data, p.position - d.head<3>(), geometry::so3Exp(-d.tail<3>()) * R);
+        const StrutVector plus = inverseKinematics(
+            model, data, p.position + d.head<3>(), geometry::so3Exp(d.tail<3>()) * R);
+        const StrutVector minus = inverseKinematics(
+            model, data, p.position - d.head<3>(), geometry::so3Exp(-d.tail<3>()) * R);
         numeric.col(j) = (plus - minus) / (2 * d[j]);
       }
       EXPECT_LT((numeric - J).norm() / J.norm(), test::kTolFiniteDiff);

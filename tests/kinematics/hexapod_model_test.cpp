@@ -19,7 +19,8 @@ TEST(HexapodModel, EffectivePointsIncludeOffsets) {
   m.spindle_offset = 3.0;
   const Eigen::Vector3d a = m.struts[2].platform_p_joint, b = m.struts[2].world_p_base;
   EXPECT_LT((m.effectiveBase(2) - (b + Eigen::Vector3d(0, 0, 3))).norm(), test::kTolExact);
-  EXPECT_LT((m.effectivePlatform(2) - (a - m.tool_offset + Eigen::Vector3d(0, 0, 3))).norm(), test::kTolExact);
+  EXPECT_LT((m.effectivePlatform(2) - (a - m.tool_offset + Eigen::Vector3d(0, 0, 3))).norm(),
+            test::kTolExact);
 }
 
 TEST(HexapodModel, CharacteristicLengthIsMeanPlatformRadius) {
@@ -50,7 +51,8 @@ TEST(HexapodModel, RejectsEmptyStroke) {
 
 TEST(HexapodModel, RejectsZeroLengthStrutAtHome) {
   HexapodModel m = test::millingModel();
-  m.home.position = m.struts[0].world_p_base - m.struts[0].platform_p_joint + m.tool_offset;  // joint 0 on base 0
+  m.home.position =
+      m.struts[0].world_p_base - m.struts[0].platform_p_joint + m.tool_offset;  // joint 0 on base 0
   EXPECT_THROW(m.validate(), InvalidArgument);
 }
 

@@ -1,10 +1,10 @@
 // Tests of the internal fixed-size solver src/kinematics/detail/solve6.hpp against Eigen.
 #include "kinematics/detail/solve6.hpp"
 
-#include <random>
+#include <gtest/gtest.h>
 
 #include <Eigen/LU>
-#include <gtest/gtest.h>
+#include <random>
 
 #include "support/tolerances.hpp"
 

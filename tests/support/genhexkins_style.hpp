@@ -1,14 +1,14 @@
 /// @file
-/// @brief A re-implementation, from its published description (kinematics notes §1.3), of the iteration
-/// LinuxCNC's genhexkins uses for forward kinematics: Newton steps whose angular part (a world-frame
-/// rotation vector) is subtracted directly from the roll-pitch-yaw angles. Used only as a baseline in
-/// tests and benchmarks ("no failure where genhexkins converges", iteration counts). No LinuxCNC code.
+/// @brief A re-implementation, from its published description (kinematics notes §1.3), of the
+/// iteration LinuxCNC's genhexkins uses for forward kinematics: Newton steps whose angular part (a
+/// world-frame rotation vector) is subtracted directly from the roll-pitch-yaw angles. Used only as
+/// a baseline in tests and benchmarks ("no failure where genhexkins converges", iteration counts).
+/// No LinuxCNC code.
 #pragma once
-
-#include <cmath>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <cmath>
 
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_model.hpp"
@@ -21,8 +21,9 @@ struct GenhexkinsResult {
   kinematics::PoseRpy pose;
 };
 
-/// genhexkins-style FK: converged when every |residual| <= tol before the update (then one more update
-/// is applied, as genhexkins does); fails beyond `limit` iterations or when sum|residual| > max_error.
+/// genhexkins-style FK: converged when every |residual| <= tol before the update (then one more
+/// update is applied, as genhexkins does); fails beyond `limit` iterations or when sum|residual| >
+/// max_error.
 inline GenhexkinsResult genhexkinsStyleFk(const kinematics::HexapodModel& model,
                                           const kinematics::StrutVector& lengths,
                                           const kinematics::PoseRpy& seed,

@@ -16,10 +16,18 @@ inline kinematics::HexapodModel linuxcncSimModel() {
   kinematics::HexapodModel m;
   m.name = "linuxcnc-sim";
   m.unit = LengthUnit::kInch;
-  const double b[6][3] = {{-22.95, 13.25, 0}, {22.95, 13.25, 0}, {22.95, 13.25, 0},
-                          {0, -26.5, 0},      {0, -26.5, 0},     {-22.95, 13.25, 0}};
-  const double a[6][3] = {{-1, 11.5, 0},         {1, 11.5, 0},          {10.459, -4.884, 0},
-                          {9.459, -6.616, 0},    {-9.459, -6.616, 0},   {-10.459, -4.884, 0}};
+  const double b[6][3] = {{-22.95, 13.25, 0},
+                          {22.95, 13.25, 0},
+                          {22.95, 13.25, 0},
+                          {0, -26.5, 0},
+                          {0, -26.5, 0},
+                          {-22.95, 13.25, 0}};
+  const double a[6][3] = {{-1, 11.5, 0},
+                          {1, 11.5, 0},
+                          {10.459, -4.884, 0},
+                          {9.459, -6.616, 0},
+                          {-9.459, -6.616, 0},
+                          {-10.459, -4.884, 0}};
   for (int i = 0; i < 6; ++i) {
     m.struts[static_cast<std::size_t>(i)].world_p_base = {b[i][0], b[i][1], b[i][2]};
     m.struts[static_cast<std::size_t>(i)].platform_p_joint = {a[i][0], a[i][1], a[i][2]};
@@ -46,7 +54,8 @@ inline kinematics::HexapodModel millingModel() {
     s.length_offset = 650;
     s.min_reading = 0;
     s.max_reading = 500;
-    s.base_cone.axis = (Eigen::Vector3d(0, 0, 400) + s.platform_p_joint - s.world_p_base).normalized();
+    s.base_cone.axis =
+        (Eigen::Vector3d(0, 0, 400) + s.platform_p_joint - s.world_p_base).normalized();
     s.platform_cone.axis = s.base_cone.axis;
     s.base_cone.max_angle = degToRad(40);
     s.platform_cone.max_angle = degToRad(45);

@@ -1,11 +1,12 @@
 /// @file
-/// @brief The project's exception types and precondition-check macro (docs/conventions.md, "Errors").
+/// @brief The project's exception types and precondition-check macro (docs/conventions.md,
+/// "Errors").
 #pragma once
+
+#include <fmt/format.h>
 
 #include <stdexcept>
 #include <string>
-
-#include <fmt/format.h>
 
 namespace pkm {
 
@@ -22,12 +23,14 @@ class IoError : public std::runtime_error {
 };
 
 /// Builds an IoError message of the form "FILE:LINE: what" (line omitted when 0).
-[[nodiscard]] std::string locate(const std::string& file, std::size_t line, const std::string& what);
+[[nodiscard]] std::string locate(const std::string& file,
+                                 std::size_t line,
+                                 const std::string& what);
 
 }  // namespace pkm
 
 /// Throws pkm::InvalidArgument with a fmt-formatted message when `cond` is false.
-#define PKM_CHECK(cond, ...)                                       \
-  do {                                                             \
+#define PKM_CHECK(cond, ...)                                             \
+  do {                                                                   \
     if (!(cond)) throw ::pkm::InvalidArgument(fmt::format(__VA_ARGS__)); \
   } while (false)

@@ -8,9 +8,9 @@ namespace pkm::geometry {
 
 /// Closest points of two segments and their distance.
 struct SegmentDistance {
-  double distance = 0.0;          ///< |p - q|, same unit as the inputs
-  double s = 0.0;                 ///< parameter of p on segment 1, in [0, 1]
-  double t = 0.0;                 ///< parameter of q on segment 2, in [0, 1]
+  double distance = 0.0;                        ///< |p - q|, same unit as the inputs
+  double s = 0.0;                               ///< parameter of p on segment 1, in [0, 1]
+  double t = 0.0;                               ///< parameter of q on segment 2, in [0, 1]
   Eigen::Vector3d p = Eigen::Vector3d::Zero();  ///< closest point on segment 1
   Eigen::Vector3d q = Eigen::Vector3d::Zero();  ///< closest point on segment 2
 };

@@ -1,6 +1,6 @@
 /// @file
-/// @brief Rotations: hat/vee, exponential and logarithm maps of SO(3), and the LinuxCNC roll-pitch-yaw
-/// convention R = Rz(c)·Ry(b)·Rx(a) (docs/conventions.md, "Pose").
+/// @brief Rotations: hat/vee, exponential and logarithm maps of SO(3), and the LinuxCNC
+/// roll-pitch-yaw convention R = Rz(c)·Ry(b)·Rx(a) (docs/conventions.md, "Pose").
 #pragma once
 
 #include <Eigen/Core>
@@ -18,17 +18,19 @@ namespace pkm::geometry {
 /// (orthonormal, det +1); this is asserted, not checked.
 [[nodiscard]] Eigen::Vector3d so3Log(const Eigen::Matrix3d& R);
 
-/// R = Rz(c)·Ry(b)·Rx(a): roll a about the fixed X axis, then pitch b about fixed Y, then yaw c about
-/// fixed Z (LinuxCNC posemath pmRpyMatConvert). Angles in radians; rpy = (a, b, c).
+/// R = Rz(c)·Ry(b)·Rx(a): roll a about the fixed X axis, then pitch b about fixed Y, then yaw c
+/// about fixed Z (LinuxCNC posemath pmRpyMatConvert). Angles in radians; rpy = (a, b, c).
 [[nodiscard]] Eigen::Matrix3d rotationFromRpy(const Eigen::Vector3d& rpy);
 
-/// Roll-pitch-yaw angles (a, b, c) in radians of a rotation matrix, with b in [-pi/2, pi/2] and a, c in
+/// Roll-pitch-yaw angles (a, b, c) in radians of a rotation matrix, with b in [-pi/2, pi/2] and a,
+/// c in
 /// (-pi, pi]. At b = ±pi/2 (gimbal lock) a is set to 0.
 [[nodiscard]] Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& R);
 
 /// As rpyFromRotation, but of the equivalent angle triples (including the second branch
 /// (a+pi, pi-b, c+pi) and shifts by 2·pi) returns the one closest to `near` (radians). Used to keep
 /// angles continuous along a path, as a servo loop does.
-[[nodiscard]] Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& R, const Eigen::Vector3d& near);
+[[nodiscard]] Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& R,
+                                              const Eigen::Vector3d& near);
 
 }  // namespace pkm::geometry

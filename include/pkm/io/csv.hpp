@@ -13,8 +13,8 @@ namespace pkm::io {
 
 /// Reads a CSV file row by row, picking the columns named at construction by their header names.
 /// Format: a header row, then rows of numbers separated by commas; surrounding spaces, CRLF line
-/// ends, a UTF-8 byte-order mark, blank lines and lines starting with '#' are accepted. Extra columns
-/// are allowed and ignored. Every error throws pkm::IoError with "FILE:LINE: message".
+/// ends, a UTF-8 byte-order mark, blank lines and lines starting with '#' are accepted. Extra
+/// columns are allowed and ignored. Every error throws pkm::IoError with "FILE:LINE: message".
 class CsvReader {
  public:
   /// Largest accepted line, in bytes.
@@ -23,7 +23,9 @@ class CsvReader {
   /// Opens `path` ("-" reads standard input) and reads the header. `display_name` is used in error
   /// messages (defaults to `path`). Throws pkm::IoError if the file cannot be opened, is empty, or
   /// lacks a required column or repeats a column name.
-  CsvReader(const std::string& path, std::vector<std::string> required_columns, std::string display_name = {});
+  CsvReader(const std::string& path,
+            std::vector<std::string> required_columns,
+            std::string display_name = {});
   ~CsvReader();
   CsvReader(const CsvReader&) = delete;
   CsvReader& operator=(const CsvReader&) = delete;

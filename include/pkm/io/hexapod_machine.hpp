@@ -14,22 +14,23 @@ namespace pkm::io {
 /// Everything a machine file says about a hexapod.
 struct HexapodMachine {
   kinematics::HexapodModel model;
-  kinematics::FkOptions fk;        ///< forward-kinematics settings (convergence criterion, iteration cap)
-  std::string description;         ///< free text from the file
-  std::string source;              ///< file path, or "builtin:NAME"
+  kinematics::FkOptions fk;  ///< forward-kinematics settings (convergence criterion, iteration cap)
+  std::string description;   ///< free text from the file
+  std::string source;        ///< file path, or "builtin:NAME"
   std::vector<std::string> notices;  ///< things the reader ignored or assumed, for the user to see
 };
 
-/// Parses a hexapod machine JSON text. `source` names it in messages. Cone axes left out of the file
-/// default to the strut direction at the home pose. Throws pkm::IoError "SOURCE:LINE: /json/pointer:
-/// message" for malformed JSON, unknown keys, wrong types, non-finite numbers and unusable geometry.
+/// Parses a hexapod machine JSON text. `source` names it in messages. Cone axes left out of the
+/// file default to the strut direction at the home pose. Throws pkm::IoError "SOURCE:LINE:
+/// /json/pointer: message" for malformed JSON, unknown keys, wrong types, non-finite numbers and
+/// unusable geometry.
 [[nodiscard]] HexapodMachine parseHexapodJson(const std::string& text, const std::string& source);
 
 /// Reads and parses a machine JSON file. Throws pkm::IoError.
 [[nodiscard]] HexapodMachine readHexapodJson(const std::string& path);
 
-/// Writes the machine as JSON in the format parseHexapodJson reads (lengths round-trip exactly; angles,
-/// written in degrees, to within one unit in the last place).
+/// Writes the machine as JSON in the format parseHexapodJson reads (lengths round-trip exactly;
+/// angles, written in degrees, to within one unit in the last place).
 [[nodiscard]] std::string writeHexapodJson(const HexapodMachine& machine);
 
 /// Reads a whole text file (at most `max_bytes`). Throws pkm::IoError naming the file.

@@ -1,6 +1,6 @@
 /// @file
-/// @brief LinuxCNC genhexkins interop: read a `kinematics.hal` (+ its INI) into a HexapodMachine and
-/// write the `setp` block back (docs/machine-format.md, "LinuxCNC").
+/// @brief LinuxCNC genhexkins interop: read a `kinematics.hal` (+ its INI) into a HexapodMachine
+/// and write the `setp` block back (docs/machine-format.md, "LinuxCNC").
 #pragma once
 
 #include <optional>
@@ -14,24 +14,29 @@ namespace pkm::io {
 struct HalReadOptions {
   /// INI to read ([TRAJ] HOME, LINEAR_UNITS; [JOINT_n] MIN_LIMIT/MAX_LIMIT as strut stroke).
   std::optional<std::string> ini_path;
-  /// Without ini_path: use the one *.ini file in the HAL file's folder whose [HAL] HALFILE lines name
-  /// the HAL file (a notice says which). Without any INI: units mm, home 0 0 0 0 0 0 (with a notice).
+  /// Without ini_path: use the one *.ini file in the HAL file's folder whose [HAL] HALFILE lines
+  /// name the HAL file (a notice says which). Without any INI: units mm, home 0 0 0 0 0 0 (with a
+  /// notice).
   bool discover_ini = true;
 };
 
 /// Reads `setp genhexkins.base.N.x|y|z`, `platform.N.x|y|z`, `spindle-offset`, `tool-offset`,
-/// `convergence-criterion`, `limit-iterations`, and the comment lines `# pkm: home = x y z a b c` and
-/// `# pkm: units = mm|inch` that writeLinuxcncSetp emits (an INI overrides them). Other lines become notices; `screw-lead` != 0 is an error
-/// (the screw-twist correction is not modelled). All 36 joint coordinates must be set. Throws
-/// pkm::IoError "FILE:LINE: message" on malformed lines, non-finite values and unusable geometry.
-[[nodiscard]] HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions& options = {});
+/// `convergence-criterion`, `limit-iterations`, and the comment lines `# pkm: home = x y z a b c`
+/// and
+/// `# pkm: units = mm|inch` that writeLinuxcncSetp emits (an INI overrides them). Other lines
+/// become notices; `screw-lead` != 0 is an error (the screw-twist correction is not modelled). All
+/// 36 joint coordinates must be set. Throws pkm::IoError "FILE:LINE: message" on malformed lines,
+/// non-finite values and unusable geometry.
+[[nodiscard]] HexapodMachine readLinuxcncHal(const std::string& hal_path,
+                                             const HalReadOptions& options = {});
 
 /// Applies an INI file's [TRAJ] HOME, [TRAJ] LINEAR_UNITS and [JOINT_0..5] MIN_LIMIT/MAX_LIMIT to
 /// `machine`. Throws pkm::IoError "FILE:LINE: message".
 void applyLinuxcncIni(const std::string& ini_path, HexapodMachine& machine);
 
 /// The genhexkins `setp` block for `machine`: joints with the TCP offset folded into the platform
-/// points, spindle-offset, tool-offset (when not 0), convergence-criterion, limit-iterations, and the
+/// points, spindle-offset, tool-offset (when not 0), convergence-criterion, limit-iterations, and
+/// the
 /// `# pkm: units/home` lines (so the output loads on its own), and the INI values (HOME, joint
 /// HOME_OFFSET and limits) as comments. LinuxCNC joint positions are full
 /// joint-centre distances, so struts with a length offset get a comment saying so.

@@ -19,8 +19,10 @@ inline constexpr const char* kDefaultMachine = "hexapod-default";
 /// Parses the embedded machine `name`. Throws pkm::IoError if there is none by that name.
 [[nodiscard]] HexapodMachine builtinMachine(const std::string& name);
 
-/// `spec` ending in ".hal": readLinuxcncHal; an existing file: readHexapodJson; otherwise a built-in
-/// name ("default" means kDefaultMachine). Throws pkm::IoError naming the file and line on bad input.
-[[nodiscard]] HexapodMachine loadHexapodMachine(const std::string& spec, const HalReadOptions& hal = {});
+/// `spec` ending in ".hal": readLinuxcncHal; an existing file: readHexapodJson; otherwise a
+/// built-in name ("default" means kDefaultMachine). Throws pkm::IoError naming the file and line on
+/// bad input.
+[[nodiscard]] HexapodMachine loadHexapodMachine(const std::string& spec,
+                                                const HalReadOptions& hal = {});
 
 }  // namespace pkm::io

@@ -1,5 +1,6 @@
 /// @file
-/// @brief Number output that round-trips: the shortest decimal form that parses back to the same double.
+/// @brief Number output that round-trips: the shortest decimal form that parses back to the same
+/// double.
 #pragma once
 
 #include <string>

@@ -1,6 +1,6 @@
 /// @file
-/// @brief Per-pose limit checks of a hexapod: strut stroke, joint cone angles, leg-to-leg interference
-/// and singularity proximity, each with the strut or limit named and its margin.
+/// @brief Per-pose limit checks of a hexapod: strut stroke, joint cone angles, leg-to-leg
+/// interference and singularity proximity, each with the strut or limit named and its margin.
 #pragma once
 
 #include <string>
@@ -35,18 +35,18 @@ struct LimitViolation {
 
 /// Results of checkPose. Margins are >= 0 when a limit holds; +infinity when the limit is disabled.
 struct HexapodCheckResult {
-  StrutVector readings = StrutVector::Zero();               ///< model length unit
-  StrutVector stroke_margin = StrutVector::Zero();          ///< min(reading − min, max − reading)
-  StrutVector base_angle = StrutVector::Zero();             ///< joint deflection from its cone axis, rad
-  StrutVector platform_angle = StrutVector::Zero();         ///< rad
+  StrutVector readings = StrutVector::Zero();        ///< model length unit
+  StrutVector stroke_margin = StrutVector::Zero();   ///< min(reading − min, max − reading)
+  StrutVector base_angle = StrutVector::Zero();      ///< joint deflection from its cone axis, rad
+  StrutVector platform_angle = StrutVector::Zero();  ///< rad
   StrutVector base_angle_margin = StrutVector::Zero();      ///< max_angle − angle, rad
   StrutVector platform_angle_margin = StrutVector::Zero();  ///< rad
-  double min_leg_distance = 0.0;     ///< smallest strut-axis distance over checked pairs, length unit
-  int closest_pair[2] = {-1, -1};    ///< the struts of min_leg_distance (-1 when no pair is checked)
+  double min_leg_distance = 0.0;   ///< smallest strut-axis distance over checked pairs, length unit
+  int closest_pair[2] = {-1, -1};  ///< the struts of min_leg_distance (-1 when no pair is checked)
   double interference_margin = 0.0;  ///< min_leg_distance − strut_diameter
-  int unchecked_pairs = 0;           ///< pairs sharing a joint (ends closer than a diameter): not checked
-  double condition_number = 0.0;     ///< scaledConditionNumber at the pose
-  double condition_margin = 0.0;     ///< max_condition − condition_number
+  int unchecked_pairs = 0;  ///< pairs sharing a joint (ends closer than a diameter): not checked
+  double condition_number = 0.0;           ///< scaledConditionNumber at the pose
+  double condition_margin = 0.0;           ///< max_condition − condition_number
   std::vector<LimitViolation> violations;  ///< in the order stroke, angle, interference, singular
 
   [[nodiscard]] bool ok() const { return violations.empty(); }
@@ -54,7 +54,10 @@ struct HexapodCheckResult {
   [[nodiscard]] std::string_view status() const;
 };
 
-/// Runs inverse kinematics for `pose` and every limit check. Leaves data at `pose` with J_q_x filled.
-[[nodiscard]] HexapodCheckResult checkPose(const HexapodModel& model, HexapodData& data, const PoseRpy& pose);
+/// Runs inverse kinematics for `pose` and every limit check. Leaves data at `pose` with J_q_x
+/// filled.
+[[nodiscard]] HexapodCheckResult checkPose(const HexapodModel& model,
+                                           HexapodData& data,
+                                           const PoseRpy& pose);
 
 }  // namespace pkm::kinematics

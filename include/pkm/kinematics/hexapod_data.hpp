@@ -2,9 +2,8 @@
 /// @brief HexapodData: the preallocated workspace and results of the hexapod algorithms.
 #pragma once
 
-#include <array>
-
 #include <Eigen/Core>
+#include <array>
 
 #include "pkm/kinematics/hexapod_model.hpp"
 
@@ -13,10 +12,11 @@ namespace pkm::kinematics {
 /// 6×6 matrix type used for the strut Jacobian.
 using Matrix6d = Eigen::Matrix<double, kStruts, kStruts>;
 
-/// Workspace for one HexapodModel. Algorithms write their results here and return a reference to the
-/// main one. Not thread-safe: use one HexapodData per thread.
+/// Workspace for one HexapodModel. Algorithms write their results here and return a reference to
+/// the main one. Not thread-safe: use one HexapodData per thread.
 struct HexapodData {
-  /// Sizes the workspace for `model` (all hexapods have the same sizes; kept for the Model/Data API).
+  /// Sizes the workspace for `model` (all hexapods have the same sizes; kept for the Model/Data
+  /// API).
   explicit HexapodData(const HexapodModel& model);
 
   Eigen::Matrix3d world_R_platform = Eigen::Matrix3d::Identity();  ///< last pose's orientation
@@ -25,12 +25,13 @@ struct HexapodData {
   std::array<Eigen::Vector3d, kStruts> world_p_platform_joint{};
   /// world_R_platform · effectivePlatform(i): platform joint relative to the TCP, world axes.
   std::array<Eigen::Vector3d, kStruts> world_r_joint{};
-  std::array<Eigen::Vector3d, kStruts> leg{};       ///< platform joint − base joint, world
-  std::array<Eigen::Vector3d, kStruts> unit_leg{};  ///< leg / |leg|
+  std::array<Eigen::Vector3d, kStruts> leg{};        ///< platform joint − base joint, world
+  std::array<Eigen::Vector3d, kStruts> unit_leg{};   ///< leg / |leg|
   StrutVector joint_distance = StrutVector::Zero();  ///< |leg|: distance between joint centres
   StrutVector readings = StrutVector::Zero();        ///< joint_distance − length_offset
-  /// J_q_x: d(readings)/d(δp, δθ) with δp the TCP displacement and δθ the rotation vector of the left
-  /// (world-frame) perturbation world_R_platform ← exp([δθ]×)·world_R_platform (docs/conventions.md).
+  /// J_q_x: d(readings)/d(δp, δθ) with δp the TCP displacement and δθ the rotation vector of the
+  /// left (world-frame) perturbation world_R_platform ← exp([δθ]×)·world_R_platform
+  /// (docs/conventions.md).
   Matrix6d J_q_x = Matrix6d::Zero();
   PoseRpy pose;  ///< last pose (the input of IK, the result of FK)
 };

@@ -40,21 +40,21 @@ struct FkOptions {
 /// What a forward-kinematics solve did.
 struct FkSummary {
   FkStatus status = FkStatus::kInvalidInput;
-  int iterations = 0;          ///< Newton steps taken
-  int backtracks = 0;          ///< step halvings over all iterations
-  double max_residual = 0.0;   ///< max_i |residual_i| at the returned pose (model length unit)
+  int iterations = 0;         ///< Newton steps taken
+  int backtracks = 0;         ///< step halvings over all iterations
+  double max_residual = 0.0;  ///< max_i |residual_i| at the returned pose (model length unit)
   [[nodiscard]] bool ok() const { return status == FkStatus::kOk; }
 };
 
-/// Solves the platform TCP pose whose strut readings equal `readings`, starting from `seed` (the previous
-/// servo-cycle pose, or home). Newton-Raphson on (p, R): J_q_x·δ = r(x), p ← p − δp,
-/// R ← exp(−[δθ]×)·R (a true SO(3) update, unlike genhexkins' additive angle update), LU with partial
-/// pivoting, and step halving when the full step does not reduce |r|. Once every residual is within the
-/// tolerance, one more step is taken unless the residual is already below 1e-3·tolerance (so the pose,
-/// not only the struts, is accurate to the tolerance; it is counted in iterations). On success data.pose holds the
-/// pose, with angles chosen nearest to the seed's (continuous along a path); data's leg quantities match
-/// it. On failure data.pose holds the last iterate and must not be used as a result.
-/// Throws pkm::InvalidArgument if `options` is invalid.
+/// Solves the platform TCP pose whose strut readings equal `readings`, starting from `seed` (the
+/// previous servo-cycle pose, or home). Newton-Raphson on (p, R): J_q_x·δ = r(x), p ← p − δp, R ←
+/// exp(−[δθ]×)·R (a true SO(3) update, unlike genhexkins' additive angle update), LU with partial
+/// pivoting, and step halving when the full step does not reduce |r|. Once every residual is within
+/// the tolerance, one more step is taken unless the residual is already below 1e-3·tolerance (so
+/// the pose, not only the struts, is accurate to the tolerance; it is counted in iterations). On
+/// success data.pose holds the pose, with angles chosen nearest to the seed's (continuous along a
+/// path); data's leg quantities match it. On failure data.pose holds the last iterate and must not
+/// be used as a result. Throws pkm::InvalidArgument if `options` is invalid.
 FkSummary forwardKinematics(const HexapodModel& model,
                             HexapodData& data,
                             const StrutVector& readings,

@@ -5,10 +5,9 @@
 /// cheaper on the forward-kinematics hot path and gives the same pivots.
 #pragma once
 
+#include <Eigen/Core>
 #include <cmath>
 #include <utility>
-
-#include <Eigen/Core>
 
 namespace pkm::kinematics::detail {
 
