@@ -53,6 +53,8 @@ struct MachineOption {
 /// Registers the command groups.
 void addHexapodCommands(CLI::App& app);
 void addDemoCommand(CLI::App& app);
+void addExechonCommands(CLI::App& app);
+void addVolumetricCommand(CLI::App& app);
 
 }  // namespace pkm::cli
 

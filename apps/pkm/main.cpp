@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "pkm 0.1.0");
   pkm::cli::addHexapodCommands(app);
+  pkm::cli::addExechonCommands(app);
+  pkm::cli::addVolumetricCommand(app);
   pkm::cli::addDemoCommand(app);
   try {
     app.parse(argc, argv);

@@ -88,6 +88,16 @@ CsvReader::CsvReader(const std::string& path,
   wanted_ = required_columns.size();
 }
 
+bool CsvReader::addOptionalColumn(const std::string& name) {
+  for (std::size_t f = 0; f < header_.size(); ++f) {
+    if (header_[f] == name) {
+      if (column_of_field_[f] < 0) column_of_field_[f] = static_cast<int>(wanted_++);
+      return true;
+    }
+  }
+  return false;
+}
+
 CsvReader::~CsvReader() {
   if (owns_file_ && file_ != nullptr) std::fclose(file_);
 }

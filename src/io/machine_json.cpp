@@ -9,7 +9,7 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/hexapod_machine.hpp"
-#include "pkm/io/json_locator.hpp"
+#include "io/detail/json_doc.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 
@@ -20,60 +20,8 @@ namespace kin = pkm::kinematics;
 
 namespace {
 
-/// Typed access to a parsed JSON document that reports errors as "SOURCE:LINE: POINTER: message".
-class Doc {
- public:
-  Doc(const std::string& text, std::string source) : source_(std::move(source)), locator_(text) {}
-
-  [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
-    throw IoError(locate(source_,
-                         locator_.line(pointer),
-                         fmt::format("{}: {}", pointer.empty() ? "/" : pointer, what)));
-  }
-
-  void onlyKeys(const json& obj,
-                const std::string& ptr,
-                std::initializer_list<const char*> keys) const {
-    if (!obj.is_object()) fail(ptr, "expected an object");
-    for (const auto& item : obj.items()) {
-      bool known = false;
-      for (const char* k : keys) known = known || item.key() == k;
-      if (!known) fail(ptr + "/" + item.key(), fmt::format("unknown key '{}'", item.key()));
-    }
-  }
-
-  double number(const json& v, const std::string& ptr) const {
-    if (!v.is_number()) fail(ptr, "expected a number");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(ptr, "number is not finite");
-    return x;
-  }
-
-  double number(const json& obj, const std::string& ptr, const char* key, double fallback) const {
-    return obj.contains(key) ? number(obj[key], ptr + "/" + key) : fallback;
-  }
-
-  Eigen::Vector3d vec3(const json& v, const std::string& ptr) const {
-    if (!v.is_array() || v.size() != 3) fail(ptr, "expected an array of 3 numbers");
-    return {number(v[0], ptr + "/0"), number(v[1], ptr + "/1"), number(v[2], ptr + "/2")};
-  }
-
-  std::string string(const json& obj,
-                     const std::string& ptr,
-                     const char* key,
-                     const std::string& fallback) const {
-    if (!obj.contains(key)) return fallback;
-    if (!obj[key].is_string()) fail(ptr + "/" + key, "expected a string");
-    return obj[key].get<std::string>();
-  }
-
- private:
-  std::string source_;
-  JsonLocator locator_;
-};
-
 /// Reads {"axis": [..], "max_angle_deg": ..}; returns whether an axis was given.
-bool readCone(const Doc& doc, const json& v, const std::string& ptr, kin::JointCone& cone) {
+bool readCone(const detail::JsonDoc& doc, const json& v, const std::string& ptr, kin::JointCone& cone) {
   doc.onlyKeys(v, ptr, {"axis", "max_angle_deg"});
   cone.max_angle = degToRad(doc.number(v, ptr, "max_angle_deg", 0.0));
   if (cone.max_angle < 0.0) doc.fail(ptr + "/max_angle_deg", "must be >= 0 (0 = unlimited)");
@@ -82,32 +30,6 @@ bool readCone(const Doc& doc, const json& v, const std::string& ptr, kin::JointC
   if (axis.norm() < 1e-12) doc.fail(ptr + "/axis", "axis has zero length");
   cone.axis = axis.normalized();
   return true;
-}
-
-/// 1-based line of the first number token `token` outside strings in `text`; 0 if none.
-std::size_t lineOfNumber(const std::string& text, const std::string& token) {
-  if (token.empty()) return 0;
-  const auto numberChar = [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '+' || c == '-';
-  };
-  std::size_t line = 1;
-  bool in_string = false;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (c == '\n') ++line;
-    if (in_string) {
-      if (c == '\\')
-        ++i;
-      else if (c == '"')
-        in_string = false;
-    } else if (c == '"') {
-      in_string = true;
-    } else if (text.compare(i, token.size(), token) == 0 && (i == 0 || !numberChar(text[i - 1])) &&
-               (i + token.size() == text.size() || !numberChar(text[i + token.size()]))) {
-      return line;
-    }
-  }
-  return 0;
 }
 
 void writeVec(std::string& out, const Eigen::Vector3d& v) {
@@ -136,32 +58,8 @@ std::string readTextFile(const std::string& path, std::size_t max_bytes) {
 }
 
 HexapodMachine parseHexapodJson(const std::string& text, const std::string& source) {
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    const std::size_t byte = std::min<std::size_t>(e.byte, text.size());
-    const std::size_t line =
-        1 + static_cast<std::size_t>(
-                std::count(text.begin(),
-                           text.begin() + static_cast<std::ptrdiff_t>(byte > 0 ? byte - 1 : 0),
-                           '\n'));
-    std::string what = e.what();
-    if (const auto p = what.find("syntax error"); p != std::string::npos) what = what.substr(p);
-    throw IoError(locate(source, line, "invalid JSON: " + what));
-  } catch (const json::out_of_range& e) {
-    // A number too large for a double ("1e999"): nlohmann reports the token but not its position.
-    std::string what = e.what();
-    const auto q1 = what.find('\'');
-    const auto q2 = what.rfind('\'');
-    const std::string token =
-        q1 != std::string::npos && q2 > q1 ? what.substr(q1 + 1, q2 - q1 - 1) : std::string();
-    throw IoError(
-        locate(source,
-               lineOfNumber(text, token),
-               fmt::format("number {} is not finite (out of the range of a double)", token)));
-  }
-  const Doc doc(text, source);
+  const json root = detail::parseJson(text, source);
+  const detail::JsonDoc doc(text, source);
   doc.onlyKeys(root,
                "",
                {"schema",

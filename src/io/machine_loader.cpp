@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <optional>
 #include <string_view>
 #include <utility>
+
+#include <nlohmann/json.hpp>
 
 #include "pkm/core/error.hpp"
 
@@ -14,35 +17,61 @@ namespace detail {
 const std::vector<std::pair<std::string_view, std::string_view>>& embeddedMachines();
 }  // namespace detail
 
-std::vector<std::string> builtinMachineNames() {
+namespace {
+
+/// The embedded text of `name` if there is one of `type`.
+std::optional<std::string> builtinText(const std::string& name, const std::string& type) {
+  for (const auto& [stem, text] : detail::embeddedMachines())
+    if (stem == name && machineType(std::string(text)) == type) return std::string(text);
+  return std::nullopt;
+}
+
+[[noreturn]] void noSuchMachine(const std::string& spec, const std::string& type) {
+  throw IoError(fmt::format("{}: no such file, and not a built-in {} machine (built-in: {})", spec, type,
+                            fmt::join(builtinMachineNames(type), ", ")));
+}
+
+/// True when `spec` names an existing file; throws for a directory.
+bool isFile(const std::string& spec) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(spec, ec)) return false;
+  if (fs::is_directory(spec, ec)) throw IoError(locate(spec, 0, "is a directory, expected a machine file"));
+  return true;
+}
+
+}  // namespace
+
+std::string machineType(const std::string& text) {
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (j.is_object() && j.contains("type") && j["type"].is_string()) return j["type"].get<std::string>();
+  return "hexapod";
+}
+
+std::vector<std::string> builtinMachineNames(const std::string& type) {
   std::vector<std::string> names;
-  for (const auto& [name, text] : detail::embeddedMachines()) names.emplace_back(name);
+  for (const auto& [name, text] : detail::embeddedMachines())
+    if (type.empty() || machineType(std::string(text)) == type) names.emplace_back(name);
   return names;
 }
 
 HexapodMachine builtinMachine(const std::string& name) {
   const std::string wanted = name == "default" ? kDefaultMachine : name;
-  for (const auto& [stem, text] : detail::embeddedMachines()) {
-    if (stem == wanted) {
-      HexapodMachine m = parseHexapodJson(std::string(text), "builtin:" + wanted);
-      return m;
-    }
-  }
-  throw IoError(fmt::format("{}: no such file, and not a built-in machine (built-in: {})",
-                            name,
-                            fmt::join(builtinMachineNames(), ", ")));
+  if (const auto text = builtinText(wanted, "hexapod")) return parseHexapodJson(*text, "builtin:" + wanted);
+  noSuchMachine(name, "hexapod");
 }
 
 HexapodMachine loadHexapodMachine(const std::string& spec, const HalReadOptions& hal) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
   if (spec.ends_with(".hal")) return readLinuxcncHal(spec, hal);
-  if (fs::exists(spec, ec)) {
-    if (fs::is_directory(spec, ec))
-      throw IoError(locate(spec, 0, "is a directory, expected a machine file"));
-    return readHexapodJson(spec);
-  }
+  if (isFile(spec)) return readHexapodJson(spec);
   return builtinMachine(spec);
+}
+
+ExechonMachine loadExechonMachine(const std::string& spec) {
+  if (isFile(spec)) return readExechonJson(spec);
+  const std::string wanted = spec == "default" ? kDefaultExechonMachine : spec;
+  if (const auto text = builtinText(wanted, "exechon")) return parseExechonJson(*text, "builtin:" + wanted);
+  noSuchMachine(spec, "exechon");
 }
 
 }  // namespace pkm::io

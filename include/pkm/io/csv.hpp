@@ -35,6 +35,11 @@ class CsvReader {
   /// field that is not a finite number, or an over-long line.
   bool next(std::span<double> values);
 
+  /// Also reads column `name` when the header has it: its values go to the next output index after
+  /// the columns requested so far, and next() then expects one more value. Returns whether the
+  /// header has the column. Call before the first next().
+  bool addOptionalColumn(const std::string& name);
+
   /// 1-based line number of the last line read.
   [[nodiscard]] std::size_t line() const { return line_; }
   /// Name used in messages.

@@ -1,0 +1,343 @@
+// `pkm exechon ...`: ik (--wrist or --poses), fk, check, drm, describe (docs/formats.md).
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+#include <memory>
+#include <optional>
+
+#include "cli_common.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/io/csv.hpp"
+#include "pkm/io/machine_loader.hpp"
+#include "pkm/io/number_format.hpp"
+#include "pkm/kinematics/exechon_checks.hpp"
+#include "pkm/kinematics/exechon_drm.hpp"
+#include "pkm/kinematics/exechon_wrist.hpp"
+#include "pkm/kinematics/hybrid_model.hpp"
+
+namespace pkm::cli {
+
+namespace kin = pkm::kinematics;
+
+namespace {
+
+/// Options shared by the exechon commands.
+struct ExechonState {
+  std::string machine = "default";
+  std::string wrist, poses, joints, circle, direction = "0,0,-1";
+  double step_deg = 1.0;
+  bool json = false;
+
+  io::ExechonMachine load() const {
+    io::ExechonMachine m = io::loadExechonMachine(machine);
+    printNotices(m.notices);
+    return m;
+  }
+};
+
+void addMachineOption(CLI::App& cmd, ExechonState& st) {
+  cmd.add_option("--machine,-m", st.machine,
+                 "Exechon machine: a JSON machine file or a built-in name (default: mxt700s-like)");
+}
+
+void appendCsv(std::string& out, double v) {
+  io::appendNumber(out, v);
+  out += ',';
+}
+
+/// "x,y,z" of finite numbers.
+Eigen::Vector3d parseTriple(const std::string& text, const char* option) {
+  Eigen::Vector3d v;
+  std::size_t pos = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t comma = text.find(',', pos);
+    const std::string_view field =
+        std::string_view(text).substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    if ((comma == std::string::npos) != (i == 2) || !io::parseFiniteDouble(field, v[i]))
+      throw IoError(fmt::format("{} '{}': expected three finite numbers separated by commas", option, text));
+    pos = comma + 1;
+  }
+  return v;
+}
+
+/// The first violation that is not about the wrist (the --wrist form has no tool direction).
+std::string_view tripodStatus(const kin::ExechonCheckResult& c) {
+  for (const auto& v : c.violations)
+    if (v.item.rfind("wrist", 0) != 0) return kin::toString(v.kind);
+  return "ok";
+}
+
+void runIkWrist(const ExechonState& st) {
+  const io::ExechonMachine machine = st.load();
+  const kin::ExechonModel& model = machine.model;
+  kin::ExechonData data(model);
+  io::CsvReader reader(st.wrist, {"sx", "sy", "sz"});
+  Output out;
+  out.text() += "q1,q2,q3,alpha,beta,h,status\n";
+  std::array<double, 3> row{};
+  while (reader.next(row)) {
+    const Eigen::Vector3d S(row[0], row[1], row[2]);
+    const kin::ExechonIkStatus s = kin::tripodInverseKinematics(model, data, S);
+    std::string& o = out.text();
+    if (s != kin::ExechonIkStatus::kOk) {
+      o += fmt::format(",,,,,,{}\n", kin::toString(s));
+      continue;
+    }
+    for (int i = 0; i < 3; ++i) appendCsv(o, data.readings[i]);
+    appendCsv(o, radToDeg(data.e[0]));
+    appendCsv(o, radToDeg(data.e[1]));
+    appendCsv(o, data.e[2]);
+    o += tripodStatus(kin::checkConfiguration(model, data));
+    o += '\n';
+    out.maybeFlush();
+  }
+}
+
+/// Tool pose rows: x,y,z,i,j,k and, for hybrid machines, optional x2,y2. Tool positions of hybrid
+/// machines are in the work frame; the PKM gets the rest after X2 and Y2 (centred split when x2, y2
+/// are not given).
+struct PoseRows {
+  io::CsvReader reader;
+  bool has_x2y2 = false;
+  explicit PoseRows(const std::string& path) : reader(path, {"x", "y", "z", "i", "j", "k"}) {
+    const bool x2 = reader.addOptionalColumn("x2");
+    const bool y2 = reader.addOptionalColumn("y2");
+    if (x2 != y2) reader.fail("give both x2 and y2 columns, or neither");
+    has_x2y2 = x2;
+  }
+};
+
+void runIkPoses(const ExechonState& st) {
+  const io::ExechonMachine machine = st.load();
+  const kin::ExechonModel& model = machine.model;
+  kin::ExechonData data(model);
+  PoseRows rows(st.poses);
+  if (rows.has_x2y2 && !machine.hybrid) rows.reader.fail("x2,y2 columns need a machine with a \"hybrid\" section");
+  const bool hybrid = machine.hybrid.has_value();
+  Output out;
+  out.text() += hybrid ? "q1,q2,q3,c,a,drm,status,x2,y2\n" : "q1,q2,q3,c,a,drm,status\n";
+  std::array<double, 8> row{};
+  std::span<double> values(row.data(), rows.has_x2y2 ? 8 : 6);
+  kin::ExechonConfiguration previous = model.home;
+  std::optional<Eigen::Matrix3d> reference;  // tool frame of the first solved row (frame H)
+  while (rows.reader.next(values)) {
+    kin::ExechonToolPose target;
+    target.position = {row[0], row[1], row[2]};
+    target.direction = {row[3], row[4], row[5]};
+    kin::HybridCommand command;
+    if (hybrid) {
+      command = rows.has_x2y2 ? kin::hybridCommandForTool(*machine.hybrid, target.position, row[6], row[7])
+                              : kin::hybridCommandCentred(*machine.hybrid, target.position);
+      target.position = command.pkm;
+    }
+    const kin::ExechonCheckResult c = kin::checkToolPose(model, data, target, previous);
+    std::string& o = out.text();
+    if (c.solver_status != "ok") {
+      o += fmt::format(",,,,,,{}", c.solver_status);
+    } else {
+      previous = kin::configurationOf(data);
+      if (!reference) reference = data.world_R_tool;
+      for (int i = 0; i < 3; ++i) appendCsv(o, data.readings[i]);
+      appendCsv(o, radToDeg(data.c));
+      appendCsv(o, radToDeg(data.a));
+      appendCsv(o, radToDeg(kin::dependentRotation(data.world_R_tool, *reference)));
+      std::string_view status = c.status();
+      if (status == "ok" && hybrid && !kin::hybridWithinLimits(*machine.hybrid, command)) status = "axis_limit";
+      o += status;
+    }
+    if (hybrid) o += fmt::format(",{},{}", io::formatNumber(command.x2), io::formatNumber(command.y2));
+    o += '\n';
+    out.maybeFlush();
+  }
+}
+
+void runFk(const ExechonState& st) {
+  const io::ExechonMachine machine = st.load();
+  const kin::ExechonModel& model = machine.model;
+  kin::ExechonData data(model);
+  io::CsvReader reader(st.joints, {"q1", "q2", "q3", "c", "a"});
+  const bool x2 = reader.addOptionalColumn("x2");
+  const bool y2 = reader.addOptionalColumn("y2");
+  if (x2 != y2) reader.fail("give both x2 and y2 columns, or neither");
+  if (x2 && !machine.hybrid) reader.fail("x2,y2 columns need a machine with a \"hybrid\" section");
+  Output out;
+  out.text() += "x,y,z,i,j,k,iterations,status\n";
+  std::array<double, 7> row{};
+  std::span<double> values(row.data(), x2 ? 7 : 5);
+  kin::ExechonConfiguration seed = model.home;
+  while (reader.next(values)) {
+    kin::ExechonJoints joints;
+    joints.readings = {row[0], row[1], row[2]};
+    joints.c = degToRad(row[3]);
+    joints.a = degToRad(row[4]);
+    const kin::FkSummary s = kin::toolForwardKinematics(model, data, joints, seed, machine.fk);
+    std::string& o = out.text();
+    if (s.ok()) {
+      seed = kin::configurationOf(data);
+      Eigen::Vector3d p = data.world_p_tool;
+      if (x2) {  // tool in the work frame: the nominal chain of the hybrid machine
+        kin::HybridCommand command;
+        command.x2 = row[5];
+        command.y2 = row[6];
+        command.pkm = p;
+        p = kin::hybridNominalToolPosition(*machine.hybrid, command);
+      }
+      for (int i = 0; i < 3; ++i) appendCsv(o, p[i]);
+      for (int i = 0; i < 3; ++i) appendCsv(o, data.world_u_tool[i]);
+    } else {
+      o += ",,,,,,";
+      seed = model.home;
+    }
+    o += fmt::format("{},{}\n", s.iterations, kin::toString(s.status));
+    out.maybeFlush();
+  }
+}
+
+void runCheck(const ExechonState& st) {
+  const io::ExechonMachine machine = st.load();
+  const kin::ExechonModel& model = machine.model;
+  kin::ExechonData data(model);
+  PoseRows rows(st.poses);
+  if (rows.has_x2y2 && !machine.hybrid) rows.reader.fail("x2,y2 columns need a machine with a \"hybrid\" section");
+  Output out;
+  out.text() +=
+      "row,status,min_stroke_margin,stroke_leg,alpha_margin_deg,beta_margin_deg,c_margin_deg,a_margin_deg,"
+      "wrist_at_pole,condition_number,condition_margin,violations\n";
+  std::array<double, 8> row{};
+  std::span<double> values(row.data(), rows.has_x2y2 ? 8 : 6);
+  kin::ExechonConfiguration previous = model.home;
+  std::size_t index = 0;
+  const auto margin = [](std::string& o, double v, double scale) {
+    if (!std::isinf(v)) io::appendNumber(o, v * scale);
+    o += ',';
+  };
+  while (rows.reader.next(values)) {
+    kin::ExechonToolPose target{{row[0], row[1], row[2]}, {row[3], row[4], row[5]}};
+    if (machine.hybrid)
+      target.position = rows.has_x2y2 ? kin::hybridCommandForTool(*machine.hybrid, target.position, row[6], row[7]).pkm
+                                      : kin::hybridCommandCentred(*machine.hybrid, target.position).pkm;
+    const kin::ExechonCheckResult c = kin::checkToolPose(model, data, target, previous);
+    if (c.solver_status == "ok") previous = kin::configurationOf(data);
+    std::string& o = out.text();
+    o += fmt::format("{},{},", index++, c.status());
+    if (c.solver_status != "ok") {
+      o += ",,,,,,,,,\n";
+      continue;
+    }
+    int k = 0;
+    c.stroke_margin.minCoeff(&k);
+    margin(o, c.stroke_margin[k], 1.0);
+    o += std::isinf(c.stroke_margin[k]) ? std::string(",") : fmt::format("{},", "ABC"[k]);
+    margin(o, c.alpha_margin, radToDeg(1.0));
+    margin(o, c.beta_margin, radToDeg(1.0));
+    margin(o, c.c_margin, radToDeg(1.0));
+    margin(o, c.a_margin, radToDeg(1.0));
+    o += c.wrist_at_pole ? "1," : "0,";
+    margin(o, c.condition_number, 1.0);
+    margin(o, c.condition_margin, 1.0);
+    std::vector<std::string> parts;
+    for (const auto& v : c.violations) {
+      const bool angle = v.kind == kin::LimitKind::kJointAngle;
+      parts.push_back(fmt::format("{} {} value={:.6g} limit={:.6g}", kin::toString(v.kind), v.item,
+                                  angle ? radToDeg(v.value) : v.value, angle ? radToDeg(v.limit) : v.limit));
+    }
+    o += fmt::format("{}\n", fmt::join(parts, "; "));
+    out.maybeFlush();
+  }
+}
+
+void runDrm(const ExechonState& st) {
+  const io::ExechonMachine machine = st.load();
+  const kin::ExechonModel& model = machine.model;
+  std::array<double, 4> c{};
+  {
+    std::size_t pos = 0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      const std::size_t comma = st.circle.find(',', pos);
+      const std::string_view field = std::string_view(st.circle).substr(
+          pos, comma == std::string::npos ? std::string::npos : comma - pos);
+      if ((comma == std::string::npos) != (i == 3) || !io::parseFiniteDouble(field, c[i]))
+        throw IoError(fmt::format("--circle '{}': expected cx,cy,cz,r", st.circle));
+      pos = comma + 1;
+    }
+  }
+  kin::DrmCircleOptions opt;
+  opt.centre = {c[0], c[1], c[2]};
+  opt.radius = c[3];
+  opt.direction = parseTriple(st.direction, "--direction");
+  opt.step = degToRad(st.step_deg);
+  std::string why;
+  if (!opt.isValid(&why)) throw IoError(fmt::format("invalid circle: {}", why));
+  kin::ExechonData data(model);
+  const kin::DrmCircleResult r = kin::sampleDrmCircle(model, data, opt);
+  Output out;
+  std::string& o = out.text();
+  o += "theta_deg,phi_drm_deg,fit_deg,residual_deg\n";
+  for (std::size_t i = 0; i < r.theta.size() && i < r.phi.size(); ++i) {
+    const double fit = kin::evaluateDrmPolynomial(r.coefficients, r.theta[i]);
+    appendCsv(o, radToDeg(r.theta[i]));
+    appendCsv(o, radToDeg(r.phi[i]));
+    appendCsv(o, radToDeg(fit));
+    io::appendNumber(o, radToDeg(r.phi[i] - fit));
+    o += '\n';
+  }
+  o += fmt::format("# status {}\n", kin::toString(r.status));
+  if (!r.ok()) {
+    o += fmt::format("# failed at point {}\n", r.failed_index);
+    out.flush();
+    throw IoError(fmt::format("the circle leaves the workspace at point {} ({})", r.failed_index,
+                              kin::toString(r.status)));
+  }
+  o += "# fit phi(theta) = sum c_n theta^n, theta and phi in rad (seed 003 eq. 10)\n";
+  for (int n = 0; n < 6; ++n) o += fmt::format("# c{} {}\n", n, io::formatNumber(r.coefficients[static_cast<std::size_t>(n)]));
+  o += fmt::format("# max |phi_drm| {} deg\n", io::formatNumber(radToDeg(r.max_abs_phi)));
+  o += fmt::format("# max fit deviation {} deg\n", io::formatNumber(radToDeg(r.max_fit_deviation)));
+}
+
+}  // namespace
+
+void addExechonCommands(CLI::App& app) {
+  CLI::App* exe = app.add_subcommand("exechon", "Exechon tripod with C/A wrist (optionally on X2/Y2)");
+  exe->require_subcommand(1);
+  auto st = std::make_shared<ExechonState>();
+
+  CLI::App* ik = exe->add_subcommand(
+      "ik", "inverse kinematics: --wrist (Zoppi frame S -> q1,q2,q3,alpha,beta,h) or --poses (tool x,y,z,i,j,k)");
+  addMachineOption(*ik, *st);
+  auto* wrist = ik->add_option("--wrist,-w", st->wrist, "CSV with header sx,sy,sz (Zoppi base frame); - = stdin");
+  auto* poses = ik->add_option("--poses,-p", st->poses,
+                               "CSV with header x,y,z,i,j,k (tool point and direction; optional x2,y2)");
+  wrist->excludes(poses);
+  ik->callback([st, wrist, poses] {
+    if (wrist->count() == 0 && poses->count() == 0) throw CLI::RequiredError("--wrist or --poses");
+    if (wrist->count() > 0) runIkWrist(*st);
+    else runIkPoses(*st);
+  });
+
+  CLI::App* fk = exe->add_subcommand("fk", "forward kinematics: q1,q2,q3,c,a -> tool x,y,z,i,j,k");
+  addMachineOption(*fk, *st);
+  fk->add_option("--joints,-j", st->joints, "CSV with header q1,q2,q3,c,a (optional x2,y2); - = stdin")->required();
+  fk->callback([st] { runFk(*st); });
+
+  CLI::App* check = exe->add_subcommand("check", "per tool pose: strokes, angle limits, conditioning");
+  addMachineOption(*check, *st);
+  check->add_option("--poses,-p", st->poses, "CSV with header x,y,z,i,j,k (optional x2,y2)")->required();
+  check->callback([st] { runCheck(*st); });
+
+  CLI::App* drm = exe->add_subcommand("drm", "dependent rotational motion along a circle, with its 5th-order fit");
+  addMachineOption(*drm, *st);
+  drm->add_option("--circle", st->circle, "cx,cy,cz,r: centre (machine world frame) and radius")->required();
+  drm->add_option("--step", st->step_deg, "angle step in degrees (default 1)");
+  drm->add_option("--direction", st->direction, "tool direction i,j,k (default 0,0,-1)");
+  drm->callback([st] { runDrm(*st); });
+
+  CLI::App* describe = exe->add_subcommand("describe", "write the machine as JSON");
+  addMachineOption(*describe, *st);
+  describe->callback([st] {
+    Output out;
+    out.text() += io::writeExechonJson(st->load());
+  });
+}
+
+}  // namespace pkm::cli

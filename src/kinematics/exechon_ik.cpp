@@ -1,0 +1,231 @@
+#include "pkm/kinematics/exechon_ik.hpp"
+
+#include <Eigen/SVD>
+#include <cmath>
+
+#include "kinematics/exechon_tripod_math.hpp"
+#include "pkm/core/error.hpp"
+
+namespace pkm::kinematics {
+
+namespace {
+
+/// Relative size below which r or sqrt(t6² + Sy²) counts as zero (the solution is undetermined).
+constexpr double kDegenerate = 1e-12;
+
+bool isSign(int s) { return s == 1 || s == -1; }
+
+}  // namespace
+
+std::string_view toString(ExechonIkStatus status) {
+  switch (status) {
+    case ExechonIkStatus::kOk:
+      return "ok";
+    case ExechonIkStatus::kUnreachable:
+      return "unreachable";
+    case ExechonIkStatus::kSingular:
+      return "singular";
+    case ExechonIkStatus::kInvalidInput:
+      return "invalid_input";
+  }
+  return "unknown";
+}
+
+Eigen::Vector3d wristPointFromParameters(const ExechonTripodGeometry& g, const Eigen::Vector3d& e) {
+  const detail::ExechonTrig t = detail::trigOf(e);
+  const Eigen::Vector3d kA2(t.sa, 0.0, t.ca), kB5(-t.sb * t.ca, t.cb, t.sb * t.sa),
+      eh(-t.cb * t.ca, -t.sb, t.cb * t.sa);
+  return g.hx * kA2 + (t.h + g.hz) * eh - (g.dB * t.ca * t.sb) * kB5;
+}
+
+namespace {
+
+/// Zoppi's closed form without the angles: sin/cos of alpha and beta and h for (d1, d2).
+ExechonIkStatus solveTrig(const ExechonTripodGeometry& g,
+                          const Eigen::Vector3d& S,
+                          int d1,
+                          int d2,
+                          detail::ExechonTrig* out) {
+  if (!S.allFinite()) return ExechonIkStatus::kInvalidInput;
+  const double t0sq = S.x() * S.x() + S.z() * S.z();
+  const double rsq = t0sq - g.hx * g.hx;
+  const double scale = std::max({std::sqrt(t0sq), std::abs(S.y()), std::abs(g.dB), std::abs(g.hx)});
+  if (rsq < 0.0 && std::sqrt(-rsq) > kDegenerate * scale) return ExechonIkStatus::kUnreachable;
+  const double r = std::sqrt(std::max(rsq, 0.0));
+  if (r <= kDegenerate * scale) return ExechonIkStatus::kSingular;
+  const double ca = (-d1 * S.x() * r + g.hx * S.z()) / t0sq;
+  const double sa = (d1 * S.z() * r + g.hx * S.x()) / t0sq;
+  const double t6 = (d1 * (t0sq - g.dB * S.x()) * r + g.dB * g.hx * S.z()) / t0sq;
+  const double n = std::sqrt(t6 * t6 + S.y() * S.y());
+  if (!(n > kDegenerate * scale)) return ExechonIkStatus::kSingular;
+  const detail::ExechonTrig t{
+      sa, ca, -d2 * S.y() / n, d2 * t6 / n, d2 * (S.y() * S.y() + d1 * t6 * r) / n - g.hz};
+  if (!std::isfinite(t.sa + t.ca + t.sb + t.cb + t.h)) return ExechonIkStatus::kInvalidInput;
+  *out = t;
+  return ExechonIkStatus::kOk;
+}
+
+Eigen::Vector3d anglesOf(const detail::ExechonTrig& t) {
+  return {std::atan2(t.sa, t.ca), std::atan2(t.sb, t.cb), t.h};
+}
+
+/// evaluateTripod without the branch recovery, from precomputed sines and cosines of e.
+void fillTripod(const ExechonModel& model,
+                ExechonData& data,
+                const detail::ExechonTrig& t,
+                const Eigen::Vector3d& e,
+                int deltaA,
+                int deltaC) {
+  const ExechonTripodGeometry& g = model.tripod;
+  const Eigen::Vector3d kA2(t.sa, 0.0, t.ca), kB5(-t.sb * t.ca, t.cb, t.sb * t.sa),
+      eh(-t.cb * t.ca, -t.sb, t.cb * t.sa);
+  const Eigen::Vector3d P = t.h * eh - (g.dB * t.ca * t.sb) * kB5;
+  data.e = e;
+  data.zoppi_p_S = P + g.hx * kA2 + g.hz * eh;
+  data.world_p_S = model.world_T_zoppi * data.zoppi_p_S;
+  Eigen::Matrix3d R;
+  R << kA2, kB5, eh;
+  data.zoppi_T_platform.linear() = R;
+  data.zoppi_T_platform.translation() = P;
+  data.world_T_platform = model.world_T_zoppi * data.zoppi_T_platform;
+
+  const detail::ExechonLegTerms k = detail::legTerms(g, t);
+  data.zoppi_p_platform_joint[0] = {t.ca * k.uA, -k.vA + g.dA, -t.sa * k.uA};
+  data.zoppi_p_platform_joint[1] = {
+      -k.t1 * t.sa + g.dB - k.t2 * t.ca * t.cb, -k.t2 * t.sb, k.t2 * t.sa * t.cb - k.t1 * t.ca};
+  data.zoppi_p_platform_joint[2] = {t.ca * k.uC, -k.vC + g.dC, -t.sa * k.uC};
+  data.zoppi_p_leg_start[0] = {-deltaA * g.l12A * t.ca, g.dA, deltaA * g.l12A * t.sa};
+  data.zoppi_p_leg_start[1] = {g.dB, 0.0, 0.0};
+  data.zoppi_p_leg_start[2] = {-deltaC * g.l12C * t.ca, g.dC, deltaC * g.l12C * t.sa};
+  const double uA = k.uA + deltaA * g.l12A, uC = k.uC + deltaC * g.l12C;
+  data.lengths = {std::sqrt(uA * uA + k.vA * k.vA),
+                  std::sqrt(k.t1 * k.t1 + k.t2 * k.t2),
+                  std::sqrt(uC * uC + k.vC * k.vC)};
+  for (int i = 0; i < kExechonLegs; ++i)
+    data.readings[i] = data.lengths[i] - model.legs[static_cast<std::size_t>(i)].length_offset;
+}
+
+}  // namespace
+
+ExechonIkStatus parametersFromWristPoint(
+    const ExechonTripodGeometry& g, const Eigen::Vector3d& S, int d1, int d2, Eigen::Vector3d* e) {
+  PKM_CHECK(isSign(d1) && isSign(d2), "delta1B and delta2B must be +1 or -1 (got {}, {})", d1, d2);
+  detail::ExechonTrig t{};
+  const ExechonIkStatus status = solveTrig(g, S, d1, d2, &t);
+  if (status == ExechonIkStatus::kOk) *e = anglesOf(t);
+  return status;
+}
+
+void evaluateTripod(const ExechonModel& model,
+                    ExechonData& data,
+                    const Eigen::Vector3d& e,
+                    int deltaA,
+                    int deltaC) {
+  PKM_CHECK(isSign(deltaA) && isSign(deltaC),
+            "deltaA and deltaC must be +1 or -1 (got {}, {})",
+            deltaA,
+            deltaC);
+  const ExechonTripodGeometry& g = model.tripod;
+  const detail::ExechonTrig t = detail::trigOf(e);
+  fillTripod(model, data, t, e, deltaA, deltaC);
+  const Eigen::Vector3d& S = data.zoppi_p_S;
+  // Recover the pose branch: d1·r = sα·Sz − cα·Sx and d2·sqrt(t6² + Sy²) = cβ·t6 − sβ·Sy.
+  const int d1 = t.sa * S.z() - t.ca * S.x() >= 0.0 ? 1 : -1;
+  const double t0sq = S.x() * S.x() + S.z() * S.z();
+  const double r = std::sqrt(std::max(t0sq - g.hx * g.hx, 0.0));
+  const double t6 =
+      t0sq > 0.0 ? (d1 * (t0sq - g.dB * S.x()) * r + g.dB * g.hx * S.z()) / t0sq : 0.0;
+  const int d2 = t.cb * t6 - t.sb * S.y() >= 0.0 ? 1 : -1;
+  data.branch = {d1, d2, deltaA, deltaC};
+}
+
+ExechonIkStatus tripodInverseKinematics(const ExechonModel& model,
+                                        ExechonData& data,
+                                        const Eigen::Vector3d& zoppi_p_S,
+                                        const ExechonBranch& branch) {
+  PKM_CHECK(branch.isValid(), "Exechon branch signs must be +1 or -1");
+  detail::ExechonTrig t{};
+  const ExechonIkStatus status =
+      solveTrig(model.tripod, zoppi_p_S, branch.delta1B, branch.delta2B, &t);
+  if (status != ExechonIkStatus::kOk) return status;
+  fillTripod(model, data, t, anglesOf(t), branch.deltaA, branch.deltaC);
+  data.branch = branch;
+  data.zoppi_p_S = zoppi_p_S;  // equal to the forward map of e up to rounding
+  data.world_p_S = model.world_T_zoppi * zoppi_p_S;
+  return status;
+}
+
+ExechonIkStatus tripodInverseKinematics(const ExechonModel& model,
+                                        ExechonData& data,
+                                        const Eigen::Vector3d& zoppi_p_S) {
+  return tripodInverseKinematics(model, data, zoppi_p_S, branchOf(model.tripod));
+}
+
+ExechonIkStatus tripodInverseKinematicsNearest(const ExechonModel& model,
+                                               ExechonData& data,
+                                               const Eigen::Vector3d& zoppi_p_S,
+                                               const Eigen::Vector3d& e_near) {
+  if (!e_near.allFinite()) return ExechonIkStatus::kInvalidInput;
+  const double inv_length = 1.0 / model.characteristicLength();
+  const double sa0 = std::sin(e_near[0]), ca0 = std::cos(e_near[0]), sb0 = std::sin(e_near[1]),
+               cb0 = std::cos(e_near[1]);
+  ExechonBranch branch = branchOf(model.tripod);
+  detail::ExechonTrig best{};
+  double best_distance = INFINITY;
+  for (int d1 : {1, -1}) {
+    for (int d2 : {1, -1}) {
+      detail::ExechonTrig t{};
+      const ExechonIkStatus status = solveTrig(model.tripod, zoppi_p_S, d1, d2, &t);
+      if (status != ExechonIkStatus::kOk) return status;  // the four share r and t6² + Sy²
+      // Squared chord distances of the angles (monotone in |Δangle|) plus the squared relative Δh.
+      const double dh = (t.h - e_near[2]) * inv_length;
+      const double distance =
+          2.0 * (2.0 - t.ca * ca0 - t.sa * sa0 - t.cb * cb0 - t.sb * sb0) + dh * dh;
+      if (distance < best_distance) {
+        best_distance = distance;
+        best = t;
+        branch.delta1B = d1;
+        branch.delta2B = d2;
+      }
+    }
+  }
+  fillTripod(model, data, best, anglesOf(best), branch.deltaA, branch.deltaC);
+  data.branch = branch;
+  data.zoppi_p_S = zoppi_p_S;
+  data.world_p_S = model.world_T_zoppi * zoppi_p_S;
+  return ExechonIkStatus::kOk;
+}
+
+const Eigen::Matrix3d& computeTripodJacobian(const ExechonModel& model, ExechonData& data) {
+  const ExechonTripodGeometry& g = model.tripod;
+  const detail::ExechonTrig t = detail::trigOf(data.e);
+  detail::legLengths(g, t, data.branch.deltaA, data.branch.deltaC, &data.J_q_e);
+  // S = hx·kA2 + (h + hz)·eh − m·kB5 with m = dB·cα·sβ; ∂β kB5 = eh, ∂β eh = −kB5.
+  const Eigen::Vector3d kB5(-t.sb * t.ca, t.cb, t.sb * t.sa), eh(-t.cb * t.ca, -t.sb, t.cb * t.sa);
+  const double m = g.dB * t.ca * t.sb;
+  const Eigen::Vector3d dkA2(t.ca, 0.0, -t.sa), dkB5(t.sb * t.sa, 0.0, t.sb * t.ca),
+      deh(t.cb * t.sa, 0.0, t.cb * t.ca);
+  const double hh = t.h + g.hz;
+  data.J_S_e.col(0) = g.hx * dkA2 + hh * deh - (-g.dB * t.sa * t.sb) * kB5 - m * dkB5;
+  data.J_S_e.col(1) = -hh * kB5 - (g.dB * t.ca * t.cb) * kB5 - m * eh;
+  data.J_S_e.col(2) = eh;
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(data.J_S_e,
+                                              Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Vector3d& s = svd.singularValues();
+  if (!(s[2] > kDegenerate * s[0])) {
+    data.J_q_S.setZero();
+  } else {
+    data.J_q_S =
+        data.J_q_e * svd.matrixV() * s.cwiseInverse().asDiagonal() * svd.matrixU().transpose();
+  }
+  return data.J_q_S;
+}
+
+double tripodConditionNumber(const ExechonData& data) {
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(data.J_q_S);
+  const Eigen::Vector3d& s = svd.singularValues();
+  if (!s.allFinite() || !(s[2] > 0.0)) return INFINITY;
+  return s[0] / s[2];
+}
+
+}  // namespace pkm::kinematics

@@ -1,0 +1,68 @@
+// Internal: the leg-length formulas of Zoppi et al. (DETC2010-28668, sec. 4.1) and their
+// derivatives with respect to e = (alpha, beta, h). Shared by the Exechon IK, Jacobian and FK.
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+
+#include "pkm/kinematics/exechon_model.hpp"
+
+namespace pkm::kinematics::detail {
+
+/// sin/cos of alpha and beta, and h.
+struct ExechonTrig {
+  double sa, ca, sb, cb, h;
+};
+
+inline ExechonTrig trigOf(const Eigen::Vector3d& e) {
+  return {std::sin(e[0]), std::cos(e[0]), std::sin(e[1]), std::cos(e[1]), e[2]};
+}
+
+/// Zoppi's t1, t2, t3 and the in-plane components (u, v) of legs A and C, for drawing and
+/// derivatives.
+struct ExechonLegTerms {
+  double t1, t2, t3;
+  double uA, vA, uC, vC;  ///< qL = |(uL + δL·l12L, vL)| with uL = t3 − pL·sβ − hL·cβ, vL = t2·sβ −
+                          ///< pL·cβ + hL·sβ + dL
+};
+
+inline ExechonLegTerms legTerms(const ExechonTripodGeometry& g, const ExechonTrig& t) {
+  ExechonLegTerms k{};
+  k.t1 = g.dB * t.sa - g.pB;
+  k.t2 = g.dB * t.ca * t.cb + t.h;
+  k.t3 = g.dB * t.ca - k.t2 * t.cb;
+  k.uA = k.t3 - g.pA * t.sb - g.hA * t.cb;
+  k.vA = k.t2 * t.sb - g.pA * t.cb + g.hA * t.sb + g.dA;
+  k.uC = k.t3 - g.pC * t.sb - g.hC * t.cb;
+  k.vC = k.t2 * t.sb - g.pC * t.cb + g.hC * t.sb + g.dC;
+  return k;
+}
+
+/// Geometric leg lengths (qA, qB, qC) and, if J is not null, d(q)/d(alpha, beta, h).
+inline Eigen::Vector3d legLengths(const ExechonTripodGeometry& g,
+                                  const ExechonTrig& t,
+                                  int deltaA,
+                                  int deltaC,
+                                  Eigen::Matrix3d* J) {
+  const ExechonLegTerms k = legTerms(g, t);
+  const double uA = k.uA + deltaA * g.l12A, uC = k.uC + deltaC * g.l12C;
+  const Eigen::Vector3d q(std::sqrt(uA * uA + k.vA * k.vA),
+                          std::sqrt(k.t1 * k.t1 + k.t2 * k.t2),
+                          std::sqrt(uC * uC + k.vC * k.vC));
+  if (J == nullptr) return q;
+  // d(t1, t2, t3) / d(alpha, beta, h).
+  const double dt1[3] = {g.dB * t.ca, 0.0, 0.0};
+  const double dt2[3] = {-g.dB * t.sa * t.cb, -g.dB * t.ca * t.sb, 1.0};
+  const double dt3[3] = {-g.dB * t.sa - dt2[0] * t.cb, -dt2[1] * t.cb + k.t2 * t.sb, -t.cb};
+  const auto leg = [&](double u, double v, double pL, double hL, double qL, int row) {
+    const double du[3] = {dt3[0], dt3[1] - pL * t.cb + hL * t.sb, dt3[2]};
+    const double dv[3] = {dt2[0] * t.sb, dt2[1] * t.sb + k.t2 * t.cb + pL * t.sb + hL * t.cb, t.sb};
+    for (int j = 0; j < 3; ++j) (*J)(row, j) = (u * du[j] + v * dv[j]) / qL;
+  };
+  leg(uA, k.vA, g.pA, g.hA, q[0], 0);
+  for (int j = 0; j < 3; ++j) (*J)(1, j) = (k.t1 * dt1[j] + k.t2 * dt2[j]) / q[1];
+  leg(uC, k.vC, g.pC, g.hC, q[2], 2);
+  return q;
+}
+
+}  // namespace pkm::kinematics::detail
