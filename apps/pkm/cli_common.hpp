@@ -59,6 +59,8 @@ void addVolumetricCommand(CLI::App& app);
 }  // namespace pkm::cli
 
 namespace pkm::cli {
+/// The Exechon part of `pkm demo` on the built-in hybrid machine; true when its round trip passes.
+bool runExechonDemo(int points);
 /// Appends a human-readable description of `machine` (geometry table and home-pose checks).
 void describeMachine(const io::HexapodMachine& machine, std::string& out);
 }  // namespace pkm::cli

@@ -10,7 +10,6 @@
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/csv.hpp"
-#include "pkm/io/geometric_errors.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/kinematics/hybrid_chain.hpp"
@@ -88,7 +87,7 @@ void runVolumetric(const VolumetricState& st, bool has_grid) {
   if (!machine.hybrid)
     throw IoError(fmt::format("{}: the machine has no \"hybrid\" section (X2/Y2 axes)", machine.source));
   const kin::HybridMachineModel& model = *machine.hybrid;
-  const kin::GeometricErrors errors = io::readGeometricErrorsJson(st.errors);
+  const kin::GeometricErrors errors = io::loadGeometricErrors(st.errors);
   Output out;
   out.text() += "x,y,z,x2,y2,xp,yp,zp,dx,dy,dz,dp,dx_lin,dy_lin,dz_lin,status\n";
   if (has_grid) {
@@ -124,7 +123,7 @@ void addVolumetricCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "volumetric", "volumetric error dp of a hybrid machine (X2/Y2 + PKM) from its geometric errors");
   cmd->add_option("--machine,-m", st->machine, "machine with a \"hybrid\" section (default: mxt700s-like)");
-  cmd->add_option("--errors,-e", st->errors, "geometric errors JSON (docs/formats.md)")->required();
+  cmd->add_option("--errors,-e", st->errors, "geometric errors: a JSON file (docs/formats.md) or a built-in name (mxt700s-seed000)")->required();
   auto* grid = cmd->add_option("--grid", st->grid,
                                "X0:X1:NX,Y0:Y1:NY,Z0:Z1:NZ: tool positions in the work frame (machine unit)");
   auto* commands = cmd->add_option("--commands", st->commands, "CSV with header x2,y2,xp,yp,zp (axis commands)");

@@ -15,6 +15,7 @@ namespace pkm::io {
 
 namespace detail {
 const std::vector<std::pair<std::string_view, std::string_view>>& embeddedMachines();
+const std::vector<std::pair<std::string_view, std::string_view>>& embeddedErrors();
 }  // namespace detail
 
 namespace {
@@ -72,6 +73,20 @@ ExechonMachine loadExechonMachine(const std::string& spec) {
   const std::string wanted = spec == "default" ? kDefaultExechonMachine : spec;
   if (const auto text = builtinText(wanted, "exechon")) return parseExechonJson(*text, "builtin:" + wanted);
   noSuchMachine(spec, "exechon");
+}
+
+std::vector<std::string> builtinErrorNames() {
+  std::vector<std::string> names;
+  for (const auto& [name, text] : detail::embeddedErrors()) names.emplace_back(name);
+  return names;
+}
+
+kinematics::GeometricErrors loadGeometricErrors(const std::string& spec) {
+  if (isFile(spec)) return readGeometricErrorsJson(spec);
+  for (const auto& [stem, text] : detail::embeddedErrors())
+    if (stem == spec) return parseGeometricErrorsJson(std::string(text), "builtin:" + spec);
+  throw IoError(fmt::format("{}: no such file, and not a built-in error set (built-in: {})", spec,
+                            fmt::join(builtinErrorNames(), ", ")));
 }
 
 }  // namespace pkm::io

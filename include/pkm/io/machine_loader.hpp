@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "pkm/io/exechon_machine.hpp"
+#include "pkm/io/geometric_errors.hpp"
 #include "pkm/io/hexapod_machine.hpp"
 #include "pkm/io/linuxcnc_hal.hpp"
 
@@ -35,5 +36,12 @@ inline constexpr const char* kDefaultExechonMachine = "mxt700s-like";
 /// An existing file: readExechonJson; otherwise a built-in Exechon name ("default" means
 /// kDefaultExechonMachine). Throws pkm::IoError naming the file and line on bad input.
 [[nodiscard]] ExechonMachine loadExechonMachine(const std::string& spec);
+
+/// Names of the geometric-error files embedded at build time (file stems of data/errors/*.json).
+[[nodiscard]] std::vector<std::string> builtinErrorNames();
+
+/// An existing file: readGeometricErrorsJson; otherwise a built-in error set by name. Throws
+/// pkm::IoError naming the file and line on bad input.
+[[nodiscard]] kinematics::GeometricErrors loadGeometricErrors(const std::string& spec);
 
 }  // namespace pkm::io
