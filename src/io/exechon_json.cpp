@@ -61,13 +61,22 @@ void readWrist(const JsonDoc& doc, const json& w, kin::ExechonWrist& wrist) {
   wrist.tool_length = doc.number(w, ptr, "tool_length", 0.0);
 }
 
+/// [x, y, z] of a working-volume bound; null means unbounded on that axis (`unbounded` = ±infinity).
+Eigen::Vector3d boundVec(const JsonDoc& doc, const json& v, const std::string& ptr, double unbounded) {
+  if (!v.is_array() || v.size() != 3) doc.fail(ptr, "expected an array of 3 numbers (null = unbounded)");
+  Eigen::Vector3d out;
+  for (std::size_t i = 0; i < 3; ++i)
+    out[static_cast<Eigen::Index>(i)] = v[i].is_null() ? unbounded : doc.number(v[i], fmt::format("{}/{}", ptr, i));
+  return out;
+}
+
 void readHybrid(const JsonDoc& doc, const json& h, kin::HybridMachineModel& m) {
   const std::string ptr = "/hybrid";
   doc.onlyKeys(h, ptr, {"x2_stroke", "y2_stroke", "pkm_min", "pkm_max", "X2_p_P", "P_p_tcp0", "Y2_p_work"});
   if (h.contains("x2_stroke")) std::tie(m.x2_stroke.min, m.x2_stroke.max) = doc.range(h["x2_stroke"], ptr + "/x2_stroke");
   if (h.contains("y2_stroke")) std::tie(m.y2_stroke.min, m.y2_stroke.max) = doc.range(h["y2_stroke"], ptr + "/y2_stroke");
-  if (h.contains("pkm_min")) m.pkm_min = doc.vec3(h["pkm_min"], ptr + "/pkm_min");
-  if (h.contains("pkm_max")) m.pkm_max = doc.vec3(h["pkm_max"], ptr + "/pkm_max");
+  if (h.contains("pkm_min")) m.pkm_min = boundVec(doc, h["pkm_min"], ptr + "/pkm_min", -INFINITY);
+  if (h.contains("pkm_max")) m.pkm_max = boundVec(doc, h["pkm_max"], ptr + "/pkm_max", INFINITY);
   if (h.contains("X2_p_P")) m.X2_p_P = doc.vec3(h["X2_p_P"], ptr + "/X2_p_P");
   if (h.contains("P_p_tcp0")) m.P_p_tcp0 = doc.vec3(h["P_p_tcp0"], ptr + "/P_p_tcp0");
   if (h.contains("Y2_p_work")) m.Y2_p_work = doc.vec3(h["Y2_p_work"], ptr + "/Y2_p_work");
@@ -82,6 +91,12 @@ std::string rangeText(double lo, double hi, double scale) {
 
 std::string vecText(const Eigen::Vector3d& v) {
   return fmt::format("[{}, {}, {}]", formatNumber(v.x()), formatNumber(v.y()), formatNumber(v.z()));
+}
+
+/// As vecText with null for an infinite (unbounded) element.
+std::string boundText(const Eigen::Vector3d& v) {
+  const auto bound = [](double x) { return std::isfinite(x) ? formatNumber(x) : std::string("null"); };
+  return fmt::format("[{}, {}, {}]", bound(v.x()), bound(v.y()), bound(v.z()));
 }
 
 }  // namespace
@@ -144,17 +159,7 @@ ExechonMachine parseExechonJson(const std::string& text, const std::string& sour
   model.home.c = degToRad(doc.number(home, "/home", "c_deg", 0.0));
   model.home.a = degToRad(doc.number(home, "/home", "a_deg", 0.0));
   model.max_condition = doc.number(root, "", "max_condition", model.max_condition);
-  if (root.contains("forward_kinematics")) {
-    const json& f = root["forward_kinematics"];
-    doc.onlyKeys(f, "/forward_kinematics", {"tolerance", "max_iterations"});
-    m.fk.tolerance = doc.number(f, "/forward_kinematics", "tolerance", m.fk.tolerance);
-    const double it = doc.number(f, "/forward_kinematics", "max_iterations", m.fk.max_iterations);
-    if (it != std::floor(it) || it < 1 || it > 1e6)
-      doc.fail("/forward_kinematics/max_iterations", "must be an integer in [1, 1e6]");
-    m.fk.max_iterations = static_cast<int>(it);
-    std::string why;
-    if (!m.fk.isValid(&why)) doc.fail("/forward_kinematics", why);
-  }
+  if (root.contains("forward_kinematics")) detail::readFkOptions(doc, root["forward_kinematics"], m.fk);
   if (root.contains("hybrid")) {
     m.hybrid.emplace();
     m.hybrid->name = model.name;
@@ -221,7 +226,7 @@ std::string writeExechonJson(const ExechonMachine& machine) {
         ",\n  \"hybrid\": {{\"x2_stroke\": {}, \"y2_stroke\": {},\n             \"pkm_min\": {}, \"pkm_max\": {},\n"
         "             \"X2_p_P\": {}, \"P_p_tcp0\": {}, \"Y2_p_work\": {}}}",
         rangeText(h.x2_stroke.min, h.x2_stroke.max, 1.0), rangeText(h.y2_stroke.min, h.y2_stroke.max, 1.0),
-        vecText(h.pkm_min), vecText(h.pkm_max), vecText(h.X2_p_P), vecText(h.P_p_tcp0), vecText(h.Y2_p_work));
+        boundText(h.pkm_min), boundText(h.pkm_max), vecText(h.X2_p_P), vecText(h.P_p_tcp0), vecText(h.Y2_p_work));
   }
   out += "\n}\n";
   return out;

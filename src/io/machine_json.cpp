@@ -111,17 +111,7 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
   if (model.strut_diameter < 0.0) doc.fail("/strut_diameter", "must be >= 0");
   model.max_condition = doc.number(root, "", "max_condition", model.max_condition);
   if (!(model.max_condition > 1.0)) doc.fail("/max_condition", "must be > 1");
-  if (root.contains("forward_kinematics")) {
-    const json& f = root["forward_kinematics"];
-    doc.onlyKeys(f, "/forward_kinematics", {"tolerance", "max_iterations"});
-    m.fk.tolerance = doc.number(f, "/forward_kinematics", "tolerance", m.fk.tolerance);
-    const double it = doc.number(f, "/forward_kinematics", "max_iterations", m.fk.max_iterations);
-    if (it != std::floor(it) || it < 1 || it > 1e6)
-      doc.fail("/forward_kinematics/max_iterations", "must be an integer in [1, 1e6]");
-    m.fk.max_iterations = static_cast<int>(it);
-    std::string why;
-    if (!m.fk.isValid(&why)) doc.fail("/forward_kinematics", why);
-  }
+  if (root.contains("forward_kinematics")) detail::readFkOptions(doc, root["forward_kinematics"], m.fk);
 
   if (!root.contains("struts")) doc.fail("", "missing key 'struts'");
   const json& struts = root["struts"];

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "kinematics/detail/newton.hpp"
 #include "kinematics/exechon_tripod_math.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/kinematics/exechon_ik.hpp"
@@ -11,22 +12,6 @@
 namespace pkm::kinematics {
 
 namespace {
-
-/// Below this fraction of the tolerance no polishing step is taken after convergence.
-constexpr double kPolishFraction = 1e-3;
-
-/// Residual r = lengths(e) − target; optionally the Jacobian. Returns |r|² (infinite if NaN).
-double residual(const ExechonModel& model,
-                const Eigen::Vector3d& e,
-                const Eigen::Vector3d& target,
-                Eigen::Vector3d& r,
-                Eigen::Matrix3d* J) {
-  r = detail::legLengths(
-          model.tripod, detail::trigOf(e), model.tripod.deltaA, model.tripod.deltaC, J) -
-      target;
-  const double n2 = r.squaredNorm();
-  return std::isfinite(n2) ? n2 : INFINITY;
-}
 
 /// Solves J·x = b by LU with partial pivoting; returns the smallest |pivot| / largest |pivot|.
 double solve3(const Eigen::Matrix3d& J, Eigen::Vector3d& b) {
@@ -57,63 +42,26 @@ FkSummary tripodForwardKinematics(const ExechonModel& model,
     target[i] = readings[i] + model.legs[static_cast<std::size_t>(i)].length_offset;
   const double length = model.characteristicLength();
 
-  Eigen::Vector3d e = seed_e, r, e_try, r_try;
-  Eigen::Matrix3d J, J_try;
-  double norm2 = residual(model, e, target, r, &J);
-  summary.status = FkStatus::kNoConvergence;
-  bool polishing = false;
-  for (int iter = 0;; ++iter) {
-    summary.max_residual = r.cwiseAbs().maxCoeff();
-    if (!std::isfinite(norm2)) {
-      summary.status = FkStatus::kNoConvergence;
-      break;
-    }
-    if (summary.max_residual <= options.tolerance) {
-      summary.status = FkStatus::kOk;
-      if (polishing || summary.max_residual <= kPolishFraction * options.tolerance ||
-          iter == options.max_iterations)
-        break;
-      polishing = true;
-    }
-    if (iter == options.max_iterations) break;
-
-    // Newton step with the angular columns in length units (× L) so that the pivot test is
-    // unit-free.
+  Eigen::Vector3d e = seed_e;
+  Eigen::Matrix3d J;  // dq/de at the last evaluated e
+  auto evaluate = [&](const Eigen::Vector3d& at, Eigen::Vector3d& r) {
+    r = detail::legLengths(model.tripod, detail::trigOf(at), model.tripod.deltaA, model.tripod.deltaC, &J) -
+        target;
+    const double n2 = r.squaredNorm();
+    return std::isfinite(n2) ? n2 : INFINITY;
+  };
+  auto solve = [&](Eigen::Vector3d& delta) {
+    // The angular columns × 1/L (lengths per unit length) make the pivot test unit-free.
     Eigen::Matrix3d Js = J;
     Js.leftCols<2>() *= 1.0 / length;
-    Eigen::Vector3d delta = r;
-    if (!(solve3(Js, delta) > options.singular_pivot_ratio) || !delta.allFinite()) {
-      summary.status = FkStatus::kSingular;
-      break;
-    }
+    const double ratio = solve3(Js, delta);
     delta.head<2>() *= 1.0 / length;
-
-    double step = 1.0;
-    bool accepted = false;
-    for (int k = 0; k <= options.max_backtracks; ++k) {
-      e_try = e - step * delta;
-      const double n2 = residual(model, e_try, target, r_try, &J_try);
-      if (n2 < norm2 || (!polishing && r_try.cwiseAbs().maxCoeff() <= options.tolerance)) {
-        accepted = true;
-        norm2 = n2;
-        break;
-      }
-      step *= 0.5;
-      ++summary.backtracks;
-    }
-    ++summary.iterations;
-    if (!accepted) {
-      if (!polishing) summary.status = FkStatus::kNoConvergence;
-      break;
-    }
-    e = e_try;
-    r = r_try;
-    J = J_try;
-    if (polishing) {
-      summary.max_residual = r.cwiseAbs().maxCoeff();
-      break;
-    }
-  }
+    return ratio;
+  };
+  auto retract = [](const Eigen::Vector3d& at, const Eigen::Vector3d& delta, double step) {
+    return Eigen::Vector3d(at - step * delta);
+  };
+  summary = detail::dampedNewton<kExechonLegs>(options, e, evaluate, solve, retract);
   e[0] = std::remainder(e[0], 2.0 * std::numbers::pi);
   e[1] = std::remainder(e[1], 2.0 * std::numbers::pi);
   evaluateTripod(model, data, e, model.tripod.deltaA, model.tripod.deltaC);

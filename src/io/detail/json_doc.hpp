@@ -14,6 +14,7 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/json_locator.hpp"
+#include "pkm/kinematics/hexapod_fk.hpp"
 
 namespace pkm::io::detail {
 
@@ -149,5 +150,17 @@ class JsonDoc {
   std::string source_;
   JsonLocator locator_;
 };
+
+/// Reads {"tolerance": .., "max_iterations": ..} at "/forward_kinematics" into `fk`.
+inline void readFkOptions(const JsonDoc& doc, const json& f, kinematics::FkOptions& fk) {
+  const std::string ptr = "/forward_kinematics";
+  doc.onlyKeys(f, ptr, {"tolerance", "max_iterations"});
+  fk.tolerance = doc.number(f, ptr, "tolerance", fk.tolerance);
+  const double it = doc.number(f, ptr, "max_iterations", fk.max_iterations);
+  if (it != std::floor(it) || it < 1 || it > 1e6) doc.fail(ptr + "/max_iterations", "must be an integer in [1, 1e6]");
+  fk.max_iterations = static_cast<int>(it);
+  std::string why;
+  if (!fk.isValid(&why)) doc.fail(ptr, why);
+}
 
 }  // namespace pkm::io::detail
