@@ -36,6 +36,7 @@ bench: setup
 	@cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DPKM_BUILD_BENCHMARKS=ON -DPKM_BUILD_TESTS=OFF >/dev/null
 	@cmake --build $(BENCH_BUILD) -j $(JOBS)
 	@$(BENCH_BUILD)/bin/bench_kinematics
+	@$(BENCH_BUILD)/bin/bench_exechon
 	@bash benchmarks/fk_whole_process.sh $(BENCH_BUILD)/bin/pkm
 
 format:

@@ -29,4 +29,15 @@ io::HexapodMachine MachineOption::load() const {
   return m;
 }
 
+void addMachinesCommand(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand("machines", "list the built-in machines and error sets");
+  cmd->callback([] {
+    Output out;
+    out.text() += "name,kind\n";
+    for (const char* type : {"hexapod", "exechon"})
+      for (const auto& n : io::builtinMachineNames(type)) out.text() += fmt::format("{},{}\n", n, type);
+    for (const auto& n : io::builtinErrorNames()) out.text() += fmt::format("{},geometric_errors\n", n);
+  });
+}
+
 }  // namespace pkm::cli

@@ -214,13 +214,18 @@ void runCheck(const ExechonState& st) {
   };
   while (rows.reader.next(values)) {
     kin::ExechonToolPose target{{row[0], row[1], row[2]}, {row[3], row[4], row[5]}};
-    if (machine.hybrid)
-      target.position = rows.has_x2y2 ? kin::hybridCommandForTool(*machine.hybrid, target.position, row[6], row[7]).pkm
-                                      : kin::hybridCommandCentred(*machine.hybrid, target.position).pkm;
+    kin::HybridCommand command;
+    if (machine.hybrid) {
+      command = rows.has_x2y2 ? kin::hybridCommandForTool(*machine.hybrid, target.position, row[6], row[7])
+                              : kin::hybridCommandCentred(*machine.hybrid, target.position);
+      target.position = command.pkm;
+    }
     const kin::ExechonCheckResult c = kin::checkToolPose(model, data, target, previous);
     if (c.solver_status == "ok") previous = kin::configurationOf(data);
+    std::string_view status = c.status();
+    if (status == "ok" && machine.hybrid && !kin::hybridWithinLimits(*machine.hybrid, command)) status = "axis_limit";
     std::string& o = out.text();
-    o += fmt::format("{},{},", index++, c.status());
+    o += fmt::format("{},{},", index++, status);
     if (c.solver_status != "ok") {
       o += ",,,,,,,,,\n";
       continue;
@@ -275,11 +280,16 @@ void runDrm(const ExechonState& st) {
   std::string& o = out.text();
   o += "theta_deg,phi_drm_deg,fit_deg,residual_deg\n";
   for (std::size_t i = 0; i < r.theta.size() && i < r.phi.size(); ++i) {
-    const double fit = kin::evaluateDrmPolynomial(r.coefficients, r.theta[i]);
     appendCsv(o, radToDeg(r.theta[i]));
-    appendCsv(o, radToDeg(r.phi[i]));
-    appendCsv(o, radToDeg(fit));
-    io::appendNumber(o, radToDeg(r.phi[i] - fit));
+    io::appendNumber(o, radToDeg(r.phi[i]));
+    if (r.ok()) {  // no fit for a circle that failed part-way
+      const double fit = kin::evaluateDrmPolynomial(r.coefficients, r.theta[i]);
+      o += ',';
+      appendCsv(o, radToDeg(fit));
+      io::appendNumber(o, radToDeg(r.phi[i] - fit));
+    } else {
+      o += ",,";
+    }
     o += '\n';
   }
   o += fmt::format("# status {}\n", kin::toString(r.status));

@@ -88,11 +88,21 @@ void runVolumetric(const VolumetricState& st, bool has_grid) {
     throw IoError(fmt::format("{}: the machine has no \"hybrid\" section (X2/Y2 axes)", machine.source));
   const kin::HybridMachineModel& model = *machine.hybrid;
   const kin::GeometricErrors errors = io::loadGeometricErrors(st.errors);
+  if (errors.unit != model.unit)
+    throw IoError(fmt::format("{}: the errors are in {} but the machine {} is in {}", st.errors, toString(errors.unit),
+                              machine.source, toString(model.unit)));
+  // Check the options and open the input before writing anything.
+  std::array<std::vector<double>, 3> axes;
+  std::optional<io::CsvReader> reader;
+  if (has_grid) {
+    if (st.x2.has_value() != st.y2.has_value()) throw IoError("give both --x2 and --y2, or neither");
+    axes = parseGrid(st.grid);
+  } else {
+    reader.emplace(st.commands, std::vector<std::string>{"x2", "y2", "xp", "yp", "zp"});
+  }
   Output out;
   out.text() += "x,y,z,x2,y2,xp,yp,zp,dx,dy,dz,dp,dx_lin,dy_lin,dz_lin,status\n";
   if (has_grid) {
-    if (st.x2.has_value() != st.y2.has_value()) throw IoError("give both --x2 and --y2, or neither");
-    const auto axes = parseGrid(st.grid);
     for (double z : axes[2])
       for (double y : axes[1])
         for (double x : axes[0]) {
@@ -104,9 +114,8 @@ void runVolumetric(const VolumetricState& st, bool has_grid) {
         }
     return;
   }
-  io::CsvReader reader(st.commands, {"x2", "y2", "xp", "yp", "zp"});
   std::array<double, 5> row{};
-  while (reader.next(row)) {
+  while (reader->next(row)) {
     kin::HybridCommand c;
     c.x2 = row[0];
     c.y2 = row[1];

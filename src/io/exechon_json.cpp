@@ -104,12 +104,13 @@ std::string boundText(const Eigen::Vector3d& v) {
 ExechonMachine parseExechonJson(const std::string& text, const std::string& source) {
   const json root = detail::parseJson(text, source);
   const JsonDoc doc(text, source);
+  if (!root.is_object()) doc.fail("", "expected an object");
+  if (doc.string(root, "", "type", "") != "exechon")
+    doc.fail("/type", "this reader handles \"type\": \"exechon\" machines");
   doc.onlyKeys(root, "", {"schema", "type", "name", "description", "units", "tripod", "legs", "limits", "wrist",
                           "world_T_zoppi", "home", "max_condition", "forward_kinematics", "hybrid"});
   if (const std::string schema = doc.string(root, "", "schema", "pkm.machine/1"); schema != "pkm.machine/1")
     doc.fail("/schema", fmt::format("unsupported schema \"{}\" (this version reads \"pkm.machine/1\")", schema));
-  if (doc.string(root, "", "type", "") != "exechon")
-    doc.fail("/type", "this reader handles \"type\": \"exechon\" machines");
   ExechonMachine m;
   m.source = source;
   kin::ExechonModel& model = m.model;

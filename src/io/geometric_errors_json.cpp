@@ -105,14 +105,17 @@ const char* policyName(geo::OutOfRange p) { return p == geo::OutOfRange::kClamp 
 kin::GeometricErrors parseGeometricErrorsJson(const std::string& text, const std::string& source) {
   const json root = detail::parseJson(text, source);
   const JsonDoc doc(text, source);
+  if (!root.is_object()) doc.fail("", "expected an object");
+  if (doc.string(root, "", "type", "") != "hybrid_geometric_errors")
+    doc.fail("/type", "expected \"type\": \"hybrid_geometric_errors\"");
   doc.onlyKeys(root, "", {"schema", "type", "description", "units", "squareness_urad", "x2", "y2", "pkm"});
   if (const std::string schema = doc.string(root, "", "schema", "pkm.errors/1"); schema != "pkm.errors/1")
     doc.fail("/schema", fmt::format("unsupported schema \"{}\" (this version reads \"pkm.errors/1\")", schema));
-  if (doc.string(root, "", "type", "") != "hybrid_geometric_errors")
-    doc.fail("/type", "expected \"type\": \"hybrid_geometric_errors\"");
   const std::string units = doc.string(root, "", "units", "mm");
-  if (!lengthUnitFromString(units)) doc.fail("/units", "units must be \"mm\" or \"inch\"");
+  const auto unit = lengthUnitFromString(units);
+  if (!unit) doc.fail("/units", "units must be \"mm\" or \"inch\"");
   kin::GeometricErrors e;
+  e.unit = *unit;
   if (root.contains("squareness_urad")) {
     const json& s = root["squareness_urad"];
     doc.onlyKeys(s, "/squareness_urad", {"szX2", "sxP", "syP", "szP"});
@@ -138,6 +141,7 @@ kin::GeometricErrors readGeometricErrorsJson(const std::string& path) {
 
 std::string writeGeometricErrorsJson(const kin::GeometricErrors& e) {
   std::string out = "{\n  \"schema\": \"pkm.errors/1\",\n  \"type\": \"hybrid_geometric_errors\",\n";
+  out += fmt::format("  \"units\": \"{}\",\n", toString(e.unit));
   out += fmt::format("  \"squareness_urad\": {{\"szX2\": {}, \"sxP\": {}, \"syP\": {}, \"szP\": {}}}",
                      formatNumber(e.squareness.sz_x2 / kUrad), formatNumber(e.squareness.sx_p / kUrad),
                      formatNumber(e.squareness.sy_p / kUrad), formatNumber(e.squareness.sz_p / kUrad));

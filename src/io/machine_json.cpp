@@ -60,6 +60,9 @@ std::string readTextFile(const std::string& path, std::size_t max_bytes) {
 HexapodMachine parseHexapodJson(const std::string& text, const std::string& source) {
   const json root = detail::parseJson(text, source);
   const detail::JsonDoc doc(text, source);
+  if (!root.is_object()) doc.fail("", "expected an object");
+  if (doc.string(root, "", "type", "hexapod") != "hexapod")
+    doc.fail("/type", "this reader handles \"type\": \"hexapod\" machines");
   doc.onlyKeys(root,
                "",
                {"schema",
@@ -80,8 +83,6 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
     doc.fail(
         "/schema",
         fmt::format("unsupported schema \"{}\" (this version reads \"pkm.machine/1\")", schema));
-  if (doc.string(root, "", "type", "hexapod") != "hexapod")
-    doc.fail("/type", "this reader handles \"type\": \"hexapod\" machines");
   HexapodMachine m;
   m.source = source;
   kin::HexapodModel& model = m.model;

@@ -7,14 +7,23 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/linuxcnc_hal.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "support/sample_models.hpp"
 #include "support/tolerances.hpp"
+
+namespace pkm::io::detail {
+// The embedded machine files (generated at build time by cmake/PkmEmbed.cmake).
+const std::vector<std::pair<std::string_view, std::string_view>>& embeddedMachines();
+}  // namespace pkm::io::detail
 
 namespace {
 
@@ -25,6 +34,8 @@ using pkm::io::HexapodMachine;
 using pkm::io::loadHexapodMachine;
 using ::testing::Contains;
 using ::testing::HasSubstr;
+using ::testing::Not;
+using ::testing::UnorderedElementsAre;
 
 std::string dataFile(const char* stem) {
   return std::string(PKM_SOURCE_DIR) + "/data/machines/" + stem + ".json";
@@ -115,6 +126,112 @@ TEST(MachineLoader, UnknownNameListsBuiltins) {
     EXPECT_THAT(e.what(), HasSubstr("hexapod-linuxcnc-sim"));
   }
   EXPECT_THROW((void)pkm::io::builtinMachine("hexapod"), IoError);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Machine types and Exechon machines
+
+/// The type of every shipped machine file.
+const std::map<std::string, std::string> kShippedTypes = {
+    {"hexapod-default", "hexapod"},
+    {"hexapod-linuxcnc-sim", "hexapod"},
+    {"exechon-zoppi2010", "exechon"},
+    {"mxt700s-like", "exechon"},
+};
+
+TEST(MachineLoader, BuiltinNamesByType) {
+  EXPECT_THAT(pkm::io::builtinMachineNames("exechon"),
+              UnorderedElementsAre("exechon-zoppi2010", "mxt700s-like"));
+  EXPECT_THAT(pkm::io::builtinMachineNames("hexapod"),
+              UnorderedElementsAre("hexapod-default", "hexapod-linuxcnc-sim"));
+  EXPECT_EQ(pkm::io::builtinMachineNames(), pkm::io::builtinMachineNames("hexapod"));
+  EXPECT_THAT(pkm::io::builtinMachineNames(""),
+              UnorderedElementsAre(
+                  "hexapod-default", "hexapod-linuxcnc-sim", "exechon-zoppi2010", "mxt700s-like"));
+  EXPECT_TRUE(pkm::io::builtinMachineNames("scara").empty());
+  EXPECT_THAT(pkm::io::builtinMachineNames("exechon"),
+              Contains(std::string(pkm::io::kDefaultExechonMachine)));
+}
+
+TEST(MachineLoader, MachineTypeOfEachEmbeddedFile) {
+  const auto& embedded = pkm::io::detail::embeddedMachines();
+  ASSERT_EQ(embedded.size(), kShippedTypes.size());
+  for (const auto& [stem, content] : embedded) {
+    SCOPED_TRACE(stem);
+    const std::string name(stem);
+    ASSERT_EQ(kShippedTypes.count(name), 1u);
+    EXPECT_EQ(pkm::io::machineType(std::string(content)), kShippedTypes.at(name));
+    // The embedded text is the file in data/machines.
+    std::ifstream in(dataFile(name.c_str()), std::ios::binary);
+    const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(file, content);
+  }
+}
+
+TEST(MachineLoader, MachineTypeOfOtherTexts) {
+  EXPECT_EQ(pkm::io::machineType("{\"type\": \"exechon\"}"), "exechon");
+  EXPECT_EQ(pkm::io::machineType("{\"type\": \"anything\", \"x\": 1}"), "anything");
+  // Absent, not a string, not an object, or not JSON at all: "hexapod" (the typed readers report).
+  EXPECT_EQ(pkm::io::machineType("{\"units\": \"mm\"}"), "hexapod");
+  EXPECT_EQ(pkm::io::machineType("{\"type\": 3}"), "hexapod");
+  EXPECT_EQ(pkm::io::machineType("[\"exechon\"]"), "hexapod");
+  EXPECT_EQ(pkm::io::machineType("{\"type\": \"exechon\""), "hexapod");
+  EXPECT_EQ(pkm::io::machineType(""), "hexapod");
+}
+
+TEST(MachineLoader, ExechonDefaultIsMxt700sLike) {
+  const pkm::io::ExechonMachine m = pkm::io::loadExechonMachine("default");
+  EXPECT_EQ(m.source, "builtin:mxt700s-like");
+  EXPECT_EQ(m.model.name, "mxt700s-like");
+  EXPECT_TRUE(m.hybrid.has_value());
+  const pkm::io::ExechonMachine z = pkm::io::loadExechonMachine("exechon-zoppi2010");
+  EXPECT_EQ(z.source, "builtin:exechon-zoppi2010");
+  EXPECT_FALSE(z.hybrid.has_value());
+  // The built-ins equal the shipped files.
+  for (const char* stem : {"exechon-zoppi2010", "mxt700s-like"}) {
+    SCOPED_TRACE(stem);
+    const pkm::io::ExechonMachine b = pkm::io::loadExechonMachine(stem);
+    const pkm::io::ExechonMachine f = pkm::io::readExechonJson(dataFile(stem));
+    EXPECT_EQ(pkm::io::writeExechonJson(b), pkm::io::writeExechonJson(f));
+  }
+}
+
+TEST(MachineLoader, HexapodNameIsNotAnExechonMachine) {
+  try {
+    (void)pkm::io::loadExechonMachine("hexapod-default");
+    FAIL() << "no error";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("hexapod-default"));
+    EXPECT_THAT(e.what(), HasSubstr("not a built-in exechon machine"));
+    EXPECT_THAT(e.what(), HasSubstr("exechon-zoppi2010"));
+    EXPECT_THAT(e.what(), HasSubstr("mxt700s-like"));
+    EXPECT_THAT(e.what(), Not(HasSubstr("hexapod-linuxcnc-sim")));  // only Exechons are offered
+  }
+  // And the other way round.
+  try {
+    (void)loadHexapodMachine("mxt700s-like");
+    FAIL() << "no error";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("not a built-in hexapod machine"));
+    EXPECT_THAT(e.what(), Not(HasSubstr("exechon-zoppi2010")));
+  }
+}
+
+TEST_F(MachineLoaderTest, ExechonFileByPath) {
+  std::ifstream in(dataFile("exechon-zoppi2010"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string path = write("zoppi", text);
+  const pkm::io::ExechonMachine m = pkm::io::loadExechonMachine(path);
+  EXPECT_EQ(m.source, path);
+  EXPECT_EQ(m.model.name, "exechon-zoppi2010");
+  // A hexapod file given to the Exechon loader: the reader names the file and the type line.
+  const std::string hex = write("hex.json", "{\n  \"type\": \"hexapod\"\n}\n");
+  try {
+    (void)pkm::io::loadExechonMachine(hex);
+    FAIL() << "no error";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), ::testing::StartsWith(hex + ":2: /type: "));
+  }
 }
 
 TEST_F(MachineLoaderTest, DirectoryIsAnError) {

@@ -1,7 +1,7 @@
 /// @file
 /// @brief Exechon tool kinematics: the spherical C/A wrist at the wrist point S (ExechonWrist) on
 /// the tripod. Tool IK: tool point and direction -> S -> tripod IK -> platform rotation -> C, A
-/// (docs/reference kinematics.md sec. 2.4); tool FK: leg readings, C, A -> tool point and
+/// (Zoppi et al. 2010 for the tripod; a serial C/A head on the platform); tool FK: leg readings, C, A -> tool point and
 /// direction.
 #pragma once
 

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <optional>
 
+#include "pkm/core/units.hpp"
 #include "pkm/geometry/error_grid.hpp"
 #include "pkm/geometry/error_motion.hpp"
 #include "pkm/geometry/error_table.hpp"
@@ -49,6 +50,8 @@ struct HybridSquareness {
 /// error motion E of the moving frame (actual = nominal · E, pkm/geometry/error_motion.hpp),
 /// translations in the model length unit at the frame origin, rotations in radians.
 struct GeometricErrors {
+  /// Length unit of the translations and table positions; must match the machine's unit.
+  LengthUnit unit = LengthUnit::kMillimetre;
   /// PDGE of X2 as functions of x2 (ISO EXX2, EYX2, EZX2, EAX2, EBX2, ECX2): error motion of the X2
   /// carriage frame, in its own axes; the translations are those of the carriage frame origin.
   std::optional<geometry::ErrorTable1d> x2;
