@@ -8,18 +8,6 @@
 
 namespace pkm::kinematics {
 
-Eigen::Vector3d HexapodModel::effectiveBase(int i) const {
-  Eigen::Vector3d b = struts[static_cast<std::size_t>(i)].world_p_base;
-  b.z() += spindle_offset;
-  return b;
-}
-
-Eigen::Vector3d HexapodModel::effectivePlatform(int i) const {
-  Eigen::Vector3d a = struts[static_cast<std::size_t>(i)].platform_p_joint - tool_offset;
-  a.z() += spindle_offset;
-  return a;
-}
-
 double HexapodModel::characteristicLength() const {
   double sum = 0.0;
   for (const Strut& s : struts) sum += s.platform_p_joint.norm();

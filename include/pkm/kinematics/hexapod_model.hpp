@@ -66,10 +66,18 @@ struct HexapodModel {
   PoseRpy home;  ///< home pose (FK seed; LinuxCNC [TRAJ] HOME)
 
   /// Base joint centre i as used by the kinematics (includes spindle_offset), world frame.
-  [[nodiscard]] Eigen::Vector3d effectiveBase(int i) const;
+  [[nodiscard]] Eigen::Vector3d effectiveBase(int i) const {
+    Eigen::Vector3d b = struts[static_cast<std::size_t>(i)].world_p_base;
+    b.z() += spindle_offset;
+    return b;
+  }
   /// Platform joint centre i relative to the TCP, in the platform frame (includes spindle_offset
   /// and tool_offset).
-  [[nodiscard]] Eigen::Vector3d effectivePlatform(int i) const;
+  [[nodiscard]] Eigen::Vector3d effectivePlatform(int i) const {
+    Eigen::Vector3d a = struts[static_cast<std::size_t>(i)].platform_p_joint - tool_offset;
+    a.z() += spindle_offset;
+    return a;
+  }
   /// Characteristic length used to make the Jacobian's angular columns commensurate with its
   /// linear ones: the mean distance of the platform joints from the platform origin.
   [[nodiscard]] double characteristicLength() const;
