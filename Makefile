@@ -38,6 +38,7 @@ bench: setup
 	@$(BENCH_BUILD)/bin/bench_kinematics
 	@$(BENCH_BUILD)/bin/bench_exechon
 	@bash benchmarks/fk_whole_process.sh $(BENCH_BUILD)/bin/pkm
+	@bash benchmarks/simulate_whole_process.sh $(BENCH_BUILD)/bin/pkm
 
 format:
 	@bash scripts/format.sh

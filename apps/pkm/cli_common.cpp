@@ -35,8 +35,10 @@ void addMachinesCommand(CLI::App& app) {
     Output out;
     out.text() += "name,kind\n";
     for (const char* type : {"hexapod", "exechon"})
-      for (const auto& n : io::builtinMachineNames(type)) out.text() += fmt::format("{},{}\n", n, type);
-    for (const auto& n : io::builtinErrorNames()) out.text() += fmt::format("{},geometric_errors\n", n);
+      for (const auto& n : io::builtinMachineNames(type))
+        out.text() += fmt::format("{},{}\n", n, type);
+    for (const auto& n : io::builtinErrorNames())
+      out.text() += fmt::format("{},geometric_errors\n", n);
   });
 }
 

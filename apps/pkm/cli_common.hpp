@@ -55,6 +55,7 @@ void addHexapodCommands(CLI::App& app);
 void addDemoCommand(CLI::App& app);
 void addExechonCommands(CLI::App& app);
 void addVolumetricCommand(CLI::App& app);
+void addSimulateCommand(CLI::App& app);
 void addMachinesCommand(CLI::App& app);
 
 }  // namespace pkm::cli

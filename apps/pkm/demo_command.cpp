@@ -1,5 +1,5 @@
-// `pkm demo`: the main job on the embedded default machines. For now: describe the hexapod, follow a
-// 5-axis path through IK, check every pose, solve FK back along it as a servo loop would, and
+// `pkm demo`: the main job on the embedded default machines. For now: describe the hexapod, follow
+// a 5-axis path through IK, check every pose, solve FK back along it as a servo loop would, and
 // summarise accuracy, iterations, limits and speed; then the Exechon part (demo_exechon.cpp).
 #include <fmt/format.h>
 
@@ -115,7 +115,8 @@ void runDemo(const MachineOption& machine_opt, int points) {
              seconds);
   const bool pass = failures == 0 && max_resid <= machine.fk.tolerance;
   fmt::print("  result       {}\n", pass ? "PASS: FK(IK(pose)) returns every pose" : "FAIL");
-  const bool exechon_pass = machine_opt.spec == "default" ? runExechonDemo(std::min(points, 5000)) : true;
+  const bool exechon_pass =
+      machine_opt.spec == "default" ? runExechonDemo(std::min(points, 5000)) : true;
   if (!pass || !exechon_pass) throw std::runtime_error("demo round trip failed");
 }
 

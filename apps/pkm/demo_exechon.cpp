@@ -27,7 +27,8 @@ kin::ExechonToolPose toolPathPose(int n, int k) {
   const double lean = degToRad(15.0) * std::sin(t), swing = 2.0 * t;
   kin::ExechonToolPose p;
   p.position = {150.0 * std::cos(t), 150.0 * std::sin(t), 60.0 * std::sin(3.0 * t)};
-  p.direction = {std::sin(lean) * std::cos(swing), std::sin(lean) * std::sin(swing), -std::cos(lean)};
+  p.direction = {
+      std::sin(lean) * std::cos(swing), std::sin(lean) * std::sin(swing), -std::cos(lean)};
   return p;
 }
 
@@ -38,7 +39,8 @@ bool runPath(const io::ExechonMachine& machine, int points) {
   std::vector<kin::ExechonJoints> joints;
   int violations = 0;
   for (int k = 0; k < points; ++k) {
-    const kin::ExechonCheckResult c = kin::checkToolPose(model, data, toolPathPose(points, k), previous);
+    const kin::ExechonCheckResult c =
+        kin::checkToolPose(model, data, toolPathPose(points, k), previous);
     if (c.solver_status != "ok") return false;
     if (!c.ok()) ++violations;
     previous = kin::configurationOf(data);
@@ -49,7 +51,8 @@ bool runPath(const io::ExechonMachine& machine, int points) {
   int failures = 0, max_iter = 0;
   const auto t0 = std::chrono::steady_clock::now();
   for (int k = 0; k < points; ++k) {
-    const kin::FkSummary s = kin::toolForwardKinematics(model, data, joints[static_cast<std::size_t>(k)], seed, machine.fk);
+    const kin::FkSummary s = kin::toolForwardKinematics(
+        model, data, joints[static_cast<std::size_t>(k)], seed, machine.fk);
     if (!s.ok()) {
       ++failures;
       seed = model.home;
@@ -61,11 +64,18 @@ bool runPath(const io::ExechonMachine& machine, int points) {
     max_p = std::max(max_p, (data.world_p_tool - truth.position).norm());
     max_u = std::max(max_u, (data.world_u_tool - truth.direction.normalized()).norm());
   }
-  const double us = 1e6 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / points;
-  fmt::print("  tool path    {} poses (150 mm circle, z wave, tool leaning up to 15 deg): {} outside a limit\n",
-             points, violations);
-  fmt::print("  FK (servo)   {} of {} converged, at most {} Newton steps, {:.2f} us per solve\n", points - failures,
-             points, max_iter, us);
+  const double us =
+      1e6 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / points;
+  fmt::print(
+      "  tool path    {} poses (150 mm circle, z wave, tool leaning up to 15 deg): {} outside a "
+      "limit\n",
+      points,
+      violations);
+  fmt::print("  FK (servo)   {} of {} converged, at most {} Newton steps, {:.2f} us per solve\n",
+             points - failures,
+             points,
+             max_iter,
+             us);
   fmt::print("  round trip   max |p_FK - p| = {:.3g} mm, max |u_FK - u| = {:.3g}\n", max_p, max_u);
   return failures == 0 && max_p < 1e-9 && max_u < 1e-9;
 }
@@ -81,9 +91,12 @@ void runDrmCircle(const kin::ExechonModel& model) {
     fmt::print("  DRM          circle failed: {}\n", kin::toString(r.status));
     return;
   }
-  fmt::print("  DRM          40 mm ring, vertical tool: max |phi_DRM| {:.3f} deg; 5th-order fit (seed 003 eq. 10) "
-             "max deviation {:.4f} deg (paper: < 0.1 deg on its machine)\n",
-             radToDeg(r.max_abs_phi), radToDeg(r.max_fit_deviation));
+  fmt::print(
+      "  DRM          40 mm ring, vertical tool: max |phi_DRM| {:.3f} deg; 5th-order fit (seed 003 "
+      "eq. 10) "
+      "max deviation {:.4f} deg (paper: < 0.1 deg on its machine)\n",
+      radToDeg(r.max_abs_phi),
+      radToDeg(r.max_fit_deviation));
 }
 
 void runVolumetric(const kin::HybridMachineModel& model, const kin::GeometricErrors& errors) {
@@ -103,11 +116,17 @@ void runVolumetric(const kin::HybridMachineModel& model, const kin::GeometricErr
   kin::HybridCommand a, b;
   a.pkm = {0.0, -300.0, 0.0};
   b.pkm = {0.0, 300.0, 0.0};
-  max_y_slope_dz = kin::hybridVolumetricError(model, errors, b).z() - kin::hybridVolumetricError(model, errors, a).z();
-  fmt::print("  volumetric   seed 000 errors over {} points of X2 0..4000 x Y 600 x Z 400 mm: max |dp| {:.3f} mm; "
-             "exact vs first-order model differ by at most {:.2g} mm\n",
-             n, max_dp, max_lin);
-  fmt::print("  parallelism  PKM Y over 600 mm vs Y2: dz {:.3f} mm (sxP = {:.2f} mrad)\n", max_y_slope_dz,
+  max_y_slope_dz = kin::hybridVolumetricError(model, errors, b).z() -
+                   kin::hybridVolumetricError(model, errors, a).z();
+  fmt::print(
+      "  volumetric   seed 000 errors over {} points of X2 0..4000 x Y 600 x Z 400 mm: max |dp| "
+      "{:.3f} mm; "
+      "exact vs first-order model differ by at most {:.2g} mm\n",
+      n,
+      max_dp,
+      max_lin);
+  fmt::print("  parallelism  PKM Y over 600 mm vs Y2: dz {:.3f} mm (sxP = {:.2f} mrad)\n",
+             max_y_slope_dz,
              1e3 * errors.squareness.sx_p);
 }
 
@@ -115,9 +134,14 @@ void runVolumetric(const kin::HybridMachineModel& model, const kin::GeometricErr
 
 bool runExechonDemo(int points) {
   const io::ExechonMachine machine = io::loadExechonMachine(io::kDefaultExechonMachine);
-  fmt::print("\nExechon       {} ({}): tripod with C/A wrist on X2 {:g}..{:g} mm and Y2 {:g}..{:g} mm\n",
-             machine.model.name, machine.source, machine.hybrid->x2_stroke.min, machine.hybrid->x2_stroke.max,
-             machine.hybrid->y2_stroke.min, machine.hybrid->y2_stroke.max);
+  fmt::print(
+      "\nExechon       {} ({}): tripod with C/A wrist on X2 {:g}..{:g} mm and Y2 {:g}..{:g} mm\n",
+      machine.model.name,
+      machine.source,
+      machine.hybrid->x2_stroke.min,
+      machine.hybrid->x2_stroke.max,
+      machine.hybrid->y2_stroke.min,
+      machine.hybrid->y2_stroke.max);
   const bool ok = runPath(machine, points);
   runDrmCircle(machine.model);
   runVolumetric(*machine.hybrid, io::loadGeometricErrors("mxt700s-seed000"));

@@ -37,7 +37,8 @@ struct ExechonState {
 };
 
 void addMachineOption(CLI::App& cmd, ExechonState& st) {
-  cmd.add_option("--machine,-m", st.machine,
+  cmd.add_option("--machine,-m",
+                 st.machine,
                  "Exechon machine: a JSON machine file or a built-in name (default: mxt700s-like)");
 }
 
@@ -52,10 +53,11 @@ Eigen::Vector3d parseTriple(const std::string& text, const char* option) {
   std::size_t pos = 0;
   for (int i = 0; i < 3; ++i) {
     const std::size_t comma = text.find(',', pos);
-    const std::string_view field =
-        std::string_view(text).substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    const std::string_view field = std::string_view(text).substr(
+        pos, comma == std::string::npos ? std::string::npos : comma - pos);
     if ((comma == std::string::npos) != (i == 2) || !io::parseFiniteDouble(field, v[i]))
-      throw IoError(fmt::format("{} '{}': expected three finite numbers separated by commas", option, text));
+      throw IoError(
+          fmt::format("{} '{}': expected three finite numbers separated by commas", option, text));
     pos = comma + 1;
   }
   return v;
@@ -113,7 +115,8 @@ void runIkPoses(const ExechonState& st) {
   const kin::ExechonModel& model = machine.model;
   kin::ExechonData data(model);
   PoseRows rows(st.poses);
-  if (rows.has_x2y2 && !machine.hybrid) rows.reader.fail("x2,y2 columns need a machine with a \"hybrid\" section");
+  if (rows.has_x2y2 && !machine.hybrid)
+    rows.reader.fail("x2,y2 columns need a machine with a \"hybrid\" section");
   const bool hybrid = machine.hybrid.has_value();
   Output out;
   out.text() += hybrid ? "q1,q2,q3,c,a,drm,status,x2,y2\n" : "q1,q2,q3,c,a,drm,status\n";
@@ -127,8 +130,9 @@ void runIkPoses(const ExechonState& st) {
     target.direction = {row[3], row[4], row[5]};
     kin::HybridCommand command;
     if (hybrid) {
-      command = rows.has_x2y2 ? kin::hybridCommandForTool(*machine.hybrid, target.position, row[6], row[7])
-                              : kin::hybridCommandCentred(*machine.hybrid, target.position);
+      command = rows.has_x2y2
+                    ? kin::hybridCommandForTool(*machine.hybrid, target.position, row[6], row[7])
+                    : kin::hybridCommandCentred(*machine.hybrid, target.position);
       target.position = command.pkm;
     }
     const kin::ExechonCheckResult c = kin::checkToolPose(model, data, target, previous);
@@ -143,10 +147,12 @@ void runIkPoses(const ExechonState& st) {
       appendCsv(o, radToDeg(data.a));
       appendCsv(o, radToDeg(kin::dependentRotation(data.world_R_tool, *reference)));
       std::string_view status = c.status();
-      if (status == "ok" && hybrid && !kin::hybridWithinLimits(*machine.hybrid, command)) status = "axis_limit";
+      if (status == "ok" && hybrid && !kin::hybridWithinLimits(*machine.hybrid, command))
+        status = "axis_limit";
       o += status;
     }
-    if (hybrid) o += fmt::format(",{},{}", io::formatNumber(command.x2), io::formatNumber(command.y2));
+    if (hybrid)
+      o += fmt::format(",{},{}", io::formatNumber(command.x2), io::formatNumber(command.y2));
     o += '\n';
     out.maybeFlush();
   }
@@ -199,10 +205,12 @@ void runCheck(const ExechonState& st) {
   const kin::ExechonModel& model = machine.model;
   kin::ExechonData data(model);
   PoseRows rows(st.poses);
-  if (rows.has_x2y2 && !machine.hybrid) rows.reader.fail("x2,y2 columns need a machine with a \"hybrid\" section");
+  if (rows.has_x2y2 && !machine.hybrid)
+    rows.reader.fail("x2,y2 columns need a machine with a \"hybrid\" section");
   Output out;
   out.text() +=
-      "row,status,min_stroke_margin,stroke_leg,alpha_margin_deg,beta_margin_deg,c_margin_deg,a_margin_deg,"
+      "row,status,min_stroke_margin,stroke_leg,alpha_margin_deg,beta_margin_deg,c_margin_deg,a_"
+      "margin_deg,"
       "wrist_at_pole,condition_number,condition_margin,violations\n";
   std::array<double, 8> row{};
   std::span<double> values(row.data(), rows.has_x2y2 ? 8 : 6);
@@ -216,14 +224,16 @@ void runCheck(const ExechonState& st) {
     kin::ExechonToolPose target{{row[0], row[1], row[2]}, {row[3], row[4], row[5]}};
     kin::HybridCommand command;
     if (machine.hybrid) {
-      command = rows.has_x2y2 ? kin::hybridCommandForTool(*machine.hybrid, target.position, row[6], row[7])
-                              : kin::hybridCommandCentred(*machine.hybrid, target.position);
+      command = rows.has_x2y2
+                    ? kin::hybridCommandForTool(*machine.hybrid, target.position, row[6], row[7])
+                    : kin::hybridCommandCentred(*machine.hybrid, target.position);
       target.position = command.pkm;
     }
     const kin::ExechonCheckResult c = kin::checkToolPose(model, data, target, previous);
     if (c.solver_status == "ok") previous = kin::configurationOf(data);
     std::string_view status = c.status();
-    if (status == "ok" && machine.hybrid && !kin::hybridWithinLimits(*machine.hybrid, command)) status = "axis_limit";
+    if (status == "ok" && machine.hybrid && !kin::hybridWithinLimits(*machine.hybrid, command))
+      status = "axis_limit";
     std::string& o = out.text();
     o += fmt::format("{},{},", index++, status);
     if (c.solver_status != "ok") {
@@ -244,8 +254,11 @@ void runCheck(const ExechonState& st) {
     std::vector<std::string> parts;
     for (const auto& v : c.violations) {
       const bool angle = v.kind == kin::LimitKind::kJointAngle;
-      parts.push_back(fmt::format("{} {} value={:.6g} limit={:.6g}", kin::toString(v.kind), v.item,
-                                  angle ? radToDeg(v.value) : v.value, angle ? radToDeg(v.limit) : v.limit));
+      parts.push_back(fmt::format("{} {} value={:.6g} limit={:.6g}",
+                                  kin::toString(v.kind),
+                                  v.item,
+                                  angle ? radToDeg(v.value) : v.value,
+                                  angle ? radToDeg(v.limit) : v.limit));
     }
     o += fmt::format("{}\n", fmt::join(parts, "; "));
     out.maybeFlush();
@@ -296,11 +309,14 @@ void runDrm(const ExechonState& st) {
   if (!r.ok()) {
     o += fmt::format("# failed at point {}\n", r.failed_index);
     out.flush();
-    throw IoError(fmt::format("the circle leaves the workspace at point {} ({})", r.failed_index,
+    throw IoError(fmt::format("the circle leaves the workspace at point {} ({})",
+                              r.failed_index,
                               kin::toString(r.status)));
   }
   o += "# fit phi(theta) = sum c_n theta^n, theta and phi in rad (seed 003 eq. 10)\n";
-  for (int n = 0; n < 6; ++n) o += fmt::format("# c{} {}\n", n, io::formatNumber(r.coefficients[static_cast<std::size_t>(n)]));
+  for (int n = 0; n < 6; ++n)
+    o +=
+        fmt::format("# c{} {}\n", n, io::formatNumber(r.coefficients[static_cast<std::size_t>(n)]));
   o += fmt::format("# max |phi_drm| {} deg\n", io::formatNumber(radToDeg(r.max_abs_phi)));
   o += fmt::format("# max fit deviation {} deg\n", io::formatNumber(radToDeg(r.max_fit_deviation)));
 }
@@ -308,36 +324,49 @@ void runDrm(const ExechonState& st) {
 }  // namespace
 
 void addExechonCommands(CLI::App& app) {
-  CLI::App* exe = app.add_subcommand("exechon", "Exechon tripod with C/A wrist (optionally on X2/Y2)");
+  CLI::App* exe =
+      app.add_subcommand("exechon", "Exechon tripod with C/A wrist (optionally on X2/Y2)");
   exe->require_subcommand(1);
   auto st = std::make_shared<ExechonState>();
 
-  CLI::App* ik = exe->add_subcommand(
-      "ik", "inverse kinematics: --wrist (Zoppi frame S -> q1,q2,q3,alpha,beta,h) or --poses (tool x,y,z,i,j,k)");
+  CLI::App* ik = exe->add_subcommand("ik",
+                                     "inverse kinematics: --wrist (Zoppi frame S -> "
+                                     "q1,q2,q3,alpha,beta,h) or --poses (tool x,y,z,i,j,k)");
   addMachineOption(*ik, *st);
-  auto* wrist = ik->add_option("--wrist,-w", st->wrist, "CSV with header sx,sy,sz (Zoppi base frame); - = stdin");
-  auto* poses = ik->add_option("--poses,-p", st->poses,
-                               "CSV with header x,y,z,i,j,k (tool point and direction; optional x2,y2)");
+  auto* wrist = ik->add_option(
+      "--wrist,-w", st->wrist, "CSV with header sx,sy,sz (Zoppi base frame); - = stdin");
+  auto* poses =
+      ik->add_option("--poses,-p",
+                     st->poses,
+                     "CSV with header x,y,z,i,j,k (tool point and direction; optional x2,y2)");
   wrist->excludes(poses);
   ik->callback([st, wrist, poses] {
     if (wrist->count() == 0 && poses->count() == 0) throw CLI::RequiredError("--wrist or --poses");
-    if (wrist->count() > 0) runIkWrist(*st);
-    else runIkPoses(*st);
+    if (wrist->count() > 0)
+      runIkWrist(*st);
+    else
+      runIkPoses(*st);
   });
 
   CLI::App* fk = exe->add_subcommand("fk", "forward kinematics: q1,q2,q3,c,a -> tool x,y,z,i,j,k");
   addMachineOption(*fk, *st);
-  fk->add_option("--joints,-j", st->joints, "CSV with header q1,q2,q3,c,a (optional x2,y2); - = stdin")->required();
+  fk->add_option(
+        "--joints,-j", st->joints, "CSV with header q1,q2,q3,c,a (optional x2,y2); - = stdin")
+      ->required();
   fk->callback([st] { runFk(*st); });
 
-  CLI::App* check = exe->add_subcommand("check", "per tool pose: strokes, angle limits, conditioning");
+  CLI::App* check =
+      exe->add_subcommand("check", "per tool pose: strokes, angle limits, conditioning");
   addMachineOption(*check, *st);
-  check->add_option("--poses,-p", st->poses, "CSV with header x,y,z,i,j,k (optional x2,y2)")->required();
+  check->add_option("--poses,-p", st->poses, "CSV with header x,y,z,i,j,k (optional x2,y2)")
+      ->required();
   check->callback([st] { runCheck(*st); });
 
-  CLI::App* drm = exe->add_subcommand("drm", "dependent rotational motion along a circle, with its 5th-order fit");
+  CLI::App* drm = exe->add_subcommand(
+      "drm", "dependent rotational motion along a circle, with its 5th-order fit");
   addMachineOption(*drm, *st);
-  drm->add_option("--circle", st->circle, "cx,cy,cz,r: centre (machine world frame) and radius")->required();
+  drm->add_option("--circle", st->circle, "cx,cy,cz,r: centre (machine world frame) and radius")
+      ->required();
   drm->add_option("--step", st->step_deg, "angle step in degrees (default 1)");
   drm->add_option("--direction", st->direction, "tool direction i,j,k (default 0,0,-1)");
   drm->callback([st] { runDrm(*st); });

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   pkm::cli::addHexapodCommands(app);
   pkm::cli::addExechonCommands(app);
   pkm::cli::addVolumetricCommand(app);
+  pkm::cli::addSimulateCommand(app);
   pkm::cli::addMachinesCommand(app);
   pkm::cli::addDemoCommand(app);
   try {

@@ -15,16 +15,21 @@ using detail::JsonDoc;
 
 namespace {
 
-constexpr const char* kTripodKeys[] = {"dA", "dB", "dC", "l12A", "l12C", "pA", "pB", "pC", "hA", "hC", "hx", "hz"};
+constexpr const char* kTripodKeys[] = {
+    "dA", "dB", "dC", "l12A", "l12C", "pA", "pB", "pC", "hA", "hC", "hx", "hz"};
 
 double* tripodField(kin::ExechonTripodGeometry& t, int i) {
-  double* fields[] = {&t.dA, &t.dB, &t.dC, &t.l12A, &t.l12C, &t.pA, &t.pB, &t.pC, &t.hA, &t.hC, &t.hx, &t.hz};
+  double* fields[] = {
+      &t.dA, &t.dB, &t.dC, &t.l12A, &t.l12C, &t.pA, &t.pB, &t.pC, &t.hA, &t.hC, &t.hx, &t.hz};
   return fields[i];
 }
 
 void readTripod(const JsonDoc& doc, const json& t, kin::ExechonTripodGeometry& g) {
   const std::string ptr = "/tripod";
-  doc.onlyKeys(t, ptr, {"dA", "dB", "dC", "l12A", "l12C", "pA", "pB", "pC", "hA", "hC", "hx", "hz", "branch"});
+  doc.onlyKeys(
+      t,
+      ptr,
+      {"dA", "dB", "dC", "l12A", "l12C", "pA", "pB", "pC", "hA", "hC", "hx", "hz", "branch"});
   for (int i = 0; i < 12; ++i) {
     const char* key = kTripodKeys[i];
     // dA, dB, dC are required: a tripod without a base is a typo, not a default.
@@ -42,7 +47,11 @@ void readTripod(const JsonDoc& doc, const json& t, kin::ExechonTripodGeometry& g
   }
 }
 
-void readRange(const JsonDoc& doc, const json& obj, const std::string& ptr, const char* key, kin::AngleRange& r) {
+void readRange(const JsonDoc& doc,
+               const json& obj,
+               const std::string& ptr,
+               const char* key,
+               kin::AngleRange& r) {
   if (!obj.contains(key)) return;
   const auto [lo, hi] = doc.range(obj[key], ptr + "/" + key, degToRad(1.0));
   r.min = lo;
@@ -61,20 +70,29 @@ void readWrist(const JsonDoc& doc, const json& w, kin::ExechonWrist& wrist) {
   wrist.tool_length = doc.number(w, ptr, "tool_length", 0.0);
 }
 
-/// [x, y, z] of a working-volume bound; null means unbounded on that axis (`unbounded` = ±infinity).
-Eigen::Vector3d boundVec(const JsonDoc& doc, const json& v, const std::string& ptr, double unbounded) {
-  if (!v.is_array() || v.size() != 3) doc.fail(ptr, "expected an array of 3 numbers (null = unbounded)");
+/// [x, y, z] of a working-volume bound; null means unbounded on that axis (`unbounded` =
+/// ±infinity).
+Eigen::Vector3d boundVec(const JsonDoc& doc,
+                         const json& v,
+                         const std::string& ptr,
+                         double unbounded) {
+  if (!v.is_array() || v.size() != 3)
+    doc.fail(ptr, "expected an array of 3 numbers (null = unbounded)");
   Eigen::Vector3d out;
   for (std::size_t i = 0; i < 3; ++i)
-    out[static_cast<Eigen::Index>(i)] = v[i].is_null() ? unbounded : doc.number(v[i], fmt::format("{}/{}", ptr, i));
+    out[static_cast<Eigen::Index>(i)] =
+        v[i].is_null() ? unbounded : doc.number(v[i], fmt::format("{}/{}", ptr, i));
   return out;
 }
 
 void readHybrid(const JsonDoc& doc, const json& h, kin::HybridMachineModel& m) {
   const std::string ptr = "/hybrid";
-  doc.onlyKeys(h, ptr, {"x2_stroke", "y2_stroke", "pkm_min", "pkm_max", "X2_p_P", "P_p_tcp0", "Y2_p_work"});
-  if (h.contains("x2_stroke")) std::tie(m.x2_stroke.min, m.x2_stroke.max) = doc.range(h["x2_stroke"], ptr + "/x2_stroke");
-  if (h.contains("y2_stroke")) std::tie(m.y2_stroke.min, m.y2_stroke.max) = doc.range(h["y2_stroke"], ptr + "/y2_stroke");
+  doc.onlyKeys(
+      h, ptr, {"x2_stroke", "y2_stroke", "pkm_min", "pkm_max", "X2_p_P", "P_p_tcp0", "Y2_p_work"});
+  if (h.contains("x2_stroke"))
+    std::tie(m.x2_stroke.min, m.x2_stroke.max) = doc.range(h["x2_stroke"], ptr + "/x2_stroke");
+  if (h.contains("y2_stroke"))
+    std::tie(m.y2_stroke.min, m.y2_stroke.max) = doc.range(h["y2_stroke"], ptr + "/y2_stroke");
   if (h.contains("pkm_min")) m.pkm_min = boundVec(doc, h["pkm_min"], ptr + "/pkm_min", -INFINITY);
   if (h.contains("pkm_max")) m.pkm_max = boundVec(doc, h["pkm_max"], ptr + "/pkm_max", INFINITY);
   if (h.contains("X2_p_P")) m.X2_p_P = doc.vec3(h["X2_p_P"], ptr + "/X2_p_P");
@@ -85,7 +103,9 @@ void readHybrid(const JsonDoc& doc, const json& h, kin::HybridMachineModel& m) {
 }
 
 std::string rangeText(double lo, double hi, double scale) {
-  const auto bound = [scale](double v) { return std::isfinite(v) ? formatNumber(v * scale) : std::string("null"); };
+  const auto bound = [scale](double v) {
+    return std::isfinite(v) ? formatNumber(v * scale) : std::string("null");
+  };
   return fmt::format("[{}, {}]", bound(lo), bound(hi));
 }
 
@@ -95,7 +115,9 @@ std::string vecText(const Eigen::Vector3d& v) {
 
 /// As vecText with null for an infinite (unbounded) element.
 std::string boundText(const Eigen::Vector3d& v) {
-  const auto bound = [](double x) { return std::isfinite(x) ? formatNumber(x) : std::string("null"); };
+  const auto bound = [](double x) {
+    return std::isfinite(x) ? formatNumber(x) : std::string("null");
+  };
   return fmt::format("[{}, {}, {}]", bound(v.x()), bound(v.y()), bound(v.z()));
 }
 
@@ -107,10 +129,27 @@ ExechonMachine parseExechonJson(const std::string& text, const std::string& sour
   if (!root.is_object()) doc.fail("", "expected an object");
   if (doc.string(root, "", "type", "") != "exechon")
     doc.fail("/type", "this reader handles \"type\": \"exechon\" machines");
-  doc.onlyKeys(root, "", {"schema", "type", "name", "description", "units", "tripod", "legs", "limits", "wrist",
-                          "world_T_zoppi", "home", "max_condition", "forward_kinematics", "hybrid"});
-  if (const std::string schema = doc.string(root, "", "schema", "pkm.machine/1"); schema != "pkm.machine/1")
-    doc.fail("/schema", fmt::format("unsupported schema \"{}\" (this version reads \"pkm.machine/1\")", schema));
+  doc.onlyKeys(root,
+               "",
+               {"schema",
+                "type",
+                "name",
+                "description",
+                "units",
+                "tripod",
+                "legs",
+                "limits",
+                "wrist",
+                "world_T_zoppi",
+                "home",
+                "max_condition",
+                "forward_kinematics",
+                "hybrid"});
+  if (const std::string schema = doc.string(root, "", "schema", "pkm.machine/1");
+      schema != "pkm.machine/1")
+    doc.fail(
+        "/schema",
+        fmt::format("unsupported schema \"{}\" (this version reads \"pkm.machine/1\")", schema));
   ExechonMachine m;
   m.source = source;
   kin::ExechonModel& model = m.model;
@@ -118,19 +157,22 @@ ExechonMachine parseExechonJson(const std::string& text, const std::string& sour
   m.description = doc.string(root, "", "description", "");
   const std::string units = doc.string(root, "", "units", "mm");
   const auto unit = lengthUnitFromString(units);
-  if (!unit) doc.fail("/units", fmt::format("units must be \"mm\" or \"inch\" (got \"{}\")", units));
+  if (!unit)
+    doc.fail("/units", fmt::format("units must be \"mm\" or \"inch\" (got \"{}\")", units));
   model.unit = *unit;
 
   readTripod(doc, doc.required(root, "", "tripod"), model.tripod);
   if (root.contains("legs")) {
     const json& legs = root["legs"];
-    if (!legs.is_array() || legs.size() != kin::kExechonLegs) doc.fail("/legs", "expected an array of 3 legs (A, B, C)");
+    if (!legs.is_array() || legs.size() != kin::kExechonLegs)
+      doc.fail("/legs", "expected an array of 3 legs (A, B, C)");
     for (std::size_t i = 0; i < legs.size(); ++i) {
       const std::string ptr = fmt::format("/legs/{}", i);
       doc.onlyKeys(legs[i], ptr, {"length_offset", "stroke"});
       model.legs[i].length_offset = doc.number(legs[i], ptr, "length_offset", 0.0);
       if (legs[i].contains("stroke"))
-        std::tie(model.legs[i].min_reading, model.legs[i].max_reading) = doc.range(legs[i]["stroke"], ptr + "/stroke");
+        std::tie(model.legs[i].min_reading, model.legs[i].max_reading) =
+            doc.range(legs[i]["stroke"], ptr + "/stroke");
     }
   }
   if (root.contains("limits")) {
@@ -147,7 +189,8 @@ ExechonMachine parseExechonJson(const std::string& text, const std::string& sour
     doc.onlyKeys(t, "/world_T_zoppi", {"position", "rpy_deg"});
     Eigen::Vector3d p = Eigen::Vector3d::Zero(), rpy = Eigen::Vector3d::Zero();
     if (t.contains("position")) p = doc.vec3(t["position"], "/world_T_zoppi/position");
-    if (t.contains("rpy_deg")) rpy = doc.vec3(t["rpy_deg"], "/world_T_zoppi/rpy_deg") * degToRad(1.0);
+    if (t.contains("rpy_deg"))
+      rpy = doc.vec3(t["rpy_deg"], "/world_T_zoppi/rpy_deg") * degToRad(1.0);
     model.world_T_zoppi.setIdentity();
     model.world_T_zoppi.linear() = geometry::rotationFromRpy(rpy);
     model.world_T_zoppi.translation() = p;
@@ -156,11 +199,13 @@ ExechonMachine parseExechonJson(const std::string& text, const std::string& sour
   doc.onlyKeys(home, "/home", {"alpha_deg", "beta_deg", "h", "c_deg", "a_deg"});
   doc.required(home, "/home", "h");
   model.home.e = {degToRad(doc.number(home, "/home", "alpha_deg", 0.0)),
-                  degToRad(doc.number(home, "/home", "beta_deg", 0.0)), doc.number(home, "/home", "h", 0.0)};
+                  degToRad(doc.number(home, "/home", "beta_deg", 0.0)),
+                  doc.number(home, "/home", "h", 0.0)};
   model.home.c = degToRad(doc.number(home, "/home", "c_deg", 0.0));
   model.home.a = degToRad(doc.number(home, "/home", "a_deg", 0.0));
   model.max_condition = doc.number(root, "", "max_condition", model.max_condition);
-  if (root.contains("forward_kinematics")) detail::readFkOptions(doc, root["forward_kinematics"], m.fk);
+  if (root.contains("forward_kinematics"))
+    detail::readFkOptions(doc, root["forward_kinematics"], m.fk);
   if (root.contains("hybrid")) {
     m.hybrid.emplace();
     m.hybrid->name = model.name;
@@ -180,7 +225,9 @@ ExechonMachine parseExechonJson(const std::string& text, const std::string& sour
   return m;
 }
 
-ExechonMachine readExechonJson(const std::string& path) { return parseExechonJson(readTextFile(path), path); }
+ExechonMachine readExechonJson(const std::string& path) {
+  return parseExechonJson(readTextFile(path), path);
+}
 
 std::string writeExechonJson(const ExechonMachine& machine) {
   const kin::ExechonModel& m = machine.model;
@@ -191,43 +238,72 @@ std::string writeExechonJson(const ExechonMachine& machine) {
   out += fmt::format("  \"units\": \"{}\",\n  \"tripod\": {{", toString(m.unit));
   kin::ExechonTripodGeometry t = m.tripod;
   for (int i = 0; i < 12; ++i)
-    out += fmt::format("{}\"{}\": {}", i == 0 ? "" : (i % 6 == 0 ? ",\n             " : ", "), kTripodKeys[i],
+    out += fmt::format("{}\"{}\": {}",
+                       i == 0 ? "" : (i % 6 == 0 ? ",\n             " : ", "),
+                       kTripodKeys[i],
                        formatNumber(*tripodField(t, i)));
-  out += fmt::format(",\n             \"branch\": {{\"delta1B\": {}, \"delta2B\": {}, \"deltaA\": {}, \"deltaC\": {}}}}},\n",
-                     t.delta1B, t.delta2B, t.deltaA, t.deltaC);
+  out += fmt::format(
+      ",\n             \"branch\": {{\"delta1B\": {}, \"delta2B\": {}, \"deltaA\": {}, \"deltaC\": "
+      "{}}}}},\n",
+      t.delta1B,
+      t.delta2B,
+      t.deltaA,
+      t.deltaC);
   out += "  \"legs\": [\n";
   for (int i = 0; i < kin::kExechonLegs; ++i) {
     const kin::ExechonLeg& l = m.legs[static_cast<std::size_t>(i)];
-    out += fmt::format("    {{\"length_offset\": {}, \"stroke\": {}}}{}\n", formatNumber(l.length_offset),
-                       rangeText(l.min_reading, l.max_reading, 1.0), i + 1 < kin::kExechonLegs ? "," : "");
+    out += fmt::format("    {{\"length_offset\": {}, \"stroke\": {}}}{}\n",
+                       formatNumber(l.length_offset),
+                       rangeText(l.min_reading, l.max_reading, 1.0),
+                       i + 1 < kin::kExechonLegs ? "," : "");
   }
   out += "  ],\n";
-  out += fmt::format("  \"limits\": {{\"alpha_deg\": {}, \"beta_deg\": {}, \"c_deg\": {}, \"a_deg\": {}}},\n",
-                     rangeText(m.limits.alpha.min, m.limits.alpha.max, deg),
-                     rangeText(m.limits.beta.min, m.limits.beta.max, deg),
-                     rangeText(m.limits.c.min, m.limits.c.max, deg), rangeText(m.limits.a.min, m.limits.a.max, deg));
+  out += fmt::format(
+      "  \"limits\": {{\"alpha_deg\": {}, \"beta_deg\": {}, \"c_deg\": {}, \"a_deg\": {}}},\n",
+      rangeText(m.limits.alpha.min, m.limits.alpha.max, deg),
+      rangeText(m.limits.beta.min, m.limits.beta.max, deg),
+      rangeText(m.limits.c.min, m.limits.c.max, deg),
+      rangeText(m.limits.a.min, m.limits.a.max, deg));
   const kin::ExechonWrist& w = m.wrist;
   out += fmt::format(
-      "  \"wrist\": {{\"c_axis\": {}, \"a_axis\": {}, \"c0_deg\": {}, \"a0_deg\": {}, \"c_sign\": {}, \"a_sign\": {}, "
+      "  \"wrist\": {{\"c_axis\": {}, \"a_axis\": {}, \"c0_deg\": {}, \"a0_deg\": {}, \"c_sign\": "
+      "{}, \"a_sign\": {}, "
       "\"tool_length\": {}}},\n",
-      vecText(w.c_axis), vecText(w.a_axis), formatNumber(w.c0 * deg), formatNumber(w.a0 * deg), w.c_sign, w.a_sign,
+      vecText(w.c_axis),
+      vecText(w.a_axis),
+      formatNumber(w.c0 * deg),
+      formatNumber(w.a0 * deg),
+      w.c_sign,
+      w.a_sign,
       formatNumber(w.tool_length));
   out += fmt::format("  \"world_T_zoppi\": {{\"position\": {}, \"rpy_deg\": {}}},\n",
                      vecText(m.world_T_zoppi.translation()),
                      vecText(geometry::rpyFromRotation(m.world_T_zoppi.linear()) * deg));
-  out += fmt::format("  \"home\": {{\"alpha_deg\": {}, \"beta_deg\": {}, \"h\": {}, \"c_deg\": {}, \"a_deg\": {}}},\n",
-                     formatNumber(m.home.e[0] * deg), formatNumber(m.home.e[1] * deg), formatNumber(m.home.e[2]),
-                     formatNumber(m.home.c * deg), formatNumber(m.home.a * deg));
+  out += fmt::format(
+      "  \"home\": {{\"alpha_deg\": {}, \"beta_deg\": {}, \"h\": {}, \"c_deg\": {}, \"a_deg\": "
+      "{}}},\n",
+      formatNumber(m.home.e[0] * deg),
+      formatNumber(m.home.e[1] * deg),
+      formatNumber(m.home.e[2]),
+      formatNumber(m.home.c * deg),
+      formatNumber(m.home.a * deg));
   out += fmt::format("  \"max_condition\": {},\n", formatNumber(m.max_condition));
   out += fmt::format("  \"forward_kinematics\": {{\"tolerance\": {}, \"max_iterations\": {}}}",
-                     formatNumber(machine.fk.tolerance), machine.fk.max_iterations);
+                     formatNumber(machine.fk.tolerance),
+                     machine.fk.max_iterations);
   if (machine.hybrid) {
     const kin::HybridMachineModel& h = *machine.hybrid;
     out += fmt::format(
-        ",\n  \"hybrid\": {{\"x2_stroke\": {}, \"y2_stroke\": {},\n             \"pkm_min\": {}, \"pkm_max\": {},\n"
+        ",\n  \"hybrid\": {{\"x2_stroke\": {}, \"y2_stroke\": {},\n             \"pkm_min\": {}, "
+        "\"pkm_max\": {},\n"
         "             \"X2_p_P\": {}, \"P_p_tcp0\": {}, \"Y2_p_work\": {}}}",
-        rangeText(h.x2_stroke.min, h.x2_stroke.max, 1.0), rangeText(h.y2_stroke.min, h.y2_stroke.max, 1.0),
-        boundText(h.pkm_min), boundText(h.pkm_max), vecText(h.X2_p_P), vecText(h.P_p_tcp0), vecText(h.Y2_p_work));
+        rangeText(h.x2_stroke.min, h.x2_stroke.max, 1.0),
+        rangeText(h.y2_stroke.min, h.y2_stroke.max, 1.0),
+        boundText(h.pkm_min),
+        boundText(h.pkm_max),
+        vecText(h.X2_p_P),
+        vecText(h.P_p_tcp0),
+        vecText(h.Y2_p_work));
   }
   out += "\n}\n";
   return out;

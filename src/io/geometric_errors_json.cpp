@@ -1,6 +1,7 @@
 #include <array>
 #include <vector>
 
+#include "io/detail/error_table_json.hpp"
 #include "io/detail/json_doc.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/geometric_errors.hpp"
@@ -16,53 +17,16 @@ using detail::JsonDoc;
 
 namespace {
 
-constexpr double kUrad = 1e-6;
-/// The six error columns in ErrorMotion order and the factor from file to model units.
-constexpr std::array<const char*, 6> kColumns = {"dx", "dy", "dz", "ex_urad", "ey_urad", "ez_urad"};
-double columnScale(std::size_t c) { return c < 3 ? 1.0 : kUrad; }
-
-std::vector<double> numbers(const JsonDoc& doc, const json& v, const std::string& ptr) {
-  if (!v.is_array() || v.empty()) doc.fail(ptr, "expected a non-empty array of numbers");
-  std::vector<double> out;
-  out.reserve(v.size());
-  for (std::size_t i = 0; i < v.size(); ++i) out.push_back(doc.number(v[i], fmt::format("{}/{}", ptr, i)));
-  return out;
-}
-
-geo::OutOfRange policy(const JsonDoc& doc, const json& obj, const std::string& ptr) {
-  const std::string p = doc.string(obj, ptr, "out_of_range", "clamp");
-  if (p == "clamp") return geo::OutOfRange::kClamp;
-  if (p == "error") return geo::OutOfRange::kThrow;
-  doc.fail(ptr + "/out_of_range", "must be \"clamp\" or \"error\"");
-}
-
-/// Six value columns of length n into an n×6 matrix in model units.
-Eigen::MatrixXd readColumns(const JsonDoc& doc, const json& obj, const std::string& ptr, std::size_t n) {
-  Eigen::MatrixXd values = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), 6);
-  for (std::size_t c = 0; c < kColumns.size(); ++c) {
-    if (!obj.contains(kColumns[c])) continue;  // an absent column is zero
-    const std::string cp = ptr + "/" + kColumns[c];
-    const std::vector<double> col = numbers(doc, obj[kColumns[c]], cp);
-    if (col.size() != n) doc.fail(cp, fmt::format("expected {} values, found {}", n, col.size()));
-    for (std::size_t i = 0; i < n; ++i)
-      values(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(c)) = col[i] * columnScale(c);
-  }
-  return values;
-}
-
-geo::ErrorTable1d readTable(const JsonDoc& doc, const json& obj, const std::string& ptr) {
-  doc.onlyKeys(obj, ptr, {"positions", "dx", "dy", "dz", "ex_urad", "ey_urad", "ez_urad", "out_of_range"});
-  std::vector<double> positions = numbers(doc, doc.required(obj, ptr, "positions"), ptr + "/positions");
-  const Eigen::MatrixXd values = readColumns(doc, obj, ptr, positions.size());
-  try {
-    return geo::ErrorTable1d(std::move(positions), values, policy(doc, obj, ptr));
-  } catch (const InvalidArgument& e) {
-    doc.fail(ptr + "/positions", e.what());
-  }
-}
+using detail::columnScale;
+using detail::kUrad;
+using detail::numbers;
+using detail::policy;
+using detail::readColumns;
+constexpr const auto& kColumns = detail::kErrorColumns;
 
 geo::ErrorGrid3d readGrid(const JsonDoc& doc, const json& obj, const std::string& ptr) {
-  doc.onlyKeys(obj, ptr, {"x", "y", "z", "dx", "dy", "dz", "ex_urad", "ey_urad", "ez_urad", "out_of_range"});
+  doc.onlyKeys(
+      obj, ptr, {"x", "y", "z", "dx", "dy", "dz", "ex_urad", "ey_urad", "ez_urad", "out_of_range"});
   std::array<std::vector<double>, 3> axes;
   const char* names[] = {"x", "y", "z"};
   std::size_t n = 1;
@@ -98,7 +62,9 @@ void writeArray(std::string& out, const std::vector<double>& v) {
   out += "]";
 }
 
-const char* policyName(geo::OutOfRange p) { return p == geo::OutOfRange::kClamp ? "clamp" : "error"; }
+const char* policyName(geo::OutOfRange p) {
+  return p == geo::OutOfRange::kClamp ? "clamp" : "error";
+}
 
 }  // namespace
 
@@ -108,9 +74,13 @@ kin::GeometricErrors parseGeometricErrorsJson(const std::string& text, const std
   if (!root.is_object()) doc.fail("", "expected an object");
   if (doc.string(root, "", "type", "") != "hybrid_geometric_errors")
     doc.fail("/type", "expected \"type\": \"hybrid_geometric_errors\"");
-  doc.onlyKeys(root, "", {"schema", "type", "description", "units", "squareness_urad", "x2", "y2", "pkm"});
-  if (const std::string schema = doc.string(root, "", "schema", "pkm.errors/1"); schema != "pkm.errors/1")
-    doc.fail("/schema", fmt::format("unsupported schema \"{}\" (this version reads \"pkm.errors/1\")", schema));
+  doc.onlyKeys(
+      root, "", {"schema", "type", "description", "units", "squareness_urad", "x2", "y2", "pkm"});
+  if (const std::string schema = doc.string(root, "", "schema", "pkm.errors/1");
+      schema != "pkm.errors/1")
+    doc.fail(
+        "/schema",
+        fmt::format("unsupported schema \"{}\" (this version reads \"pkm.errors/1\")", schema));
   const std::string units = doc.string(root, "", "units", "mm");
   const auto unit = lengthUnitFromString(units);
   if (!unit) doc.fail("/units", "units must be \"mm\" or \"inch\"");
@@ -124,8 +94,8 @@ kin::GeometricErrors parseGeometricErrorsJson(const std::string& text, const std
     e.squareness.sy_p = kUrad * doc.number(s, "/squareness_urad", "syP", 0.0);
     e.squareness.sz_p = kUrad * doc.number(s, "/squareness_urad", "szP", 0.0);
   }
-  if (root.contains("x2")) e.x2 = readTable(doc, root["x2"], "/x2");
-  if (root.contains("y2")) e.y2 = readTable(doc, root["y2"], "/y2");
+  if (root.contains("x2")) e.x2 = detail::readErrorTable(doc, root["x2"], "/x2");
+  if (root.contains("y2")) e.y2 = detail::readErrorTable(doc, root["y2"], "/y2");
   if (root.contains("pkm")) e.pkm = readGrid(doc, root["pkm"], "/pkm");
   try {
     e.validate();
@@ -140,14 +110,19 @@ kin::GeometricErrors readGeometricErrorsJson(const std::string& path) {
 }
 
 std::string writeGeometricErrorsJson(const kin::GeometricErrors& e) {
-  std::string out = "{\n  \"schema\": \"pkm.errors/1\",\n  \"type\": \"hybrid_geometric_errors\",\n";
+  std::string out =
+      "{\n  \"schema\": \"pkm.errors/1\",\n  \"type\": \"hybrid_geometric_errors\",\n";
   out += fmt::format("  \"units\": \"{}\",\n", toString(e.unit));
-  out += fmt::format("  \"squareness_urad\": {{\"szX2\": {}, \"sxP\": {}, \"syP\": {}, \"szP\": {}}}",
-                     formatNumber(e.squareness.sz_x2 / kUrad), formatNumber(e.squareness.sx_p / kUrad),
-                     formatNumber(e.squareness.sy_p / kUrad), formatNumber(e.squareness.sz_p / kUrad));
+  out +=
+      fmt::format("  \"squareness_urad\": {{\"szX2\": {}, \"sxP\": {}, \"syP\": {}, \"szP\": {}}}",
+                  formatNumber(e.squareness.sz_x2 / kUrad),
+                  formatNumber(e.squareness.sx_p / kUrad),
+                  formatNumber(e.squareness.sy_p / kUrad),
+                  formatNumber(e.squareness.sz_p / kUrad));
   for (const auto& [key, table] : {std::pair{"x2", &e.x2}, std::pair{"y2", &e.y2}}) {
     if (!*table) continue;
-    out += fmt::format(",\n  \"{}\": {{\"out_of_range\": \"{}\",\n    \"positions\": ", key,
+    out += fmt::format(",\n  \"{}\": {{\"out_of_range\": \"{}\",\n    \"positions\": ",
+                       key,
                        policyName((*table)->outOfRange()));
     writeArray(out, (*table)->positions());
     writeColumns(out, (*table)->values(), "    ");

@@ -7,9 +7,9 @@
 #include <set>
 #include <sstream>
 
+#include "io/detail/json_doc.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/hexapod_machine.hpp"
-#include "io/detail/json_doc.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 
@@ -21,7 +21,10 @@ namespace kin = pkm::kinematics;
 namespace {
 
 /// Reads {"axis": [..], "max_angle_deg": ..}; returns whether an axis was given.
-bool readCone(const detail::JsonDoc& doc, const json& v, const std::string& ptr, kin::JointCone& cone) {
+bool readCone(const detail::JsonDoc& doc,
+              const json& v,
+              const std::string& ptr,
+              kin::JointCone& cone) {
   doc.onlyKeys(v, ptr, {"axis", "max_angle_deg"});
   cone.max_angle = degToRad(doc.number(v, ptr, "max_angle_deg", 0.0));
   if (cone.max_angle < 0.0) doc.fail(ptr + "/max_angle_deg", "must be >= 0 (0 = unlimited)");
@@ -112,7 +115,8 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
   if (model.strut_diameter < 0.0) doc.fail("/strut_diameter", "must be >= 0");
   model.max_condition = doc.number(root, "", "max_condition", model.max_condition);
   if (!(model.max_condition > 1.0)) doc.fail("/max_condition", "must be > 1");
-  if (root.contains("forward_kinematics")) detail::readFkOptions(doc, root["forward_kinematics"], m.fk);
+  if (root.contains("forward_kinematics"))
+    detail::readFkOptions(doc, root["forward_kinematics"], m.fk);
 
   if (!root.contains("struts")) doc.fail("", "missing key 'struts'");
   const json& struts = root["struts"];

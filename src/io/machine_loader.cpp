@@ -3,11 +3,10 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string_view>
 #include <utility>
-
-#include <nlohmann/json.hpp>
 
 #include "pkm/core/error.hpp"
 
@@ -28,7 +27,9 @@ std::optional<std::string> builtinText(const std::string& name, const std::strin
 }
 
 [[noreturn]] void noSuchMachine(const std::string& spec, const std::string& type) {
-  throw IoError(fmt::format("{}: no such file, and not a built-in {} machine (built-in: {})", spec, type,
+  throw IoError(fmt::format("{}: no such file, and not a built-in {} machine (built-in: {})",
+                            spec,
+                            type,
                             fmt::join(builtinMachineNames(type), ", ")));
 }
 
@@ -37,7 +38,8 @@ bool isFile(const std::string& spec) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(spec, ec)) return false;
-  if (fs::is_directory(spec, ec)) throw IoError(locate(spec, 0, "is a directory, expected a machine file"));
+  if (fs::is_directory(spec, ec))
+    throw IoError(locate(spec, 0, "is a directory, expected a machine file"));
   return true;
 }
 
@@ -45,7 +47,8 @@ bool isFile(const std::string& spec) {
 
 std::string machineType(const std::string& text) {
   const nlohmann::json j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (j.is_object() && j.contains("type") && j["type"].is_string()) return j["type"].get<std::string>();
+  if (j.is_object() && j.contains("type") && j["type"].is_string())
+    return j["type"].get<std::string>();
   return "hexapod";
 }
 
@@ -58,7 +61,8 @@ std::vector<std::string> builtinMachineNames(const std::string& type) {
 
 HexapodMachine builtinMachine(const std::string& name) {
   const std::string wanted = name == "default" ? kDefaultMachine : name;
-  if (const auto text = builtinText(wanted, "hexapod")) return parseHexapodJson(*text, "builtin:" + wanted);
+  if (const auto text = builtinText(wanted, "hexapod"))
+    return parseHexapodJson(*text, "builtin:" + wanted);
   noSuchMachine(name, "hexapod");
 }
 
@@ -71,7 +75,8 @@ HexapodMachine loadHexapodMachine(const std::string& spec, const HalReadOptions&
 ExechonMachine loadExechonMachine(const std::string& spec) {
   if (isFile(spec)) return readExechonJson(spec);
   const std::string wanted = spec == "default" ? kDefaultExechonMachine : spec;
-  if (const auto text = builtinText(wanted, "exechon")) return parseExechonJson(*text, "builtin:" + wanted);
+  if (const auto text = builtinText(wanted, "exechon"))
+    return parseExechonJson(*text, "builtin:" + wanted);
   noSuchMachine(spec, "exechon");
 }
 
@@ -85,7 +90,8 @@ kinematics::GeometricErrors loadGeometricErrors(const std::string& spec) {
   if (isFile(spec)) return readGeometricErrorsJson(spec);
   for (const auto& [stem, text] : detail::embeddedErrors())
     if (stem == spec) return parseGeometricErrorsJson(std::string(text), "builtin:" + spec);
-  throw IoError(fmt::format("{}: no such file, and not a built-in error set (built-in: {})", spec,
+  throw IoError(fmt::format("{}: no such file, and not a built-in error set (built-in: {})",
+                            spec,
                             fmt::join(builtinErrorNames(), ", ")));
 }
 

@@ -45,7 +45,8 @@ FkSummary tripodForwardKinematics(const ExechonModel& model,
   Eigen::Vector3d e = seed_e;
   Eigen::Matrix3d J;  // dq/de at the last evaluated e
   auto evaluate = [&](const Eigen::Vector3d& at, Eigen::Vector3d& r) {
-    r = detail::legLengths(model.tripod, detail::trigOf(at), model.tripod.deltaA, model.tripod.deltaC, &J) -
+    r = detail::legLengths(
+            model.tripod, detail::trigOf(at), model.tripod.deltaA, model.tripod.deltaC, &J) -
         target;
     const double n2 = r.squaredNorm();
     return std::isfinite(n2) ? n2 : INFINITY;

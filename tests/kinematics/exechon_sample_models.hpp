@@ -24,11 +24,11 @@ inline kinematics::ExechonModel zoppiTable1Model() {
   return m;
 }
 
-/// The exechon-lib toy geometry (the Bi/Jin form, reconstructed from the MIT-licensed exechon-lib model and checked against Zoppi), mm, in Zoppi's form: the world
-/// frame is the Bi/Jin base frame (x = A/C axis, y towards leg 2's base joint, z up), Zoppi's (ib,
-/// jb, kb) = world (y, x, −z). The wrist is exechon-lib's
-/// T_pl·RotZ(q4)·Trans(0,0,L1)·RotX(q5)·Trans(0,L2,0): C about z' = k, A about x' = j, tool along y
-/// of the A frame (a0 = −pi/2), tool_length = L2 = 150.
+/// The exechon-lib toy geometry (the Bi/Jin form, reconstructed from the MIT-licensed exechon-lib
+/// model and checked against Zoppi), mm, in Zoppi's form: the world frame is the Bi/Jin base frame
+/// (x = A/C axis, y towards leg 2's base joint, z up), Zoppi's (ib, jb, kb) = world (y, x, −z). The
+/// wrist is exechon-lib's T_pl·RotZ(q4)·Trans(0,0,L1)·RotX(q5)·Trans(0,L2,0): C about z' = k, A
+/// about x' = j, tool along y of the A frame (a0 = −pi/2), tool_length = L2 = 150.
 inline kinematics::ExechonModel biJinToyModel() {
   kinematics::ExechonModel m;
   m.name = "bi-jin-toy";
@@ -77,9 +77,10 @@ inline kinematics::ExechonModel machineModel() {
   return m;
 }
 
-/// The Bi/Jin P-form (the Bi/Jin form, reconstructed from the MIT-licensed exechon-lib model and checked against Zoppi, reconstructed from exechon-lib) for the toy
-/// geometry of biJinToyModel: platform angles, platform rotation R = Rx(alpha)·Ry(beta) (columns
-/// x', y', z'), leg lengths and the wrist point S = P + L1·z', all in the Bi/Jin (world) frame.
+/// The Bi/Jin P-form (the Bi/Jin form, reconstructed from the MIT-licensed exechon-lib model and
+/// checked against Zoppi, reconstructed from exechon-lib) for the toy geometry of biJinToyModel:
+/// platform angles, platform rotation R = Rx(alpha)·Ry(beta) (columns x', y', z'), leg lengths and
+/// the wrist point S = P + L1·z', all in the Bi/Jin (world) frame.
 struct BiJin {
   double alpha, beta;
   Eigen::Matrix3d R;

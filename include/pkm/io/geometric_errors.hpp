@@ -13,7 +13,8 @@ namespace pkm::io {
 /// machine's length unit, rotations and squareness in microradians (keys end in _urad). Throws
 /// pkm::IoError "SOURCE:LINE: /json/pointer: message" for malformed JSON, unknown keys, columns of
 /// the wrong length, non-increasing positions and non-finite values.
-[[nodiscard]] kinematics::GeometricErrors parseGeometricErrorsJson(const std::string& text, const std::string& source);
+[[nodiscard]] kinematics::GeometricErrors parseGeometricErrorsJson(const std::string& text,
+                                                                   const std::string& source);
 
 /// Reads a geometric-errors file. Throws pkm::IoError.
 [[nodiscard]] kinematics::GeometricErrors readGeometricErrorsJson(const std::string& path);

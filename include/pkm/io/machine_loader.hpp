@@ -29,9 +29,11 @@ inline constexpr const char* kDefaultExechonMachine = "mxt700s-like";
 /// pkm::IoError if there is no hexapod by that name.
 [[nodiscard]] HexapodMachine builtinMachine(const std::string& name);
 
-/// `spec` ending in ".hal": readLinuxcncHal; an existing file: readHexapodJson; otherwise a built-in
-/// name ("default" means kDefaultMachine). Throws pkm::IoError naming the file and line on bad input.
-[[nodiscard]] HexapodMachine loadHexapodMachine(const std::string& spec, const HalReadOptions& hal = {});
+/// `spec` ending in ".hal": readLinuxcncHal; an existing file: readHexapodJson; otherwise a
+/// built-in name ("default" means kDefaultMachine). Throws pkm::IoError naming the file and line on
+/// bad input.
+[[nodiscard]] HexapodMachine loadHexapodMachine(const std::string& spec,
+                                                const HalReadOptions& hal = {});
 
 /// An existing file: readExechonJson; otherwise a built-in Exechon name ("default" means
 /// kDefaultExechonMachine). Throws pkm::IoError naming the file and line on bad input.

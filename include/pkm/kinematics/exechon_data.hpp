@@ -66,7 +66,8 @@ struct ExechonData {
   // ---- wrist and tool (filled by the tool IK/FK of exechon_wrist.hpp) ----
   double c = 0.0;              ///< wrist C reading, rad
   double a = 0.0;              ///< wrist A reading, rad
-  bool wrist_at_pole = false;  ///< |sin θA| at or below the pole tolerance (θA = 0 or ±180°): C is undefined and was kept
+  bool wrist_at_pole = false;  ///< |sin θA| at or below the pole tolerance (θA = 0 or ±180°): C is
+                               ///< undefined and was kept
   Eigen::Matrix3d world_R_tool =
       Eigen::Matrix3d::Identity();  ///< tool frame; its z is the tool direction
   Eigen::Vector3d world_p_tool = Eigen::Vector3d::Zero();   ///< tool point, world frame

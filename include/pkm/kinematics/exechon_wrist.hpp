@@ -1,8 +1,8 @@
 /// @file
 /// @brief Exechon tool kinematics: the spherical C/A wrist at the wrist point S (ExechonWrist) on
 /// the tripod. Tool IK: tool point and direction -> S -> tripod IK -> platform rotation -> C, A
-/// (Zoppi et al. 2010 for the tripod; a serial C/A head on the platform); tool FK: leg readings, C, A -> tool point and
-/// direction.
+/// (Zoppi et al. 2010 for the tripod; a serial C/A head on the platform); tool FK: leg readings, C,
+/// A -> tool point and direction.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,11 +1,11 @@
 /// @file
-/// @brief Internal: parsing JSON machine and error files with errors located as "FILE:LINE: /pointer:
-/// message" (shared by the hexapod, Exechon and geometric-error readers).
+/// @brief Internal: parsing JSON machine and error files with errors located as "FILE:LINE:
+/// /pointer: message" (shared by the hexapod, Exechon and geometric-error readers).
 #pragma once
 
-#include <Eigen/Core>
 #include <fmt/format.h>
 
+#include <Eigen/Core>
 #include <cctype>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -46,8 +46,8 @@ inline std::size_t lineOfNumber(const std::string& text, const std::string& toke
   return 0;
 }
 
-/// Parses `text`; throws pkm::IoError "SOURCE:LINE: invalid JSON: ..." on a syntax error or a number
-/// out of the range of a double.
+/// Parses `text`; throws pkm::IoError "SOURCE:LINE: invalid JSON: ..." on a syntax error or a
+/// number out of the range of a double.
 inline json parseJson(const std::string& text, const std::string& source) {
   try {
     return json::parse(text);
@@ -78,7 +78,8 @@ inline json parseJson(const std::string& text, const std::string& source) {
 /// Typed access to a parsed JSON document that reports errors as "SOURCE:LINE: POINTER: message".
 class JsonDoc {
  public:
-  JsonDoc(const std::string& text, std::string source) : source_(std::move(source)), locator_(text) {}
+  JsonDoc(const std::string& text, std::string source)
+      : source_(std::move(source)), locator_(text) {}
 
   [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
     throw IoError(locate(source_,
@@ -157,7 +158,8 @@ inline void readFkOptions(const JsonDoc& doc, const json& f, kinematics::FkOptio
   doc.onlyKeys(f, ptr, {"tolerance", "max_iterations"});
   fk.tolerance = doc.number(f, ptr, "tolerance", fk.tolerance);
   const double it = doc.number(f, ptr, "max_iterations", fk.max_iterations);
-  if (it != std::floor(it) || it < 1 || it > 1e6) doc.fail(ptr + "/max_iterations", "must be an integer in [1, 1e6]");
+  if (it != std::floor(it) || it < 1 || it > 1e6)
+    doc.fail(ptr + "/max_iterations", "must be an integer in [1, 1e6]");
   fk.max_iterations = static_cast<int>(it);
   std::string why;
   if (!fk.isValid(&why)) doc.fail(ptr, why);

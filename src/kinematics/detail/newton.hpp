@@ -1,6 +1,7 @@
 /// @file
-/// @brief Internal: the damped Newton iteration shared by the hexapod and Exechon forward kinematics
-/// (convergence on the residual, one polishing step, step halving, singularity and NaN guards).
+/// @brief Internal: the damped Newton iteration shared by the hexapod and Exechon forward
+/// kinematics (convergence on the residual, one polishing step, step halving, singularity and NaN
+/// guards).
 #pragma once
 
 #include <Eigen/Core>
@@ -13,19 +14,22 @@ namespace pkm::kinematics::detail {
 /// Below this fraction of the tolerance no polishing step is taken after convergence.
 inline constexpr double kPolishFraction = 1e-3;
 
-/// Solves residual(x) = 0 for x, starting at `x`, with options' tolerance (max |r_i|), iteration cap
-/// and step halving. Callbacks:
-///   evaluate(const X& x, Vec& r) -> double: the residual at x and |r|² (+infinity when not finite);
+/// Solves residual(x) = 0 for x, starting at `x`, with options' tolerance (max |r_i|), iteration
+/// cap and step halving. Callbacks:
+///   evaluate(const X& x, Vec& r) -> double: the residual at x and |r|² (+infinity when not
+///   finite);
 ///       it may keep state (data, Jacobian) for x: `solve` is always called right after the
 ///       evaluation at the current iterate;
-///   solve(Vec& delta) -> double: replaces delta = r by J⁻¹·r at the current iterate and returns the
+///   solve(Vec& delta) -> double: replaces delta = r by J⁻¹·r at the current iterate and returns
+///   the
 ///       smallest/largest pivot ratio (0 when singular);
 ///   retract(const X& x, const Vec& delta, double step) -> X: the iterate x − step·delta.
 /// Once every residual is within the tolerance, one more step is taken unless the residual is
 /// already below kPolishFraction·tolerance, so that x (not only r) is accurate. On return the
 /// callbacks' state is that of the returned x.
 template <int N, typename X, typename Evaluate, typename Solve, typename Retract>
-FkSummary dampedNewton(const FkOptions& options, X& x, Evaluate&& evaluate, Solve&& solve, Retract&& retract) {
+FkSummary dampedNewton(
+    const FkOptions& options, X& x, Evaluate&& evaluate, Solve&& solve, Retract&& retract) {
   using Vec = Eigen::Matrix<double, N, 1>;
   FkSummary summary;
   Vec r, r_try;

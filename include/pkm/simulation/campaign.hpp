@@ -1,0 +1,55 @@
+/// @file
+/// @brief A simulated measurement campaign: a true machine and the line measurements taken on it,
+/// run with one scenario seed (docs/formats.md, "Scenario files"). Reading the scenario JSON is in
+/// pkm/io/scenario.hpp; writing the files in pkm/io/measurement_files.hpp.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pkm/simulation/dial_gauges.hpp"
+#include "pkm/simulation/line_measurement.hpp"
+#include "pkm/simulation/virtual_machine.hpp"
+
+namespace pkm::simulation {
+
+/// What to simulate.
+struct Campaign {
+  std::string name;                         ///< scenario name
+  std::string description;                  ///< free text
+  std::shared_ptr<VirtualMachine> machine;  ///< the true machine (required)
+  std::vector<LineSetup> measurements;      ///< in the order they are taken; names unique
+  /// Constrained-motion measurements with dial gauges (seed 004); need a HexapodVirtualMachine.
+  std::vector<DialGaugeSetup> constrained;
+  /// Throws pkm::InvalidArgument when there is no machine, a set-up is invalid, a line's size is
+  /// not the machine's axis count, two measurements (of either kind) share a name, or dial gauges
+  /// are set up on a machine that is not a hexapod.
+  void validate() const;
+};
+
+/// One measurement's result.
+struct MeasurementResult {
+  const LineSetup* setup = nullptr;  ///< points into the campaign
+  std::vector<LineRun> runs;         ///< one per run
+};
+
+/// Runs every measurement. Measurement k draws only from RandomStream(seed, setup.name), so the
+/// numbers of one measurement do not depend on which others exist. Identical results for the same
+/// seed on every platform. Throws pkm::InvalidArgument (Campaign::validate, simulateLine).
+[[nodiscard]] std::vector<MeasurementResult> runCampaign(const Campaign& campaign,
+                                                         std::uint64_t seed);
+
+/// One constrained-motion measurement's result.
+struct ConstrainedResult {
+  const DialGaugeSetup* setup = nullptr;   ///< points into the campaign
+  std::vector<DialGaugeStation> stations;  ///< the reference (station 0), then the stations
+};
+
+/// Runs every constrained-motion measurement, each from RandomStream(seed, setup.name). Throws
+/// pkm::InvalidArgument (Campaign::validate, simulateDialGauges).
+[[nodiscard]] std::vector<ConstrainedResult> runConstrainedMotion(const Campaign& campaign,
+                                                                  std::uint64_t seed);
+
+}  // namespace pkm::simulation

@@ -1,0 +1,98 @@
+/// @file
+/// @brief A hexapod true machine: the nominal model the controller believes in, plus injected
+/// assembly errors (joint positions, strut length offsets) and actuator effects (encoder
+/// resolution, per-strut backlash, repeatability), as seed 004 describes them.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "pkm/kinematics/hexapod_data.hpp"
+#include "pkm/kinematics/hexapod_fk.hpp"
+#include "pkm/kinematics/hexapod_model.hpp"
+#include "pkm/simulation/random.hpp"
+#include "pkm/simulation/virtual_machine.hpp"
+
+namespace pkm::simulation {
+
+/// Assembly errors: the true geometry minus the nominal one, model length unit (mm).
+struct HexapodAssemblyErrors {
+  /// Per strut: true − nominal base joint centre, world frame.
+  std::array<Eigen::Vector3d, kinematics::kStruts> base_joint;
+  /// Per strut: true − nominal platform joint centre, platform frame.
+  std::array<Eigen::Vector3d, kinematics::kStruts> platform_joint;
+  /// Per strut: true − nominal length offset (reading + offset = joint distance).
+  kinematics::StrutVector length_offset = kinematics::StrutVector::Zero();
+  /// No errors.
+  HexapodAssemblyErrors() {
+    base_joint.fill(Eigen::Vector3d::Zero());
+    platform_joint.fill(Eigen::Vector3d::Zero());
+  }
+  /// The true model: `nominal` with these errors added.
+  [[nodiscard]] kinematics::HexapodModel apply(const kinematics::HexapodModel& nominal) const;
+};
+
+/// How the struts follow their commands.
+struct StrutActuation {
+  /// Encoder resolution, mm: a commanded reading is positioned to the nearest count (0: exact).
+  double encoder_resolution = 0.0;
+  /// Per-strut backlash (lost motion), mm, ≥ 0: a strut that last moved in +reading stops b/2
+  /// short of its command, one that last moved in − b/2 beyond it (seed 004 Fig. 6 hysteresis).
+  /// After reset() a strut counts as having moved in +.
+  kinematics::StrutVector backlash = kinematics::StrutVector::Zero();
+  /// Standard deviation of a strut's positioning per move, mm (seed 004: about 2 µm overall).
+  double repeatability_sigma = 0.0;
+  /// Throws pkm::InvalidArgument for a negative or non-finite value.
+  void validate() const;
+};
+
+/// A hexapod virtual machine. Command (x, y, z, a, b, c): the TCP pose the controller is asked
+/// for, mm and radians (R = Rz(c)·Ry(b)·Rx(a), docs/conventions.md "Pose"). The controller turns
+/// it into strut readings with the nominal model (inverseKinematics); the struts reach them
+/// through StrutActuation; the platform then sits where the true model's forward kinematics puts
+/// it (seeded with the previous actual pose, or the command for the first move after reset). Poses
+/// are world_T_tool with the world (base) frame as the work frame.
+class HexapodVirtualMachine final : public VirtualMachine {
+ public:
+  /// Throws pkm::InvalidArgument when either model does not validate, the unit is not mm, or
+  /// the actuation is invalid.
+  HexapodVirtualMachine(kinematics::HexapodModel nominal,
+                        const HexapodAssemblyErrors& errors,
+                        StrutActuation actuation = {});
+  /// {"x", "y", "z", "a", "b", "c"} (angles in radians here; degrees only at file boundaries).
+  [[nodiscard]] std::vector<std::string> axisNames() const override;
+  /// a, b, c.
+  [[nodiscard]] std::vector<bool> angularAxes() const override {
+    return {false, false, false, true, true, true};
+  }
+  /// The actuation (the truth).
+  [[nodiscard]] const StrutActuation& actuation() const { return actuation_; }
+  /// The commanded pose.
+  [[nodiscard]] Eigen::Isometry3d nominalPose(const Eigen::VectorXd& command) const override;
+  /// Commands the struts and returns the true pose. Throws pkm::InvalidArgument when the true
+  /// machine's forward kinematics does not converge (the command is far outside the workspace).
+  Eigen::Isometry3d moveTo(const Eigen::VectorXd& command) override;
+  /// Forgets the approach directions and seeds the repeatability noise.
+  void reset(std::uint64_t noise_seed) override;
+  /// The strut readings commanded by the last moveTo (nominal IK, quantised), mm.
+  [[nodiscard]] const kinematics::StrutVector& commandedReadings() const { return commanded_; }
+  /// The model the controller uses.
+  [[nodiscard]] const kinematics::HexapodModel& nominal() const { return nominal_; }
+  /// The true model (the truth).
+  [[nodiscard]] const kinematics::HexapodModel& truth() const { return true_; }
+
+ private:
+  kinematics::HexapodModel nominal_;
+  kinematics::HexapodModel true_;
+  StrutActuation actuation_;
+  kinematics::HexapodData nominal_data_;
+  kinematics::HexapodData true_data_;
+  RandomStream rng_{0};
+  kinematics::StrutVector commanded_ = kinematics::StrutVector::Zero();
+  kinematics::StrutVector last_ = kinematics::StrutVector::Zero();
+  std::array<int, kinematics::kStruts> approach_{};
+  bool moved_ = false;
+  kinematics::PoseRpy last_pose_;
+};
+
+}  // namespace pkm::simulation

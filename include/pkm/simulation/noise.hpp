@@ -1,0 +1,51 @@
+/// @file
+/// @brief Noise model of an instrument reading: a constant Gaussian term, a term proportional to
+/// the measured length (ppm), and quantisation to the instrument's resolution (metrology notes §5).
+#pragma once
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "pkm/simulation/random.hpp"
+
+namespace pkm::simulation {
+
+/// How an instrument corrupts a true reading. Every field 0 means an ideal instrument, which
+/// returns the true reading unchanged and draws nothing from its stream.
+struct NoiseModel {
+  /// Standard deviation of the constant Gaussian term, in the reading's unit (e.g. mm; for a
+  /// Renishaw XL-80 linear reading a few nm, 5e-6 to 2e-5 mm).
+  double sigma = 0.0;
+  /// Standard deviation of the length-proportional term, in parts per million of `length` (the
+  /// measured length, see apply()). The XL-80's ±0.5 ppm (k = 2) is sigma_ppm = 0.25.
+  double sigma_ppm = 0.0;
+  /// Resolution: the reading is rounded to the nearest multiple of it (0: no rounding). XL-80
+  /// linear: 1 nm = 1e-6 mm.
+  double resolution = 0.0;
+
+  /// Throws pkm::InvalidArgument when a field is negative or not finite.
+  void validate() const;
+  /// The standard deviation of the Gaussian part for a measured length `length` (same unit as the
+  /// reading for a linear reading): sqrt(sigma² + (sigma_ppm·1e-6·|length|)²).
+  [[nodiscard]] double totalSigma(double length) const;
+  /// The reading an instrument shows for the true value `truth` over the measured length
+  /// `length`: truth + N(0, totalSigma(length)), then rounded to `resolution`. Draws one normal
+  /// variate from `rng` when totalSigma(length) > 0 and none otherwise.
+  [[nodiscard]] double apply(double truth, double length, RandomStream& rng) const;
+};
+
+/// The noise of a named instrument, from datasheet values (metrology notes §5, typical Renishaw
+/// XL-80 figures; k = 2 accuracies are halved to a standard deviation). Units: mm for the linear
+/// and straightness presets, rad for the angular one.
+/// - "ideal": no noise, no rounding.
+/// - "xl80-linear": 10 nm per reading, 0.25 ppm of the travel (±0.5 ppm, k = 2), resolution 1 nm.
+/// - "xl80-straightness": 0.25 µm (±0.5 µm, short range), resolution 0.01 µm.
+/// - "xl80-angular": 0.05 µrad (±0.1 µm/m), resolution 0.01 µrad.
+/// - "dial-gauge": 0.5 µm, resolution 1 µm (a 1 µm dial gauge, seed 004).
+/// std::nullopt for another name.
+[[nodiscard]] std::optional<NoiseModel> instrumentNoise(std::string_view name);
+/// The names instrumentNoise knows.
+[[nodiscard]] std::vector<std::string_view> instrumentNoiseNames();
+
+}  // namespace pkm::simulation

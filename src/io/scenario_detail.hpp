@@ -1,0 +1,63 @@
+/// @file
+/// @brief Internal: pieces of the scenario reader shared between its source files.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "io/detail/error_table_json.hpp"
+#include "io/detail/json_doc.hpp"
+#include "pkm/simulation/dial_gauges.hpp"
+#include "pkm/simulation/line_measurement.hpp"
+
+namespace pkm::io::detail {
+
+/// The integer at obj[key] (`fallback` when absent); fails unless it is an integer in [lo, hi].
+inline int integer(const JsonDoc& doc,
+                   const json& obj,
+                   const std::string& ptr,
+                   const char* key,
+                   int fallback,
+                   int lo,
+                   int hi) {
+  const double v = doc.number(obj, ptr, key, fallback);
+  if (v != std::floor(v) || v < lo || v > hi)
+    doc.fail(ptr + "/" + key, fmt::format("must be an integer in [{}, {}]", lo, hi));
+  return static_cast<int>(v);
+}
+
+/// Reads one element of "measurements" at `ptr` (docs/formats.md, "Scenario files") for `machine`,
+/// which gives the axis count and the nominal travel of the line. Fails through `doc`.
+[[nodiscard]] simulation::LineSetup readLineSetup(const JsonDoc& doc,
+                                                  const json& obj,
+                                                  const std::string& ptr,
+                                                  const simulation::VirtualMachine& machine);
+
+/// The measurement's "name": required, lower-case letters, digits, '-' and '_'. Fails through
+/// `doc`.
+[[nodiscard]] std::string measurementName(const JsonDoc& doc,
+                                          const json& obj,
+                                          const std::string& ptr);
+
+/// A "noise" value: a preset name or {"sigma", "sigma_ppm", "resolution"} divided by `scale`
+/// (reading units per model unit). Fails through `doc`.
+[[nodiscard]] simulation::NoiseModel readNoise(const JsonDoc& doc,
+                                               const json& obj,
+                                               const std::string& ptr,
+                                               double scale);
+
+/// A "hexapod" machine at `ptr` (the model loaded from `machine_path`). Fails through `doc`.
+[[nodiscard]] std::shared_ptr<simulation::VirtualMachine> readHexapod(
+    const JsonDoc& doc, const json& m, const std::string& ptr, const std::string& machine_path);
+
+/// A dial-gauge measurement ("instrument": "dial_gauges"). Fails through `doc`.
+[[nodiscard]] simulation::DialGaugeSetup readDialGauges(const JsonDoc& doc,
+                                                        const json& obj,
+                                                        const std::string& ptr);
+
+/// The built-in scenario texts (generated from data/scenarios/*.json): {file stem, JSON text}.
+const std::vector<std::pair<std::string_view, std::string_view>>& embeddedScenarios();
+
+}  // namespace pkm::io::detail

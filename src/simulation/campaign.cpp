@@ -1,0 +1,52 @@
+#include "pkm/simulation/campaign.hpp"
+
+#include <set>
+
+#include "pkm/core/error.hpp"
+
+namespace pkm::simulation {
+
+void Campaign::validate() const {
+  PKM_CHECK(machine != nullptr, "campaign '{}' has no machine", name);
+  const auto axes = static_cast<Eigen::Index>(machine->axisNames().size());
+  std::set<std::string> names;
+  for (const LineSetup& m : measurements) {
+    m.validate();
+    PKM_CHECK(m.line.start.size() == axes,
+              "{}: the line has {} axes, the machine {}",
+              m.name,
+              m.line.start.size(),
+              axes);
+    PKM_CHECK(names.insert(m.name).second, "two measurements are named '{}'", m.name);
+  }
+  for (const DialGaugeSetup& d : constrained) {
+    d.validate();
+    PKM_CHECK(dynamic_cast<const HexapodVirtualMachine*>(machine.get()) != nullptr,
+              "{}: dial gauges need a hexapod",
+              d.name);
+    PKM_CHECK(names.insert(d.name).second, "two measurements are named '{}'", d.name);
+  }
+}
+
+std::vector<MeasurementResult> runCampaign(const Campaign& campaign, std::uint64_t seed) {
+  campaign.validate();
+  std::vector<MeasurementResult> results;
+  for (const LineSetup& setup : campaign.measurements) {
+    RandomStream rng(seed, setup.name);
+    results.push_back({&setup, simulateLine(*campaign.machine, setup, rng)});
+  }
+  return results;
+}
+
+std::vector<ConstrainedResult> runConstrainedMotion(const Campaign& campaign, std::uint64_t seed) {
+  campaign.validate();
+  std::vector<ConstrainedResult> results;
+  for (const DialGaugeSetup& setup : campaign.constrained) {
+    RandomStream rng(seed, setup.name);
+    auto& hexapod = dynamic_cast<HexapodVirtualMachine&>(*campaign.machine);
+    results.push_back({&setup, simulateDialGauges(hexapod, setup, rng)});
+  }
+  return results;
+}
+
+}  // namespace pkm::simulation

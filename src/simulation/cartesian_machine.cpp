@@ -1,0 +1,68 @@
+#include "pkm/simulation/cartesian_machine.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pkm/core/error.hpp"
+#include "pkm/geometry/error_motion.hpp"
+
+namespace pkm::simulation {
+
+void CartesianErrors::validate() const {
+  const char* names[] = {"X", "Y", "Z"};
+  for (std::size_t k = 0; k < 3; ++k)
+    PKM_CHECK(!axes[k] || axes[k]->components() == 6,
+              "the {} error table has {} columns, expected 6",
+              names[k],
+              axes[k] ? axes[k]->components() : 0);
+  PKM_CHECK(
+      std::isfinite(squareness.xy) && std::isfinite(squareness.xz) && std::isfinite(squareness.yz),
+      "a squareness error is not finite");
+}
+
+void CartesianLayout::validate() const {
+  std::string sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  PKM_CHECK(sorted == "XYZ", "axis order '{}' is not a permutation of XYZ", order);
+  PKM_CHECK(tool_offset.allFinite(), "tool offset is not finite");
+}
+
+CartesianMachine::CartesianMachine(CartesianLayout layout, CartesianErrors errors)
+    : layout_(std::move(layout)), errors_(std::move(errors)) {
+  layout_.validate();
+  errors_.validate();
+}
+
+std::vector<std::string> CartesianMachine::axisNames() const { return {"x", "y", "z"}; }
+
+Eigen::Isometry3d CartesianMachine::nominalPose(const Eigen::VectorXd& command) const {
+  checkCommand(command, 3);
+  return geometry::translationHtm(command + layout_.tool_offset);
+}
+
+Eigen::Vector3d CartesianMachine::axisDirection(int k) const {
+  PKM_CHECK(k >= 0 && k < 3, "axis index {} is not 0, 1 or 2", k);
+  const CartesianSquareness& s = errors_.squareness;
+  if (k == 0) return Eigen::Vector3d::UnitX();
+  if (k == 1) return {-std::sin(s.xy), std::cos(s.xy), 0.0};
+  // The unit vector with d_Z·x̂ = −sin(xz) and d_Z·d_Y = −sin(yz), on the +z side.
+  const double a = -std::sin(s.xz);
+  const double b = (a * std::sin(s.xy) - std::sin(s.yz)) / std::cos(s.xy);
+  return {a, b, std::sqrt(1.0 - a * a - b * b)};
+}
+
+Eigen::Isometry3d CartesianMachine::moveTo(const Eigen::VectorXd& command) {
+  checkCommand(command, 3);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  for (const char axis : layout_.order) {
+    const int k = axis - 'X';
+    const auto ku = static_cast<std::size_t>(k);
+    const double q = command[k];
+    pose = pose * geometry::translationHtm(q * axisDirection(k));
+    if (errors_.axes[ku])
+      pose = pose * geometry::errorMotionHtm(errors_.axes[ku]->evaluateMotion(q));
+  }
+  return pose * geometry::translationHtm(layout_.tool_offset);
+}
+
+}  // namespace pkm::simulation

@@ -1,0 +1,99 @@
+#include "pkm/simulation/hexapod_virtual_machine.hpp"
+
+#include <cmath>
+
+#include "pkm/core/error.hpp"
+#include "pkm/geometry/error_motion.hpp"
+#include "pkm/geometry/so3.hpp"
+#include "pkm/kinematics/hexapod_ik.hpp"
+#include "pkm/simulation/noise.hpp"
+
+namespace pkm::simulation {
+
+namespace kin = pkm::kinematics;
+
+kin::HexapodModel HexapodAssemblyErrors::apply(const kin::HexapodModel& nominal) const {
+  kin::HexapodModel m = nominal;
+  for (std::size_t i = 0; i < kin::kStruts; ++i) {
+    m.struts[i].world_p_base += base_joint[i];
+    m.struts[i].platform_p_joint += platform_joint[i];
+    m.struts[i].length_offset += length_offset[static_cast<Eigen::Index>(i)];
+  }
+  return m;
+}
+
+void StrutActuation::validate() const {
+  PKM_CHECK(std::isfinite(encoder_resolution) && encoder_resolution >= 0.0,
+            "encoder resolution {} must be finite and >= 0",
+            encoder_resolution);
+  PKM_CHECK(backlash.allFinite() && (backlash.array() >= 0.0).all(),
+            "backlash must be finite and >= 0");
+  PKM_CHECK(std::isfinite(repeatability_sigma) && repeatability_sigma >= 0.0,
+            "repeatability sigma {} must be finite and >= 0",
+            repeatability_sigma);
+}
+
+HexapodVirtualMachine::HexapodVirtualMachine(kin::HexapodModel nominal,
+                                             const HexapodAssemblyErrors& errors,
+                                             StrutActuation actuation)
+    : nominal_(std::move(nominal)),
+      true_(errors.apply(nominal_)),
+      actuation_(std::move(actuation)),
+      nominal_data_(nominal_),
+      true_data_(true_) {
+  nominal_.validate();
+  true_.validate();
+  actuation_.validate();
+  PKM_CHECK(nominal_.unit == LengthUnit::kMillimetre,
+            "machine '{}': simulated measurements need a machine in mm",
+            nominal_.name);
+  reset(0);
+}
+
+std::vector<std::string> HexapodVirtualMachine::axisNames() const {
+  return {"x", "y", "z", "a", "b", "c"};
+}
+
+Eigen::Isometry3d HexapodVirtualMachine::nominalPose(const Eigen::VectorXd& command) const {
+  checkCommand(command, 6);
+  return geometry::makeIsometry(geometry::rotationFromRpy(command.tail<3>()), command.head<3>());
+}
+
+void HexapodVirtualMachine::reset(std::uint64_t noise_seed) {
+  rng_ = RandomStream(noise_seed);
+  approach_.fill(1);
+  moved_ = false;
+}
+
+Eigen::Isometry3d HexapodVirtualMachine::moveTo(const Eigen::VectorXd& command) {
+  checkCommand(command, 6);
+  kin::PoseRpy pose;
+  pose.position = command.head<3>();
+  pose.rpy = command.tail<3>();
+  commanded_ = kin::inverseKinematics(nominal_, nominal_data_, pose);
+  if (actuation_.encoder_resolution > 0.0) {
+    const NoiseModel counts{
+        0.0, 0.0, actuation_.encoder_resolution};  // rounding only, draws nothing
+    for (Eigen::Index i = 0; i < kin::kStruts; ++i)
+      commanded_[i] = counts.apply(commanded_[i], 0.0, rng_);
+  }
+  kin::StrutVector actual = commanded_;
+  for (Eigen::Index i = 0; i < kin::kStruts; ++i) {
+    const auto iu = static_cast<std::size_t>(i);
+    if (moved_ && commanded_[i] != last_[i]) approach_[iu] = commanded_[i] > last_[i] ? 1 : -1;
+    actual[i] +=
+        -0.5 * actuation_.backlash[i] * approach_[iu] + rng_.normal(actuation_.repeatability_sigma);
+  }
+  const kin::PoseRpy seed = moved_ ? last_pose_ : pose;
+  last_ = commanded_;
+  moved_ = true;
+  const kin::FkSummary fk = kin::forwardKinematics(true_, true_data_, actual, seed);
+  PKM_CHECK(fk.ok(),
+            "the true hexapod cannot reach the command ({}): forward kinematics {}",
+            fmt::join(command, ", "),
+            kin::toString(fk.status));
+  last_pose_ = true_data_.pose;
+  return geometry::makeIsometry(true_data_.world_R_platform, true_data_.world_p_tcp);
+}
+
+}  // namespace pkm::simulation

@@ -1,0 +1,183 @@
+// Scenario files: the built-in scenarios parse and run; malformed scenarios give FILE:LINE errors;
+// scenario.json and truth.json outputs.
+#include "pkm/io/scenario.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <numbers>
+
+#include "pkm/core/error.hpp"
+#include "pkm/simulation/hybrid_virtual_machine.hpp"
+
+namespace {
+
+namespace io = pkm::io;
+namespace sim = pkm::simulation;
+using ::testing::HasSubstr;
+
+const char* kMinimal = R"({
+  "type": "simulation_scenario",
+  "name": "mini",
+  "seed": 5,
+  "machine": {"kind": "cartesian", "errors": {"squareness_urad": {"xy": 50},
+              "x": {"positions": [0, 100], "dx": [0, 0.002], "ey_urad": [0, 10]}}},
+  "measurements": [
+    {"name": "lin-x", "quantity": "linear", "from": [0, 0, 0], "to": [100, 0, 0], "targets": 5, "runs": 2},
+    {"name": "diag", "quantity": "linear", "from": [0, 0, 0], "to": [30, 40, 0], "noise": "xl80-linear"},
+    {"name": "pitch", "quantity": "angular", "from": [10, 0, 0], "to": [90, 0, 0], "lateral": [0, 1, 0],
+     "noise": {"sigma": 0.05, "resolution": 0.01}}
+  ]
+})";
+
+std::string messageOf(const std::string& text) {
+  try {
+    (void)io::parseScenarioJson(text, "s.json");
+  } catch (const pkm::IoError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(Scenario, ParsesAMinimalCartesianScenario) {
+  const io::Scenario s = io::parseScenarioJson(kMinimal, "s.json");
+  EXPECT_EQ(s.campaign.name, "mini");
+  EXPECT_EQ(s.seed, 5U);
+  EXPECT_EQ(s.machine_kind, "cartesian");
+  ASSERT_EQ(s.campaign.measurements.size(), 3U);
+  const sim::LineSetup& lin = s.campaign.measurements[0];
+  EXPECT_EQ(lin.cycle.first, 0.0);
+  EXPECT_EQ(lin.cycle.last, 100.0);
+  EXPECT_EQ(lin.cycle.runs, 2);
+  const sim::LineSetup& diag = s.campaign.measurements[1];
+  EXPECT_EQ(diag.cycle.last, 50.0);  // a diagonal is measured from 0 at "from"
+  EXPECT_EQ(diag.noise.sigma_ppm, 0.25);
+  const sim::LineSetup& pitch = s.campaign.measurements[2];
+  EXPECT_EQ(pitch.cycle.first, 10.0);            // a single-axis line in the axis coordinate
+  EXPECT_DOUBLE_EQ(pitch.noise.sigma, 0.05e-6);  // µrad in the file, rad in the model
+  EXPECT_EQ(pitch.line.at(10.0)[0], 10.0);
+}
+
+TEST(Scenario, BuiltinsParseAndRun) {
+  const std::vector<std::string> names = io::builtinScenarioNames();
+  EXPECT_THAT(names, ::testing::Contains("seed000-parallelism"));
+  EXPECT_THAT(names, ::testing::Contains("seed001-diagonals"));
+  for (const std::string& name : names) {
+    const io::Scenario s = io::loadScenario(name);
+    EXPECT_EQ(s.source, "builtin:" + name);
+    EXPECT_FALSE(sim::runCampaign(s.campaign, s.seed).empty()) << name;
+  }
+  const io::Scenario hybrid = io::loadScenario("seed000-parallelism");
+  const auto* m = dynamic_cast<const sim::HybridVirtualMachine*>(hybrid.campaign.machine.get());
+  ASSERT_NE(m, nullptr);
+  EXPECT_DOUBLE_EQ(m->errors().squareness.sx_p, -14.74e-3);
+  EXPECT_THROW((void)io::loadScenario("no-such-scenario"), pkm::IoError);
+}
+
+TEST(Scenario, ErrorsNameTheFileLineAndPointer) {
+  std::string bad = kMinimal;
+  bad.replace(bad.find("\"runs\": 2"), 9, "\"runs\": 0");
+  EXPECT_THAT(messageOf(bad), HasSubstr("s.json:8: /measurements/0/runs"));
+  bad = kMinimal;
+  bad.replace(bad.find("\"targets\": 5"), 12, "\"target\": 5");
+  EXPECT_THAT(messageOf(bad), HasSubstr("unknown key 'target'"));
+  bad = kMinimal;
+  bad.replace(bad.find("[100, 0, 0]"), 11, "[100, 0]");
+  EXPECT_THAT(messageOf(bad), HasSubstr("s.json:8: /measurements/0/to: expected an array of 3"));
+  bad = kMinimal;
+  bad.replace(bad.find("\"cartesian\""), 11, "\"delta\"");
+  EXPECT_THAT(messageOf(bad), HasSubstr("/machine/kind"));
+  bad = kMinimal;
+  bad.replace(bad.find("\"xl80-linear\""), 13, "\"xl81\"");
+  EXPECT_THAT(messageOf(bad), HasSubstr("unknown instrument noise 'xl81'"));
+  bad = kMinimal;
+  bad.replace(bad.find("\"diag\""), 6, "\"lin-x\"");
+  EXPECT_THAT(messageOf(bad), HasSubstr("two measurements are named 'lin-x'"));
+  EXPECT_THAT(messageOf("{\"type\": \"simulation_scenario\",\n ]"),
+              HasSubstr("s.json:2: invalid JSON"));
+  EXPECT_THAT(messageOf("{\"type\": \"x\"}"), HasSubstr("/type"));
+}
+
+TEST(Scenario, ScenarioJsonWithSeedReproducesTheInputs) {
+  const io::Scenario s = io::parseScenarioJson(kMinimal, "s.json");
+  const std::string text = io::scenarioJsonWithSeed(s, 99);
+  const io::Scenario again = io::parseScenarioJson(text, "again.json");
+  EXPECT_EQ(again.seed, 99U);
+  EXPECT_EQ(again.campaign.measurements.size(), 3U);
+  EXPECT_LT(text.find("\"type\""), text.find("\"measurements\""));  // key order kept
+}
+
+TEST(Scenario, TruthJsonHoldsTheInjectedErrors) {
+  const io::Scenario s = io::parseScenarioJson(kMinimal, "s.json");
+  const nlohmann::json t = nlohmann::json::parse(io::truthJson(s, 5));
+  EXPECT_EQ(t["schema"], "pkm.truth/1");
+  EXPECT_EQ(t["seed"], 5);
+  EXPECT_EQ(t["errors"]["squareness_urad"]["xy"], 50.0);
+  EXPECT_EQ(t["errors"]["iso_squareness_urad"]["EC0Y"], 50.0);
+  EXPECT_EQ(t["errors"]["x"]["dx"][1], 0.002);
+  EXPECT_EQ(t["errors"]["x"]["ey_urad"][1], 10.0);
+  const nlohmann::json h =
+      nlohmann::json::parse(io::truthJson(io::loadScenario("seed000-parallelism"), 1));
+  EXPECT_EQ(h["errors"]["squareness_urad"]["sxP"], -14740.0);
+}
+
+}  // namespace
+
+namespace {
+
+/// Least-squares slope of reading against target over every reading of a measurement.
+double fittedSlope(const sim::MeasurementResult& r) {
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const auto& run : r.runs)
+    for (const auto& x : run.readings) {
+      n += 1;
+      sx += x.target;
+      sy += x.reading;
+      sxx += x.target * x.target;
+      sxy += x.target * x.reading;
+    }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+TEST(Scenario, Seed004HexapodIsAboutTwelveMillimetresOffOver540) {
+  const io::Scenario s = io::loadScenario("seed004-hexapod-calibration");
+  EXPECT_EQ(s.machine_kind, "hexapod");
+  ASSERT_EQ(s.campaign.constrained.size(), 1U);
+  EXPECT_EQ(s.campaign.constrained[0].stations.size(), 24U);  // 72 constraints for 36 unknowns
+  EXPECT_DOUBLE_EQ(s.campaign.constrained[0].stations[8][2],
+                   10.0 * std::numbers::pi / 180.0);  // degrees in the file
+  const auto lines = sim::runCampaign(s.campaign, s.seed);
+  ASSERT_EQ(lines.size(), 1U);
+  const auto& readings = lines[0].runs[0].readings;
+  const double error =
+      (readings[9].reading - readings[9].target) - (readings[0].reading - readings[0].target);
+  constexpr double kPaperErrorMm = 12.0;  // seed 004 §5: more than 12 mm over a 540 mm move
+  EXPECT_NEAR(error, kPaperErrorMm, 0.25 * kPaperErrorMm);
+  for (const auto& r : sim::runConstrainedMotion(s.campaign, s.seed))
+    for (const auto& st : r.stations) EXPECT_TRUE(st.converged) << st.station;
+  const nlohmann::json t = nlohmann::json::parse(io::truthJson(s, 4));
+  EXPECT_EQ(t["errors"]["length_offset"].size(), 6U);
+  EXPECT_EQ(t["actuation"]["repeatability_sigma"], 0.002);
+}
+
+TEST(Scenario, Seed000StraightnessSlopesGiveTheParallelismErrors) {
+  // Seed 000 §3: the same beam along Y2 and along the PKM's Y; the slope difference in the tool's
+  // y is sxP (vertical) and szX2 − szP (horizontal), to first order. Against their own line
+  // coordinates (+y2 moves the tool along −y) the two slopes add up to it.
+  const io::Scenario s = io::loadScenario("seed000-parallelism");
+  const auto results = sim::runCampaign(s.campaign, s.seed);
+  const auto slope = [&](const std::string& name) {
+    for (const auto& r : results)
+      if (r.setup->name == name) return fittedSlope(r);
+    ADD_FAILURE() << name;
+    return 0.0;
+  };
+  // The Y2 straightness tables (a few µm over 350 mm) tilt the fitted lines by up to ~3e-5 rad.
+  constexpr double kTolSlope = 5e-5;
+  EXPECT_NEAR(slope("straightness-y2-v") + slope("straightness-py-v"), -14.74e-3, kTolSlope);
+  EXPECT_NEAR(
+      slope("straightness-y2-h") + slope("straightness-py-h"), -0.034e-3 + 2.85e-3, kTolSlope);
+}
+
+}  // namespace
