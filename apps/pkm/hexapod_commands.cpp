@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <future>
 #include <memory>
 
 #include "cli_common.hpp"
@@ -77,6 +78,29 @@ void runIk(const MachineOption& machine_opt, const std::string& poses) {
   }
 }
 
+/// One solved row of `pkm hexapod fk`, formatted later.
+struct FkRow {
+  kin::PoseRpy pose;
+  int iterations = 0;
+  kin::FkStatus status = kin::FkStatus::kOk;
+};
+
+std::string formatFkRows(const std::vector<FkRow>& rows) {
+  std::string text;
+  text.reserve(rows.size() * 120);
+  for (const FkRow& r : rows) {
+    if (r.status == kin::FkStatus::kOk)
+      appendPose(text, r.pose);
+    else
+      text += ",,,,,,";  // no pose on failure: never print a wrong one
+    text += std::to_string(r.iterations);
+    text += ',';
+    text += kin::toString(r.status);
+    text += '\n';
+  }
+  return text;
+}
+
 void runFk(const MachineOption& machine_opt,
            const std::string& lengths,
            const std::string& seed_text) {
@@ -87,24 +111,37 @@ void runFk(const MachineOption& machine_opt,
   io::CsvReader reader(lengths, kLengthColumns);
   Output out;
   out.text() += "x,y,z,a,b,c,iterations,status\n";
+  // Rows are solved in order (each seeds the next, as in a servo loop) in chunks; number
+  // formatting, a third of the work, runs on a second thread while the next chunk is solved.
+  constexpr std::size_t kChunk = 8192;
+  std::future<std::string> formatted;
+  auto emit = [&out, &formatted] {
+    if (!formatted.valid()) return;
+    out.text() += formatted.get();
+    out.maybeFlush();
+  };
+  std::vector<FkRow> rows;
+  rows.reserve(kChunk);
   std::array<double, 6> row{};
   kin::StrutVector q;
-  while (reader.next(row)) {
-    for (int i = 0; i < kin::kStruts; ++i) q[i] = row[static_cast<std::size_t>(i)];
-    const kin::FkSummary s = kin::forwardKinematics(machine.model, data, q, seed, machine.fk);
-    if (s.ok()) {
-      appendPose(out.text(), data.pose);
-      seed = data.pose;
-    } else {
-      out.text() += ",,,,,,";  // no pose on failure: never print a wrong one
-      seed = home;             // as a servo loop does after a failed solve
+  bool more = true;
+  while (more) {
+    more = reader.next(row);
+    if (more) {
+      for (int i = 0; i < kin::kStruts; ++i) q[i] = row[static_cast<std::size_t>(i)];
+      const kin::FkSummary s = kin::forwardKinematics(machine.model, data, q, seed, machine.fk);
+      rows.push_back({data.pose, s.iterations, s.status});
+      seed = s.ok() ? data.pose : home;  // re-seed from home after a failed solve
     }
-    out.text() += std::to_string(s.iterations);
-    out.text() += ',';
-    out.text() += kin::toString(s.status);
-    out.text() += '\n';
-    out.maybeFlush();
+    if (rows.size() == kChunk || (!more && !rows.empty())) {
+      emit();
+      formatted =
+          std::async(std::launch::async, [chunk = std::move(rows)] { return formatFkRows(chunk); });
+      rows = {};
+      rows.reserve(kChunk);
+    }
   }
+  emit();
 }
 
 void appendMargin(std::string& out, double v) {
