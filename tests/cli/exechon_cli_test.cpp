@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "support/cli_fixture.hpp"
 #include "support/tolerances.hpp"
 
 namespace {
@@ -25,7 +26,11 @@ using pkm::test::kTolRoundTrip;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-constexpr int kExitUsage = 2;
+using pkm::test::CliRun;
+using pkm::test::kExitUsage;
+using pkm::test::num;
+using pkm::test::splitFields;
+using pkm::test::splitLines;
 /// Zoppi et al. 2010 print lengths (mm here) with 4 decimals and angles (deg) with 5.
 constexpr double kTolPaperLength = 1e-3;
 constexpr double kTolPaperAngleDeg = 1e-5;
@@ -46,38 +51,6 @@ constexpr const char* kHybridPoses =
     "100,-50,30,0.1,0,-1\n"
     "1500,-120,100,0,0.05,-1\n";
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
-
-std::vector<std::string> splitLines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string l; std::getline(in, l);) lines.push_back(l);
-  return lines;
-}
-
-std::vector<std::string> splitFields(const std::string& line) {
-  std::vector<std::string> fields;
-  std::size_t pos = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', pos);
-    fields.push_back(
-        line.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
-    if (comma == std::string::npos) break;
-    pos = comma + 1;
-  }
-  return fields;
-}
-
-double num(const std::string& s) {
-  std::size_t used = 0;
-  const double v = std::stod(s, &used);
-  EXPECT_EQ(used, s.size()) << s;
-  return v;
-}
-
 /// The data rows of a CSV text (lines after the header that are not comments), split in fields.
 std::vector<std::vector<std::string>> rowsOf(const std::string& csv) {
   std::vector<std::vector<std::string>> rows;
@@ -87,70 +60,7 @@ std::vector<std::vector<std::string>> rowsOf(const std::string& csv) {
   return rows;
 }
 
-class ExechonCli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           (std::string("pkm_exechon_cli_test_") + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-
-  /// `s` in single quotes for /bin/sh.
-  static std::string quote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) {
-      if (c == '\'')
-        q.append("'\\''");
-      else
-        q.push_back(c);
-    }
-    q.push_back('\'');
-    return q;
-  }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  std::string write(const std::string& name, const std::string& content) const {
-    std::ofstream out(dir_ / name, std::ios::binary);
-    out << content;
-    return path(name);
-  }
-
-  static std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  }
-
-  /// Runs `pkm ARGS` (each quoted) with stdin from /dev/null; captures everything.
-  CliRun pkm(const std::vector<std::string>& args) const {
-    std::string cmd = quote(PKM_BINARY);
-    for (const auto& a : args) cmd.append(" ").append(quote(a));
-    cmd.append(" < /dev/null");
-    cmd.append(" > ").append(quote(path("stdout.txt")));
-    cmd.append(" 2> ").append(quote(path("stderr.txt")));
-    const int status = std::system(cmd.c_str());
-    CliRun r;
-    r.code = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(dir_ / "stdout.txt");
-    r.err = slurp(dir_ / "stderr.txt");
-    return r;
-  }
-
-  /// Expects exit code 2 and "pkm: error: " on stderr containing `where`; returns stderr.
-  static std::string expectUsageError(const CliRun& r, const std::string& where) {
-    EXPECT_EQ(r.code, kExitUsage) << r.err;
-    EXPECT_THAT(r.err, HasSubstr(where));
-    return r.err;
-  }
-
-  fs::path dir_;
-};
+class ExechonCli : public pkm::test::CliTest {};
 
 // ---------------------------------------------------------------------------------------------
 // ik --wrist: the paper's numeric example
