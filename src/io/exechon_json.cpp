@@ -145,21 +145,12 @@ ExechonMachine parseExechonJson(const std::string& text, const std::string& sour
                 "max_condition",
                 "forward_kinematics",
                 "hybrid"});
-  if (const std::string schema = doc.string(root, "", "schema", "pkm.machine/1");
-      schema != "pkm.machine/1")
-    doc.fail(
-        "/schema",
-        fmt::format("unsupported schema \"{}\" (this version reads \"pkm.machine/1\")", schema));
   ExechonMachine m;
   m.source = source;
   kin::ExechonModel& model = m.model;
   model.name = doc.string(root, "", "name", "exechon");
   m.description = doc.string(root, "", "description", "");
-  const std::string units = doc.string(root, "", "units", "mm");
-  const auto unit = lengthUnitFromString(units);
-  if (!unit)
-    doc.fail("/units", fmt::format("units must be \"mm\" or \"inch\" (got \"{}\")", units));
-  model.unit = *unit;
+  model.unit = detail::readSchemaAndUnits(doc, root, "pkm.machine/1");
 
   readTripod(doc, doc.required(root, "", "tripod"), model.tripod);
   if (root.contains("legs")) {

@@ -76,16 +76,8 @@ kin::GeometricErrors parseGeometricErrorsJson(const std::string& text, const std
     doc.fail("/type", "expected \"type\": \"hybrid_geometric_errors\"");
   doc.onlyKeys(
       root, "", {"schema", "type", "description", "units", "squareness_urad", "x2", "y2", "pkm"});
-  if (const std::string schema = doc.string(root, "", "schema", "pkm.errors/1");
-      schema != "pkm.errors/1")
-    doc.fail(
-        "/schema",
-        fmt::format("unsupported schema \"{}\" (this version reads \"pkm.errors/1\")", schema));
-  const std::string units = doc.string(root, "", "units", "mm");
-  const auto unit = lengthUnitFromString(units);
-  if (!unit) doc.fail("/units", "units must be \"mm\" or \"inch\"");
   kin::GeometricErrors e;
-  e.unit = *unit;
+  e.unit = detail::readSchemaAndUnits(doc, root, "pkm.errors/1");
   if (root.contains("squareness_urad")) {
     const json& s = root["squareness_urad"];
     doc.onlyKeys(s, "/squareness_urad", {"szX2", "sxP", "syP", "szP"});

@@ -81,21 +81,12 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
                 "max_condition",
                 "forward_kinematics",
                 "struts"});
-  if (const std::string schema = doc.string(root, "", "schema", "pkm.machine/1");
-      schema != "pkm.machine/1")
-    doc.fail(
-        "/schema",
-        fmt::format("unsupported schema \"{}\" (this version reads \"pkm.machine/1\")", schema));
   HexapodMachine m;
   m.source = source;
   kin::HexapodModel& model = m.model;
   model.name = doc.string(root, "", "name", "hexapod");
   m.description = doc.string(root, "", "description", "");
-  const std::string units = doc.string(root, "", "units", "mm");
-  const auto unit = lengthUnitFromString(units);
-  if (!unit)
-    doc.fail("/units", fmt::format("units must be \"mm\" or \"inch\" (got \"{}\")", units));
-  model.unit = *unit;
+  model.unit = detail::readSchemaAndUnits(doc, root, "pkm.machine/1");
 
   if (root.contains("home")) {
     const json& h = root["home"];

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "pkm/core/error.hpp"
+#include "pkm/core/units.hpp"
 #include "pkm/io/json_locator.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 
@@ -151,6 +152,18 @@ class JsonDoc {
   std::string source_;
   JsonLocator locator_;
 };
+
+/// Checks "schema" (absent or `schema`) and returns the "units" ("mm" default, or "inch").
+inline LengthUnit readSchemaAndUnits(const JsonDoc& doc, const json& root, const char* schema) {
+  if (const std::string s = doc.string(root, "", "schema", schema); s != schema)
+    doc.fail("/schema",
+             fmt::format("unsupported schema \"{}\" (this version reads \"{}\")", s, schema));
+  const std::string units = doc.string(root, "", "units", "mm");
+  const auto unit = lengthUnitFromString(units);
+  if (!unit)
+    doc.fail("/units", fmt::format("units must be \"mm\" or \"inch\" (got \"{}\")", units));
+  return *unit;
+}
 
 /// Reads {"tolerance": .., "max_iterations": ..} at "/forward_kinematics" into `fk`.
 inline void readFkOptions(const JsonDoc& doc, const json& f, kinematics::FkOptions& fk) {
