@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "analyze_common.hpp"
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
 
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   pkm::cli::addExechonCommands(app);
   pkm::cli::addVolumetricCommand(app);
   pkm::cli::addSimulateCommand(app);
+  pkm::cli::addAnalyzeCommand(app);
   pkm::cli::addMachinesCommand(app);
   pkm::cli::addDemoCommand(app);
   try {

@@ -10,13 +10,12 @@
 #include <utility>
 #include <vector>
 
+#include "pkm/io/text_table.hpp"
 #include "pkm/simulation/dial_gauges.hpp"
 #include "pkm/simulation/line_measurement.hpp"
 
 namespace pkm::io {
 
-/// Metadata of a measurement file: ("key", "value") pairs in file order.
-using Metadata = std::vector<std::pair<std::string, std::string>>;
 
 /// The CSV text of one run: `metadata` as "# key: value" lines, the header, the readings. The
 /// reading column is reading_mm for kLinear and kStraightness and reading_urad (the reading × 1e6)

@@ -1,0 +1,60 @@
+// `pkm analyze`: the registry of analysis kinds (analyze_common.hpp).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <utility>
+
+#include "analyze_common.hpp"
+#include "cli_common.hpp"
+
+namespace pkm::cli {
+namespace {
+
+struct Entry {
+  int order;
+  AnalyzeAdder add;
+};
+
+std::vector<Entry>& registry() {
+  static std::vector<Entry> entries;
+  return entries;
+}
+
+}  // namespace
+
+AnalyzeRegistration::AnalyzeRegistration(int order, AnalyzeAdder add) {
+  registry().push_back({order, add});
+}
+
+void AnalyzeIo::add(CLI::App& cmd, std::size_t min_files, std::size_t max_files) {
+  auto* opt = cmd.add_option("--data", data, "input file(s), CSV with a header row")
+                  ->required()
+                  ->check(CLI::ExistingFile);
+  if (max_files == 0)
+    opt->expected(static_cast<int>(min_files), CLI::detail::expected_max_vector_size);
+  else
+    opt->expected(static_cast<int>(min_files), static_cast<int>(max_files));
+  cmd.add_flag("--json", json, "print one JSON object instead of a table");
+}
+
+void printJson(const nlohmann::ordered_json& json) {
+  const std::string text = json.dump(2) + "\n";
+  std::fwrite(text.data(), 1, text.size(), stdout);
+  std::fflush(stdout);
+}
+
+void addAnalyzeCommand(CLI::App& app) {
+  CLI::App* analyze = app.add_subcommand(
+      "analyze",
+      "evaluate measurement files: ISO 230 statistics, straightness, squareness, "
+      "diagonals, circles (docs/analysis.md)");
+  analyze->require_subcommand(1);
+  std::vector<Entry> entries = registry();
+  std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return a.order < b.order;
+  });
+  for (const Entry& e : entries) e.add(*analyze);
+}
+
+}  // namespace pkm::cli

@@ -1,0 +1,40 @@
+/// @file
+/// @brief `pkm analyze <kind>`: the registry of analysis kinds and the options and output helpers
+/// they share (docs/analysis.md). Each kind lives in its own apps/pkm/analyze_*.cpp and registers
+/// itself with a static AnalyzeRegistration.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cstddef>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace pkm::cli {
+
+/// Adds one kind (a subcommand with its options and callback) to the `analyze` command.
+using AnalyzeAdder = void (*)(CLI::App& analyze);
+
+/// Registers a kind at static-initialisation time; kinds are added to `pkm analyze` in ascending
+/// `order` (ties: registration order). Use only for namespace-scope constants.
+struct AnalyzeRegistration {
+  AnalyzeRegistration(int order, AnalyzeAdder add);
+};
+
+/// The input files and output switch every kind shares.
+struct AnalyzeIo {
+  std::vector<std::string> data;  ///< the --data files, in the order given
+  bool json = false;              ///< --json: one JSON object on stdout instead of the table
+  /// Adds `--data FILE...` (required; `min_files` to `max_files` files, each must exist; 0 for
+  /// max_files means no limit) and `--json` to `cmd`.
+  void add(CLI::App& cmd, std::size_t min_files = 1, std::size_t max_files = 0);
+};
+
+/// Writes `json` to stdout as one JSON object (2-space indent, a final newline). Non-finite
+/// numbers become null.
+void printJson(const nlohmann::ordered_json& json);
+
+/// Adds `pkm analyze` with every registered kind to `app`.
+void addAnalyzeCommand(CLI::App& app);
+
+}  // namespace pkm::cli
