@@ -1,0 +1,96 @@
+/// @file
+/// @brief Identification of the 42 hexapod kinematic parameters from full-pose and point
+/// observations by Levenberg–Marquardt (Ceres, private to this module), with identifiability,
+/// explicit handling of unidentifiable directions and parameter covariance (docs/calibration.md).
+#pragma once
+
+#include <Eigen/Core>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "pkm/calibration/hexapod_measurements.hpp"
+#include "pkm/calibration/hexapod_parameters.hpp"
+#include "pkm/calibration/identifiability.hpp"
+#include "pkm/kinematics/hexapod_model.hpp"
+
+namespace pkm::calibration {
+
+/// Robust loss applied to each observation's residual block.
+enum class RobustLoss { kNone, kHuber, kCauchy };
+
+/// The data of one identification: any mix of full-pose and point observations.
+struct HexapodCalibrationData {
+  std::vector<PoseObservation> poses;    ///< IK residuals, 6 equations each
+  std::vector<PointObservation> points;  ///< FK point residuals, 3 equations each
+};
+
+/// Settings of calibrateHexapod.
+struct HexapodCalibrationOptions {
+  HexapodParameterMask free = allHexapodParametersFree();  ///< parameters to estimate
+  int max_iterations = 100;                                ///< LM iterations, ≥ 1
+  double function_tolerance = 1e-14;                       ///< Ceres relative cost change
+  double gradient_tolerance = 1e-14;                       ///< Ceres max-norm gradient
+  double parameter_tolerance = 1e-12;                      ///< Ceres relative step
+  RobustLoss loss = RobustLoss::kNone;
+  double loss_scale = 0.0;  ///< model length unit; > 0 when loss ≠ kNone
+  /// Standard deviation of one residual (model length unit) for the covariance; 0 estimates it
+  /// from the final residuals as √(Σr² / (m − rank)).
+  double measurement_sigma = 0.0;
+  IdentifiabilityOptions identifiability;
+  /// Throws pkm::InvalidArgument naming the field when a setting is unusable.
+  void validate() const;
+};
+
+/// Residual statistics of a data set under one parameter vector, model length unit.
+struct ResidualStatistics {
+  int equations = 0;    ///< residuals counted
+  double rms = 0.0;     ///< root mean square
+  double max = 0.0;     ///< largest magnitude
+  int fk_failures = 0;  ///< point observations whose FK did not converge (not counted)
+};
+
+/// What calibrateHexapod did.
+struct HexapodCalibrationSummary {
+  bool converged = false;     ///< Ceres reported convergence (not iteration limit or failure)
+  std::string termination;    ///< Ceres' message
+  int iterations = 0;         ///< LM iterations taken
+  double initial_cost = 0.0;  ///< ½Σr² before
+  double final_cost = 0.0;    ///< ½Σr² after
+  double seconds = 0.0;       ///< wall time of the solve, s
+  ResidualStatistics before;  ///< on the fitted data, initial parameters
+  ResidualStatistics after;   ///< on the fitted data, estimated parameters
+  HexapodParameterVector initial = HexapodParameterVector::Zero();
+  HexapodParameterVector parameters = HexapodParameterVector::Zero();  ///< the estimate
+  /// Identifiability of the free parameters at the initial values (columns = free parameters in
+  /// index order). Unidentifiable directions are held at their initial value by a prior residual
+  /// n·(θ − θ₀) per null-space vector n, so they never drift silently.
+  Identifiability identifiability;
+  std::vector<int> free_indices;  ///< parameter index of each identifiability column
+  double sigma = 0.0;             ///< the residual σ used for the covariance
+  /// 42 × 42 covariance of the estimate (σ²·(JᵀJ)⁺ on the identifiable subspace; zero rows and
+  /// columns for fixed parameters).
+  Eigen::MatrixXd covariance;
+  /// √diag(covariance), model length unit.
+  HexapodParameterVector standard_deviation = HexapodParameterVector::Zero();
+};
+
+/// Estimates the free parameters of `initial` so that the observations fit (least squares of the
+/// IK residuals of poses and the FK residuals of points; hexapod_measurements.hpp). Throws
+/// pkm::InvalidArgument when options are invalid, no parameter is free, an observation is not
+/// finite, or there are fewer equations than free parameters (the message gives both counts).
+[[nodiscard]] HexapodCalibrationSummary calibrateHexapod(
+    const kinematics::HexapodModel& initial,
+    const HexapodCalibrationData& data,
+    const HexapodCalibrationOptions& options = {});
+
+/// The residual statistics of `data` under `model` (FK from model.home for points).
+[[nodiscard]] ResidualStatistics residualStatistics(const kinematics::HexapodModel& model,
+                                                    const HexapodCalibrationData& data);
+
+/// The stacked identification Jacobian of `data` at `model`'s parameters: 6 rows per pose, 3 per
+/// point (rows of points whose FK fails are zero), 42 columns.
+[[nodiscard]] Eigen::MatrixXd identificationJacobian(const kinematics::HexapodModel& model,
+                                                     const HexapodCalibrationData& data);
+
+}  // namespace pkm::calibration

@@ -1,0 +1,188 @@
+#include "pkm/calibration/hexapod_calibration.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "pkm/core/error.hpp"
+#include "pkm/kinematics/hexapod_ik.hpp"
+#include "support/sample_models.hpp"
+#include "support/tolerances.hpp"
+
+namespace pkm::calibration {
+namespace {
+
+using kinematics::HexapodData;
+using kinematics::HexapodModel;
+using kinematics::PoseRpy;
+
+constexpr double kJointError = 0.5;          ///< mm, amplitude of injected joint position errors
+constexpr double kOffsetError = 1.0;         ///< mm, amplitude of injected length-offset errors
+constexpr double kReach = 120.0;             ///< mm, pose sampling half-range
+constexpr double kTilt = 0.12;               ///< rad, pose sampling half-range
+constexpr double kTrackerSigma = 0.005;      ///< mm, tracker position noise
+constexpr double kTrackerAngleSigma = 5e-6;  ///< rad, 6-DOF probe orientation noise
+constexpr double kRecoveryTolerance = 1e-7;  ///< mm, noise-free recovery
+constexpr double kNoiseFactor = 3.0;         ///< held-out error ≤ kNoiseFactor × noise
+
+/// The milling model with seeded random errors on all 42 parameters.
+HexapodModel trueMachine(unsigned seed) {
+  const HexapodModel nominal = test::millingModel();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  HexapodParameterVector p = hexapodParameters(nominal);
+  for (int k = 0; k < kHexapodParameters; ++k)
+    p(k) += (k % kParametersPerStrut == 6 ? kOffsetError : kJointError) * u(rng);
+  return withHexapodParameters(nominal, p);
+}
+
+/// Poses measured on `truth`: readings from its IK, pose with Gaussian noise.
+std::vector<PoseObservation> measurePoses(
+    const HexapodModel& truth, int count, unsigned seed, double sigma, double angle_sigma) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> n(0.0, 1.0);
+  HexapodData data(truth);
+  std::vector<PoseObservation> out;
+  for (int k = 0; k < count; ++k) {
+    const PoseRpy pose = test::randomPose(rng, truth.home, kReach, kTilt);
+    PoseObservation o;
+    o.readings = kinematics::inverseKinematics(truth, data, pose);
+    o.pose = pose;
+    for (int i = 0; i < 3; ++i) o.pose.position[i] += sigma * n(rng);
+    for (int i = 0; i < 3; ++i) o.pose.rpy[i] += angle_sigma * n(rng);
+    out.push_back(o);
+  }
+  return out;
+}
+
+/// Largest TCP position error of `model`'s FK against exact poses of `truth` (held-out check).
+double maxTcpError(const HexapodModel& model, const HexapodModel& truth, unsigned seed) {
+  const auto poses = measurePoses(truth, 50, seed, 0.0, 0.0);
+  HexapodData data(model);
+  double worst = 0.0;
+  for (const PoseObservation& o : poses) {
+    const auto e = forwardPoseError(model, data, o.readings, o.pose, o.pose);
+    EXPECT_TRUE(e.has_value());
+    if (e) worst = std::max(worst, e->head<3>().norm());
+  }
+  return worst;
+}
+
+TEST(HexapodCalibration, RecoversAll42ParametersFromExactPoses) {
+  const HexapodModel nominal = test::millingModel();
+  const HexapodModel truth = trueMachine(test::kSeed);
+  HexapodCalibrationData data;
+  data.poses = measurePoses(truth, 60, test::kSeed + 1, 0.0, 0.0);
+  const HexapodCalibrationSummary s = calibrateHexapod(nominal, data);
+  EXPECT_TRUE(s.converged) << s.termination;
+  EXPECT_EQ(s.identifiability.rank, kHexapodParameters);
+  EXPECT_GT(s.before.rms, 0.1);
+  EXPECT_LT(s.after.rms, kRecoveryTolerance);
+  EXPECT_LT((s.parameters - hexapodParameters(truth)).cwiseAbs().maxCoeff(), kRecoveryTolerance);
+}
+
+TEST(HexapodCalibration, NoisyTrackerDataGivesHeldOutErrorWithinThreeSigma) {
+  const HexapodModel nominal = test::millingModel();
+  const HexapodModel truth = trueMachine(test::kSeed + 2);
+  HexapodCalibrationData data;
+  data.poses = measurePoses(truth, 200, test::kSeed + 3, kTrackerSigma, kTrackerAngleSigma);
+  const HexapodCalibrationSummary s = calibrateHexapod(nominal, data);
+  EXPECT_TRUE(s.converged) << s.termination;
+  const double before = maxTcpError(nominal, truth, test::kSeed + 4);
+  const HexapodModel calibrated = withHexapodParameters(nominal, s.parameters);
+  const double after = maxTcpError(calibrated, truth, test::kSeed + 4);
+  EXPECT_GT(before, 1.0);
+  EXPECT_LT(after, kNoiseFactor * kTrackerSigma) << "before " << before;
+  // The covariance predicts the actual parameter errors: most within 3 standard deviations.
+  int within = 0;
+  const HexapodParameterVector err = s.parameters - hexapodParameters(truth);
+  for (int k = 0; k < kHexapodParameters; ++k)
+    if (std::fabs(err(k)) <= 3.0 * s.standard_deviation(k)) ++within;
+  EXPECT_GE(within, 38);
+  EXPECT_GT(s.sigma, 0.0);
+}
+
+TEST(HexapodCalibration, PointDataLeavesThePlatformRotationUnidentifiable) {
+  const HexapodModel nominal = test::millingModel();
+  const HexapodModel truth = trueMachine(test::kSeed + 5);
+  HexapodCalibrationData data;
+  for (const PoseObservation& o : measurePoses(truth, 80, test::kSeed + 6, 0.0, 0.0))
+    data.points.push_back({o.readings, o.pose.position});
+  const HexapodCalibrationSummary s = calibrateHexapod(nominal, data);
+  EXPECT_EQ(s.identifiability.rank, kHexapodParameters - 3);
+  ASSERT_EQ(s.identifiability.combinations.size(), 3u);
+  for (const auto& combo : s.identifiability.combinations)
+    for (const auto& term : combo.terms)
+      EXPECT_EQ(term.first.rfind("platform", 0), 0u) << term.first;
+  EXPECT_LT(s.after.rms, kRecoveryTolerance);
+  // The TCP positions are still predicted exactly: the hidden rotation does not affect them.
+  const HexapodModel calibrated = withHexapodParameters(nominal, s.parameters);
+  HexapodData work(calibrated);
+  for (const PoseObservation& o : measurePoses(truth, 20, test::kSeed + 7, 0.0, 0.0)) {
+    const auto e = pointResiduals(calibrated, work, {o.readings, o.pose.position}, o.pose);
+    ASSERT_TRUE(e.has_value());
+    EXPECT_LT(e->norm(), 1e-6);
+  }
+}
+
+TEST(HexapodCalibration, FixedParametersStayPut) {
+  const HexapodModel nominal = test::millingModel();
+  HexapodCalibrationData data;
+  data.poses = measurePoses(trueMachine(test::kSeed + 8), 40, test::kSeed + 9, 0.0, 0.0);
+  HexapodCalibrationOptions options;
+  for (int i = 0; i < kinematics::kStruts; ++i)
+    options.free[static_cast<std::size_t>(offsetParameter(i))] = false;
+  const HexapodCalibrationSummary s = calibrateHexapod(nominal, data, options);
+  for (int i = 0; i < kinematics::kStruts; ++i) {
+    EXPECT_EQ(s.parameters(offsetParameter(i)), s.initial(offsetParameter(i)));
+    EXPECT_EQ(s.standard_deviation(offsetParameter(i)), 0.0);
+  }
+  EXPECT_EQ(s.free_indices.size(), 36u);
+}
+
+TEST(HexapodCalibration, ClearErrorsForUnusableInput) {
+  const HexapodModel nominal = test::millingModel();
+  HexapodCalibrationData data;
+  data.poses = measurePoses(nominal, 6, test::kSeed, 0.0, 0.0);
+  try {
+    (void)calibrateHexapod(nominal, data);
+    FAIL() << "expected InvalidArgument";
+  } catch (const InvalidArgument& e) {
+    EXPECT_STREQ(e.what(),
+                 "calibration: too few observations: 6 poses and 0 points give 36 equations for "
+                 "42 free parameters");
+  }
+  data.poses = measurePoses(nominal, 10, test::kSeed, 0.0, 0.0);
+  data.poses[3].readings(2) = std::nan("");
+  EXPECT_THROW((void)calibrateHexapod(nominal, data), InvalidArgument);
+  HexapodCalibrationOptions options;
+  options.free.fill(false);
+  data.poses[3].readings(2) = 0.0;
+  EXPECT_THROW((void)calibrateHexapod(nominal, data, options), InvalidArgument);
+  options = {};
+  options.loss = RobustLoss::kHuber;
+  EXPECT_THROW((void)calibrateHexapod(nominal, data, options), InvalidArgument);
+}
+
+TEST(HexapodCalibration, RobustLossResistsAnOutlier) {
+  const HexapodModel nominal = test::millingModel();
+  const HexapodModel truth = trueMachine(test::kSeed + 10);
+  HexapodCalibrationData data;
+  data.poses = measurePoses(truth, 100, test::kSeed + 11, kTrackerSigma, kTrackerAngleSigma);
+  data.poses[17].pose.position.x() += 2.0;  // a mis-read pose
+  HexapodCalibrationOptions options;
+  options.loss = RobustLoss::kCauchy;
+  options.loss_scale = 3 * kTrackerSigma;
+  const HexapodCalibrationSummary robust = calibrateHexapod(nominal, data, options);
+  const HexapodCalibrationSummary plain = calibrateHexapod(nominal, data);
+  const double robust_error =
+      maxTcpError(withHexapodParameters(nominal, robust.parameters), truth, test::kSeed + 12);
+  const double plain_error =
+      maxTcpError(withHexapodParameters(nominal, plain.parameters), truth, test::kSeed + 12);
+  EXPECT_LT(robust_error, kNoiseFactor * kTrackerSigma);
+  EXPECT_GT(plain_error, robust_error);
+}
+
+}  // namespace
+}  // namespace pkm::calibration
