@@ -80,6 +80,35 @@ class PointCost final : public ceres::SizedCostFunction<3, kHexapodParameters> {
   const PointObservation& obs_;
 };
 
+/// Plane-contact residuals of one gauge station.
+class GaugeCost final : public ceres::SizedCostFunction<3, kHexapodParameters> {
+ public:
+  GaugeCost(const HexapodModel& model, const ConstrainedMotionData& set, std::size_t k)
+      : model_(model), set_(set), k_(k) {}
+  bool Evaluate(double const* const* parameters,
+                double* residuals,
+                double** jacobians) const final {
+    const HexapodModel m =
+        withHexapodParameters(model_, Eigen::Map<const HexapodParameterVector>(parameters[0]));
+    HexapodData data(m);
+    GaugeParameterJacobian J;
+    const auto r = constrainedResiduals(m, data, set_, k_, jacobians != nullptr ? &J : nullptr);
+    if (!r) return false;
+    Eigen::Map<Eigen::Vector3d> r_out(residuals);
+    r_out = *r;
+    if (jacobians != nullptr && jacobians[0] != nullptr) {
+      Eigen::Map<Eigen::Matrix<double, 3, kHexapodParameters, Eigen::RowMajor>> J_out(jacobians[0]);
+      J_out = J;
+    }
+    return true;
+  }
+
+ private:
+  const HexapodModel& model_;
+  const ConstrainedMotionData& set_;
+  std::size_t k_;
+};
+
 /// Holds the parameters at θ₀ along an unidentifiable direction n: r = n·(θ − θ₀).
 class NullSpacePrior final : public ceres::SizedCostFunction<1, kHexapodParameters> {
  public:
@@ -114,6 +143,25 @@ void requireFinite(const HexapodCalibrationData& data) {
               "calibration: point observation {} has a non-finite value",
               k + 1);
   }
+  const auto finite_station = [](const GaugeStation& st) {
+    return st.readings.allFinite() && st.command.position.allFinite() &&
+           st.command.rpy.allFinite() && std::isfinite(st.gauges[0]) &&
+           std::isfinite(st.gauges[1]) && std::isfinite(st.gauges[2]);
+  };
+  for (std::size_t k = 0; k < data.constrained.size(); ++k) {
+    const ConstrainedMotionData& c = data.constrained[k];
+    PKM_CHECK(std::fabs(c.table_normal.norm() - 1.0) < 1e-9,
+              "calibration: constrained set {}: the table normal is not a unit vector",
+              k + 1);
+    PKM_CHECK(finite_station(c.reference),
+              "calibration: constrained set {}: the reference has a non-finite value",
+              k + 1);
+    for (std::size_t j = 0; j < c.stations.size(); ++j)
+      PKM_CHECK(finite_station(c.stations[j]),
+                "calibration: constrained set {}: station {} has a non-finite value",
+                k + 1,
+                j + 1);
+  }
 }
 
 ceres::LossFunction* makeLoss(const HexapodCalibrationOptions& options) {
@@ -130,6 +178,12 @@ ceres::LossFunction* makeLoss(const HexapodCalibrationOptions& options) {
 
 }  // namespace
 
+std::size_t HexapodCalibrationData::equations() const {
+  std::size_t n = 6 * poses.size() + 3 * points.size();
+  for (const ConstrainedMotionData& c : constrained) n += 3 * c.stations.size();
+  return n;
+}
+
 void HexapodCalibrationOptions::validate() const {
   PKM_CHECK(
       max_iterations >= 1, "calibration: max_iterations must be >= 1, got {}", max_iterations);
@@ -143,8 +197,7 @@ void HexapodCalibrationOptions::validate() const {
 
 Eigen::MatrixXd identificationJacobian(const HexapodModel& model,
                                        const HexapodCalibrationData& data) {
-  const Eigen::Index rows =
-      static_cast<Eigen::Index>(6 * data.poses.size() + 3 * data.points.size());
+  const auto rows = static_cast<Eigen::Index>(data.equations());
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(rows, kHexapodParameters);
   HexapodData work(model);
   Eigen::Index row = 0;
@@ -159,6 +212,12 @@ Eigen::MatrixXd identificationJacobian(const HexapodModel& model,
     if (pointResiduals(model, work, o, pointSeed(model, o), &Jp)) J.middleRows<3>(row) = Jp;
     row += 3;
   }
+  for (const ConstrainedMotionData& c : data.constrained)
+    for (std::size_t k = 0; k < c.stations.size(); ++k) {
+      GaugeParameterJacobian Jg;
+      if (constrainedResiduals(model, work, c, k, &Jg)) J.middleRows<3>(row) = Jg;
+      row += 3;
+    }
   return J;
 }
 
@@ -182,6 +241,15 @@ ResidualStatistics residualStatistics(const HexapodModel& model,
     }
     for (const double v : *r) add(v);
   }
+  for (const ConstrainedMotionData& c : data.constrained)
+    for (std::size_t k = 0; k < c.stations.size(); ++k) {
+      const auto r = constrainedResiduals(model, work, c, k);
+      if (!r) {
+        ++s.fk_failures;
+        continue;
+      }
+      for (const double v : *r) add(v);
+    }
   s.rms = s.equations > 0 ? std::sqrt(sum / s.equations) : 0.0;
   return s;
 }
@@ -196,12 +264,15 @@ HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
     if (options.free[static_cast<std::size_t>(k)]) out.free_indices.push_back(k);
   const auto n_free = static_cast<Eigen::Index>(out.free_indices.size());
   PKM_CHECK(n_free > 0, "calibration: no parameter is free");
-  const std::size_t equations = 6 * data.poses.size() + 3 * data.points.size();
+  const std::size_t equations = data.equations();
+  std::size_t stations = 0;
+  for (const ConstrainedMotionData& c : data.constrained) stations += c.stations.size();
   PKM_CHECK(equations >= out.free_indices.size(),
-            "calibration: too few observations: {} poses and {} points give {} equations for {} "
-            "free parameters",
+            "calibration: too few observations: {} poses, {} points and {} gauge stations give {} "
+            "equations for {} free parameters",
             data.poses.size(),
             data.points.size(),
+            stations,
             equations,
             out.free_indices.size());
 
@@ -221,6 +292,9 @@ HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
     problem.AddResidualBlock(new PoseCost(initial, o), makeLoss(options), theta.data());
   for (const PointObservation& o : data.points)
     problem.AddResidualBlock(new PointCost(initial, o), makeLoss(options), theta.data());
+  for (const ConstrainedMotionData& c : data.constrained)
+    for (std::size_t k = 0; k < c.stations.size(); ++k)
+      problem.AddResidualBlock(new GaugeCost(initial, c, k), makeLoss(options), theta.data());
   for (Eigen::Index k = 0; k < out.identifiability.null_space.cols(); ++k) {
     HexapodParameterVector n = HexapodParameterVector::Zero();
     for (Eigen::Index c = 0; c < n_free; ++c)

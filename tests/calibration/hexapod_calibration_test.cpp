@@ -149,9 +149,10 @@ TEST(HexapodCalibration, ClearErrorsForUnusableInput) {
     (void)calibrateHexapod(nominal, data);
     FAIL() << "expected InvalidArgument";
   } catch (const InvalidArgument& e) {
-    EXPECT_STREQ(e.what(),
-                 "calibration: too few observations: 6 poses and 0 points give 36 equations for "
-                 "42 free parameters");
+    EXPECT_STREQ(
+        e.what(),
+        "calibration: too few observations: 6 poses, 0 points and 0 gauge stations give 36 "
+        "equations for 42 free parameters");
   }
   data.poses = measurePoses(nominal, 10, test::kSeed, 0.0, 0.0);
   data.poses[3].readings(2) = std::nan("");

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/calibration/constrained_motion.hpp"
 #include "pkm/calibration/hexapod_measurements.hpp"
 #include "pkm/calibration/hexapod_parameters.hpp"
 #include "pkm/calibration/identifiability.hpp"
@@ -23,6 +24,10 @@ enum class RobustLoss { kNone, kHuber, kCauchy };
 struct HexapodCalibrationData {
   std::vector<PoseObservation> poses;    ///< IK residuals, 6 equations each
   std::vector<PointObservation> points;  ///< FK point residuals, 3 equations each
+  /// Constrained-motion (dial gauge) sets: 3 plane-contact equations per station.
+  std::vector<ConstrainedMotionData> constrained;
+  /// Number of scalar equations.
+  [[nodiscard]] std::size_t equations() const;
 };
 
 /// Settings of calibrateHexapod.
@@ -76,7 +81,8 @@ struct HexapodCalibrationSummary {
 };
 
 /// Estimates the free parameters of `initial` so that the observations fit (least squares of the
-/// IK residuals of poses and the FK residuals of points; hexapod_measurements.hpp). Throws
+/// IK residuals of poses, the FK residuals of points and the plane-contact residuals of gauge
+/// stations; hexapod_measurements.hpp, constrained_motion.hpp). Throws
 /// pkm::InvalidArgument when options are invalid, no parameter is free, an observation is not
 /// finite, or there are fewer equations than free parameters (the message gives both counts).
 [[nodiscard]] HexapodCalibrationSummary calibrateHexapod(
@@ -84,12 +90,13 @@ struct HexapodCalibrationSummary {
     const HexapodCalibrationData& data,
     const HexapodCalibrationOptions& options = {});
 
-/// The residual statistics of `data` under `model` (FK from model.home for points).
+/// The residual statistics of `data` under `model` (FK from the measured point with the home
+/// orientation for points, from the command for gauge stations).
 [[nodiscard]] ResidualStatistics residualStatistics(const kinematics::HexapodModel& model,
                                                     const HexapodCalibrationData& data);
 
 /// The stacked identification Jacobian of `data` at `model`'s parameters: 6 rows per pose, 3 per
-/// point (rows of points whose FK fails are zero), 42 columns.
+/// point, 3 per gauge station (rows whose FK fails are zero), 42 columns.
 [[nodiscard]] Eigen::MatrixXd identificationJacobian(const kinematics::HexapodModel& model,
                                                      const HexapodCalibrationData& data);
 
