@@ -39,6 +39,24 @@ Eigen::Matrix3d so3Exp(const Eigen::Vector3d& w) {
   return Eigen::Matrix3d::Identity() + a * W + b * W * W;
 }
 
+Eigen::Matrix3d so3LeftJacobian(const Eigen::Vector3d& w) {
+  const double theta2 = w.squaredNorm();
+  const double theta = std::sqrt(theta2);
+  const Eigen::Matrix3d W = hat(w);
+  double b;  // (1 - cos θ)/θ²
+  double c;  // (θ - sin θ)/θ³
+  // (θ − sin θ)/θ³ cancels badly for small θ: series below 1e-3 rad (next terms ~1e-18).
+  constexpr double kSeriesBelow = 1e-3;
+  if (theta < kSeriesBelow) {
+    b = 0.5 - theta2 / 24.0 + theta2 * theta2 / 720.0;
+    c = 1.0 / 6.0 - theta2 / 120.0 + theta2 * theta2 / 5040.0;
+  } else {
+    b = (1.0 - std::cos(theta)) / theta2;
+    c = (theta - std::sin(theta)) / (theta2 * theta);
+  }
+  return Eigen::Matrix3d::Identity() + b * W + c * W * W;
+}
+
 Eigen::Vector3d so3Log(const Eigen::Matrix3d& R) {
   assert((R * R.transpose() - Eigen::Matrix3d::Identity()).norm() < 1e-6);
   // Eigen's AngleAxis uses a quaternion path that is accurate near 0 and near pi.

@@ -14,6 +14,10 @@ namespace pkm::geometry {
 /// expansion below 1e-8 rad so that exp is smooth at the identity.
 [[nodiscard]] Eigen::Matrix3d so3Exp(const Eigen::Vector3d& w);
 
+/// The left Jacobian J_l(w) of SO(3): so3Exp(w + δ) ≈ so3Exp([J_l(w)·δ]x)·so3Exp(w) to first order,
+/// J_l = I + (1 − cos θ)/θ²·[w]x + (θ − sin θ)/θ³·[w]x², θ = |w| (Taylor expansion near 0).
+[[nodiscard]] Eigen::Matrix3d so3LeftJacobian(const Eigen::Vector3d& w);
+
 /// Rotation vector w with so3Exp(w) == R, |w| in [0, pi]. Precondition: R is a rotation matrix
 /// (orthonormal, det +1); this is asserted, not checked.
 [[nodiscard]] Eigen::Vector3d so3Log(const Eigen::Matrix3d& R);
