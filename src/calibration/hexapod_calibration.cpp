@@ -7,128 +7,156 @@
 #include <cmath>
 #include <memory>
 
+#include "detail/observations.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/kinematics/hexapod_fk.hpp"
 
 namespace pkm::calibration {
 namespace {
 
+using detail::FrameEstimate;
+using detail::ObservationRef;
 using kinematics::HexapodData;
 using kinematics::HexapodModel;
 using kinematics::PoseRpy;
-using RowJacobian = Eigen::Matrix<double, Eigen::Dynamic, kHexapodParameters, Eigen::RowMajor>;
 
-/// The FK seed of a point observation: the measured point with the home orientation.
-PoseRpy pointSeed(const HexapodModel& model, const PointObservation& obs) {
-  PoseRpy seed = model.home;
-  seed.position = obs.point;
-  return seed;
-}
-
-/// IK residuals of one full-pose observation.
-class PoseCost final : public ceres::SizedCostFunction<6, kHexapodParameters> {
+/// One observation as a Ceres residual block over the parameters (42) and, when the data has a
+/// measurement frame, the frame correction (6).
+class ObservationCost final : public ceres::CostFunction {
  public:
-  PoseCost(const HexapodModel& model, const PoseObservation& obs) : model_(model), obs_(obs) {}
-  bool Evaluate(double const* const* parameters,
-                double* residuals,
-                double** jacobians) const final {
-    const HexapodModel m = withParameters(parameters[0]);
-    HexapodData data(m);
-    PoseParameterJacobian J;
-    const auto r = poseResiduals(m, data, obs_, jacobians != nullptr ? &J : nullptr);
-    Eigen::Map<Eigen::Matrix<double, 6, 1>> r_out(residuals);
-    r_out = r;
-    if (jacobians != nullptr && jacobians[0] != nullptr) {
-      Eigen::Map<Eigen::Matrix<double, 6, kHexapodParameters, Eigen::RowMajor>> J_out(jacobians[0]);
-      J_out = J;
-    }
-    return true;
+  ObservationCost(const HexapodModel& model,
+                  const HexapodCalibrationData& data,
+                  ObservationRef ref,
+                  const geometry::RigidTransform* frame)
+      : model_(model), data_(data), ref_(ref), has_frame_(frame != nullptr) {
+    if (frame != nullptr) frame_.initial = *frame;
+    set_num_residuals(static_cast<int>(ref.rows()));
+    mutable_parameter_block_sizes()->push_back(kHexapodParameters);
+    if (has_frame_) mutable_parameter_block_sizes()->push_back(6);
   }
-
- private:
-  HexapodModel withParameters(const double* p) const {
-    return withHexapodParameters(model_, Eigen::Map<const HexapodParameterVector>(p));
-  }
-  const HexapodModel& model_;
-  const PoseObservation& obs_;
-};
-
-/// FK residuals of one point observation; a failed FK makes Ceres reject the step.
-class PointCost final : public ceres::SizedCostFunction<3, kHexapodParameters> {
- public:
-  PointCost(const HexapodModel& model, const PointObservation& obs) : model_(model), obs_(obs) {}
   bool Evaluate(double const* const* parameters,
                 double* residuals,
                 double** jacobians) const final {
     const HexapodModel m =
         withHexapodParameters(model_, Eigen::Map<const HexapodParameterVector>(parameters[0]));
-    HexapodData data(m);
-    PointParameterJacobian J;
-    const auto r =
-        pointResiduals(m, data, obs_, pointSeed(model_, obs_), jacobians != nullptr ? &J : nullptr);
-    if (!r) return false;
-    Eigen::Map<Eigen::Vector3d> r_out(residuals);
-    r_out = *r;
-    if (jacobians != nullptr && jacobians[0] != nullptr) {
-      Eigen::Map<Eigen::Matrix<double, 3, kHexapodParameters, Eigen::RowMajor>> J_out(jacobians[0]);
-      J_out = J;
+    FrameEstimate frame = frame_;
+    if (has_frame_) frame.delta = Eigen::Map<const Eigen::Matrix<double, 6, 1>>(parameters[1]);
+    HexapodData work(m);
+    Eigen::MatrixXd Jt, Jf;
+    const bool want = jacobians != nullptr;
+    if (!detail::evaluate(m,
+                          work,
+                          data_,
+                          ref_,
+                          has_frame_ ? &frame : nullptr,
+                          residuals,
+                          want ? &Jt : nullptr,
+                          want && has_frame_ ? &Jf : nullptr))
+      return false;
+    const Eigen::Index rows = ref_.rows();
+    if (want && jacobians[0] != nullptr) {
+      Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> out(
+          jacobians[0], rows, kHexapodParameters);
+      out = Jt;
+    }
+    if (want && has_frame_ && jacobians[1] != nullptr) {
+      Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> out(
+          jacobians[1], rows, 6);
+      out = Jf;
     }
     return true;
   }
 
  private:
   const HexapodModel& model_;
-  const PointObservation& obs_;
+  const HexapodCalibrationData& data_;
+  ObservationRef ref_;
+  bool has_frame_;
+  FrameEstimate frame_;
 };
 
-/// Plane-contact residuals of one gauge station.
-class GaugeCost final : public ceres::SizedCostFunction<3, kHexapodParameters> {
+/// Holds the estimate at its start along an unidentifiable direction n = (n_θ, n_frame):
+/// r = n_θ·(θ − θ₀) + n_frame·δ.
+class NullSpacePrior final : public ceres::CostFunction {
  public:
-  GaugeCost(const HexapodModel& model, const ConstrainedMotionData& set, std::size_t k)
-      : model_(model), set_(set), k_(k) {}
-  bool Evaluate(double const* const* parameters,
-                double* residuals,
-                double** jacobians) const final {
-    const HexapodModel m =
-        withHexapodParameters(model_, Eigen::Map<const HexapodParameterVector>(parameters[0]));
-    HexapodData data(m);
-    GaugeParameterJacobian J;
-    const auto r = constrainedResiduals(m, data, set_, k_, jacobians != nullptr ? &J : nullptr);
-    if (!r) return false;
-    Eigen::Map<Eigen::Vector3d> r_out(residuals);
-    r_out = *r;
-    if (jacobians != nullptr && jacobians[0] != nullptr) {
-      Eigen::Map<Eigen::Matrix<double, 3, kHexapodParameters, Eigen::RowMajor>> J_out(jacobians[0]);
-      J_out = J;
-    }
-    return true;
+  NullSpacePrior(HexapodParameterVector n_theta,
+                 HexapodParameterVector theta0,
+                 std::optional<Eigen::Matrix<double, 6, 1>> n_frame)
+      : n_theta_(std::move(n_theta)), theta0_(std::move(theta0)), n_frame_(std::move(n_frame)) {
+    set_num_residuals(1);
+    mutable_parameter_block_sizes()->push_back(kHexapodParameters);
+    if (n_frame_) mutable_parameter_block_sizes()->push_back(6);
   }
-
- private:
-  const HexapodModel& model_;
-  const ConstrainedMotionData& set_;
-  std::size_t k_;
-};
-
-/// Holds the parameters at θ₀ along an unidentifiable direction n: r = n·(θ − θ₀).
-class NullSpacePrior final : public ceres::SizedCostFunction<1, kHexapodParameters> {
- public:
-  NullSpacePrior(HexapodParameterVector n, HexapodParameterVector theta0)
-      : n_(std::move(n)), theta0_(std::move(theta0)) {}
   bool Evaluate(double const* const* parameters,
                 double* residuals,
                 double** jacobians) const final {
     const Eigen::Map<const HexapodParameterVector> theta(parameters[0]);
-    residuals[0] = n_.dot(theta - theta0_);
+    residuals[0] = n_theta_.dot(theta - theta0_);
+    if (n_frame_)
+      residuals[0] += n_frame_->dot(Eigen::Map<const Eigen::Matrix<double, 6, 1>>(parameters[1]));
     if (jacobians != nullptr && jacobians[0] != nullptr) {
-      Eigen::Map<HexapodParameterVector> J_out(jacobians[0]);
-      J_out = n_;
+      Eigen::Map<HexapodParameterVector> out(jacobians[0]);
+      out = n_theta_;
+    }
+    if (jacobians != nullptr && n_frame_ && jacobians[1] != nullptr) {
+      Eigen::Map<Eigen::Matrix<double, 6, 1>> out(jacobians[1]);
+      out = *n_frame_;
     }
     return true;
   }
 
  private:
-  HexapodParameterVector n_, theta0_;
+  HexapodParameterVector n_theta_, theta0_;
+  std::optional<Eigen::Matrix<double, 6, 1>> n_frame_;
 };
+
+/// The stacked Jacobian (all observations; 42 + 6·frame columns) and residuals at (model, frame).
+void stack(const HexapodModel& model,
+           const HexapodCalibrationData& data,
+           const FrameEstimate* frame,
+           Eigen::MatrixXd* J,
+           Eigen::VectorXd* r,
+           ResidualStatistics* stats) {
+  const auto refs = detail::observations(data);
+  const auto rows = static_cast<Eigen::Index>(data.equations());
+  const Eigen::Index cols = kHexapodParameters + (frame != nullptr ? 6 : 0);
+  if (J != nullptr) J->setZero(rows, cols);
+  if (r != nullptr) r->setZero(rows);
+  HexapodData work(model);
+  Eigen::Index row = 0;
+  double sum = 0.0;
+  for (const ObservationRef& ref : refs) {
+    const Eigen::Index n = ref.rows();
+    double res[6];
+    Eigen::MatrixXd Jt, Jf;
+    const bool ok = detail::evaluate(model,
+                                     work,
+                                     data,
+                                     ref,
+                                     frame,
+                                     res,
+                                     J != nullptr ? &Jt : nullptr,
+                                     J != nullptr && frame != nullptr ? &Jf : nullptr);
+    if (ok) {
+      if (J != nullptr) {
+        J->block(row, 0, n, kHexapodParameters) = Jt;
+        if (frame != nullptr) J->block(row, kHexapodParameters, n, 6) = Jf;
+      }
+      for (Eigen::Index k = 0; k < n; ++k) {
+        if (r != nullptr) (*r)(row + k) = res[k];
+        if (stats != nullptr) {
+          sum += res[k] * res[k];
+          stats->max = std::max(stats->max, std::fabs(res[k]));
+          ++stats->equations;
+        }
+      }
+    } else if (stats != nullptr) {
+      ++stats->fk_failures;
+    }
+    row += n;
+  }
+  if (stats != nullptr) stats->rms = stats->equations > 0 ? std::sqrt(sum / stats->equations) : 0.0;
+}
 
 void requireFinite(const HexapodCalibrationData& data) {
   for (std::size_t k = 0; k < data.poses.size(); ++k) {
@@ -184,6 +212,12 @@ std::size_t HexapodCalibrationData::equations() const {
   return n;
 }
 
+const std::vector<std::string>& measurementFrameNames() {
+  static const std::vector<std::string> names{
+      "frame.x", "frame.y", "frame.z", "frame.rx", "frame.ry", "frame.rz"};
+  return names;
+}
+
 void HexapodCalibrationOptions::validate() const {
   PKM_CHECK(
       max_iterations >= 1, "calibration: max_iterations must be >= 1, got {}", max_iterations);
@@ -195,62 +229,41 @@ void HexapodCalibrationOptions::validate() const {
             "calibration: measurement_sigma must be finite and >= 0");
 }
 
+geometry::RigidTransform initialMeasurementFrame(const HexapodModel& model,
+                                                 const HexapodCalibrationData& data) {
+  std::vector<Eigen::Vector3d> world, measured;
+  HexapodData work(model);
+  const auto add = [&](const kinematics::StrutVector& q, const Eigen::Vector3d& p) {
+    if (kinematics::forwardKinematics(model, work, q, model.home).ok()) {
+      world.push_back(work.world_p_tcp);
+      measured.push_back(p);
+    }
+  };
+  for (const PoseObservation& o : data.poses) add(o.readings, o.pose.position);
+  for (const PointObservation& o : data.points) add(o.readings, o.point);
+  PKM_CHECK(world.size() >= 3,
+            "calibration: only {} observations have a converging FK; the measurement frame needs 3",
+            world.size());
+  return geometry::fitRigidTransform(world, measured);
+}
+
 Eigen::MatrixXd identificationJacobian(const HexapodModel& model,
                                        const HexapodCalibrationData& data) {
-  const auto rows = static_cast<Eigen::Index>(data.equations());
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(rows, kHexapodParameters);
-  HexapodData work(model);
-  Eigen::Index row = 0;
-  for (const PoseObservation& o : data.poses) {
-    PoseParameterJacobian Jp;
-    (void)poseResiduals(model, work, o, &Jp);
-    J.middleRows<6>(row) = Jp;
-    row += 6;
-  }
-  for (const PointObservation& o : data.points) {
-    PointParameterJacobian Jp;
-    if (pointResiduals(model, work, o, pointSeed(model, o), &Jp)) J.middleRows<3>(row) = Jp;
-    row += 3;
-  }
-  for (const ConstrainedMotionData& c : data.constrained)
-    for (std::size_t k = 0; k < c.stations.size(); ++k) {
-      GaugeParameterJacobian Jg;
-      if (constrainedResiduals(model, work, c, k, &Jg)) J.middleRows<3>(row) = Jg;
-      row += 3;
-    }
+  Eigen::MatrixXd J;
+  FrameEstimate frame;
+  if (data.measurement_frame) frame.initial = *data.measurement_frame;
+  stack(model, data, data.measurement_frame ? &frame : nullptr, &J, nullptr, nullptr);
   return J;
 }
 
 ResidualStatistics residualStatistics(const HexapodModel& model,
-                                      const HexapodCalibrationData& data) {
+                                      const HexapodCalibrationData& data,
+                                      const std::optional<geometry::RigidTransform>& frame) {
   ResidualStatistics s;
-  HexapodData work(model);
-  double sum = 0.0;
-  const auto add = [&](double r) {
-    sum += r * r;
-    s.max = std::max(s.max, std::fabs(r));
-    ++s.equations;
-  };
-  for (const PoseObservation& o : data.poses)
-    for (const double r : poseResiduals(model, work, o)) add(r);
-  for (const PointObservation& o : data.points) {
-    const auto r = pointResiduals(model, work, o, pointSeed(model, o));
-    if (!r) {
-      ++s.fk_failures;
-      continue;
-    }
-    for (const double v : *r) add(v);
-  }
-  for (const ConstrainedMotionData& c : data.constrained)
-    for (std::size_t k = 0; k < c.stations.size(); ++k) {
-      const auto r = constrainedResiduals(model, work, c, k);
-      if (!r) {
-        ++s.fk_failures;
-        continue;
-      }
-      for (const double v : *r) add(v);
-    }
-  s.rms = s.equations > 0 ? std::sqrt(sum / s.equations) : 0.0;
+  const std::optional<geometry::RigidTransform>& f = frame ? frame : data.measurement_frame;
+  FrameEstimate estimate;
+  if (f) estimate.initial = *f;
+  stack(model, data, f ? &estimate : nullptr, nullptr, nullptr, &s);
   return s;
 }
 
@@ -264,42 +277,63 @@ HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
     if (options.free[static_cast<std::size_t>(k)]) out.free_indices.push_back(k);
   const auto n_free = static_cast<Eigen::Index>(out.free_indices.size());
   PKM_CHECK(n_free > 0, "calibration: no parameter is free");
+  const bool has_frame = data.measurement_frame.has_value();
+  const Eigen::Index n_frame = has_frame ? 6 : 0;
+  const std::size_t unknowns = out.free_indices.size() + static_cast<std::size_t>(n_frame);
   const std::size_t equations = data.equations();
   std::size_t stations = 0;
   for (const ConstrainedMotionData& c : data.constrained) stations += c.stations.size();
-  PKM_CHECK(equations >= out.free_indices.size(),
+  PKM_CHECK(equations >= unknowns,
             "calibration: too few observations: {} poses, {} points and {} gauge stations give {} "
-            "equations for {} free parameters",
+            "equations for {} unknowns",
             data.poses.size(),
             data.points.size(),
             stations,
             equations,
-            out.free_indices.size());
+            unknowns);
 
   out.initial = hexapodParameters(initial);
   out.before = residualStatistics(initial, data);
+  FrameEstimate frame0;
+  if (has_frame) frame0.initial = *data.measurement_frame;
+  // Columns: the free parameters, then the frame correction.
   std::vector<std::string> names;
   for (const int k : out.free_indices) names.push_back(hexapodParameterName(k));
-  const Eigen::MatrixXd J0 = identificationJacobian(initial, data);
-  Eigen::MatrixXd J0_free(J0.rows(), n_free);
-  for (Eigen::Index c = 0; c < n_free; ++c)
-    J0_free.col(c) = J0.col(out.free_indices[static_cast<std::size_t>(c)]);
-  out.identifiability = analyseIdentifiability(J0_free, names, options.identifiability);
+  if (has_frame)
+    for (const std::string& n : measurementFrameNames()) names.push_back(n);
+  const auto select = [&](const Eigen::MatrixXd& J) {
+    Eigen::MatrixXd S(J.rows(), n_free + n_frame);
+    for (Eigen::Index c = 0; c < n_free; ++c)
+      S.col(c) = J.col(out.free_indices[static_cast<std::size_t>(c)]);
+    if (has_frame) S.rightCols(6) = J.rightCols(6);
+    return S;
+  };
+  Eigen::MatrixXd J0;
+  stack(initial, data, has_frame ? &frame0 : nullptr, &J0, nullptr, nullptr);
+  out.identifiability = analyseIdentifiability(select(J0), names, options.identifiability);
 
   HexapodParameterVector theta = out.initial;
+  Eigen::Matrix<double, 6, 1> delta = Eigen::Matrix<double, 6, 1>::Zero();
   ceres::Problem problem;
-  for (const PoseObservation& o : data.poses)
-    problem.AddResidualBlock(new PoseCost(initial, o), makeLoss(options), theta.data());
-  for (const PointObservation& o : data.points)
-    problem.AddResidualBlock(new PointCost(initial, o), makeLoss(options), theta.data());
-  for (const ConstrainedMotionData& c : data.constrained)
-    for (std::size_t k = 0; k < c.stations.size(); ++k)
-      problem.AddResidualBlock(new GaugeCost(initial, c, k), makeLoss(options), theta.data());
+  const geometry::RigidTransform* frame_ptr = has_frame ? &*data.measurement_frame : nullptr;
+  for (const ObservationRef& ref : detail::observations(data)) {
+    auto* cost = new ObservationCost(initial, data, ref, frame_ptr);
+    if (has_frame)
+      problem.AddResidualBlock(cost, makeLoss(options), theta.data(), delta.data());
+    else
+      problem.AddResidualBlock(cost, makeLoss(options), theta.data());
+  }
   for (Eigen::Index k = 0; k < out.identifiability.null_space.cols(); ++k) {
     HexapodParameterVector n = HexapodParameterVector::Zero();
     for (Eigen::Index c = 0; c < n_free; ++c)
       n(out.free_indices[static_cast<std::size_t>(c)]) = out.identifiability.null_space(c, k);
-    problem.AddResidualBlock(new NullSpacePrior(n, out.initial), nullptr, theta.data());
+    std::optional<Eigen::Matrix<double, 6, 1>> nf;
+    if (has_frame) nf = out.identifiability.null_space.col(k).tail<6>();
+    auto* prior = new NullSpacePrior(n, out.initial, nf);
+    if (has_frame)
+      problem.AddResidualBlock(prior, nullptr, theta.data(), delta.data());
+    else
+      problem.AddResidualBlock(prior, nullptr, theta.data());
   }
   if (n_free < kHexapodParameters) {
     std::vector<int> fixed;
@@ -328,30 +362,34 @@ HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
   out.parameters = theta;
 
   const HexapodModel estimated = withHexapodParameters(initial, theta);
-  out.after = residualStatistics(estimated, data);
-  // Covariance σ²(JᵀJ)⁺ on the identifiable subspace of the free parameters.
-  const Eigen::MatrixXd J1 = identificationJacobian(estimated, data);
-  Eigen::MatrixXd J1_free(J1.rows(), n_free);
-  for (Eigen::Index c = 0; c < n_free; ++c)
-    J1_free.col(c) = J1.col(out.free_indices[static_cast<std::size_t>(c)]);
+  FrameEstimate frame1 = frame0;
+  frame1.delta = delta;
+  if (has_frame) out.measurement_frame = frame1.current();
+  out.after = residualStatistics(estimated, data, out.measurement_frame);
+  // Covariance σ²(JᵀJ)⁺ on the identifiable subspace of the unknowns.
+  Eigen::MatrixXd J1;
+  stack(estimated, data, has_frame ? &frame1 : nullptr, &J1, nullptr, nullptr);
+  const Eigen::MatrixXd Js = select(J1);
   const int rank = out.identifiability.rank;
   const double dof = static_cast<double>(out.after.equations - rank);
   out.sigma = options.measurement_sigma > 0.0
                   ? options.measurement_sigma
                   : (dof > 0 ? out.after.rms * std::sqrt(out.after.equations / dof) : 0.0);
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J1_free, Eigen::ComputeThinV);
-  Eigen::MatrixXd cov_free = Eigen::MatrixXd::Zero(n_free, n_free);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Js, Eigen::ComputeThinV);
+  const Eigen::Index n_all = n_free + n_frame;
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(n_all, n_all);
   for (int k = 0; k < rank && k < svd.singularValues().size(); ++k) {
     const double s = svd.singularValues()(k);
-    cov_free += (svd.matrixV().col(k) / (s * s)) * svd.matrixV().col(k).transpose();
+    cov += (svd.matrixV().col(k) / (s * s)) * svd.matrixV().col(k).transpose();
   }
-  cov_free *= out.sigma * out.sigma;
+  cov *= out.sigma * out.sigma;
   out.covariance = Eigen::MatrixXd::Zero(kHexapodParameters, kHexapodParameters);
   for (Eigen::Index a = 0; a < n_free; ++a)
     for (Eigen::Index b = 0; b < n_free; ++b)
       out.covariance(out.free_indices[static_cast<std::size_t>(a)],
-                     out.free_indices[static_cast<std::size_t>(b)]) = cov_free(a, b);
+                     out.free_indices[static_cast<std::size_t>(b)]) = cov(a, b);
   out.standard_deviation = out.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+  if (has_frame) out.frame_standard_deviation = cov.diagonal().tail<6>().cwiseMax(0.0).cwiseSqrt();
   return out;
 }
 

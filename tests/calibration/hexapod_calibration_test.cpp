@@ -6,6 +6,8 @@
 #include <random>
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/so3.hpp"
+#include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "support/sample_models.hpp"
 #include "support/tolerances.hpp"
@@ -126,6 +128,45 @@ TEST(HexapodCalibration, PointDataLeavesThePlatformRotationUnidentifiable) {
   }
 }
 
+TEST(HexapodCalibration, EstimatesTheTrackerFrameAndNamesTheBaseFrameFreedom) {
+  // Poses measured in a tracker frame far from the machine and rotated by 150° about z.
+  const HexapodModel nominal = test::millingModel();
+  const HexapodModel truth = trueMachine(test::kSeed + 13);
+  geometry::RigidTransform world_T_tracker;
+  world_T_tracker.rotation = geometry::rotationFromRpy(Eigen::Vector3d(2e-4, -1e-4, 2.618));
+  world_T_tracker.translation = Eigen::Vector3d(1500, -900, 350);
+  const Eigen::Matrix3d tracker_R_world = world_T_tracker.rotation.transpose();
+  HexapodCalibrationData data;
+  for (PoseObservation o : measurePoses(truth, 150, test::kSeed + 14, 0.0, 0.0)) {
+    o.pose.position = tracker_R_world * (o.pose.position - world_T_tracker.translation);
+    o.pose.rpy = geometry::rpyFromRotation(tracker_R_world * geometry::rotationFromRpy(o.pose.rpy));
+    data.poses.push_back(o);
+  }
+  data.measurement_frame = initialMeasurementFrame(nominal, data);
+  // The rigid fit through the nominal model already lands within a few mm / mrad.
+  EXPECT_LT((data.measurement_frame->translation - world_T_tracker.translation).norm(), 10.0);
+  const HexapodCalibrationSummary s = calibrateHexapod(nominal, data);
+  EXPECT_TRUE(s.converged) << s.termination;
+  EXPECT_EQ(s.identifiability.parameters, kHexapodParameters + 6);
+  EXPECT_EQ(s.identifiability.rank, kHexapodParameters);  // 6 base-frame freedoms
+  EXPECT_LT(s.after.rms, kRecoveryTolerance);
+  ASSERT_TRUE(s.measurement_frame.has_value());
+  // Positions predicted through the calibrated model and frame match the truth everywhere: the
+  // unidentifiable base-frame motion does not change what the tracker sees.
+  const HexapodModel calibrated = withHexapodParameters(nominal, s.parameters);
+  HexapodData work(calibrated);
+  for (const PoseObservation& o : measurePoses(truth, 20, test::kSeed + 15, 0.0, 0.0)) {
+    ASSERT_TRUE(kinematics::forwardKinematics(calibrated, work, o.readings, o.pose).ok());
+    const Eigen::Vector3d in_tracker =
+        tracker_R_world * (o.pose.position - world_T_tracker.translation);
+    EXPECT_LT((s.measurement_frame->rotation.transpose() *
+                   (work.world_p_tcp - s.measurement_frame->translation) -
+               in_tracker)
+                  .norm(),
+              1e-6);
+  }
+}
+
 TEST(HexapodCalibration, FixedParametersStayPut) {
   const HexapodModel nominal = test::millingModel();
   HexapodCalibrationData data;
@@ -152,7 +193,7 @@ TEST(HexapodCalibration, ClearErrorsForUnusableInput) {
     EXPECT_STREQ(
         e.what(),
         "calibration: too few observations: 6 poses, 0 points and 0 gauge stations give 36 "
-        "equations for 42 free parameters");
+        "equations for 42 unknowns");
   }
   data.poses = measurePoses(nominal, 10, test::kSeed, 0.0, 0.0);
   data.poses[3].readings(2) = std::nan("");

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "pkm/calibration/hexapod_measurements.hpp"
 #include "pkm/calibration/hexapod_parameters.hpp"
 #include "pkm/calibration/identifiability.hpp"
+#include "pkm/geometry/rigid_fit.hpp"
 #include "pkm/kinematics/hexapod_model.hpp"
 
 namespace pkm::calibration {
@@ -26,6 +28,11 @@ struct HexapodCalibrationData {
   std::vector<PointObservation> points;  ///< FK point residuals, 3 equations each
   /// Constrained-motion (dial gauge) sets: 3 plane-contact equations per station.
   std::vector<ConstrainedMotionData> constrained;
+  /// When set, the pose and point measurements are expressed in an instrument frame (a laser
+  /// tracker's) and world_T_measurement is estimated with the parameters, starting from this value
+  /// (initialMeasurementFrame gives one). The rigid motion of the base frame (6 directions) is then
+  /// unidentifiable and held at the initial base joints (docs/calibration.md, "Frames").
+  std::optional<geometry::RigidTransform> measurement_frame;
   /// Number of scalar equations.
   [[nodiscard]] std::size_t equations() const;
 };
@@ -78,7 +85,22 @@ struct HexapodCalibrationSummary {
   Eigen::MatrixXd covariance;
   /// √diag(covariance), model length unit.
   HexapodParameterVector standard_deviation = HexapodParameterVector::Zero();
+  /// The estimated world_T_measurement when the data has a measurement frame.
+  std::optional<geometry::RigidTransform> measurement_frame;
+  /// Standard deviations of the frame correction (δt mm, δω rad; world axes).
+  Eigen::Matrix<double, 6, 1> frame_standard_deviation = Eigen::Matrix<double, 6, 1>::Zero();
 };
+
+/// Names of the six measurement-frame unknowns as used in identifiability reports: frame.x,
+/// frame.y, frame.z (translation) and frame.rx, frame.ry, frame.rz (world-axis rotation vector).
+[[nodiscard]] const std::vector<std::string>& measurementFrameNames();
+
+/// A starting world_T_measurement: the rigid fit (geometry::fitRigidTransform) of the measured
+/// positions of the pose and point observations to the positions FK of `model` gives for their
+/// readings. Throws pkm::InvalidArgument when fewer than 3 observations have a converging FK or
+/// they are collinear.
+[[nodiscard]] geometry::RigidTransform initialMeasurementFrame(
+    const kinematics::HexapodModel& model, const HexapodCalibrationData& data);
 
 /// Estimates the free parameters of `initial` so that the observations fit (least squares of the
 /// IK residuals of poses, the FK residuals of points and the plane-contact residuals of gauge
@@ -90,13 +112,17 @@ struct HexapodCalibrationSummary {
     const HexapodCalibrationData& data,
     const HexapodCalibrationOptions& options = {});
 
-/// The residual statistics of `data` under `model` (FK from the measured point with the home
-/// orientation for points, from the command for gauge stations).
-[[nodiscard]] ResidualStatistics residualStatistics(const kinematics::HexapodModel& model,
-                                                    const HexapodCalibrationData& data);
+/// The residual statistics of `data` under `model`, with pose and point measurements taken in
+/// `frame` (default: data.measurement_frame; world when neither is set) (FK from the measured point
+/// with the home orientation for points, from the command for gauge stations).
+[[nodiscard]] ResidualStatistics residualStatistics(
+    const kinematics::HexapodModel& model,
+    const HexapodCalibrationData& data,
+    const std::optional<geometry::RigidTransform>& frame = std::nullopt);
 
 /// The stacked identification Jacobian of `data` at `model`'s parameters: 6 rows per pose, 3 per
-/// point, 3 per gauge station (rows whose FK fails are zero), 42 columns.
+/// point, 3 per gauge station (rows whose FK fails are zero); 42 columns, plus 6 for the
+/// measurement frame (measurementFrameNames) when data.measurement_frame is set.
 [[nodiscard]] Eigen::MatrixXd identificationJacobian(const kinematics::HexapodModel& model,
                                                      const HexapodCalibrationData& data);
 

@@ -1,0 +1,132 @@
+#include "detail/observations.hpp"
+
+#include <Eigen/Geometry>
+
+#include "pkm/geometry/so3.hpp"
+#include "pkm/kinematics/hexapod_ik.hpp"
+
+namespace pkm::calibration::detail {
+
+geometry::RigidTransform FrameEstimate::current() const {
+  geometry::RigidTransform t;
+  t.rotation = geometry::so3Exp(delta.tail<3>()) * initial.rotation;
+  t.translation = initial.translation + delta.head<3>();
+  return t;
+}
+
+std::vector<ObservationRef> observations(const HexapodCalibrationData& data) {
+  std::vector<ObservationRef> out;
+  for (std::size_t k = 0; k < data.poses.size(); ++k)
+    out.push_back({ObservationRef::Kind::kPose, k, 0});
+  for (std::size_t k = 0; k < data.points.size(); ++k)
+    out.push_back({ObservationRef::Kind::kPoint, k, 0});
+  for (std::size_t s = 0; s < data.constrained.size(); ++s)
+    for (std::size_t k = 0; k < data.constrained[s].stations.size(); ++k)
+      out.push_back({ObservationRef::Kind::kGauge, k, s});
+  return out;
+}
+
+namespace {
+
+bool evaluatePose(const kinematics::HexapodModel& model,
+                  kinematics::HexapodData& work,
+                  const PoseObservation& obs,
+                  const FrameEstimate* frame,
+                  double* r,
+                  Eigen::MatrixXd* J_theta,
+                  Eigen::MatrixXd* J_frame) {
+  if (frame == nullptr) {
+    PoseParameterJacobian J;
+    const kinematics::StrutVector res =
+        poseResiduals(model, work, obs, J_theta != nullptr ? &J : nullptr);
+    Eigen::Map<kinematics::StrutVector> r_out(r);
+    r_out = res;
+    if (J_theta != nullptr) *J_theta = J;
+    return true;
+  }
+  // The measured pose expressed in world: p_w = R_f·p_m + t_f, R_w = R_f·R_m.
+  const geometry::RigidTransform f = frame->current();
+  const Eigen::Vector3d p_rel = f.rotation * obs.pose.position;
+  const Eigen::Matrix3d R_w = f.rotation * geometry::rotationFromRpy(obs.pose.rpy);
+  const kinematics::StrutVector& q =
+      kinematics::inverseKinematics(model, work, p_rel + f.translation, R_w);
+  Eigen::Map<kinematics::StrutVector> r_out(r);
+  r_out = q - obs.readings;
+  if (J_theta != nullptr) *J_theta = readingParameterJacobian(model, work);
+  if (J_frame != nullptr) {
+    // d leg_i = δt + (J_l·δω) × (R_f·p_m + R_w·a_i); d r_i = u_iᵀ·d leg_i.
+    const Eigen::Matrix3d Jl = geometry::so3LeftJacobian(frame->delta.tail<3>());
+    J_frame->resize(6, 6);
+    for (int i = 0; i < kinematics::kStruts; ++i) {
+      const auto ii = static_cast<std::size_t>(i);
+      const Eigen::Vector3d& u = work.unit_leg[ii];
+      const Eigen::Vector3d v = p_rel + work.world_r_joint[ii];
+      J_frame->block<1, 3>(i, 0) = u.transpose();
+      J_frame->block<1, 3>(i, 3) = v.cross(u).transpose() * Jl;
+    }
+  }
+  return true;
+}
+
+bool evaluatePoint(const kinematics::HexapodModel& model,
+                   kinematics::HexapodData& work,
+                   const PointObservation& obs,
+                   const FrameEstimate* frame,
+                   double* r,
+                   Eigen::MatrixXd* J_theta,
+                   Eigen::MatrixXd* J_frame) {
+  PointObservation world = obs;
+  geometry::RigidTransform f;
+  if (frame != nullptr) {
+    f = frame->current();
+    world.point = f * obs.point;
+  }
+  kinematics::PoseRpy seed = model.home;
+  seed.position = world.point;
+  PointParameterJacobian J;
+  const auto e = pointResiduals(model, work, world, seed, J_theta != nullptr ? &J : nullptr);
+  if (!e) return false;
+  Eigen::Map<Eigen::Vector3d> r_out(r);
+  r_out = *e;
+  if (J_theta != nullptr) *J_theta = J;
+  if (frame != nullptr && J_frame != nullptr) {
+    // e = p_FK − (R_f·p_m + t_f): de = −δt + [R_f·p_m]x·J_l·δω.
+    J_frame->resize(3, 6);
+    J_frame->leftCols<3>() = -Eigen::Matrix3d::Identity();
+    J_frame->rightCols<3>() =
+        geometry::hat(f.rotation * obs.point) * geometry::so3LeftJacobian(frame->delta.tail<3>());
+  }
+  return true;
+}
+
+}  // namespace
+
+bool evaluate(const kinematics::HexapodModel& model,
+              kinematics::HexapodData& work,
+              const HexapodCalibrationData& data,
+              const ObservationRef& ref,
+              const FrameEstimate* frame,
+              double* r,
+              Eigen::MatrixXd* J_theta,
+              Eigen::MatrixXd* J_frame) {
+  switch (ref.kind) {
+    case ObservationRef::Kind::kPose:
+      return evaluatePose(model, work, data.poses[ref.index], frame, r, J_theta, J_frame);
+    case ObservationRef::Kind::kPoint:
+      return evaluatePoint(model, work, data.points[ref.index], frame, r, J_theta, J_frame);
+    case ObservationRef::Kind::kGauge: {
+      GaugeParameterJacobian J;
+      const auto res = constrainedResiduals(
+          model, work, data.constrained[ref.set], ref.index, J_theta != nullptr ? &J : nullptr);
+      if (!res) return false;
+      Eigen::Map<Eigen::Vector3d> r_out(r);
+      r_out = *res;
+      if (J_theta != nullptr) *J_theta = J;
+      if (J_frame != nullptr) J_frame->setZero(3, 6);  // gauges do not see the tracker frame
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace pkm::calibration::detail
