@@ -57,6 +57,8 @@ void addExechonCommands(CLI::App& app);
 void addVolumetricCommand(CLI::App& app);
 void addSimulateCommand(CLI::App& app);
 void addMachinesCommand(CLI::App& app);
+void addCalibrateCommand(CLI::App& app);
+void addPlanPosesCommand(CLI::App& app);
 
 }  // namespace pkm::cli
 

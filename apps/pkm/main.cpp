@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   pkm::cli::addVolumetricCommand(app);
   pkm::cli::addSimulateCommand(app);
   pkm::cli::addAnalyzeCommand(app);
+  pkm::cli::addCalibrateCommand(app);
   pkm::cli::addMachinesCommand(app);
   pkm::cli::addDemoCommand(app);
   try {

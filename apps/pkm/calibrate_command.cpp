@@ -1,0 +1,305 @@
+// `pkm calibrate hexapod`: identify a hexapod's 42 kinematic parameters from laser-tracker and
+// dial-gauge files and write the calibrated machine, its LinuxCNC setp block and a summary
+// (docs/calibration.md).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "analyze_common.hpp"
+#include "cli_common.hpp"
+#include "pkm/calibration/hexapod_calibration.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/core/units.hpp"
+#include "pkm/geometry/so3.hpp"
+#include "pkm/io/calibration_files.hpp"
+#include "pkm/io/hexapod_machine.hpp"
+#include "pkm/io/linuxcnc_hal.hpp"
+#include "pkm/kinematics/hexapod_fk.hpp"
+
+namespace pkm::cli {
+namespace {
+
+namespace cal = pkm::calibration;
+using nlohmann::ordered_json;
+
+struct CalibrateArgs {
+  MachineOption machine;
+  std::vector<std::string> data, holdout;
+  std::string out;
+  std::string frame = "auto";
+  std::vector<double> target_offset;
+  std::vector<std::string> fix;
+  std::string loss = "none";
+  double loss_scale = 0.0;
+  bool force = false;
+  bool json = false;
+};
+
+/// Held-out TCP position errors: |FK(q) target in the measurement frame − measured|.
+struct HoldoutErrors {
+  int poses = 0, failures = 0;
+  double rms = 0.0, max = 0.0, mean = 0.0;
+};
+
+HoldoutErrors holdoutErrors(const kinematics::HexapodModel& model,
+                            const std::optional<geometry::RigidTransform>& frame,
+                            const cal::HexapodCalibrationData& held) {
+  HoldoutErrors e;
+  kinematics::HexapodData work(model);
+  double sum2 = 0.0, sum = 0.0;
+  const auto add = [&](const kinematics::StrutVector& q, const Eigen::Vector3d& measured) {
+    if (!kinematics::forwardKinematics(model, work, q, model.home).ok()) {
+      ++e.failures;
+      return;
+    }
+    Eigen::Vector3d p = work.world_p_tcp;
+    if (frame) p = frame->rotation.transpose() * (p - frame->translation);
+    const double d = (p - measured).norm();
+    sum2 += d * d;
+    sum += d;
+    e.max = std::max(e.max, d);
+    ++e.poses;
+  };
+  for (const auto& o : held.poses) add(o.readings, o.pose.position);
+  for (const auto& o : held.points) add(o.readings, o.point);
+  if (e.poses > 0) {
+    e.rms = std::sqrt(sum2 / e.poses);
+    e.mean = sum / e.poses;
+  }
+  return e;
+}
+
+ordered_json toJson(const HoldoutErrors& e) {
+  return {{"poses", e.poses},
+          {"fk_failures", e.failures},
+          {"mean", e.mean},
+          {"rms", e.rms},
+          {"max", e.max}};
+}
+
+ordered_json toJson(const cal::ResidualStatistics& s) {
+  return {
+      {"equations", s.equations}, {"rms", s.rms}, {"max", s.max}, {"fk_failures", s.fk_failures}};
+}
+
+ordered_json frameJson(const geometry::RigidTransform& f) {
+  const Eigen::Vector3d rpy = geometry::rpyFromRotation(f.rotation);
+  return {{"position", {f.translation.x(), f.translation.y(), f.translation.z()}},
+          {"rpy_deg", {radToDeg(rpy.x()), radToDeg(rpy.y()), radToDeg(rpy.z())}}};
+}
+
+/// Output paths: CAL.json, CAL.hal, CAL.summary.json.
+struct OutPaths {
+  std::string machine, hal, summary;
+};
+
+OutPaths outPaths(const std::string& out) {
+  std::string stem = out;
+  if (stem.size() > 5 && stem.ends_with(".json")) stem.resize(stem.size() - 5);
+  return {out, stem + ".hal", stem + ".summary.json"};
+}
+
+void writeFile(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  if (!f) throw IoError(locate(path, 0, "cannot write the file"));
+  f << text;
+  if (!f) throw IoError(locate(path, 0, "write failed"));
+}
+
+void runCalibrate(const CalibrateArgs& args) {
+  io::HexapodMachine machine = args.machine.load();
+  const OutPaths paths = outPaths(args.out);
+  if (!args.force)
+    for (const std::string& p : {paths.machine, paths.hal, paths.summary})
+      if (std::filesystem::exists(p))
+        throw IoError(fmt::format("{} exists; pass --force to overwrite it", p));
+  io::CalibrationInput input, held;
+  for (const std::string& f : args.data) io::addCalibrationFile(f, input);
+  for (const std::string& f : args.holdout) io::addCalibrationFile(f, held);
+  printNotices(input.notes);
+
+  // The target (SMR or 6-DOF probe) is the TCP of the fitted model: tool offset += target offset.
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();
+  if (!args.target_offset.empty()) {
+    if (args.target_offset.size() != 3) throw InvalidArgument("--target-offset needs x,y,z");
+    target = Eigen::Vector3d(args.target_offset[0], args.target_offset[1], args.target_offset[2]);
+  } else if (input.target_offset) {
+    target = *input.target_offset;
+  }
+  kinematics::HexapodModel model = machine.model;
+  model.tool_offset += target;
+
+  bool use_frame = args.frame == "tracker" || (args.frame == "auto" && input.tracker_frame);
+  if (use_frame && input.data.poses.empty() && input.data.points.empty())
+    throw InvalidArgument("--frame tracker needs tracker pose or point data");
+  if (use_frame) input.data.measurement_frame = cal::initialMeasurementFrame(model, input.data);
+  cal::HexapodCalibrationOptions options;
+  for (const std::string& name : args.fix)
+    options.free[static_cast<std::size_t>(cal::hexapodParameterIndex(name))] = false;
+  if (args.loss == "huber") options.loss = cal::RobustLoss::kHuber;
+  if (args.loss == "cauchy") options.loss = cal::RobustLoss::kCauchy;
+  options.loss_scale = args.loss_scale;
+
+  const cal::HexapodCalibrationSummary s = cal::calibrateHexapod(model, input.data, options);
+  // Plausibility: a model that cannot explain the data is not written.
+  const double scale = model.characteristicLength();
+  if (!(s.after.rms < 1e-3 * scale)) {
+    throw InvalidArgument(fmt::format(
+        "calibration does not explain the data: residual RMS {:.4g} (max {:.4g}) after {} "
+        "iterations ({}); check the units of the data against the machine's ({}), the --frame "
+        "option, and outliers (--loss cauchy --loss-scale ...); nothing was written",
+        s.after.rms,
+        s.after.max,
+        s.iterations,
+        s.termination,
+        toString(model.unit)));
+  }
+
+  io::HexapodMachine result = machine;
+  result.model = cal::withHexapodParameters(machine.model, s.parameters);
+  result.model.name = machine.model.name + "-calibrated";
+  result.notices.clear();
+
+  ordered_json j;
+  j["machine"] = machine.model.name;
+  j["units"] = toString(model.unit);
+  j["data"] = input.notes;
+  j["observations"] = {{"poses", input.data.poses.size()},
+                       {"points", input.data.points.size()},
+                       {"constrained_sets", input.data.constrained.size()},
+                       {"equations", input.data.equations()}};
+  j["target_offset"] = {target.x(), target.y(), target.z()};
+  j["solver"] = {{"converged", s.converged},
+                 {"termination", s.termination},
+                 {"iterations", s.iterations},
+                 {"initial_cost", s.initial_cost},
+                 {"final_cost", s.final_cost},
+                 {"seconds", s.seconds}};
+  j["residuals"] = {{"before", toJson(s.before)}, {"after", toJson(s.after)}};
+  if (!held.data.poses.empty() || !held.data.points.empty()) {
+    // Before: the nominal model with the frame fitted through it; after: the calibrated model and
+    // the estimated frame.
+    // The held-out files' own target (it may differ from the fitted data's).
+    const Eigen::Vector3d held_target = held.target_offset.value_or(target);
+    kinematics::HexapodModel before_model = machine.model, after_model = result.model;
+    before_model.tool_offset += held_target;
+    after_model.tool_offset += held_target;
+    std::optional<geometry::RigidTransform> f0, f1 = s.measurement_frame;
+    if (use_frame) f0 = cal::initialMeasurementFrame(model, input.data);
+    j["holdout"] = {{"target_offset", {held_target.x(), held_target.y(), held_target.z()}},
+                    {"before", toJson(holdoutErrors(before_model, f0, held.data))},
+                    {"after", toJson(holdoutErrors(after_model, f1, held.data))}};
+  }
+  ordered_json id;
+  id["parameters"] = s.identifiability.parameters;
+  id["rank"] = s.identifiability.rank;
+  id["condition_number"] = s.identifiability.condition_number;
+  id["unidentifiable"] = ordered_json::array();
+  for (const auto& c : s.identifiability.combinations) {
+    ordered_json terms = ordered_json::object();
+    for (const auto& [name, coef] : c.terms) terms[name] = coef;
+    id["unidentifiable"].push_back(terms);
+  }
+  j["identifiability"] = id;
+  if (s.measurement_frame) {
+    j["measurement_frame"] = frameJson(*s.measurement_frame);
+    j["measurement_frame"]["sigma"] = std::vector<double>(s.frame_standard_deviation.data(),
+                                                          s.frame_standard_deviation.data() + 6);
+  }
+  j["sigma"] = s.sigma;
+  ordered_json params = ordered_json::array();
+  for (int k = 0; k < cal::kHexapodParameters; ++k)
+    params.push_back({{"name", cal::hexapodParameterName(k)},
+                      {"free", options.free[static_cast<std::size_t>(k)]},
+                      {"initial", s.initial(k)},
+                      {"estimate", s.parameters(k)},
+                      {"change", s.parameters(k) - s.initial(k)},
+                      {"sigma", s.standard_deviation(k)}});
+  j["parameters"] = params;
+  j["outputs"] = {{"machine", paths.machine}, {"hal", paths.hal}, {"summary", paths.summary}};
+
+  writeFile(paths.machine, io::writeHexapodJson(result));
+  writeFile(paths.hal, io::writeLinuxcncSetp(result));
+  writeFile(paths.summary, j.dump(2) + "\n");
+  if (args.json) {
+    printJson(j);
+    return;
+  }
+  Output out;
+  std::string& t = out.text();
+  t += fmt::format("calibrated {} from {} equations ({} poses, {} points, {} gauge sets)\n",
+                   machine.model.name,
+                   input.data.equations(),
+                   input.data.poses.size(),
+                   input.data.points.size(),
+                   input.data.constrained.size());
+  t += fmt::format("solver: {} iterations, {:.3f} s, {}\n",
+                   s.iterations,
+                   s.seconds,
+                   s.converged ? "converged" : s.termination);
+  t += fmt::format("identifiable: {} of {} unknowns (condition number {:.4g})\n",
+                   s.identifiability.rank,
+                   s.identifiability.parameters,
+                   s.identifiability.condition_number);
+  for (const auto& c : s.identifiability.combinations) {
+    std::string terms;
+    for (const auto& [name, coef] : c.terms) terms += fmt::format(" {:+.3f}·{}", coef, name);
+    t += fmt::format("  not identifiable:{}\n", terms);
+  }
+  t += fmt::format("fitted residuals ({}): RMS {:.6g} -> {:.6g}, max {:.6g} -> {:.6g}\n",
+                   toString(model.unit),
+                   s.before.rms,
+                   s.after.rms,
+                   s.before.max,
+                   s.after.max);
+  if (j.contains("holdout"))
+    t += fmt::format("held-out TCP error: RMS {:.6g} -> {:.6g}, max {:.6g} -> {:.6g}\n",
+                     j["holdout"]["before"]["rms"].get<double>(),
+                     j["holdout"]["after"]["rms"].get<double>(),
+                     j["holdout"]["before"]["max"].get<double>(),
+                     j["holdout"]["after"]["max"].get<double>());
+  t += fmt::format("wrote {}, {}, {}\n", paths.machine, paths.hal, paths.summary);
+}
+
+}  // namespace
+
+void addCalibrateCommand(CLI::App& app) {
+  CLI::App* calibrate =
+      app.add_subcommand("calibrate", "identify kinematic parameters from measurements");
+  calibrate->require_subcommand(1);
+  auto args = std::make_shared<CalibrateArgs>();
+  CLI::App* hex = calibrate->add_subcommand(
+      "hexapod", "calibrate a hexapod from laser-tracker pose/point files and dial-gauge files");
+  args->machine.add(*hex);
+  hex->add_option(
+         "--data", args->data, "calibration files (tracker pose/point, constrained motion)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  hex->add_option("--holdout", args->holdout, "tracker files kept out of the fit, for validation")
+      ->check(CLI::ExistingFile);
+  hex->add_option(
+         "--out", args->out, "calibrated machine file CAL.json (also CAL.hal, CAL.summary.json)")
+      ->required();
+  hex->add_option("--frame",
+                  args->frame,
+                  "where tracker readings are: auto (from the files' metadata), world, tracker")
+      ->check(CLI::IsMember({"auto", "world", "tracker"}));
+  hex->add_option("--target-offset",
+                  args->target_offset,
+                  "the tracker target in the tool frame x,y,z (default: the files' smr offset)")
+      ->delimiter(',')
+      ->expected(3);
+  hex->add_option("--fix", args->fix, "parameters held at their initial value (e.g. offset0)")
+      ->delimiter(',');
+  hex->add_option("--loss", args->loss, "robust loss: none, huber, cauchy")
+      ->check(CLI::IsMember({"none", "huber", "cauchy"}));
+  hex->add_option("--loss-scale", args->loss_scale, "robust loss scale, machine unit");
+  hex->add_flag("--force", args->force, "overwrite existing output files");
+  hex->add_flag("--json", args->json, "print the summary as JSON");
+  hex->callback([args] { runCalibrate(*args); });
+}
+
+}  // namespace pkm::cli
