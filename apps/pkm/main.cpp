@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   pkm::cli::addSimulateCommand(app);
   pkm::cli::addAnalyzeCommand(app);
   pkm::cli::addCalibrateCommand(app);
+  pkm::cli::addPlanPosesCommand(app);
   pkm::cli::addMachinesCommand(app);
   pkm::cli::addDemoCommand(app);
   try {

@@ -1,0 +1,177 @@
+// `pkm calibrate hexapod` on the simulator's seed004-hexapod-calibration data.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "support/cli_fixture.hpp"
+
+namespace pkm::test {
+namespace {
+
+using ::testing::HasSubstr;
+
+/// Issue 6: held-out TCP error after calibration ≤ 3× the measurement noise. The scenario's
+/// tracker reads ~3 µm per coordinate plus 20 µrad orientation noise, and the machine has 5 µm
+/// backlash and 2 µm repeatability the 42-parameter model cannot absorb: 3 × ~5 µm.
+constexpr double kHeldOutRmsLimit = 0.015;  ///< mm
+constexpr double kBeforeAtLeast = 5.0;      ///< mm: the injected assembly errors are large
+
+class CalibrateCli : public CliTest {
+ protected:
+  void SetUp() override {
+    CliTest::SetUp();
+    const CliRun sim = pkm({"simulate", "seed004-hexapod-calibration", "--out", path("sim")});
+    ASSERT_EQ(sim.code, 0) << sim.err;
+  }
+};
+
+TEST_F(CalibrateCli, FullPoseTrackerCalibrationMeetsTheTarget) {
+  const CliRun r = pkm({"calibrate",
+                        "hexapod",
+                        "--machine",
+                        "hexapod-default",
+                        "--data",
+                        path("sim/tracker-pose.csv"),
+                        "--holdout",
+                        path("sim/tracker-holdout.csv"),
+                        "--out",
+                        path("cal.json"),
+                        "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["solver"]["converged"].get<bool>());
+  EXPECT_EQ(j["identifiability"]["parameters"], 48);  // 42 + the tracker frame
+  EXPECT_EQ(j["identifiability"]["rank"], 42);        // the base frame's 6 rigid-motion freedoms
+  EXPECT_EQ(j["identifiability"]["unidentifiable"].size(), 6u);
+  EXPECT_GT(j["holdout"]["before"]["rms"].get<double>(), kBeforeAtLeast);
+  EXPECT_LT(j["holdout"]["after"]["rms"].get<double>(), kHeldOutRmsLimit);
+  // The calibrated machine file loads in every other command, and the HAL block exists.
+  const CliRun describe = pkm({"hexapod", "describe", "--machine", path("cal.json")});
+  EXPECT_EQ(describe.code, 0) << describe.err;
+  EXPECT_THAT(slurp(path("cal.hal")), HasSubstr("setp genhexkins.base.0.x"));
+  EXPECT_TRUE(nlohmann::json::parse(slurp(path("cal.summary.json"))).contains("parameters"));
+}
+
+TEST_F(CalibrateCli, DialGaugeCalibrationNamesWhatItCannotSee) {
+  const CliRun r = pkm({"calibrate",
+                        "hexapod",
+                        "--machine",
+                        "hexapod-default",
+                        "--data",
+                        path("sim/constrained-motion.csv"),
+                        "--out",
+                        path("gauge.json"),
+                        "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_LT(j["identifiability"]["rank"].get<int>(), 42);
+  EXPECT_FALSE(j["identifiability"]["unidentifiable"].empty());
+  EXPECT_LT(j["residuals"]["after"]["rms"].get<double>(),
+            0.01 * j["residuals"]["before"]["rms"].get<double>());
+}
+
+TEST_F(CalibrateCli, RefusesToOverwriteAndRejectsBadData) {
+  ASSERT_EQ(pkm({"calibrate",
+                 "hexapod",
+                 "--machine",
+                 "hexapod-default",
+                 "--data",
+                 path("sim/tracker-pose.csv"),
+                 "--out",
+                 path("cal.json")})
+                .code,
+            0);
+  expectUsageError(pkm({"calibrate",
+                        "hexapod",
+                        "--machine",
+                        "hexapod-default",
+                        "--data",
+                        path("sim/tracker-pose.csv"),
+                        "--out",
+                        path("cal.json")}),
+                   "exists; pass --force");
+  // Too few poses for 48 unknowns.
+  const std::string few = write("few.csv",
+                                "l0,l1,l2,l3,l4,l5,x,y,z,a,b,c\n"
+                                "250,250,250,250,250,250,0,0,200,0,0,0\n"
+                                "260,250,250,250,250,250,0,0,210,0,0,0\n");
+  expectUsageError(pkm({"calibrate",
+                        "hexapod",
+                        "--machine",
+                        "hexapod-default",
+                        "--data",
+                        few,
+                        "--out",
+                        path("few.json")}),
+                   "too few observations");
+  // A bad number names the file and line.
+  const std::string bad =
+      write("bad.csv", "l0,l1,l2,l3,l4,l5,x,y,z,a,b,c\n1,2,3,4,5,6,7,8,x,0,0,0\n");
+  expectUsageError(pkm({"calibrate",
+                        "hexapod",
+                        "--machine",
+                        "hexapod-default",
+                        "--data",
+                        bad,
+                        "--out",
+                        path("bad.json")}),
+                   "bad.csv:2:");
+  EXPECT_FALSE(std::filesystem::exists(path("few.json")));
+}
+
+}  // namespace
+}  // namespace pkm::test
+
+namespace pkm::test {
+namespace {
+
+TEST_F(CliTest, PlanPosesWritesAPlanAndAProgram) {
+  const CliRun r = pkm({"plan-poses",
+                        "--machine",
+                        "hexapod-default",
+                        "--count",
+                        "12",
+                        "--index",
+                        "O2",
+                        "--candidates",
+                        "200",
+                        "--gcode",
+                        path("plan.ngc")});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto lines = splitLines(r.out);
+  ASSERT_EQ(lines.size(), 13u);
+  EXPECT_EQ(lines[0], "pose,x,y,z,a,b,c");
+  EXPECT_EQ(splitFields(lines[12]).size(), 7u);
+  EXPECT_THAT(r.err, HasSubstr("rank 42"));
+  const std::string program = slurp(path("plan.ngc"));
+  EXPECT_THAT(program, HasSubstr("G21 G90"));
+  EXPECT_EQ(splitLines(program).size(), 2u + 1u + 2u * 12u + 2u);
+  // The same seed gives the same plan; an existing program is not overwritten.
+  const CliRun again = pkm({"plan-poses",
+                            "--machine",
+                            "hexapod-default",
+                            "--count",
+                            "12",
+                            "--index",
+                            "O2",
+                            "--candidates",
+                            "200"});
+  EXPECT_EQ(again.out, r.out);
+  expectUsageError(pkm({"plan-poses",
+                        "--machine",
+                        "hexapod-default",
+                        "--count",
+                        "12",
+                        "--candidates",
+                        "200",
+                        "--gcode",
+                        path("plan.ngc")}),
+                   "exists");
+  expectUsageError(
+      pkm({"plan-poses", "--machine", "hexapod-default", "--count", "50", "--candidates", "20"}),
+      "--candidates");
+}
+
+}  // namespace
+}  // namespace pkm::test
