@@ -37,6 +37,8 @@ bench: setup
 	@cmake --build $(BENCH_BUILD) -j $(JOBS)
 	@$(BENCH_BUILD)/bin/bench_kinematics
 	@$(BENCH_BUILD)/bin/bench_exechon
+	@$(BENCH_BUILD)/bin/bench_calibration
+	@if [ -x $(BENCH_BUILD)/bin/bench_metrology ]; then $(BENCH_BUILD)/bin/bench_metrology; fi
 	@bash benchmarks/fk_whole_process.sh $(BENCH_BUILD)/bin/pkm
 	@bash benchmarks/simulate_whole_process.sh $(BENCH_BUILD)/bin/pkm
 
