@@ -12,7 +12,9 @@
 #include "pkm/core/units.hpp"
 #include "pkm/io/measurement_files.hpp"
 #include "pkm/io/number_format.hpp"
+#include "pkm/io/probe_files.hpp"
 #include "pkm/io/scenario.hpp"
+#include "pkm/io/tracker_files.hpp"
 
 namespace pkm::cli {
 
@@ -125,7 +127,8 @@ void runSimulate(const SimulateState& st) {
       const io::Scenario s = io::loadScenario(name);
       out.text() += fmt::format("{}\t{} measurements\t{}\n",
                                 name,
-                                s.campaign.measurements.size(),
+                                s.campaign.measurements.size() + s.campaign.constrained.size() +
+                                    s.campaign.trackers.size() + s.campaign.probes.size(),
                                 s.campaign.description);
     }
     return;
@@ -144,6 +147,16 @@ void runSimulate(const SimulateState& st) {
   for (const sim::ConstrainedResult& r : sim::runConstrainedMotion(scenario.campaign, seed))
     files.emplace_back(fmt::format("{}.csv", r.setup->name),
                        io::dialGaugeCsv(dialGaugeMetadata(scenario, seed, *r.setup), r.stations));
+  for (const sim::TrackerResult& r : sim::runLaserTrackers(scenario.campaign, seed))
+    files.emplace_back(
+        fmt::format("{}.csv", r.setup->name),
+        io::trackerCsv(
+            io::trackerMetadata(scenario.campaign.name, seed, *r.setup, r.readings.size()),
+            r.setup->mode,
+            r.readings));
+  for (const sim::TouchProbeRun& r : sim::runTouchProbes(scenario.campaign.probes, seed))
+    for (auto& file : io::touchProbeFiles(scenario.campaign.name, seed, *r.setup, r.result))
+      files.push_back(std::move(file));
   files.emplace_back("truth.json", io::truthJson(scenario, seed));
   files.emplace_back("scenario.json", io::scenarioJsonWithSeed(scenario, seed));
   const fs::path dir(st.out);

@@ -10,6 +10,7 @@
 #include "io/detail/error_table_json.hpp"
 #include "io/detail/json_doc.hpp"
 #include "pkm/simulation/dial_gauges.hpp"
+#include "pkm/simulation/hybrid_tripod_errors.hpp"
 #include "pkm/simulation/line_measurement.hpp"
 
 namespace pkm::io::detail {
@@ -56,6 +57,15 @@ inline int integer(const JsonDoc& doc,
 [[nodiscard]] simulation::DialGaugeSetup readDialGauges(const JsonDoc& doc,
                                                         const json& obj,
                                                         const std::string& ptr);
+
+/// A hybrid machine's "tripod_errors" object at `ptr` (lengths in mm, c0_urad and a0_urad in µrad;
+/// absent keys are 0). Fails through `doc`.
+[[nodiscard]] simulation::ExechonTripodErrors readTripodErrors(const JsonDoc& doc,
+                                                               const json& obj,
+                                                               const std::string& ptr);
+
+/// The tripod errors as one JSON object with the keys readTripodErrors reads (truth.json).
+[[nodiscard]] std::string tripodErrorsJson(const simulation::ExechonTripodErrors& errors);
 
 /// The built-in scenario texts (generated from data/scenarios/*.json): {file stem, JSON text}.
 const std::vector<std::pair<std::string_view, std::string_view>>& embeddedScenarios();

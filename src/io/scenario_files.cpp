@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "io/scenario_detail.hpp"
+#include "io/scenario_probe.hpp"
+#include "io/scenario_tracker.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/geometric_errors.hpp"
 #include "pkm/io/number_format.hpp"
@@ -149,15 +151,22 @@ std::string truthJson(const Scenario& scenario, std::uint64_t seed) {
                  dynamic_cast<const sim::HybridVirtualMachine*>(scenario.campaign.machine.get())) {
     const nlohmann::ordered_json errors =
         nlohmann::ordered_json::parse(writeGeometricErrorsJson(h->errors()));
-    out += fmt::format("  \"machine\": {},\n  \"errors\": {}\n}}\n",
+    const std::string tripod = h->tripod()
+                                   ? fmt::format(",\n  \"tripod_errors\": {}",
+                                                 detail::tripodErrorsJson(h->tripod()->errors()))
+                                   : std::string();
+    out += fmt::format("  \"machine\": {},\n  \"errors\": {}{}\n}}\n",
                        nlohmann::json(scenario.machine_spec).dump(),
-                       errors.dump(2));
+                       errors.dump(2),
+                       tripod);
   } else if (const auto* x =
                  dynamic_cast<const sim::HexapodVirtualMachine*>(scenario.campaign.machine.get())) {
     out += hexapodTruth(*x, scenario.machine_spec);
   } else {
     out += "  \"errors\": null\n}\n";
   }
+  out.insert(out.size() - 3, detail::extraTruthJson(scenario.campaign));  // before "\n}\n"
+  out.insert(out.size() - 3, detail::touchProbeTruthJson(scenario.campaign));
   return out;
 }
 

@@ -6,6 +6,8 @@
 #include "io/detail/error_table_json.hpp"
 #include "io/detail/json_doc.hpp"
 #include "io/scenario_detail.hpp"
+#include "io/scenario_probe.hpp"
+#include "io/scenario_tracker.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/scenario.hpp"
@@ -28,7 +30,7 @@ using detail::numbers;
 std::shared_ptr<sim::VirtualMachine> readCartesian(const JsonDoc& doc,
                                                    const json& m,
                                                    const std::string& ptr) {
-  doc.onlyKeys(m, ptr, {"kind", "order", "tool_offset", "errors"});
+  doc.onlyKeys(m, ptr, {"kind", "order", "tool_offset", "errors", "actuation"});
   sim::CartesianLayout layout;
   layout.order = doc.string(m, ptr, "order", "XYZ");
   if (m.contains("tool_offset"))
@@ -51,8 +53,12 @@ std::shared_ptr<sim::VirtualMachine> readCartesian(const JsonDoc& doc,
       if (e.contains(axes[k]))
         errors.axes[k] = detail::readErrorTable(doc, e[axes[k]], ep + "/" + axes[k]);
   }
+  sim::CartesianActuation actuation;
+  if (m.contains("actuation"))
+    actuation = detail::readCartesianActuation(doc, m["actuation"], ptr + "/actuation");
   try {
-    return std::make_shared<sim::CartesianMachine>(std::move(layout), std::move(errors));
+    return std::make_shared<sim::CartesianMachine>(
+        std::move(layout), std::move(errors), std::move(actuation));
   } catch (const InvalidArgument& ex) {
     doc.fail(ptr, ex.what());
   }
@@ -70,7 +76,7 @@ std::shared_ptr<sim::VirtualMachine> readHybrid(const JsonDoc& doc,
                                                 const std::string& ptr,
                                                 const std::string& base_dir,
                                                 Scenario& out) {
-  doc.onlyKeys(m, ptr, {"kind", "machine", "errors"});
+  doc.onlyKeys(m, ptr, {"kind", "machine", "errors", "tripod_errors"});
   out.machine_spec = doc.string(m, ptr, "machine", kDefaultExechonMachine);
   out.errors_spec = doc.string(m, ptr, "errors", "");
   const ExechonMachine machine = loadExechonMachine(resolve(out.machine_spec, base_dir));
@@ -79,8 +85,19 @@ std::shared_ptr<sim::VirtualMachine> readHybrid(const JsonDoc& doc,
              fmt::format("machine '{}' has no \"hybrid\" section", out.machine_spec));
   kinematics::GeometricErrors errors;
   if (!out.errors_spec.empty()) errors = loadGeometricErrors(resolve(out.errors_spec, base_dir));
+  std::optional<sim::HybridTripod> tripod;  // none (the chain exactly) when absent or all zero
+  if (m.contains("tripod_errors")) {
+    const std::string tp = ptr + "/tripod_errors";
+    const sim::ExechonTripodErrors t = detail::readTripodErrors(doc, m["tripod_errors"], tp);
+    try {
+      if (!t.isZero()) tripod.emplace(machine.model, t, machine.fk);
+    } catch (const InvalidArgument& ex) {
+      doc.fail(tp, ex.what());
+    }
+  }
   try {
-    return std::make_shared<sim::HybridVirtualMachine>(*machine.hybrid, std::move(errors));
+    return std::make_shared<sim::HybridVirtualMachine>(
+        *machine.hybrid, std::move(errors), std::move(tripod));
   } catch (const InvalidArgument& ex) {
     doc.fail(ptr, ex.what());
   }
@@ -127,14 +144,22 @@ Scenario parseScenarioJson(const std::string& text,
     const std::string instrument = doc.string(list[i], ptr, "instrument", "laser");
     if (instrument == "dial_gauges")
       out.campaign.constrained.push_back(detail::readDialGauges(doc, list[i], ptr));
+    else if (instrument == "laser_tracker")
+      out.campaign.trackers.push_back(detail::readTracker(doc, list[i], ptr));
+    else if (instrument == "touch_probe")
+      out.campaign.probes.push_back(detail::readTouchProbe(
+          doc, list[i], ptr, out.machine_kind, resolve(out.machine_spec, base_dir), out.campaign));
     else if (instrument == "laser")
       out.campaign.measurements.push_back(
           detail::readLineSetup(doc, list[i], ptr, *out.campaign.machine));
     else
-      doc.fail(ptr + "/instrument", "must be \"laser\" (default) or \"dial_gauges\"");
+      doc.fail(ptr + "/instrument",
+               "must be \"laser\" (default), \"dial_gauges\", \"laser_tracker\" or "
+               "\"touch_probe\"");
   }
   try {
     out.campaign.validate();
+    sim::validateTrackers(out.campaign);
   } catch (const InvalidArgument& e) {
     doc.fail("/measurements", e.what());
   }

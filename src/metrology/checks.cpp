@@ -8,8 +8,8 @@ namespace pkm::metrology {
 
 void requireFinite(std::span<const double> values, std::string_view what) {
   for (std::size_t i = 0; i < values.size(); ++i) {
-    PKM_CHECK(std::isfinite(values[i]), "{}: value {} of {} is not finite", what, i + 1,
-              values.size());
+    PKM_CHECK(
+        std::isfinite(values[i]), "{}: value {} of {} is not finite", what, i + 1, values.size());
   }
 }
 

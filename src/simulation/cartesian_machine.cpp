@@ -27,10 +27,27 @@ void CartesianLayout::validate() const {
   PKM_CHECK(tool_offset.allFinite(), "tool offset is not finite");
 }
 
-CartesianMachine::CartesianMachine(CartesianLayout layout, CartesianErrors errors)
-    : layout_(std::move(layout)), errors_(std::move(errors)) {
+void CartesianActuation::validate() const {
+  PKM_CHECK(backlash.allFinite() && (backlash.array() >= 0.0).all(),
+            "backlash must be finite and >= 0");
+  PKM_CHECK(repeatability_sigma.allFinite() && (repeatability_sigma.array() >= 0.0).all(),
+            "repeatability sigma must be finite and >= 0");
+}
+
+CartesianMachine::CartesianMachine(CartesianLayout layout,
+                                   CartesianErrors errors,
+                                   CartesianActuation actuation)
+    : layout_(std::move(layout)), errors_(std::move(errors)), actuation_(std::move(actuation)) {
   layout_.validate();
   errors_.validate();
+  actuation_.validate();
+}
+
+void CartesianMachine::reset(std::uint64_t noise_seed) {
+  rng_ = RandomStream(noise_seed);
+  approach_.setOnes();
+  offset_.setZero();
+  moved_ = false;
 }
 
 std::vector<std::string> CartesianMachine::axisNames() const { return {"x", "y", "z"}; }
@@ -53,12 +70,21 @@ Eigen::Vector3d CartesianMachine::axisDirection(int k) const {
 
 Eigen::Isometry3d CartesianMachine::moveTo(const Eigen::VectorXd& command) {
   checkCommand(command, 3);
+  // Reversal and repeatability: an axis that moves gets a new offset from its command.
+  for (Eigen::Index k = 0; k < 3; ++k) {
+    if (moved_ && command[k] == last_[k]) continue;
+    if (moved_) approach_[k] = command[k] > last_[k] ? 1 : -1;
+    offset_[k] = -0.5 * actuation_.backlash[k] * approach_[k] +
+                 rng_.normal(actuation_.repeatability_sigma[k]);
+  }
+  last_ = command;
+  moved_ = true;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   for (const char axis : layout_.order) {
     const int k = axis - 'X';
     const auto ku = static_cast<std::size_t>(k);
     const double q = command[k];
-    pose = pose * geometry::translationHtm(q * axisDirection(k));
+    pose = pose * geometry::translationHtm((q + offset_[k]) * axisDirection(k));
     if (errors_.axes[ku])
       pose = pose * geometry::errorMotionHtm(errors_.axes[ku]->evaluateMotion(q));
   }

@@ -17,8 +17,9 @@ kinematics::HybridCommand toCommand(const Eigen::VectorXd& c) {
 }  // namespace
 
 HybridVirtualMachine::HybridVirtualMachine(kinematics::HybridMachineModel model,
-                                           kinematics::GeometricErrors errors)
-    : model_(std::move(model)), errors_(std::move(errors)) {
+                                           kinematics::GeometricErrors errors,
+                                           std::optional<HybridTripod> tripod)
+    : model_(std::move(model)), errors_(std::move(errors)), tripod_(std::move(tripod)) {
   model_.validate();
   errors_.validate();
   PKM_CHECK(model_.unit == LengthUnit::kMillimetre,
@@ -35,7 +36,10 @@ Eigen::Isometry3d HybridVirtualMachine::nominalPose(const Eigen::VectorXd& comma
 }
 
 Eigen::Isometry3d HybridVirtualMachine::moveTo(const Eigen::VectorXd& command) {
-  return kinematics::hybridActualPose(model_, errors_, toCommand(command));
+  const kinematics::HybridCommand c = toCommand(command);
+  const Eigen::Isometry3d pose = kinematics::hybridActualPose(model_, errors_, c);
+  if (!tripod_) return pose;
+  return pose * tripod_->errorMotion(c.pkm);  // P_T_t = Trans(q) · E(e_P(p)) · E_tripod
 }
 
 }  // namespace pkm::simulation

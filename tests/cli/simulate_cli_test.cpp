@@ -97,7 +97,7 @@ TEST_F(SimulateCli, SameSeedGivesByteIdenticalFiles) {
   const auto a = files("a"), b = files("b"), c = files("c");
   EXPECT_EQ(a, b);
   ASSERT_TRUE(a.count("truth.json") && a.count("scenario.json") && a.count("diag-ppp_run1.csv"));
-  EXPECT_EQ(a.size(), 14U * 3U + 2U);  // fourteen measurements of three runs
+  EXPECT_EQ(a.size(), 26U * 3U + 2U);  // 26 measurements (12 shifted diagonals) of three runs
   EXPECT_NE(a.at("diag-ppp_run1.csv"), c.at("diag-ppp_run1.csv"));
   EXPECT_THAT(a.at("linear-x_run2.csv"), HasSubstr("\ntarget_mm,run,direction,reading_mm\n0,2,+,"));
   // scenario.json reproduces the run.

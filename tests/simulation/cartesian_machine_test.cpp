@@ -5,9 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <vector>
 
 #include "pkm/core/error.hpp"
+#include "pkm/simulation/line_measurement.hpp"
+#include "support/statistics.hpp"
 #include "support/tolerances.hpp"
 
 namespace {
@@ -119,6 +123,96 @@ TEST(CartesianMachine, InvalidInputThrows) {
   CartesianMachine m({}, {});
   EXPECT_THROW((void)m.moveTo(Eigen::VectorXd::Zero(2)), pkm::InvalidArgument);
   EXPECT_THROW((void)m.nominalPose(cmd(NAN, 0, 0)), pkm::InvalidArgument);
+}
+
+constexpr double kBacklash = 0.006;       // mm, a worn ball screw's lost motion
+constexpr double kRepeatability = 0.002;  // mm, positioning scatter per move
+
+/// An ISO 230-2 linear positioning test of X (targets 0..400 mm, 5 mm overshoot), `runs` runs.
+pkm::simulation::LineSetup positioningOfX(int targets, int runs) {
+  pkm::simulation::LineSetup s;
+  s.name = "linear-x";
+  s.line.start = cmd(0, 100, 50);
+  s.line.direction = cmd(1, 0, 0);
+  s.cycle.first = 0.0;
+  s.cycle.last = kLength;
+  s.cycle.targets = targets;
+  s.cycle.runs = runs;
+  s.cycle.overshoot = 5.0;
+  return s;
+}
+
+/// The deviations x_ij = P_ij − P_i (ISO 230-2) per (target index, direction), over the runs.
+std::map<std::pair<int, int>, std::vector<double>> deviations(
+    const std::vector<pkm::simulation::LineRun>& runs, double first, double spacing) {
+  std::map<std::pair<int, int>, std::vector<double>> out;
+  for (const auto& run : runs)
+    for (const auto& r : run.readings)
+      out[{static_cast<int>(std::lround((r.target - first) / spacing)), r.direction}].push_back(
+          r.reading - r.target);
+  return out;
+}
+
+TEST(CartesianMachine, ReversalValueEqualsTheInjectedBacklash) {
+  using pkm::simulation::CartesianActuation;
+  CartesianActuation a;
+  a.backlash = {kBacklash, 2 * kBacklash, 3 * kBacklash};
+  CartesianMachine m({}, {}, a);
+  // Directly: approaching x = 100 from below and from above differs by the backlash; Y and Z,
+  // which do not move, stay where they are.
+  (void)m.moveTo(cmd(50, 0, 0));
+  const Eigen::Vector3d up = m.moveTo(cmd(100, 0, 0)).translation();
+  (void)m.moveTo(cmd(150, 0, 0));
+  const Eigen::Vector3d down = m.moveTo(cmd(100, 0, 0)).translation();
+  EXPECT_NEAR(down.x() - up.x(), kBacklash, kTolExact);
+  EXPECT_EQ(down.y(), up.y());
+  EXPECT_EQ(down.z(), up.z());
+  // Through the ISO 230-2 cycle: B_i = x̄_i↑ − x̄_i↓ = −b at every target (§2.13 / metrology
+  // notes §1.1.1), so the axis reversal value B = max |B_i| is the backlash.
+  constexpr int kTargets = 9;
+  pkm::simulation::RandomStream rng(pkm::test::kSeed);
+  const auto runs = pkm::simulation::simulateLine(m, positioningOfX(kTargets, 5), rng);
+  const auto dev = deviations(runs, 0.0, kLength / (kTargets - 1));
+  for (int i = 0; i < kTargets; ++i) {
+    const double b = pkm::test::sampleMean(dev.at({i, 1})) - pkm::test::sampleMean(dev.at({i, -1}));
+    EXPECT_NEAR(b, -kBacklash, kTolExact) << i;
+  }
+}
+
+TEST(CartesianMachine, RepeatabilitySpreadMatchesSigma) {
+  using pkm::simulation::CartesianActuation;
+  CartesianActuation a;
+  a.repeatability_sigma = {kRepeatability, 0.0, 0.0};
+  CartesianMachine m({}, {}, a);
+  constexpr int kTargets = 21, kRuns = 10;
+  pkm::simulation::RandomStream rng(pkm::test::kSeed);
+  const auto runs = pkm::simulation::simulateLine(m, positioningOfX(kTargets, kRuns), rng);
+  // The pooled ISO 230-2 estimator s_i (n − 1 per target and direction) over all targets.
+  double ss = 0.0;
+  std::size_t dof = 0;
+  for (const auto& [key, x] : deviations(runs, 0.0, kLength / (kTargets - 1))) {
+    const double mean = pkm::test::sampleMean(x);
+    for (const double v : x) ss += (v - mean) * (v - mean);
+    dof += x.size() - 1;
+  }
+  EXPECT_EQ(dof, static_cast<std::size_t>(2 * kTargets * (kRuns - 1)));
+  EXPECT_NEAR(std::sqrt(ss / static_cast<double>(dof)) / kRepeatability,
+              1.0,
+              pkm::test::sigmaRatioTolerance(dof + 1));
+  // reset() with the same seed repeats the draws exactly.
+  m.reset(7);
+  const Eigen::Vector3d first = m.moveTo(cmd(10, 0, 0)).translation();
+  m.reset(7);
+  EXPECT_EQ(m.moveTo(cmd(10, 0, 0)).translation(), first);
+}
+
+TEST(CartesianMachine, InvalidActuationThrows) {
+  pkm::simulation::CartesianActuation a;
+  a.backlash.x() = -1e-3;
+  EXPECT_THROW(CartesianMachine({}, {}, a), pkm::InvalidArgument);
+  a = {};
+  a.repeatability_sigma.z() = NAN;
+  EXPECT_THROW(CartesianMachine({}, {}, a), pkm::InvalidArgument);
 }
 
 }  // namespace

@@ -16,7 +16,6 @@
 
 namespace pkm::io {
 
-
 /// The CSV text of one run: `metadata` as "# key: value" lines, the header, the readings. The
 /// reading column is reading_mm for kLinear and kStraightness and reading_urad (the reading × 1e6)
 /// for kAngular; a step-diagonal run (a reading with sub_step ≠ 0) adds the column sub_step.

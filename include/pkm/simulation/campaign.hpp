@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "pkm/simulation/dial_gauges.hpp"
+#include "pkm/simulation/laser_tracker.hpp"
 #include "pkm/simulation/line_measurement.hpp"
+#include "pkm/simulation/touch_probe.hpp"
 #include "pkm/simulation/virtual_machine.hpp"
 
 namespace pkm::simulation {
@@ -23,6 +25,12 @@ struct Campaign {
   std::vector<LineSetup> measurements;      ///< in the order they are taken; names unique
   /// Constrained-motion measurements with dial gauges (seed 004); need a HexapodVirtualMachine.
   std::vector<DialGaugeSetup> constrained;
+  /// Laser-tracker measurements (point or 6-DOF pose); need a HexapodVirtualMachine. Checked by
+  /// validateTrackers (names unique among all measurements).
+  std::vector<TrackerSetup> trackers;
+  /// Touch-probe measurements on a master ring (seed 003); need a hybrid (Exechon) machine. Run
+  /// with runTouchProbes (pkm/simulation/touch_probe.hpp).
+  std::vector<TouchProbeSetup> probes;
   /// Throws pkm::InvalidArgument when there is no machine, a set-up is invalid, a line's size is
   /// not the machine's axis count, two measurements (of either kind) share a name, or dial gauges
   /// are set up on a machine that is not a hexapod.
@@ -51,5 +59,20 @@ struct ConstrainedResult {
 /// pkm::InvalidArgument (Campaign::validate, simulateDialGauges).
 [[nodiscard]] std::vector<ConstrainedResult> runConstrainedMotion(const Campaign& campaign,
                                                                   std::uint64_t seed);
+
+/// Throws pkm::InvalidArgument when a tracker set-up is invalid, the machine is not a hexapod,
+/// or a tracker's name is that of another measurement of any kind.
+void validateTrackers(const Campaign& campaign);
+
+/// One laser-tracker measurement's result.
+struct TrackerResult {
+  const TrackerSetup* setup = nullptr;   ///< points into the campaign
+  std::vector<TrackerReading> readings;  ///< one per commanded pose
+};
+
+/// Runs every laser-tracker measurement, each from RandomStream(seed, setup.name). Throws
+/// pkm::InvalidArgument (Campaign::validate, validateTrackers, simulateLaserTracker).
+[[nodiscard]] std::vector<TrackerResult> runLaserTrackers(const Campaign& campaign,
+                                                          std::uint64_t seed);
 
 }  // namespace pkm::simulation

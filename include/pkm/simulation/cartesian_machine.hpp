@@ -10,6 +10,7 @@
 #include <string>
 
 #include "pkm/geometry/error_table.hpp"
+#include "pkm/simulation/random.hpp"
 #include "pkm/simulation/virtual_machine.hpp"
 
 namespace pkm::simulation {
@@ -47,6 +48,20 @@ struct CartesianLayout {
   void validate() const;
 };
 
+/// How the axes follow their commands (direction-dependent reversal and positioning scatter, the
+/// effects ISO 230-2 §2.12-2.14 reports as reversal value B and repeatability R).
+struct CartesianActuation {
+  /// Per axis (X, Y, Z) lost motion, mm, ≥ 0: an axis that last moved in + stops b/2 short of its
+  /// command, one that last moved in − stops b/2 above it, so ISO 230-2's reversal value at every
+  /// target is B_i = x̄_i↑ − x̄_i↓ = −b. After reset() an axis counts as having moved in +.
+  Eigen::Vector3d backlash = Eigen::Vector3d::Zero();
+  /// Per axis standard deviation of the position reached by a move, mm (ISO 230-2's s_i↑, s_i↓).
+  /// Drawn once per move of an axis whose command changes; an axis that does not move stays put.
+  Eigen::Vector3d repeatability_sigma = Eigen::Vector3d::Zero();
+  /// Throws pkm::InvalidArgument for a negative or non-finite value.
+  void validate() const;
+};
+
 /// A Cartesian 3-axis virtual machine. Command (x, y, z), mm. Axis k moves its frame by
 /// Trans(q_k·d_k)·E_k(q_k) relative to its carrier, where d_k is the actual direction of motion
 /// (d_X = x̂; d_Y = Rz(xy)·ŷ = (−sin xy, cos xy, 0); d_Z the unit vector on the +z side with
@@ -55,11 +70,16 @@ struct CartesianLayout {
 ///   work_T_tool = Π over `order` [Trans(q_k·d_k)·E_k(q_k)] · Trans(tool_offset).
 /// Without component errors the frames stay parallel to the work frame and the three squareness
 /// errors are exact, alone or together; with component errors the angles between the lines of
-/// motion hold to first order. Stateless (no backlash yet).
+/// motion hold to first order. With a CartesianActuation, q_k in the translation is the position
+/// the axis actually reaches: q_k − (b_k/2)·(approach direction) + its repeatability draw; the
+/// error tables are still evaluated at the commanded q_k.
 class CartesianMachine final : public VirtualMachine {
  public:
-  /// Throws pkm::InvalidArgument when layout.validate() or errors.validate() fails.
-  CartesianMachine(CartesianLayout layout, CartesianErrors errors);
+  /// Throws pkm::InvalidArgument when layout.validate(), errors.validate() or
+  /// actuation.validate() fails.
+  CartesianMachine(CartesianLayout layout,
+                   CartesianErrors errors,
+                   CartesianActuation actuation = {});
   [[nodiscard]] std::vector<std::string> axisNames() const override;
   /// Trans((x, y, z) + tool_offset).
   [[nodiscard]] Eigen::Isometry3d nominalPose(const Eigen::VectorXd& command) const override;
@@ -70,6 +90,10 @@ class CartesianMachine final : public VirtualMachine {
   [[nodiscard]] const CartesianLayout& layout() const { return layout_; }
   /// The injected errors (the truth).
   [[nodiscard]] const CartesianErrors& errors() const { return errors_; }
+  /// The actuation (the truth).
+  [[nodiscard]] const CartesianActuation& actuation() const { return actuation_; }
+  /// Forgets the approach directions and seeds the repeatability noise.
+  void reset(std::uint64_t noise_seed) override;
   /// The actual unit direction of motion of axis k (0 = X) in its carrier's axes (class comment).
   /// Precondition: |xy| < 90° and the three angles describe a real direction (|xy|, |xz|, |yz|
   /// small); throws pkm::InvalidArgument for k outside 0..2.
@@ -78,6 +102,12 @@ class CartesianMachine final : public VirtualMachine {
  private:
   CartesianLayout layout_;
   CartesianErrors errors_;
+  CartesianActuation actuation_;
+  RandomStream rng_{0};
+  Eigen::Vector3d last_ = Eigen::Vector3d::Zero();    // last command
+  Eigen::Vector3d offset_ = Eigen::Vector3d::Zero();  // actual − commanded axis position
+  Eigen::Vector3i approach_ = Eigen::Vector3i::Ones();
+  bool moved_ = false;
 };
 
 }  // namespace pkm::simulation

@@ -1,0 +1,29 @@
+/// @file
+/// @brief Internal: the laser-tracker measurements and the Cartesian actuation of a scenario
+/// (docs/formats.md, "Scenario files"), and their part of truth.json.
+#pragma once
+
+#include <string>
+
+#include "io/detail/json_doc.hpp"
+#include "pkm/simulation/campaign.hpp"
+#include "pkm/simulation/cartesian_machine.hpp"
+
+namespace pkm::io::detail {
+
+/// A laser-tracker measurement ("instrument": "laser_tracker") at `ptr`. Fails through `doc`.
+[[nodiscard]] simulation::TrackerSetup readTracker(const JsonDoc& doc,
+                                                   const json& obj,
+                                                   const std::string& ptr);
+
+/// A Cartesian machine's "actuation" object at `ptr`: "backlash" and "repeatability_sigma", each
+/// one number (mm) or [x, y, z]. Fails through `doc`.
+[[nodiscard]] simulation::CartesianActuation readCartesianActuation(const JsonDoc& doc,
+                                                                    const json& obj,
+                                                                    const std::string& ptr);
+
+/// The truth.json members for the laser trackers and a Cartesian machine's actuation, each
+/// starting with ",\n  " (empty when there are none), to go before the closing brace.
+[[nodiscard]] std::string extraTruthJson(const simulation::Campaign& campaign);
+
+}  // namespace pkm::io::detail

@@ -1,0 +1,241 @@
+#include "pkm/metrology/min_zone_circle.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <numeric>
+#include <vector>
+
+#include "pkm/core/error.hpp"
+
+namespace pkm::metrology {
+namespace {
+
+double cross(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// Orientation sign of the triangle (a, b, c): +1 counter-clockwise, −1 clockwise, 0 collinear.
+int orientation(const Point2& a, const Point2& b, const Point2& c) {
+  const double v = cross(b - a, c - a);
+  return (v > 0.0) - (v < 0.0);
+}
+
+/// The initial Remez reference about `c`: in the four 90° sectors centred on the farthest point's
+/// direction, the farthest point of sectors 0 and 2 and the nearest of sectors 1 and 3 (a guess
+/// at the alternation). Falls back to four equal groups in angular order when a sector is empty.
+std::array<std::size_t, 4> initialReference(std::span<const Point2> points, const Point2& c) {
+  std::size_t far = 0;
+  double best = -1.0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const double d = (points[k] - c).squaredNorm();
+    if (d > best) {
+      best = d;
+      far = k;
+    }
+  }
+  const Point2 u0 = (points[far] - c).normalized();
+  const auto sectorOf = [&](const Point2& p) {
+    const Point2 v = p - c;
+    const double a = v.dot(u0);
+    const double b = cross(u0, v);
+    if (a >= std::abs(b)) return 0;
+    if (b > std::abs(a)) return 1;
+    if (-a >= std::abs(b)) return 2;
+    return 3;
+  };
+  std::array<std::size_t, 4> ref{};
+  std::array<double, 4> value{
+      -1.0, std::numeric_limits<double>::infinity(), -1.0, std::numeric_limits<double>::infinity()};
+  std::array<bool, 4> found{};
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const int s = sectorOf(points[k]);
+    const double d = (points[k] - c).squaredNorm();
+    const bool better = (s % 2 == 0) ? d > value[static_cast<std::size_t>(s)]
+                                     : d < value[static_cast<std::size_t>(s)];
+    if (better) {
+      value[static_cast<std::size_t>(s)] = d;
+      ref[static_cast<std::size_t>(s)] = k;
+      found[static_cast<std::size_t>(s)] = true;
+    }
+  }
+  if (found[0] && found[1] && found[2] && found[3]) return ref;
+  // Partial arcs: four consecutive groups of equal count in angular order.
+  std::vector<std::size_t> order(points.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::vector<double> angle(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Point2 v = points[k] - c;
+    angle[k] = std::atan2(cross(u0, v), v.dot(u0));
+  }
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return angle[a] < angle[b];
+  });
+  const std::size_t n = points.size();
+  for (std::size_t g = 0; g < 4; ++g) {
+    const std::size_t lo = g * n / 4;
+    const std::size_t hi = (g + 1) * n / 4;
+    std::size_t pick = order[lo];
+    for (std::size_t i = lo; i < hi; ++i) {
+      const double d = (points[order[i]] - c).squaredNorm();
+      const double dp = (points[pick] - c).squaredNorm();
+      if (g % 2 == 0 ? d > dp : d < dp) pick = order[i];
+    }
+    ref[g] = pick;
+  }
+  return ref;
+}
+
+/// Sorts the reference counter-clockwise about c, starting from ref[0].
+void sortCyclic(std::span<const Point2> points, const Point2& c, std::array<std::size_t, 4>& ref) {
+  const Point2 u0 = points[ref[0]] - c;
+  const auto rel = [&](std::size_t k) {
+    const Point2 v = points[k] - c;
+    double a = std::atan2(cross(u0, v), u0.dot(v));
+    if (a < 0.0) a += 2.0 * std::numbers::pi;
+    return a;
+  };
+  std::sort(
+      ref.begin() + 1, ref.end(), [&](std::size_t a, std::size_t b) { return rel(a) < rel(b); });
+}
+
+}  // namespace
+
+std::optional<Point2> bisectorIntersection(const Point2& a,
+                                           const Point2& b,
+                                           const Point2& c,
+                                           const Point2& d) {
+  // x = m1 + t·perp(b − a) on the first bisector; (d − c)·(x − m2) = 0 on the second.
+  const Point2 ab = b - a;
+  const Point2 cd = d - c;
+  const Point2 perp(-ab.y(), ab.x());
+  const double den = cd.dot(perp);
+  if (!(std::abs(den) > 1e-14 * ab.norm() * cd.norm())) return std::nullopt;
+  const Point2 m1 = 0.5 * (a + b);
+  const Point2 m2 = 0.5 * (c + d);
+  const double t = -cd.dot(m1 - m2) / den;
+  return m1 + t * perp;
+}
+
+ZoneCertificate certifyMinimumZone(std::span<const Point2> points,
+                                   const MinZoneCircle& zone,
+                                   double tolerance) {
+  ZoneCertificate cert;
+  std::array<Point2, 2> outer;
+  std::array<Point2, 2> inner;
+  std::size_t no = 0;
+  std::size_t ni = 0;
+  for (const ZoneContact& k : zone.contacts) {
+    const double r = (k.point - zone.center).norm();
+    if (k.outer) {
+      if (no < 2) outer[no] = k.point;
+      ++no;
+      cert.contact_error = std::max(cert.contact_error, std::abs(r - zone.outer_radius));
+    } else {
+      if (ni < 2) inner[ni] = k.point;
+      ++ni;
+      cert.contact_error = std::max(cert.contact_error, std::abs(r - zone.inner_radius));
+    }
+  }
+  // Proper crossing of the outer chord and the inner chord.
+  cert.alternating =
+      no == 2 && ni == 2 &&
+      orientation(outer[0], outer[1], inner[0]) * orientation(outer[0], outer[1], inner[1]) < 0 &&
+      orientation(inner[0], inner[1], outer[0]) * orientation(inner[0], inner[1], outer[1]) < 0;
+  for (const Point2& p : points) {
+    const double r = (p - zone.center).norm();
+    cert.max_violation =
+        std::max({cert.max_violation, r - zone.outer_radius, zone.inner_radius - r});
+  }
+  cert.optimal =
+      cert.alternating && cert.contact_error <= tolerance && cert.max_violation <= tolerance;
+  return cert;
+}
+
+MinZoneCircle fitMinimumZoneCircle(std::span<const Point2> points, const MinZoneOptions& options) {
+  PKM_CHECK(options.max_exchanges >= 1, "minimum-zone circle: max_exchanges must be >= 1");
+  PKM_CHECK(options.tolerance > 0.0, "minimum-zone circle: tolerance must be > 0");
+  requirePoints(points, 4, "minimum-zone circle");
+  const Circle lsc = options.start ? Circle{*options.start, 0.0} : fitCircle(points).circle;
+  Point2 c = lsc.center;
+  double scale = lsc.radius;
+  if (!(scale > 0.0)) scale = (points[0] - c).norm();
+  PKM_CHECK(std::isfinite(c.x()) && std::isfinite(c.y()) && scale > 0.0,
+            "minimum-zone circle: bad start centre");
+  const double tol = options.tolerance * scale;
+
+  std::array<std::size_t, 4> ref = initialReference(points, c);
+  sortCyclic(points, c, ref);
+  MinZoneCircle zone;
+  double h = 0.0;
+  double rho = 0.0;
+  bool done = false;
+  for (int it = 0; it <= options.max_exchanges; ++it) {
+    const std::optional<Point2> next =
+        bisectorIntersection(points[ref[0]], points[ref[2]], points[ref[1]], points[ref[3]]);
+    PKM_CHECK(next.has_value(), "minimum-zone circle: degenerate points (no zone centre)");
+    c = *next;
+    const double ra = (points[ref[0]] - c).norm();
+    const double rb = (points[ref[1]] - c).norm();
+    h = 0.5 * (ra - rb);  // levelled half-width; group {0, 2} is outer when h > 0
+    rho = 0.5 * (ra + rb);
+    std::size_t worst = ref[0];
+    double worst_e = 0.0;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const double e = (points[k] - c).norm() - rho;
+      if (std::abs(e) > std::abs(worst_e)) {
+        worst_e = e;
+        worst = k;
+      }
+    }
+    zone.exchanges = it;
+    if (std::abs(worst_e) <= std::abs(h) + tol ||
+        std::find(ref.begin(), ref.end(), worst) != ref.end()) {
+      done = true;
+      break;
+    }
+    // Single-point exchange (Remez): the new point replaces the neighbour of its own sign, so the
+    // reference keeps alternating.
+    const int sign_a = h >= 0.0 ? 1 : -1;
+    const int sign_new = worst_e > 0.0 ? 1 : -1;
+    const Point2 u0 = points[ref[0]] - c;
+    const auto rel = [&](const Point2& p) {
+      const Point2 v = p - c;
+      double a = std::atan2(cross(u0, v), u0.dot(v));
+      if (a < 0.0) a += 2.0 * std::numbers::pi;
+      return a;
+    };
+    const double beta = rel(points[worst]);
+    std::size_t j = 3;
+    for (std::size_t i = 1; i < 4; ++i) {
+      if (beta < rel(points[ref[i]])) {
+        j = i - 1;
+        break;
+      }
+    }
+    const int sign_j = (j % 2 == 0) ? sign_a : -sign_a;
+    ref[sign_j == sign_new ? j : (j + 1) % 4] = worst;
+    sortCyclic(points, c, ref);
+    // Keep group {0, 2} = the first group after the re-sort only if the alternation holds; the
+    // exchange rule guarantees it for near-circular data.
+  }
+  zone.center = c;
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = 0.0;
+  for (const Point2& p : points) {
+    const double r = (p - c).norm();
+    lo = std::min(lo, r);
+    hi = std::max(hi, r);
+  }
+  zone.inner_radius = lo;
+  zone.outer_radius = hi;
+  zone.roundness = hi - lo;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const bool outer = ((i % 2 == 0) == (h >= 0.0));
+    zone.contacts[i] = ZoneContact{ref[i], outer, points[ref[i]]};
+  }
+  const double cert_tol = 16.0 * options.tolerance * std::max(scale, c.norm());
+  zone.certified = done && certifyMinimumZone(points, zone, cert_tol).optimal;
+  return zone;
+}
+
+}  // namespace pkm::metrology

@@ -1,0 +1,201 @@
+// The CLI contract of `pkm analyze iso230-2 | straightness | parallelism | squareness`: the input
+// formats (plain CSV and `pkm simulate` measurement files), the JSON keys, exit code 2 with
+// FILE:LINE on bad input, and recovery of seed 000's injected squareness from simulated files.
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "support/cli_fixture.hpp"
+
+namespace pkm::test {
+namespace {
+
+using Json = nlohmann::json;
+using ::testing::HasSubstr;
+
+constexpr double kTolJson = 1e-12;  ///< JSON numbers are printed at full precision
+constexpr double kMrad = 1e-3;
+/// Simulated seed 000 X2-Y2 diagonal with the PDGE tables the scenario measures (positioning of X2
+/// and Y2, straightness of Y2 in x over 0-300 mm). It has no X2 straightness in y: the unremoved
+/// EYX of X2 (a 3.9 µm hump over 875 mm, mean about 2.6 µm) biases szX2 by up to about 10 µrad
+/// (face_diagonal_test removes it and recovers szX2 within 2 µrad).
+constexpr double kTolSzX2 = 15e-6;
+/// Slopes from simulated straightness runs agree with the injected angles to first order
+/// (parallelism_test: sxP·syP/2 = 32 µrad is the largest second-order term).
+constexpr double kTolFirstOrder = 40e-6;
+
+class AnalyzePositioningCli : public CliTest {};
+
+TEST_F(AnalyzePositioningCli, Iso230_2JsonKeysAndHandComputedValues) {
+  // Targets 0 and 10: up {1, 3} / {0, 2}, down {-1, -1} / {2, 4} (deviations, metrology.md §1.1.1).
+  const std::string f = write("pos.csv",
+                              "target,direction,run,measured\n"
+                              "0,+,1,1\n0,+,2,3\n10,+,1,10\n10,+,2,12\n"
+                              "10,-,1,12\n10,-,2,14\n0,-,1,-1\n0,-,2,-1\n");
+  const CliRun r = pkm({"analyze", "iso230-2", "--data", f, "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  for (const char* key : {"B",
+                          "B_mean",
+                          "R_up",
+                          "R_down",
+                          "R",
+                          "E_up",
+                          "E_down",
+                          "E",
+                          "M",
+                          "A_up",
+                          "A_down",
+                          "A",
+                          "targets"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  const double q = std::sqrt(2.0);
+  EXPECT_NEAR(j["B"].get<double>(), 3.0, kTolJson);
+  EXPECT_NEAR(j["R"].get<double>(), 4.0 * q + 2.0, kTolJson);
+  EXPECT_NEAR(j["A"].get<double>(), 2.0 + 4.0 * q, kTolJson);
+  EXPECT_NEAR(j["M"].get<double>(), 1.5, kTolJson);
+  ASSERT_EQ(j["targets"].size(), 2u);
+  EXPECT_NEAR(j["targets"][0]["reversal"].get<double>(), 3.0, kTolJson);
+  const CliRun k3 = pkm({"analyze", "iso230-2", "--data", f, "--json", "--coverage", "3"});
+  ASSERT_EQ(k3.code, 0) << k3.err;
+  EXPECT_NEAR(Json::parse(k3.out)["R_up"].get<double>(), 6.0 * q, kTolJson);
+  const CliRun table = pkm({"analyze", "iso230-2", "--data", f});
+  ASSERT_EQ(table.code, 0) << table.err;
+  EXPECT_THAT(table.out, HasSubstr("A_down"));
+}
+
+TEST_F(AnalyzePositioningCli, Iso230_2UnidirectionalGivesNull) {
+  const std::string f = write(
+      "up.csv", "target,direction,run,measured\n0,+,1,0.001\n0,+,2,0.002\n5,+,1,5\n5,+,2,5\n");
+  const CliRun r = pkm({"analyze", "iso230-2", "--data", f, "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  EXPECT_TRUE(j["B"].is_null());
+  EXPECT_TRUE(j["A"].is_null());
+  EXPECT_FALSE(j["A_up"].is_null());
+  EXPECT_FALSE(j["bidirectional"].get<bool>());
+}
+
+TEST_F(AnalyzePositioningCli, Iso230_2DuplicateAcrossFilesNamesFileAndLine) {
+  const std::string a = write("a.csv", "target,direction,run,measured\n0,+,1,0\n0,+,2,0\n");
+  const std::string b = write("b.csv", "target,direction,run,measured\n\n0,+,2,0.1\n");
+  const CliRun r = pkm({"analyze", "iso230-2", "--data", a, b});
+  const std::string err = expectUsageError(r, "b.csv:3:");
+  EXPECT_THAT(err, HasSubstr("duplicate"));
+  EXPECT_THAT(err, HasSubstr("a.csv:3"));
+  const std::string one = write("one.csv", "target,direction,run,measured\n0,+,1,0\n");
+  expectUsageError(pkm({"analyze", "iso230-2", "--data", one}), "only 1 run");
+  const std::string bad = write("bad.csv", "target,direction,run,measured\n0,x,1,0\n");
+  expectUsageError(pkm({"analyze", "iso230-2", "--data", bad}), "bad.csv:2:");
+}
+
+TEST_F(AnalyzePositioningCli, StraightnessReferencesAndContacts) {
+  const std::string f = write("s.csv", "position,deviation\n0,0\n1,1\n2,0\n");
+  for (const char* ref : {"endpoint", "lsq", "minzone"}) {
+    const CliRun r = pkm({"analyze", "straightness", "--data", f, "--reference", ref, "--json"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Json j = Json::parse(r.out);
+    EXPECT_EQ(j["reference"], ref);
+    EXPECT_NEAR(j["slope"].get<double>(), 0.0, kTolJson);
+    EXPECT_NEAR(j["straightness"].get<double>(), 1.0, kTolJson);
+    EXPECT_EQ(j.contains("contact_points"), std::string(ref) == "minzone");
+  }
+  expectUsageError(
+      pkm({"analyze", "straightness", "--data", write("one.csv", "position,deviation\n1,2\n")}),
+      "at least 2");
+  expectUsageError(
+      pkm({"analyze", "straightness", "--data", write("nan.csv", "position,deviation\n1,x\n")}),
+      "nan.csv:2:");
+}
+
+TEST_F(AnalyzePositioningCli, SquarenessClosedFormWithScale) {
+  // metrology.md §1.2.4: EC0Y = D (ΔD_NP - ΔD_PP) / (2 a b).
+  const double a = 600, b = 450, D = std::hypot(a, b), dPP = -0.0123, dNP = 0.0051;
+  const std::string pp = write("pp.csv", "u,v,deviation\n0,0,0\n600,450,-0.0123\n");
+  const std::string np = write("np.csv", "u,v,deviation\n0,0,0\n-600,450,0.0051\n");
+  const CliRun r = pkm({"analyze", "squareness", "--data", pp, np, "--scale", "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  EXPECT_NEAR(j["squareness"].get<double>(), D * (dNP - dPP) / (2 * a * b), kTolJson);
+  EXPECT_NEAR(j["residual_rms"].get<double>(), 0.0, kTolJson);
+  ASSERT_TRUE(j.contains("scale"));
+  EXPECT_NEAR(j["scale"][0].get<double>(), (dPP + dNP) / (2 * D), kTolJson);
+  const CliRun single = pkm({"analyze", "squareness", "--data", pp, "--json"});
+  ASSERT_EQ(single.code, 0) << single.err;
+  EXPECT_FALSE(Json::parse(single.out).contains("scale"));
+  const std::string pp3 =
+      write("pp3.csv", "u,v,deviation\n0,0,0\n300,225,-0.006\n600,450,-0.0123\n");
+  expectUsageError(pkm({"analyze", "squareness", "--data", pp3, "--scale"}), "not separable");
+  expectUsageError(pkm({"analyze", "squareness", "--data", pp, "--scale"}), "at least 2");
+  expectUsageError(pkm({"analyze", "squareness", "--data", pp, "--pdge", "xx=" + pp}), "--pdge");
+}
+
+TEST_F(AnalyzePositioningCli, RecoversSeed000FromSimulatedFiles) {
+  const std::string dir = path("sim");
+  const CliRun sim = pkm({"simulate", "seed000-parallelism", "--out", dir});
+  ASSERT_EQ(sim.code, 0) << sim.err;
+  const auto runs = [&](const std::string& name) {
+    std::vector<std::string> files;
+    for (int k = 1; k <= 3; ++k)
+      files.push_back(dir + "/" + name + "_run" + std::to_string(k) + ".csv");
+    return files;
+  };
+  // ISO 230-2 on the X2 positioning runs (simulator format).
+  std::vector<std::string> args{"analyze", "iso230-2", "--json", "--data"};
+  for (const auto& f : runs("linear-x2")) args.push_back(f);
+  const CliRun iso = pkm(args);
+  ASSERT_EQ(iso.code, 0) << iso.err;
+  const Json ji = Json::parse(iso.out);
+  EXPECT_EQ(ji["targets"].size(), 15u);
+  EXPECT_GT(ji["E"].get<double>(), 0.07);  // EXX of X2 reaches -0.078 mm over 875 mm
+  EXPECT_LT(ji["E"].get<double>(), 0.09);
+
+  // szX2 from the X2-Y2 face diagonal after removing the X2 and Y2 positioning errors.
+  std::vector<std::string> sq{"analyze",
+                              "squareness",
+                              "--json",
+                              "--second-moves-work",
+                              "--pdge",
+                              "uu=" + runs("linear-x2")[0],
+                              "--pdge",
+                              "vv=" + runs("linear-y2")[0],
+                              "--pdge",
+                              "vu=" + runs("straightness-y2-h")[0],
+                              "--data"};
+  for (const auto& f : runs("diagonal-x2-y2")) sq.push_back(f);
+  const CliRun square = pkm(sq);
+  ASSERT_EQ(square.code, 0) << square.err;
+  const double szX2 = Json::parse(square.out)["squareness"].get<double>();
+  EXPECT_NEAR(szX2, -0.034 * kMrad, kTolSzX2);
+
+  // Parallelism of the PKM's y to Y2 (same beam; +y2 moves the tool along -y): dgamma, dalpha.
+  const auto parallel = [&](const char* plane, const char* ref, const char* axis) {
+    std::vector<std::string> a{"analyze",
+                               "parallelism",
+                               "--json",
+                               "--plane",
+                               plane,
+                               "--reference-sign",
+                               "-1",
+                               "--szX2",
+                               std::to_string(szX2),
+                               "--reference"};
+    for (const auto& f : runs(ref)) a.push_back(f);
+    a.push_back("--axis");
+    for (const auto& f : runs(axis)) a.push_back(f);
+    const CliRun r = pkm(a);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return Json::parse(r.out);
+  };
+  const Json h = parallel("horizontal", "straightness-y2-h", "straightness-py-h");
+  const Json v = parallel("vertical", "straightness-y2-v", "straightness-py-v");
+  EXPECT_NEAR(h["szP"].get<double>(), -2.85 * kMrad, kTolFirstOrder);
+  EXPECT_NEAR(v["sxP"].get<double>(), -14.74 * kMrad, kTolFirstOrder);
+  EXPECT_NEAR(v["dalpha"].get<double>(), v["sxP"].get<double>(), kTolJson);
+  EXPECT_NEAR(v["parallelism"].get<double>(), v["dalpha"].get<double>() * 300.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace pkm::test

@@ -1,0 +1,184 @@
+// HybridTripod: tripod parameter errors of the hybrid machine's Exechon PKM as a TCP error motion.
+#include "pkm/simulation/hybrid_tripod_errors.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "pkm/core/error.hpp"
+#include "pkm/io/exechon_machine.hpp"
+#include "pkm/io/machine_loader.hpp"
+#include "pkm/kinematics/exechon_data.hpp"
+#include "pkm/kinematics/exechon_wrist.hpp"
+#include "support/tolerances.hpp"
+
+namespace {
+
+namespace kin = pkm::kinematics;
+using pkm::simulation::ExechonTripodErrors;
+using pkm::simulation::HybridTripod;
+
+/// Central-difference steps for the independent first-order prediction (rad for alpha, beta; mm
+/// for h).
+constexpr double kStepAngle = 1e-5;
+constexpr double kStepLength = 1e-3;
+/// Injected leg length offset error, mm (a realistic calibration residue).
+constexpr double kLegError = 0.01;
+/// Relative agreement of the exact error with its first-order prediction: the remainder is
+/// O(δ/L): measured at most 2e-5 relative on the shipped machine; 1e-4 leaves a margin of 5.
+constexpr double kTolFirstOrder = 1e-4;
+/// Tripod FK settles to FkOptions::tolerance (1e-9 mm); the error motion of zero errors is this
+/// small.
+constexpr double kTolFk = 1e-8;
+
+pkm::io::ExechonMachine machine() { return pkm::io::loadExechonMachine("mxt700s-like"); }
+
+/// PKM commands spread over the shipped machine's working volume ([-300, 300]² × [-100, 300] mm).
+std::vector<Eigen::Vector3d> commands() {
+  return {{0, 0, 0}, {250, -200, 280}, {-280, 260, -90}, {100, 290, 150}, {-300, -300, 300}};
+}
+
+double rotationAngle(const Eigen::Isometry3d& e) { return Eigen::AngleAxisd(e.rotation()).angle(); }
+
+TEST(HybridTripod, ZeroErrorsGiveNoErrorMotion) {
+  const pkm::io::ExechonMachine m = machine();
+  const HybridTripod tripod(m.model, {}, m.fk);
+  for (const Eigen::Vector3d& p : commands()) {
+    const Eigen::Isometry3d e = tripod.errorMotion(p);
+    EXPECT_LT(e.translation().norm(), kTolFk) << p.transpose();
+    EXPECT_LT(rotationAngle(e), kTolFk) << p.transpose();
+  }
+}
+
+TEST(HybridTripod, ToolLengthErrorMovesTheTcpAlongTheTool) {
+  // Same legs and wrist, so the true tool point is S + (L + δL)·u with u = −z: exactly −δL·z.
+  const pkm::io::ExechonMachine m = machine();
+  ExechonTripodErrors errors;
+  errors.tool_length = 0.05;
+  const HybridTripod tripod(m.model, errors, m.fk);
+  for (const Eigen::Vector3d& p : commands()) {
+    const Eigen::Isometry3d e = tripod.errorMotion(p);
+    EXPECT_NEAR((e.translation() - Eigen::Vector3d(0, 0, -errors.tool_length)).norm(), 0.0, kTolFk);
+    EXPECT_LT(rotationAngle(e), kTolFk);
+  }
+}
+
+/// Tool point and leg lengths of the nominal model at configuration `c` (evaluateConfiguration).
+void evaluate(const kin::ExechonModel& model,
+              const kin::ExechonConfiguration& c,
+              Eigen::Vector3d* tool,
+              Eigen::Vector3d* lengths) {
+  kin::ExechonData d(model);
+  kin::evaluateConfiguration(model, d, c);
+  *tool = d.world_p_tool;
+  *lengths = d.lengths;
+}
+
+TEST(HybridTripod, LegOffsetErrorMatchesTheFirstOrderPrediction) {
+  // Independent prediction: central differences over e = (alpha, beta, h) of the nominal tool point
+  // and leg lengths give J_p_e and J_q_e; a leg that is δ longer at the same reading moves e by
+  // J_q_e⁻¹·δ·e_i and the tool by J_p_e·J_q_e⁻¹·δ·e_i (C, A fixed).
+  const pkm::io::ExechonMachine m = machine();
+  for (const Eigen::Vector3d& p : commands()) {
+    kin::ExechonData nominal(m.model);
+    ASSERT_EQ(kin::toolInverseKinematics(m.model, nominal, {p, -Eigen::Vector3d::UnitZ()}),
+              kin::ExechonIkStatus::kOk);
+    const kin::ExechonConfiguration c0 = kin::configurationOf(nominal);
+    Eigen::Matrix3d J_p_e;
+    Eigen::Matrix3d J_q_e;
+    for (int k = 0; k < 3; ++k) {
+      const double h = k < 2 ? kStepAngle : kStepLength;
+      kin::ExechonConfiguration plus = c0;
+      kin::ExechonConfiguration minus = c0;
+      plus.e[k] += h;
+      minus.e[k] -= h;
+      Eigen::Vector3d tp, tm, qp, qm;
+      evaluate(m.model, plus, &tp, &qp);
+      evaluate(m.model, minus, &tm, &qm);
+      J_p_e.col(k) = (tp - tm) / (2 * h);
+      J_q_e.col(k) = (qp - qm) / (2 * h);
+    }
+    for (int leg = 0; leg < 3; ++leg) {
+      ExechonTripodErrors errors;
+      errors.length_offset[leg] = kLegError;
+      const HybridTripod tripod(m.model, errors, m.fk);
+      const Eigen::Vector3d exact = tripod.errorMotion(p).translation();
+      const Eigen::Vector3d predicted =
+          J_p_e * J_q_e.partialPivLu().solve(Eigen::Vector3d::Unit(leg) * kLegError);
+      EXPECT_GT(exact.norm(), 0.1 * kLegError) << "leg " << leg;
+      EXPECT_LT((exact - predicted).norm(), kTolFirstOrder * exact.norm())
+          << "leg " << leg << " at " << p.transpose() << ": exact " << exact.transpose()
+          << " predicted " << predicted.transpose();
+    }
+  }
+}
+
+TEST(HybridTripod, ErrorMotionIsLinearForSmallErrors) {
+  // Doubling a geometric error doubles the error motion to first order (a second check of the
+  // first-order behaviour for a parameter without a closed form).
+  const pkm::io::ExechonMachine m = machine();
+  ExechonTripodErrors one;
+  one.dB = 0.02;
+  one.pC = -0.015;
+  one.c0 = 20e-6;
+  ExechonTripodErrors two = one;
+  two.dB *= 2;
+  two.pC *= 2;
+  two.c0 *= 2;
+  const HybridTripod t1(m.model, one, m.fk);
+  const HybridTripod t2(m.model, two, m.fk);
+  for (const Eigen::Vector3d& p : commands()) {
+    const Eigen::Vector3d d1 = t1.errorMotion(p).translation();
+    const Eigen::Vector3d d2 = t2.errorMotion(p).translation();
+    EXPECT_GT(d1.norm(), 0.0);
+    EXPECT_LT((d2 - 2 * d1).norm(), kTolFirstOrder * d2.norm()) << p.transpose();
+  }
+}
+
+TEST(HybridTripod, IsDeterministic) {
+  const pkm::io::ExechonMachine m = machine();
+  ExechonTripodErrors errors;
+  errors.length_offset = {0.01, -0.02, 0.015};
+  errors.hz = 0.03;
+  errors.a0 = -15e-6;
+  const HybridTripod a(m.model, errors, m.fk);
+  const HybridTripod b(m.model, errors, m.fk);
+  for (const Eigen::Vector3d& p : commands()) {
+    EXPECT_TRUE(a.errorMotion(p).matrix() == b.errorMotion(p).matrix());
+    EXPECT_TRUE(a.errorMotion(p).matrix() == a.errorMotion(p).matrix());
+  }
+}
+
+TEST(HybridTripod, PerturbedModelAddsTheErrors) {
+  const pkm::io::ExechonMachine m = machine();
+  ExechonTripodErrors errors;
+  errors.dA = 0.1;
+  errors.hx = -0.2;
+  errors.length_offset = {0.3, 0.0, -0.4};
+  errors.tool_length = 0.5;
+  const kin::ExechonModel t = pkm::simulation::perturbedExechon(m.model, errors);
+  EXPECT_EQ(t.tripod.dA, m.model.tripod.dA + 0.1);
+  EXPECT_EQ(t.tripod.hx, m.model.tripod.hx - 0.2);
+  EXPECT_EQ(t.legs[0].length_offset, m.model.legs[0].length_offset + 0.3);
+  EXPECT_EQ(t.legs[2].length_offset, m.model.legs[2].length_offset - 0.4);
+  EXPECT_EQ(t.wrist.tool_length, m.model.wrist.tool_length + 0.5);
+  EXPECT_EQ(t.tripod.dB, m.model.tripod.dB);
+  EXPECT_TRUE(ExechonTripodErrors{}.isZero());
+  EXPECT_FALSE(errors.isZero());
+}
+
+TEST(HybridTripod, RejectsBadInput) {
+  const pkm::io::ExechonMachine m = machine();
+  ExechonTripodErrors nan;
+  nan.pB = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(HybridTripod(m.model, nan, m.fk), pkm::InvalidArgument);
+  ExechonTripodErrors degenerate;
+  degenerate.dB = -m.model.tripod.dB;  // dB = 0: no tripod
+  EXPECT_THROW(HybridTripod(m.model, degenerate, m.fk), pkm::InvalidArgument);
+  const HybridTripod tripod(m.model, {}, m.fk);
+  EXPECT_THROW((void)tripod.errorMotion(Eigen::Vector3d(0, std::nan(""), 0)), pkm::InvalidArgument);
+}
+
+}  // namespace
