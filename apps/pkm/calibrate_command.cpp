@@ -2,6 +2,7 @@
 // dial-gauge files and write the calibrated machine, its LinuxCNC setp block and a summary
 // (docs/calibration.md).
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "analyze_common.hpp"
 #include "cli_common.hpp"
 #include "pkm/calibration/hexapod_calibration.hpp"
+#include "pkm/calibration/uncertainty.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/geometry/so3.hpp"
@@ -18,6 +20,7 @@
 #include "pkm/io/hexapod_machine.hpp"
 #include "pkm/io/linuxcnc_hal.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
+#include "pkm/simulation/hexapod_workspace.hpp"
 
 namespace pkm::cli {
 namespace {
@@ -36,6 +39,11 @@ struct CalibrateArgs {
   double loss_scale = 0.0;
   bool force = false;
   bool json = false;
+  int monte_carlo = 0;
+  double sigma_position = 0.0;
+  double sigma_orientation_urad = 0.0;
+  double sigma_gauge = 0.0;
+  int threads = 0;
 };
 
 /// Held-out TCP position errors: |FK(q) target in the measurement frame − measured|.
@@ -83,6 +91,31 @@ ordered_json toJson(const HoldoutErrors& e) {
 ordered_json toJson(const cal::ResidualStatistics& s) {
   return {
       {"equations", s.equations}, {"rms", s.rms}, {"max", s.max}, {"fk_failures", s.fk_failures}};
+}
+
+ordered_json toJson(const cal::TcpErrorStatistics& s) {
+  return {{"samples", s.samples}, {"mean", s.mean}, {"p95", s.p95}, {"max", s.max}};
+}
+
+/// 200 workspace poses about home (every limit respected) for the TCP error map.
+std::vector<kinematics::PoseRpy> workspacePoses(const kinematics::HexapodModel& model) {
+  simulation::PoseBox box;
+  const double reach = 0.4 * model.characteristicLength();
+  for (int i = 0; i < 3; ++i) {
+    box.lo(i) = model.home.position(i) - reach;
+    box.hi(i) = model.home.position(i) + reach;
+    box.lo(3 + i) = model.home.rpy(i) - degToRad(10.0);
+    box.hi(3 + i) = model.home.rpy(i) + degToRad(10.0);
+  }
+  simulation::RandomStream rng(1, "calibration-workspace");
+  std::vector<kinematics::PoseRpy> out;
+  for (const Eigen::VectorXd& c : simulation::sampleHexapodWorkspace(model, box, 200, rng)) {
+    kinematics::PoseRpy p;
+    p.position = c.head<3>();
+    p.rpy = c.tail<3>();
+    out.push_back(p);
+  }
+  return out;
 }
 
 ordered_json frameJson(const geometry::RigidTransform& f) {
@@ -210,6 +243,43 @@ void runCalibrate(const CalibrateArgs& args) {
                                                           s.frame_standard_deviation.data() + 6);
   }
   j["sigma"] = s.sigma;
+  // The TCP error over the workspace: the nominal controller on the calibrated machine (what
+  // calibration removes), and with --monte-carlo the spread the calibration itself leaves.
+  const std::vector<kinematics::PoseRpy> workspace = workspacePoses(machine.model);
+  ordered_json map;
+  map["poses"] = workspace.size();
+  map["before"] = toJson(cal::tcpErrorOverWorkspace(machine.model, result.model, workspace));
+  if (args.monte_carlo > 0) {
+    cal::MonteCarloOptions mc;
+    mc.trials = args.monte_carlo;
+    mc.threads = args.threads;
+    mc.position_sigma = args.sigma_position > 0.0 ? args.sigma_position : s.sigma;
+    mc.orientation_sigma = args.sigma_orientation_urad * 1e-6;
+    mc.gauge_sigma = args.sigma_gauge > 0.0 ? args.sigma_gauge : s.sigma;
+    const bool tty = ::isatty(STDERR_FILENO) != 0;
+    mc.progress = [tty](int done, int total) {
+      if (tty) fmt::print(stderr, "\rpkm: Monte Carlo {}/{}", done, total);
+    };
+    kinematics::HexapodModel estimate = model;  // the fitted model with the target as TCP
+    estimate = cal::withHexapodParameters(estimate, s.parameters);
+    std::vector<kinematics::PoseRpy> ws_target = workspace;
+    const cal::MonteCarloSummary u = cal::monteCarloHexapod(
+        model, input.data, estimate, s.measurement_frame, ws_target, options, mc);
+    if (tty) fmt::print(stderr, "\n");
+    map["after"] = toJson(u.tcp);
+    ordered_json mcj;
+    mcj["trials"] = u.trials;
+    mcj["failures"] = u.failures;
+    mcj["not_converged"] = u.not_converged;
+    mcj["seconds"] = u.seconds;
+    mcj["sigma_position"] = mc.position_sigma;
+    mcj["sigma_orientation"] = mc.orientation_sigma;
+    mcj["sigma_gauge"] = mc.gauge_sigma;
+    mcj["parameter_sigma"] = std::vector<double>(
+        u.standard_deviation.data(), u.standard_deviation.data() + cal::kHexapodParameters);
+    j["monte_carlo"] = mcj;
+  }
+  j["tcp_error_map"] = map;
   ordered_json params = ordered_json::array();
   for (int k = 0; k < cal::kHexapodParameters; ++k)
     params.push_back({{"name", cal::hexapodParameterName(k)},
@@ -261,6 +331,20 @@ void runCalibrate(const CalibrateArgs& args) {
                      j["holdout"]["after"]["rms"].get<double>(),
                      j["holdout"]["before"]["max"].get<double>(),
                      j["holdout"]["after"]["max"].get<double>());
+  t += fmt::format(
+      "workspace TCP error of the nominal controller (what calibration removes): "
+      "mean {:.6g}, 95 % {:.6g}, max {:.6g}\n",
+      map["before"]["mean"].get<double>(),
+      map["before"]["p95"].get<double>(),
+      map["before"]["max"].get<double>());
+  if (map.contains("after"))
+    t += fmt::format(
+        "workspace TCP uncertainty after calibration (Monte Carlo, {} trials): mean "
+        "{:.6g}, 95 % {:.6g}, max {:.6g}\n",
+        args.monte_carlo,
+        map["after"]["mean"].get<double>(),
+        map["after"]["p95"].get<double>(),
+        map["after"]["max"].get<double>());
   t += fmt::format("wrote {}, {}, {}\n", paths.machine, paths.hal, paths.summary);
 }
 
@@ -299,6 +383,21 @@ void addCalibrateCommand(CLI::App& app) {
   hex->add_option("--loss-scale", args->loss_scale, "robust loss scale, machine unit");
   hex->add_flag("--force", args->force, "overwrite existing output files");
   hex->add_flag("--json", args->json, "print the summary as JSON");
+  hex->add_option("--monte-carlo",
+                  args->monte_carlo,
+                  "also run N Monte Carlo trials of the calibration under simulated noise")
+      ->check(CLI::Range(2, 100000));
+  hex->add_option("--sigma-position",
+                  args->sigma_position,
+                  "Monte Carlo: position noise, machine unit (default: the fitted residual sigma)");
+  hex->add_option("--sigma-orientation",
+                  args->sigma_orientation_urad,
+                  "Monte Carlo: 6-DOF orientation noise, urad (default 0)");
+  hex->add_option(
+      "--sigma-gauge",
+      args->sigma_gauge,
+      "Monte Carlo: dial-gauge noise, machine unit (default: the fitted residual sigma)");
+  hex->add_option("--threads", args->threads, "Monte Carlo worker threads (default: all cores)");
   hex->callback([args] { runCalibrate(*args); });
 }
 

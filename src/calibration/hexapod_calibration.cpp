@@ -205,32 +205,6 @@ ceres::LossFunction* makeLoss(const HexapodCalibrationOptions& options) {
   return nullptr;
 }
 
-/// `data` with every pose and point measurement replaced by what `model` predicts for its readings
-/// (FK from the measurement, mapped into the measurement frame); observations whose FK fails and
-/// gauge stations are kept as they are.
-HexapodCalibrationData predictedData(const HexapodModel& model,
-                                     const HexapodCalibrationData& data) {
-  HexapodCalibrationData out = data;
-  HexapodData work(model);
-  const geometry::RigidTransform f = data.measurement_frame.value_or(geometry::RigidTransform{});
-  const Eigen::Matrix3d Rt = f.rotation.transpose();
-  for (PoseObservation& o : out.poses) {
-    PoseRpy seed;
-    seed.position = f * o.pose.position;
-    seed.rpy = geometry::rpyFromRotation(f.rotation * geometry::rotationFromRpy(o.pose.rpy));
-    if (!kinematics::forwardKinematics(model, work, o.readings, seed).ok()) continue;
-    o.pose.position = Rt * (work.world_p_tcp - f.translation);
-    o.pose.rpy = geometry::rpyFromRotation(Rt * work.world_R_platform);
-  }
-  for (PointObservation& o : out.points) {
-    PoseRpy seed = model.home;
-    seed.position = f * o.point;
-    if (!kinematics::forwardKinematics(model, work, o.readings, seed).ok()) continue;
-    o.point = Rt * (work.world_p_tcp - f.translation);
-  }
-  return out;
-}
-
 }  // namespace
 
 std::size_t HexapodCalibrationData::equations() const {
@@ -339,7 +313,8 @@ HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
   // real residuals, point residuals turn with a rotation of the whole set-up, so the Jacobian of
   // the raw data is not exactly singular along that unobservable rotation.)
   Eigen::MatrixXd J0;
-  const HexapodCalibrationData consistent = predictedData(initial, data);
+  const HexapodCalibrationData consistent =
+      detail::predictedData(initial, data, data.measurement_frame);
   stack(initial, consistent, has_frame ? &frame0 : nullptr, &J0, nullptr, nullptr);
   out.identifiability = analyseIdentifiability(select(J0), names, options.identifiability);
 

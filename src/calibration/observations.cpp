@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 
 #include "pkm/geometry/so3.hpp"
+#include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 
 namespace pkm::calibration::detail {
@@ -127,6 +128,40 @@ bool evaluate(const kinematics::HexapodModel& model,
     }
   }
   return false;
+}
+
+HexapodCalibrationData predictedData(const kinematics::HexapodModel& model,
+                                     const HexapodCalibrationData& data,
+                                     const std::optional<geometry::RigidTransform>& frame) {
+  HexapodCalibrationData out = data;
+  kinematics::HexapodData work(model);
+  const geometry::RigidTransform f = frame.value_or(geometry::RigidTransform{});
+  const Eigen::Matrix3d Rt = f.rotation.transpose();
+  for (PoseObservation& o : out.poses) {
+    kinematics::PoseRpy seed;
+    seed.position = f * o.pose.position;
+    seed.rpy = geometry::rpyFromRotation(f.rotation * geometry::rotationFromRpy(o.pose.rpy));
+    if (!kinematics::forwardKinematics(model, work, o.readings, seed).ok()) continue;
+    o.pose.position = Rt * (work.world_p_tcp - f.translation);
+    o.pose.rpy = geometry::rpyFromRotation(Rt * work.world_R_platform);
+  }
+  for (PointObservation& o : out.points) {
+    kinematics::PoseRpy seed = model.home;
+    seed.position = f * o.point;
+    if (!kinematics::forwardKinematics(model, work, o.readings, seed).ok()) continue;
+    o.point = Rt * (work.world_p_tcp - f.translation);
+  }
+  for (ConstrainedMotionData& c : out.constrained) {
+    const auto ref = gaugeHeights(model, work, c, c.reference);
+    if (!ref) continue;
+    c.reference.gauges = {0.0, 0.0, 0.0};
+    for (GaugeStation& st : c.stations) {
+      const auto g = gaugeHeights(model, work, c, st);
+      if (!g) continue;
+      for (int j = 0; j < 3; ++j) st.gauges[static_cast<std::size_t>(j)] = (*g)(j) - (*ref)(j);
+    }
+  }
+  return out;
 }
 
 }  // namespace pkm::calibration::detail

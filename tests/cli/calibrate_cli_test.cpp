@@ -53,6 +53,36 @@ TEST_F(CalibrateCli, FullPoseTrackerCalibrationMeetsTheTarget) {
   EXPECT_TRUE(nlohmann::json::parse(slurp(path("cal.summary.json"))).contains("parameters"));
 }
 
+TEST_F(CalibrateCli, MonteCarloGivesTheWorkspaceTcpUncertainty) {
+  const CliRun r = pkm({"calibrate",
+                        "hexapod",
+                        "--machine",
+                        "hexapod-default",
+                        "--data",
+                        path("sim/tracker-pose.csv"),
+                        "--out",
+                        path("mc.json"),
+                        "--json",
+                        "--monte-carlo",
+                        "12",
+                        "--threads",
+                        "2",
+                        "--sigma-position",
+                        "0.004",
+                        "--sigma-orientation",
+                        "20"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["monte_carlo"]["trials"], 12);
+  EXPECT_EQ(j["monte_carlo"]["failures"], 0);
+  EXPECT_EQ(j["monte_carlo"]["parameter_sigma"].size(), 42u);
+  const auto& map = j["tcp_error_map"];
+  EXPECT_GT(map["before"]["mean"].get<double>(), kBeforeAtLeast);
+  // What the calibration leaves from the tracker noise alone is far below the held-out limit.
+  EXPECT_LT(map["after"]["p95"].get<double>(), kHeldOutRmsLimit);
+  EXPECT_LE(map["after"]["p95"].get<double>(), map["after"]["max"].get<double>());
+}
+
 TEST_F(CalibrateCli, DialGaugeCalibrationNamesWhatItCannotSee) {
   const CliRun r = pkm({"calibrate",
                         "hexapod",

@@ -42,4 +42,13 @@ bool evaluate(const kinematics::HexapodModel& model,
               Eigen::MatrixXd* J_theta,
               Eigen::MatrixXd* J_frame);
 
+/// `data` with every measurement replaced by what `model` predicts for its readings: poses and
+/// points by FK from the measurement (mapped into `frame` when given), gauge readings by the
+/// model's gauge heights relative to the reference (reference readings 0). Observations whose FK
+/// fails keep their measurement.
+[[nodiscard]] HexapodCalibrationData predictedData(
+    const kinematics::HexapodModel& model,
+    const HexapodCalibrationData& data,
+    const std::optional<geometry::RigidTransform>& frame);
+
 }  // namespace pkm::calibration::detail
