@@ -35,12 +35,8 @@ test: test-release test-asan
 bench: setup
 	@cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DPKM_BUILD_BENCHMARKS=ON -DPKM_BUILD_TESTS=OFF >/dev/null
 	@cmake --build $(BENCH_BUILD) -j $(JOBS)
-	@$(BENCH_BUILD)/bin/bench_kinematics
-	@$(BENCH_BUILD)/bin/bench_exechon
-	@$(BENCH_BUILD)/bin/bench_calibration
-	@if [ -x $(BENCH_BUILD)/bin/bench_metrology ]; then $(BENCH_BUILD)/bin/bench_metrology; fi
-	@bash benchmarks/fk_whole_process.sh $(BENCH_BUILD)/bin/pkm
-	@bash benchmarks/simulate_whole_process.sh $(BENCH_BUILD)/bin/pkm
+	@for b in $(BENCH_BUILD)/bin/bench_*; do echo "== $$b"; $$b || exit 1; done
+	@for s in benchmarks/*_whole_process.sh; do bash $$s $(BENCH_BUILD)/bin/pkm || exit 1; done
 
 format:
 	@bash scripts/format.sh

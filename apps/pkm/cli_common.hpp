@@ -60,6 +60,17 @@ void addMachinesCommand(CLI::App& app);
 void addCalibrateCommand(CLI::App& app);
 void addPlanPosesCommand(CLI::App& app);
 
+/// Adds one top-level command group to the application (for self-registering command files).
+using CommandAdder = void (*)(CLI::App& app);
+/// Registers a top-level command group: a command file defines, in an anonymous namespace,
+/// `const pkm::cli::CommandRegistration kRegisterX{ORDER, &addX};` and main() adds every
+/// registered group after the built-in ones, in increasing ORDER.
+struct CommandRegistration {
+  CommandRegistration(int order, CommandAdder add);
+};
+/// Adds every registered command group to `app` (called once by main()).
+void addRegisteredCommands(CLI::App& app);
+
 }  // namespace pkm::cli
 
 namespace pkm::cli {

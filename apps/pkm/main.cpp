@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   pkm::cli::addPlanPosesCommand(app);
   pkm::cli::addMachinesCommand(app);
   pkm::cli::addDemoCommand(app);
+  pkm::cli::addRegisteredCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
