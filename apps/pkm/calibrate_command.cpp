@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analyze_common.hpp"
+#include "calibrate_common.hpp"
 #include "cli_common.hpp"
 #include "pkm/calibration/hexapod_calibration.hpp"
 #include "pkm/calibration/uncertainty.hpp"
@@ -118,33 +119,9 @@ std::vector<kinematics::PoseRpy> workspacePoses(const kinematics::HexapodModel& 
   return out;
 }
 
-ordered_json frameJson(const geometry::RigidTransform& f) {
-  const Eigen::Vector3d rpy = geometry::rpyFromRotation(f.rotation);
-  return {{"position", {f.translation.x(), f.translation.y(), f.translation.z()}},
-          {"rpy_deg", {radToDeg(rpy.x()), radToDeg(rpy.y()), radToDeg(rpy.z())}}};
-}
-
-/// Output paths: CAL.json, CAL.hal, CAL.summary.json.
-struct OutPaths {
-  std::string machine, hal, summary;
-};
-
-OutPaths outPaths(const std::string& out) {
-  std::string stem = out;
-  if (stem.size() > 5 && stem.ends_with(".json")) stem.resize(stem.size() - 5);
-  return {out, stem + ".hal", stem + ".summary.json"};
-}
-
-void writeFile(const std::string& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  if (!f) throw IoError(locate(path, 0, "cannot write the file"));
-  f << text;
-  if (!f) throw IoError(locate(path, 0, "write failed"));
-}
-
 void runCalibrate(const CalibrateArgs& args) {
   io::HexapodMachine machine = args.machine.load();
-  const OutPaths paths = outPaths(args.out);
+  const CalibrationOutputs paths = calibrationOutputs(args.out);
   if (!args.force)
     for (const std::string& p : {paths.machine, paths.hal, paths.summary})
       if (std::filesystem::exists(p))
@@ -291,9 +268,9 @@ void runCalibrate(const CalibrateArgs& args) {
   j["parameters"] = params;
   j["outputs"] = {{"machine", paths.machine}, {"hal", paths.hal}, {"summary", paths.summary}};
 
-  writeFile(paths.machine, io::writeHexapodJson(result));
-  writeFile(paths.hal, io::writeLinuxcncSetp(result));
-  writeFile(paths.summary, j.dump(2) + "\n");
+  writeOutputFile(paths.machine, io::writeHexapodJson(result));
+  writeOutputFile(paths.hal, io::writeLinuxcncSetp(result));
+  writeOutputFile(paths.summary, j.dump(2) + "\n");
   if (args.json) {
     printJson(j);
     return;
@@ -350,6 +327,25 @@ void runCalibrate(const CalibrateArgs& args) {
 
 }  // namespace
 
+ordered_json frameJson(const geometry::RigidTransform& f) {
+  const Eigen::Vector3d rpy = geometry::rpyFromRotation(f.rotation);
+  return {{"position", {f.translation.x(), f.translation.y(), f.translation.z()}},
+          {"rpy_deg", {radToDeg(rpy.x()), radToDeg(rpy.y()), radToDeg(rpy.z())}}};
+}
+
+CalibrationOutputs calibrationOutputs(const std::string& out) {
+  std::string stem = out;
+  if (stem.size() > 5 && stem.ends_with(".json")) stem.resize(stem.size() - 5);
+  return {out, stem + ".hal", stem + ".summary.json"};
+}
+
+void writeOutputFile(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  if (!f) throw IoError(locate(path, 0, "cannot write the file"));
+  f << text;
+  if (!f) throw IoError(locate(path, 0, "write failed"));
+}
+
 void addCalibrateCommand(CLI::App& app) {
   CLI::App* calibrate =
       app.add_subcommand("calibrate", "identify kinematic parameters from measurements");
@@ -399,6 +395,7 @@ void addCalibrateCommand(CLI::App& app) {
       "Monte Carlo: dial-gauge noise, machine unit (default: the fitted residual sigma)");
   hex->add_option("--threads", args->threads, "Monte Carlo worker threads (default: all cores)");
   hex->callback([args] { runCalibrate(*args); });
+  addCalibrateExechon(*calibrate);
 }
 
 }  // namespace pkm::cli

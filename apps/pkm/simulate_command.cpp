@@ -10,6 +10,7 @@
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
+#include "pkm/io/exechon_tracker_files.hpp"
 #include "pkm/io/measurement_files.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/io/probe_files.hpp"
@@ -128,7 +129,8 @@ void runSimulate(const SimulateState& st) {
       out.text() += fmt::format("{}\t{} measurements\t{}\n",
                                 name,
                                 s.campaign.measurements.size() + s.campaign.constrained.size() +
-                                    s.campaign.trackers.size() + s.campaign.probes.size(),
+                                    s.campaign.trackers.size() + s.campaign.probes.size() +
+                                    s.campaign.exechon_trackers.size(),
                                 s.campaign.description);
     }
     return;
@@ -153,6 +155,12 @@ void runSimulate(const SimulateState& st) {
         io::trackerCsv(
             io::trackerMetadata(scenario.campaign.name, seed, *r.setup, r.readings.size()),
             r.setup->mode,
+            r.readings));
+  for (const sim::ExechonTrackerResult& r : sim::runExechonTrackers(scenario.campaign, seed))
+    files.emplace_back(
+        fmt::format("{}.csv", r.setup->name),
+        io::exechonTrackerCsv(
+            io::exechonTrackerMetadata(scenario.campaign.name, seed, *r.setup, r.readings.size()),
             r.readings));
   for (const sim::TouchProbeRun& r : sim::runTouchProbes(scenario.campaign.probes, seed))
     for (auto& file : io::touchProbeFiles(scenario.campaign.name, seed, *r.setup, r.result))

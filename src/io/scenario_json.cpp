@@ -144,6 +144,8 @@ Scenario parseScenarioJson(const std::string& text,
     const std::string instrument = doc.string(list[i], ptr, "instrument", "laser");
     if (instrument == "dial_gauges")
       out.campaign.constrained.push_back(detail::readDialGauges(doc, list[i], ptr));
+    else if (instrument == "laser_tracker" && out.machine_kind == "hybrid")
+      out.campaign.exechon_trackers.push_back(detail::readExechonTracker(doc, list[i], ptr));
     else if (instrument == "laser_tracker")
       out.campaign.trackers.push_back(detail::readTracker(doc, list[i], ptr));
     else if (instrument == "touch_probe")

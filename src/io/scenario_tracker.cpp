@@ -66,6 +66,40 @@ std::string array(const Eigen::VectorXd& v) {
   return out + "]";
 }
 
+/// {"position": [x, y, z] mm, "rpy_deg": [r, p, y]} as world_T_tracker.
+Eigen::Isometry3d trackerFrame(const JsonDoc& doc, const json& f, const std::string& fp) {
+  doc.onlyKeys(f, fp, {"position", "rpy_deg"});
+  const Eigen::Vector3d p = doc.vec3(doc.required(f, fp, "position"), fp + "/position");
+  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+  if (f.contains("rpy_deg")) rpy = doc.vec3(f["rpy_deg"], fp + "/rpy_deg");
+  return geometry::makeIsometry(geometry::rotationFromRpy(Eigen::Vector3d(
+                                    degToRad(rpy[0]), degToRad(rpy[1]), degToRad(rpy[2]))),
+                                p);
+}
+
+std::string placementJson(const Eigen::Isometry3d& T) {
+  const Eigen::Vector3d rpy = geometry::rpyFromRotation(T.linear());
+  std::string rows;
+  for (Eigen::Index r = 0; r < 4; ++r)
+    rows += (r ? ", " : "") + array(T.matrix().row(r).transpose());
+  return fmt::format("{{\"position\": {}, \"rpy_deg\": {}, \"matrix\": [{}]}}",
+                     array(T.translation()),
+                     array(Eigen::Vector3d(radToDeg(rpy[0]), radToDeg(rpy[1]), radToDeg(rpy[2]))),
+                     rows);
+}
+
+std::string exechonTrackerTruth(const sim::ExechonTrackerSetup& t) {
+  return fmt::format(
+      "    {{\"name\": \"{}\", \"world_T_tracker\": {}, \"smr_offset\": {},\n"
+      "     \"noise\": {{\"range_sigma\": {}, \"range_ppm\": {}, \"angle_sigma_urad\": {}}}}}",
+      t.name,
+      placementJson(t.world_T_tracker),
+      array(t.smr_offset),
+      formatNumber(t.noise.range_sigma),
+      formatNumber(t.noise.range_ppm),
+      formatNumber(t.noise.angle_sigma * kUradPerRad));
+}
+
 std::string trackerTruth(const sim::TrackerSetup& t) {
   const Eigen::Isometry3d& T = t.world_T_tracker;
   const Eigen::Vector3d rpy = geometry::rpyFromRotation(T.linear());
@@ -139,18 +173,51 @@ sim::TrackerSetup readTracker(const JsonDoc& doc, const json& obj, const std::st
   if (s.poses.empty() && s.random_count == 0)
     doc.fail(ptr, "give \"poses\" or \"random_poses\" (or both)");
   if (obj.contains("smr_offset")) s.smr_offset = doc.vec3(obj["smr_offset"], ptr + "/smr_offset");
-  if (obj.contains("tracker_frame")) {
-    const json& f = obj["tracker_frame"];
-    const std::string fp = ptr + "/tracker_frame";
-    doc.onlyKeys(f, fp, {"position", "rpy_deg"});
-    const Eigen::Vector3d p = doc.vec3(doc.required(f, fp, "position"), fp + "/position");
-    Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
-    if (f.contains("rpy_deg")) rpy = doc.vec3(f["rpy_deg"], fp + "/rpy_deg");
-    s.world_T_tracker =
-        geometry::makeIsometry(geometry::rotationFromRpy(Eigen::Vector3d(
-                                   degToRad(rpy[0]), degToRad(rpy[1]), degToRad(rpy[2]))),
-                               p);
+  if (obj.contains("tracker_frame"))
+    s.world_T_tracker = trackerFrame(doc, obj["tracker_frame"], ptr + "/tracker_frame");
+  if (obj.contains("noise")) s.noise = trackerNoise(doc, obj["noise"], ptr + "/noise");
+  try {
+    s.validate();
+  } catch (const InvalidArgument& e) {
+    doc.fail(ptr, e.what());
   }
+  return s;
+}
+
+sim::ExechonTrackerSetup readExechonTracker(const JsonDoc& doc,
+                                            const json& obj,
+                                            const std::string& ptr) {
+  doc.onlyKeys(obj,
+               ptr,
+               {"name",
+                "instrument",
+                "count",
+                "box",
+                "direction",
+                "max_tilt_deg",
+                "smr_offset",
+                "tracker_frame",
+                "noise"});
+  sim::ExechonTrackerSetup s;
+  s.name = measurementName(doc, obj, ptr);
+  s.count = integer(doc, obj, ptr, "count", 0, 1, kMaxPoses);
+  const json& box = doc.required(obj, ptr, "box");
+  const std::string bp = ptr + "/box";
+  doc.onlyKeys(box, bp, {"x", "y", "z"});
+  const char* axes[] = {"x", "y", "z"};
+  for (Eigen::Index k = 0; k < 3; ++k) {
+    const std::string at = bp + "/" + axes[k];
+    const json& range = doc.required(box, bp, axes[k]);
+    if (!range.is_array() || range.size() != 2) doc.fail(at, "expected [min, max] (mm)");
+    s.box_min[k] = doc.number(range[0], at + "/0");
+    s.box_max[k] = doc.number(range[1], at + "/1");
+    if (s.box_min[k] > s.box_max[k]) doc.fail(at, "min is larger than max");
+  }
+  if (obj.contains("direction")) s.direction = doc.vec3(obj["direction"], ptr + "/direction");
+  s.max_tilt = degToRad(doc.number(obj, ptr, "max_tilt_deg", 0.0));
+  if (obj.contains("smr_offset")) s.smr_offset = doc.vec3(obj["smr_offset"], ptr + "/smr_offset");
+  if (obj.contains("tracker_frame"))
+    s.world_T_tracker = trackerFrame(doc, obj["tracker_frame"], ptr + "/tracker_frame");
   if (obj.contains("noise")) s.noise = trackerNoise(doc, obj["noise"], ptr + "/noise");
   try {
     s.validate();
@@ -187,6 +254,12 @@ std::string extraTruthJson(const sim::Campaign& campaign) {
     out += ",\n  \"laser_trackers\": [\n";
     for (std::size_t i = 0; i < campaign.trackers.size(); ++i)
       out += (i ? ",\n" : "") + trackerTruth(campaign.trackers[i]);
+    out += "\n  ]";
+  }
+  if (!campaign.exechon_trackers.empty()) {
+    out += ",\n  \"exechon_trackers\": [\n";
+    for (std::size_t i = 0; i < campaign.exechon_trackers.size(); ++i)
+      out += (i ? ",\n" : "") + exechonTrackerTruth(campaign.exechon_trackers[i]);
     out += "\n  ]";
   }
   return out;

@@ -11,6 +11,13 @@
 
 namespace pkm::io::detail {
 
+/// A laser-tracker measurement on an Exechon ("instrument": "laser_tracker" on a "hybrid"
+/// machine) at `ptr`: count, box {x, y, z: [min, max] mm}, direction, max_tilt_deg, smr_offset,
+/// tracker_frame, noise. Fails through `doc`.
+[[nodiscard]] simulation::ExechonTrackerSetup readExechonTracker(const JsonDoc& doc,
+                                                                 const json& obj,
+                                                                 const std::string& ptr);
+
 /// A laser-tracker measurement ("instrument": "laser_tracker") at `ptr`. Fails through `doc`.
 [[nodiscard]] simulation::TrackerSetup readTracker(const JsonDoc& doc,
                                                    const json& obj,

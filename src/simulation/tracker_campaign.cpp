@@ -3,11 +3,12 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/simulation/campaign.hpp"
+#include "pkm/simulation/hybrid_virtual_machine.hpp"
 
 namespace pkm::simulation {
 
 void validateTrackers(const Campaign& campaign) {
-  if (campaign.trackers.empty()) return;
+  if (campaign.trackers.empty() && campaign.exechon_trackers.empty()) return;
   PKM_CHECK(campaign.machine != nullptr, "campaign '{}' has no machine", campaign.name);
   std::set<std::string> names;
   for (const LineSetup& m : campaign.measurements) names.insert(m.name);
@@ -20,6 +21,30 @@ void validateTrackers(const Campaign& campaign) {
               t.name);
     PKM_CHECK(names.insert(t.name).second, "two measurements are named '{}'", t.name);
   }
+  for (const ExechonTrackerSetup& t : campaign.exechon_trackers) {
+    t.validate();
+    const auto* hybrid = dynamic_cast<const HybridVirtualMachine*>(campaign.machine.get());
+    PKM_CHECK(hybrid != nullptr && hybrid->tripod().has_value(),
+              "{}: an Exechon laser tracker measurement needs a hybrid machine with "
+              "\"tripod_errors\"",
+              t.name);
+    PKM_CHECK(names.insert(t.name).second, "two measurements are named '{}'", t.name);
+  }
+}
+
+std::vector<ExechonTrackerResult> runExechonTrackers(const Campaign& campaign, std::uint64_t seed) {
+  campaign.validate();
+  validateTrackers(campaign);
+  std::vector<ExechonTrackerResult> results;
+  for (const ExechonTrackerSetup& setup : campaign.exechon_trackers) {
+    RandomStream rng(seed, setup.name);
+    const HybridTripod& tripod =
+        *dynamic_cast<const HybridVirtualMachine&>(*campaign.machine).tripod();
+    results.push_back({&setup,
+                       simulateExechonTracker(
+                           tripod.nominal(), tripod.actual(), tripod.fkOptions(), setup, rng)});
+  }
+  return results;
 }
 
 std::vector<TrackerResult> runLaserTrackers(const Campaign& campaign, std::uint64_t seed) {

@@ -68,7 +68,8 @@ TEST(Scenario, BuiltinsParseAndRun) {
     EXPECT_EQ(s.source, "builtin:" + name);
     // Every built-in measures something: laser lines, dial gauges, a tracker or a touch probe.
     EXPECT_FALSE(sim::runCampaign(s.campaign, s.seed).empty() && s.campaign.constrained.empty() &&
-                 s.campaign.trackers.empty() && s.campaign.probes.empty())
+                 s.campaign.trackers.empty() && s.campaign.probes.empty() &&
+                 s.campaign.exechon_trackers.empty())
         << name;
   }
   const io::Scenario hybrid = io::loadScenario("seed000-parallelism");

@@ -136,3 +136,46 @@ TEST(ScenarioTracker, BadTrackerMeasurementsAreLocated) {
 }
 
 }  // namespace
+
+namespace pkm::io {
+namespace {
+
+TEST(ScenarioExechonTracker, BuiltinParsesRunsAndWritesTruth) {
+  const Scenario s = loadScenario("exechon-calibration");
+  ASSERT_EQ(s.campaign.exechon_trackers.size(), 2u);
+  const auto& t = s.campaign.exechon_trackers[0];
+  EXPECT_EQ(t.name, "tracker-fit");
+  EXPECT_EQ(t.count, 200);
+  EXPECT_NEAR(t.max_tilt, degToRad(30.0), 1e-15);
+  EXPECT_EQ(t.smr_offset, Eigen::Vector3d(40, 0, 0));
+  EXPECT_EQ(t.world_T_tracker.translation(), Eigen::Vector3d(1500, -1200, 400));
+  const auto results = simulation::runExechonTrackers(s.campaign, s.seed);
+  ASSERT_EQ(results.size(), 2u);
+  EXPECT_EQ(results[1].readings.size(), 50u);
+  const std::string truth = truthJson(s, s.seed);
+  EXPECT_NE(truth.find("\"exechon_trackers\""), std::string::npos);
+  EXPECT_NE(truth.find("\"tripod_errors\""), std::string::npos);
+  const nlohmann::json parsed = nlohmann::json::parse(truth);
+  ASSERT_TRUE(parsed.contains("exechon_trackers"));
+  EXPECT_EQ(parsed["exechon_trackers"][1]["name"], "tracker-holdout");
+}
+
+TEST(ScenarioExechonTracker, NeedsAHybridMachineWithTripodErrors) {
+  const std::string text = R"({"type": "simulation_scenario", "machine": {"kind": "hybrid"},
+    "measurements": [{"name": "t", "instrument": "laser_tracker", "count": 3,
+                      "box": {"x": [0, 1], "y": [0, 1], "z": [0, 1]}}]})";
+  try {
+    (void)parseScenarioJson(text, "s.json");
+    ADD_FAILURE() << "expected an error";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("tripod_errors"), std::string::npos) << e.what();
+  }
+  const std::string bad_box = R"({"type": "simulation_scenario", "machine": {"kind": "hybrid",
+    "tripod_errors": {"dA": 1}},
+    "measurements": [{"name": "t", "instrument": "laser_tracker", "count": 3,
+                      "box": {"x": [2, 1], "y": [0, 1], "z": [0, 1]}}]})";
+  EXPECT_THROW((void)parseScenarioJson(bad_box, "s.json"), IoError);
+}
+
+}  // namespace
+}  // namespace pkm::io

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pkm/simulation/dial_gauges.hpp"
+#include "pkm/simulation/exechon_tracker.hpp"
 #include "pkm/simulation/laser_tracker.hpp"
 #include "pkm/simulation/line_measurement.hpp"
 #include "pkm/simulation/touch_probe.hpp"
@@ -28,6 +29,9 @@ struct Campaign {
   /// Laser-tracker measurements (point or 6-DOF pose); need a HexapodVirtualMachine. Checked by
   /// validateTrackers (names unique among all measurements).
   std::vector<TrackerSetup> trackers;
+  /// Laser-tracker measurements of the Exechon PKM of a hybrid machine with tripod errors
+  /// (exechon_tracker.hpp); checked by validateTrackers, run by runExechonTrackers.
+  std::vector<ExechonTrackerSetup> exechon_trackers;
   /// Touch-probe measurements on a master ring (seed 003); need a hybrid (Exechon) machine. Run
   /// with runTouchProbes (pkm/simulation/touch_probe.hpp).
   std::vector<TouchProbeSetup> probes;
@@ -74,5 +78,17 @@ struct TrackerResult {
 /// pkm::InvalidArgument (Campaign::validate, validateTrackers, simulateLaserTracker).
 [[nodiscard]] std::vector<TrackerResult> runLaserTrackers(const Campaign& campaign,
                                                           std::uint64_t seed);
+
+/// One Exechon tracker measurement's result.
+struct ExechonTrackerResult {
+  const ExechonTrackerSetup* setup = nullptr;   ///< points into the campaign
+  std::vector<ExechonTrackerReading> readings;  ///< one per commanded pose
+};
+
+/// Runs every Exechon tracker measurement, each from RandomStream(seed, setup.name), on the
+/// hybrid machine's tripod (nominal and true models). Throws pkm::InvalidArgument
+/// (validateTrackers, simulateExechonTracker).
+[[nodiscard]] std::vector<ExechonTrackerResult> runExechonTrackers(const Campaign& campaign,
+                                                                   std::uint64_t seed);
 
 }  // namespace pkm::simulation

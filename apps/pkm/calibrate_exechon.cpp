@@ -1,0 +1,312 @@
+// `pkm calibrate exechon`: identify an Exechon's 24 kinematic parameters (Zoppi's tripod
+// dimensions with the base U-joint axis offsets, leg offsets, wrist zeros, tool length, base
+// placement) from laser-tracker files and write the calibrated machine file and a summary
+// (docs/calibration.md, "Exechon").
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "analyze_common.hpp"
+#include "calibrate_common.hpp"
+#include "cli_common.hpp"
+#include "pkm/calibration/exechon_calibration.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/core/units.hpp"
+#include "pkm/io/exechon_machine.hpp"
+#include "pkm/io/exechon_tracker_files.hpp"
+#include "pkm/io/machine_loader.hpp"
+#include "pkm/kinematics/exechon_checks.hpp"
+#include "pkm/kinematics/exechon_data.hpp"
+
+namespace pkm::cli {
+namespace {
+
+namespace cal = pkm::calibration;
+using nlohmann::ordered_json;
+
+struct ExechonArgs {
+  std::string machine = "mxt700s-like";
+  std::vector<std::string> data, holdout;
+  std::string out;
+  std::string frame = "auto";
+  std::vector<double> target_offset;
+  std::vector<std::string> fix;
+  std::string loss = "none";
+  double loss_scale = 0.0;
+  bool force = false;
+  bool json = false;
+};
+
+ordered_json toJson(const cal::ResidualStatistics& s) {
+  return {
+      {"equations", s.equations}, {"rms", s.rms}, {"max", s.max}, {"fk_failures", s.fk_failures}};
+}
+
+/// Target errors |predicted − measured (in frame)| over held-out data: RMS of the 3-D error, max.
+ordered_json holdout(const kinematics::ExechonModel& model,
+                     const std::optional<geometry::RigidTransform>& frame,
+                     const cal::ExechonCalibrationData& data,
+                     const kinematics::FkOptions& fk) {
+  double sum = 0.0, worst = 0.0;
+  int n = 0, failures = 0;
+  for (const cal::ExechonObservation& o : data.observations) {
+    const auto p = cal::exechonTarget(model, o.joints, data.target_offset, model.home, fk);
+    if (!p) {
+      ++failures;
+      continue;
+    }
+    const Eigen::Vector3d m =
+        frame ? Eigen::Vector3d(frame->rotation * o.point + frame->translation) : o.point;
+    const double e = (m - *p).norm();
+    sum += e * e;
+    worst = std::max(worst, e);
+    ++n;
+  }
+  return {{"poses", n},
+          {"failures", failures},
+          {"rms", n > 0 ? std::sqrt(sum / n) : 0.0},
+          {"max", worst}};
+}
+
+/// The tool-point error of the nominal controller on the calibrated machine over the PKM working
+/// box (5 × 5 × 5 points, tool vertical −z): nominal IK, calibrated FK; mean, 95 %, max.
+std::optional<ordered_json> workspaceMap(const io::ExechonMachine& machine,
+                                         const kinematics::ExechonModel& calibrated) {
+  if (!machine.hybrid) return std::nullopt;
+  const Eigen::Vector3d lo = machine.hybrid->pkm_min, hi = machine.hybrid->pkm_max;
+  if (!lo.allFinite() || !hi.allFinite()) return std::nullopt;
+  std::vector<double> errors;
+  kinematics::ExechonData nom(machine.model), cal_data(calibrated);
+  constexpr int kSteps = 5;
+  for (int i = 0; i < kSteps; ++i)
+    for (int j = 0; j < kSteps; ++j)
+      for (int k = 0; k < kSteps; ++k) {
+        const Eigen::Vector3d f(i / (kSteps - 1.0), j / (kSteps - 1.0), k / (kSteps - 1.0));
+        kinematics::ExechonToolPose target;
+        target.position = lo + f.cwiseProduct(hi - lo);
+        target.direction = -Eigen::Vector3d::UnitZ();
+        if (!kinematics::checkToolPose(machine.model, nom, target).ok()) continue;
+        if (!kinematics::toolForwardKinematics(calibrated,
+                                               cal_data,
+                                               kinematics::jointsOf(nom),
+                                               kinematics::configurationOf(nom),
+                                               machine.fk)
+                 .ok())
+          continue;
+        errors.push_back((cal_data.world_p_tool - target.position).norm());
+      }
+  if (errors.empty()) return std::nullopt;
+  std::sort(errors.begin(), errors.end());
+  double mean = 0.0;
+  for (const double e : errors) mean += e / static_cast<double>(errors.size());
+  const auto p95 = errors[static_cast<std::size_t>(0.95 * static_cast<double>(errors.size() - 1))];
+  return ordered_json{
+      {"points", errors.size()}, {"mean", mean}, {"p95", p95}, {"max", errors.back()}};
+}
+
+void runExechon(const ExechonArgs& args) {
+  io::ExechonMachine machine = io::loadExechonMachine(args.machine);
+  printNotices(machine.notices);
+  const CalibrationOutputs paths = calibrationOutputs(args.out);
+  if (!args.force)
+    for (const std::string& p : {paths.machine, paths.summary})
+      if (std::filesystem::exists(p))
+        throw IoError(fmt::format("{} exists; pass --force to overwrite it", p));
+  io::ExechonCalibrationInput input, held;
+  for (const std::string& f : args.data) io::addExechonCalibrationFile(f, input);
+  for (const std::string& f : args.holdout) io::addExechonCalibrationFile(f, held);
+  printNotices(input.notes);
+  Eigen::Vector3d target = input.target_offset.value_or(Eigen::Vector3d::Zero());
+  if (!args.target_offset.empty()) {
+    if (args.target_offset.size() != 3) throw InvalidArgument("--target-offset needs x,y,z");
+    target = Eigen::Vector3d(args.target_offset[0], args.target_offset[1], args.target_offset[2]);
+  }
+  input.data.target_offset = target;
+  held.data.target_offset = held.target_offset.value_or(target);
+  const bool use_frame = args.frame == "tracker" || (args.frame == "auto" && input.tracker_frame);
+  cal::ExechonCalibrationOptions options;
+  options.fk = machine.fk;
+  if (use_frame) {
+    input.data.measurement_frame =
+        cal::initialExechonMeasurementFrame(machine.model, input.data, machine.fk);
+    // The tracker frame and the base placement differ by one rigid motion the data cannot see:
+    // the machine's world frame stays where the machine file puts the base (docs/calibration.md).
+    for (int k = cal::kExechonBaseParameter; k < cal::kExechonParameters; ++k)
+      options.free[static_cast<std::size_t>(k)] = false;
+  }
+  for (const std::string& name : args.fix)
+    options.free[static_cast<std::size_t>(cal::exechonParameterIndex(name))] = false;
+  if (args.loss == "huber") options.loss = cal::RobustLoss::kHuber;
+  if (args.loss == "cauchy") options.loss = cal::RobustLoss::kCauchy;
+  options.loss_scale = args.loss_scale;
+
+  const cal::ExechonCalibrationSummary s =
+      cal::calibrateExechon(machine.model, input.data, options);
+  const double scale = machine.model.characteristicLength();
+  if (!s.warnings.empty())
+    throw InvalidArgument(
+        fmt::format("calibration result is implausible; nothing was written:\n  {}",
+                    fmt::join(s.warnings, "\n  ")));
+  if (!(s.after.rms < 1e-3 * scale)) {
+    std::string worst;
+    for (const auto& w : s.worst) worst += fmt::format("\n  {}: {:.4g}", w.source, w.residual);
+    throw InvalidArgument(fmt::format(
+        "calibration does not explain the data: residual RMS {:.4g} (max {:.4g}) after {} "
+        "iterations ({}); check the units (legs {}, wrist angles in degrees), the --frame option "
+        "and outliers (--loss cauchy --loss-scale ...); nothing was written. Largest residuals:{}",
+        s.after.rms,
+        s.after.max,
+        s.iterations,
+        s.termination,
+        toString(machine.model.unit),
+        worst));
+  }
+  io::ExechonMachine result = machine;
+  result.model =
+      cal::withExechonParameters(machine.model, s.parameters, machine.model.world_T_zoppi);
+  result.model.name = machine.model.name + "-calibrated";
+  result.notices.clear();
+  result.description = fmt::format("{} calibrated by pkm calibrate exechon", machine.model.name);
+
+  ordered_json j;
+  j["machine"] = machine.model.name;
+  j["units"] = toString(machine.model.unit);
+  j["data"] = input.notes;
+  j["observations"] = {{"points", input.data.observations.size()},
+                       {"equations", input.data.equations()}};
+  j["target_offset"] = {target.x(), target.y(), target.z()};
+  j["solver"] = {{"converged", s.converged},
+                 {"termination", s.termination},
+                 {"iterations", s.iterations},
+                 {"initial_cost", s.initial_cost},
+                 {"final_cost", s.final_cost},
+                 {"seconds", s.seconds}};
+  j["residuals"] = {{"before", toJson(s.before)}, {"after", toJson(s.after)}};
+  if (!held.data.observations.empty()) {
+    std::optional<geometry::RigidTransform> f0;
+    if (use_frame) f0 = input.data.measurement_frame;
+    j["holdout"] = {{"before", holdout(machine.model, f0, held.data, machine.fk)},
+                    {"after", holdout(result.model, s.measurement_frame, held.data, machine.fk)}};
+  }
+  ordered_json id;
+  id["parameters"] = s.identifiability.parameters;
+  id["rank"] = s.identifiability.rank;
+  id["condition_number"] = s.identifiability.condition_number;
+  id["unidentifiable"] = ordered_json::array();
+  for (const auto& c : s.identifiability.combinations) {
+    ordered_json terms = ordered_json::object();
+    for (const auto& [name, coef] : c.terms) terms[name] = coef;
+    id["unidentifiable"].push_back(terms);
+  }
+  j["identifiability"] = id;
+  if (s.measurement_frame) {
+    j["measurement_frame"] = frameJson(*s.measurement_frame);
+    j["measurement_frame"]["sigma"] = std::vector<double>(s.frame_standard_deviation.data(),
+                                                          s.frame_standard_deviation.data() + 6);
+  }
+  j["sigma"] = s.sigma;
+  ordered_json worst = ordered_json::array();
+  for (const auto& w : s.worst) worst.push_back({{"source", w.source}, {"residual", w.residual}});
+  j["worst_observations"] = worst;
+  if (const auto map = workspaceMap(machine, result.model)) j["tcp_error_map"] = {{"before", *map}};
+  ordered_json params = ordered_json::array();
+  for (int k = 0; k < cal::kExechonParameters; ++k)
+    params.push_back(
+        {{"name", cal::exechonParameterName(k)},
+         {"unit", cal::exechonParameterIsLength(k) ? toString(machine.model.unit) : "rad"},
+         {"free", options.free[static_cast<std::size_t>(k)]},
+         {"initial", s.initial(k)},
+         {"estimate", s.parameters(k)},
+         {"change", s.parameters(k) - s.initial(k)},
+         {"sigma", s.standard_deviation(k)}});
+  j["parameters"] = params;
+  j["outputs"] = {{"machine", paths.machine}, {"summary", paths.summary}};
+  writeOutputFile(paths.machine, io::writeExechonJson(result));
+  writeOutputFile(paths.summary, j.dump(2) + "\n");
+  if (args.json) {
+    printJson(j);
+    return;
+  }
+  Output out;
+  std::string& t = out.text();
+  t += fmt::format("calibrated {} from {} equations ({} tracker points)\n",
+                   machine.model.name,
+                   input.data.equations(),
+                   input.data.observations.size());
+  t += fmt::format("solver: {} iterations, {:.3f} s, {}\n",
+                   s.iterations,
+                   s.seconds,
+                   s.converged ? "converged" : s.termination);
+  t += fmt::format("identifiable: {} of {} unknowns (condition number {:.4g})\n",
+                   s.identifiability.rank,
+                   s.identifiability.parameters,
+                   s.identifiability.condition_number);
+  for (const auto& c : s.identifiability.combinations) {
+    std::string terms;
+    for (const auto& [name, coef] : c.terms) terms += fmt::format(" {:+.3f}·{}", coef, name);
+    t += fmt::format("  not identifiable:{}\n", terms);
+  }
+  t += fmt::format("fitted residuals ({}): RMS {:.6g} -> {:.6g}, max {:.6g} -> {:.6g}\n",
+                   toString(machine.model.unit),
+                   s.before.rms,
+                   s.after.rms,
+                   s.before.max,
+                   s.after.max);
+  if (j.contains("holdout"))
+    t += fmt::format("held-out target error: RMS {:.6g} -> {:.6g}, max {:.6g} -> {:.6g}\n",
+                     j["holdout"]["before"]["rms"].get<double>(),
+                     j["holdout"]["after"]["rms"].get<double>(),
+                     j["holdout"]["before"]["max"].get<double>(),
+                     j["holdout"]["after"]["max"].get<double>());
+  if (!s.worst.empty())
+    t += fmt::format("largest residual after the fit: {} ({:.4g})\n",
+                     s.worst.front().source,
+                     s.worst.front().residual);
+  if (j.contains("tcp_error_map"))
+    t += fmt::format(
+        "working-volume tool error of the nominal controller (what calibration removes): mean "
+        "{:.6g}, 95 % {:.6g}, max {:.6g}\n",
+        j["tcp_error_map"]["before"]["mean"].get<double>(),
+        j["tcp_error_map"]["before"]["p95"].get<double>(),
+        j["tcp_error_map"]["before"]["max"].get<double>());
+  t += fmt::format("wrote {}, {}\n", paths.machine, paths.summary);
+}
+
+}  // namespace
+
+void addCalibrateExechon(CLI::App& calibrate) {
+  auto args = std::make_shared<ExechonArgs>();
+  CLI::App* ex = calibrate.add_subcommand(
+      "exechon", "calibrate an Exechon (tripod and wrist) from laser-tracker files");
+  ex->add_option("--machine", args->machine, "Exechon machine file or built-in name")
+      ->capture_default_str();
+  ex->add_option("--data", args->data, "Exechon tracker files (q0,q1,q2,c,a,x,y,z[,i,j,k])")
+      ->required()
+      ->check(CLI::ExistingFile);
+  ex->add_option("--holdout", args->holdout, "tracker files kept out of the fit, for validation")
+      ->check(CLI::ExistingFile);
+  ex->add_option("--out", args->out, "calibrated machine file CAL.json (also CAL.summary.json)")
+      ->required();
+  ex->add_option("--frame",
+                 args->frame,
+                 "where tracker readings are: auto (from the files' metadata), world, tracker")
+      ->check(CLI::IsMember({"auto", "world", "tracker"}));
+  ex->add_option("--target-offset",
+                 args->target_offset,
+                 "the tracker target in the tool frame x,y,z (default: the files' smr offset)")
+      ->delimiter(',')
+      ->expected(3);
+  ex->add_option("--fix", args->fix, "parameters held at their initial value (e.g. tripod.hx)")
+      ->delimiter(',');
+  ex->add_option("--loss", args->loss, "robust loss: none, huber, cauchy")
+      ->check(CLI::IsMember({"none", "huber", "cauchy"}));
+  ex->add_option("--loss-scale", args->loss_scale, "robust loss scale, machine unit");
+  ex->add_flag("--force", args->force, "overwrite existing output files");
+  ex->add_flag("--json", args->json, "print the summary as JSON");
+  ex->callback([args] { runExechon(*args); });
+}
+
+}  // namespace pkm::cli

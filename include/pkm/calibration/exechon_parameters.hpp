@@ -1,0 +1,62 @@
+/// @file
+/// @brief The 24 kinematic parameters of an Exechon machine as a vector for identification: Zoppi's
+/// 12 tripod dimensions (DETC2010-28668 Table 1: dA, dB, dC, the base U-joint axis offsets l12A,
+/// l12C — the base-joint axis offsets of Lopez-Custodio et al. 2020 that keep Zoppi's closed form —
+/// pA, pB, pC, hA, hC, hx, hz), the three leg length offsets, the wrist zeros c0, a0 and the tool
+/// length, and the placement of the tripod's base frame (docs/calibration.md, "Exechon").
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <string>
+
+#include "pkm/kinematics/exechon_model.hpp"
+
+namespace pkm::calibration {
+
+/// Number of Exechon kinematic parameters.
+inline constexpr int kExechonParameters = 24;
+
+/// The parameter vector. Layout (index: name, unit):
+///  0–11: tripod.dA, tripod.dB, tripod.dC, tripod.l12A, tripod.l12C, tripod.pA, tripod.pB,
+///        tripod.pC, tripod.hA, tripod.hC, tripod.hx, tripod.hz (model length unit);
+/// 12–14: offsetA, offsetB, offsetC (leg length offsets, model length unit);
+/// 15–17: wrist.c0, wrist.a0 (rad), wrist.tool_length (model length unit);
+/// 18–23: base.x, base.y, base.z (model length unit), base.rx, base.ry, base.rz (rad): the
+///        correction δ = (δt, δω) of world_T_zoppi relative to a reference placement (R₀, t₀),
+///        world_T_zoppi = (exp([δω]×)·R₀, t₀ + δt) — the left perturbation of docs/conventions.md.
+using ExechonParameterVector = Eigen::Matrix<double, kExechonParameters, 1>;
+
+/// Index of the first base-placement parameter (base.x).
+inline constexpr int kExechonBaseParameter = 18;
+
+/// The name of parameter `index` (layout above). Throws pkm::InvalidArgument outside [0, 24).
+[[nodiscard]] std::string exechonParameterName(int index);
+
+/// The index of a parameter name; throws pkm::InvalidArgument "unknown Exechon parameter 'name'".
+[[nodiscard]] int exechonParameterIndex(const std::string& name);
+
+/// True for the parameters measured in the model length unit (false: radians).
+[[nodiscard]] bool exechonParameterIsLength(int index);
+
+/// The parameters of `model`, the base placement relative to `reference_world_T_zoppi` (a rigid
+/// transform; usually the initial model's world_T_zoppi, giving zeros).
+[[nodiscard]] ExechonParameterVector exechonParameters(
+    const kinematics::ExechonModel& model, const Eigen::Isometry3d& reference_world_T_zoppi);
+
+/// `model` with its 24 parameters replaced (base placement relative to the reference; branch
+/// signs, limits, wrist axes and signs, home kept). Throws pkm::InvalidArgument when a parameter is
+/// not finite. The result is not validated (a calibration may pass through odd geometry).
+[[nodiscard]] kinematics::ExechonModel withExechonParameters(
+    kinematics::ExechonModel model,
+    const ExechonParameterVector& parameters,
+    const Eigen::Isometry3d& reference_world_T_zoppi);
+
+/// Which parameters an identification may change (true = free).
+using ExechonParameterMask = std::array<bool, kExechonParameters>;
+
+/// All 24 free.
+[[nodiscard]] ExechonParameterMask allExechonParametersFree();
+
+}  // namespace pkm::calibration

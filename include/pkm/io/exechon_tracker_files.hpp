@@ -1,0 +1,45 @@
+/// @file
+/// @brief Exechon tracker files (docs/formats.md, "Exechon tracker files"): "# key: value"
+/// metadata, the header `q0,q1,q2,c,a,x,y,z` (optionally `i,j,k`, a measured unit tool
+/// direction), one row per measured pose: the leg readings A, B, C (mm) and wrist readings C, A
+/// (degrees) the controller reported, the measured target (mm). Read into
+/// calibration::ExechonCalibrationData.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pkm/calibration/exechon_calibration.hpp"
+#include "pkm/io/text_table.hpp"
+#include "pkm/simulation/exechon_tracker.hpp"
+
+namespace pkm::io {
+
+/// The CSV text of a simulated Exechon tracker measurement (metadata lines, header, one row per
+/// reading; lengths mm, wrist angles degrees; full precision).
+[[nodiscard]] std::string exechonTrackerCsv(
+    const Metadata& metadata, const std::vector<simulation::ExechonTrackerReading>& readings);
+
+/// The metadata `pkm simulate` writes for an Exechon tracker measurement (format
+/// pkm.exechon-tracker/1, frame "tracker ...", smr offset mm, noise, poses).
+[[nodiscard]] Metadata exechonTrackerMetadata(const std::string& scenario,
+                                              std::uint64_t seed,
+                                              const simulation::ExechonTrackerSetup& setup,
+                                              std::size_t poses);
+
+/// What Exechon calibration files gave.
+struct ExechonCalibrationInput {
+  calibration::ExechonCalibrationData data;      ///< observations with source "FILE:LINE"
+  std::optional<Eigen::Vector3d> target_offset;  ///< `smr offset mm` metadata (first seen)
+  bool tracker_frame = false;  ///< a file's `frame` metadata starts with "tracker"
+  std::vector<std::string> notes;
+};
+
+/// Adds the Exechon tracker file at `path` to `input`. Throws pkm::IoError "FILE:LINE: message"
+/// for a missing column, a bad number, a direction that is not a unit vector, or two files whose
+/// `smr offset mm` or `frame` metadata disagree.
+void addExechonCalibrationFile(const std::string& path, ExechonCalibrationInput& input);
+
+}  // namespace pkm::io
