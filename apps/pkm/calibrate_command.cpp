@@ -119,6 +119,12 @@ std::vector<kinematics::PoseRpy> workspacePoses(const kinematics::HexapodModel& 
   return out;
 }
 
+/// `model` (with the target as TCP) under the estimated parameters.
+kinematics::HexapodModel fittedModel(const kinematics::HexapodModel& model,
+                                     const cal::HexapodParameterVector& parameters) {
+  return cal::withHexapodParameters(model, parameters);
+}
+
 void runCalibrate(const CalibrateArgs& args) {
   io::HexapodMachine machine = args.machine.load();
   const CalibrationOutputs paths = calibrationOutputs(args.out);
@@ -220,6 +226,26 @@ void runCalibrate(const CalibrateArgs& args) {
                                                           s.frame_standard_deviation.data() + 6);
   }
   j["sigma"] = s.sigma;
+  // Outlier diagnostics: the observations with the largest residuals after the fit, by source.
+  {
+    const std::vector<double> norms = cal::observationResidualNorms(
+        fittedModel(model, s.parameters), input.data, s.measurement_frame);
+    std::vector<std::string> sources = input.pose_origin;
+    sources.insert(sources.end(), input.point_origin.begin(), input.point_origin.end());
+    for (std::size_t c = 0; c < input.data.constrained.size(); ++c)
+      for (std::size_t k = 0; k < input.data.constrained[c].stations.size(); ++k)
+        sources.push_back(fmt::format("constrained set {} station {}", c + 1, k + 1));
+    std::vector<std::size_t> order(norms.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return norms[a] > norms[b];
+    });
+    ordered_json worst = ordered_json::array();
+    for (std::size_t k = 0; k < std::min<std::size_t>(5, order.size()); ++k)
+      worst.push_back({{"source", order[k] < sources.size() ? sources[order[k]] : "?"},
+                       {"residual", norms[order[k]]}});
+    j["worst_observations"] = worst;
+  }
   // The TCP error over the workspace: the nominal controller on the calibrated machine (what
   // calibration removes), and with --monte-carlo the spread the calibration itself leaves.
   const std::vector<kinematics::PoseRpy> workspace = workspacePoses(machine.model);
@@ -302,6 +328,10 @@ void runCalibrate(const CalibrateArgs& args) {
                    s.after.rms,
                    s.before.max,
                    s.after.max);
+  if (!j["worst_observations"].empty())
+    t += fmt::format("largest residual after the fit: {} ({:.4g})\n",
+                     j["worst_observations"][0]["source"].get<std::string>(),
+                     j["worst_observations"][0]["residual"].get<double>());
   if (j.contains("holdout"))
     t += fmt::format("held-out TCP error: RMS {:.6g} -> {:.6g}, max {:.6g} -> {:.6g}\n",
                      j["holdout"]["before"]["rms"].get<double>(),

@@ -268,6 +268,23 @@ ResidualStatistics residualStatistics(const HexapodModel& model,
   return s;
 }
 
+std::vector<double> observationResidualNorms(const HexapodModel& model,
+                                             const HexapodCalibrationData& data,
+                                             const std::optional<geometry::RigidTransform>& frame) {
+  const std::optional<geometry::RigidTransform>& f = frame ? frame : data.measurement_frame;
+  FrameEstimate estimate;
+  if (f) estimate.initial = *f;
+  HexapodData work(model);
+  std::vector<double> out;
+  for (const ObservationRef& ref : detail::observations(data)) {
+    double r[6];
+    const bool ok =
+        detail::evaluate(model, work, data, ref, f ? &estimate : nullptr, r, nullptr, nullptr);
+    out.push_back(ok ? Eigen::Map<const Eigen::VectorXd>(r, ref.rows()).norm() : -1.0);
+  }
+  return out;
+}
+
 HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
                                            const HexapodCalibrationData& data,
                                            const HexapodCalibrationOptions& options) {

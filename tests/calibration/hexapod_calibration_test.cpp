@@ -224,6 +224,13 @@ TEST(HexapodCalibration, RobustLossResistsAnOutlier) {
       maxTcpError(withHexapodParameters(nominal, plain.parameters), truth, test::kSeed + 12);
   EXPECT_LT(robust_error, kNoiseFactor * kTrackerSigma);
   EXPECT_GT(plain_error, robust_error);
+  // The outlier stands out in the per-observation residuals after the robust fit.
+  const std::vector<double> norms =
+      observationResidualNorms(withHexapodParameters(nominal, robust.parameters), data);
+  ASSERT_EQ(norms.size(), data.poses.size());
+  const auto worst = std::max_element(norms.begin(), norms.end()) - norms.begin();
+  EXPECT_EQ(worst, 17);
+  EXPECT_GT(norms[17], 100 * kTrackerSigma);
 }
 
 }  // namespace

@@ -46,6 +46,9 @@ TEST_F(CalibrateCli, FullPoseTrackerCalibrationMeetsTheTarget) {
   EXPECT_EQ(j["identifiability"]["unidentifiable"].size(), 6u);
   EXPECT_GT(j["holdout"]["before"]["rms"].get<double>(), kBeforeAtLeast);
   EXPECT_LT(j["holdout"]["after"]["rms"].get<double>(), kHeldOutRmsLimit);
+  ASSERT_EQ(j["worst_observations"].size(), 5u);
+  EXPECT_THAT(j["worst_observations"][0]["source"].get<std::string>(),
+              HasSubstr("tracker-pose.csv:"));
   // The calibrated machine file loads in every other command, and the HAL block exists.
   const CliRun describe = pkm({"hexapod", "describe", "--machine", path("cal.json")});
   EXPECT_EQ(describe.code, 0) << describe.err;

@@ -120,6 +120,16 @@ struct HexapodCalibrationSummary {
     const HexapodCalibrationData& data,
     const std::optional<geometry::RigidTransform>& frame = std::nullopt);
 
+/// The size of each observation's residual after a fit, model length unit: the Euclidean norm of
+/// its residual block (6 IK residuals of a pose, 3 FK residuals of a point, 3 plane contacts of a
+/// gauge station) under `model` and `frame` (default data.measurement_frame), in the order poses,
+/// points, then the stations of each constrained set; −1 where the FK does not converge. For
+/// outlier diagnostics (the CLI names the worst by file and line).
+[[nodiscard]] std::vector<double> observationResidualNorms(
+    const kinematics::HexapodModel& model,
+    const HexapodCalibrationData& data,
+    const std::optional<geometry::RigidTransform>& frame = std::nullopt);
+
 /// The stacked identification Jacobian of `data` at `model`'s parameters: 6 rows per pose, 3 per
 /// point, 3 per gauge station (rows whose FK fails are zero); 42 columns, plus 6 for the
 /// measurement frame (measurementFrameNames) when data.measurement_frame is set.
