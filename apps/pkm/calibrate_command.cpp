@@ -2,6 +2,7 @@
 // dial-gauge files and write the calibrated machine, its LinuxCNC setp block and a summary
 // (docs/calibration.md).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -45,6 +46,7 @@ struct CalibrateArgs {
   double sigma_orientation_urad = 0.0;
   double sigma_gauge = 0.0;
   int threads = 0;
+  bool backlash = false;
 };
 
 /// Held-out TCP position errors: |FK(q) target in the measurement frame − measured|.
@@ -55,11 +57,16 @@ struct HoldoutErrors {
 
 HoldoutErrors holdoutErrors(const kinematics::HexapodModel& model,
                             const std::optional<geometry::RigidTransform>& frame,
-                            const cal::HexapodCalibrationData& held) {
+                            const cal::HexapodCalibrationData& held,
+                            const std::optional<kinematics::StrutVector>& backlash = std::nullopt) {
   HoldoutErrors e;
   kinematics::HexapodData work(model);
   double sum2 = 0.0, sum = 0.0;
-  const auto add = [&](const kinematics::StrutVector& q, const Eigen::Vector3d& measured) {
+  const auto add = [&](const kinematics::StrutVector& readings,
+                       const Eigen::Vector3d& measured,
+                       const kinematics::StrutVector& approach) {
+    kinematics::StrutVector q = readings;
+    if (backlash) q -= 0.5 * approach.cwiseProduct(*backlash);  // the estimated hysteresis
     if (!kinematics::forwardKinematics(model, work, q, model.home).ok()) {
       ++e.failures;
       return;
@@ -72,8 +79,8 @@ HoldoutErrors holdoutErrors(const kinematics::HexapodModel& model,
     e.max = std::max(e.max, d);
     ++e.poses;
   };
-  for (const auto& o : held.poses) add(o.readings, o.pose.position);
-  for (const auto& o : held.points) add(o.readings, o.point);
+  for (const auto& o : held.poses) add(o.readings, o.pose.position, o.approach);
+  for (const auto& o : held.points) add(o.readings, o.point, o.approach);
   if (e.poses > 0) {
     e.rms = std::sqrt(sum2 / e.poses);
     e.mean = sum / e.poses;
@@ -158,6 +165,7 @@ void runCalibrate(const CalibrateArgs& args) {
   if (args.loss == "huber") options.loss = cal::RobustLoss::kHuber;
   if (args.loss == "cauchy") options.loss = cal::RobustLoss::kCauchy;
   options.loss_scale = args.loss_scale;
+  options.estimate_backlash = args.backlash;
 
   const cal::HexapodCalibrationSummary s = cal::calibrateHexapod(model, input.data, options);
   // Plausibility: a model that cannot explain the data is not written.
@@ -207,7 +215,7 @@ void runCalibrate(const CalibrateArgs& args) {
     if (use_frame) f0 = cal::initialMeasurementFrame(model, input.data);
     j["holdout"] = {{"target_offset", {held_target.x(), held_target.y(), held_target.z()}},
                     {"before", toJson(holdoutErrors(before_model, f0, held.data))},
-                    {"after", toJson(holdoutErrors(after_model, f1, held.data))}};
+                    {"after", toJson(holdoutErrors(after_model, f1, held.data, s.backlash))}};
   }
   ordered_json id;
   id["parameters"] = s.identifiability.parameters;
@@ -226,6 +234,12 @@ void runCalibrate(const CalibrateArgs& args) {
                                                           s.frame_standard_deviation.data() + 6);
   }
   j["sigma"] = s.sigma;
+  if (s.backlash)
+    j["backlash"] = {{"values", std::vector<double>(s.backlash->data(), s.backlash->data() + 6)},
+                     {"sigma",
+                      std::vector<double>(s.backlash_standard_deviation.data(),
+                                          s.backlash_standard_deviation.data() + 6)},
+                     {"approach", "from the row order of each file (first row unknown)"}};
   // Outlier diagnostics: the observations with the largest residuals after the fit, by source.
   {
     const std::vector<double> norms = cal::observationResidualNorms(
@@ -332,6 +346,11 @@ void runCalibrate(const CalibrateArgs& args) {
     t += fmt::format("largest residual after the fit: {} ({:.4g})\n",
                      j["worst_observations"][0]["source"].get<std::string>(),
                      j["worst_observations"][0]["residual"].get<double>());
+  if (s.backlash)
+    t += fmt::format(
+        "backlash per strut ({}): {:.4g}\n",
+        toString(model.unit),
+        fmt::join(std::vector<double>(s.backlash->data(), s.backlash->data() + 6), ", "));
   if (j.contains("holdout"))
     t += fmt::format("held-out TCP error: RMS {:.6g} -> {:.6g}, max {:.6g} -> {:.6g}\n",
                      j["holdout"]["before"]["rms"].get<double>(),
@@ -424,6 +443,10 @@ void addCalibrateCommand(CLI::App& app) {
       args->sigma_gauge,
       "Monte Carlo: dial-gauge noise, machine unit (default: the fitted residual sigma)");
   hex->add_option("--threads", args->threads, "Monte Carlo worker threads (default: all cores)");
+  hex->add_flag("--backlash",
+                args->backlash,
+                "also estimate a per-strut backlash; approach directions follow from the row order "
+                "of each file (one continuous sequence of moves per file)");
   hex->callback([args] { runCalibrate(*args); });
   addCalibrateExechon(*calibrate);
 }

@@ -28,12 +28,18 @@ class ObservationCost final : public ceres::CostFunction {
   ObservationCost(const HexapodModel& model,
                   const HexapodCalibrationData& data,
                   ObservationRef ref,
-                  const geometry::RigidTransform* frame)
-      : model_(model), data_(data), ref_(ref), has_frame_(frame != nullptr) {
+                  const geometry::RigidTransform* frame,
+                  bool backlash)
+      : model_(model),
+        data_(data),
+        ref_(ref),
+        has_frame_(frame != nullptr),
+        has_backlash_(backlash) {
     if (frame != nullptr) frame_.initial = *frame;
     set_num_residuals(static_cast<int>(ref.rows()));
     mutable_parameter_block_sizes()->push_back(kHexapodParameters);
     if (has_frame_) mutable_parameter_block_sizes()->push_back(6);
+    if (has_backlash_) mutable_parameter_block_sizes()->push_back(kinematics::kStruts);
   }
   bool Evaluate(double const* const* parameters,
                 double* residuals,
@@ -43,8 +49,11 @@ class ObservationCost final : public ceres::CostFunction {
     FrameEstimate frame = frame_;
     if (has_frame_) frame.delta = Eigen::Map<const Eigen::Matrix<double, 6, 1>>(parameters[1]);
     HexapodData work(m);
-    Eigen::MatrixXd Jt, Jf;
+    Eigen::MatrixXd Jt, Jf, Jb;
     const bool want = jacobians != nullptr;
+    kinematics::StrutVector b = kinematics::StrutVector::Zero();
+    const int backlash_block = has_frame_ ? 2 : 1;
+    if (has_backlash_) b = Eigen::Map<const kinematics::StrutVector>(parameters[backlash_block]);
     if (!detail::evaluate(m,
                           work,
                           data_,
@@ -52,7 +61,9 @@ class ObservationCost final : public ceres::CostFunction {
                           has_frame_ ? &frame : nullptr,
                           residuals,
                           want ? &Jt : nullptr,
-                          want && has_frame_ ? &Jf : nullptr))
+                          want && has_frame_ ? &Jf : nullptr,
+                          has_backlash_ ? &b : nullptr,
+                          want && has_backlash_ ? &Jb : nullptr))
       return false;
     const Eigen::Index rows = ref_.rows();
     if (want && jacobians[0] != nullptr) {
@@ -65,6 +76,11 @@ class ObservationCost final : public ceres::CostFunction {
           jacobians[1], rows, 6);
       out = Jf;
     }
+    if (want && has_backlash_ && jacobians[backlash_block] != nullptr) {
+      Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> out(
+          jacobians[backlash_block], rows, kinematics::kStruts);
+      out = Jb;
+    }
     return true;
   }
 
@@ -73,54 +89,53 @@ class ObservationCost final : public ceres::CostFunction {
   const HexapodCalibrationData& data_;
   ObservationRef ref_;
   bool has_frame_;
+  bool has_backlash_;
   FrameEstimate frame_;
 };
 
-/// Holds the estimate at its start along an unidentifiable direction n = (n_θ, n_frame):
-/// r = n_θ·(θ − θ₀) + n_frame·δ.
+/// Holds the estimate at its start along an unidentifiable direction n = (n_θ, n_frame,
+/// n_backlash): r = n_θ·(θ − θ₀) + n_frame·δ + n_backlash·(b − b₀), one block per unknown group.
 class NullSpacePrior final : public ceres::CostFunction {
  public:
-  NullSpacePrior(HexapodParameterVector n_theta,
-                 HexapodParameterVector theta0,
-                 std::optional<Eigen::Matrix<double, 6, 1>> n_frame)
-      : n_theta_(std::move(n_theta)), theta0_(std::move(theta0)), n_frame_(std::move(n_frame)) {
+  NullSpacePrior(std::vector<Eigen::VectorXd> n, std::vector<Eigen::VectorXd> start)
+      : n_(std::move(n)), start_(std::move(start)) {
     set_num_residuals(1);
-    mutable_parameter_block_sizes()->push_back(kHexapodParameters);
-    if (n_frame_) mutable_parameter_block_sizes()->push_back(6);
+    for (const Eigen::VectorXd& v : n_)
+      mutable_parameter_block_sizes()->push_back(static_cast<int>(v.size()));
   }
   bool Evaluate(double const* const* parameters,
                 double* residuals,
                 double** jacobians) const final {
-    const Eigen::Map<const HexapodParameterVector> theta(parameters[0]);
-    residuals[0] = n_theta_.dot(theta - theta0_);
-    if (n_frame_)
-      residuals[0] += n_frame_->dot(Eigen::Map<const Eigen::Matrix<double, 6, 1>>(parameters[1]));
-    if (jacobians != nullptr && jacobians[0] != nullptr) {
-      Eigen::Map<HexapodParameterVector> out(jacobians[0]);
-      out = n_theta_;
-    }
-    if (jacobians != nullptr && n_frame_ && jacobians[1] != nullptr) {
-      Eigen::Map<Eigen::Matrix<double, 6, 1>> out(jacobians[1]);
-      out = *n_frame_;
+    residuals[0] = 0.0;
+    for (std::size_t b = 0; b < n_.size(); ++b) {
+      const auto size = n_[b].size();
+      const Eigen::Map<const Eigen::VectorXd> x(parameters[b], size);
+      residuals[0] += n_[b].dot(x - start_[b]);
+      if (jacobians != nullptr && jacobians[b] != nullptr) {
+        Eigen::Map<Eigen::VectorXd> out(jacobians[b], size);
+        out = n_[b];
+      }
     }
     return true;
   }
 
  private:
-  HexapodParameterVector n_theta_, theta0_;
-  std::optional<Eigen::Matrix<double, 6, 1>> n_frame_;
+  std::vector<Eigen::VectorXd> n_, start_;
 };
 
-/// The stacked Jacobian (all observations; 42 + 6·frame columns) and residuals at (model, frame).
+/// The stacked Jacobian (all observations; 42 + 6·frame + 6·backlash columns) and residuals at
+/// (model, frame, backlash).
 void stack(const HexapodModel& model,
            const HexapodCalibrationData& data,
            const FrameEstimate* frame,
            Eigen::MatrixXd* J,
            Eigen::VectorXd* r,
-           ResidualStatistics* stats) {
+           ResidualStatistics* stats,
+           const kinematics::StrutVector* backlash = nullptr) {
   const auto refs = detail::observations(data);
   const auto rows = static_cast<Eigen::Index>(data.equations());
-  const Eigen::Index cols = kHexapodParameters + (frame != nullptr ? 6 : 0);
+  const Eigen::Index n_frame = frame != nullptr ? 6 : 0;
+  const Eigen::Index cols = kHexapodParameters + n_frame + (backlash != nullptr ? 6 : 0);
   if (J != nullptr) J->setZero(rows, cols);
   if (r != nullptr) r->setZero(rows);
   HexapodData work(model);
@@ -129,7 +144,7 @@ void stack(const HexapodModel& model,
   for (const ObservationRef& ref : refs) {
     const Eigen::Index n = ref.rows();
     double res[6];
-    Eigen::MatrixXd Jt, Jf;
+    Eigen::MatrixXd Jt, Jf, Jb;
     const bool ok = detail::evaluate(model,
                                      work,
                                      data,
@@ -137,11 +152,14 @@ void stack(const HexapodModel& model,
                                      frame,
                                      res,
                                      J != nullptr ? &Jt : nullptr,
-                                     J != nullptr && frame != nullptr ? &Jf : nullptr);
+                                     J != nullptr && frame != nullptr ? &Jf : nullptr,
+                                     backlash,
+                                     J != nullptr && backlash != nullptr ? &Jb : nullptr);
     if (ok) {
       if (J != nullptr) {
         J->block(row, 0, n, kHexapodParameters) = Jt;
         if (frame != nullptr) J->block(row, kHexapodParameters, n, 6) = Jf;
+        if (backlash != nullptr) J->block(row, kHexapodParameters + n_frame, n, 6) = Jb;
       }
       for (Eigen::Index k = 0; k < n; ++k) {
         if (r != nullptr) (*r)(row + k) = res[k];
@@ -259,18 +277,43 @@ Eigen::MatrixXd identificationJacobian(const HexapodModel& model,
 
 ResidualStatistics residualStatistics(const HexapodModel& model,
                                       const HexapodCalibrationData& data,
-                                      const std::optional<geometry::RigidTransform>& frame) {
+                                      const std::optional<geometry::RigidTransform>& frame,
+                                      const std::optional<kinematics::StrutVector>& backlash) {
   ResidualStatistics s;
   const std::optional<geometry::RigidTransform>& f = frame ? frame : data.measurement_frame;
   FrameEstimate estimate;
   if (f) estimate.initial = *f;
-  stack(model, data, f ? &estimate : nullptr, nullptr, nullptr, &s);
+  stack(
+      model, data, f ? &estimate : nullptr, nullptr, nullptr, &s, backlash ? &*backlash : nullptr);
   return s;
 }
 
-std::vector<double> observationResidualNorms(const HexapodModel& model,
-                                             const HexapodCalibrationData& data,
-                                             const std::optional<geometry::RigidTransform>& frame) {
+const std::vector<std::string>& backlashNames() {
+  static const std::vector<std::string> names{
+      "backlash0", "backlash1", "backlash2", "backlash3", "backlash4", "backlash5"};
+  return names;
+}
+
+std::vector<kinematics::StrutVector> approachFromSequence(
+    const std::vector<kinematics::StrutVector>& readings, double first) {
+  std::vector<kinematics::StrutVector> out;
+  kinematics::StrutVector d = kinematics::StrutVector::Constant(first);
+  for (std::size_t k = 0; k < readings.size(); ++k) {
+    if (k > 0)
+      for (int i = 0; i < kinematics::kStruts; ++i) {
+        const double change = readings[k](i) - readings[k - 1](i);
+        if (change != 0.0) d(i) = change > 0.0 ? 1.0 : -1.0;
+      }
+    out.push_back(d);
+  }
+  return out;
+}
+
+std::vector<double> observationResidualNorms(
+    const HexapodModel& model,
+    const HexapodCalibrationData& data,
+    const std::optional<geometry::RigidTransform>& frame,
+    const std::optional<kinematics::StrutVector>& backlash) {
   const std::optional<geometry::RigidTransform>& f = frame ? frame : data.measurement_frame;
   FrameEstimate estimate;
   if (f) estimate.initial = *f;
@@ -278,8 +321,16 @@ std::vector<double> observationResidualNorms(const HexapodModel& model,
   std::vector<double> out;
   for (const ObservationRef& ref : detail::observations(data)) {
     double r[6];
-    const bool ok =
-        detail::evaluate(model, work, data, ref, f ? &estimate : nullptr, r, nullptr, nullptr);
+    const bool ok = detail::evaluate(model,
+                                     work,
+                                     data,
+                                     ref,
+                                     f ? &estimate : nullptr,
+                                     r,
+                                     nullptr,
+                                     nullptr,
+                                     backlash ? &*backlash : nullptr,
+                                     nullptr);
     out.push_back(ok ? Eigen::Map<const Eigen::VectorXd>(r, ref.rows()).norm() : -1.0);
   }
   return out;
@@ -297,7 +348,9 @@ HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
   PKM_CHECK(n_free > 0, "calibration: no parameter is free");
   const bool has_frame = data.measurement_frame.has_value();
   const Eigen::Index n_frame = has_frame ? 6 : 0;
-  const std::size_t unknowns = out.free_indices.size() + static_cast<std::size_t>(n_frame);
+  const bool has_backlash = options.estimate_backlash;
+  const Eigen::Index n_back = has_backlash ? kinematics::kStruts : 0;
+  const std::size_t unknowns = out.free_indices.size() + static_cast<std::size_t>(n_frame + n_back);
   const std::size_t equations = data.equations();
   std::size_t stations = 0;
   for (const ConstrainedMotionData& c : data.constrained) stations += c.stations.size();
@@ -319,44 +372,58 @@ HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
   for (const int k : out.free_indices) names.push_back(hexapodParameterName(k));
   if (has_frame)
     for (const std::string& n : measurementFrameNames()) names.push_back(n);
+  if (has_backlash)
+    for (const std::string& n : backlashNames()) names.push_back(n);
   const auto select = [&](const Eigen::MatrixXd& J) {
-    Eigen::MatrixXd S(J.rows(), n_free + n_frame);
+    Eigen::MatrixXd S(J.rows(), n_free + n_frame + n_back);
     for (Eigen::Index c = 0; c < n_free; ++c)
       S.col(c) = J.col(out.free_indices[static_cast<std::size_t>(c)]);
-    if (has_frame) S.rightCols(6) = J.rightCols(6);
+    S.rightCols(n_frame + n_back) = J.rightCols(n_frame + n_back);
     return S;
   };
+  const kinematics::StrutVector backlash0 = kinematics::StrutVector::Zero();
   // Structural identifiability: the Jacobian on data the initial model explains exactly. (With
   // real residuals, point residuals turn with a rotation of the whole set-up, so the Jacobian of
   // the raw data is not exactly singular along that unobservable rotation.)
   Eigen::MatrixXd J0;
   const HexapodCalibrationData consistent =
       detail::predictedData(initial, data, data.measurement_frame);
-  stack(initial, consistent, has_frame ? &frame0 : nullptr, &J0, nullptr, nullptr);
+  stack(initial,
+        consistent,
+        has_frame ? &frame0 : nullptr,
+        &J0,
+        nullptr,
+        nullptr,
+        has_backlash ? &backlash0 : nullptr);
   out.identifiability = analyseIdentifiability(select(J0), names, options.identifiability);
 
   HexapodParameterVector theta = out.initial;
   Eigen::Matrix<double, 6, 1> delta = Eigen::Matrix<double, 6, 1>::Zero();
+  kinematics::StrutVector backlash = backlash0;
+  std::vector<double*> blocks{theta.data()};
+  if (has_frame) blocks.push_back(delta.data());
+  if (has_backlash) blocks.push_back(backlash.data());
   ceres::Problem problem;
   const geometry::RigidTransform* frame_ptr = has_frame ? &*data.measurement_frame : nullptr;
-  for (const ObservationRef& ref : detail::observations(data)) {
-    auto* cost = new ObservationCost(initial, data, ref, frame_ptr);
-    if (has_frame)
-      problem.AddResidualBlock(cost, makeLoss(options), theta.data(), delta.data());
-    else
-      problem.AddResidualBlock(cost, makeLoss(options), theta.data());
-  }
+  for (const ObservationRef& ref : detail::observations(data))
+    problem.AddResidualBlock(new ObservationCost(initial, data, ref, frame_ptr, has_backlash),
+                             makeLoss(options),
+                             blocks);
   for (Eigen::Index k = 0; k < out.identifiability.null_space.cols(); ++k) {
-    HexapodParameterVector n = HexapodParameterVector::Zero();
+    const Eigen::VectorXd col = out.identifiability.null_space.col(k);
+    Eigen::VectorXd n = Eigen::VectorXd::Zero(kHexapodParameters);
     for (Eigen::Index c = 0; c < n_free; ++c)
-      n(out.free_indices[static_cast<std::size_t>(c)]) = out.identifiability.null_space(c, k);
-    std::optional<Eigen::Matrix<double, 6, 1>> nf;
-    if (has_frame) nf = out.identifiability.null_space.col(k).tail<6>();
-    auto* prior = new NullSpacePrior(n, out.initial, nf);
-    if (has_frame)
-      problem.AddResidualBlock(prior, nullptr, theta.data(), delta.data());
-    else
-      problem.AddResidualBlock(prior, nullptr, theta.data());
+      n(out.free_indices[static_cast<std::size_t>(c)]) = col(c);
+    std::vector<Eigen::VectorXd> ns{n}, starts{Eigen::VectorXd(out.initial)};
+    if (has_frame) {
+      ns.emplace_back(col.segment(n_free, 6));
+      starts.emplace_back(Eigen::VectorXd::Zero(6));
+    }
+    if (has_backlash) {
+      ns.emplace_back(col.tail(6));
+      starts.emplace_back(Eigen::VectorXd(backlash0));
+    }
+    problem.AddResidualBlock(new NullSpacePrior(ns, starts), nullptr, blocks);
   }
   if (n_free < kHexapodParameters) {
     std::vector<int> fixed;
@@ -388,10 +455,17 @@ HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
   FrameEstimate frame1 = frame0;
   frame1.delta = delta;
   if (has_frame) out.measurement_frame = frame1.current();
-  out.after = residualStatistics(estimated, data, out.measurement_frame);
+  if (has_backlash) out.backlash = backlash;
+  out.after = residualStatistics(estimated, data, out.measurement_frame, out.backlash);
   // Covariance σ²(JᵀJ)⁺ on the identifiable subspace of the unknowns.
   Eigen::MatrixXd J1;
-  stack(estimated, data, has_frame ? &frame1 : nullptr, &J1, nullptr, nullptr);
+  stack(estimated,
+        data,
+        has_frame ? &frame1 : nullptr,
+        &J1,
+        nullptr,
+        nullptr,
+        has_backlash ? &backlash : nullptr);
   const Eigen::MatrixXd Js = select(J1);
   const int rank = out.identifiability.rank;
   const double dof = static_cast<double>(out.after.equations - rank);
@@ -399,7 +473,7 @@ HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
                   ? options.measurement_sigma
                   : (dof > 0 ? out.after.rms * std::sqrt(out.after.equations / dof) : 0.0);
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Js, Eigen::ComputeThinV);
-  const Eigen::Index n_all = n_free + n_frame;
+  const Eigen::Index n_all = n_free + n_frame + n_back;
   Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(n_all, n_all);
   for (int k = 0; k < rank && k < svd.singularValues().size(); ++k) {
     const double s = svd.singularValues()(k);
@@ -412,7 +486,10 @@ HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
       out.covariance(out.free_indices[static_cast<std::size_t>(a)],
                      out.free_indices[static_cast<std::size_t>(b)]) = cov(a, b);
   out.standard_deviation = out.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
-  if (has_frame) out.frame_standard_deviation = cov.diagonal().tail<6>().cwiseMax(0.0).cwiseSqrt();
+  if (has_frame)
+    out.frame_standard_deviation = cov.diagonal().segment(n_free, 6).cwiseMax(0.0).cwiseSqrt();
+  if (has_backlash)
+    out.backlash_standard_deviation = cov.diagonal().tail<6>().cwiseMax(0.0).cwiseSqrt();
   return out;
 }
 

@@ -102,14 +102,16 @@ bool evaluatePoint(const kinematics::HexapodModel& model,
 
 }  // namespace
 
-bool evaluate(const kinematics::HexapodModel& model,
-              kinematics::HexapodData& work,
-              const HexapodCalibrationData& data,
-              const ObservationRef& ref,
-              const FrameEstimate* frame,
-              double* r,
-              Eigen::MatrixXd* J_theta,
-              Eigen::MatrixXd* J_frame) {
+namespace {
+
+bool evaluateUnshifted(const kinematics::HexapodModel& model,
+                       kinematics::HexapodData& work,
+                       const HexapodCalibrationData& data,
+                       const ObservationRef& ref,
+                       const FrameEstimate* frame,
+                       double* r,
+                       Eigen::MatrixXd* J_theta,
+                       Eigen::MatrixXd* J_frame) {
   switch (ref.kind) {
     case ObservationRef::Kind::kPose:
       return evaluatePose(model, work, data.poses[ref.index], frame, r, J_theta, J_frame);
@@ -128,6 +130,50 @@ bool evaluate(const kinematics::HexapodModel& model,
     }
   }
   return false;
+}
+
+}  // namespace
+
+kinematics::StrutVector approachOf(const HexapodCalibrationData& data, const ObservationRef& ref) {
+  switch (ref.kind) {
+    case ObservationRef::Kind::kPose:
+      return data.poses[ref.index].approach;
+    case ObservationRef::Kind::kPoint:
+      return data.points[ref.index].approach;
+    case ObservationRef::Kind::kGauge:
+      break;
+  }
+  return kinematics::StrutVector::Zero();
+}
+
+bool evaluate(const kinematics::HexapodModel& model,
+              kinematics::HexapodData& work,
+              const HexapodCalibrationData& data,
+              const ObservationRef& ref,
+              const FrameEstimate* frame,
+              double* r,
+              Eigen::MatrixXd* J_theta,
+              Eigen::MatrixXd* J_frame,
+              const kinematics::StrutVector* backlash,
+              Eigen::MatrixXd* J_backlash) {
+  if (backlash == nullptr) {
+    if (J_backlash != nullptr) J_backlash->setZero(ref.rows(), kinematics::kStruts);
+    return evaluateUnshifted(model, work, data, ref, frame, r, J_theta, J_frame);
+  }
+  // The backlash shifts each strut's length offset by −approach·b/2 for this observation.
+  const kinematics::StrutVector d = approachOf(data, ref);
+  kinematics::HexapodModel shifted = model;
+  for (int i = 0; i < kinematics::kStruts; ++i)
+    shifted.struts[static_cast<std::size_t>(i)].length_offset -= 0.5 * d(i) * (*backlash)(i);
+  Eigen::MatrixXd Jt;
+  Eigen::MatrixXd* jt = J_theta != nullptr ? J_theta : (J_backlash != nullptr ? &Jt : nullptr);
+  if (!evaluateUnshifted(shifted, work, data, ref, frame, r, jt, J_frame)) return false;
+  if (J_backlash != nullptr) {
+    J_backlash->resize(ref.rows(), kinematics::kStruts);
+    for (int i = 0; i < kinematics::kStruts; ++i)
+      J_backlash->col(i) = -0.5 * d(i) * jt->col(offsetParameter(i));
+  }
+  return true;
 }
 
 HexapodCalibrationData predictedData(const kinematics::HexapodModel& model,

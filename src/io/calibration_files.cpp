@@ -122,16 +122,21 @@ void addCalibrationFile(const std::string& path, CalibrationInput& input) {
     }
     if (key == "frame" && value.rfind("tracker", 0) == 0) input.tracker_frame = true;
   }
+  // Each file is one sequence of moves: the approach directions follow from its row order (the
+  // first row's is unknown).
+  const std::vector<kinematics::StrutVector> approach =
+      calibration::approachFromSequence(f.lengths);
   for (std::size_t k = 0; k < f.lengths.size(); ++k) {
     if (f.mode == simulation::TrackerMode::kPose) {
       calibration::PoseObservation o;
       o.readings = f.lengths[k];
       o.pose.position = f.positions[k];
       o.pose.rpy = f.rpy[k];
+      o.approach = approach[k];
       input.data.poses.push_back(o);
       input.pose_origin.push_back(fmt::format("{}:{}", path, f.lines[k]));
     } else {
-      input.data.points.push_back({f.lengths[k], f.positions[k]});
+      input.data.points.push_back({f.lengths[k], f.positions[k], approach[k]});
       input.point_origin.push_back(fmt::format("{}:{}", path, f.lines[k]));
     }
   }

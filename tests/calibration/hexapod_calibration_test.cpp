@@ -9,6 +9,7 @@
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
+#include "pkm/simulation/laser_tracker.hpp"
 #include "support/sample_models.hpp"
 #include "support/tolerances.hpp"
 
@@ -231,6 +232,71 @@ TEST(HexapodCalibration, RobustLossResistsAnOutlier) {
   const auto worst = std::max_element(norms.begin(), norms.end()) - norms.begin();
   EXPECT_EQ(worst, 17);
   EXPECT_GT(norms[17], 100 * kTrackerSigma);
+}
+
+/// Per-strut backlash from bidirectional data: a virtual machine with hysteresis measured at random
+/// poses in the order it moved; the approach directions follow from that order.
+TEST(HexapodCalibration, IdentifiesPerStrutBacklashFromBidirectionalData) {
+  constexpr double kBacklashTolerance = 1e-6;  // mm: exact data
+  simulation::HexapodAssemblyErrors errors;
+  for (int i = 0; i < kinematics::kStruts; ++i) {
+    const double s = i % 2 ? -1.0 : 1.0;
+    errors.base_joint[static_cast<std::size_t>(i)] = Eigen::Vector3d(0.5 * s, -0.4, 0.2 * i);
+    errors.platform_joint[static_cast<std::size_t>(i)] = Eigen::Vector3d(-0.3, 0.2 * s, 0.1);
+    errors.length_offset[i] = 0.6 * s;
+  }
+  simulation::StrutActuation act;
+  act.backlash << 0.03, 0.05, 0.02, 0.04, 0.06, 0.01;
+  simulation::HexapodVirtualMachine vm(test::millingModel(), errors, act);
+  simulation::TrackerSetup setup;
+  setup.name = "bidirectional";
+  setup.mode = simulation::TrackerMode::kPose;
+  setup.random_count = 120;
+  setup.random_box.lo << -150, -150, 150, -0.15, -0.15, -0.3;
+  setup.random_box.hi << 150, 150, 280, 0.15, 0.15, 0.3;
+  simulation::RandomStream rng(test::kSeed + 30);
+  const auto readings = simulation::simulateLaserTracker(vm, setup, rng);
+  HexapodCalibrationData data;
+  std::vector<kinematics::StrutVector> q;
+  for (const auto& r : readings) {
+    PoseObservation o;
+    o.readings = r.lengths;
+    o.pose.position = r.measured.translation();
+    o.pose.rpy = geometry::rpyFromRotation(r.measured.linear());
+    data.poses.push_back(o);
+    q.push_back(r.lengths);
+  }
+  // The virtual machine counts every strut as last moved in + after its reset.
+  const auto approach = approachFromSequence(q, 1.0);
+  for (std::size_t k = 0; k < data.poses.size(); ++k) data.poses[k].approach = approach[k];
+  HexapodCalibrationOptions options;
+  options.estimate_backlash = true;
+  const HexapodCalibrationSummary with = calibrateHexapod(test::millingModel(), data, options);
+  ASSERT_TRUE(with.backlash.has_value());
+  EXPECT_LT((*with.backlash - act.backlash).cwiseAbs().maxCoeff(), kBacklashTolerance);
+  EXPECT_EQ(with.identifiability.parameters, kHexapodParameters + kinematics::kStruts);
+  EXPECT_TRUE(with.identifiability.fullRank());
+  EXPECT_LT(with.after.max, kBacklashTolerance);
+  EXPECT_GT(with.backlash_standard_deviation.minCoeff(), 0.0);
+  // Without the backlash term the hysteresis stays in the residuals (about b/2).
+  const HexapodCalibrationSummary without = calibrateHexapod(test::millingModel(), data);
+  EXPECT_GT(without.after.max, 0.005);
+}
+
+TEST(HexapodCalibration, ApproachDirectionsFollowTheMeasurementOrder) {
+  std::vector<kinematics::StrutVector> q(4, kinematics::StrutVector::Zero());
+  q[1] << 1, -1, 0, 2, 2, 2;
+  q[2] << 1, -2, 1, 1, 2, 3;
+  q[3] << 0, -2, 1, 1, 2, 3;
+  const auto d = approachFromSequence(q);
+  EXPECT_EQ(d[0], kinematics::StrutVector::Zero());  // unknown before the first move
+  kinematics::StrutVector d1, d2, d3;
+  d1 << 1, -1, 0, 1, 1, 1;
+  d2 << 1, -1, 1, -1, 1, 1;  // unchanged readings keep the previous direction
+  d3 << -1, -1, 1, -1, 1, 1;
+  EXPECT_EQ(d[1], d1);
+  EXPECT_EQ(d[2], d2);
+  EXPECT_EQ(d[3], d3);
 }
 
 }  // namespace

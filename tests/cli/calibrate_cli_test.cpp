@@ -56,6 +56,32 @@ TEST_F(CalibrateCli, FullPoseTrackerCalibrationMeetsTheTarget) {
   EXPECT_TRUE(nlohmann::json::parse(slurp(path("cal.summary.json"))).contains("parameters"));
 }
 
+/// The scenario's struts have 5 µm backlash; the 200 poses are taken in file order.
+TEST_F(CalibrateCli, BacklashIsIdentifiedFromTheMeasurementOrder) {
+  constexpr double kTrueBacklash = 0.005;        ///< mm, the scenario's
+  constexpr double kBacklashTolerance = 0.0015;  ///< mm, about 3σ of the estimate
+  const CliRun r = pkm({"calibrate",
+                        "hexapod",
+                        "--machine",
+                        "hexapod-default",
+                        "--data",
+                        path("sim/tracker-pose.csv"),
+                        "--holdout",
+                        path("sim/tracker-holdout.csv"),
+                        "--out",
+                        path("cal.json"),
+                        "--backlash",
+                        "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.contains("backlash"));
+  ASSERT_EQ(j["backlash"]["values"].size(), 6u);
+  for (const auto& b : j["backlash"]["values"])
+    EXPECT_NEAR(b.get<double>(), kTrueBacklash, kBacklashTolerance);
+  EXPECT_EQ(j["identifiability"]["parameters"], 54);  // 42 + frame + backlash
+  EXPECT_LT(j["holdout"]["after"]["rms"].get<double>(), kHeldOutRmsLimit);
+}
+
 TEST_F(CalibrateCli, MonteCarloGivesTheWorkspaceTcpUncertainty) {
   const CliRun r = pkm({"calibrate",
                         "hexapod",

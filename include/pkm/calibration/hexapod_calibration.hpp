@@ -50,6 +50,9 @@ struct HexapodCalibrationOptions {
   /// from the final residuals as √(Σr² / (m − rank)).
   double measurement_sigma = 0.0;
   IdentifiabilityOptions identifiability;
+  /// Also estimate a per-strut backlash b_i (length unit): a strut's length is its reading −
+  /// approach_i·b_i/2 (PoseObservation::approach; observations with approach 0 carry no term).
+  bool estimate_backlash = false;
   /// Throws pkm::InvalidArgument naming the field when a setting is unusable.
   void validate() const;
 };
@@ -89,7 +92,20 @@ struct HexapodCalibrationSummary {
   std::optional<geometry::RigidTransform> measurement_frame;
   /// Standard deviations of the frame correction (δt mm, δω rad; world axes).
   Eigen::Matrix<double, 6, 1> frame_standard_deviation = Eigen::Matrix<double, 6, 1>::Zero();
+  /// The estimated per-strut backlash (length unit) with estimate_backlash, and its σ.
+  std::optional<kinematics::StrutVector> backlash;
+  kinematics::StrutVector backlash_standard_deviation = kinematics::StrutVector::Zero();
 };
+
+/// Names of the six backlash unknowns in identifiability reports: backlash0 … backlash5.
+[[nodiscard]] const std::vector<std::string>& backlashNames();
+
+/// Approach directions from the order of measurement: for each observation the sign of the change
+/// of each strut reading since the previous observation (+1 longer, −1 shorter; unchanged: the
+/// previous direction); the first observation gets `first` (0: unknown). Precondition: `readings`
+/// in the order the machine moved through them.
+[[nodiscard]] std::vector<kinematics::StrutVector> approachFromSequence(
+    const std::vector<kinematics::StrutVector>& readings, double first = 0.0);
 
 /// Names of the six measurement-frame unknowns as used in identifiability reports: frame.x,
 /// frame.y, frame.z (translation) and frame.rx, frame.ry, frame.rz (world-axis rotation vector).
@@ -118,7 +134,8 @@ struct HexapodCalibrationSummary {
 [[nodiscard]] ResidualStatistics residualStatistics(
     const kinematics::HexapodModel& model,
     const HexapodCalibrationData& data,
-    const std::optional<geometry::RigidTransform>& frame = std::nullopt);
+    const std::optional<geometry::RigidTransform>& frame = std::nullopt,
+    const std::optional<kinematics::StrutVector>& backlash = std::nullopt);
 
 /// The size of each observation's residual after a fit, model length unit: the Euclidean norm of
 /// its residual block (6 IK residuals of a pose, 3 FK residuals of a point, 3 plane contacts of a
@@ -128,7 +145,8 @@ struct HexapodCalibrationSummary {
 [[nodiscard]] std::vector<double> observationResidualNorms(
     const kinematics::HexapodModel& model,
     const HexapodCalibrationData& data,
-    const std::optional<geometry::RigidTransform>& frame = std::nullopt);
+    const std::optional<geometry::RigidTransform>& frame = std::nullopt,
+    const std::optional<kinematics::StrutVector>& backlash = std::nullopt);
 
 /// The stacked identification Jacobian of `data` at `model`'s parameters: 6 rows per pose, 3 per
 /// point, 3 per gauge station (rows whose FK fails are zero); 42 columns, plus 6 for the

@@ -19,12 +19,17 @@ namespace pkm::calibration {
 struct PoseObservation {
   kinematics::StrutVector readings = kinematics::StrutVector::Zero();  ///< model length unit
   kinematics::PoseRpy pose;                                            ///< measured TCP pose
+  /// Direction each strut last moved in before this reading (+1, −1; 0 unknown): the sign of the
+  /// backlash term when backlash is estimated (HexapodCalibrationOptions::estimate_backlash).
+  kinematics::StrutVector approach = kinematics::StrutVector::Zero();
 };
 
 /// A point observation: the strut readings and the measured TCP position in world.
 struct PointObservation {
   kinematics::StrutVector readings = kinematics::StrutVector::Zero();  ///< model length unit
   Eigen::Vector3d point = Eigen::Vector3d::Zero();                     ///< measured TCP, world
+  /// As PoseObservation::approach.
+  kinematics::StrutVector approach = kinematics::StrutVector::Zero();
 };
 
 /// Jacobian of 6 residuals with respect to the 42 parameters.

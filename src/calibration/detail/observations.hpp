@@ -32,7 +32,10 @@ struct ObservationRef {
 
 /// The residuals of `ref` (rows() values into r) under `model` and `frame` (nullptr: the pose and
 /// point measurements are in world). J_theta (rows × 42) and J_frame (rows × 6, when frame) receive
-/// the derivatives when non-null. False when an FK does not converge.
+/// the derivatives when non-null. With `backlash` (per strut, length unit) the strut lengths of a
+/// pose or point observation are its readings − approach·backlash/2 (the hysteresis of
+/// HexapodVirtualMachine: a strut that last moved in + stops b/2 short), and J_backlash (rows × 6)
+/// receives the derivatives. False when an FK does not converge.
 bool evaluate(const kinematics::HexapodModel& model,
               kinematics::HexapodData& work,
               const HexapodCalibrationData& data,
@@ -40,7 +43,13 @@ bool evaluate(const kinematics::HexapodModel& model,
               const FrameEstimate* frame,
               double* r,
               Eigen::MatrixXd* J_theta,
-              Eigen::MatrixXd* J_frame);
+              Eigen::MatrixXd* J_frame,
+              const kinematics::StrutVector* backlash = nullptr,
+              Eigen::MatrixXd* J_backlash = nullptr);
+
+/// The approach directions of `ref` (zero for gauge stations).
+[[nodiscard]] kinematics::StrutVector approachOf(const HexapodCalibrationData& data,
+                                                 const ObservationRef& ref);
 
 /// `data` with every measurement replaced by what `model` predicts for its readings: poses and
 /// points by FK from the measurement (mapped into `frame` when given), gauge readings by the
