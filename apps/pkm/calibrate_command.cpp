@@ -194,6 +194,7 @@ void runCalibrate(const CalibrateArgs& args) {
   j["observations"] = {{"poses", input.data.poses.size()},
                        {"points", input.data.points.size()},
                        {"constrained_sets", input.data.constrained.size()},
+                       {"distances", input.data.distances.size()},
                        {"equations", input.data.equations()}};
   j["target_offset"] = {target.x(), target.y(), target.z()};
   j["solver"] = {{"converged", s.converged},
@@ -249,6 +250,7 @@ void runCalibrate(const CalibrateArgs& args) {
     for (std::size_t c = 0; c < input.data.constrained.size(); ++c)
       for (std::size_t k = 0; k < input.data.constrained[c].stations.size(); ++k)
         sources.push_back(fmt::format("constrained set {} station {}", c + 1, k + 1));
+    sources.insert(sources.end(), input.distance_origin.begin(), input.distance_origin.end());
     std::vector<std::size_t> order(norms.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {

@@ -195,6 +195,13 @@ void requireFinite(const HexapodCalibrationData& data) {
            st.command.rpy.allFinite() && std::isfinite(st.gauges[0]) &&
            std::isfinite(st.gauges[1]) && std::isfinite(st.gauges[2]);
   };
+  for (std::size_t k = 0; k < data.distances.size(); ++k) {
+    const DistanceObservation& o = data.distances[k];
+    PKM_CHECK(o.readings.allFinite() && o.from_point.allFinite() && std::isfinite(o.distance) &&
+                  o.distance >= 0.0 && (!o.readings_from || o.readings_from->allFinite()),
+              "calibration: distance observation {} has a non-finite or negative value",
+              k + 1);
+  }
   for (std::size_t k = 0; k < data.constrained.size(); ++k) {
     const ConstrainedMotionData& c = data.constrained[k];
     PKM_CHECK(std::fabs(c.table_normal.norm() - 1.0) < 1e-9,
@@ -226,7 +233,7 @@ ceres::LossFunction* makeLoss(const HexapodCalibrationOptions& options) {
 }  // namespace
 
 std::size_t HexapodCalibrationData::equations() const {
-  std::size_t n = 6 * poses.size() + 3 * points.size();
+  std::size_t n = 6 * poses.size() + 3 * points.size() + distances.size();
   for (const ConstrainedMotionData& c : constrained) n += 3 * c.stations.size();
   return n;
 }

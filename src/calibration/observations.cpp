@@ -24,6 +24,8 @@ std::vector<ObservationRef> observations(const HexapodCalibrationData& data) {
   for (std::size_t s = 0; s < data.constrained.size(); ++s)
     for (std::size_t k = 0; k < data.constrained[s].stations.size(); ++k)
       out.push_back({ObservationRef::Kind::kGauge, k, s});
+  for (std::size_t k = 0; k < data.distances.size(); ++k)
+    out.push_back({ObservationRef::Kind::kDistance, k, 0});
   return out;
 }
 
@@ -128,6 +130,16 @@ bool evaluateUnshifted(const kinematics::HexapodModel& model,
       if (J_frame != nullptr) J_frame->setZero(3, 6);  // gauges do not see the tracker frame
       return true;
     }
+    case ObservationRef::Kind::kDistance: {
+      DistanceParameterJacobian J;
+      const auto res = distanceResidual(
+          model, work, data.distances[ref.index], model.home, J_theta != nullptr ? &J : nullptr);
+      if (!res) return false;
+      r[0] = *res;
+      if (J_theta != nullptr) *J_theta = J;
+      if (J_frame != nullptr) J_frame->setZero(1, 6);  // distances do not see the frame
+      return true;
+    }
   }
   return false;
 }
@@ -141,6 +153,7 @@ kinematics::StrutVector approachOf(const HexapodCalibrationData& data, const Obs
     case ObservationRef::Kind::kPoint:
       return data.points[ref.index].approach;
     case ObservationRef::Kind::kGauge:
+    case ObservationRef::Kind::kDistance:
       break;
   }
   return kinematics::StrutVector::Zero();
@@ -196,6 +209,11 @@ HexapodCalibrationData predictedData(const kinematics::HexapodModel& model,
     seed.position = f * o.point;
     if (!kinematics::forwardKinematics(model, work, o.readings, seed).ok()) continue;
     o.point = Rt * (work.world_p_tcp - f.translation);
+  }
+  for (DistanceObservation& o : out.distances) {
+    DistanceObservation exact = o;
+    exact.distance = 0.0;
+    if (const auto d = distanceResidual(model, work, exact, model.home)) o.distance = *d;
   }
   for (ConstrainedMotionData& c : out.constrained) {
     const auto ref = gaugeHeights(model, work, c, c.reference);

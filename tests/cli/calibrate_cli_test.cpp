@@ -1,9 +1,13 @@
 // `pkm calibrate hexapod` on the simulator's seed004-hexapod-calibration data.
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
+#include "pkm/io/machine_loader.hpp"
+#include "pkm/kinematics/hexapod_fk.hpp"
+#include "pkm/kinematics/hexapod_ik.hpp"
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
@@ -80,6 +84,67 @@ TEST_F(CalibrateCli, BacklashIsIdentifiedFromTheMeasurementOrder) {
     EXPECT_NEAR(b.get<double>(), kTrueBacklash, kBacklashTolerance);
   EXPECT_EQ(j["identifiability"]["parameters"], 54);  // 42 + frame + backlash
   EXPECT_LT(j["holdout"]["after"]["rms"].get<double>(), kHeldOutRmsLimit);
+}
+
+/// A ball bar on a pivot and an interferometer line, generated from the nominal machine: the
+/// files load, the fit explains them exactly, and the rigid motions distances cannot see are named.
+TEST_F(CliTest, DistanceFilesCalibrateShapeAndNameWhatTheyCannotSee) {
+  const kinematics::HexapodModel m = io::loadHexapodMachine("hexapod-default").model;
+  kinematics::HexapodData d(m);
+  const auto readings = [&](double x, double y, double z) {
+    kinematics::PoseRpy p = m.home;
+    p.position += Eigen::Vector3d(x, y, z);
+    return kinematics::inverseKinematics(m, d, p);
+  };
+  const auto tcp = [&](const kinematics::StrutVector& q) {
+    EXPECT_TRUE(kinematics::forwardKinematics(m, d, q, m.home).ok());
+    return Eigen::Vector3d(d.world_p_tcp);
+  };
+  const Eigen::Vector3d pivot = m.home.position + Eigen::Vector3d(0, 0, -120);
+  std::string ballbar = fmt::format(
+      "# pivot mm: ({}, {}, {})\nl0,l1,l2,l3,l4,l5,distance\n", pivot.x(), pivot.y(), pivot.z());
+  std::string line = "l0,l1,l2,l3,l4,l5,distance\n";
+  const kinematics::StrutVector q0 = readings(-100, -100, -40);
+  const Eigen::Vector3d p0 = tcp(q0);
+  const auto row = [](const kinematics::StrutVector& q, double dist) {
+    return fmt::format("{},{},{},{},{},{},{}\n", q[0], q[1], q[2], q[3], q[4], q[5], dist);
+  };
+  line += row(q0, 0.0);
+  for (int k = 0; k < 40; ++k) {
+    const double a = 0.157 * k;
+    const kinematics::StrutVector qb = readings(120 * std::cos(a), 120 * std::sin(a), 10 * (k % 5));
+    ballbar += row(qb, (tcp(qb) - pivot).norm());
+    const kinematics::StrutVector ql =
+        readings(5.0 * k - 100, 4.0 * k - 100, 2.0 * k - 40 + (k % 3));
+    line += row(ql, (tcp(ql) - p0).norm());
+  }
+  const CliRun r = pkm({"calibrate",
+                        "hexapod",
+                        "--machine",
+                        "hexapod-default",
+                        "--data",
+                        write("ballbar.csv", ballbar),
+                        write("line.csv", line),
+                        "--out",
+                        path("cal.json"),
+                        "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["observations"]["distances"], 80);
+  EXPECT_LT(j["residuals"]["after"]["max"].get<double>(), 1e-6);
+  EXPECT_GE(j["identifiability"]["unidentifiable"].size(), 6u);
+  // A line whose first row is not its zero is an error naming the line.
+  const std::string bad =
+      write("bad.csv", "l0,l1,l2,l3,l4,l5,distance\n1,2,3,4,5,6,0.5\n1,2,3,4,5,7,1\n");
+  expectUsageError(pkm({"calibrate",
+                        "hexapod",
+                        "--machine",
+                        "hexapod-default",
+                        "--data",
+                        bad,
+                        "--out",
+                        path("bad.json")}),
+                   "bad.csv:2:");
 }
 
 TEST_F(CalibrateCli, MonteCarloGivesTheWorkspaceTcpUncertainty) {

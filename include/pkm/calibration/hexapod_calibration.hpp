@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pkm/calibration/constrained_motion.hpp"
+#include "pkm/calibration/distance_measurements.hpp"
 #include "pkm/calibration/hexapod_measurements.hpp"
 #include "pkm/calibration/hexapod_parameters.hpp"
 #include "pkm/calibration/identifiability.hpp"
@@ -28,6 +29,9 @@ struct HexapodCalibrationData {
   std::vector<PointObservation> points;  ///< FK point residuals, 3 equations each
   /// Constrained-motion (dial gauge) sets: 3 plane-contact equations per station.
   std::vector<ConstrainedMotionData> constrained;
+  /// Distances (ball bar on a known pivot, interferometer along a line): 1 equation each; not
+  /// affected by the measurement frame (a fixed end is in world).
+  std::vector<DistanceObservation> distances;
   /// When set, the pose and point measurements are expressed in an instrument frame (a laser
   /// tracker's) and world_T_measurement is estimated with the parameters, starting from this value
   /// (initialMeasurementFrame gives one). The rigid motion of the base frame (6 directions) is then
@@ -149,8 +153,8 @@ struct HexapodCalibrationSummary {
     const std::optional<kinematics::StrutVector>& backlash = std::nullopt);
 
 /// The stacked identification Jacobian of `data` at `model`'s parameters: 6 rows per pose, 3 per
-/// point, 3 per gauge station (rows whose FK fails are zero); 42 columns, plus 6 for the
-/// measurement frame (measurementFrameNames) when data.measurement_frame is set.
+/// point, 3 per gauge station, 1 per distance (rows whose FK fails are zero); 42 columns, plus 6
+/// for the measurement frame (measurementFrameNames) when data.measurement_frame is set.
 [[nodiscard]] Eigen::MatrixXd identificationJacobian(const kinematics::HexapodModel& model,
                                                      const HexapodCalibrationData& data);
 

@@ -37,13 +37,16 @@ struct CalibrationInput {
   std::optional<Eigen::Vector3d> target_offset;
   /// True when a tracker file's `frame` metadata says the readings are in the tracker's frame.
   bool tracker_frame = false;
-  std::vector<std::string> notes;         ///< what was read, for the user
-  std::vector<std::string> pose_origin;   ///< "FILE:LINE" of each pose observation
-  std::vector<std::string> point_origin;  ///< "FILE:LINE" of each point observation
+  std::vector<std::string> notes;            ///< what was read, for the user
+  std::vector<std::string> pose_origin;      ///< "FILE:LINE" of each pose observation
+  std::vector<std::string> point_origin;     ///< "FILE:LINE" of each point observation
+  std::vector<std::string> distance_origin;  ///< "FILE:LINE" of each distance observation
 };
 
-/// Adds the file at `path` to `input`: a constrained-motion file (header with g0_mm) or a tracker
-/// pose or point file (header with l0..l5, x, y, z and optionally a, b, c). Throws pkm::IoError.
+/// Adds the file at `path` to `input`: a distance file (header l0..l5, distance: with metadata
+/// `# pivot mm: (x, y, z)` ball-bar lengths to that pivot, else distances from the first row's TCP,
+/// whose distance must be 0), a constrained-motion file (header with g0_mm) or a tracker pose or
+/// point file (header with l0..l5, x, y, z and optionally a, b, c). Throws pkm::IoError.
 void addCalibrationFile(const std::string& path, CalibrationInput& input);
 
 }  // namespace pkm::io

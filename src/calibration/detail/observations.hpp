@@ -21,13 +21,15 @@ struct FrameEstimate {
 
 /// Which observation: kind and index (set and station for gauge stations).
 struct ObservationRef {
-  enum class Kind { kPose, kPoint, kGauge } kind = Kind::kPose;
+  enum class Kind { kPose, kPoint, kGauge, kDistance } kind = Kind::kPose;
   std::size_t index = 0;  ///< pose, point or station index
   std::size_t set = 0;    ///< constrained set (kGauge)
-  [[nodiscard]] Eigen::Index rows() const { return kind == Kind::kPose ? 6 : 3; }
+  [[nodiscard]] Eigen::Index rows() const {
+    return kind == Kind::kPose ? 6 : kind == Kind::kDistance ? 1 : 3;
+  }
 };
 
-/// Every observation of `data`, in the order poses, points, gauge stations.
+/// Every observation of `data`, in the order poses, points, gauge stations, distances.
 [[nodiscard]] std::vector<ObservationRef> observations(const HexapodCalibrationData& data);
 
 /// The residuals of `ref` (rows() values into r) under `model` and `frame` (nullptr: the pose and
