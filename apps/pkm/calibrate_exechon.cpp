@@ -13,18 +13,22 @@
 #include "calibrate_common.hpp"
 #include "cli_common.hpp"
 #include "pkm/calibration/exechon_calibration.hpp"
+#include "pkm/calibration/hybrid_calibration.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/io/exechon_machine.hpp"
 #include "pkm/io/exechon_tracker_files.hpp"
+#include "pkm/io/geometric_errors.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/kinematics/exechon_checks.hpp"
 #include "pkm/kinematics/exechon_data.hpp"
+#include "pkm/simulation/hybrid_tripod_errors.hpp"
 
 namespace pkm::cli {
 namespace {
 
 namespace cal = pkm::calibration;
+namespace sim = pkm::simulation;
 using nlohmann::ordered_json;
 
 struct ExechonArgs {
@@ -38,6 +42,7 @@ struct ExechonArgs {
   double loss_scale = 0.0;
   bool force = false;
   bool json = false;
+  std::string errors;  ///< known geometric errors (PDGE) of a hybrid machine
 };
 
 ordered_json toJson(const cal::ResidualStatistics& s) {
@@ -107,25 +112,15 @@ std::optional<ordered_json> workspaceMap(const io::ExechonMachine& machine,
       {"points", errors.size()}, {"mean", mean}, {"p95", p95}, {"max", errors.back()}};
 }
 
-void runExechon(const ExechonArgs& args) {
-  io::ExechonMachine machine = io::loadExechonMachine(args.machine);
-  printNotices(machine.notices);
-  const CalibrationOutputs paths = calibrationOutputs(args.out);
-  if (!args.force)
-    for (const std::string& p : {paths.machine, paths.summary})
-      if (std::filesystem::exists(p))
-        throw IoError(fmt::format("{} exists; pass --force to overwrite it", p));
-  io::ExechonCalibrationInput input, held;
-  for (const std::string& f : args.data) io::addExechonCalibrationFile(f, input);
-  for (const std::string& f : args.holdout) io::addExechonCalibrationFile(f, held);
-  printNotices(input.notes);
-  Eigen::Vector3d target = input.target_offset.value_or(Eigen::Vector3d::Zero());
-  if (!args.target_offset.empty()) {
-    if (args.target_offset.size() != 3) throw InvalidArgument("--target-offset needs x,y,z");
-    target = Eigen::Vector3d(args.target_offset[0], args.target_offset[1], args.target_offset[2]);
-  }
-  input.data.target_offset = target;
-  held.data.target_offset = held.target_offset.value_or(target);
+/// The tripod and wrist from the PKM tracker files: fills `result`, `j` and the report `t`.
+void fitTripod(const ExechonArgs& args,
+               const io::ExechonMachine& machine,
+               io::ExechonCalibrationInput& input,
+               const io::ExechonCalibrationInput& held,
+               io::ExechonMachine& result,
+               ordered_json& j,
+               std::string& t) {
+  const Eigen::Vector3d target = input.data.target_offset;
   const bool use_frame = args.frame == "tracker" || (args.frame == "auto" && input.tracker_frame);
   cal::ExechonCalibrationOptions options;
   options.fk = machine.fk;
@@ -164,17 +159,12 @@ void runExechon(const ExechonArgs& args) {
         toString(machine.model.unit),
         worst));
   }
-  io::ExechonMachine result = machine;
   result.model =
       cal::withExechonParameters(machine.model, s.parameters, machine.model.world_T_zoppi);
   result.model.name = machine.model.name + "-calibrated";
   result.notices.clear();
   result.description = fmt::format("{} calibrated by pkm calibrate exechon", machine.model.name);
 
-  ordered_json j;
-  j["machine"] = machine.model.name;
-  j["units"] = toString(machine.model.unit);
-  j["data"] = input.notes;
   j["observations"] = {{"points", input.data.observations.size()},
                        {"equations", input.data.equations()}};
   j["target_offset"] = {target.x(), target.y(), target.z()};
@@ -223,15 +213,6 @@ void runExechon(const ExechonArgs& args) {
          {"change", s.parameters(k) - s.initial(k)},
          {"sigma", s.standard_deviation(k)}});
   j["parameters"] = params;
-  j["outputs"] = {{"machine", paths.machine}, {"summary", paths.summary}};
-  writeOutputFile(paths.machine, io::writeExechonJson(result));
-  writeOutputFile(paths.summary, j.dump(2) + "\n");
-  if (args.json) {
-    printJson(j);
-    return;
-  }
-  Output out;
-  std::string& t = out.text();
   t += fmt::format("calibrated {} from {} equations ({} tracker points)\n",
                    machine.model.name,
                    input.data.equations(),
@@ -272,7 +253,243 @@ void runExechon(const ExechonArgs& args) {
         j["tcp_error_map"]["before"]["mean"].get<double>(),
         j["tcp_error_map"]["before"]["p95"].get<double>(),
         j["tcp_error_map"]["before"]["max"].get<double>());
-  t += fmt::format("wrote {}, {}\n", paths.machine, paths.summary);
+}
+
+/// CAL.errors.json for --out CAL.json.
+std::string errorsOutput(const std::string& out) {
+  std::string stem = out;
+  if (stem.size() > 5 && stem.ends_with(".json")) stem.resize(stem.size() - 5);
+  return stem + ".errors.json";
+}
+
+/// The tripod errors of `calibrated` against `nominal` (the first 18 parameters).
+sim::ExechonTripodErrors tripodDifference(const kinematics::ExechonModel& nominal,
+                                          const kinematics::ExechonModel& calibrated) {
+  const cal::ExechonParameterVector d = cal::exechonParameters(calibrated, nominal.world_T_zoppi) -
+                                        cal::exechonParameters(nominal, nominal.world_T_zoppi);
+  sim::ExechonTripodErrors e;
+  e.dA = d(0);
+  e.dB = d(1);
+  e.dC = d(2);
+  e.l12A = d(3);
+  e.l12C = d(4);
+  e.pA = d(5);
+  e.pB = d(6);
+  e.pC = d(7);
+  e.hA = d(8);
+  e.hC = d(9);
+  e.hx = d(10);
+  e.hz = d(11);
+  e.length_offset = d.segment<3>(12);
+  e.c0 = d(15);
+  e.a0 = d(16);
+  e.tool_length = d(17);
+  return e;
+}
+
+ordered_json squarenessJson(const kinematics::HybridSquareness& s) {
+  return {{"szX2", s.sz_x2}, {"sxP", s.sx_p}, {"syP", s.sy_p}, {"szP", s.sz_p}};
+}
+
+/// Target errors |predicted − measured (in frame)| over held-out hybrid data.
+ordered_json hybridHoldout(const kinematics::HybridMachineModel& model,
+                           const kinematics::GeometricErrors& known,
+                           const kinematics::HybridSquareness& squareness,
+                           const cal::HybridCalibrationData& data,
+                           const std::optional<geometry::RigidTransform>& frame,
+                           const cal::TripodMotion& tripod) {
+  double sum = 0.0, worst = 0.0;
+  int n = 0;
+  for (const cal::HybridObservation& o : data.observations) {
+    const auto p =
+        cal::hybridTarget(model, known, squareness, o.command, data.target_offset, tripod);
+    if (!p) continue;
+    const Eigen::Vector3d m =
+        frame ? Eigen::Vector3d(frame->rotation * o.point + frame->translation) : o.point;
+    const double e = (m - *p).norm();
+    sum += e * e;
+    worst = std::max(worst, e);
+    ++n;
+  }
+  return {{"poses", n}, {"rms", n > 0 ? std::sqrt(sum / n) : 0.0}, {"max", worst}};
+}
+
+/// The rigid fit of the measured points to the targets `squareness` predicts (a frame start).
+geometry::RigidTransform hybridFrameStart(const kinematics::HybridMachineModel& model,
+                                          const kinematics::GeometricErrors& known,
+                                          const kinematics::HybridSquareness& squareness,
+                                          const cal::HybridCalibrationData& data,
+                                          const cal::TripodMotion& tripod) {
+  std::vector<Eigen::Vector3d> work, measured;
+  for (const cal::HybridObservation& o : data.observations)
+    if (const auto p =
+            cal::hybridTarget(model, known, squareness, o.command, data.target_offset, tripod)) {
+      work.push_back(*p);
+      measured.push_back(o.point);
+    }
+  if (work.size() < 3) throw InvalidArgument("hybrid data: fewer than 3 reachable commands");
+  return geometry::fitRigidTransform(work, measured);
+}
+
+/// The four squareness errors from the hybrid tracker files, with the calibrated tripod's error
+/// motion when the PKM was calibrated too: fills j["hybrid"] (with the errors file text) and `t`.
+void fitSquareness(const ExechonArgs& args,
+                   const io::ExechonMachine& machine,
+                   const io::ExechonMachine& result,
+                   io::ExechonCalibrationInput& input,
+                   io::ExechonCalibrationInput& held,
+                   ordered_json& j,
+                   std::string& t) {
+  if (!machine.hybrid)
+    throw InvalidArgument(
+        fmt::format("hybrid tracker data needs a machine with a \"hybrid\" section; '{}' has none",
+                    machine.model.name));
+  const kinematics::HybridMachineModel& model = *machine.hybrid;
+  kinematics::GeometricErrors known;
+  if (!args.errors.empty()) known = io::loadGeometricErrors(args.errors);
+  known.squareness = {};
+  std::optional<sim::HybridTripod> tripod;
+  const sim::ExechonTripodErrors diff = tripodDifference(machine.model, result.model);
+  if (!diff.isZero()) tripod.emplace(machine.model, diff, machine.fk);
+  cal::TripodMotion motion;
+  if (tripod)
+    motion = [&tripod](const Eigen::Vector3d& p) -> std::optional<Eigen::Isometry3d> {
+      try {
+        return tripod->errorMotion(p);
+      } catch (const InvalidArgument&) {
+        return std::nullopt;
+      }
+    };
+  cal::HybridCalibrationData& d = input.hybrid;
+  std::optional<geometry::RigidTransform> before_frame;
+  if (d.measurement_frame) {
+    d.measurement_frame = hybridFrameStart(model, known, {}, d, motion);
+    before_frame = d.measurement_frame;
+  }
+  cal::HybridCalibrationOptions options;
+  if (args.loss == "huber") options.loss = cal::RobustLoss::kHuber;
+  if (args.loss == "cauchy") options.loss = cal::RobustLoss::kCauchy;
+  options.loss_scale = args.loss_scale;
+  const cal::HybridCalibrationSummary s =
+      cal::calibrateHybridSquareness(model, known, d, options, motion);
+  if (!(s.after.rms < 1e-3 * machine.model.characteristicLength())) {
+    std::string worst;
+    for (const auto& w : s.worst) worst += fmt::format("\n  {}: {:.4g}", w.source, w.residual);
+    throw InvalidArgument(fmt::format(
+        "squareness calibration does not explain the hybrid data: residual RMS {:.4g} (max "
+        "{:.4g}); check the units, --errors and outliers; nothing was written. Largest "
+        "residuals:{}",
+        s.after.rms,
+        s.after.max,
+        worst));
+  }
+  kinematics::GeometricErrors estimated = known;
+  estimated.squareness = s.squareness;
+  ordered_json h;
+  h["observations"] = d.observations.size();
+  h["known_errors"] = args.errors.empty() ? "none" : args.errors;
+  h["tripod_error_motion"] = tripod.has_value();
+  h["squareness"] = squarenessJson(s.squareness);
+  h["sigma"] = {{"szX2", s.standard_deviation(0)},
+                {"sxP", s.standard_deviation(1)},
+                {"syP", s.standard_deviation(2)},
+                {"szP", s.standard_deviation(3)}};
+  h["solver"] = {{"converged", s.converged},
+                 {"termination", s.termination},
+                 {"iterations", s.iterations},
+                 {"seconds", s.seconds}};
+  h["residuals"] = {{"before", toJson(s.before)}, {"after", toJson(s.after)}};
+  h["identifiability"] = {{"parameters", s.identifiability.parameters},
+                          {"rank", s.identifiability.rank},
+                          {"condition_number", s.identifiability.condition_number}};
+  if (s.measurement_frame) h["measurement_frame"] = frameJson(*s.measurement_frame);
+  ordered_json worst = ordered_json::array();
+  for (const auto& w : s.worst) worst.push_back({{"source", w.source}, {"residual", w.residual}});
+  h["worst_observations"] = worst;
+  if (!held.hybrid.observations.empty()) {
+    held.hybrid.target_offset =
+        held.hybrid.target_offset.allFinite() ? held.hybrid.target_offset : d.target_offset;
+    h["holdout"] = {
+        {"before", hybridHoldout(model, known, {}, held.hybrid, before_frame, {})},
+        {"after",
+         hybridHoldout(model, known, s.squareness, held.hybrid, s.measurement_frame, motion)}};
+  }
+  h["errors_file"] = io::writeGeometricErrorsJson(estimated);
+  j["hybrid"] = h;
+  constexpr double kMrad = 1e3;
+  t += fmt::format(
+      "squareness from {} hybrid observations{}: szX2 {:.4f}, sxP {:.4f}, syP {:.4f}, szP {:.4f} "
+      "mrad (sigma {:.2g}, {:.2g}, {:.2g}, {:.2g})\n",
+      d.observations.size(),
+      tripod ? " (with the calibrated tripod)" : "",
+      kMrad * s.squareness.sz_x2,
+      kMrad * s.squareness.sx_p,
+      kMrad * s.squareness.sy_p,
+      kMrad * s.squareness.sz_p,
+      kMrad * s.standard_deviation(0),
+      kMrad * s.standard_deviation(1),
+      kMrad * s.standard_deviation(2),
+      kMrad * s.standard_deviation(3));
+  t += fmt::format("hybrid residuals ({}): RMS {:.6g} -> {:.6g}, max {:.6g} -> {:.6g}\n",
+                   toString(machine.model.unit),
+                   s.before.rms,
+                   s.after.rms,
+                   s.before.max,
+                   s.after.max);
+  if (h.contains("holdout"))
+    t += fmt::format("held-out hybrid target error: RMS {:.6g} -> {:.6g}, max {:.6g} -> {:.6g}\n",
+                     h["holdout"]["before"]["rms"].get<double>(),
+                     h["holdout"]["after"]["rms"].get<double>(),
+                     h["holdout"]["before"]["max"].get<double>(),
+                     h["holdout"]["after"]["max"].get<double>());
+}
+
+void runExechon(const ExechonArgs& args) {
+  io::ExechonMachine machine = io::loadExechonMachine(args.machine);
+  printNotices(machine.notices);
+  const CalibrationOutputs paths = calibrationOutputs(args.out);
+  const std::string errors_path = errorsOutput(args.out);
+  io::ExechonCalibrationInput input, held;
+  for (const std::string& f : args.data) io::addExechonCalibrationFile(f, input);
+  for (const std::string& f : args.holdout) io::addExechonCalibrationFile(f, held);
+  printNotices(input.notes);
+  const bool hybrid = !input.hybrid.observations.empty();
+  if (!args.force)
+    for (const std::string& p : {paths.machine, paths.summary, errors_path})
+      if ((p != errors_path || hybrid) && std::filesystem::exists(p))
+        throw IoError(fmt::format("{} exists; pass --force to overwrite it", p));
+  Eigen::Vector3d target = input.target_offset.value_or(Eigen::Vector3d::Zero());
+  if (!args.target_offset.empty()) {
+    if (args.target_offset.size() != 3) throw InvalidArgument("--target-offset needs x,y,z");
+    target = Eigen::Vector3d(args.target_offset[0], args.target_offset[1], args.target_offset[2]);
+  }
+  input.data.target_offset = target;
+  held.data.target_offset = held.target_offset.value_or(target);
+
+  io::ExechonMachine result = machine;
+  ordered_json j;
+  j["machine"] = machine.model.name;
+  j["units"] = toString(machine.model.unit);
+  j["data"] = input.notes;
+  std::string t;
+  if (!input.data.observations.empty()) fitTripod(args, machine, input, held, result, j, t);
+  std::vector<std::string> written{paths.machine, paths.summary};
+  if (hybrid) {
+    fitSquareness(args, machine, result, input, held, j, t);
+    written.push_back(errors_path);
+  }
+  j["outputs"] = {{"machine", paths.machine}, {"summary", paths.summary}};
+  if (hybrid) j["outputs"]["errors"] = errors_path;
+  writeOutputFile(paths.machine, io::writeExechonJson(result));
+  if (hybrid) writeOutputFile(errors_path, j["hybrid"]["errors_file"].get<std::string>());
+  if (hybrid) j["hybrid"].erase("errors_file");
+  writeOutputFile(paths.summary, j.dump(2) + "\n");
+  if (args.json) {
+    printJson(j);
+    return;
+  }
+  Output out;
+  out.text() = t + fmt::format("wrote {}\n", fmt::join(written, ", "));
 }
 
 }  // namespace
@@ -283,7 +500,10 @@ void addCalibrateExechon(CLI::App& calibrate) {
       "exechon", "calibrate an Exechon (tripod and wrist) from laser-tracker files");
   ex->add_option("--machine", args->machine, "Exechon machine file or built-in name")
       ->capture_default_str();
-  ex->add_option("--data", args->data, "Exechon tracker files (q0,q1,q2,c,a,x,y,z[,i,j,k])")
+  ex->add_option("--data",
+                 args->data,
+                 "Exechon tracker files (q0,q1,q2,c,a,x,y,z[,i,j,k]) and hybrid tracker files "
+                 "(x2,y2,xp,yp,zp,x,y,z)")
       ->required()
       ->check(CLI::ExistingFile);
   ex->add_option("--holdout", args->holdout, "tracker files kept out of the fit, for validation")
@@ -304,6 +524,11 @@ void addCalibrateExechon(CLI::App& calibrate) {
   ex->add_option("--loss", args->loss, "robust loss: none, huber, cauchy")
       ->check(CLI::IsMember({"none", "huber", "cauchy"}));
   ex->add_option("--loss-scale", args->loss_scale, "robust loss scale, machine unit");
+  ex->add_option("--errors",
+                 args->errors,
+                 "hybrid machines: the known geometric errors (PDGE tables; file or built-in) "
+                 "under the squareness fit")
+      ->capture_default_str();
   ex->add_flag("--force", args->force, "overwrite existing output files");
   ex->add_flag("--json", args->json, "print the summary as JSON");
   ex->callback([args] { runExechon(*args); });

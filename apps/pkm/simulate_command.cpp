@@ -126,12 +126,13 @@ void runSimulate(const SimulateState& st) {
     Output out;
     for (const std::string& name : io::builtinScenarioNames()) {
       const io::Scenario s = io::loadScenario(name);
-      out.text() += fmt::format("{}\t{} measurements\t{}\n",
-                                name,
-                                s.campaign.measurements.size() + s.campaign.constrained.size() +
-                                    s.campaign.trackers.size() + s.campaign.probes.size() +
-                                    s.campaign.exechon_trackers.size(),
-                                s.campaign.description);
+      out.text() +=
+          fmt::format("{}\t{} measurements\t{}\n",
+                      name,
+                      s.campaign.measurements.size() + s.campaign.constrained.size() +
+                          s.campaign.trackers.size() + s.campaign.probes.size() +
+                          s.campaign.exechon_trackers.size() + s.campaign.hybrid_trackers.size(),
+                      s.campaign.description);
     }
     return;
   }
@@ -155,6 +156,12 @@ void runSimulate(const SimulateState& st) {
         io::trackerCsv(
             io::trackerMetadata(scenario.campaign.name, seed, *r.setup, r.readings.size()),
             r.setup->mode,
+            r.readings));
+  for (const sim::HybridTrackerResult& r : sim::runHybridTrackers(scenario.campaign, seed))
+    files.emplace_back(
+        fmt::format("{}.csv", r.setup->name),
+        io::hybridTrackerCsv(
+            io::hybridTrackerMetadata(scenario.campaign.name, seed, *r.setup, r.readings.size()),
             r.readings));
   for (const sim::ExechonTrackerResult& r : sim::runExechonTrackers(scenario.campaign, seed))
     files.emplace_back(

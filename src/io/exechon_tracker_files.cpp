@@ -66,8 +66,84 @@ Metadata exechonTrackerMetadata(const std::string& scenario,
   };
 }
 
+std::string hybridTrackerCsv(const Metadata& metadata,
+                             const std::vector<simulation::HybridTrackerReading>& readings) {
+  std::string out;
+  for (const auto& [key, value] : metadata) out += fmt::format("# {}: {}\n", key, value);
+  out += "x2,y2,xp,yp,zp,x,y,z\n";
+  for (const simulation::HybridTrackerReading& r : readings)
+    out += fmt::format("{},{},{},{},{},{},{},{}\n",
+                       formatNumber(r.command.x2),
+                       formatNumber(r.command.y2),
+                       formatNumber(r.command.pkm[0]),
+                       formatNumber(r.command.pkm[1]),
+                       formatNumber(r.command.pkm[2]),
+                       formatNumber(r.measured[0]),
+                       formatNumber(r.measured[1]),
+                       formatNumber(r.measured[2]));
+  return out;
+}
+
+Metadata hybridTrackerMetadata(const std::string& scenario,
+                               std::uint64_t seed,
+                               const simulation::HybridTrackerSetup& setup,
+                               std::size_t poses) {
+  const simulation::TrackerNoise& n = setup.noise;
+  return {
+      {"format", "pkm.hybrid-tracker/1"},
+      {"scenario", scenario},
+      {"seed", std::to_string(seed)},
+      {"measurement", setup.name},
+      {"instrument", "laser tracker on the work table, SMR on the tool (simulated)"},
+      {"frame", "tracker (x, y, z in the tracker's own frame on the table; placement not known)"},
+      {"target", "SMR centre at the smr offset (tool frame)"},
+      {"smr offset mm", vectorText(setup.smr_offset)},
+      {"noise",
+       fmt::format("range sigma {} mm + {} ppm, angle sigma {} urad",
+                   formatNumber(n.range_sigma),
+                   formatNumber(n.range_ppm),
+                   formatNumber(n.angle_sigma * kUradPerRad))},
+      {"poses", std::to_string(poses)},
+      {"columns", "x2,y2 serial axes mm; xp,yp,zp PKM command mm (P frame); x,y,z mm"},
+  };
+}
+
+namespace {
+
+void addHybridFile(const TextTable& t, const std::string& path, ExechonCalibrationInput& input) {
+  const std::size_t x2 = t.column({"x2"}), y2 = t.column({"y2"});
+  const std::size_t xp = t.column({"xp"}), yp = t.column({"yp"}), zp = t.column({"zp"});
+  const std::size_t x = t.column({"x"}), y = t.column({"y"}), z = t.column({"z"});
+  if (const auto offset = t.meta("smr offset mm")) {
+    const std::vector<Eigen::Vector3d> v = parseVectorList(*offset, path, "smr offset mm");
+    if (v.size() != 1) t.failHeader("metadata 'smr offset mm' is not one vector");
+    input.hybrid.target_offset = v[0];
+  }
+  const bool tracker = t.meta("frame").value_or("").rfind("tracker", 0) == 0;
+  if (!input.hybrid.observations.empty() && tracker != input.hybrid.measurement_frame.has_value())
+    t.failHeader("its 'frame' differs from an earlier hybrid file's");
+  if (tracker && !input.hybrid.measurement_frame)
+    input.hybrid.measurement_frame = geometry::RigidTransform{};  // a start is fitted later
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    calibration::HybridObservation o;
+    o.command.x2 = t.number(r, x2);
+    o.command.y2 = t.number(r, y2);
+    o.command.pkm = Eigen::Vector3d(t.number(r, xp), t.number(r, yp), t.number(r, zp));
+    o.point = Eigen::Vector3d(t.number(r, x), t.number(r, y), t.number(r, z));
+    o.source = fmt::format("{}:{}", path, t.line(r));
+    input.hybrid.observations.push_back(std::move(o));
+  }
+  input.notes.push_back(fmt::format("{}: {} hybrid tracker observations", path, t.rows()));
+}
+
+}  // namespace
+
 void addExechonCalibrationFile(const std::string& path, ExechonCalibrationInput& input) {
   const TextTable t = TextTable::read(path);
+  if (t.findColumn({"x2"})) {
+    addHybridFile(t, path, input);
+    return;
+  }
   const std::size_t q0 = t.column({"q0"}), q1 = t.column({"q1"}), q2 = t.column({"q2"});
   const std::size_t cc = t.column({"c", "c_deg"}), ca = t.column({"a", "a_deg"});
   const std::size_t x = t.column({"x"}), y = t.column({"y"}), z = t.column({"z"});

@@ -144,9 +144,14 @@ Scenario parseScenarioJson(const std::string& text,
     const std::string instrument = doc.string(list[i], ptr, "instrument", "laser");
     if (instrument == "dial_gauges")
       out.campaign.constrained.push_back(detail::readDialGauges(doc, list[i], ptr));
-    else if (instrument == "laser_tracker" && out.machine_kind == "hybrid")
+    else if (instrument == "laser_tracker" && out.machine_kind == "hybrid" &&
+             doc.string(list[i], ptr, "mode", "pkm") == "hybrid")
+      out.campaign.hybrid_trackers.push_back(detail::readHybridTracker(doc, list[i], ptr));
+    else if (instrument == "laser_tracker" && out.machine_kind == "hybrid") {
+      if (doc.string(list[i], ptr, "mode", "pkm") != "pkm")
+        doc.fail(ptr + "/mode", "on a hybrid machine: \"pkm\" (default) or \"hybrid\"");
       out.campaign.exechon_trackers.push_back(detail::readExechonTracker(doc, list[i], ptr));
-    else if (instrument == "laser_tracker")
+    } else if (instrument == "laser_tracker")
       out.campaign.trackers.push_back(detail::readTracker(doc, list[i], ptr));
     else if (instrument == "touch_probe")
       out.campaign.probes.push_back(detail::readTouchProbe(

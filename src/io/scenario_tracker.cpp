@@ -184,6 +184,80 @@ sim::TrackerSetup readTracker(const JsonDoc& doc, const json& obj, const std::st
   return s;
 }
 
+namespace {
+
+/// [min, max] at obj[key] (mm).
+Eigen::Vector2d range(const JsonDoc& doc,
+                      const json& obj,
+                      const std::string& ptr,
+                      const char* key) {
+  const std::string at = ptr + "/" + key;
+  const json& r = doc.required(obj, ptr, key);
+  if (!r.is_array() || r.size() != 2) doc.fail(at, "expected [min, max] (mm)");
+  const Eigen::Vector2d v(doc.number(r[0], at + "/0"), doc.number(r[1], at + "/1"));
+  if (v(0) > v(1)) doc.fail(at, "min is larger than max");
+  return v;
+}
+
+}  // namespace
+
+sim::HybridTrackerSetup readHybridTracker(const JsonDoc& doc,
+                                          const json& obj,
+                                          const std::string& ptr) {
+  doc.onlyKeys(obj,
+               ptr,
+               {"name",
+                "instrument",
+                "mode",
+                "count",
+                "x2",
+                "y2",
+                "box",
+                "smr_offset",
+                "tracker_frame",
+                "noise"});
+  sim::HybridTrackerSetup s;
+  s.name = measurementName(doc, obj, ptr);
+  s.count = integer(doc, obj, ptr, "count", 0, 1, kMaxPoses);
+  s.x2 = range(doc, obj, ptr, "x2");
+  s.y2 = range(doc, obj, ptr, "y2");
+  const json& box = doc.required(obj, ptr, "box");
+  const std::string bp = ptr + "/box";
+  doc.onlyKeys(box, bp, {"x", "y", "z"});
+  const char* axes[] = {"x", "y", "z"};
+  for (Eigen::Index k = 0; k < 3; ++k) {
+    const Eigen::Vector2d r = range(doc, box, bp, axes[k]);
+    s.pkm_min[k] = r(0);
+    s.pkm_max[k] = r(1);
+  }
+  if (obj.contains("smr_offset")) s.smr_offset = doc.vec3(obj["smr_offset"], ptr + "/smr_offset");
+  if (obj.contains("tracker_frame"))
+    s.work_T_tracker = trackerFrame(doc, obj["tracker_frame"], ptr + "/tracker_frame");
+  if (obj.contains("noise")) s.noise = trackerNoise(doc, obj["noise"], ptr + "/noise");
+  try {
+    s.validate();
+  } catch (const InvalidArgument& e) {
+    doc.fail(ptr, e.what());
+  }
+  return s;
+}
+
+namespace {
+
+std::string hybridTrackerTruth(const sim::HybridTrackerSetup& t) {
+  return fmt::format(
+      "    {{\"name\": \"{}\", \"work_T_tracker\": {}, \"smr_offset\": {},\n"
+      "     \"noise\": {{\"range_sigma\": {}, \"range_ppm\": {}, \"angle_sigma_urad\": {}}}}}",
+      t.name,
+      placementJson(t.work_T_tracker),
+      array(t.smr_offset),
+      formatNumber(t.noise.range_sigma),
+      formatNumber(t.noise.range_ppm),
+      formatNumber(t.noise.angle_sigma * kUradPerRad));
+}
+
+}  // namespace
+
 sim::ExechonTrackerSetup readExechonTracker(const JsonDoc& doc,
                                             const json& obj,
                                             const std::string& ptr) {
@@ -191,6 +265,7 @@ sim::ExechonTrackerSetup readExechonTracker(const JsonDoc& doc,
                ptr,
                {"name",
                 "instrument",
+                "mode",
                 "count",
                 "box",
                 "direction",
@@ -254,6 +329,12 @@ std::string extraTruthJson(const sim::Campaign& campaign) {
     out += ",\n  \"laser_trackers\": [\n";
     for (std::size_t i = 0; i < campaign.trackers.size(); ++i)
       out += (i ? ",\n" : "") + trackerTruth(campaign.trackers[i]);
+    out += "\n  ]";
+  }
+  if (!campaign.hybrid_trackers.empty()) {
+    out += ",\n  \"hybrid_trackers\": [\n";
+    for (std::size_t i = 0; i < campaign.hybrid_trackers.size(); ++i)
+      out += (i ? ",\n" : "") + hybridTrackerTruth(campaign.hybrid_trackers[i]);
     out += "\n  ]";
   }
   if (!campaign.exechon_trackers.empty()) {

@@ -18,6 +18,13 @@ namespace pkm::io::detail {
                                                                  const json& obj,
                                                                  const std::string& ptr);
 
+/// A laser-tracker measurement of a hybrid machine's tool over its five axes ("instrument":
+/// "laser_tracker", "mode": "hybrid" on a "hybrid" machine) at `ptr`: count, x2, y2 ([min, max]
+/// mm), box {x, y, z} (PKM command), smr_offset, tracker_frame (in the work frame), noise.
+[[nodiscard]] simulation::HybridTrackerSetup readHybridTracker(const JsonDoc& doc,
+                                                               const json& obj,
+                                                               const std::string& ptr);
+
 /// A laser-tracker measurement ("instrument": "laser_tracker") at `ptr`. Fails through `doc`.
 [[nodiscard]] simulation::TrackerSetup readTracker(const JsonDoc& doc,
                                                    const json& obj,

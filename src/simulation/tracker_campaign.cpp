@@ -8,7 +8,9 @@
 namespace pkm::simulation {
 
 void validateTrackers(const Campaign& campaign) {
-  if (campaign.trackers.empty() && campaign.exechon_trackers.empty()) return;
+  if (campaign.trackers.empty() && campaign.exechon_trackers.empty() &&
+      campaign.hybrid_trackers.empty())
+    return;
   PKM_CHECK(campaign.machine != nullptr, "campaign '{}' has no machine", campaign.name);
   std::set<std::string> names;
   for (const LineSetup& m : campaign.measurements) names.insert(m.name);
@@ -21,6 +23,13 @@ void validateTrackers(const Campaign& campaign) {
               t.name);
     PKM_CHECK(names.insert(t.name).second, "two measurements are named '{}'", t.name);
   }
+  for (const HybridTrackerSetup& t : campaign.hybrid_trackers) {
+    t.validate();
+    PKM_CHECK(dynamic_cast<const HybridVirtualMachine*>(campaign.machine.get()) != nullptr,
+              "{}: a hybrid laser tracker measurement needs a hybrid machine",
+              t.name);
+    PKM_CHECK(names.insert(t.name).second, "two measurements are named '{}'", t.name);
+  }
   for (const ExechonTrackerSetup& t : campaign.exechon_trackers) {
     t.validate();
     const auto* hybrid = dynamic_cast<const HybridVirtualMachine*>(campaign.machine.get());
@@ -30,6 +39,18 @@ void validateTrackers(const Campaign& campaign) {
               t.name);
     PKM_CHECK(names.insert(t.name).second, "two measurements are named '{}'", t.name);
   }
+}
+
+std::vector<HybridTrackerResult> runHybridTrackers(const Campaign& campaign, std::uint64_t seed) {
+  campaign.validate();
+  validateTrackers(campaign);
+  std::vector<HybridTrackerResult> results;
+  for (const HybridTrackerSetup& setup : campaign.hybrid_trackers) {
+    RandomStream rng(seed, setup.name);
+    auto& hybrid = dynamic_cast<HybridVirtualMachine&>(*campaign.machine);
+    results.push_back({&setup, simulateHybridTracker(hybrid, setup, rng)});
+  }
+  return results;
 }
 
 std::vector<ExechonTrackerResult> runExechonTrackers(const Campaign& campaign, std::uint64_t seed) {

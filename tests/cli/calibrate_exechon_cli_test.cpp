@@ -2,6 +2,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -26,7 +27,11 @@ class CalibrateExechonCli : public CliTest {
     ASSERT_EQ(sim.code, 0) << sim.err;
   }
   CliRun calibrate(const std::vector<std::string>& extra) {
-    std::vector<std::string> args{"calibrate", "exechon", "--machine", "mxt700s-like"};
+    std::vector<std::string> args{"calibrate", "exechon"};
+    if (std::find(extra.begin(), extra.end(), "--machine") == extra.end()) {
+      args.push_back("--machine");
+      args.push_back("mxt700s-like");
+    }
     args.insert(args.end(), extra.begin(), extra.end());
     return pkm(args);
   }
@@ -54,6 +59,54 @@ TEST_F(CalibrateExechonCli, TrackerCalibrationMeetsTheTarget) {
   const CliRun ik = pkm({"exechon", "ik", "--machine", path("cal.json"), "--poses", poses});
   EXPECT_EQ(ik.code, 0) << ik.err;
   EXPECT_TRUE(std::filesystem::exists(path("cal.summary.json")));
+}
+
+/// Seed 000's squareness (szX2 -0.034, sxP -14.74, syP 4.35, szP -2.85 mrad) from a tracker on the
+/// table over all five axes, after the tripod calibration, with the PDGE tables known.
+TEST_F(CalibrateExechonCli, HybridDataGiveTheFourSquarenessErrors) {
+  constexpr double kSquarenessTolerance = 0.02e-3;  ///< rad: ~5 σ of the estimate
+  constexpr double kHeldOutLimit = 0.03;            ///< mm
+  const CliRun r = calibrate({"--data",
+                              path("sim/tracker-fit.csv"),
+                              path("sim/tracker-hybrid.csv"),
+                              "--holdout",
+                              path("sim/tracker-hybrid-holdout.csv"),
+                              "--errors",
+                              "mxt700s-seed000",
+                              "--out",
+                              path("cal.json"),
+                              "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& s = j["hybrid"]["squareness"];
+  EXPECT_NEAR(s["szX2"].get<double>(), -0.034e-3, kSquarenessTolerance);
+  EXPECT_NEAR(s["sxP"].get<double>(), -14.74e-3, kSquarenessTolerance);
+  EXPECT_NEAR(s["syP"].get<double>(), 4.35e-3, kSquarenessTolerance);
+  EXPECT_NEAR(s["szP"].get<double>(), -2.85e-3, kSquarenessTolerance);
+  EXPECT_TRUE(j["hybrid"]["tripod_error_motion"].get<bool>());
+  EXPECT_LT(j["hybrid"]["holdout"]["after"]["rms"].get<double>(), kHeldOutLimit);
+  EXPECT_FALSE(j["hybrid"].contains("errors_file"));
+  // The errors file loads wherever geometric errors are accepted, with the estimate in it.
+  const auto errors = nlohmann::json::parse(slurp(path("cal.errors.json")));
+  EXPECT_NEAR(errors["squareness_urad"]["sxP"].get<double>(), -14740.0, 20.0);
+  const CliRun vol = pkm({"volumetric",
+                          "--machine",
+                          "mxt700s-like",
+                          "--errors",
+                          path("cal.errors.json"),
+                          "--commands",
+                          write("c.csv", "x2,y2,xp,yp,zp\n100,50,0,0,0\n")});
+  EXPECT_EQ(vol.code, 0) << vol.err;
+}
+
+TEST_F(CalibrateExechonCli, HybridDataNeedAHybridMachine) {
+  expectUsageError(calibrate({"--machine",
+                              "exechon-zoppi2010",
+                              "--data",
+                              path("sim/tracker-hybrid.csv"),
+                              "--out",
+                              path("x.json")}),
+                   "hybrid");
 }
 
 TEST_F(CalibrateExechonCli, ReadableReportNamesTheLargestResidual) {

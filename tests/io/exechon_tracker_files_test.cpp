@@ -99,5 +99,32 @@ TEST_F(ExechonTrackerFiles, DirectionsAndErrors) {
       IoError);
 }
 
+TEST_F(ExechonTrackerFiles, HybridFilesRoundTrip) {
+  simulation::HybridTrackerSetup s;
+  s.name = "h";
+  s.count = 3;
+  s.smr_offset = Eigen::Vector3d(0, 0, 40);
+  std::vector<simulation::HybridTrackerReading> readings(2);
+  readings[0].command.x2 = 100.25;
+  readings[0].command.pkm = Eigen::Vector3d(1, 2, 3);
+  readings[0].measured = Eigen::Vector3d(4, 5, 6);
+  readings[1].command.y2 = 0.1;
+  readings[1].measured = Eigen::Vector3d(7, 8, 9.5);
+  const std::string text = hybridTrackerCsv(hybridTrackerMetadata("sc", 1, s, 2), readings);
+  EXPECT_THAT(text, HasSubstr("\nx2,y2,xp,yp,zp,x,y,z\n"));
+  ExechonCalibrationInput in;
+  addExechonCalibrationFile(write("h.csv", text), in);
+  EXPECT_TRUE(in.data.observations.empty());
+  ASSERT_EQ(in.hybrid.observations.size(), 2u);
+  EXPECT_TRUE(in.hybrid.measurement_frame.has_value());
+  EXPECT_EQ(in.hybrid.target_offset, s.smr_offset);
+  EXPECT_EQ(in.hybrid.observations[0].command.x2, 100.25);
+  EXPECT_EQ(in.hybrid.observations[0].command.pkm, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(in.hybrid.observations[1].point, Eigen::Vector3d(7, 8, 9.5));
+  ExechonCalibrationInput bad;
+  EXPECT_THROW(addExechonCalibrationFile(write("b.csv", "x2,y2,xp,yp,x,y,z\n1,2,3,4,5,6,7\n"), bad),
+               IoError);
+}
+
 }  // namespace
 }  // namespace pkm::io

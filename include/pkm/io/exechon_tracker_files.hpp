@@ -12,8 +12,10 @@
 #include <vector>
 
 #include "pkm/calibration/exechon_calibration.hpp"
+#include "pkm/calibration/hybrid_calibration.hpp"
 #include "pkm/io/text_table.hpp"
 #include "pkm/simulation/exechon_tracker.hpp"
+#include "pkm/simulation/hybrid_tracker.hpp"
 
 namespace pkm::io {
 
@@ -29,17 +31,32 @@ namespace pkm::io {
                                               const simulation::ExechonTrackerSetup& setup,
                                               std::size_t poses);
 
-/// What Exechon calibration files gave.
+/// The CSV text of a simulated hybrid tracker measurement: header `x2,y2,xp,yp,zp,x,y,z` (mm).
+[[nodiscard]] std::string hybridTrackerCsv(
+    const Metadata& metadata, const std::vector<simulation::HybridTrackerReading>& readings);
+
+/// The metadata `pkm simulate` writes for a hybrid tracker measurement (format
+/// pkm.hybrid-tracker/1, frame "tracker ...", smr offset mm, noise, poses).
+[[nodiscard]] Metadata hybridTrackerMetadata(const std::string& scenario,
+                                             std::uint64_t seed,
+                                             const simulation::HybridTrackerSetup& setup,
+                                             std::size_t poses);
+
+/// What Exechon calibration files gave: PKM tracker files (q0..a columns) and hybrid tracker files
+/// (x2, y2, xp, yp, zp columns, for the four squareness errors).
 struct ExechonCalibrationInput {
-  calibration::ExechonCalibrationData data;      ///< observations with source "FILE:LINE"
+  calibration::ExechonCalibrationData data;  ///< observations with source "FILE:LINE"
+  /// Hybrid observations with source "FILE:LINE"; measurement_frame is set (to the identity, a
+  /// placeholder for the caller's start) when the files' `frame` says tracker.
+  calibration::HybridCalibrationData hybrid;
   std::optional<Eigen::Vector3d> target_offset;  ///< `smr offset mm` metadata (first seen)
   bool tracker_frame = false;  ///< a file's `frame` metadata starts with "tracker"
   std::vector<std::string> notes;
 };
 
-/// Adds the Exechon tracker file at `path` to `input`. Throws pkm::IoError "FILE:LINE: message"
-/// for a missing column, a bad number, a direction that is not a unit vector, or two files whose
-/// `smr offset mm` or `frame` metadata disagree.
+/// Adds the Exechon or hybrid tracker file at `path` to `input` (a header with x2 makes it a hybrid
+/// file). Throws pkm::IoError "FILE:LINE: message" for a missing column, a bad number, a direction
+/// that is not a unit vector, or two files whose `smr offset mm` or `frame` metadata disagree.
 void addExechonCalibrationFile(const std::string& path, ExechonCalibrationInput& input);
 
 }  // namespace pkm::io

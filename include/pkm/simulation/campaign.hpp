@@ -11,6 +11,7 @@
 
 #include "pkm/simulation/dial_gauges.hpp"
 #include "pkm/simulation/exechon_tracker.hpp"
+#include "pkm/simulation/hybrid_tracker.hpp"
 #include "pkm/simulation/laser_tracker.hpp"
 #include "pkm/simulation/line_measurement.hpp"
 #include "pkm/simulation/touch_probe.hpp"
@@ -32,6 +33,9 @@ struct Campaign {
   /// Laser-tracker measurements of the Exechon PKM of a hybrid machine with tripod errors
   /// (exechon_tracker.hpp); checked by validateTrackers, run by runExechonTrackers.
   std::vector<ExechonTrackerSetup> exechon_trackers;
+  /// Laser-tracker measurements of the tool of a hybrid machine over all five axes
+  /// (hybrid_tracker.hpp); checked by validateTrackers, run by runHybridTrackers.
+  std::vector<HybridTrackerSetup> hybrid_trackers;
   /// Touch-probe measurements on a master ring (seed 003); need a hybrid (Exechon) machine. Run
   /// with runTouchProbes (pkm/simulation/touch_probe.hpp).
   std::vector<TouchProbeSetup> probes;
@@ -90,5 +94,16 @@ struct ExechonTrackerResult {
 /// (validateTrackers, simulateExechonTracker).
 [[nodiscard]] std::vector<ExechonTrackerResult> runExechonTrackers(const Campaign& campaign,
                                                                    std::uint64_t seed);
+
+/// One hybrid tracker measurement's result.
+struct HybridTrackerResult {
+  const HybridTrackerSetup* setup = nullptr;   ///< points into the campaign
+  std::vector<HybridTrackerReading> readings;  ///< one per command
+};
+
+/// Runs every hybrid tracker measurement, each from RandomStream(seed, setup.name). Throws
+/// pkm::InvalidArgument (validateTrackers, simulateHybridTracker).
+[[nodiscard]] std::vector<HybridTrackerResult> runHybridTrackers(const Campaign& campaign,
+                                                                 std::uint64_t seed);
 
 }  // namespace pkm::simulation

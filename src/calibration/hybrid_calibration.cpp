@@ -1,0 +1,187 @@
+#include "pkm/calibration/hybrid_calibration.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "detail/numeric_fit.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/geometry/so3.hpp"
+
+namespace pkm::calibration {
+namespace {
+
+constexpr double kAngleStep = 1e-7;   // rad, central-difference step of a squareness
+constexpr double kLengthStep = 1e-3;  // length unit, of a frame translation
+constexpr double kFrameAngleStep = 1e-6;
+
+kinematics::HybridSquareness fromVector(const Eigen::Ref<const Eigen::VectorXd>& v) {
+  kinematics::HybridSquareness s;
+  s.sz_x2 = v(0);
+  s.sx_p = v(1);
+  s.sy_p = v(2);
+  s.sz_p = v(3);
+  return s;
+}
+
+geometry::RigidTransform frameOf(const geometry::RigidTransform& initial,
+                                 const Eigen::Ref<const Eigen::VectorXd>& delta) {
+  geometry::RigidTransform f;
+  f.rotation = geometry::so3Exp(delta.tail<3>()) * initial.rotation;
+  f.translation = initial.translation + delta.head<3>();
+  return f;
+}
+
+}  // namespace
+
+const std::vector<std::string>& hybridSquarenessNames() {
+  static const std::vector<std::string> names{"szX2", "sxP", "syP", "szP"};
+  return names;
+}
+
+void HybridCalibrationOptions::validate() const {
+  PKM_CHECK(
+      max_iterations >= 1, "calibration: max_iterations must be >= 1, got {}", max_iterations);
+  PKM_CHECK(loss == RobustLoss::kNone || (loss_scale > 0.0 && std::isfinite(loss_scale)),
+            "calibration: a robust loss needs loss_scale > 0");
+  PKM_CHECK(measurement_sigma >= 0.0 && std::isfinite(measurement_sigma),
+            "calibration: measurement_sigma must be finite and >= 0");
+  PKM_CHECK(worst_count >= 0, "calibration: worst_count must be >= 0");
+}
+
+std::optional<Eigen::Vector3d> hybridTarget(const kinematics::HybridMachineModel& model,
+                                            const kinematics::GeometricErrors& known,
+                                            const kinematics::HybridSquareness& squareness,
+                                            const kinematics::HybridCommand& command,
+                                            const Eigen::Vector3d& target_offset,
+                                            const TripodMotion& tripod) {
+  kinematics::HybridErrorValues values = kinematics::evaluateHybridErrors(known, command);
+  values.squareness = squareness;
+  Eigen::Isometry3d T = kinematics::hybridActualPose(model, values, command);
+  if (tripod) {
+    const auto E = tripod(command.pkm);
+    if (!E) return std::nullopt;
+    T = T * *E;
+  }
+  return Eigen::Vector3d(T * target_offset);
+}
+
+HybridCalibrationSummary calibrateHybridSquareness(const kinematics::HybridMachineModel& model,
+                                                   const kinematics::GeometricErrors& known,
+                                                   const HybridCalibrationData& data,
+                                                   const HybridCalibrationOptions& options,
+                                                   const TripodMotion& tripod) {
+  options.validate();
+  model.validate();
+  known.validate();
+  for (std::size_t k = 0; k < data.observations.size(); ++k) {
+    const HybridObservation& o = data.observations[k];
+    PKM_CHECK(std::isfinite(o.command.x2) && std::isfinite(o.command.y2) &&
+                  o.command.pkm.allFinite() && o.point.allFinite(),
+              "{}: a non-finite value",
+              o.source.empty() ? fmt::format("observation {}", k + 1) : o.source);
+  }
+  PKM_CHECK(data.target_offset.allFinite(), "calibration: the target offset is not finite");
+  const bool has_frame = data.measurement_frame.has_value();
+  const geometry::RigidTransform frame0 =
+      has_frame ? *data.measurement_frame : geometry::RigidTransform{};
+
+  detail::NumericProblem problem;
+  problem.names = hybridSquarenessNames();
+  if (has_frame)
+    for (const std::string& n : measurementFrameNames()) problem.names.push_back(n);
+  const Eigen::Index n = problem.unknowns();
+  problem.step.resize(n);
+  problem.step.head<4>().setConstant(kAngleStep);
+  if (has_frame) {
+    problem.step.segment<3>(4).setConstant(kLengthStep);
+    problem.step.tail<3>().setConstant(kFrameAngleStep);
+  }
+  problem.rows.assign(data.observations.size(), 3);
+  const auto evaluate =
+      [&](const HybridCalibrationData& d, const Eigen::VectorXd& theta, std::size_t b, double* r) {
+        const HybridObservation& o = d.observations[b];
+        const auto p = hybridTarget(
+            model, known, fromVector(theta.head<4>()), o.command, d.target_offset, tripod);
+        if (!p) return false;
+        Eigen::Vector3d measured = o.point;
+        if (has_frame) {
+          const geometry::RigidTransform f = frameOf(frame0, theta.tail(6));
+          measured = f.rotation * o.point + f.translation;
+        }
+        Eigen::Map<Eigen::Vector3d> out(r);
+        out = measured - *p;
+        return true;
+      };
+  problem.residual = [&](const Eigen::VectorXd& theta, std::size_t b, double* r) {
+    return evaluate(data, theta, b, r);
+  };
+  // Structural identifiability on data the zero-squareness model explains exactly.
+  HybridCalibrationData consistent = data;
+  for (HybridObservation& o : consistent.observations)
+    if (const auto p = hybridTarget(model, known, {}, o.command, data.target_offset, tripod))
+      o.point = frame0.rotation.transpose() * (*p - frame0.translation);
+  detail::NumericProblem structural = problem;
+  structural.residual = [&](const Eigen::VectorXd& theta, std::size_t b, double* r) {
+    return evaluate(consistent, theta, b, r);
+  };
+
+  detail::NumericOptions no;
+  no.free.assign(static_cast<std::size_t>(n), true);
+  for (std::size_t k = 0; k < 4; ++k) no.free[k] = options.free[k];
+  no.max_iterations = options.max_iterations;
+  no.loss = options.loss;
+  no.loss_scale = options.loss_scale;
+  no.measurement_sigma = options.measurement_sigma;
+  no.identifiability = options.identifiability;
+
+  const Eigen::VectorXd theta0 = Eigen::VectorXd::Zero(n);
+  HybridCalibrationSummary out;
+  const auto statistics = [&](const Eigen::VectorXd& theta) {
+    ResidualStatistics s;
+    double sum = 0.0;
+    for (std::size_t b = 0; b < data.observations.size(); ++b) {
+      double r[3];
+      if (!evaluate(data, theta, b, r)) {
+        ++s.fk_failures;
+        continue;
+      }
+      for (const double v : r) {
+        sum += v * v;
+        s.max = std::max(s.max, std::fabs(v));
+      }
+      s.equations += 3;
+    }
+    s.rms = s.equations > 0 ? std::sqrt(sum / s.equations) : 0.0;
+    return s;
+  };
+  out.before = statistics(theta0);
+  const detail::NumericSolution sol = detail::solveNumeric(problem, theta0, no, &structural);
+  out.converged = sol.converged;
+  out.termination = sol.termination;
+  out.iterations = sol.iterations;
+  out.initial_cost = sol.initial_cost;
+  out.final_cost = sol.final_cost;
+  out.seconds = sol.seconds;
+  out.squareness = fromVector(sol.theta.head<4>());
+  out.standard_deviation = sol.standard_deviation.head<4>();
+  out.identifiability = sol.identifiability;
+  if (has_frame) out.measurement_frame = frameOf(frame0, sol.theta.tail(6));
+  out.after = statistics(sol.theta);
+  std::vector<WorstObservation> all;
+  for (std::size_t b = 0; b < data.observations.size(); ++b) {
+    double r[3];
+    if (!evaluate(data, sol.theta, b, r)) continue;
+    const std::string& src = data.observations[b].source;
+    all.push_back({b,
+                   src.empty() ? fmt::format("observation {}", b + 1) : src,
+                   Eigen::Map<const Eigen::Vector3d>(r).norm()});
+  }
+  std::sort(all.begin(), all.end(), [](const WorstObservation& a, const WorstObservation& b) {
+    return a.residual > b.residual;
+  });
+  all.resize(std::min(all.size(), static_cast<std::size_t>(options.worst_count)));
+  out.worst = std::move(all);
+  return out;
+}
+
+}  // namespace pkm::calibration
