@@ -76,14 +76,28 @@ ordered_json holdout(const kinematics::ExechonModel& model,
           {"max", worst}};
 }
 
-/// The tool-point error of the nominal controller on the calibrated machine over the PKM working
-/// box (5 × 5 × 5 points, tool vertical −z): nominal IK, calibrated FK; mean, 95 %, max.
+/// mean, 95 %, max of `values` (empty: nullopt).
+std::optional<ordered_json> statisticsJson(std::vector<double> values) {
+  if (values.empty()) return std::nullopt;
+  std::sort(values.begin(), values.end());
+  double mean = 0.0;
+  for (const double e : values) mean += e / static_cast<double>(values.size());
+  const auto p95 = values[static_cast<std::size_t>(0.95 * static_cast<double>(values.size() - 1))];
+  return ordered_json{
+      {"points", values.size()}, {"mean", mean}, {"p95", p95}, {"max", values.back()}};
+}
+
+/// Over the PKM working box (5 × 5 × 5 points, tool vertical −z): "before", the tool-point error
+/// of the nominal controller on the calibrated machine (nominal IK, calibrated FK: what the
+/// calibration removes), and "after", the linearised tool-point uncertainty the calibration leaves
+/// (exechonTargetUncertainty with the estimate's covariance).
 std::optional<ordered_json> workspaceMap(const io::ExechonMachine& machine,
-                                         const kinematics::ExechonModel& calibrated) {
+                                         const kinematics::ExechonModel& calibrated,
+                                         const Eigen::MatrixXd& covariance) {
   if (!machine.hybrid) return std::nullopt;
   const Eigen::Vector3d lo = machine.hybrid->pkm_min, hi = machine.hybrid->pkm_max;
   if (!lo.allFinite() || !hi.allFinite()) return std::nullopt;
-  std::vector<double> errors;
+  std::vector<double> errors, uncertainty;
   kinematics::ExechonData nom(machine.model), cal_data(calibrated);
   constexpr int kSteps = 5;
   for (int i = 0; i < kSteps; ++i)
@@ -94,22 +108,20 @@ std::optional<ordered_json> workspaceMap(const io::ExechonMachine& machine,
         target.position = lo + f.cwiseProduct(hi - lo);
         target.direction = -Eigen::Vector3d::UnitZ();
         if (!kinematics::checkToolPose(machine.model, nom, target).ok()) continue;
-        if (!kinematics::toolForwardKinematics(calibrated,
-                                               cal_data,
-                                               kinematics::jointsOf(nom),
-                                               kinematics::configurationOf(nom),
-                                               machine.fk)
-                 .ok())
+        const kinematics::ExechonJoints joints = kinematics::jointsOf(nom);
+        const kinematics::ExechonConfiguration seed = kinematics::configurationOf(nom);
+        if (!kinematics::toolForwardKinematics(calibrated, cal_data, joints, seed, machine.fk).ok())
           continue;
         errors.push_back((cal_data.world_p_tool - target.position).norm());
+        if (const auto u = cal::exechonTargetUncertainty(
+                calibrated, covariance, joints, Eigen::Vector3d::Zero(), seed, machine.fk))
+          uncertainty.push_back(*u);
       }
-  if (errors.empty()) return std::nullopt;
-  std::sort(errors.begin(), errors.end());
-  double mean = 0.0;
-  for (const double e : errors) mean += e / static_cast<double>(errors.size());
-  const auto p95 = errors[static_cast<std::size_t>(0.95 * static_cast<double>(errors.size() - 1))];
-  return ordered_json{
-      {"points", errors.size()}, {"mean", mean}, {"p95", p95}, {"max", errors.back()}};
+  const auto before = statisticsJson(errors);
+  if (!before) return std::nullopt;
+  ordered_json out{{"before", *before}};
+  if (const auto after = statisticsJson(uncertainty)) out["after"] = *after;
+  return out;
 }
 
 /// The tripod and wrist from the PKM tracker files: fills `result`, `j` and the report `t`.
@@ -201,7 +213,7 @@ void fitTripod(const ExechonArgs& args,
   ordered_json worst = ordered_json::array();
   for (const auto& w : s.worst) worst.push_back({{"source", w.source}, {"residual", w.residual}});
   j["worst_observations"] = worst;
-  if (const auto map = workspaceMap(machine, result.model)) j["tcp_error_map"] = {{"before", *map}};
+  if (const auto map = workspaceMap(machine, result.model, s.covariance)) j["tcp_error_map"] = *map;
   ordered_json params = ordered_json::array();
   for (int k = 0; k < cal::kExechonParameters; ++k)
     params.push_back(
@@ -253,6 +265,13 @@ void fitTripod(const ExechonArgs& args,
         j["tcp_error_map"]["before"]["mean"].get<double>(),
         j["tcp_error_map"]["before"]["p95"].get<double>(),
         j["tcp_error_map"]["before"]["max"].get<double>());
+  if (j.contains("tcp_error_map") && j["tcp_error_map"].contains("after"))
+    t += fmt::format(
+        "working-volume tool uncertainty after calibration (linearised covariance): mean {:.6g}, "
+        "95 % {:.6g}, max {:.6g}\n",
+        j["tcp_error_map"]["after"]["mean"].get<double>(),
+        j["tcp_error_map"]["after"]["p95"].get<double>(),
+        j["tcp_error_map"]["after"]["max"].get<double>());
 }
 
 /// CAL.errors.json for --out CAL.json.

@@ -145,6 +145,24 @@ TEST(ExechonCalibration, NoisyTrackerFrameDataMeetsTheHeldOutTarget) {
   }
   EXPECT_LT(worst, kHeldOutFactor * kNoise * std::sqrt(3.0));
   EXPECT_GT(sum.standard_deviation(0), 0.0);
+  // The linearised target uncertainty is positive, below the noise-free scale of the errors, and
+  // zero for a zero covariance.
+  const auto u =
+      exechonTargetUncertainty(est, sum.covariance, readings[0].joints, hold.smr_offset, est.home);
+  ASSERT_TRUE(u.has_value());
+  EXPECT_GT(*u, 0.0);
+  EXPECT_LT(*u, 0.5);
+  const auto zero =
+      exechonTargetUncertainty(est,
+                               Eigen::MatrixXd::Zero(kExechonParameters, kExechonParameters),
+                               readings[0].joints,
+                               hold.smr_offset,
+                               est.home);
+  ASSERT_TRUE(zero.has_value());
+  EXPECT_EQ(*zero, 0.0);
+  EXPECT_THROW((void)exechonTargetUncertainty(
+                   est, Eigen::MatrixXd::Zero(3, 3), readings[0].joints, hold.smr_offset, est.home),
+               InvalidArgument);
 }
 
 TEST(ExechonCalibration, CauchyLossSurvivesAnOutlierAndNamesIt) {

@@ -99,6 +99,18 @@ struct ExechonCalibrationSummary {
     const kinematics::ExechonConfiguration& seed,
     const kinematics::FkOptions& fk = {});
 
+/// The linearised uncertainty of the target position at `joints` left by the calibration:
+/// √trace(J·Σ·Jᵀ) with J = ∂p/∂θ (central differences through the tool FK) and Σ the 24 × 24
+/// parameter block of ExechonCalibrationSummary::covariance (model length unit). nullopt when the
+/// FK does not converge. Throws pkm::InvalidArgument when Σ is smaller than 24 × 24.
+[[nodiscard]] std::optional<double> exechonTargetUncertainty(
+    const kinematics::ExechonModel& estimated,
+    const Eigen::MatrixXd& covariance,
+    const kinematics::ExechonJoints& joints,
+    const Eigen::Vector3d& target_offset,
+    const kinematics::ExechonConfiguration& seed,
+    const kinematics::FkOptions& fk = {});
+
 /// A starting world_T_measurement: the rigid fit of the measured points to the targets `model`
 /// predicts. Throws pkm::InvalidArgument when fewer than 3 observations have a converging FK.
 [[nodiscard]] geometry::RigidTransform initialExechonMeasurementFrame(
