@@ -9,7 +9,7 @@ packages=(
   libeigen3-dev libceres-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang-format bc
-  libboost-python1.74.0
+  libboost-python1.74.0 libsqlite3-dev
 )
 
 missing=()

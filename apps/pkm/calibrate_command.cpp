@@ -6,8 +6,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "analyze_common.hpp"
@@ -21,6 +23,7 @@
 #include "pkm/io/calibration_files.hpp"
 #include "pkm/io/hexapod_machine.hpp"
 #include "pkm/io/linuxcnc_hal.hpp"
+#include "pkm/io/result_store.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/simulation/hexapod_workspace.hpp"
 
@@ -47,6 +50,7 @@ struct CalibrateArgs {
   double sigma_gauge = 0.0;
   int threads = 0;
   bool backlash = false;
+  std::string db;  ///< result store to record the calibration in (empty: none)
 };
 
 /// Held-out TCP position errors: |FK(q) target in the measurement frame − measured|.
@@ -313,6 +317,15 @@ void runCalibrate(const CalibrateArgs& args) {
   writeOutputFile(paths.machine, io::writeHexapodJson(result));
   writeOutputFile(paths.hal, io::writeLinuxcncSetp(result));
   writeOutputFile(paths.summary, j.dump(2) + "\n");
+  if (!args.db.empty())
+    recordCalibration(args.db,
+                      machine.model.name,
+                      "hexapod",
+                      "calibrate hexapod",
+                      args.data,
+                      j,
+                      std::string(toString(model.unit)),
+                      {{"linuxcnc-hal", paths.hal}, {"machine-json", paths.machine}});
   if (args.json) {
     printJson(j);
     return;
@@ -390,6 +403,74 @@ CalibrationOutputs calibrationOutputs(const std::string& out) {
   return {out, stem + ".hal", stem + ".summary.json"};
 }
 
+namespace {
+
+/// Adds the numeric leaves under `j` (path `prefix`) as results; a path component "before",
+/// "after" becomes the stage.
+void addLeaves(const ordered_json& j,
+               const std::string& prefix,
+               const std::string& stage,
+               const std::string& unit,
+               std::vector<io::ResultRecord>& out) {
+  if (j.is_number()) {
+    const double v = j.get<double>();
+    if (std::isfinite(v)) out.push_back({prefix, stage.empty() ? "estimate" : stage, v, unit});
+    return;
+  }
+  if (j.is_array()) {
+    for (std::size_t k = 0; k < j.size(); ++k)
+      addLeaves(j[k], fmt::format("{}.{}", prefix, k), stage, unit, out);
+    return;
+  }
+  if (!j.is_object()) return;
+  for (const auto& [key, value] : j.items()) {
+    if (key == "before" || key == "after") {
+      addLeaves(value, prefix, key, unit, out);
+      continue;
+    }
+    if (key == "equations" || key == "poses" || key == "points" || key == "fk_failures" ||
+        key == "failures")
+      continue;  // counts, not results
+    addLeaves(value, prefix.empty() ? key : fmt::format("{}.{}", prefix, key), stage, unit, out);
+  }
+}
+
+}  // namespace
+
+void recordCalibration(const std::string& db,
+                       const std::string& machine,
+                       const std::string& machine_type,
+                       const std::string& campaign,
+                       const std::vector<std::string>& files,
+                       const ordered_json& summary,
+                       const std::string& length_unit,
+                       const std::vector<std::pair<std::string, std::string>>& compensations) {
+  io::CampaignRecord c;
+  c.machine = machine;
+  c.machine_type = machine_type;
+  c.name = campaign;
+  c.source = fmt::format("{}", fmt::join(files, " "));
+  for (const std::string& f : files) c.measurements.push_back({f, "calibration-data", f, 0});
+  for (const char* key : {"residuals", "holdout", "tcp_error_map"})
+    if (summary.contains(key)) addLeaves(summary[key], key, "", length_unit, c.results);
+  if (summary.contains("backlash"))
+    addLeaves(summary["backlash"]["values"], "backlash", "estimate", length_unit, c.results);
+  if (summary.contains("hybrid")) {
+    const ordered_json& h = summary["hybrid"];
+    addLeaves(h["squareness"], "squareness", "estimate", "rad", c.results);
+    addLeaves(h["residuals"], "hybrid.residuals", "", length_unit, c.results);
+    if (h.contains("holdout"))
+      addLeaves(h["holdout"], "hybrid.holdout", "", length_unit, c.results);
+  }
+  for (const auto& [target, path] : compensations) {
+    std::ifstream in(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    c.compensations.push_back({target, path, text});
+  }
+  io::ResultStore store(db);
+  (void)store.store(c);
+}
+
 void writeOutputFile(const std::string& path, const std::string& text) {
   std::ofstream f(path, std::ios::binary | std::ios::trunc);
   if (!f) throw IoError(locate(path, 0, "cannot write the file"));
@@ -445,6 +526,7 @@ void addCalibrateCommand(CLI::App& app) {
       args->sigma_gauge,
       "Monte Carlo: dial-gauge noise, machine unit (default: the fitted residual sigma)");
   hex->add_option("--threads", args->threads, "Monte Carlo worker threads (default: all cores)");
+  hex->add_option("--db", args->db, "also record the calibration in this result store (pkm.db)");
   hex->add_flag("--backlash",
                 args->backlash,
                 "also estimate a per-strut backlash; approach directions follow from the row order "

@@ -43,6 +43,7 @@ struct ExechonArgs {
   bool force = false;
   bool json = false;
   std::string errors;  ///< known geometric errors (PDGE) of a hybrid machine
+  std::string db;      ///< result store to record the calibration in (empty: none)
 };
 
 ordered_json toJson(const cal::ResidualStatistics& s) {
@@ -503,6 +504,18 @@ void runExechon(const ExechonArgs& args) {
   if (hybrid) writeOutputFile(errors_path, j["hybrid"]["errors_file"].get<std::string>());
   if (hybrid) j["hybrid"].erase("errors_file");
   writeOutputFile(paths.summary, j.dump(2) + "\n");
+  if (!args.db.empty()) {
+    std::vector<std::pair<std::string, std::string>> comps{{"machine-json", paths.machine}};
+    if (hybrid) comps.emplace_back("errors-json", errors_path);
+    recordCalibration(args.db,
+                      machine.model.name,
+                      machine.hybrid ? "hybrid" : "exechon",
+                      "calibrate exechon",
+                      args.data,
+                      j,
+                      std::string(toString(machine.model.unit)),
+                      comps);
+  }
   if (args.json) {
     printJson(j);
     return;
@@ -548,6 +561,7 @@ void addCalibrateExechon(CLI::App& calibrate) {
                  "hybrid machines: the known geometric errors (PDGE tables; file or built-in) "
                  "under the squareness fit")
       ->capture_default_str();
+  ex->add_option("--db", args->db, "also record the calibration in this result store (pkm.db)");
   ex->add_flag("--force", args->force, "overwrite existing output files");
   ex->add_flag("--json", args->json, "print the summary as JSON");
   ex->callback([args] { runExechon(*args); });
