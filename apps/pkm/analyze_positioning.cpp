@@ -24,6 +24,7 @@
 #include "pkm/metrology/iso230_2.hpp"
 #include "pkm/metrology/parallelism.hpp"
 #include "pkm/metrology/straightness.hpp"
+#include "positioning_input.hpp"
 
 namespace pkm::cli {
 namespace {
@@ -32,59 +33,7 @@ using Json = nlohmann::ordered_json;
 
 // --- shared readers -----------------------------------------------------------------------
 
-/// A simulator measurement file (docs/formats.md "Measurement files"): target_mm and reading_mm.
-bool isMeasurementFile(const io::TextTable& t) {
-  return t.findColumn({"target_mm"}).has_value() && t.findColumn({"reading_mm"}).has_value();
-}
-
-/// Per-target mean of the readings of simulator files (over runs and directions), sorted.
-struct Profile {
-  std::vector<double> position, value;
-};
-
-Profile meanProfile(const std::vector<io::TextTable>& tables, bool minus_target) {
-  std::map<double, std::pair<double, int>> sums;
-  for (const io::TextTable& t : tables) {
-    const std::size_t ct = t.column({"target_mm"}), cr = t.column({"reading_mm"});
-    for (std::size_t r = 0; r < t.rows(); ++r) {
-      const double target = t.number(r, ct);
-      auto& [sum, n] = sums[target];
-      sum += t.number(r, cr) - (minus_target ? target : 0.0);
-      ++n;
-    }
-  }
-  Profile p;
-  for (const auto& [target, sum] : sums) {
-    p.position.push_back(target);
-    p.value.push_back(sum.first / sum.second);
-  }
-  return p;
-}
-
-/// Points (position, deviation) from plain `position,deviation` files (concatenated) or simulator
-/// straightness files (averaged per target).
-Profile readStraightness(const std::vector<std::string>& files) {
-  std::vector<io::TextTable> sim;
-  Profile p;
-  for (const std::string& f : files) {
-    io::TextTable t = io::TextTable::read(f);
-    if (isMeasurementFile(t)) {
-      sim.push_back(std::move(t));
-      continue;
-    }
-    const std::size_t cp = t.column({"position"}), cd = t.column({"deviation"});
-    for (std::size_t r = 0; r < t.rows(); ++r) {
-      p.position.push_back(t.number(r, cp));
-      p.value.push_back(t.number(r, cd));
-    }
-  }
-  if (!sim.empty()) {
-    const Profile m = meanProfile(sim, false);
-    p.position.insert(p.position.end(), m.position.begin(), m.position.end());
-    p.value.insert(p.value.end(), m.value.begin(), m.value.end());
-  }
-  return p;
-}
+// isMeasurementFile, Profile, meanProfile, readStraightness: positioning_input.hpp.
 
 std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : "-"; }
 
@@ -111,32 +60,7 @@ Json targetJson(const metrology::TargetStatistics& t) {
 }
 
 void runIso230_2(const Iso230_2State& st) {
-  std::vector<metrology::PositioningSample> samples;
-  std::map<std::tuple<double, int, long long>, std::pair<std::string, std::size_t>> seen;
-  for (const std::string& f : st.io.data) {
-    const io::TextTable t = io::TextTable::read(f);
-    const std::size_t ct = t.column({"target", "target_mm"});
-    const std::size_t cd = t.column({"direction"});
-    const std::size_t cr = t.column({"run"});
-    const std::size_t cm = t.column({"measured", "reading_mm"});
-    for (std::size_t r = 0; r < t.rows(); ++r) {
-      const double target = t.number(r, ct);
-      const int direction = t.direction(r, cd);
-      const long long run = t.integer(r, cr);
-      if (run < 1 || run > 1'000'000'000) t.fail(r, fmt::format("run must be >= 1, got {}", run));
-      const auto [it, fresh] = seen.try_emplace({target, direction, run}, t.source(), t.line(r));
-      if (!fresh) {
-        t.fail(r,
-               fmt::format("duplicate reading: target {}, direction {}, run {} (first at {}:{})",
-                           target,
-                           direction > 0 ? '+' : '-',
-                           run,
-                           it->second.first,
-                           it->second.second));
-      }
-      samples.push_back({target, direction, static_cast<int>(run), t.number(r, cm)});
-    }
-  }
+  const std::vector<metrology::PositioningSample> samples = readPositioningSamples(st.io.data);
   const metrology::Iso230_2Result r =
       metrology::evaluateIso230_2(samples, {.coverage_factor = st.coverage});
   if (st.io.json) {

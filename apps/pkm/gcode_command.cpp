@@ -1,0 +1,120 @@
+// `pkm gcode moves PROGRAM`: interpret an RS274NGC program with LinuxCNC semantics and write one
+// CSV row per motion in machine coordinates (docs/gcode.md).
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "cli_common.hpp"
+#include "pkm/cnc/interpreter.hpp"
+#include "pkm/core/error.hpp"
+
+namespace pkm::cli {
+namespace {
+
+struct MovesArgs {
+  std::string program;
+  std::string out;
+  bool force = false;
+  std::string tool_table;
+  std::string tool_units = "mm";
+  bool block_delete = false;
+  std::uint64_t max_iterations = 10'000'000;
+};
+
+/// Streams rows into a buffer flushed to stdout or a file.
+class CsvSink final : public cnc::MoveSink {
+ public:
+  explicit CsvSink(std::FILE* f) : file_(f) {
+    buffer_.reserve(kFlush + 4096);
+    buffer_ += cnc::kMoveCsvHeader;
+    buffer_ += '\n';
+  }
+  void onMove(const cnc::Move& m) override {
+    cnc::appendMoveCsv(buffer_, m);
+    if (buffer_.size() > kFlush) flush();
+  }
+  void flush() {
+    if (!buffer_.empty()) std::fwrite(buffer_.data(), 1, buffer_.size(), file_);
+    buffer_.clear();
+  }
+
+ private:
+  static constexpr std::size_t kFlush = 1 << 20;
+  std::FILE* file_;
+  std::string buffer_;
+};
+
+void runMoves(const MovesArgs& a) {
+  if (a.tool_units != "mm" && a.tool_units != "inch")
+    throw InvalidArgument(fmt::format("--tool-units must be mm or inch, not '{}'", a.tool_units));
+  if (a.max_iterations == 0) throw InvalidArgument("--max-iterations must be positive");
+  if (!a.out.empty() && !a.force && std::filesystem::exists(a.out))
+    throw IoError(fmt::format("{} exists; pass --force to overwrite it", a.out));
+  cnc::InterpreterOptions options;
+  if (!a.tool_table.empty())
+    options.tools =
+        cnc::ToolTable::load(a.tool_table, a.tool_units == "inch" ? cnc::kMmPerInch : 1.0);
+  options.block_delete = a.block_delete;
+  options.max_loop_iterations = a.max_iterations;
+  const cnc::Program program = cnc::Program::load(a.program);
+  cnc::Interpreter interpreter(std::move(options));
+  // Interpret into a temporary file first so that an error leaves no partial output file.
+  std::FILE* f = stdout;
+  std::string tmp;
+  if (!a.out.empty()) {
+    tmp = a.out + ".tmp";
+    f = std::fopen(tmp.c_str(), "wb");
+    if (f == nullptr) throw IoError(fmt::format("{}: cannot write", a.out));
+  }
+  try {
+    CsvSink sink(f);
+    const cnc::RunSummary s = interpreter.run(program, sink);
+    sink.flush();
+    fmt::print(stderr,
+               "pkm: note: {} lines, {} blocks executed, {} moves{}\n",
+               program.lineCount(),
+               s.blocks,
+               s.moves,
+               s.ended_by_m2 ? "" : " (no M2/M30 at the end)");
+  } catch (...) {
+    if (f != stdout) {
+      std::fclose(f);
+      std::filesystem::remove(tmp);
+    }
+    throw;
+  }
+  if (f != stdout) {
+    if (std::fclose(f) != 0) throw IoError(fmt::format("{}: write failed", a.out));
+    std::filesystem::rename(tmp, a.out);
+  } else {
+    std::fflush(stdout);
+  }
+}
+
+void addGcodeCommand(CLI::App& app) {
+  CLI::App* g = app.add_subcommand("gcode", "RS274NGC (LinuxCNC) G-code programs");
+  g->require_subcommand(1);
+  auto a = std::make_shared<MovesArgs>();
+  CLI::App* m = g->add_subcommand(
+      "moves",
+      "interpret PROGRAM and write one CSV row per motion in machine coordinates (mm, deg)");
+  m->add_option("program", a->program, "G-code file (.ngc)")->required();
+  m->add_option("--out", a->out, "write the CSV to FILE instead of standard output");
+  m->add_flag("--force", a->force, "overwrite an existing --out file");
+  m->add_option("--tool-table", a->tool_table, "LinuxCNC tool table (.tbl) for G43 and M6");
+  m->add_option("--tool-units",
+                a->tool_units,
+                "length unit of the tool table: mm (default) or inch (the machine's unit)");
+  m->add_flag("--block-delete", a->block_delete, "skip lines starting with '/'");
+  m->add_option("--max-iterations",
+                a->max_iterations,
+                "iterations one loop may make before the program is rejected (default 1e7)");
+  m->callback([a] { runMoves(*a); });
+}
+
+const CommandRegistration kRegisterGcode{60, &addGcodeCommand};
+
+}  // namespace
+}  // namespace pkm::cli

@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer harness of the G-code interpreter with clang++-14 (ASan + UBSan) and runs
+# it for SECONDS (default 180) on a corpus seeded with the shipped programs.
+# Usage: fuzz/run.sh [SECONDS]   (from the repository root; writes build-fuzz/)
+set -euo pipefail
+seconds=${1:-180}
+root=$(cd "$(dirname "$0")/.." && pwd)
+out="$root/build-fuzz"
+mkdir -p "$out/corpus"
+cp "$root"/examples/gcode/*.ngc "$root"/tests/cnc/corpus/*.ngc "$out/corpus/"
+clang++-14 -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
+  -I"$root/include" -I"$root/src" \
+  "$root/fuzz/fuzz_gcode.cpp" "$root"/src/cnc/*.cpp "$root/src/core/error.cpp" \
+  -lfmt -o "$out/fuzz_gcode"
+"$out/fuzz_gcode" -max_total_time="$seconds" -max_len=2048 -timeout=10 -rss_limit_mb=2048 \
+  -print_final_stats=1 "$out/corpus"

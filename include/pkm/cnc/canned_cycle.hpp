@@ -1,0 +1,49 @@
+/// @file
+/// @brief Expansion of the XY-plane drilling cycles G73, G81, G82, G83, G85, G89 into rapids,
+/// feeds and dwells, after LinuxCNC 2.9 (G-code reference "G73", "G81".."G89", "G98, G99",
+/// "Preliminary and In-Between Motion"; checked motion by motion against rs274).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace pkm::cnc {
+
+/// One step of an expanded cycle, in program coordinates (mm).
+struct CycleStep {
+  enum class Kind { kRapid, kFeed, kDwell };
+  Kind kind = Kind::kRapid;
+  std::array<double, 3> to{};  ///< target X, Y, Z (program coordinates, mm)
+  double seconds = 0.0;        ///< dwell time of kDwell
+};
+
+/// Inputs of one canned-cycle block (all lengths in mm, program coordinates).
+struct CycleRequest {
+  int code = 81;                    ///< 73, 81, 82, 83, 85 or 89
+  std::array<double, 3> current{};  ///< position before the block
+  bool incremental = false;         ///< G91: X Y R are increments, Z is relative to R
+  bool retract_to_r = true;         ///< G99 (true) or G98 (false)
+  bool has_x = false, has_y = false;
+  double x = 0.0, y = 0.0;     ///< X/Y word (absolute, or increments per repeat)
+  double r = 0.0;              ///< R word (absolute, or increment from initial_level)
+  double z = 0.0;              ///< Z word (absolute, or increment from the R plane)
+  double initial_level = 0.0;  ///< Z before the first cycle block of the sequence (cycle_il)
+  double q = 0.0;              ///< peck increment of G73/G83 (> 0)
+  double p = 0.0;              ///< dwell of G82/G89 (s)
+  int repeats = 1;             ///< L
+  /// Most steps the expansion may produce (L repeats times pecks): guards against a runaway
+  /// cycle such as L1e9 or a tiny Q.
+  std::uint64_t max_steps = 10'000'000;
+};
+
+/// Expands a cycle. Appends the steps to `out` and returns the final position. Throws
+/// GcodeError when the R plane is below the bottom, Q <= 0 for a pecking cycle, or the expansion
+/// would exceed `max_steps`.
+std::array<double, 3> expandCycle(const CycleRequest& request, std::vector<CycleStep>& out);
+
+/// The small retract of G73 and the approach gap of G83: 0.010 in = 0.254 mm (rs274ngc
+/// G83_RAPID_DELTA).
+inline constexpr double kPeckClearanceMm = 0.254;
+
+}  // namespace pkm::cnc

@@ -1,0 +1,61 @@
+/// @file
+/// @brief RS274NGC interpreter with LinuxCNC 2.9 semantics: executes a Program and reports every
+/// motion, in machine coordinates (mm, degrees), to a MoveSink (docs/gcode.md lists the supported
+/// codes; anything else is an error naming the line).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "pkm/cnc/modal_state.hpp"
+#include "pkm/cnc/move.hpp"
+#include "pkm/cnc/program.hpp"
+#include "pkm/cnc/tool_table.hpp"
+
+namespace pkm::cnc {
+
+/// Interpreter settings.
+struct InterpreterOptions {
+  ToolTable tools;            ///< tool table for G43 / M6 (lengths in mm)
+  bool block_delete = false;  ///< skip lines starting with '/' (LinuxCNC's block delete switch)
+  /// Iterations one activation of a while/do/repeat loop may make before the program is
+  /// rejected as runaway (no hang on `while [1]`); also the most motions one canned-cycle block
+  /// may expand to (L repeats times pecks).
+  std::uint64_t max_loop_iterations = 10'000'000;
+  /// Deepest subroutine nesting.
+  std::size_t max_call_depth = 64;
+};
+
+/// What a run did.
+struct RunSummary {
+  std::size_t blocks = 0;    ///< blocks executed (loops counted per pass)
+  std::size_t moves = 0;     ///< motions sent to the sink
+  bool ended_by_m2 = false;  ///< the program ended with M2 or M30
+};
+
+/// Executes programs. One interpreter keeps its state (offsets, modes) from run to run, as a
+/// controller does; construct a new one for a fresh start (G54, G17, G21, G90, G94, G99, no
+/// offsets, machine at 0).
+class Interpreter {
+ public:
+  explicit Interpreter(InterpreterOptions options = {});
+  ~Interpreter();
+  Interpreter(const Interpreter&) = delete;
+  Interpreter& operator=(const Interpreter&) = delete;
+
+  /// Runs `program`, sending each motion to `sink`. Throws pkm::IoError "FILE:LINE: message" for
+  /// an unsupported code, a modal-group conflict, a missing or misplaced word, an expression
+  /// error, a runaway loop, an undefined subroutine.
+  RunSummary run(const Program& program, MoveSink& sink);
+
+  /// The modal state and offsets now.
+  [[nodiscard]] const MachineState& state() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pkm::cnc

@@ -1,0 +1,68 @@
+/// @file
+/// @brief One motion of an interpreted G-code program in machine coordinates, the sink interface
+/// that receives motions as they are produced, and the `pkm gcode moves` CSV row format
+/// (docs/gcode.md).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace pkm::cnc {
+
+/// Kind of motion: G0 rapid, G1 (and canned-cycle feeds) linear feed, G2/G3 arc.
+enum class MoveKind { kRapid, kLinear, kArc };
+
+/// Active plane of G17/G18/G19 (the arc plane; its normal is Z, Y, X respectively).
+enum class Plane { kXY, kXZ, kYZ };
+
+/// "rapid", "linear" or "arc".
+[[nodiscard]] const char* toString(MoveKind kind);
+/// "XY", "XZ" or "YZ".
+[[nodiscard]] const char* toString(Plane plane);
+
+/// One motion, everything in machine coordinates: G5x, G92 and tool length offsets applied,
+/// lengths in mm and angles in degrees whatever G20/G21 said (LinuxCNC's machine position).
+struct Move {
+  std::size_t line = 0;              ///< 1-based source line of the block that caused it
+  MoveKind kind = MoveKind::kRapid;  ///< rapid, linear feed or arc
+  std::array<double, 6> end{};       ///< end point X, Y, Z (mm), A, B, C (deg)
+  /// Arc centre X, Y, Z (mm) for arcs; the coordinate along the plane normal is NaN (a helix has
+  /// no single centre height); all NaN for lines.
+  std::array<double, 3> centre{std::numeric_limits<double>::quiet_NaN(),
+                               std::numeric_limits<double>::quiet_NaN(),
+                               std::numeric_limits<double>::quiet_NaN()};
+  /// Signed number of turns of an arc: G2 (clockwise seen from the plane normal) negative, G3
+  /// positive, |turns| = P (default 1); 0 for lines. LinuxCNC's ARC_FEED "rotation".
+  int turns = 0;
+  Plane plane = Plane::kXY;  ///< plane active when the move was made
+  /// Feed rate in mm/min; NaN for rapids. In inverse-time mode (G93) the equivalent rate
+  /// (path length x F), see docs/gcode.md.
+  double feed = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// Receives motions in program order (a later `gcode run` streams them instead of collecting).
+class MoveSink {
+ public:
+  virtual ~MoveSink() = default;
+  /// Called once per motion, in execution order.
+  virtual void onMove(const Move& move) = 0;
+};
+
+/// A sink that keeps every motion in a vector.
+class MoveCollector final : public MoveSink {
+ public:
+  void onMove(const Move& move) override { moves.push_back(move); }
+  std::vector<Move> moves;  ///< the motions received, in order
+};
+
+/// Header of the moves CSV: `line,kind,x,y,z,a,b,c,cx,cy,cz,turns,plane,feed`.
+inline constexpr const char* kMoveCsvHeader = "line,kind,x,y,z,a,b,c,cx,cy,cz,turns,plane,feed";
+
+/// Appends one CSV row (with the newline) for `move`: numbers in shortest round-trip form,
+/// NaN fields (unused centre coordinates, the feed of a rapid) left empty.
+void appendMoveCsv(std::string& out, const Move& move);
+
+}  // namespace pkm::cnc

@@ -1,0 +1,71 @@
+// Arc centres, LinuxCNC 2.9 G-code reference "G2, G3 Arc Move" ("Center format", "Radius
+// format", the radius-difference rule quoted in arc.hpp) and rs274ngc's tolerances
+// TOLERANCE_INCH 0.0005 in, TOLERANCE_MM 0.005 mm.
+#include "pkm/cnc/arc.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "pkm/cnc/gcode_error.hpp"
+
+namespace pkm::cnc {
+
+namespace {
+constexpr double kMmPerInch = 25.4;
+double smallTolerance(bool inch) { return inch ? 0.0005 * kMmPerInch : 0.005; }
+double bigTolerance(bool inch) { return inch ? 0.05 * kMmPerInch : 0.5; }
+constexpr double kRelativeTolerance = 0.001;  // 0.1 %
+}  // namespace
+
+ArcCentre arcFromCentre(
+    double s1, double s2, double e1, double e2, double c1, double c2, bool inch) {
+  const double r1 = std::hypot(s1 - c1, s2 - c2);
+  const double r2 = std::hypot(e1 - c1, e2 - c2);
+  if (r1 == 0.0 || r2 == 0.0) throw GcodeError("zero-radius arc");
+  const double abs_err = std::abs(r1 - r2);
+  const double rel_err = abs_err / std::max(r1, r2);
+  if (abs_err > bigTolerance(inch) ||
+      (abs_err > smallTolerance(inch) && rel_err > kRelativeTolerance))
+    throw GcodeError(
+        fmt::format("radius to end of arc differs from radius to start: r1={:.4f} r2={:.4f} mm "
+                    "abs_err={:.4g} mm rel_err={:.4f}%",
+                    r1,
+                    r2,
+                    abs_err,
+                    100.0 * rel_err));
+  return {c1, c2, r1};
+}
+
+ArcCentre arcFromRadius(
+    double s1, double s2, double e1, double e2, double r, bool clockwise, bool inch) {
+  const double d1 = e1 - s1;
+  const double d2 = e2 - s2;
+  const double chord = std::hypot(d1, d2);
+  if (chord <= smallTolerance(inch))
+    throw GcodeError(
+        "radius-format arc with start and end the same point (use I J K for a full "
+        "circle)");
+  const double abs_r = std::abs(r);
+  double half = chord / 2.0;
+  if (half - abs_r > smallTolerance(inch))
+    throw GcodeError(
+        fmt::format("arc radius {:.4f} mm too small to reach the end point "
+                    "(half chord {:.4f} mm)",
+                    abs_r,
+                    half));
+  if (half > abs_r) half = abs_r;
+  // Direction from the chord midpoint to the centre: left normal for G3 with r > 0.
+  const bool right = (clockwise && r > 0.0) || (!clockwise && r < 0.0);
+  const double angle =
+      std::atan2(d2, d1) + (right ? -std::numbers::pi / 2.0 : std::numbers::pi / 2.0);
+  const double offset = std::sqrt(std::max(0.0, abs_r * abs_r - half * half));
+  ArcCentre a;
+  a.c1 = s1 + d1 / 2.0 + offset * std::cos(angle);
+  a.c2 = s2 + d2 / 2.0 + offset * std::sin(angle);
+  a.radius = abs_r;
+  return a;
+}
+
+}  // namespace pkm::cnc

@@ -1,0 +1,305 @@
+// One block: evaluate its words, check modal groups and word use, then execute in LinuxCNC's
+// order of execution (LinuxCNC 2.9 G-code overview, "G-code Order of Execution"): feed mode, F,
+// S, T, M6, spindle, coolant, G4, plane, units, cutter compensation, tool length offset,
+// coordinate system, path mode, distance mode, retract mode, G10/G92, motion, M0/M1/M2/M30.
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "interpreter_impl.hpp"
+#include "pkm/cnc/gcode_error.hpp"
+
+namespace pkm::cnc {
+
+namespace {
+
+constexpr double kIntegerTolerance = 0.0001;  // integer-valued words accept reals within this
+
+int toInt(double v, char letter) {
+  const double r = std::round(v);
+  if (std::abs(v - r) > kIntegerTolerance || std::abs(r) > 1e9)
+    throw GcodeError(fmt::format("{} word value {} is not an integer", letter, v));
+  return static_cast<int>(r);
+}
+
+std::string gName(int code) {
+  return code % 10 == 0 ? fmt::format("G{}", code / 10)
+                        : fmt::format("G{}.{}", code / 10, code % 10);
+}
+
+void setOnce(int& slot, int code, const char* prefix) {
+  if (slot >= 0)
+    throw GcodeError(fmt::format("two {} codes from the same modal group: {}{} and {}{}",
+                                 prefix,
+                                 prefix,
+                                 slot,
+                                 prefix,
+                                 code));
+  slot = code;
+}
+
+void setOnceG(int& slot, int code) {
+  if (slot >= 0)
+    throw GcodeError(
+        fmt::format("two G codes from the same modal group: {} and {}", gName(slot), gName(code)));
+  slot = code;
+}
+
+}  // namespace
+
+void Interpreter::Impl::resolve(const Block& block, ResolvedBlock& rb) {
+  rb = ResolvedBlock{};
+  rb.line = block.line;
+  for (const Word& w : block.words) {
+    const double v = w.value.evaluate(*this);
+    if (w.letter == 'g' || w.letter == 'm') {
+      if (w.letter == 'g') {
+        const double t = v * 10.0;
+        const double r = std::round(t);
+        if (std::abs(t - r) > 10.0 * kIntegerTolerance || r < 0.0 || r > 9999.0)
+          throw GcodeError(fmt::format("bad G code number {}", v));
+        if (rb.n_g == static_cast<int>(rb.g.size()))
+          throw GcodeError("too many G codes on one line");
+        rb.g[static_cast<std::size_t>(rb.n_g++)] = static_cast<int>(r);
+      } else {
+        const int m = toInt(v, 'M');
+        if (rb.n_m == static_cast<int>(rb.m.size()))
+          throw GcodeError("too many M codes on one line");
+        rb.m[static_cast<std::size_t>(rb.n_m++)] = m;
+      }
+      continue;
+    }
+    const auto i = static_cast<std::size_t>(w.letter - 'a');
+    rb.value[i] = v;
+    rb.has[i] = true;
+  }
+  // Parameter settings take effect after every value on the line has been read.
+  values.clear();
+  for (const Assignment& a : block.assignments) values.push_back(a.value.evaluate(*this));
+  for (std::size_t k = 0; k < block.assignments.size(); ++k) {
+    const Assignment& a = block.assignments[k];
+    if (a.named) {
+      params.setNamed(a.name, values[k]);
+    } else {
+      const double idx = a.index.evaluate(*this);
+      setNumbered(toInt(idx, '#'), values[k]);
+    }
+  }
+}
+
+BlockCodes Interpreter::Impl::classify(const ResolvedBlock& rb) const {
+  BlockCodes c;
+  for (int k = 0; k < rb.n_g; ++k) {
+    const int g = rb.g[static_cast<std::size_t>(k)];
+    switch (g) {
+      case 0:
+      case 10:
+      case 20:
+      case 30:
+      case 800:
+      case 810:
+      case 820:
+      case 830:
+      case 730:
+      case 850:
+      case 890:
+        // rs274 accepts G80 together with another motion code, which wins (checked with rs274:
+        // "G80 G0 X1" and "G0 G80 X1" both traverse).
+        if (g == 800 && c.motion >= 0) break;
+        if (c.motion == 800) c.motion = -1;
+        setOnceG(c.motion, g);
+        break;
+      case 40:
+      case 100:
+      case 530:
+      case 920:
+      case 921:
+      case 922:
+      case 923:
+        setOnceG(c.non_modal, g);
+        break;
+      case 170:
+      case 180:
+      case 190:
+        setOnceG(c.plane, g);
+        break;
+      case 900:
+      case 910:
+        setOnceG(c.distance, g);
+        break;
+      case 901:
+      case 911:
+        setOnceG(c.ijk, g);
+        break;
+      case 930:
+      case 940:
+        setOnceG(c.feed_mode, g);
+        break;
+      case 200:
+      case 210:
+        setOnceG(c.units, g);
+        break;
+      case 400:
+        setOnceG(c.cutter, g);
+        break;
+      case 430:
+      case 431:
+      case 490:
+        setOnceG(c.tlo, g);
+        break;
+      case 980:
+      case 990:
+        setOnceG(c.retract, g);
+        break;
+      case 540:
+      case 550:
+      case 560:
+      case 570:
+      case 580:
+      case 590:
+      case 591:
+      case 592:
+      case 593:
+        setOnceG(c.wcs, g);
+        break;
+      case 610:
+      case 611:
+      case 640:
+        setOnceG(c.path, g);
+        break;
+      case 410:
+      case 420:
+      case 411:
+      case 421:
+        throw GcodeError(fmt::format("{} cutter radius compensation is not supported", gName(g)));
+      default:
+        throw GcodeError(fmt::format("unsupported G code {}", gName(g)));
+    }
+  }
+  for (int k = 0; k < rb.n_m; ++k) {
+    const int m = rb.m[static_cast<std::size_t>(k)];
+    switch (m) {
+      case 0:
+      case 1:
+      case 2:
+      case 30:
+        setOnce(c.m_stop, m, "M");
+        break;
+      case 6:
+        setOnce(c.m_tool, m, "M");
+        break;
+      case 3:
+      case 4:
+      case 5:
+        setOnce(c.m_spindle, m, "M");
+        break;
+      case 7:
+        c.m_mist = true;
+        break;
+      case 8:
+        c.m_flood = true;
+        break;
+      case 9:
+        c.m_coolant_off = true;
+        break;
+      default:
+        throw GcodeError(fmt::format("unsupported M code M{}", m));
+    }
+  }
+  if (c.m_coolant_off && (c.m_mist || c.m_flood))
+    throw GcodeError("two M codes from the same modal group: M9 with M7/M8");
+  return c;
+}
+
+void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c) const {
+  const bool axis = rb.hasAxis();
+  const int motion = c.motion >= 0 ? c.motion : st.motion;
+  const bool arc = motion == 20 || motion == 30;
+  const bool canned = motion >= 730 && motion != 800;
+  const bool axis_user0 = c.non_modal == 100 || c.non_modal == 920 || c.tlo == 431;
+  if (axis_user0 && c.motion >= 0 && c.motion != 800 && axis)
+    throw GcodeError(fmt::format("cannot use two G codes that both use axis values ({} and {})",
+                                 gName(c.non_modal >= 0 ? c.non_modal : c.tlo),
+                                 gName(c.motion)));
+  if (axis && !axis_user0 && motion == 800)
+    throw GcodeError(c.motion == 800 ? "cannot use axis values with G80"
+                                     : "cannot use axis values without a G code that uses them "
+                                       "(motion mode is G80)");
+  if (c.non_modal == 920 && !axis) throw GcodeError("G92 needs at least one axis word");
+  if ((rb.hasWord('i') || rb.hasWord('j') || rb.hasWord('k')) &&
+      !(arc && c.non_modal != 100 && axis))
+    throw GcodeError("I, J or K word with no G2 or G3 to use it");
+  if (rb.hasWord('r') && !arc && !canned && c.non_modal != 100)
+    throw GcodeError("R word with no G2, G3, G10 or canned cycle to use it");
+  if (rb.hasWord('l') && !canned && c.non_modal != 100)
+    throw GcodeError("L word with no G10 or canned cycle to use it");
+  if (rb.hasWord('q') && !(motion == 830 || motion == 730) && c.path != 640)
+    throw GcodeError("Q word with no G73, G83 or G64 to use it");
+  if (rb.hasWord('p') && !(c.non_modal == 40 || c.non_modal == 100 || arc || motion == 820 ||
+                           motion == 890 || c.path == 640))
+    throw GcodeError("P word with no G4, G10, G2/G3, G64, G82 or G89 to use it");
+  if (rb.hasWord('h') && c.tlo != 430) throw GcodeError("H word with no G43 to use it");
+  if (rb.hasWord('d')) throw GcodeError("D word (cutter compensation) is not supported");
+  if (c.non_modal == 530 && !(c.motion == 0 || c.motion == 10))
+    throw GcodeError("G53 needs G0 or G1 in the same block");
+  if (c.non_modal == 530 && (c.distance == 910 || (c.distance < 0 && st.incremental)))
+    throw GcodeError("cannot use G53 in incremental distance mode");
+  for (char l : {'u', 'v', 'w'})
+    if (rb.hasWord(l)) throw GcodeError(fmt::format("{} axis is not supported", l));
+}
+
+bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
+  ResolvedBlock rb;
+  resolve(block, rb);
+  if (rb.n_g == 0 && rb.n_m == 0 && !rb.hasAxis() && !rb.hasWord('f') && !rb.hasWord('s') &&
+      !rb.hasWord('t')) {
+    for (char l : {'i', 'j', 'k', 'r', 'l', 'p', 'q', 'h', 'd', 'u', 'v', 'w'})
+      if (rb.hasWord(l)) throw GcodeError(fmt::format("{} word with nothing to use it", l));
+    return true;
+  }
+  const BlockCodes c = classify(rb);
+  checkWords(rb, c);
+  if (c.feed_mode >= 0) {
+    const bool inv = c.feed_mode == 930;
+    if (inv != st.inverse_time) st.feed = 0.0;  // LinuxCNC zeroes F on a feed-mode change
+    st.inverse_time = inv;
+  }
+  if (rb.hasWord('f')) {
+    const double f = rb.word('f');
+    if (f < 0.0) throw GcodeError("negative F word");
+    if (!st.inverse_time) st.feed = f * st.scale();
+  }
+  if (rb.hasWord('s')) {
+    if (rb.word('s') < 0.0) throw GcodeError("negative spindle speed");
+    st.spindle_speed = rb.word('s');
+  }
+  if (rb.hasWord('t')) {
+    const int t = toInt(rb.word('t'), 'T');
+    if (t < 0) throw GcodeError("negative tool number");
+    st.selected_tool = t;
+  }
+  if (c.m_tool == 6) st.tool_in_spindle = st.selected_tool;
+  if (c.non_modal == 40) {
+    if (!rb.hasWord('p')) throw GcodeError("G4 needs a P word (dwell time, s)");
+    if (rb.word('p') < 0.0) throw GcodeError("negative G4 dwell time");
+  }
+  if (c.plane >= 0)
+    st.plane = c.plane == 170 ? Plane::kXY : c.plane == 180 ? Plane::kXZ : Plane::kYZ;
+  if (c.units >= 0) st.inch = c.units == 200;
+  if (c.tlo >= 0) setTlo(rb, c.tlo);
+  if (c.wcs >= 0) {
+    static constexpr std::array<int, 9> kCodes{540, 550, 560, 570, 580, 590, 591, 592, 593};
+    for (std::size_t n = 0; n < kCodes.size(); ++n)
+      if (kCodes[n] == c.wcs) selectSystem(static_cast<int>(n) + 1);
+  }
+  if (c.path >= 0) st.path_mode = c.path;
+  if (c.distance >= 0) st.incremental = c.distance == 910;
+  if (c.ijk >= 0) st.ijk_absolute = c.ijk == 901;
+  if (c.retract >= 0) st.retract_to_r = c.retract == 990;
+  if (c.non_modal == 100) doG10(rb);
+  if (c.non_modal >= 920) doG92(rb, c.non_modal);
+  doMotion(rb, c, sink);
+  return !(c.m_stop == 2 || c.m_stop == 30);
+}
+
+}  // namespace pkm::cnc

@@ -1,0 +1,82 @@
+// Private state of pkm::cnc::Interpreter, shared by interpreter.cpp (program flow),
+// block_executor.cpp (one block's words and modal codes) and motion.cpp (moves, arcs, cycles).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "pkm/cnc/canned_cycle.hpp"
+#include "pkm/cnc/interpreter.hpp"
+#include "pkm/cnc/parameters.hpp"
+
+namespace pkm::cnc {
+
+/// The words of one block after evaluation. Letters a..z index `value`/`has`.
+struct ResolvedBlock {
+  std::size_t line = 0;
+  std::array<double, 26> value{};
+  std::array<bool, 26> has{};
+  std::array<int, 8> g{};  // G codes x10
+  int n_g = 0;
+  std::array<int, 8> m{};
+  int n_m = 0;
+  [[nodiscard]] bool hasWord(char c) const { return has[static_cast<std::size_t>(c - 'a')]; }
+  [[nodiscard]] double word(char c) const { return value[static_cast<std::size_t>(c - 'a')]; }
+  [[nodiscard]] bool hasAxis() const {
+    return hasWord('x') || hasWord('y') || hasWord('z') || hasWord('a') || hasWord('b') ||
+           hasWord('c');
+  }
+};
+
+/// Per-block decisions of the modal-group check (one code per group at most).
+struct BlockCodes {
+  int motion = -1;     // group 1
+  int non_modal = -1;  // group 0 (G4, G10, G53, G92, G92.x)
+  int plane = -1, distance = -1, ijk = -1, feed_mode = -1, units = -1, cutter = -1, tlo = -1,
+      retract = -1, wcs = -1, path = -1;
+  int m_stop = -1, m_tool = -1, m_spindle = -1;
+  bool m_mist = false, m_flood = false, m_coolant_off = false;
+};
+
+struct Interpreter::Impl : ParameterSource {
+  explicit Impl(InterpreterOptions o) : options(std::move(o)) {}
+
+  // ParameterSource: reads in program units.
+  double numbered(int index) override;
+  double named(const std::string& name) override { return params.named(name); }
+  bool exists(const std::string& name) override { return params.exists(name); }
+  void setNumbered(int index, double value);
+
+  // block_executor.cpp
+  /// Executes one block; returns false when the program ends (M2/M30).
+  bool execute(const Block& block, MoveSink& sink);
+  void resolve(const Block& block, ResolvedBlock& rb);
+  BlockCodes classify(const ResolvedBlock& rb) const;
+  void checkWords(const ResolvedBlock& rb, const BlockCodes& c) const;
+  void setTlo(const ResolvedBlock& rb, int code);
+  void selectSystem(int n);
+  void doG10(const ResolvedBlock& rb);
+  void doG92(const ResolvedBlock& rb, int code);
+
+  // motion.cpp
+  void doMotion(const ResolvedBlock& rb, const BlockCodes& c, MoveSink& sink);
+  void straight(const ResolvedBlock& rb, bool rapid, bool g53, MoveSink& sink);
+  void arc(const ResolvedBlock& rb, bool clockwise, MoveSink& sink);
+  void cycle(const ResolvedBlock& rb, int code, MoveSink& sink);
+  /// Emits a line to machine position `to`; updates the position.
+  void emitLine(std::size_t line, bool rapid, const Axes& to, double inverse_f, MoveSink& sink);
+
+  InterpreterOptions options;
+  MachineState st;
+  Parameters params;
+  RunSummary summary;
+  // Canned-cycle memory (rs274ngc cycle_il / cycle_cc and sticky R, Q, P).
+  bool cycle_il_flag = false;
+  double cycle_il = 0.0, cycle_cc = 0.0, cycle_r = 0.0, cycle_q = 0.0, cycle_p = 0.0;
+  std::vector<CycleStep> cycle_steps;
+  std::vector<double> values;  // scratch: evaluated assignment values
+};
+
+}  // namespace pkm::cnc

@@ -1,0 +1,256 @@
+// Motion of one block: G0/G1 (with G53), G2/G3 arcs and helices in the active plane, canned
+// cycles. Targets are computed in program coordinates (G90 absolute, G91 incremental), then the
+// offsets of MachineState map them to machine coordinates, which is what a Move reports.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+#include "interpreter_impl.hpp"
+#include "pkm/cnc/arc.hpp"
+#include "pkm/cnc/gcode_error.hpp"
+
+namespace pkm::cnc {
+
+namespace {
+
+constexpr std::array<char, 6> kAxes{'x', 'y', 'z', 'a', 'b', 'c'};
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// Axes (indices into X Y Z) of a plane: first, second, normal.
+std::array<std::size_t, 3> planeAxes(Plane p) {
+  switch (p) {
+    case Plane::kXY:
+      return {0, 1, 2};
+    case Plane::kXZ:
+      return {2, 0, 1};  // LinuxCNC's G18 orientation: first axis Z, second X (normal Y)
+    case Plane::kYZ:
+      return {1, 2, 0};
+  }
+  return {0, 1, 2};
+}
+
+/// Length of a line (mm, or degrees for a rotary-only move) for inverse-time feed.
+double pathLength(const Axes& from, const Axes& to) {
+  const double l = std::hypot(to[0] - from[0], to[1] - from[1], to[2] - from[2]);
+  if (l > 0.0) return l;
+  return std::hypot(to[3] - from[3], to[4] - from[4], to[5] - from[5]);
+}
+
+}  // namespace
+
+void Interpreter::Impl::emitLine(
+    std::size_t line, bool rapid, const Axes& to, double inverse_f, MoveSink& sink) {
+  Move m;
+  m.line = line;
+  m.kind = rapid ? MoveKind::kRapid : MoveKind::kLinear;
+  m.end = to;
+  m.plane = st.plane;
+  if (!rapid) {
+    if (st.inverse_time) {
+      m.feed = pathLength(st.machine, to) * inverse_f;
+    } else {
+      m.feed = st.feed;
+    }
+  }
+  st.machine = to;
+  sink.onMove(m);
+  ++summary.moves;
+}
+
+void Interpreter::Impl::straight(const ResolvedBlock& rb, bool rapid, bool g53, MoveSink& sink) {
+  Axes to = st.machine;
+  for (std::size_t i = 0; i < 6; ++i) {
+    if (!rb.hasWord(kAxes[i])) continue;
+    const double v = rb.word(kAxes[i]) * st.axisScale(i);
+    if (g53)
+      to[i] = v;
+    else if (st.incremental)
+      to[i] = st.machine[i] + v;
+    else
+      to[i] = v + st.offset(i);
+  }
+  double inverse_f = 0.0;
+  if (!rapid) {
+    if (st.inverse_time) {
+      if (!rb.hasWord('f')) throw GcodeError("F word missing with an inverse time (G93) G1 move");
+      inverse_f = rb.word('f');
+      if (inverse_f <= 0.0) throw GcodeError("zero F word with an inverse time (G93) move");
+    } else if (st.feed <= 0.0) {
+      throw GcodeError("cannot do G1 with zero feed rate");
+    }
+  }
+  emitLine(rb.line, rapid, to, inverse_f, sink);
+}
+
+void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& sink) {
+  const auto [a1, a2, an] = planeAxes(st.plane);
+  static constexpr std::array<char, 3> kOffsetWord{'i', 'j', 'k'};
+  if (!rb.hasWord(kAxes[a1]) && !rb.hasWord(kAxes[a2]))
+    throw GcodeError(fmt::format("{} arc needs at least one of {} and {} in the {} plane",
+                                 clockwise ? "G2" : "G3",
+                                 static_cast<char>(kAxes[a1] - 32),
+                                 static_cast<char>(kAxes[a2] - 32),
+                                 toString(st.plane)));
+  if (rb.hasWord(kOffsetWord[an]))
+    throw GcodeError(fmt::format("{} word given for an arc in the {} plane",
+                                 static_cast<char>(kOffsetWord[an] - 32),
+                                 toString(st.plane)));
+  double inverse_f = 0.0;
+  if (st.inverse_time) {
+    if (!rb.hasWord('f')) throw GcodeError("F word missing with an inverse time (G93) arc move");
+    inverse_f = rb.word('f');
+    if (inverse_f <= 0.0) throw GcodeError("zero F word with an inverse time (G93) move");
+  } else if (st.feed <= 0.0) {
+    throw GcodeError(fmt::format("cannot do {} with zero feed rate", clockwise ? "G2" : "G3"));
+  }
+  int turns = 1;
+  if (rb.hasWord('p')) {
+    const double p = rb.word('p');
+    if (!(p >= 0.5 && p < 1e9))
+      throw GcodeError(fmt::format("arc P (turns) must be a positive integer, not {}", p));
+    turns = static_cast<int>(std::round(p));
+    if (std::abs(p - turns) > 0.0001 || turns < 1)
+      throw GcodeError(fmt::format("arc P (turns) must be a positive integer, not {}", p));
+  }
+  // Target in machine coordinates (the plane geometry is the same in program and machine
+  // coordinates: offsets are translations).
+  Axes to = st.machine;
+  for (std::size_t i = 0; i < 6; ++i) {
+    if (!rb.hasWord(kAxes[i])) continue;
+    const double v = rb.word(kAxes[i]) * st.axisScale(i);
+    to[i] = st.incremental ? st.machine[i] + v : v + st.offset(i);
+  }
+  const double s1 = st.machine[a1], s2 = st.machine[a2];
+  const double e1 = to[a1], e2 = to[a2];
+  ArcCentre c;
+  if (rb.hasWord('r')) {
+    if (rb.hasWord(kOffsetWord[a1]) || rb.hasWord(kOffsetWord[a2]))
+      throw GcodeError("arc with both R and I/J/K words");
+    c = arcFromRadius(s1, s2, e1, e2, rb.word('r') * st.scale(), clockwise, st.inch);
+  } else {
+    if (!rb.hasWord(kOffsetWord[a1]) && !rb.hasWord(kOffsetWord[a2]))
+      throw GcodeError(fmt::format("{} arc needs R or at least one of {} and {}",
+                                   clockwise ? "G2" : "G3",
+                                   static_cast<char>(kOffsetWord[a1] - 32),
+                                   static_cast<char>(kOffsetWord[a2] - 32)));
+    const double o1 = rb.hasWord(kOffsetWord[a1]) ? rb.word(kOffsetWord[a1]) * st.scale() : 0.0;
+    const double o2 = rb.hasWord(kOffsetWord[a2]) ? rb.word(kOffsetWord[a2]) * st.scale() : 0.0;
+    const double c1 = st.ijk_absolute ? o1 + st.offset(a1) : s1 + o1;
+    const double c2 = st.ijk_absolute ? o2 + st.offset(a2) : s2 + o2;
+    c = arcFromCentre(s1, s2, e1, e2, c1, c2, st.inch);
+  }
+  Move m;
+  m.line = rb.line;
+  m.kind = MoveKind::kArc;
+  m.end = to;
+  m.centre[a1] = c.c1;
+  m.centre[a2] = c.c2;
+  m.centre[an] = kNaN;
+  m.turns = clockwise ? -turns : turns;
+  m.plane = st.plane;
+  if (st.inverse_time) {
+    // Helix length: the in-plane sweep times the radius, combined with the normal travel.
+    double sweep = std::atan2(e2 - c.c2, e1 - c.c1) - std::atan2(s2 - c.c2, s1 - c.c1);
+    const double two_pi = 2.0 * std::acos(-1.0);
+    if (clockwise) {
+      if (sweep >= 0.0) sweep -= two_pi;
+    } else if (sweep <= 0.0) {
+      sweep += two_pi;
+    }
+    const double planar = c.radius * (std::abs(sweep) + two_pi * (turns - 1));
+    m.feed = std::hypot(planar, to[an] - st.machine[an]) * inverse_f;
+  } else {
+    m.feed = st.feed;
+  }
+  st.machine = to;
+  sink.onMove(m);
+  ++summary.moves;
+}
+
+void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink) {
+  if (st.plane != Plane::kXY)
+    throw GcodeError("canned cycles are supported in the XY plane (G17) only");
+  if (st.inverse_time) throw GcodeError("canned cycles are not allowed in inverse time (G93)");
+  for (char l : {'a', 'b', 'c'})
+    if (rb.hasWord(l)) throw GcodeError(fmt::format("cannot move {} in a canned cycle", l));
+  if (st.feed <= 0.0) throw GcodeError("cannot do a canned cycle with zero feed rate");
+  const bool entering = st.motion != code;
+  if (entering && !rb.hasWord('z'))
+    throw GcodeError("Z missing in the first block of a canned cycle");
+  if (entering && !rb.hasWord('r'))
+    throw GcodeError("R missing in the first block of a canned cycle");
+  const double s = st.scale();
+  CycleRequest q;
+  q.code = code / 10;
+  for (std::size_t i = 0; i < 3; ++i) q.current[i] = st.program(i);
+  if (!cycle_il_flag) {  // first cycle block since a non-cycle motion mode: remember its Z
+    cycle_il = q.current[2];
+    cycle_il_flag = true;
+  }
+  q.initial_level = cycle_il;
+  q.incremental = st.incremental;
+  q.retract_to_r = st.retract_to_r;
+  q.has_x = rb.hasWord('x');
+  q.has_y = rb.hasWord('y');
+  q.x = rb.word('x') * s;
+  q.y = rb.word('y') * s;
+  if (rb.hasWord('r')) cycle_r = rb.word('r') * s;
+  if (rb.hasWord('z')) cycle_cc = rb.word('z') * s;
+  q.r = cycle_r;
+  q.z = cycle_cc;
+  if (code == 830 || code == 730) {
+    if (entering && !rb.hasWord('q'))
+      throw GcodeError(fmt::format("Q word missing with G{}", code / 10));
+    if (rb.hasWord('q')) cycle_q = rb.word('q') * s;
+    q.q = cycle_q;
+  }
+  if (code == 820 || code == 890) {
+    if (entering && !rb.hasWord('p'))
+      throw GcodeError(fmt::format("dwell time P word missing with G{}", code / 10));
+    if (rb.hasWord('p')) cycle_p = rb.word('p');
+    q.p = cycle_p;
+  }
+  if (rb.hasWord('l')) {
+    const double l = rb.word('l');
+    if (!(l >= 0.5 && l < 1e9)) throw GcodeError("canned cycle L must be a positive integer");
+    q.repeats = static_cast<int>(std::round(l));
+    if (std::abs(l - q.repeats) > 0.0001 || q.repeats < 1)
+      throw GcodeError("canned cycle L must be a positive integer");
+  }
+  q.max_steps = options.max_loop_iterations;
+  cycle_steps.clear();
+  expandCycle(q, cycle_steps);
+  for (const CycleStep& step : cycle_steps) {
+    if (step.kind == CycleStep::Kind::kDwell) continue;
+    Axes to = st.machine;
+    for (std::size_t i = 0; i < 3; ++i) to[i] = step.to[i] + st.offset(i);
+    emitLine(rb.line, step.kind == CycleStep::Kind::kRapid, to, 0.0, sink);
+  }
+}
+
+void Interpreter::Impl::doMotion(const ResolvedBlock& rb, const BlockCodes& c, MoveSink& sink) {
+  const int motion = c.motion >= 0 ? c.motion : st.motion;
+  const bool is_cycle = motion >= 730 && motion != 800;
+  if (!is_cycle) cycle_il_flag = false;  // a non-cycle motion mode ends the cycle sequence
+  const bool axis_user0 = c.non_modal == 100 || c.non_modal == 920 || c.tlo == 431;
+  const bool axis = rb.hasAxis() && !axis_user0;
+  switch (motion) {
+    case 0:
+    case 10:
+      if (axis) straight(rb, motion == 0, c.non_modal == 530, sink);
+      break;
+    case 20:
+    case 30:
+      if (axis || c.motion >= 0) arc(rb, motion == 20, sink);
+      break;
+    case 800:
+      break;
+    default:
+      if (axis) cycle(rb, motion, sink);
+      break;
+  }
+  st.motion = motion;
+}
+
+}  // namespace pkm::cnc

@@ -1,0 +1,135 @@
+// Parameters that mirror the machine state (#5220, #5400-#5406, #5420-#5425, lengths in program
+// units) and the offset codes: coordinate-system selection, G10 L2/L20, G92 family, tool length
+// offsets G43/G43.1/G49 (LinuxCNC 2.9 G-code reference "G10 L2", "G10 L20", "G92", "G43").
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "interpreter_impl.hpp"
+#include "pkm/cnc/gcode_error.hpp"
+
+namespace pkm::cnc {
+
+namespace {
+
+constexpr double kIntegerTolerance = 0.0001;  // integer-valued words accept reals within this
+
+int toInt(double v, char letter) {
+  const double r = std::round(v);
+  if (std::abs(v - r) > kIntegerTolerance || std::abs(r) > 1e9)
+    throw GcodeError(fmt::format("{} word value {} is not an integer", letter, v));
+  return static_cast<int>(r);
+}
+
+}  // namespace
+
+double Interpreter::Impl::numbered(int index) {
+  if (index >= 5420 && index <= 5425) {
+    const auto i = static_cast<std::size_t>(index - 5420);
+    return st.program(i) / st.axisScale(i);
+  }
+  if (index >= 5426 && index <= 5428) return 0.0;
+  if (index == 5400) return st.tool_in_spindle;
+  if (index >= 5401 && index <= 5406) {
+    const auto i = static_cast<std::size_t>(index - 5401);
+    return st.tool_offset[i] / st.axisScale(i);
+  }
+  const double v = params.get(index);
+  return isLengthParameter(index) ? v / st.scale() : v;
+}
+
+void Interpreter::Impl::setNumbered(int index, double value) {
+  if (index < 1 || index >= kParameterCount)
+    throw GcodeError(fmt::format("parameter number {} out of range (1..5601)", index));
+  if (index >= 5161)
+    throw GcodeError(fmt::format("parameter #{} is read-only here (use G10, G92)", index));
+  params.set(index, isLengthParameter(index) ? value * st.scale() : value);
+}
+
+void Interpreter::Impl::selectSystem(int n) {
+  st.coordinate_system = n;
+  params.set(kActiveSystemParam, n);
+  const int base = coordinateSystemBase(n);
+  for (std::size_t i = 0; i < 6; ++i) st.g5x[i] = params.get(base + static_cast<int>(i));
+}
+
+void Interpreter::Impl::setTlo(const ResolvedBlock& rb, int code) {
+  if (code == 490) {
+    st.tool_offset = {};
+    return;
+  }
+  if (code == 431) {
+    st.tool_offset = {};
+    static constexpr std::array<char, 6> kAxes{'x', 'y', 'z', 'a', 'b', 'c'};
+    for (std::size_t i = 0; i < 6; ++i)
+      if (rb.hasWord(kAxes[i])) st.tool_offset[i] = rb.word(kAxes[i]) * st.axisScale(i);
+    return;
+  }
+  int h = rb.hasWord('h') ? toInt(rb.word('h'), 'H') : st.tool_in_spindle;
+  if (h < 0) throw GcodeError("negative H word");
+  if (h == 0) h = st.tool_in_spindle;  // LinuxCNC: H0 is the spindle's entry (checked with rs274)
+  if (h == 0) {
+    st.tool_offset = {};
+    return;
+  }
+  const ToolEntry* t = options.tools.find(h);
+  if (t == nullptr)
+    throw GcodeError(fmt::format("tool {} (G43 H{}) is not in the tool table", h, h));
+  st.tool_offset = t->offset;
+}
+
+void Interpreter::Impl::doG10(const ResolvedBlock& rb) {
+  if (!rb.hasWord('l')) throw GcodeError("G10 needs an L word");
+  if (!rb.hasWord('p')) throw GcodeError("G10 needs a P word");
+  const int l = toInt(rb.word('l'), 'L');
+  if (l != 2 && l != 20)
+    throw GcodeError(fmt::format("G10 L{} is not supported (only L2 and L20)", l));
+  int p = toInt(rb.word('p'), 'P');
+  if (p < 0 || p > 9) throw GcodeError(fmt::format("G10 P{} out of range (0..9)", p));
+  if (p == 0) p = st.coordinate_system;
+  if (rb.hasWord('r') && rb.word('r') != 0.0)
+    throw GcodeError("G10 L2 R (XY rotation of a coordinate system) is not supported");
+  const int base = coordinateSystemBase(p);
+  static constexpr std::array<char, 6> kAxes{'x', 'y', 'z', 'a', 'b', 'c'};
+  for (std::size_t i = 0; i < 6; ++i) {
+    if (!rb.hasWord(kAxes[i])) continue;
+    const double v = rb.word(kAxes[i]) * st.axisScale(i);
+    // L20: the current point gets coordinate v; LinuxCNC computes the new origin from the
+    // program position and the *active* origin, without the G92 offset (checked with rs274).
+    const double origin = l == 2 ? v : st.program(i) + st.g5x[i] - v;
+    params.set(base + static_cast<int>(i), origin);
+  }
+  if (p == st.coordinate_system) selectSystem(p);
+}
+
+void Interpreter::Impl::doG92(const ResolvedBlock& rb, int code) {
+  static constexpr std::array<char, 6> kAxes{'x', 'y', 'z', 'a', 'b', 'c'};
+  switch (code) {
+    case 920:
+      for (std::size_t i = 0; i < 6; ++i) {
+        if (!rb.hasWord(kAxes[i])) continue;
+        const double v = rb.word(kAxes[i]) * st.axisScale(i);
+        st.g92[i] = st.machine[i] - st.g5x[i] - st.tool_offset[i] - v;
+      }
+      for (std::size_t i = 0; i < 6; ++i) params.set(kG92Base + static_cast<int>(i), st.g92[i]);
+      params.set(kG92Base - 1, 1.0);
+      break;
+    case 921:
+      st.g92 = {};
+      for (int i = 0; i < 9; ++i) params.set(kG92Base + i, 0.0);
+      params.set(kG92Base - 1, 0.0);
+      break;
+    case 922:
+      st.g92 = {};
+      params.set(kG92Base - 1, 0.0);
+      break;
+    case 923:
+      for (std::size_t i = 0; i < 6; ++i) st.g92[i] = params.get(kG92Base + static_cast<int>(i));
+      params.set(kG92Base - 1, 1.0);
+      break;
+    default:
+      break;
+  }
+}
+
+}  // namespace pkm::cnc

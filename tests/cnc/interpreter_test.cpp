@@ -1,0 +1,239 @@
+// Interpreter: each modal code, offsets, arcs and helices, control flow, error paths with line
+// numbers. Expected values are hand-computed from LinuxCNC's documented semantics (and were
+// cross-checked with rs274, see rs274_compare_test.cpp).
+#include "pkm/cnc/interpreter.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "pkm/core/error.hpp"
+#include "support/tolerances.hpp"
+
+namespace pkm::cnc {
+namespace {
+
+using pkm::test::kTolRoundTrip;
+using ::testing::HasSubstr;
+
+std::vector<Move> run(const std::string& text, InterpreterOptions options = {}) {
+  Interpreter interp(std::move(options));
+  MoveCollector c;
+  interp.run(Program::parse(text, "t.ngc"), c);
+  return c.moves;
+}
+
+std::string errorOf(const std::string& text, InterpreterOptions options = {}) {
+  try {
+    (void)run(text, std::move(options));
+  } catch (const IoError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+void expectEnd(const Move& m, double x, double y, double z) {
+  EXPECT_NEAR(m.end[0], x, kTolRoundTrip);
+  EXPECT_NEAR(m.end[1], y, kTolRoundTrip);
+  EXPECT_NEAR(m.end[2], z, kTolRoundTrip);
+}
+
+TEST(Interpreter, RapidAndFeedWithLineNumbers) {
+  const auto m = run("G21 G90\nG0 X1 Y2 Z3\n\nG1 X4 F100\nM2\n");
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_EQ(m[0].kind, MoveKind::kRapid);
+  EXPECT_EQ(m[0].line, 2u);
+  EXPECT_TRUE(std::isnan(m[0].feed));
+  EXPECT_EQ(m[1].kind, MoveKind::kLinear);
+  EXPECT_EQ(m[1].line, 4u);
+  EXPECT_EQ(m[1].feed, 100.0);
+  expectEnd(m[1], 4, 2, 3);
+}
+
+TEST(Interpreter, InchAndFeedUnits) {
+  // F is converted with the units active when it executes: F comes before G20 in a block.
+  const auto m = run("G20\nF10\nG1 X1\nG21 G1 X10\nM2\n");
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_NEAR(m[0].end[0], 25.4, kTolRoundTrip);
+  EXPECT_NEAR(m[0].feed, 254.0, kTolRoundTrip);
+  EXPECT_NEAR(m[1].end[0], 10.0, kTolRoundTrip);
+  EXPECT_NEAR(m[1].feed, 254.0, kTolRoundTrip);  // switching units does not rescale F
+}
+
+TEST(Interpreter, IncrementalDistance) {
+  const auto m = run("G91 G0 X1 Y1\nX1\nG90 X0\nM2\n");
+  expectEnd(m[1], 2, 1, 0);
+  expectEnd(m[2], 0, 1, 0);
+}
+
+TEST(Interpreter, WorkOffsetsAndG53) {
+  const auto m = run(
+      "G10 L2 P2 X10 Y20 Z30\nG55 G0 X1 Y1 Z1\nG53 G0 X0\nG10 L20 P2 X5\nG0 X5\nG54 G0 X0\nM2\n");
+  expectEnd(m[0], 11, 21, 31);
+  expectEnd(m[1], 0, 21, 31);  // G53: machine coordinates
+  // L20: current program X (-10) becomes 5 -> origin = -10 + 10 - 5 = -5.
+  expectEnd(m[2], 0, 21, 31);
+  expectEnd(m[3], 0, 21, 31);
+}
+
+TEST(Interpreter, G92Family) {
+  const auto m = run("G0 X10\nG92 X0\nG0 X1\nG92.2\nG0 X1\nG92.3\nG0 X1\nG92.1\nG0 X1\nM2\n");
+  expectEnd(m[1], 11, 0, 0);
+  expectEnd(m[2], 1, 0, 0);
+  expectEnd(m[3], 11, 0, 0);
+  expectEnd(m[4], 1, 0, 0);
+}
+
+TEST(Interpreter, ToolLengthOffsets) {
+  InterpreterOptions o;
+  o.tools = ToolTable::parse("T1 P1 Z25\nT2 P2 Z10\n", 1.0, "t.tbl");
+  const auto m = run("T1 M6\nG43\nG0 Z0\nG43 H2\nG0 Z0\nG43.1 Z-3\nG0 Z0\nG49\nG0 Z0\nM2\n", o);
+  expectEnd(m[0], 0, 0, 25);
+  expectEnd(m[1], 0, 0, 10);
+  expectEnd(m[2], 0, 0, -3);
+  expectEnd(m[3], 0, 0, 0);
+  EXPECT_THAT(errorOf("G43 H7\n", o), HasSubstr("t.ngc:1: tool 7"));
+}
+
+TEST(Interpreter, ArcIjkAndFullCircleHelix) {
+  const auto m = run("G0 X10 Y0\nG3 X10 Y0 I-10 J0 Z-4 P2 F50\nG2 X-10 Y0 I-10 J0\nM2\n");
+  ASSERT_EQ(m.size(), 3u);
+  EXPECT_EQ(m[1].kind, MoveKind::kArc);
+  EXPECT_EQ(m[1].turns, 2);
+  EXPECT_NEAR(m[1].centre[0], 0.0, kTolRoundTrip);
+  EXPECT_NEAR(m[1].centre[1], 0.0, kTolRoundTrip);
+  EXPECT_TRUE(std::isnan(m[1].centre[2]));
+  expectEnd(m[1], 10, 0, -4);
+  EXPECT_EQ(m[2].turns, -1);
+  EXPECT_EQ(m[2].plane, Plane::kXY);
+}
+
+TEST(Interpreter, ArcRadiusSignRule) {
+  const auto m = run("G3 X0 Y10 R-7.0710678 F10\nG0 X0 Y0\nG3 X0 Y10 R7.0710678\nM2\n");
+  EXPECT_NEAR(m[0].centre[0], 5.0, 1e-6);
+  EXPECT_NEAR(m[0].centre[1], 5.0, 1e-6);
+  EXPECT_NEAR(m[2].centre[0], -5.0, 1e-6);
+}
+
+TEST(Interpreter, ArcsInXzAndYzPlanes) {
+  const auto m = run("F1\nG18 G2 X10 Z0 I5 K0 Y3\nG19 G0 X0 Y0 Z0\nG3 Y0 Z10 J0 K5\nM2\n");
+  EXPECT_EQ(m[0].plane, Plane::kXZ);
+  EXPECT_NEAR(m[0].centre[0], 5.0, kTolRoundTrip);
+  EXPECT_NEAR(m[0].centre[2], 0.0, kTolRoundTrip);
+  EXPECT_TRUE(std::isnan(m[0].centre[1]));
+  EXPECT_NEAR(m[0].end[1], 3.0, kTolRoundTrip);
+  EXPECT_EQ(m[2].plane, Plane::kYZ);
+  EXPECT_NEAR(m[2].centre[2], 5.0, kTolRoundTrip);
+  EXPECT_TRUE(std::isnan(m[2].centre[0]));
+}
+
+TEST(Interpreter, AbsoluteArcCentreG901) {
+  const auto m = run("G10 L2 P1 X100\nG0 X0 Y0\nG90.1 G2 X10 Y0 I5 J0 F1\nM2\n");
+  EXPECT_NEAR(m[1].centre[0], 105.0, kTolRoundTrip);
+}
+
+TEST(Interpreter, InverseTimeFeed) {
+  const auto m = run("G93 G1 X30 Y40 F2\nM2\n");
+  EXPECT_NEAR(m[0].feed, 100.0, kTolRoundTrip);  // 50 mm in 1/2 min
+  EXPECT_THAT(errorOf("G93\nG1 X30 F2\nG1 X40\n"), HasSubstr("t.ngc:3: F word missing"));
+}
+
+TEST(Interpreter, CannedCycleThroughTheInterpreter) {
+  const auto m = run("G0 Z10\nG98 G81 X1 Y1 Z-3 R2 F100\nX2\nG80\nM2\n");
+  ASSERT_EQ(m.size(), 9u);
+  expectEnd(m[4], 1, 1, 10);
+  expectEnd(m[5], 2, 1, 10);
+  EXPECT_EQ(m[5].line, 3u);
+}
+
+TEST(Interpreter, ControlFlow) {
+  const auto m =
+      run("#1 = 0\no1 while [#1 LT 3]\nG0 X#1\n#1 = [#1 + 1]\no1 endwhile\n"
+          "o2 repeat [2]\nG0 Y1\no2 endrepeat\n"
+          "#2 = 5\no3 if [#2 LT 3]\nG0 Z1\no3 elseif [#2 LT 6]\nG0 Z2\no3 else\nG0 Z3\no3 endif\n"
+          "o4 do\nG0 A1\no4 while [0]\n"
+          "#3 = 0\no5 while [1]\n#3 = [#3 + 1]\no6 if [#3 EQ 2]\no5 continue\no6 endif\n"
+          "o7 if [#3 GT 3]\no5 break\no7 endif\nG0 B#3\no5 endwhile\nM2\n");
+  ASSERT_EQ(m.size(), 9u);
+  EXPECT_EQ(m[2].end[0], 2.0);
+  EXPECT_EQ(m[4].end[1], 1.0);
+  EXPECT_EQ(m[5].end[2], 2.0);
+  EXPECT_EQ(m[6].end[3], 1.0);
+  EXPECT_EQ(m[7].end[4], 1.0);
+  EXPECT_EQ(m[8].end[4], 3.0);
+}
+
+TEST(Interpreter, SubroutinesWithArgumentsAndReturnValues) {
+  const auto m =
+      run("o<twice> sub\no<twice> return [#1 * 2]\no<twice> endsub\n"
+          "o<go> sub\nG0 X#1 Y#2\no<twice> call [#1]\nG0 Z#<_value>\no<go> endsub\n"
+          "#1 = 9\no<go> call [3] [4]\nG0 A#1\nM2\n");
+  ASSERT_EQ(m.size(), 3u);
+  expectEnd(m[0], 3, 4, 0);
+  EXPECT_EQ(m[1].end[2], 6.0);
+  EXPECT_EQ(m[2].end[3], 9.0);  // #1 restored after the call
+}
+
+TEST(Interpreter, RunawayLoopIsRejected) {
+  InterpreterOptions o;
+  o.max_loop_iterations = 1000;
+  EXPECT_THAT(errorOf("G0 X1\no1 while [1]\no1 endwhile\n", o),
+              HasSubstr("t.ngc:3: loop o1 exceeded 1000 iterations"));
+  EXPECT_THAT(errorOf("o1 do\no1 while [1]\n", o), HasSubstr("exceeded"));
+  EXPECT_THAT(errorOf("o<r> sub\no<r> call\no<r> endsub\no<r> call\n"), HasSubstr("nested deeper"));
+}
+
+TEST(Interpreter, ErrorsNameTheLine) {
+  EXPECT_THAT(errorOf("G0 X1\nG33 X2\n"), HasSubstr("t.ngc:2: unsupported G code G33"));
+  EXPECT_THAT(errorOf("G0 X1\nM62 P1\n"), HasSubstr("t.ngc:2: unsupported M code M62"));
+  EXPECT_THAT(errorOf("G41 X1\n"), HasSubstr("t.ngc:1: G41 cutter radius compensation"));
+  EXPECT_THAT(errorOf("G0 X1\nG1 X[1/0] F1\n"), HasSubstr("t.ngc:2: attempt to divide by zero"));
+  EXPECT_THAT(errorOf("G0 X1\no<nope> call\n"), HasSubstr("t.ngc:2: call to undefined subroutine"));
+  EXPECT_THAT(errorOf("G0 G1 X1\n"), HasSubstr("t.ngc:1: two G codes from the same modal group"));
+  EXPECT_THAT(errorOf("G17 G18\n"), HasSubstr("same modal group"));
+  EXPECT_THAT(errorOf("M3 M4\n"), HasSubstr("same modal group"));
+  EXPECT_THAT(errorOf("X1\n"), HasSubstr("without a G code"));
+  EXPECT_THAT(errorOf("G80 X1\n"), HasSubstr("G80"));
+  EXPECT_THAT(errorOf("G1 X1\n"), HasSubstr("zero feed rate"));
+  EXPECT_THAT(errorOf("G2 X1 F1\n"), HasSubstr("needs R or at least one of I and J"));
+  EXPECT_THAT(errorOf("G2 X1 I1 K1 F1\n"), HasSubstr("K word given for an arc in the XY plane"));
+  EXPECT_THAT(errorOf("G4\n"), HasSubstr("G4 needs a P word"));
+  EXPECT_THAT(errorOf("G10 L1 P1 Z1\n"), HasSubstr("G10 L1 is not supported"));
+  EXPECT_THAT(errorOf("G92\n"), HasSubstr("G92 needs"));
+  EXPECT_THAT(errorOf("G92 X1 G1 Y1\n"), HasSubstr("both use axis values"));
+  EXPECT_THAT(errorOf("G81 X1 R2 F1\n"), HasSubstr("Z missing"));
+  EXPECT_THAT(errorOf("G83 X1 Z-1 R2 F1\n"), HasSubstr("Q word missing"));
+  EXPECT_THAT(errorOf("G18 G81 X1 Z-1 R2 F1\n"), HasSubstr("XY plane"));
+  EXPECT_THAT(errorOf("G91 G53 G0 X1\n"), HasSubstr("G53"));
+  EXPECT_THAT(errorOf("G0 U1\n"), HasSubstr("u axis"));
+  EXPECT_THAT(errorOf("G1 X1 F1\nI5\n"), HasSubstr("t.ngc:2:"));
+  EXPECT_THAT(errorOf("#<x> = #<y>\n"), HasSubstr("#<y> not defined"));
+  EXPECT_THAT(errorOf("G2 X1 Y1 P1.5 I1 F1\n"), HasSubstr("positive integer"));
+}
+
+TEST(Interpreter, BlockDeleteSwitch) {
+  InterpreterOptions o;
+  o.block_delete = true;
+  EXPECT_EQ(run("G0 X1\n/G0 X2\nM2\n", o).size(), 1u);
+  EXPECT_EQ(run("G0 X1\n/G0 X2\nM2\n").size(), 2u);
+}
+
+TEST(Interpreter, ProgramEndStopsAndStateIsKept) {
+  Interpreter interp;
+  MoveCollector c;
+  const RunSummary s = interp.run(Program::parse("G20 G0 X1\nM30\nG0 X2\n"), c);
+  EXPECT_TRUE(s.ended_by_m2);
+  EXPECT_EQ(s.moves, 1u);
+  EXPECT_TRUE(interp.state().inch);
+  EXPECT_NEAR(interp.state().machine[0], 25.4, kTolRoundTrip);
+}
+
+TEST(Interpreter, PositionParameters) {
+  const auto m = run("G20 G10 L2 P1 X1\nG0 X2\nG0 Y#5420 Z#5221\nM2\n");
+  EXPECT_NEAR(m[1].end[1], 2 * 25.4, kTolRoundTrip);
+  EXPECT_NEAR(m[1].end[2], 25.4, kTolRoundTrip);
+}
+
+}  // namespace
+}  // namespace pkm::cnc
