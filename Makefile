@@ -19,8 +19,10 @@ build: setup
 	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(WERROR) $(CMAKE_FLAGS) >/dev/null
 	@cmake --build $(BUILD) -j $(JOBS)
 
+# The main job: the built-in default campaign (the four papers' scenarios) on the virtual
+# machines, a summary table and report.html in $(BUILD)/demo, results in pkm.db.
 demo: build
-	@$(BUILD)/bin/pkm demo
+	@$(BUILD)/bin/pkm campaign run default --out $(BUILD)/demo --force --db pkm.db
 
 test-release: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

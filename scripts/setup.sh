@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   clang-format bc
   libboost-python1.74.0 libsqlite3-dev
+  chromium
 )
 
 missing=()
@@ -18,6 +19,14 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
+# The HTML report's npm assets (uPlot, playwright-core; docs/report.md), when node_modules is
+# missing or older than package-lock.json.
+report_dir="$(cd "$(dirname "$0")/.." && pwd)/web/report"
+if [ ! -d "$report_dir/node_modules" ] || [ "$report_dir/package-lock.json" -nt "$report_dir/node_modules" ]; then
+  echo "setup: npm ci in web/report"
+  (cd "$report_dir" && npm ci --no-audit --no-fund >/dev/null && touch node_modules)
+fi
+
 [ ${#missing[@]} -eq 0 ] && exit 0
 
 echo "setup: installing missing packages: ${missing[*]}"

@@ -427,8 +427,8 @@ void fitSquareness(const ExechonArgs& args,
   for (const auto& w : s.worst) worst.push_back({{"source", w.source}, {"residual", w.residual}});
   h["worst_observations"] = worst;
   if (!held.hybrid.observations.empty()) {
-    held.hybrid.target_offset =
-        held.hybrid.target_offset.allFinite() ? held.hybrid.target_offset : d.target_offset;
+    // A held-out file without `smr offset mm` is taken to carry the fitted files' target.
+    held.hybrid.target_offset = held.hybrid_target_offset.value_or(d.target_offset);
     h["holdout"] = {
         {"before", hybridHoldout(model, known, {}, held.hybrid, before_frame, {})},
         {"after",

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 
+#include "campaign.hpp"
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
@@ -57,7 +58,12 @@ const char* instrumentName(sim::LineQuantity q) {
   return "?";
 }
 
-io::Metadata metadata(const io::Scenario& s, std::uint64_t seed, const sim::LineSetup& m, int run) {
+}  // namespace
+
+io::Metadata lineRunMetadata(const io::Scenario& s,
+                             std::uint64_t seed,
+                             const sim::LineSetup& m,
+                             int run) {
   const std::vector<std::string> axes = s.campaign.machine->axisNames();
   const std::vector<bool> angular_axes = s.campaign.machine->angularAxes();
   const bool angular = m.quantity == sim::LineQuantity::kAngular;
@@ -89,6 +95,8 @@ io::Metadata metadata(const io::Scenario& s, std::uint64_t seed, const sim::Line
     md.emplace_back("misalignment urad", io::formatNumber(m.misalignment * 1e6));
   return md;
 }
+
+namespace {
 
 std::string pointsText(const std::array<Eigen::Vector3d, 3>& points) {
   std::string out;
@@ -146,7 +154,8 @@ void runSimulate(const SimulateState& st) {
     for (const sim::LineRun& run : r.runs)
       files.emplace_back(
           fmt::format("{}_run{}.csv", r.setup->name, run.run),
-          io::lineRunCsv(r.setup->quantity, metadata(scenario, seed, *r.setup, run.run), run));
+          io::lineRunCsv(
+              r.setup->quantity, lineRunMetadata(scenario, seed, *r.setup, run.run), run));
   for (const sim::ConstrainedResult& r : sim::runConstrainedMotion(scenario.campaign, seed))
     files.emplace_back(fmt::format("{}.csv", r.setup->name),
                        io::dialGaugeCsv(dialGaugeMetadata(scenario, seed, *r.setup), r.stations));

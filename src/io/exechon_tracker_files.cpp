@@ -118,6 +118,7 @@ void addHybridFile(const TextTable& t, const std::string& path, ExechonCalibrati
     const std::vector<Eigen::Vector3d> v = parseVectorList(*offset, path, "smr offset mm");
     if (v.size() != 1) t.failHeader("metadata 'smr offset mm' is not one vector");
     input.hybrid.target_offset = v[0];
+    input.hybrid_target_offset = v[0];
   }
   const bool tracker = t.meta("frame").value_or("").rfind("tracker", 0) == 0;
   if (!input.hybrid.observations.empty() && tracker != input.hybrid.measurement_frame.has_value())

@@ -55,4 +55,15 @@ PkmSquareness pkmSquarenessFromSlopes(double dgamma, double dalpha, double szX2)
   return {dalpha, szX2 - dgamma};
 }
 
+PkmSquareness pkmSquarenessFromSlopes(double dgamma, double dalpha, double szX2, double syP) {
+  PKM_CHECK(std::isfinite(syP), "seed 000 eq. 11: non-finite syP {}", syP);
+  PkmSquareness s = pkmSquarenessFromSlopes(dgamma, dalpha, szX2);
+  for (int pass = 0; pass < 2; ++pass) {
+    const PkmSquareness first = s;
+    s.szP = szX2 - dgamma - 0.5 * first.sxP * syP;
+    s.sxP = dalpha + 0.5 * syP * first.szP;
+  }
+  return s;
+}
+
 }  // namespace pkm::metrology

@@ -38,8 +38,9 @@ HexapodVirtualMachine::HexapodVirtualMachine(kin::HexapodModel nominal,
                                              StrutActuation actuation)
     : nominal_(std::move(nominal)),
       true_(errors.apply(nominal_)),
+      controller_(nominal_),
       actuation_(std::move(actuation)),
-      nominal_data_(nominal_),
+      controller_data_(controller_),
       true_data_(true_) {
   nominal_.validate();
   true_.validate();
@@ -48,6 +49,15 @@ HexapodVirtualMachine::HexapodVirtualMachine(kin::HexapodModel nominal,
             "machine '{}': simulated measurements need a machine in mm",
             nominal_.name);
   reset(0);
+}
+
+void HexapodVirtualMachine::setControllerModel(kin::HexapodModel model) {
+  model.validate();
+  PKM_CHECK(model.unit == LengthUnit::kMillimetre,
+            "controller model '{}': simulated measurements need a machine in mm",
+            model.name);
+  controller_ = std::move(model);
+  controller_data_ = kin::HexapodData(controller_);
 }
 
 std::vector<std::string> HexapodVirtualMachine::axisNames() const {
@@ -70,7 +80,7 @@ Eigen::Isometry3d HexapodVirtualMachine::moveTo(const Eigen::VectorXd& command) 
   kin::PoseRpy pose;
   pose.position = command.head<3>();
   pose.rpy = command.tail<3>();
-  commanded_ = kin::inverseKinematics(nominal_, nominal_data_, pose);
+  commanded_ = kin::inverseKinematics(controller_, controller_data_, pose);
   if (actuation_.encoder_resolution > 0.0) {
     const NoiseModel counts{
         0.0, 0.0, actuation_.encoder_resolution};  // rounding only, draws nothing

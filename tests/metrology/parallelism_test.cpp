@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <map>
 #include <string>
@@ -126,6 +127,25 @@ TEST(Parallelism, RecoversSimulatedSeed000Squareness) {
       exact.dalpha / kMrad,
       s.szP / kMrad,
       s.sxP / kMrad);
+}
+
+/// Third-order remainder of the second-order eq. 11 at seed 000's mrad angles: (1e-2)^3.
+constexpr double kTolSecondOrder = 2e-6;
+
+TEST(Parallelism, SecondOrderEq11InvertsTheExactRotation) {
+  // The PKM's y direction in F for seed 000's squareness, exactly: Rz(-szX2)·exp([ω_P]×)·ŷ.
+  const double szX2 = -0.034 * kMrad, sxP = -14.74 * kMrad, syP = 4.35 * kMrad, szP = -2.85 * kMrad;
+  const Eigen::Vector3d w(sxP, -syP, szP);
+  const Eigen::Matrix3d RP = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
+  const Eigen::Vector3d y =
+      Eigen::AngleAxisd(-szX2, Eigen::Vector3d::UnitZ()) * (RP * Eigen::Vector3d::UnitY());
+  const double dgamma = y.x() / y.y(), dalpha = y.z() / y.y();
+  const PkmSquareness first = pkmSquarenessFromSlopes(dgamma, dalpha, szX2);
+  const PkmSquareness second = pkmSquarenessFromSlopes(dgamma, dalpha, szX2, syP);
+  EXPECT_GT(std::abs(first.szP - szP), 20e-6);  // the first-order bias the refinement removes
+  EXPECT_NEAR(second.szP, szP, kTolSecondOrder);
+  EXPECT_NEAR(second.sxP, sxP, kTolSecondOrder);
+  EXPECT_THROW((void)pkmSquarenessFromSlopes(dgamma, dalpha, szX2, std::nan("")), InvalidArgument);
 }
 
 }  // namespace

@@ -129,4 +129,20 @@ TEST(HexapodVirtualMachine, RefusesInchAndBadCommands) {
   EXPECT_THROW((void)m.moveTo(Eigen::VectorXd::Zero(3)), pkm::InvalidArgument);
 }
 
+TEST(HexapodVirtualMachine, TheTrueModelInTheControllerRemovesTheAssemblyErrors) {
+  sim::HexapodAssemblyErrors e;
+  e.length_offset << 0.4, -0.3, 0.2, -0.5, 0.1, 0.3;
+  e.base_joint[2] = Eigen::Vector3d(1.0, -2.0, 0.5);
+  sim::HexapodVirtualMachine m(pkm::test::millingModel(), e);
+  const Eigen::VectorXd c = command(12, -7, 205, 0.04, -0.03, 0.06);
+  EXPECT_GT((m.moveTo(c).translation() - m.nominalPose(c).translation()).norm(), 0.1);
+  m.setControllerModel(m.truth());  // a perfect calibration loaded into the controller
+  EXPECT_EQ(m.controller().name, m.truth().name);
+  const Eigen::Isometry3d actual = m.moveTo(c);
+  EXPECT_NEAR((actual.matrix() - m.nominalPose(c).matrix()).norm(), 0.0, kTolRoundTrip);
+  kin::HexapodModel inch = m.truth();
+  inch.unit = pkm::LengthUnit::kInch;
+  EXPECT_THROW(m.setControllerModel(inch), pkm::InvalidArgument);
+}
+
 }  // namespace

@@ -49,6 +49,9 @@ struct ExechonCalibrationInput {
   /// Hybrid observations with source "FILE:LINE"; measurement_frame is set (to the identity, a
   /// placeholder for the caller's start) when the files' `frame` says tracker.
   calibration::HybridCalibrationData hybrid;
+  /// The hybrid files' `smr offset mm` metadata, when one gave it (hybrid.target_offset holds it
+  /// too, and zero otherwise).
+  std::optional<Eigen::Vector3d> hybrid_target_offset;
   std::optional<Eigen::Vector3d> target_offset;  ///< `smr offset mm` metadata (first seen)
   bool tracker_frame = false;  ///< a file's `frame` metadata starts with "tracker"
   std::vector<std::string> notes;

@@ -67,4 +67,15 @@ struct PkmSquareness {
 /// Throws pkm::InvalidArgument for non-finite input.
 [[nodiscard]] PkmSquareness pkmSquarenessFromSlopes(double dgamma, double dalpha, double szX2);
 
+/// Eq. 11 with the second-order terms, given syP (from the X2-PZ face diagonal). The PKM's y
+/// direction in F is Rz(−szX2)·exp([ω_P]×)·ŷ with ω_P = (sxP, −syP, szP) (docs/conventions.md);
+/// to second order its x component is szX2 − szP − ½·sxP·syP and its z component
+/// sxP − ½·syP·szP, so szP = szX2 − Δγ − ½·sxP·syP and sxP = Δα + ½·syP·szP (solved by two
+/// fixed-point passes; the remainder is third order). Seed 000's sxP·syP/2 = 32 µrad is 10 µm of
+/// parallelism over 300 mm. Throws pkm::InvalidArgument for non-finite input.
+[[nodiscard]] PkmSquareness pkmSquarenessFromSlopes(double dgamma,
+                                                    double dalpha,
+                                                    double szX2,
+                                                    double syP);
+
 }  // namespace pkm::metrology

@@ -76,16 +76,25 @@ class HexapodVirtualMachine final : public VirtualMachine {
   void reset(std::uint64_t noise_seed) override;
   /// The strut readings commanded by the last moveTo (nominal IK, quantised), mm.
   [[nodiscard]] const kinematics::StrutVector& commandedReadings() const { return commanded_; }
-  /// The model the controller uses.
+  /// The nominal model (commands are poses of this machine).
   [[nodiscard]] const kinematics::HexapodModel& nominal() const { return nominal_; }
+  /// The model the controller's inverse kinematics uses (the nominal model until
+  /// setControllerModel).
+  [[nodiscard]] const kinematics::HexapodModel& controller() const { return controller_; }
+  /// Compensation by calibrated kinematics: the controller turns commands into strut readings with
+  /// `model` (e.g. a calibrated model loaded into LinuxCNC's genhexkins). Equivalent to sending
+  /// pre-distorted commands FK_nominal(IK_model(X)) to a nominal controller. Throws
+  /// pkm::InvalidArgument when `model` does not validate or its unit is not mm.
+  void setControllerModel(kinematics::HexapodModel model);
   /// The true model (the truth).
   [[nodiscard]] const kinematics::HexapodModel& truth() const { return true_; }
 
  private:
   kinematics::HexapodModel nominal_;
   kinematics::HexapodModel true_;
+  kinematics::HexapodModel controller_;
   StrutActuation actuation_;
-  kinematics::HexapodData nominal_data_;
+  kinematics::HexapodData controller_data_;
   kinematics::HexapodData true_data_;
   RandomStream rng_{0};
   kinematics::StrutVector commanded_ = kinematics::StrutVector::Zero();

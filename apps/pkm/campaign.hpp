@@ -1,0 +1,140 @@
+/// @file
+/// @brief `pkm campaign run`: measure -> analyse -> calibrate -> compensate -> re-measure ->
+/// report (docs/campaign.md). A campaign (`pkm.campaign/1`) is a list of steps; each step kind
+/// (apps/pkm/campaign_<kind>.cpp) simulates its scenario's measurements on the virtual machine
+/// (or reads measured files), analyses them, writes the controller compensation, applies it to
+/// the virtual machine, measures again and returns its before/after figures and report section.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pkm/io/result_store.hpp"
+#include "pkm/io/scenario.hpp"
+#include "pkm/io/text_table.hpp"
+#include "pkm/metrology/iso230_2.hpp"
+#include "pkm/simulation/campaign.hpp"
+
+namespace pkm::cli {
+/// The metadata of a simulated line-measurement file (simulate_command.cpp).
+[[nodiscard]] io::Metadata lineRunMetadata(const io::Scenario& s,
+                                           std::uint64_t seed,
+                                           const simulation::LineSetup& m,
+                                           int run);
+}  // namespace pkm::cli
+
+namespace pkm::cli::campaign {
+
+using Json = nlohmann::ordered_json;
+
+/// One line of the summary table.
+struct SummaryRow {
+  std::string quantity;  ///< what, e.g. "parallelism Y2-PY (horizontal)"
+  std::string unit;      ///< "mm", "µm", "mrad" ...
+  double before = 0.0;   ///< measured before compensation (NaN: not measured)
+  double after = 0.0;    ///< measured after compensation on the virtual machine (NaN: none)
+  /// The target for `after` (|after| <= target), when there is one.
+  std::optional<double> target;
+  std::string paper;  ///< the paper's published before -> after, as text ("" when none)
+  std::string noise;  ///< the instrument noise of the measurement
+  /// True when there is no target or |after| <= target.
+  [[nodiscard]] bool pass() const;
+};
+
+/// What one step produced.
+struct StepOutcome {
+  std::string id;     ///< the step's id
+  std::string title;  ///< one line
+  std::vector<SummaryRow> rows;
+  Json section;                    ///< the report section (pkm.report/1 "sections" entry)
+  io::CampaignRecord record;       ///< what goes into the result store
+  std::vector<std::string> files;  ///< files written, relative to the campaign's --out
+};
+
+/// What a step gets.
+struct StepContext {
+  Json spec;                       ///< the step's JSON object
+  std::string source;              ///< "CAMPAIGN_FILE: steps[k]" for messages
+  std::filesystem::path out;       ///< the campaign's output directory
+  std::filesystem::path dir;       ///< out / id: the step's own directory
+  std::filesystem::path base_dir;  ///< the campaign file's directory (relative data paths)
+  std::function<void(const std::string&)> progress;  ///< prints one progress line
+  /// Writes `text` to dir / `name` (creating folders) and records it in `outcome.files`.
+  void write(StepOutcome& outcome, const std::string& name, const std::string& text) const;
+};
+
+/// A step kind: runs one step. Throws pkm::IoError / pkm::InvalidArgument for bad input.
+using StepRunner = StepOutcome (*)(const StepContext& context);
+
+/// The step kinds: "hybrid-squareness" (seed 000), "cartesian-diagonals" (seed 001),
+/// "probe-offset" (seed 003), "hexapod-calibration" (seed 004).
+StepOutcome runHybridSquarenessStep(const StepContext& context);
+StepOutcome runCartesianDiagonalsStep(const StepContext& context);
+StepOutcome runProbeOffsetStep(const StepContext& context);
+StepOutcome runHexapodCalibrationStep(const StepContext& context);
+/// "hexapod-calibration" with "data" (measured files) instead of "scenario".
+StepOutcome runHexapodCalibrationFiles(const StepContext& context);
+
+/// A report plot (pkm.report/1).
+Json plot(const std::string& id,
+          const std::string& title,
+          const std::string& kind,
+          const std::string& x_label,
+          const std::string& y_label);
+/// Adds a series {label, x, y} to `plot`.
+void addSeries(Json& plot,
+               const std::string& label,
+               const std::vector<double>& x,
+               const std::vector<double>& y);
+/// A report table.
+Json table(const std::string& title, const std::vector<std::string>& columns);
+/// A number rounded to `digits` significant digits for a report cell (null when not finite).
+Json cell(double value, int digits = 4);
+/// A report section with id, title and paragraphs.
+Json section(const std::string& id, const std::string& title, std::vector<std::string> text);
+
+}  // namespace pkm::cli::campaign
+
+namespace pkm::cli::campaign {
+
+/// The line measurements of a scenario by name, with their results.
+struct LineData {
+  std::vector<simulation::MeasurementResult> results;
+  /// The runs of measurement `name`; throws pkm::IoError naming `source` when there is none.
+  [[nodiscard]] const std::vector<simulation::LineRun>& runs(const std::string& name,
+                                                             const std::string& source) const;
+  /// The set-up of measurement `name` (throws as runs).
+  [[nodiscard]] const simulation::LineSetup& setup(const std::string& name,
+                                                   const std::string& source) const;
+};
+
+/// Writes every run of `data` into `folder` of the step (`name_runK.csv`, the simulator format).
+void writeLineFiles(const StepContext& context,
+                    StepOutcome& outcome,
+                    const std::string& folder,
+                    const io::Scenario& scenario,
+                    std::uint64_t seed,
+                    const LineData& data);
+
+/// ISO 230-2 of line runs (reading − target = deviation), coverage k = 2.
+[[nodiscard]] metrology::Iso230_2Result iso230_2(const std::vector<simulation::LineRun>& runs);
+
+/// Per target: (target, mean over runs and both directions of the reading), sorted by target.
+void meanReadings(const std::vector<simulation::LineRun>& runs,
+                  std::vector<double>& targets,
+                  std::vector<double>& means);
+
+/// The seed of the re-measurement after compensation: seed + 1, so that the instruments and the
+/// machine's repeatability draw new noise (a table made from one measurement must not be checked
+/// against the same noise).
+[[nodiscard]] inline std::uint64_t remeasureSeed(std::uint64_t seed) { return seed + 1; }
+
+/// The scenario named by the step's "scenario" (a file relative to the campaign's folder, or a
+/// built-in name) and the seed ("seed", default the scenario's).
+[[nodiscard]] io::Scenario stepScenario(const StepContext& context, std::uint64_t& seed);
+
+}  // namespace pkm::cli::campaign

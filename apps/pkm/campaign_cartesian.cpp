@@ -1,0 +1,239 @@
+// Campaign step "cartesian-diagonals" (seed 001): body diagonals (ISO 230-6) of a Cartesian
+// machine give its three squareness errors; they are compensated by a linear command correction
+// and the X and Y positioning by LinuxCNC axis tables; the diagonals are measured again
+// (docs/campaign.md).
+#include <fmt/format.h>
+
+#include <Eigen/LU>
+#include <cmath>
+
+#include "campaign.hpp"
+#include "campaign_compensation.hpp"
+#include "pkm/compensation/axis_table.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/metrology/body_diagonals.hpp"
+#include "pkm/simulation/cartesian_machine.hpp"
+
+namespace pkm::cli::campaign {
+
+namespace sim = pkm::simulation;
+namespace met = pkm::metrology;
+namespace comp = pkm::compensation;
+
+namespace {
+
+const std::array<std::string, 4> kDiagonals = {"diag-ppp", "diag-npp", "diag-pnp", "diag-nnp"};
+
+struct Analysis {
+  met::BodyDiagonalResult body;
+  double max_length_error = 0.0;  ///< max |ΔD| of the four diagonals, mm
+  met::Iso230_2Result face_pp, face_np, linear_x, linear_y;
+};
+
+Analysis analyse(const LineData& d, const Eigen::Vector3d& size, const std::string& src) {
+  Analysis a;
+  std::vector<met::BodyDiagonalSample> samples;
+  for (std::size_t k = 0; k < 4; ++k)
+    for (const sim::LineRun& run : d.runs(kDiagonals[k], src))
+      for (const sim::LineReading& r : run.readings)
+        samples.push_back(
+            {met::kBodyDiagonals[k], r.target, r.reading - r.target, run.run, r.direction});
+  met::BodyDiagonalOptions options;
+  options.iso230_2 = false;
+  a.body = met::evaluateBodyDiagonals(samples, size, options);
+  for (const met::DiagonalEvaluation& e : a.body.diagonals)
+    a.max_length_error = std::max(a.max_length_error, std::abs(e.length_error));
+  a.face_pp = iso230_2(d.runs("face-xy-pp", src));
+  a.face_np = iso230_2(d.runs("face-xy-np", src));
+  a.linear_x = iso230_2(d.runs("linear-x", src));
+  a.linear_y = iso230_2(d.runs("linear-y", src));
+  return a;
+}
+
+/// The squareness correction q' = D⁻¹·q, D the axis directions of the machine with the estimated
+/// squareness (CartesianMachine::axisDirection), so that the estimated machine's axes reach q.
+class SquarenessController final : public sim::CommandCompensation {
+ public:
+  explicit SquarenessController(const Eigen::Matrix3d& inverse) : inverse_(inverse) {}
+  [[nodiscard]] Eigen::VectorXd apply(const Eigen::VectorXd& command) override {
+    return inverse_ * command;
+  }
+
+ private:
+  Eigen::Matrix3d inverse_;
+};
+
+}  // namespace
+
+StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
+  std::uint64_t seed = 0;
+  io::Scenario scenario = stepScenario(ctx, seed);
+  auto vm = std::dynamic_pointer_cast<sim::CartesianMachine>(scenario.campaign.machine);
+  if (!vm)
+    throw IoError(fmt::format("{}: scenario '{}' is not a Cartesian-machine scenario",
+                              ctx.source,
+                              scenario.campaign.name));
+  const std::string& src = ctx.source;
+  StepOutcome out;
+  out.id = ctx.spec.value("id", std::string("seed001"));
+  out.title = "Cartesian machine: squareness from body diagonals (seed 001)";
+  out.record.machine = scenario.campaign.name;
+  out.record.machine_type = "cartesian";
+  out.record.source = scenario.source;
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+  for (const sim::LineSetup& m : scenario.campaign.measurements)
+    if (m.name == "diag-ppp")
+      size = (m.line.direction * (m.cycle.last - m.cycle.first)).head<3>().cwiseAbs();
+  if (!(size.minCoeff() > 0))
+    throw IoError(fmt::format("{}: the scenario needs the body diagonal 'diag-ppp'", src));
+
+  ctx.progress("measure: body, face and shifted diagonals, positioning and straightness");
+  const LineData before{sim::runCampaign(scenario.campaign, seed)};
+  writeLineFiles(ctx, out, "measured-before", scenario, seed, before);
+  ctx.progress("analyse: squareness from the four body diagonals (ISO 230-6)");
+  const Analysis ab = analyse(before, size, src);
+
+  sim::CartesianErrors estimated;
+  estimated.squareness = {ab.body.solution.squareness_xy,
+                          ab.body.solution.squareness_xz,
+                          ab.body.solution.squareness_yz};
+  const sim::CartesianMachine model(vm->layout(), estimated);
+  Eigen::Matrix3d D;
+  for (int k = 0; k < 3; ++k) D.col(k) = model.axisDirection(k);
+  auto chain = std::make_shared<sim::CompensationChain>();
+  chain->add(std::make_shared<SquarenessController>(D.inverse()));
+  auto axes = std::make_shared<AxisTableController>(3);
+  for (const auto& [name, axis] :
+       std::vector<std::pair<std::string, int>>{{"linear-x", 0}, {"linear-y", 1}}) {
+    const sim::LineSetup& setup = before.setup(name, src);
+    met::Iso230_2Result r = iso230_2(before.runs(name, src));
+    for (met::TargetStatistics& t : r.targets)
+      t.target = setup.line.start[axis] + t.target * setup.line.direction[axis];
+    const std::string axis_name = vm->axisNames()[static_cast<std::size_t>(axis)];
+    const comp::LinuxcncCompFile file =
+        comp::linuxcncCompFromTable(comp::tableFromIso230_2(r, axis_name), 1);
+    const std::string text = comp::writeLinuxcncComp(file);
+    ctx.write(out, fmt::format("compensation/{}.comp", axis_name), text);
+    out.record.compensations.push_back(
+        {"linuxcnc-comp", (ctx.dir / "compensation" / (axis_name + ".comp")).string(), text});
+    axes->set(axis, file);
+  }
+  chain->add(axes);
+  const Eigen::Matrix3d Di = D.inverse();
+  const std::string sq_text = fmt::format(
+      "# squareness correction (body diagonals): q_sent = M * q\n# xy {:.6e} xz {:.6e} yz {:.6e} "
+      "rad\n"
+      "M = {:.9e} {:.9e} {:.9e}\n    {:.9e} {:.9e} {:.9e}\n    {:.9e} {:.9e} {:.9e}\n",
+      estimated.squareness.xy,
+      estimated.squareness.xz,
+      estimated.squareness.yz,
+      Di(0, 0),
+      Di(0, 1),
+      Di(0, 2),
+      Di(1, 0),
+      Di(1, 1),
+      Di(1, 2),
+      Di(2, 0),
+      Di(2, 1),
+      Di(2, 2));
+  ctx.write(out, "compensation/squareness.txt", sq_text);
+  out.record.compensations.push_back(
+      {"squareness-matrix", (ctx.dir / "compensation/squareness.txt").string(), sq_text});
+
+  ctx.progress("re-measure: the same lines through the compensating controller");
+  io::Scenario again = scenario;
+  again.campaign.machine = std::make_shared<sim::CompensatedMachine>(vm, chain);
+  const LineData after{sim::runCampaign(again.campaign, remeasureSeed(seed))};
+  writeLineFiles(ctx, out, "measured-after", scenario, remeasureSeed(seed), after);
+  const Analysis aa = analyse(after, size, src);
+
+  const sim::LineSetup& li = before.setup("diag-ppp", src);
+  const std::string noise =
+      fmt::format("laser {:g} µm + {:g} ppm", li.noise.sigma * 1e3, li.noise.sigma_ppm);
+  out.rows.push_back({"body diagonals, max |length error|",
+                      "mm",
+                      ab.max_length_error,
+                      aa.max_length_error,
+                      std::nullopt,
+                      "",
+                      noise});
+  out.rows.push_back({"face diagonal XY (PP) error (ISO 230-2 E)",
+                      "mm",
+                      ab.face_pp.E,
+                      aa.face_pp.E,
+                      std::nullopt,
+                      "",
+                      noise});
+  out.rows.push_back({"face diagonal XY (NP) error (ISO 230-2 E)",
+                      "mm",
+                      ab.face_np.E,
+                      aa.face_np.E,
+                      std::nullopt,
+                      "",
+                      noise});
+  out.rows.push_back(
+      {"X positioning (ISO 230-2 E)", "mm", ab.linear_x.E, aa.linear_x.E, std::nullopt, "", noise});
+  out.rows.push_back(
+      {"Y positioning (ISO 230-2 E)", "mm", ab.linear_y.E, aa.linear_y.E, std::nullopt, "", noise});
+  for (const SummaryRow& r : out.rows) {
+    out.record.results.push_back({r.quantity, "before", r.before, r.unit});
+    out.record.results.push_back({r.quantity, "after", r.after, r.unit});
+  }
+  const met::BodyDiagonalSolution& sb = ab.body.solution;
+  const met::BodyDiagonalSolution& sa = aa.body.solution;
+  out.record.results.push_back({"squareness.xy", "estimate", sb.squareness_xy, "rad"});
+  out.record.results.push_back({"squareness.xz", "estimate", sb.squareness_xz, "rad"});
+  out.record.results.push_back({"squareness.yz", "estimate", sb.squareness_yz, "rad"});
+
+  Json sec =
+      section(out.id,
+              out.title,
+              {fmt::format("Scenario {} (seed {}): {}",
+                           scenario.campaign.name,
+                           seed,
+                           scenario.campaign.description),
+               "Analysis: the four body diagonals' length errors give the three squareness "
+               "errors and the volumetric scale (ISO 230-6; metrology notes §1.3). "
+               "Compensation: the command correction q' = D⁻¹·q with D the axis directions of "
+               "the estimated squareness (compensation/squareness.txt) and LinuxCNC COMP_FILE "
+               "type 1 tables of X and Y (compensation/*.comp)."});
+  const sim::CartesianSquareness& t = vm->errors().squareness;
+  Json st = table("Squareness (µrad): body diagonals before and after compensation, injected",
+                  {"angle", "before", "after", "truth"});
+  st["rows"].push_back(
+      {"xy", cell(sb.squareness_xy * 1e6), cell(sa.squareness_xy * 1e6), cell(t.xy * 1e6)});
+  st["rows"].push_back(
+      {"xz", cell(sb.squareness_xz * 1e6), cell(sa.squareness_xz * 1e6), cell(t.xz * 1e6)});
+  st["rows"].push_back(
+      {"yz", cell(sb.squareness_yz * 1e6), cell(sa.squareness_yz * 1e6), cell(t.yz * 1e6)});
+  sec["tables"].push_back(st);
+  Json p = plot(out.id + "-body",
+                "Body diagonal length errors (seed 001 Fig. 5)",
+                "bar",
+                "diagonal",
+                "ΔD (µm)");
+  p["categories"] = Json::array({"PPP", "NPP", "PNP", "NNP"});
+  for (const auto* a : {&ab, &aa}) {
+    Json ys = Json::array();
+    for (const met::DiagonalEvaluation& e : a->body.diagonals)
+      ys.push_back(cell(e.length_error * 1e3));
+    p["series"].push_back(Json{{"label", a == &ab ? "before" : "after"}, {"y", ys}});
+  }
+  sec["plots"].push_back(p);
+  Json f = plot(out.id + "-face",
+                "Face diagonal XY (PP): deviation",
+                "line",
+                "position (mm)",
+                "deviation (µm)");
+  for (const auto* d : {&before, &after}) {
+    std::vector<double> s, m;
+    meanReadings(d->runs("face-xy-pp", src), s, m);
+    for (std::size_t i = 0; i < s.size(); ++i) m[i] = (m[i] - s[i]) * 1e3;
+    addSeries(f, d == &before ? "before" : "after", s, m);
+  }
+  sec["plots"].push_back(f);
+  out.section = std::move(sec);
+  return out;
+}
+
+}  // namespace pkm::cli::campaign

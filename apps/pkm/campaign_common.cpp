@@ -1,0 +1,148 @@
+// Helpers shared by the campaign steps (campaign.hpp).
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+
+#include "campaign.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/io/measurement_files.hpp"
+
+namespace pkm::cli::campaign {
+
+namespace fs = std::filesystem;
+namespace sim = pkm::simulation;
+
+bool SummaryRow::pass() const {
+  return !target || (std::isfinite(after) && std::abs(after) <= *target);
+}
+
+void StepContext::write(StepOutcome& outcome,
+                        const std::string& name,
+                        const std::string& text) const {
+  const fs::path path = dir / name;
+  std::error_code ec;
+  fs::create_directories(path.parent_path(), ec);
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+  f.close();
+  if (!f) throw IoError(fmt::format("{}: cannot write the file", path.string()));
+  outcome.files.push_back(fs::relative(path, out).generic_string());
+}
+
+Json plot(const std::string& id,
+          const std::string& title,
+          const std::string& kind,
+          const std::string& x_label,
+          const std::string& y_label) {
+  return Json{{"id", id},
+              {"title", title},
+              {"kind", kind},
+              {"x_label", x_label},
+              {"y_label", y_label},
+              {"series", Json::array()}};
+}
+
+void addSeries(Json& p,
+               const std::string& label,
+               const std::vector<double>& x,
+               const std::vector<double>& y) {
+  Json xs = Json::array(), ys = Json::array();
+  for (double v : x) xs.push_back(cell(v, 9));
+  for (double v : y) ys.push_back(cell(v, 7));
+  p["series"].push_back(Json{{"label", label}, {"x", std::move(xs)}, {"y", std::move(ys)}});
+}
+
+Json table(const std::string& title, const std::vector<std::string>& columns) {
+  return Json{{"title", title}, {"columns", columns}, {"rows", Json::array()}};
+}
+
+Json cell(double value, int digits) {
+  if (!std::isfinite(value)) return nullptr;
+  if (value == 0.0) return 0.0;
+  return std::stod(fmt::format("{:.{}g}", value, digits));
+}
+
+Json section(const std::string& id, const std::string& title, std::vector<std::string> text) {
+  return Json{{"id", id},
+              {"title", title},
+              {"paragraphs", std::move(text)},
+              {"tables", Json::array()},
+              {"plots", Json::array()}};
+}
+
+const std::vector<sim::LineRun>& LineData::runs(const std::string& name,
+                                                const std::string& source) const {
+  for (const sim::MeasurementResult& r : results)
+    if (r.setup->name == name) return r.runs;
+  throw IoError(fmt::format("{}: the scenario has no measurement '{}'", source, name));
+}
+
+const sim::LineSetup& LineData::setup(const std::string& name, const std::string& source) const {
+  for (const sim::MeasurementResult& r : results)
+    if (r.setup->name == name) return *r.setup;
+  throw IoError(fmt::format("{}: the scenario has no measurement '{}'", source, name));
+}
+
+void writeLineFiles(const StepContext& context,
+                    StepOutcome& outcome,
+                    const std::string& folder,
+                    const io::Scenario& scenario,
+                    std::uint64_t seed,
+                    const LineData& data) {
+  for (const sim::MeasurementResult& r : data.results)
+    for (const sim::LineRun& run : r.runs)
+      context.write(
+          outcome,
+          fmt::format("{}/{}_run{}.csv", folder, r.setup->name, run.run),
+          io::lineRunCsv(
+              r.setup->quantity, lineRunMetadata(scenario, seed, *r.setup, run.run), run));
+}
+
+metrology::Iso230_2Result iso230_2(const std::vector<sim::LineRun>& runs) {
+  std::vector<metrology::PositioningSample> samples;
+  for (const sim::LineRun& run : runs)
+    for (const sim::LineReading& r : run.readings)
+      if (r.sub_step == 0) samples.push_back({r.target, r.direction, run.run, r.reading});
+  return metrology::evaluateIso230_2(samples);
+}
+
+void meanReadings(const std::vector<sim::LineRun>& runs,
+                  std::vector<double>& targets,
+                  std::vector<double>& means) {
+  std::map<double, std::pair<double, int>> acc;
+  for (const sim::LineRun& run : runs)
+    for (const sim::LineReading& r : run.readings)
+      if (r.sub_step == 0) {
+        auto& [sum, n] = acc[r.target];
+        sum += r.reading;
+        ++n;
+      }
+  targets.clear();
+  means.clear();
+  for (const auto& [t, v] : acc) {
+    targets.push_back(t);
+    means.push_back(v.first / v.second);
+  }
+}
+
+io::Scenario stepScenario(const StepContext& context, std::uint64_t& seed) {
+  if (!context.spec.contains("scenario") || !context.spec["scenario"].is_string())
+    throw IoError(fmt::format("{}: a step needs \"scenario\" (a scenario file or built-in name)",
+                              context.source));
+  std::string spec = context.spec["scenario"].get<std::string>();
+  std::error_code ec;
+  if (!fs::path(spec).is_absolute() && fs::is_regular_file(context.base_dir / spec, ec))
+    spec = (context.base_dir / spec).string();
+  io::Scenario scenario = io::loadScenario(spec);
+  seed = scenario.seed;
+  if (context.spec.contains("seed")) {
+    if (!context.spec["seed"].is_number_unsigned())
+      throw IoError(fmt::format("{}: \"seed\" must be a non-negative integer", context.source));
+    seed = context.spec["seed"].get<std::uint64_t>();
+  }
+  return scenario;
+}
+
+}  // namespace pkm::cli::campaign
