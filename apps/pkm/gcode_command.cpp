@@ -11,6 +11,10 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::cli {
+
+void addGcodeRunCommand(CLI::App& gcode);         // gcode_run.cpp
+void addGcodeCompensateCommand(CLI::App& gcode);  // gcode_compensate.cpp
+
 namespace {
 
 struct MovesArgs {
@@ -112,6 +116,8 @@ void addGcodeCommand(CLI::App& app) {
                 a->max_iterations,
                 "iterations one loop may make before the program is rejected (default 1e7)");
   m->callback([a] { runMoves(*a); });
+  addGcodeRunCommand(*g);
+  addGcodeCompensateCommand(*g);
 }
 
 const CommandRegistration kRegisterGcode{60, &addGcodeCommand};

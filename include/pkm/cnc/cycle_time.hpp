@@ -1,0 +1,54 @@
+/// @file
+/// @brief Cycle-time model of `pkm gcode run` (docs/gcode.md "Cycle time"): along the
+/// interpolated path, the speed of each sub-segment is the programmed feed (rapids at a rapid
+/// rate) reduced so that no joint exceeds its velocity limit; the path acceleration of each
+/// sub-segment is the largest one that keeps every joint within its acceleration limit; the speed
+/// at each point between sub-segments is bounded so that the change of joint velocity across the
+/// point stays within the acceleration limit; a forward/backward pass (look-ahead over the whole
+/// program) then gives a trapezoidal speed profile per sub-segment, starting and ending at rest.
+#pragma once
+
+#include <limits>
+#include <vector>
+
+#include "pkm/cnc/path_interpolation.hpp"
+#include "pkm/kinematics/hexapod_model.hpp"
+
+namespace pkm::cnc {
+
+/// Joint and rapid limits (the same for all six struts).
+struct MotionLimits {
+  double max_joint_velocity = 100.0;       ///< model length unit per second; > 0
+  double max_joint_acceleration = 1000.0;  ///< model length unit per second²; > 0
+  double rapid_rate = 10000.0;             ///< G0 path speed, mm/min (or deg/min); > 0
+  /// Throws pkm::InvalidArgument naming the field when one is not > 0 and finite.
+  void validate() const;
+};
+
+/// Path length of the sub-segment from `a` to `b`: the XYZ length in mm, or for a rotary-only
+/// step the A/B/C length in degrees (LinuxCNC's feed rule for rotary-only moves); 0 if none moves.
+[[nodiscard]] double segmentLength(const Axes& a, const Axes& b);
+
+/// The programmed path speed of a point's sub-segment: feed/60 (mm/s), or rapid_rate/60 for a
+/// rapid (or a move without a feed).
+[[nodiscard]] double programmedSpeed(const PathPoint& p, const MotionLimits& limits);
+
+/// Time of a sub-segment of length `ds` entered at speed `v0`, left at `v1`, cruising at most at
+/// `vmax` with acceleration `a` (a trapezoid or triangle; v0, v1 <= vmax and reachable, as the
+/// look-ahead guarantees). a = +inf gives ds / vmax.
+[[nodiscard]] double trapezoidTime(double ds, double v0, double v1, double vmax, double a);
+
+/// Result of estimateCycleTime.
+struct CycleTime {
+  std::vector<double> t;  ///< time at each point (s); t[0] = 0
+  double total = 0.0;     ///< t.back()
+};
+
+/// Times the path points[0..n) with strut readings q (model length unit). points[0] is the start
+/// (the speed is 0 there and at the end). Throws pkm::InvalidArgument when sizes differ or the
+/// limits are invalid.
+[[nodiscard]] CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
+                                          const std::vector<kinematics::StrutVector>& q,
+                                          const MotionLimits& limits);
+
+}  // namespace pkm::cnc

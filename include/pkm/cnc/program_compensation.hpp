@@ -1,0 +1,58 @@
+/// @file
+/// @brief Pre-distortion of a whole G-code program for a hexapod controller that keeps its
+/// nominal kinematics (`pkm gcode compensate`, docs/gcode.md): every motion is interpolated
+/// (path_interpolation.hpp, since pre-distortion is nonlinear a straight line is no longer
+/// straight), each point goes through compensation::predistortPath (X_cmd =
+/// FK_nominal(IK_calibrated(X))), and the program text is rewritten line by line.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pkm/cnc/path_interpolation.hpp"
+#include "pkm/compensation/predistortion.hpp"
+#include "pkm/kinematics/hexapod_model.hpp"
+
+namespace pkm::cnc {
+
+/// Settings of compensateProgram.
+struct ProgramCompensationOptions {
+  InterpolationOptions interpolation;                ///< how motions are cut into G1 segments
+  compensation::PredistortionOptions predistortion;  ///< nominal FK settings
+};
+
+/// One compensated point.
+struct CompensatedPoint {
+  std::size_t line = 0;  ///< source line of the motion
+  Axes desired{};        ///< position the program asks for, mm and degrees
+  Axes command{};        ///< pre-distorted command written to the output, mm and degrees
+};
+
+/// What compensateProgram produced.
+struct ProgramCompensation {
+  std::string text;                      ///< the compensated program
+  std::vector<CompensatedPoint> points;  ///< every commanded point, in order
+  std::size_t motion_lines = 0;          ///< source lines whose axis words were replaced
+  std::size_t added_lines = 0;           ///< G1/G0 segment lines inserted after them
+  double max_correction = 0.0;           ///< largest |command − desired| in XYZ, mm
+};
+
+/// Rewrites program `text` (`file` names it in messages). Lines without motion are copied byte
+/// for byte. A motion line keeps its N number, comments and other words; its G0/G1/G2/G3 word
+/// and axis words (X Y Z A B C, I J K R, and P of an arc) are replaced by `G0` or `G1` and all
+/// six pre-distorted axis words, written right after the N number (or at the start). When the
+/// motion needs more than one segment, the first is written on the line itself and the others on
+/// the following inserted lines `G1 X.. Y.. Z.. A.. B.. C.. (pkm: line L segment k/n)`. The
+/// first motion of the program is taken as positioning to its end point (the interpreter's
+/// start-up position is not a machine position). Supported subset, because the output is in
+/// absolute machine coordinates: G21, G90, no G92/G10/G43 offsets, no canned cycles, G28/G30,
+/// G53, G91, G93 or O-words, one motion per line. Throws pkm::IoError "FILE:LINE: message" for
+/// anything else or when the nominal FK does not converge; pkm::InvalidArgument for bad models.
+[[nodiscard]] ProgramCompensation compensateProgram(std::string_view text,
+                                                    const std::string& file,
+                                                    const kinematics::HexapodModel& nominal,
+                                                    const kinematics::HexapodModel& calibrated,
+                                                    const ProgramCompensationOptions& options = {});
+
+}  // namespace pkm::cnc

@@ -1,0 +1,97 @@
+#include "pkm/cnc/cycle_time.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pkm/core/error.hpp"
+
+namespace pkm::cnc {
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+/// Speed reachable from `v` over `ds` with acceleration `a` (v² + 2·a·ds).
+double reach(double v, double a, double ds) {
+  if (ds <= 0.0) return v;
+  if (!std::isfinite(a)) return kInf;
+  return std::sqrt(v * v + 2.0 * a * ds);
+}
+}  // namespace
+
+void MotionLimits::validate() const {
+  PKM_CHECK(std::isfinite(max_joint_velocity) && max_joint_velocity > 0.0,
+            "max joint velocity must be > 0 (got {})",
+            max_joint_velocity);
+  PKM_CHECK(std::isfinite(max_joint_acceleration) && max_joint_acceleration > 0.0,
+            "max joint acceleration must be > 0 (got {})",
+            max_joint_acceleration);
+  PKM_CHECK(
+      std::isfinite(rapid_rate) && rapid_rate > 0.0, "rapid rate must be > 0 (got {})", rapid_rate);
+}
+
+double segmentLength(const Axes& a, const Axes& b) {
+  const double l = std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
+  if (l > 0.0) return l;
+  return std::hypot(b[3] - a[3], b[4] - a[4], b[5] - a[5]);
+}
+
+double programmedSpeed(const PathPoint& p, const MotionLimits& limits) {
+  const bool rapid = p.kind == MoveKind::kRapid || !(p.feed > 0.0);
+  return (rapid ? limits.rapid_rate : p.feed) / 60.0;
+}
+
+double trapezoidTime(double ds, double v0, double v1, double vmax, double a) {
+  if (ds <= 0.0) return 0.0;
+  if (!std::isfinite(a)) return ds / vmax;
+  // Peak speed of the triangle through v0 and v1: (vp² − v0²)/2a + (vp² − v1²)/2a = ds.
+  const double vp = std::min(vmax, std::sqrt((2.0 * a * ds + v0 * v0 + v1 * v1) / 2.0));
+  const double d_acc = (vp * vp - v0 * v0) / (2.0 * a);
+  const double d_dec = (vp * vp - v1 * v1) / (2.0 * a);
+  const double cruise = std::max(0.0, ds - d_acc - d_dec);
+  return (vp - v0) / a + (vp - v1) / a + (vp > 0.0 ? cruise / vp : 0.0);
+}
+
+CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
+                            const std::vector<kinematics::StrutVector>& q,
+                            const MotionLimits& limits) {
+  limits.validate();
+  PKM_CHECK(points.size() == q.size(), "{} points but {} joint vectors", points.size(), q.size());
+  CycleTime r;
+  const std::size_t n = points.size();
+  r.t.assign(n, 0.0);
+  if (n < 2) return r;
+  // Per sub-segment k (from point k−1 to k): length, speed cap, acceleration cap, dq/ds.
+  std::vector<double> ds(n, 0.0), vcap(n, 0.0), acap(n, kInf);
+  std::vector<kinematics::StrutVector> dqds(n, kinematics::StrutVector::Zero());
+  for (std::size_t k = 1; k < n; ++k) {
+    ds[k] = segmentLength(points[k - 1].pos, points[k].pos);
+    vcap[k] = programmedSpeed(points[k], limits);
+    if (ds[k] <= 0.0) continue;
+    dqds[k] = (q[k] - q[k - 1]) / ds[k];
+    const double g = dqds[k].cwiseAbs().maxCoeff();  // joint units per path unit
+    if (g > 0.0) {
+      vcap[k] = std::min(vcap[k], limits.max_joint_velocity / g);
+      acap[k] = limits.max_joint_acceleration / g;
+    }
+  }
+  // Speed bound at each point: rest at both ends; between sub-segments the lower cap and the
+  // joint-acceleration bound v² · |Δ(dq/ds)| / ds_mean <= a_max.
+  std::vector<double> v(n, 0.0);
+  for (std::size_t k = 1; k + 1 < n; ++k) {
+    double vk = std::min(vcap[k], vcap[k + 1]);
+    const double mean = 0.5 * (ds[k] + ds[k + 1]);
+    if (mean > 0.0) {
+      const double jump = (dqds[k + 1] - dqds[k]).cwiseAbs().maxCoeff() / mean;
+      if (jump > 0.0) vk = std::min(vk, std::sqrt(limits.max_joint_acceleration / jump));
+    }
+    v[k] = vk;
+  }
+  for (std::size_t k = 1; k < n; ++k)  // forward: what can be reached by accelerating
+    v[k] = std::min(v[k], reach(v[k - 1], acap[k], ds[k]));
+  for (std::size_t k = n - 1; k >= 1; --k)  // backward: what can still be stopped
+    v[k - 1] = std::min(v[k - 1], reach(v[k], acap[k], ds[k]));
+  for (std::size_t k = 1; k < n; ++k)
+    r.t[k] = r.t[k - 1] + trapezoidTime(ds[k], v[k - 1], v[k], vcap[k], acap[k]);
+  r.total = r.t.back();
+  return r;
+}
+
+}  // namespace pkm::cnc

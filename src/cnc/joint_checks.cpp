@@ -1,0 +1,162 @@
+#include "pkm/cnc/joint_checks.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "pkm/cnc/joint_path.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/kinematics/hexapod_checks.hpp"
+#include "pkm/kinematics/hexapod_data.hpp"
+
+namespace pkm::cnc {
+namespace {
+
+/// Records one evaluation: the worst point, and the first violation.
+void record(
+    CheckStat& s, const PathPoint& p, std::string item, double value, double limit, double margin) {
+  if (!std::isfinite(margin) && margin > 0.0) return;  // disabled limit
+  s.enabled = true;
+  const bool violated = !(margin >= 0.0);
+  if (violated) ++s.violations;
+  const bool worse = !(s.worst.margin <= margin);
+  if (!worse && !(violated && s.violations == 1)) return;
+  CheckEvent e{p.line, p.pos, std::move(item), value, limit, margin};
+  if (violated && s.violations == 1) s.first = e;
+  if (worse) s.worst = std::move(e);
+}
+
+/// Index of the smallest coefficient.
+int argmin(const kinematics::StrutVector& v) {
+  int i = 0;
+  v.minCoeff(&i);
+  return i;
+}
+
+void recordPose(PathCheckReport& r,
+                const kinematics::HexapodModel& model,
+                const PathPoint& p,
+                const kinematics::HexapodCheckResult& c) {
+  auto& st = r.stats;
+  const int s = argmin(c.stroke_margin);
+  const auto& strut = model.struts[static_cast<std::size_t>(s)];
+  const double q = c.readings(s);
+  record(st[0],
+         p,
+         fmt::format("strut {}", s),
+         q,
+         q - strut.min_reading < strut.max_reading - q ? strut.min_reading : strut.max_reading,
+         c.stroke_margin(s));
+  const int b = argmin(c.base_angle_margin), pl = argmin(c.platform_angle_margin);
+  if (c.base_angle_margin(b) <= c.platform_angle_margin(pl))
+    record(st[1],
+           p,
+           fmt::format("base joint {}", b),
+           c.base_angle(b),
+           model.struts[static_cast<std::size_t>(b)].base_cone.max_angle,
+           c.base_angle_margin(b));
+  else
+    record(st[1],
+           p,
+           fmt::format("platform joint {}", pl),
+           c.platform_angle(pl),
+           model.struts[static_cast<std::size_t>(pl)].platform_cone.max_angle,
+           c.platform_angle_margin(pl));
+  if (c.closest_pair[0] >= 0)
+    record(st[2],
+           p,
+           fmt::format("struts {}-{}", c.closest_pair[0], c.closest_pair[1]),
+           c.min_leg_distance,
+           model.strut_diameter,
+           c.interference_margin);
+  record(st[3], p, "jacobian", c.condition_number, model.max_condition, c.condition_margin);
+  // Degenerate: the shortest distance between a strut's joint centres (limit 0).
+  kinematics::StrutVector dist;
+  for (int i = 0; i < kinematics::kStruts; ++i)
+    dist(i) = c.readings(i) + model.struts[static_cast<std::size_t>(i)].length_offset;
+  const int d = argmin(dist);
+  record(st[4], p, fmt::format("strut {}", d), dist(d), 0.0, dist(d) > 0.0 ? dist(d) : -1.0);
+}
+
+}  // namespace
+
+std::string_view toString(PathCheck check) {
+  switch (check) {
+    case PathCheck::kStroke:
+      return "stroke";
+    case PathCheck::kJointAngle:
+      return "joint_angle";
+    case PathCheck::kInterference:
+      return "interference";
+    case PathCheck::kSingular:
+      return "singular";
+    case PathCheck::kDegenerate:
+      return "degenerate";
+    case PathCheck::kJointVelocity:
+      return "joint_velocity";
+    case PathCheck::kJointAcceleration:
+      return "joint_acceleration";
+  }
+  return "?";
+}
+
+bool PathCheckReport::ok() const {
+  return std::all_of(
+      stats.begin(), stats.end(), [](const CheckStat& s) { return s.violations == 0; });
+}
+
+PathCheckReport checkPath(const kinematics::HexapodModel& model,
+                          const std::vector<PathPoint>& points,
+                          const std::vector<kinematics::StrutVector>& q,
+                          const MotionLimits& limits) {
+  limits.validate();
+  PKM_CHECK(points.size() == q.size(), "{} points but {} joint vectors", points.size(), q.size());
+  PathCheckReport r;
+  r.points = points.size();
+  kinematics::HexapodData data(model);
+  for (const auto& p : points) {
+    const kinematics::HexapodCheckResult c =
+        kinematics::checkPose(model, data, poseFromAxes(p.pos, model.unit));
+    recordPose(r, model, p, c);
+  }
+  auto& vel = r.stats[static_cast<std::size_t>(PathCheck::kJointVelocity)];
+  auto& acc = r.stats[static_cast<std::size_t>(PathCheck::kJointAcceleration)];
+  kinematics::StrutVector prev = kinematics::StrutVector::Zero();
+  double prev_ds = 0.0;
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    const double ds = segmentLength(points[k - 1].pos, points[k].pos);
+    if (ds <= 0.0) {
+      prev_ds = 0.0;
+      continue;
+    }
+    if (points[k].kind == MoveKind::kRapid) {  // no programmed feed: the controller limits G0
+      prev_ds = 0.0;
+      continue;
+    }
+    const double v = programmedSpeed(points[k], limits);
+    const kinematics::StrutVector dqds = (q[k] - q[k - 1]) / ds;
+    int j = 0;
+    const double g = dqds.cwiseAbs().maxCoeff(&j);
+    record(vel,
+           points[k],
+           fmt::format("strut {}", j),
+           g * v,
+           limits.max_joint_velocity,
+           limits.max_joint_velocity - g * v);
+    if (prev_ds > 0.0 && points[k].move == points[k - 1].move) {
+      const double jump = (dqds - prev).cwiseAbs().maxCoeff(&j) / (0.5 * (ds + prev_ds));
+      record(acc,
+             points[k - 1],
+             fmt::format("strut {}", j),
+             jump * v * v,
+             limits.max_joint_acceleration,
+             limits.max_joint_acceleration - jump * v * v);
+    }
+    prev = dqds;
+    prev_ds = ds;
+  }
+  return r;
+}
+
+}  // namespace pkm::cnc

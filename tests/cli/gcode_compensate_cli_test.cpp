@@ -1,0 +1,70 @@
+// `pkm gcode compensate`: a calibrated machine (as `pkm calibrate hexapod` names it) with the
+// nominal found by name, the output's line structure, no overwrite without --force, usage errors.
+#include <fstream>
+
+#include "support/cli_fixture.hpp"
+
+namespace {
+
+using pkm::test::CliTest;
+using pkm::test::splitLines;
+
+class GcodeCompensateCli : public CliTest {
+ protected:
+  /// The built-in default machine renamed as a calibration result, one base joint moved 0.4 mm.
+  static std::string calibratedJson() {
+    std::string j = slurp(std::string(PKM_SOURCE_DIR) + "/data/machines/hexapod-default.json");
+    const std::string name = "\"name\": \"pkm-hx1200\"";
+    j.replace(j.find(name), name.size(), "\"name\": \"pkm-hx1200-calibrated\"");
+    const std::string base = "[-124.747, 586.8886, 1200.0]";
+    j.replace(j.find(base), base.size(), "[-124.347, 586.8886, 1200.0]");
+    return j;
+  }
+};
+
+TEST_F(GcodeCompensateCli, RewritesMotionLinesOnly) {
+  const std::string cal = write("cal.json", calibratedJson());
+  const std::string prog =
+      write("p.ngc", "(keep me)\nN1 G0 X0 Y0 Z200\nN2 G1 X30 F600 (cut)\nM2\n");
+  const auto r = pkm({"gcode", "compensate", "--machine", cal, prog});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto lines = splitLines(r.out);
+  ASSERT_GE(lines.size(), 4u);
+  EXPECT_EQ(lines[0], "(keep me)");
+  EXPECT_EQ(lines[1].rfind("N1 G0 X", 0), 0u) << lines[1];
+  EXPECT_EQ(lines[2].rfind("N2 G1 X", 0), 0u) << lines[2];
+  EXPECT_THAT(lines[2], ::testing::HasSubstr("F600 (cut)"));
+  EXPECT_EQ(lines.back(), "M2");
+  EXPECT_THAT(r.err,
+              ::testing::HasSubstr("nominal pkm-hx1200 -> calibrated pkm-hx1200-calibrated"));
+}
+
+TEST_F(GcodeCompensateCli, RefusesToOverwriteAndReportsErrors) {
+  const std::string cal = write("cal.json", calibratedJson());
+  const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 X30 F600\n");
+  write("out.ngc", "keep");
+  expectUsageError(pkm({"gcode", "compensate", "--machine", cal, prog, "--out", path("out.ngc")}),
+                   "--force");
+  EXPECT_EQ(slurp(path("out.ngc")), "keep");
+  ASSERT_EQ(
+      pkm({"gcode", "compensate", "--machine", cal, prog, "--out", path("out.ngc"), "--force"})
+          .code,
+      0);
+  EXPECT_THAT(slurp(path("out.ngc")), ::testing::HasSubstr("G1 X"));
+  // A machine whose nominal cannot be told from its name needs --nominal.
+  expectUsageError(pkm({"gcode", "compensate", "--machine", "hexapod-default", prog}), "--nominal");
+  EXPECT_EQ(pkm({"gcode",
+                 "compensate",
+                 "--machine",
+                 "hexapod-default",
+                 "--nominal",
+                 "hexapod-default",
+                 prog})
+                .code,
+            0);
+  const std::string g91 = write("g91.ngc", "G0 X0 Y0 Z200\nG91 G1 X1 F100\n");
+  expectUsageError(pkm({"gcode", "compensate", "--machine", cal, g91}), "g91.ngc:2:");
+  expectUsageError(pkm({"gcode", "compensate", prog}), "--machine");
+}
+
+}  // namespace

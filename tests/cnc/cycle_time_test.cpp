@@ -1,0 +1,92 @@
+// Cycle-time model against hand-computed trapezoids: a single feed line (feed-limited and
+// joint-velocity-limited), triangle profiles, rotary-only length, bad limits.
+#include "pkm/cnc/cycle_time.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "pkm/cnc/joint_path.hpp"
+#include "pkm/core/error.hpp"
+#include "support/sample_models.hpp"
+#include "support/tolerances.hpp"
+
+namespace {
+
+using namespace pkm::cnc;
+namespace kin = pkm::kinematics;
+using pkm::test::kTolRoundTrip;
+
+constexpr double kLength = 100.0;  // mm, the single line
+constexpr double kFeed = 600.0;    // mm/min = 10 mm/s
+
+/// Start and end of one G1 line along X at the home height of the milling model.
+std::vector<PathPoint> singleLine() {
+  std::vector<PathPoint> pts(2);
+  pts[0].pos = {0, 0, 200, 0, 0, 0};
+  pts[1].pos = {kLength, 0, 200, 0, 0, 0};
+  pts[1].kind = MoveKind::kLinear;
+  pts[1].feed = kFeed;
+  return pts;
+}
+
+TEST(TrapezoidTime, ClosedForms) {
+  // Rest to rest, cruise reached: t = ds/v + v/a.
+  EXPECT_NEAR(trapezoidTime(100, 0, 0, 10, 100), 10.0 + 0.1, kTolRoundTrip);
+  // Triangle: ds = vp²/a, t = 2·vp/a with vp = sqrt(a·ds).
+  EXPECT_NEAR(trapezoidTime(1, 0, 0, 100, 100), 2.0 * std::sqrt(100.0) / 100.0, kTolRoundTrip);
+  // Constant speed.
+  EXPECT_NEAR(trapezoidTime(5, 10, 10, 10, 100), 0.5, kTolRoundTrip);
+}
+
+TEST(CycleTime, SingleLineFeedLimited) {
+  const kin::HexapodModel model = pkm::test::millingModel();
+  HexapodJointConverter conv(model);
+  const auto pts = singleLine();
+  std::vector<kin::StrutVector> q;
+  conv.solveAll(pts, q);
+  const double g = (q[1] - q[0]).cwiseAbs().maxCoeff() / kLength;  // joint mm per path mm
+  MotionLimits lim;
+  lim.max_joint_velocity = 1000.0;  // not limiting
+  lim.max_joint_acceleration = 50.0;
+  const CycleTime t = estimateCycleTime(pts, q, lim);
+  const double v = kFeed / 60.0, a = lim.max_joint_acceleration / g;
+  ASSERT_GE(kLength, v * v / a);  // the cruise is reached
+  EXPECT_NEAR(t.total, kLength / v + v / a, kTolRoundTrip);
+  EXPECT_EQ(t.t.front(), 0.0);
+}
+
+TEST(CycleTime, SingleLineJointVelocityLimited) {
+  const kin::HexapodModel model = pkm::test::millingModel();
+  HexapodJointConverter conv(model);
+  const auto pts = singleLine();
+  std::vector<kin::StrutVector> q;
+  conv.solveAll(pts, q);
+  const double g = (q[1] - q[0]).cwiseAbs().maxCoeff() / kLength;
+  MotionLimits lim;
+  lim.max_joint_velocity = 2.0;  // mm/s: well below g·10 mm/s
+  lim.max_joint_acceleration = 1000.0;
+  const CycleTime t = estimateCycleTime(pts, q, lim);
+  const double v = lim.max_joint_velocity / g, a = lim.max_joint_acceleration / g;
+  ASSERT_LT(v, kFeed / 60.0);
+  EXPECT_NEAR(t.total, kLength / v + v / a, kTolRoundTrip);
+}
+
+TEST(CycleTime, RotaryOnlyLengthIsDegrees) {
+  Axes a{0, 0, 0, 0, 0, 0}, b{0, 0, 0, 3, 4, 0};
+  EXPECT_NEAR(segmentLength(a, b), 5.0, kTolRoundTrip);
+  b = {3, 4, 0, 90, 0, 0};
+  EXPECT_NEAR(segmentLength(a, b), 5.0, kTolRoundTrip);  // XYZ wins when it moves
+}
+
+TEST(CycleTime, RejectsBadLimits) {
+  MotionLimits lim;
+  lim.max_joint_velocity = 0.0;
+  EXPECT_THROW(lim.validate(), pkm::InvalidArgument);
+  std::vector<PathPoint> pts(2);
+  std::vector<kin::StrutVector> q(1);
+  EXPECT_THROW((void)estimateCycleTime(pts, q, MotionLimits{}), pkm::InvalidArgument);
+}
+
+}  // namespace

@@ -1,0 +1,130 @@
+// Program pre-distortion: IK_nominal(command) == IK_calibrated(desired) at every point to 1e-6
+// mm, the written text reads back to the same commands, line structure (N numbers, comments,
+// non-motion lines) kept, subdivided motions on inserted lines, unsupported constructs rejected
+// with their line.
+#include "pkm/cnc/program_compensation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+
+#include "pkm/cnc/interpreter.hpp"
+#include "pkm/cnc/joint_path.hpp"
+#include "pkm/cnc/program.hpp"
+#include "pkm/core/error.hpp"
+#include "support/sample_models.hpp"
+#include "support/tolerances.hpp"
+
+namespace {
+
+using namespace pkm::cnc;
+namespace kin = pkm::kinematics;
+using pkm::test::kSeed;
+
+constexpr double kJointMatch = 1e-6;  // mm: the brief's round-trip requirement
+constexpr double kTextDigits = 1e-8;  // mm/deg: the 9 decimals of the written words
+constexpr double kJointError = 0.5;   // mm, joint errors of the "calibrated" model
+constexpr double kTol = 0.01;         // mm
+
+kin::HexapodModel calibrated(const kin::HexapodModel& nominal) {
+  std::mt19937 rng(kSeed);
+  std::uniform_real_distribution<double> u(-kJointError, kJointError);
+  kin::HexapodModel m = nominal;
+  for (auto& s : m.struts) {
+    for (int k = 0; k < 3; ++k) {
+      s.world_p_base[k] += u(rng);
+      s.platform_p_joint[k] += u(rng);
+    }
+    s.length_offset += u(rng);
+  }
+  return m;
+}
+
+const char* const kProgram =
+    "%\n"
+    "(header comment)\n"
+    "N10 G21 G90 G17\n"
+    "N20 G0 X0 Y0 Z200 (rapid to home)\n"
+    "N30 G1 X30 F600 M3 S1000 ; cut\n"
+    "#1 = 5\n"
+    "N40 G2 X50 Y20 I0 J20\n"
+    "N50 G1 Y[#1 * 2] C10\n"
+    "M2\n"
+    "%\n";
+
+TEST(CompensateProgram, RoundTripThroughBothKinematics) {
+  const kin::HexapodModel nominal = pkm::test::millingModel();
+  const kin::HexapodModel cal = calibrated(nominal);
+  ProgramCompensationOptions o;
+  o.interpolation = jointSpaceInterpolation(cal, kTol);
+  const ProgramCompensation r = compensateProgram(kProgram, "p.ngc", nominal, cal, o);
+  ASSERT_FALSE(r.points.empty());
+  EXPECT_GT(r.max_correction, 0.1);  // the errors matter
+  HexapodJointConverter n(nominal), c(cal);
+  for (const auto& p : r.points) {
+    const kin::StrutVector qn = n.solve(p.command), qc = c.solve(p.desired);
+    EXPECT_LE((qn - qc).cwiseAbs().maxCoeff(), kJointMatch) << "line " << p.line;
+  }
+  // The text reads back (rs274 semantics) to the same commands.
+  const Program back = Program::parse(r.text, "out.ngc");
+  MoveCollector moves;
+  Interpreter interp;
+  (void)interp.run(back, moves);
+  ASSERT_EQ(moves.moves.size(), r.points.size());
+  for (std::size_t i = 0; i < moves.moves.size(); ++i) {
+    for (std::size_t k = 0; k < 6; ++k)
+      EXPECT_NEAR(moves.moves[i].end[k], r.points[i].command[k], kTextDigits);
+    EXPECT_NE(moves.moves[i].kind, MoveKind::kArc);
+  }
+}
+
+TEST(CompensateProgram, KeepsLineStructure) {
+  const kin::HexapodModel nominal = pkm::test::millingModel();
+  const kin::HexapodModel cal = calibrated(nominal);
+  ProgramCompensationOptions o;
+  o.interpolation = jointSpaceInterpolation(cal, kTol);
+  const ProgramCompensation r = compensateProgram(kProgram, "p.ngc", nominal, cal, o);
+  std::vector<std::string> lines;
+  for (std::size_t s = 0, e; s < r.text.size(); s = e + 1) {
+    e = r.text.find('\n', s);
+    lines.push_back(r.text.substr(s, e - s));
+  }
+  EXPECT_EQ(lines[0], "%");
+  EXPECT_EQ(lines[1], "(header comment)");
+  EXPECT_EQ(lines[2], "N10 G21 G90 G17");
+  EXPECT_EQ(lines[3].rfind("N20 G0 X", 0), 0u) << lines[3];
+  EXPECT_NE(lines[3].find("(rapid to home)"), std::string::npos);
+  EXPECT_EQ(lines[4].rfind("N30 G1 X", 0), 0u) << lines[4];
+  EXPECT_NE(lines[4].find("M3 S1000 ; cut"), std::string::npos);
+  EXPECT_EQ(lines[4].find("X30 "), std::string::npos);  // the old axis word is gone
+  EXPECT_EQ(r.text.back(), '\n');
+  EXPECT_NE(r.text.find("(pkm: line 7 segment 2/"), std::string::npos);
+  EXPECT_EQ(r.motion_lines, 4u);
+  EXPECT_EQ(lines.size(), 10u + r.added_lines);
+  EXPECT_EQ(lines[lines.size() - 2], "M2");
+}
+
+TEST(CompensateProgram, IdentityForEqualModels) {
+  const kin::HexapodModel nominal = pkm::test::millingModel();
+  const ProgramCompensation r = compensateProgram(kProgram, "p.ngc", nominal, nominal);
+  for (const auto& p : r.points)
+    for (std::size_t k = 0; k < 6; ++k) EXPECT_NEAR(p.command[k], p.desired[k], kJointMatch);
+}
+
+TEST(CompensateProgram, RejectsUnsupportedWithLine) {
+  const kin::HexapodModel m = pkm::test::millingModel();
+  for (const char* text : {"G0 X0 Y0 Z200\nG91 G1 X1 F100\n",
+                           "G0 X0 Y0 Z200\nG92 X0\n",
+                           "G0 X0 Y0 Z200\nG20\n",
+                           "G0 X0 Y0 Z200\nG81 X1 Z150 R190 F100\n"}) {
+    try {
+      (void)compensateProgram(text, "bad.ngc", m, m);
+      ADD_FAILURE() << text;
+    } catch (const pkm::IoError& e) {
+      EXPECT_NE(std::string(e.what()).find("bad.ngc:2:"), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
