@@ -198,6 +198,24 @@ StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
       sq.per_x2.y(),
       sq.per_x2.z());
   ctx.write(out, "compensation/pkm-base-frame.txt", frame_text);
+  // The X2–Y2 squareness part (b₁, the PKM y correction per mm of X2) as a SINUMERIK cross-axis
+  // table over the X2 travel: the error of yp is −b₁,y·x2 (docs/compensation.md, the CEC sign).
+  {
+    const kinematics::HybridStroke& x2 = vm->model().x2_stroke;
+    const double lo = std::isfinite(x2.min) ? x2.min : 0.0;
+    const double hi = std::isfinite(x2.max) ? x2.max : before.setup("linear-x2", src).cycle.last;
+    constexpr int kRows = 41;
+    std::vector<double> pos(kRows), err(kRows);
+    for (int k = 0; k < kRows; ++k) {
+      pos[static_cast<std::size_t>(k)] = lo + (hi - lo) * k / (kRows - 1);
+      err[static_cast<std::size_t>(k)] = -sq.per_x2.y() * pos[static_cast<std::size_t>(k)];
+    }
+    const std::string cec = comp::writeSiemensCec(
+        comp::siemensCecFromTable(comp::crossTableFromPoints("x2", "yp", pos, err)));
+    ctx.write(out, "compensation/x2-yp.cec.spf", cec);
+    out.record.compensations.push_back(
+        {"siemens-cec", (ctx.dir / "compensation/x2-yp.cec.spf").string(), cec});
+  }
   out.record.compensations.push_back(
       {"pkm-base-frame", (ctx.dir / "compensation/pkm-base-frame.txt").string(), frame_text});
 
