@@ -18,6 +18,7 @@
 #include "pkm/io/text_table.hpp"
 #include "pkm/metrology/iso230_2.hpp"
 #include "pkm/simulation/campaign.hpp"
+#include "pkm/simulation/touch_probe.hpp"
 
 namespace pkm::cli {
 /// The metadata of a simulated line-measurement file (simulate_command.cpp).
@@ -132,6 +133,17 @@ void meanReadings(const std::vector<simulation::LineRun>& runs,
 /// machine's repeatability draw new noise (a table made from one measurement must not be checked
 /// against the same noise).
 [[nodiscard]] inline std::uint64_t remeasureSeed(std::uint64_t seed) { return seed + 1; }
+
+/// Measured touch-probe files of a "probe-offset" step ("data": {"offset", "circle_before",
+/// "circle_after"}; the `pkm simulate` format): the set-up from their metadata and the touches.
+struct ProbeFiles {
+  simulation::TouchProbeSetup setup;
+  std::vector<simulation::TouchRecord> offset, before, after;
+  std::vector<std::string> paths;  ///< offset, circle_before, circle_after
+};
+/// Reads them; throws pkm::IoError "FILE:LINE: message" for a missing column or metadata key, a
+/// bad number, or a set-up that cannot be (a ball larger than the ring, a tilted tool).
+[[nodiscard]] ProbeFiles readProbeFiles(const StepContext& context);
 
 /// The scenario named by the step's "scenario" (a file relative to the campaign's folder, or a
 /// built-in name) and the seed ("seed", default the scenario's).

@@ -2,10 +2,13 @@
 // with spindle reversal, then a ring measured without and with the DRM compensation by the spindle
 // angle (seed 003 sec. 3.3); roundness before and after, polar plots (docs/campaign.md).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <numbers>
+#include <optional>
 
 #include "campaign.hpp"
 #include "pkm/core/error.hpp"
@@ -70,37 +73,61 @@ void meanProfile(const Roundness& r, std::vector<double>& angle, std::vector<dou
 }  // namespace
 
 StepOutcome runProbeOffsetStep(const StepContext& ctx) {
-  std::uint64_t seed = 0;
-  const io::Scenario scenario = stepScenario(ctx, seed);
-  if (scenario.campaign.probes.empty())
-    throw IoError(fmt::format(
-        "{}: scenario '{}' has no touch-probe measurement", ctx.source, scenario.campaign.name));
   StepOutcome out;
   out.id = ctx.spec.value("id", std::string("seed003"));
   out.title = "Touch-probe offset and DRM compensation on the Exechon (seed 003)";
-  out.record.machine =
-      scenario.machine_spec.empty() ? scenario.campaign.name : scenario.machine_spec;
   out.record.machine_type = "hybrid";
-  out.record.source = scenario.source;
-
-  ctx.progress(
-      "measure: master-ring offset touches and the ring, without and with DRM compensation");
-  const std::vector<sim::TouchProbeRun> runs = sim::runTouchProbes(scenario.campaign.probes, seed);
-  const sim::TouchProbeRun& run = runs.front();
-  const sim::TouchProbeSetup& setup = *run.setup;
-  for (const auto& [name, text] :
-       io::touchProbeFiles(scenario.campaign.name, seed, setup, run.result))
-    ctx.write(out, "measured/" + name, text);
+  // The touches: simulated from a scenario (kept in measured/), or measured files ("data").
+  sim::TouchProbeSetup setup;
+  std::vector<sim::TouchRecord> offset_records, before_records, after_records;
+  std::string description;
+  const bool simulated = !ctx.spec.contains("data");
+  if (simulated) {
+    std::uint64_t seed = 0;
+    const io::Scenario scenario = stepScenario(ctx, seed);
+    if (scenario.campaign.probes.empty())
+      throw IoError(fmt::format(
+          "{}: scenario '{}' has no touch-probe measurement", ctx.source, scenario.campaign.name));
+    out.record.machine =
+        scenario.machine_spec.empty() ? scenario.campaign.name : scenario.machine_spec;
+    out.record.source = scenario.source;
+    ctx.progress(
+        "measure: master-ring offset touches and the ring, without and with DRM compensation");
+    const std::vector<sim::TouchProbeRun> runs =
+        sim::runTouchProbes(scenario.campaign.probes, seed);
+    const sim::TouchProbeRun& run = runs.front();
+    setup = *run.setup;
+    for (const auto& [name, text] :
+         io::touchProbeFiles(scenario.campaign.name, seed, setup, run.result))
+      ctx.write(out, "measured/" + name, text);
+    offset_records = run.result.offset;
+    before_records = run.result.circle_uncompensated;
+    after_records = run.result.circle_compensated;
+    description = fmt::format(
+        "Scenario {} (seed {}): {}", scenario.campaign.name, seed, scenario.campaign.description);
+  } else {
+    ProbeFiles f = readProbeFiles(ctx);
+    out.title = "Touch-probe offset and DRM compensation from measured files";
+    out.record.machine = ctx.spec.value("machine", std::string("touch probe"));
+    out.record.source = fmt::format("{}", fmt::join(f.paths, ", "));
+    for (const std::string& p : f.paths)
+      out.record.measurements.push_back(
+          {std::filesystem::path(p).stem().string(), "touch-probe", p, 0});
+    setup = std::move(f.setup);
+    offset_records = std::move(f.offset);
+    before_records = std::move(f.before);
+    after_records = std::move(f.after);
+    description = fmt::format("Measured files: {}.", fmt::join(f.paths, ", "));
+  }
 
   ctx.progress("analyse: stylus offset (least squares over both spindle angles), roundness");
   std::vector<met::ProbeTouch> offset_touches;
-  for (const sim::TouchRecord& r : run.result.offset)
+  for (const sim::TouchRecord& r : offset_records)
     offset_touches.push_back({sim::planeTurn(setup, r), r.position.head<2>()});
   const met::ProbeOffsetFit fit = met::fitProbeOffset(offset_touches);
   const double radius = met::effectiveStylusRadius(setup.ring_diameter, fit.ball_path_radius);
-  const Roundness before =
-      roundness(setup, run.result.circle_uncompensated, fit.offset, radius, false);
-  const Roundness after = roundness(setup, run.result.circle_compensated, fit.offset, radius, true);
+  const Roundness before = roundness(setup, before_records, fit.offset, radius, false);
+  const Roundness after = roundness(setup, after_records, fit.offset, radius, true);
   const std::string offset_text = fmt::format(
       "# stylus offset d (spindle axis -> ball centre at spindle 0), mm; seed 003 o_probe = -d\n"
       "offset_x = {:.6f}\noffset_y = {:.6f}\neffective_stylus_radius = {:.6f}\n",
@@ -114,9 +141,11 @@ StepOutcome runProbeOffsetStep(const StepContext& ctx) {
   const double sigma = setup.noise.sigma;
   // Noise-only roundness: the peak-to-valley of N normal trigger errors is about 2·Φ⁻¹(1 −
   // 1/(2N))·σ (≈ 5.3σ for 180 touches); the target allows 6σ.
-  const double target = 6.0 * sigma * 1e3;
+  const std::optional<double> target =
+      simulated ? std::optional<double>(6.0 * sigma * 1e3) : std::nullopt;
   const std::string noise =
-      fmt::format("probe σ {:g} µm (2σ {:g} µm)", sigma * 1e3, 2 * sigma * 1e3);
+      simulated ? fmt::format("probe σ {:g} µm (2σ {:g} µm)", sigma * 1e3, 2 * sigma * 1e3)
+                : "as measured";
   const double reduction = 100.0 * (1.0 - after.fit.roundness / before.fit.roundness);
   out.rows.push_back({fmt::format("roundness of the {:g} mm ring, {} touches (LSC)",
                                   setup.ring_diameter,
@@ -127,13 +156,14 @@ StepOutcome runProbeOffsetStep(const StepContext& ctx) {
                       target,
                       "65 % lower",
                       noise});
-  out.rows.push_back({"stylus offset error |d_fit - d_true|",
-                      "µm",
-                      std::nan(""),
-                      (fit.offset - setup.stylus_offset).norm() * 1e3,
-                      std::nullopt,
-                      "",
-                      noise});
+  if (simulated)
+    out.rows.push_back({"stylus offset error |d_fit - d_true|",
+                        "µm",
+                        std::nan(""),
+                        (fit.offset - setup.stylus_offset).norm() * 1e3,
+                        std::nullopt,
+                        "",
+                        noise});
   for (const SummaryRow& r : out.rows) {
     if (std::isfinite(r.before))
       out.record.results.push_back({r.quantity, "before", r.before, r.unit});
@@ -145,10 +175,7 @@ StepOutcome runProbeOffsetStep(const StepContext& ctx) {
   Json sec = section(
       out.id,
       out.title,
-      {fmt::format("Scenario {} (seed {}): {}",
-                   scenario.campaign.name,
-                   seed,
-                   scenario.campaign.description),
+      {description,
        fmt::format("The stylus offset is fitted by least squares to all {} master-ring touches "
                    "at spindle 0° and 180° (seed 003 eqs. 8-9 generalised, probe_offset.hpp); "
                    "before: the ring measured with the spindle at 0° and the offset taken as "
@@ -159,8 +186,10 @@ StepOutcome runProbeOffsetStep(const StepContext& ctx) {
                    reduction)});
   Json t = table("Stylus offset (mm)", {"quantity", "x", "y"});
   t["rows"].push_back({"fitted d", cell(fit.offset.x(), 6), cell(fit.offset.y(), 6)});
-  t["rows"].push_back(
-      {"true d (simulation)", cell(setup.stylus_offset.x(), 6), cell(setup.stylus_offset.y(), 6)});
+  if (simulated)
+    t["rows"].push_back({"true d (simulation)",
+                         cell(setup.stylus_offset.x(), 6),
+                         cell(setup.stylus_offset.y(), 6)});
   t["rows"].push_back({"seed 003 o_probe = -d", 0.210, 0.160});
   sec["tables"].push_back(t);
   Json p = plot(out.id + "-roundness",

@@ -145,6 +145,39 @@ TEST_F(CampaignCli, MeasuredFilesAreCalibratedAndTheKinematicsWritten) {
                    "missing.csv: no such file");
 }
 
+TEST_F(CampaignCli, MeasuredTouchProbeFilesGiveTheSameRoundnessAsTheSimulation) {
+  ASSERT_EQ(pkm({"simulate", "seed003-probe-offset", "--out", path("sim")}).code, 0);
+  const std::string campaign = write("probe.json", R"({"schema": "pkm.campaign/1", "name": "p",
+    "steps": [{"id": "probe", "kind": "probe-offset", "data": {"offset": "sim/probe_offset.csv",
+      "circle_before": "sim/probe_circle_uncompensated.csv",
+      "circle_after": "sim/probe_circle_compensated.csv"}}]})");
+  const CliRun r = pkm({"campaign", "run", campaign, "--out", path("o"), "--no-db"});
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  const CliRun sim = pkm({"campaign",
+                          "run",
+                          write("s.json", R"({"schema": "pkm.campaign/1",
+    "steps": [{"id": "probe", "kind": "probe-offset", "scenario": "seed003-probe-offset"}]})"),
+                          "--out",
+                          path("s"),
+                          "--no-db"});
+  ASSERT_EQ(sim.code, 0) << sim.err;
+  const Json files = Json::parse(slurp(dir_ / "o" / "summary.json"));
+  const Json simulated = Json::parse(slurp(dir_ / "s" / "summary.json"));
+  // The files hold the simulation's touches in shortest round-trip form: the same figures.
+  ASSERT_FALSE(files["rows"].empty());
+  EXPECT_EQ(files["rows"][0]["quantity"], simulated["rows"][0]["quantity"]);
+  EXPECT_DOUBLE_EQ(files["rows"][0]["before"].get<double>(),
+                   simulated["rows"][0]["before"].get<double>());
+  EXPECT_DOUBLE_EQ(files["rows"][0]["after"].get<double>(),
+                   simulated["rows"][0]["after"].get<double>());
+  EXPECT_TRUE(files["rows"][0]["target"].is_null());  // no known probe noise in measured files
+  std::string text = slurp(dir_ / "sim" / "probe_offset.csv");
+  text.replace(text.find("# ring diameter mm: 40.001"), 26, "# ring diameter mm: 40.0x1");
+  write("sim/probe_offset.csv", text);
+  expectUsageError(pkm({"campaign", "run", campaign, "--out", path("o3"), "--no-db"}),
+                   "probe_offset.csv:");
+}
+
 TEST_F(CampaignCli, ListNamesTheBuiltInCampaigns) {
   const CliRun r = pkm({"campaign", "list"});
   ASSERT_EQ(r.code, 0) << r.err;
