@@ -51,8 +51,9 @@ struct StepOutcome {
   std::string id;     ///< the step's id
   std::string title;  ///< one line
   std::vector<SummaryRow> rows;
-  Json section;                    ///< the report section (pkm.report/1 "sections" entry)
-  io::CampaignRecord record;       ///< what goes into the result store
+  Json section;  ///< the report section (pkm.report/1 "sections" entry)
+  /// What goes into the result store besides the summary rows (the command adds those).
+  io::CampaignRecord record;
   std::vector<std::string> files;  ///< files written, relative to the campaign's --out
 };
 

@@ -103,21 +103,7 @@ StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
   auto chain = std::make_shared<sim::CompensationChain>();
   chain->add(std::make_shared<SquarenessController>(D.inverse()));
   auto axes = std::make_shared<AxisTableController>(3);
-  for (const auto& [name, axis] :
-       std::vector<std::pair<std::string, int>>{{"linear-x", 0}, {"linear-y", 1}}) {
-    const sim::LineSetup& setup = before.setup(name, src);
-    met::Iso230_2Result r = iso230_2(before.runs(name, src));
-    for (met::TargetStatistics& t : r.targets)
-      t.target = setup.line.start[axis] + t.target * setup.line.direction[axis];
-    const std::string axis_name = vm->axisNames()[static_cast<std::size_t>(axis)];
-    const comp::LinuxcncCompFile file =
-        comp::linuxcncCompFromTable(comp::tableFromIso230_2(r, axis_name), 1);
-    const std::string text = comp::writeLinuxcncComp(file);
-    ctx.write(out, fmt::format("compensation/{}.comp", axis_name), text);
-    out.record.compensations.push_back(
-        {"linuxcnc-comp", (ctx.dir / "compensation" / (axis_name + ".comp")).string(), text});
-    axes->set(axis, file);
-  }
+  writeAxisTables(ctx, out, before, {{"linear-x", 0}, {"linear-y", 1}}, vm->axisNames(), *axes);
   chain->add(axes);
   const Eigen::Matrix3d Di = D.inverse();
   const std::string sq_text = fmt::format(
@@ -175,10 +161,6 @@ StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
       {"X positioning (ISO 230-2 E)", "mm", ab.linear_x.E, aa.linear_x.E, std::nullopt, "", noise});
   out.rows.push_back(
       {"Y positioning (ISO 230-2 E)", "mm", ab.linear_y.E, aa.linear_y.E, std::nullopt, "", noise});
-  for (const SummaryRow& r : out.rows) {
-    out.record.results.push_back({r.quantity, "before", r.before, r.unit});
-    out.record.results.push_back({r.quantity, "after", r.after, r.unit});
-  }
   const met::BodyDiagonalSolution& sb = ab.body.solution;
   const met::BodyDiagonalSolution& sa = aa.body.solution;
   out.record.results.push_back({"squareness.xy", "estimate", sb.squareness_xy, "rad"});

@@ -175,6 +175,11 @@ void runCampaign(const RunArgs& a) {
     };
     campaign::StepOutcome o = stepKinds().at(step["kind"].get<std::string>())(ctx);
     o.id = id;
+    // Every summary row goes into the result store (before and after, where measured).
+    for (const campaign::SummaryRow& r : o.rows)
+      for (const auto& [stage, value] :
+           {std::pair{"before", r.before}, std::pair{"after", r.after}})
+        if (std::isfinite(value)) o.record.results.push_back({r.quantity, stage, value, r.unit});
     ctx.progress(
         fmt::format("done in {:.2f} s", std::chrono::duration<double>(Clock::now() - ts).count()));
     outcomes.push_back(std::move(o));

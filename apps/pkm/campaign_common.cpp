@@ -6,6 +6,9 @@
 #include <map>
 
 #include "campaign.hpp"
+#include "campaign_compensation.hpp"
+#include "pkm/compensation/axis_table.hpp"
+#include "pkm/compensation/siemens_comp.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/measurement_files.hpp"
 
@@ -143,6 +146,34 @@ io::Scenario stepScenario(const StepContext& context, std::uint64_t& seed) {
     seed = context.spec["seed"].get<std::uint64_t>();
   }
   return scenario;
+}
+
+void writeAxisTables(const StepContext& ctx,
+                     StepOutcome& out,
+                     const LineData& data,
+                     const std::vector<std::pair<std::string, int>>& tables,
+                     const std::vector<std::string>& axis_names,
+                     AxisTableController& controller) {
+  namespace comp = pkm::compensation;
+  const comp::FormatTraits eec = comp::traits(comp::TableFormat::kSiemensEec);
+  for (const auto& [name, axis] : tables) {
+    const sim::LineSetup& setup = data.setup(name, ctx.source);
+    metrology::Iso230_2Result r = iso230_2(data.runs(name, ctx.source));
+    for (metrology::TargetStatistics& t : r.targets)
+      t.target = setup.line.start[axis] + t.target * setup.line.direction[axis];
+    const std::string& axis_name = axis_names.at(static_cast<std::size_t>(axis));
+    const comp::AxisErrorTable table = comp::tableFromIso230_2(r, axis_name);
+    const comp::LinuxcncCompFile file = comp::linuxcncCompFromTable(table, 1);
+    const std::string text = comp::writeLinuxcncComp(file);
+    ctx.write(out, fmt::format("compensation/{}.comp", axis_name), text);
+    out.record.compensations.push_back(
+        {"linuxcnc-comp", (ctx.dir / "compensation" / (axis_name + ".comp")).string(), text});
+    ctx.write(out,
+              fmt::format("compensation/{}.eec.spf", axis_name),
+              comp::writeSiemensEec(comp::siemensEecFromTable(
+                  comp::fitToTarget(table, eec, eec.default_max_points))));
+    controller.set(axis, file);
+  }
 }
 
 }  // namespace pkm::cli::campaign

@@ -6,6 +6,7 @@
 
 #include <map>
 
+#include "campaign.hpp"
 #include "pkm/compensation/hybrid_squareness.hpp"
 #include "pkm/compensation/linuxcnc_comp.hpp"
 #include "pkm/simulation/compensated_machine.hpp"
@@ -43,6 +44,18 @@ class AxisTableController final : public simulation::CommandCompensation {
   std::vector<int> dir_;
   bool moved_ = false;
 };
+
+/// The axis tables of the positioning runs: for each (measurement, axis index) the ISO 230-2
+/// result over the axis position (line start + s · direction) as compensation/<axis>.comp (LinuxCNC
+/// COMP_FILE type 1) and compensation/<axis>.eec.spf (SINUMERIK EEC, resampled to equidistant
+/// points), recorded for the result store and put on `controller`. Throws pkm::IoError naming the
+/// step when a measurement is missing, and as the table writers.
+void writeAxisTables(const StepContext& ctx,
+                     StepOutcome& out,
+                     const LineData& data,
+                     const std::vector<std::pair<std::string, int>>& tables,
+                     const std::vector<std::string>& axis_names,
+                     AxisTableController& controller);
 
 /// The hybrid machine's squareness compensation on a command (x2, y2, xp, yp, zp): the PKM part
 /// becomes A·p + b₀ + x2·b₁ (compensation::compensatedCommand).

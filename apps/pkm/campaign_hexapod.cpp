@@ -226,10 +226,6 @@ StepOutcome runHexapodCalibrationStep(const StepContext& ctx) {
        std::nullopt,
        "12 -> < 0.5 mm (540 mm along x)",
        fmt::format("laser {:g} µm + {:g} ppm", ls.noise.sigma * 1e3, ls.noise.sigma_ppm)});
-  for (const SummaryRow& r : out.rows) {
-    out.record.results.push_back({r.quantity, "before", r.before, r.unit});
-    out.record.results.push_back({r.quantity, "after", r.after, r.unit});
-  }
   out.record.results.push_back({"calibration.residual_rms", "after", s.after.rms, "mm"});
 
   // 6. Report section.

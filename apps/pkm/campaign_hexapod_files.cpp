@@ -114,10 +114,6 @@ StepOutcome runHexapodCalibrationFiles(const StepContext& ctx) {
     out.rows.push_back(
         {"held-out residual max", unit, b.max, a.max, std::nullopt, "", "as measured"});
   }
-  for (const SummaryRow& r : out.rows) {
-    out.record.results.push_back({r.quantity, "before", r.before, r.unit});
-    out.record.results.push_back({r.quantity, "after", r.after, r.unit});
-  }
   Json sec =
       section(out.id,
               out.title,

@@ -155,29 +155,13 @@ StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
       comp::hybridSquarenessCompensation(vm->model(), ab.squareness);
   auto chain = std::make_shared<sim::CompensationChain>();
   chain->add(std::make_shared<HybridSquarenessController>(sq));
-  const std::vector<std::pair<std::string, int>> tables = {
-      {"linear-x2", 0}, {"linear-y2", 1}, {"linear-pz", 4}};
   auto axis_comp = std::make_shared<AxisTableController>(5);
-  for (const auto& [name, axis] : tables) {
-    const sim::LineSetup& setup = before.setup(name, src);
-    metrology::Iso230_2Result r = iso230_2(before.runs(name, src));
-    for (met::TargetStatistics& t : r.targets) t.target = axisPosition(setup, axis, t.target);
-    const std::string axis_name = vm->axisNames()[static_cast<std::size_t>(axis)];
-    const comp::AxisErrorTable axis_table = comp::tableFromIso230_2(r, axis_name);
-    const comp::LinuxcncCompFile file = comp::linuxcncCompFromTable(axis_table, 1);
-    // The same table for a SINUMERIK controller (EEC, resampled to equidistant points).
-    ctx.write(out,
-              fmt::format("compensation/{}.eec.spf", axis_name),
-              comp::writeSiemensEec(comp::siemensEecFromTable(comp::fitToTarget(
-                  axis_table,
-                  comp::traits(comp::TableFormat::kSiemensEec),
-                  comp::traits(comp::TableFormat::kSiemensEec).default_max_points))));
-    const std::string text = comp::writeLinuxcncComp(file);
-    ctx.write(out, fmt::format("compensation/{}.comp", axis_name), text);
-    out.record.compensations.push_back(
-        {"linuxcnc-comp", (ctx.dir / "compensation" / (axis_name + ".comp")).string(), text});
-    axis_comp->set(axis, file);
-  }
+  writeAxisTables(ctx,
+                  out,
+                  before,
+                  {{"linear-x2", 0}, {"linear-y2", 1}, {"linear-pz", 4}},
+                  vm->axisNames(),
+                  *axis_comp);
   chain->add(axis_comp);
   const std::string frame_text = fmt::format(
       "# PKM base-frame correction (seed 000 §3.3; docs/compensation.md)\n"
@@ -259,10 +243,6 @@ StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
                       0.02,
                       "",
                       li_noise});
-  for (const SummaryRow& r : out.rows) {
-    out.record.results.push_back({r.quantity, "before", r.before, r.unit});
-    out.record.results.push_back({r.quantity, "after", r.after, r.unit});
-  }
   const kinematics::HybridSquareness& e = ab.squareness;
   const kinematics::HybridSquareness& t = vm->errors().squareness;
   out.record.results.push_back({"squareness.szX2", "estimate", e.sz_x2, "rad"});

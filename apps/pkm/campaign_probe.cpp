@@ -164,11 +164,6 @@ StepOutcome runProbeOffsetStep(const StepContext& ctx) {
                         std::nullopt,
                         "",
                         noise});
-  for (const SummaryRow& r : out.rows) {
-    if (std::isfinite(r.before))
-      out.record.results.push_back({r.quantity, "before", r.before, r.unit});
-    out.record.results.push_back({r.quantity, "after", r.after, r.unit});
-  }
   out.record.results.push_back({"probe.offset_x", "estimate", fit.offset.x(), "mm"});
   out.record.results.push_back({"probe.offset_y", "estimate", fit.offset.y(), "mm"});
 
