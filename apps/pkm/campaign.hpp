@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <list>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -134,6 +135,21 @@ void meanReadings(const std::vector<simulation::LineRun>& runs,
 /// machine's repeatability draw new noise (a table made from one measurement must not be checked
 /// against the same noise).
 [[nodiscard]] inline std::uint64_t remeasureSeed(std::uint64_t seed) { return seed + 1; }
+
+/// Laser measurement files (the `pkm simulate` line format, any number of runs per measurement)
+/// read from a folder, with set-ups rebuilt from their metadata. `data` points into `setups`
+/// (list nodes keep their addresses when the struct is moved).
+struct LineFiles {
+  std::list<simulation::LineSetup> setups;
+  LineData data;
+  std::vector<std::string> paths;
+};
+/// Reads every `*.csv` of `folder` whose `# format` is pkm.measurement/1, grouped by
+/// `# measurement`: quantity from `# quantity`, line from `# line start`/`# line direction`,
+/// noise from `# noise` (sigma and ppm, when given), the cycle from the targets; runs from the
+/// `run` column. Throws pkm::IoError "FILE:LINE: message" for malformed metadata or rows, and
+/// naming the folder when it holds no measurement file.
+[[nodiscard]] LineFiles readLineFolder(const StepContext& context, const std::string& folder);
 
 /// Measured touch-probe files of a "probe-offset" step ("data": {"offset", "circle_before",
 /// "circle_after"}; the `pkm simulate` format): the set-up from their metadata and the touches.

@@ -13,6 +13,7 @@
 #include "pkm/compensation/linuxcnc_comp.hpp"
 #include "pkm/compensation/siemens_comp.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/io/machine_loader.hpp"
 #include "pkm/metrology/face_diagonal.hpp"
 #include "pkm/metrology/parallelism.hpp"
 #include "pkm/simulation/compensated_machine.hpp"
@@ -127,41 +128,24 @@ std::vector<double> column(const std::vector<double>& v, double scale) {
   return out;
 }
 
-}  // namespace
+/// The hybrid machine's axes, in command order (HybridVirtualMachine::axisNames).
+const std::vector<std::string> kAxes = {"x2", "y2", "xp", "yp", "zp"};
 
-StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
-  std::uint64_t seed = 0;
-  io::Scenario scenario = stepScenario(ctx, seed);
-  auto vm = std::dynamic_pointer_cast<sim::HybridVirtualMachine>(scenario.campaign.machine);
-  if (!vm)
-    throw IoError(fmt::format(
-        "{}: scenario '{}' is not a hybrid-machine scenario", ctx.source, scenario.campaign.name));
-  const std::string& src = ctx.source;
-  StepOutcome out;
-  out.id = ctx.spec.value("id", std::string("seed000"));
-  out.title = "Hybrid machine: parallelism and squareness (seed 000)";
-  out.record.machine = vm->model().name;
-  out.record.machine_type = "hybrid";
-  out.record.source = scenario.source;
-
-  ctx.progress("measure: straightness, positioning and face diagonals with the laser");
-  const LineData before{sim::runCampaign(scenario.campaign, seed)};
-  writeLineFiles(ctx, out, "measured-before", scenario, seed, before);
-  ctx.progress("analyse: parallelism (seed 000 §3.1), face-diagonal squareness (§3.2), eq. 11");
-  const Analysis ab = analyse(before, src);
-
+/// Writes the compensation of `ab` (base frame + X2 correction, the X2→yp cross table, the axis
+/// tables of X2, Y2 and PZ) and returns it as the controller's command compensation.
+std::shared_ptr<sim::CompensationChain> compensate(const StepContext& ctx,
+                                                   StepOutcome& out,
+                                                   const LineData& before,
+                                                   const kinematics::HybridMachineModel& model,
+                                                   const Analysis& ab) {
   // Compensation: squareness (base frame + X2 correction) and axis tables.
   const comp::HybridSquarenessCompensation sq =
-      comp::hybridSquarenessCompensation(vm->model(), ab.squareness);
+      comp::hybridSquarenessCompensation(model, ab.squareness);
   auto chain = std::make_shared<sim::CompensationChain>();
   chain->add(std::make_shared<HybridSquarenessController>(sq));
   auto axis_comp = std::make_shared<AxisTableController>(5);
-  writeAxisTables(ctx,
-                  out,
-                  before,
-                  {{"linear-x2", 0}, {"linear-y2", 1}, {"linear-pz", 4}},
-                  vm->axisNames(),
-                  *axis_comp);
+  writeAxisTables(
+      ctx, out, before, {{"linear-x2", 0}, {"linear-y2", 1}, {"linear-pz", 4}}, kAxes, *axis_comp);
   chain->add(axis_comp);
   const std::string frame_text = fmt::format(
       "# PKM base-frame correction (seed 000 §3.3; docs/compensation.md)\n"
@@ -185,9 +169,10 @@ StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
   // The X2–Y2 squareness part (b₁, the PKM y correction per mm of X2) as a SINUMERIK cross-axis
   // table over the X2 travel: the error of yp is −b₁,y·x2 (docs/compensation.md, the CEC sign).
   {
-    const kinematics::HybridStroke& x2 = vm->model().x2_stroke;
+    const kinematics::HybridStroke& x2 = model.x2_stroke;
     const double lo = std::isfinite(x2.min) ? x2.min : 0.0;
-    const double hi = std::isfinite(x2.max) ? x2.max : before.setup("linear-x2", src).cycle.last;
+    const double hi =
+        std::isfinite(x2.max) ? x2.max : before.setup("linear-x2", ctx.source).cycle.last;
     constexpr int kRows = 41;
     std::vector<double> pos(kRows), err(kRows);
     for (int k = 0; k < kRows; ++k) {
@@ -202,6 +187,112 @@ StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
   }
   out.record.compensations.push_back(
       {"pkm-base-frame", (ctx.dir / "compensation/pkm-base-frame.txt").string(), frame_text});
+
+  return chain;
+}
+
+/// The step on measured laser files ("data": {"folder": DIR}): analysis and compensation files,
+/// no re-measurement (docs/campaign.md, "Measured data").
+StepOutcome fromFiles(const StepContext& ctx) {
+  const Json& data = ctx.spec["data"];
+  if (!data.is_object() || !data.contains("folder") || !data["folder"].is_string())
+    throw IoError(fmt::format("{}: \"data\" must be {{\"folder\": DIR}} (laser measurement files)",
+                              ctx.source));
+  const io::ExechonMachine machine =
+      io::loadExechonMachine(ctx.spec.value("machine", std::string("default")));
+  if (!machine.hybrid)
+    throw IoError(
+        fmt::format("{}: machine '{}' is not a hybrid machine", ctx.source, machine.model.name));
+  StepOutcome out;
+  out.id = ctx.spec.value("id", std::string("seed000"));
+  out.title = fmt::format("Hybrid machine {}: parallelism and squareness from measured files",
+                          machine.hybrid->name);
+  out.record.machine = machine.hybrid->name;
+  out.record.machine_type = "hybrid";
+  const LineFiles files = readLineFolder(ctx, data["folder"].get<std::string>());
+  out.record.source = fmt::format("{} files", files.paths.size());
+  for (const std::string& p : files.paths)
+    out.record.measurements.push_back({std::filesystem::path(p).stem().string(), "laser", p, 0});
+  ctx.progress(fmt::format("analyse: {} laser files", files.paths.size()));
+  const Analysis ab = analyse(files.data, ctx.source);
+  (void)compensate(ctx, out, files.data, *machine.hybrid, ab);
+  const double nan = std::nan("");
+  out.rows.push_back({"parallelism Y2-PY, horizontal",
+                      "mm",
+                      std::abs(ab.horizontal.parallelism),
+                      nan,
+                      std::nullopt,
+                      "",
+                      "as measured"});
+  out.rows.push_back({"parallelism Y2-PY, vertical",
+                      "mm",
+                      std::abs(ab.vertical.parallelism),
+                      nan,
+                      std::nullopt,
+                      "",
+                      "as measured"});
+  out.rows.push_back({"face diagonal X2-Y2 error (ISO 230-2 E)",
+                      "mm",
+                      ab.diag_xy.E,
+                      nan,
+                      std::nullopt,
+                      "",
+                      "as measured"});
+  out.rows.push_back({"face diagonal X2-PZ error (ISO 230-2 E)",
+                      "mm",
+                      ab.diag_xz.E,
+                      nan,
+                      std::nullopt,
+                      "",
+                      "as measured"});
+  const kinematics::HybridSquareness& e = ab.squareness;
+  out.record.results.push_back({"squareness.szX2", "estimate", e.sz_x2, "rad"});
+  out.record.results.push_back({"squareness.sxP", "estimate", e.sx_p, "rad"});
+  out.record.results.push_back({"squareness.syP", "estimate", e.sy_p, "rad"});
+  out.record.results.push_back({"squareness.szP", "estimate", e.sz_p, "rad"});
+  Json sec = section(out.id,
+                     out.title,
+                     {fmt::format("Measured files: {} in {}. The compensation is written to "
+                                  "compensation/; measuring again with it loaded is the machine's "
+                                  "next campaign.",
+                                  files.paths.size(),
+                                  data["folder"].get<std::string>())});
+  Json sqt = table("Squareness errors (mrad)", {"error", "estimate", "seed 000"});
+  sqt["rows"].push_back({"szX2", cell(e.sz_x2 * 1e3), "-0.034"});
+  sqt["rows"].push_back({"sxP", cell(e.sx_p * 1e3), "-14.74"});
+  sqt["rows"].push_back({"syP", cell(e.sy_p * 1e3), "4.35"});
+  sqt["rows"].push_back({"szP", cell(e.sz_p * 1e3), "-2.85"});
+  sec["tables"].push_back(sqt);
+  out.section = std::move(sec);
+  return out;
+}
+
+}  // namespace
+
+StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
+  if (ctx.spec.contains("data")) return fromFiles(ctx);
+  std::uint64_t seed = 0;
+  io::Scenario scenario = stepScenario(ctx, seed);
+  auto vm = std::dynamic_pointer_cast<sim::HybridVirtualMachine>(scenario.campaign.machine);
+  if (!vm)
+    throw IoError(fmt::format(
+        "{}: scenario '{}' is not a hybrid-machine scenario", ctx.source, scenario.campaign.name));
+  const std::string& src = ctx.source;
+  StepOutcome out;
+  out.id = ctx.spec.value("id", std::string("seed000"));
+  out.title = "Hybrid machine: parallelism and squareness (seed 000)";
+  out.record.machine = vm->model().name;
+  out.record.machine_type = "hybrid";
+  out.record.source = scenario.source;
+
+  ctx.progress("measure: straightness, positioning and face diagonals with the laser");
+  const LineData before{sim::runCampaign(scenario.campaign, seed)};
+  writeLineFiles(ctx, out, "measured-before", scenario, seed, before);
+  ctx.progress("analyse: parallelism (seed 000 §3.1), face-diagonal squareness (§3.2), eq. 11");
+  const Analysis ab = analyse(before, src);
+
+  const std::shared_ptr<sim::CompensationChain> chain =
+      compensate(ctx, out, before, vm->model(), ab);
 
   ctx.progress("re-measure: the same lines through the compensating controller");
   io::Scenario again = scenario;

@@ -178,6 +178,32 @@ TEST_F(CampaignCli, MeasuredTouchProbeFilesGiveTheSameRoundnessAsTheSimulation) 
                    "probe_offset.csv:");
 }
 
+TEST_F(CampaignCli, MeasuredLaserFilesGiveTheSameCompensationAsTheSimulation) {
+  // The step reads the files `pkm simulate` writes; from them it must estimate the same squareness
+  // and write byte-identical compensation files as the step that simulates them itself.
+  const std::string scenario = write("s.json", R"({"schema": "pkm.campaign/1", "steps": [
+    {"id": "hyb", "kind": "hybrid-squareness", "scenario": "seed000-parallelism"}]})");
+  ASSERT_EQ(pkm({"campaign", "run", scenario, "--out", path("s"), "--no-db"}).code, 0);
+  const std::string files = write("f.json", R"({"schema": "pkm.campaign/1", "steps": [
+    {"id": "hyb", "kind": "hybrid-squareness", "machine": "mxt700s-like",
+     "data": {"folder": "s/hyb/measured-before"}}]})");
+  const CliRun r = pkm({"campaign", "run", files, "--out", path("f"), "--no-db"});
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  for (const char* f : {"pkm-base-frame.txt", "x2.comp", "y2.comp", "zp.comp", "x2-yp.cec.spf"})
+    EXPECT_EQ(slurp(dir_ / "f/hyb/compensation" / f), slurp(dir_ / "s/hyb/compensation" / f)) << f;
+  const Json summary = Json::parse(slurp(dir_ / "f" / "summary.json"));
+  ASSERT_EQ(summary["rows"].size(), 4U);
+  EXPECT_TRUE(summary["rows"][0]["after"].is_null());  // nothing measured after compensation
+  expectUsageError(pkm({"campaign",
+                        "run",
+                        write("g.json", R"({"schema": "pkm.campaign/1", "steps": [
+                          {"id": "hyb", "kind": "hybrid-squareness", "data": {"folder": "nowhere"}}]})"),
+                        "--out",
+                        path("g"),
+                        "--no-db"}),
+                   "nowhere: no such folder");
+}
+
 TEST_F(CampaignCli, ListNamesTheBuiltInCampaigns) {
   const CliRun r = pkm({"campaign", "list"});
   ASSERT_EQ(r.code, 0) << r.err;
