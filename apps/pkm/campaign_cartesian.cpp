@@ -63,9 +63,118 @@ class SquarenessController final : public sim::CommandCompensation {
   Eigen::Matrix3d inverse_;
 };
 
+/// The Cartesian axes in command order.
+const std::vector<std::string> kAxes = {"x", "y", "z"};
+
+/// The box of the body diagonals: |direction · travel| of "diag-ppp".
+Eigen::Vector3d diagonalBox(const LineData& d, const std::string& src) {
+  const sim::LineSetup& m = d.setup("diag-ppp", src);
+  return (m.line.direction * (m.cycle.last - m.cycle.first)).head<3>().cwiseAbs();
+}
+
+/// Writes the squareness correction and the X/Y axis tables of `ab` and returns them as the
+/// controller's command compensation.
+std::shared_ptr<sim::CompensationChain> compensate(const StepContext& ctx,
+                                                   StepOutcome& out,
+                                                   const LineData& before,
+                                                   const sim::CartesianLayout& layout,
+                                                   const Analysis& ab) {
+  sim::CartesianErrors estimated;
+  estimated.squareness = {ab.body.solution.squareness_xy,
+                          ab.body.solution.squareness_xz,
+                          ab.body.solution.squareness_yz};
+  const sim::CartesianMachine model(layout, estimated);
+  Eigen::Matrix3d D;
+  for (int k = 0; k < 3; ++k) D.col(k) = model.axisDirection(k);
+  auto chain = std::make_shared<sim::CompensationChain>();
+  chain->add(std::make_shared<SquarenessController>(D.inverse()));
+  auto axes = std::make_shared<AxisTableController>(3);
+  writeAxisTables(ctx, out, before, {{"linear-x", 0}, {"linear-y", 1}}, kAxes, *axes);
+  chain->add(axes);
+  const Eigen::Matrix3d Di = D.inverse();
+  const std::string sq_text = fmt::format(
+      "# squareness correction (body diagonals): q_sent = M * q\n# xy {:.6e} xz {:.6e} yz {:.6e} "
+      "rad\n"
+      "M = {:.9e} {:.9e} {:.9e}\n    {:.9e} {:.9e} {:.9e}\n    {:.9e} {:.9e} {:.9e}\n",
+      estimated.squareness.xy,
+      estimated.squareness.xz,
+      estimated.squareness.yz,
+      Di(0, 0),
+      Di(0, 1),
+      Di(0, 2),
+      Di(1, 0),
+      Di(1, 1),
+      Di(1, 2),
+      Di(2, 0),
+      Di(2, 1),
+      Di(2, 2));
+  ctx.write(out, "compensation/squareness.txt", sq_text);
+  out.record.compensations.push_back(
+      {"squareness-matrix", (ctx.dir / "compensation/squareness.txt").string(), sq_text});
+
+  return chain;
+}
+
+/// The step on measured laser files ("data": {"folder": DIR}): squareness and compensation
+/// files, no re-measurement (docs/campaign.md, "Measured data").
+StepOutcome fromFiles(const StepContext& ctx) {
+  const Json& data = ctx.spec["data"];
+  if (!data.is_object() || !data.contains("folder") || !data["folder"].is_string())
+    throw IoError(fmt::format("{}: \"data\" must be {{\"folder\": DIR}} (laser measurement files)",
+                              ctx.source));
+  sim::CartesianLayout layout;
+  layout.order = ctx.spec.value("order", std::string("XYZ"));
+  try {
+    layout.validate();
+  } catch (const InvalidArgument& e) {
+    throw IoError(fmt::format("{}: \"order\": {}", ctx.source, e.what()));
+  }
+  StepOutcome out;
+  out.id = ctx.spec.value("id", std::string("seed001"));
+  out.title = "Cartesian machine: squareness from body diagonals in measured files";
+  out.record.machine = ctx.spec.value("machine", std::string("cartesian machine"));
+  out.record.machine_type = "cartesian";
+  const LineFiles files = readLineFolder(ctx, data["folder"].get<std::string>());
+  out.record.source = fmt::format("{} files", files.paths.size());
+  for (const std::string& p : files.paths)
+    out.record.measurements.push_back({std::filesystem::path(p).stem().string(), "laser", p, 0});
+  ctx.progress(fmt::format("analyse: {} laser files", files.paths.size()));
+  const Analysis ab = analyse(files.data, diagonalBox(files.data, ctx.source), ctx.source);
+  (void)compensate(ctx, out, files.data, layout, ab);
+  const double nan = std::nan("");
+  out.rows.push_back({"body diagonals, max |length error|",
+                      "mm",
+                      ab.max_length_error,
+                      nan,
+                      std::nullopt,
+                      "",
+                      "as measured"});
+  out.rows.push_back(
+      {"X positioning (ISO 230-2 E)", "mm", ab.linear_x.E, nan, std::nullopt, "", "as measured"});
+  out.rows.push_back(
+      {"Y positioning (ISO 230-2 E)", "mm", ab.linear_y.E, nan, std::nullopt, "", "as measured"});
+  const met::BodyDiagonalSolution& sb = ab.body.solution;
+  out.record.results.push_back({"squareness.xy", "estimate", sb.squareness_xy, "rad"});
+  out.record.results.push_back({"squareness.xz", "estimate", sb.squareness_xz, "rad"});
+  out.record.results.push_back({"squareness.yz", "estimate", sb.squareness_yz, "rad"});
+  Json sec = section(out.id,
+                     out.title,
+                     {fmt::format("Measured files: {} in {}; compensation in compensation/.",
+                                  files.paths.size(),
+                                  data["folder"].get<std::string>())});
+  Json st = table("Squareness from the body diagonals (µrad)", {"angle", "estimate"});
+  st["rows"].push_back({"xy", cell(sb.squareness_xy * 1e6)});
+  st["rows"].push_back({"xz", cell(sb.squareness_xz * 1e6)});
+  st["rows"].push_back({"yz", cell(sb.squareness_yz * 1e6)});
+  sec["tables"].push_back(st);
+  out.section = std::move(sec);
+  return out;
+}
+
 }  // namespace
 
 StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
+  if (ctx.spec.contains("data")) return fromFiles(ctx);
   std::uint64_t seed = 0;
   io::Scenario scenario = stepScenario(ctx, seed);
   auto vm = std::dynamic_pointer_cast<sim::CartesianMachine>(scenario.campaign.machine);
@@ -93,38 +202,8 @@ StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
   ctx.progress("analyse: squareness from the four body diagonals (ISO 230-6)");
   const Analysis ab = analyse(before, size, src);
 
-  sim::CartesianErrors estimated;
-  estimated.squareness = {ab.body.solution.squareness_xy,
-                          ab.body.solution.squareness_xz,
-                          ab.body.solution.squareness_yz};
-  const sim::CartesianMachine model(vm->layout(), estimated);
-  Eigen::Matrix3d D;
-  for (int k = 0; k < 3; ++k) D.col(k) = model.axisDirection(k);
-  auto chain = std::make_shared<sim::CompensationChain>();
-  chain->add(std::make_shared<SquarenessController>(D.inverse()));
-  auto axes = std::make_shared<AxisTableController>(3);
-  writeAxisTables(ctx, out, before, {{"linear-x", 0}, {"linear-y", 1}}, vm->axisNames(), *axes);
-  chain->add(axes);
-  const Eigen::Matrix3d Di = D.inverse();
-  const std::string sq_text = fmt::format(
-      "# squareness correction (body diagonals): q_sent = M * q\n# xy {:.6e} xz {:.6e} yz {:.6e} "
-      "rad\n"
-      "M = {:.9e} {:.9e} {:.9e}\n    {:.9e} {:.9e} {:.9e}\n    {:.9e} {:.9e} {:.9e}\n",
-      estimated.squareness.xy,
-      estimated.squareness.xz,
-      estimated.squareness.yz,
-      Di(0, 0),
-      Di(0, 1),
-      Di(0, 2),
-      Di(1, 0),
-      Di(1, 1),
-      Di(1, 2),
-      Di(2, 0),
-      Di(2, 1),
-      Di(2, 2));
-  ctx.write(out, "compensation/squareness.txt", sq_text);
-  out.record.compensations.push_back(
-      {"squareness-matrix", (ctx.dir / "compensation/squareness.txt").string(), sq_text});
+  const std::shared_ptr<sim::CompensationChain> chain =
+      compensate(ctx, out, before, vm->layout(), ab);
 
   ctx.progress("re-measure: the same lines through the compensating controller");
   io::Scenario again = scenario;

@@ -204,6 +204,27 @@ TEST_F(CampaignCli, MeasuredLaserFilesGiveTheSameCompensationAsTheSimulation) {
                    "nowhere: no such folder");
 }
 
+TEST_F(CampaignCli, MeasuredCartesianFilesGiveTheSameCompensationAsTheSimulation) {
+  const std::string scenario = write("s.json", R"({"schema": "pkm.campaign/1", "steps": [
+    {"id": "c", "kind": "cartesian-diagonals", "scenario": "seed001-diagonals"}]})");
+  ASSERT_EQ(pkm({"campaign", "run", scenario, "--out", path("s"), "--no-db"}).code, 0);
+  const std::string files = write("f.json", R"({"schema": "pkm.campaign/1", "steps": [
+    {"id": "c", "kind": "cartesian-diagonals", "data": {"folder": "s/c/measured-before"}}]})");
+  const CliRun r = pkm({"campaign", "run", files, "--out", path("f"), "--no-db"});
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  for (const char* f : {"squareness.txt", "x.comp", "y.comp", "x.eec.spf"})
+    EXPECT_EQ(slurp(dir_ / "f/c/compensation" / f), slurp(dir_ / "s/c/compensation" / f)) << f;
+  expectUsageError(pkm({"campaign",
+                        "run",
+                        write("g.json", R"({"schema": "pkm.campaign/1", "steps": [
+                          {"id": "c", "kind": "cartesian-diagonals", "order": "XXY",
+                           "data": {"folder": "s/c/measured-before"}}]})"),
+                        "--out",
+                        path("g"),
+                        "--no-db"}),
+                   "\"order\"");
+}
+
 TEST_F(CampaignCli, ListNamesTheBuiltInCampaigns) {
   const CliRun r = pkm({"campaign", "list"});
   ASSERT_EQ(r.code, 0) << r.err;
