@@ -195,9 +195,11 @@ void runCampaign(const RunArgs& a) {
                                   "unit",
                                   "result");
   bool all_pass = true;
+  int targets = 0;
   for (const campaign::StepOutcome& s : outcomes)
     for (const campaign::SummaryRow& r : s.rows) {
       all_pass = all_pass && r.pass();
+      if (r.target) ++targets;
       table += fmt::format("{:<10} {:<52} {:>10} {:>10} {:>9} {:<6} {}\n",
                            s.id,
                            r.quantity,
@@ -268,7 +270,9 @@ void runCampaign(const RunArgs& a) {
     }
   }
   fmt::print("\n{} in {:.2f} s; report: {}\n",
-             all_pass ? "all targets met" : "SOME TARGETS MISSED",
+             targets == 0 ? "no targets (nothing measured after compensation)"
+             : all_pass   ? fmt::format("all targets met ({})", targets)
+                          : std::string("SOME TARGETS MISSED"),
              std::chrono::duration<double>(Clock::now() - t0).count(),
              (fs::absolute(out) / "report.html").lexically_normal().string());
   if (!a.no_db)
