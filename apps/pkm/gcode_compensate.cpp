@@ -1,14 +1,20 @@
 // `pkm gcode compensate --machine CAL.json PROGRAM`: the program pre-distorted for a controller
-// that keeps the nominal kinematics (docs/gcode.md "gcode compensate").
+// that keeps the nominal kinematics; `--hybrid-frame F --x2 POS`: the hybrid machine's X2–Y2
+// squareness corrected in a PKM program (docs/gcode.md "gcode compensate").
 #include <fmt/format.h>
 
+#include <Eigen/Core>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <optional>
+#include <sstream>
 
 #include "cli_common.hpp"
 #include "pkm/cnc/joint_path.hpp"
 #include "pkm/cnc/program_compensation.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/so3.hpp"
 #include "pkm/io/machine_loader.hpp"
 
 namespace pkm::cli {
@@ -21,7 +27,78 @@ struct CompensateArgs {
   double tolerance = 0.01;
   std::string out;
   bool force = false;
+  std::string hybrid_frame;  ///< pkm-base-frame.txt of a hybrid campaign
+  std::optional<double> x2;  ///< the X2 position the PKM program runs at, mm
+  bool frame_not_in_controller = false;
 };
+
+/// Reads `key = a b c` lines of a pkm-base-frame.txt (docs/campaign.md); `#` lines are comments.
+compensation::HybridSquarenessCompensation readBaseFrame(const std::string& path) {
+  const std::string text = io::readTextFile(path);
+  std::map<std::string, Eigen::Vector3d> values;
+  std::size_t line_no = 0, start = 0;
+  while (start < text.size()) {
+    std::size_t nl = text.find('\n', start);
+    if (nl == std::string::npos) nl = text.size();
+    const std::string line = text.substr(start, nl - start);
+    start = nl + 1;
+    ++line_no;
+    if (line.empty() || line[0] == '#') continue;
+    const std::size_t eq = line.find('=');
+    std::istringstream in(eq == std::string::npos ? std::string() : line.substr(eq + 1));
+    Eigen::Vector3d v;
+    std::string rest;
+    if (eq == std::string::npos || !(in >> v.x() >> v.y() >> v.z()) || (in >> rest) ||
+        !v.allFinite())
+      throw IoError(fmt::format("{}:{}: expected 'key = a b c'", path, line_no));
+    std::string key = line.substr(0, eq);
+    key.erase(key.find_last_not_of(' ') + 1);
+    values[key] = v;
+  }
+  compensation::HybridSquarenessCompensation c;
+  for (const char* key : {"base_rpy_rad", "base_offset_mm", "per_x2"})
+    if (!values.count(key)) throw IoError(fmt::format("{}: '{}' is missing", path, key));
+  c.base_rpy = values["base_rpy_rad"];
+  c.base_rotation = geometry::rotationFromRpy(c.base_rpy);
+  c.base_offset = values["base_offset_mm"];
+  c.per_x2 = values["per_x2"];
+  return c;
+}
+
+void writeProgram(const CompensateArgs& a, const std::string& text) {
+  if (a.out.empty()) {
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    std::fflush(stdout);
+    return;
+  }
+  const std::string tmp = a.out + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (f == nullptr) throw IoError(fmt::format("{}: cannot write", a.out));
+  std::fwrite(text.data(), 1, text.size(), f);
+  if (std::fclose(f) != 0) throw IoError(fmt::format("{}: write failed", a.out));
+  std::filesystem::rename(tmp, a.out);
+}
+
+/// The hybrid machine's squareness correction (--hybrid-frame, --x2).
+void runHybrid(const CompensateArgs& a) {
+  if (!a.x2) throw InvalidArgument("--hybrid-frame needs --x2 POS (the X2 position, mm)");
+  const compensation::HybridSquarenessCompensation c = readBaseFrame(a.hybrid_frame);
+  cnc::InterpolationOptions options;
+  options.tolerance = a.tolerance;
+  const std::string text = io::readTextFile(a.program);
+  const cnc::ProgramCompensation r =
+      cnc::compensateHybridProgram(text, a.program, c, *a.x2, !a.frame_not_in_controller, options);
+  writeProgram(a, r.text);
+  fmt::print(stderr,
+             "pkm: note: hybrid squareness correction at X2 = {} mm ({}): {} motion lines "
+             "rewritten, {} segment lines added, largest correction {:.4g} mm\n",
+             *a.x2,
+             a.frame_not_in_controller ? "base frame and X2 term"
+                                       : "X2 term; base frame in the controller",
+             r.motion_lines,
+             r.added_lines,
+             r.max_correction);
+}
 
 /// Suffix `pkm calibrate hexapod` appends to the nominal machine's name.
 constexpr std::string_view kCalibratedSuffix = "-calibrated";
@@ -49,6 +126,10 @@ void runCompensate(const CompensateArgs& a) {
   PKM_CHECK(a.tolerance > 0.0 && std::isfinite(a.tolerance), "--tolerance must be > 0");
   if (!a.out.empty() && !a.force && std::filesystem::exists(a.out))
     throw IoError(fmt::format("{} exists; pass --force to overwrite it", a.out));
+  if (a.hybrid_frame.empty() == a.machine.empty())
+    throw InvalidArgument(
+        "give either --machine CAL.json (hexapod) or --hybrid-frame FILE --x2 POS");
+  if (!a.hybrid_frame.empty()) return runHybrid(a);
   const io::HexapodMachine cal = io::loadHexapodMachine(a.machine);
   const io::HexapodMachine nominal = nominalFor(a, cal);
   if (nominal.model.unit != cal.model.unit)
@@ -59,17 +140,7 @@ void runCompensate(const CompensateArgs& a) {
   const std::string text = io::readTextFile(a.program);
   const cnc::ProgramCompensation r =
       cnc::compensateProgram(text, a.program, nominal.model, cal.model, options);
-  if (a.out.empty()) {
-    std::fwrite(r.text.data(), 1, r.text.size(), stdout);
-    std::fflush(stdout);
-  } else {
-    const std::string tmp = a.out + ".tmp";
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (f == nullptr) throw IoError(fmt::format("{}: cannot write", a.out));
-    std::fwrite(r.text.data(), 1, r.text.size(), f);
-    if (std::fclose(f) != 0) throw IoError(fmt::format("{}: write failed", a.out));
-    std::filesystem::rename(tmp, a.out);
-  }
+  writeProgram(a, r.text);
   fmt::print(stderr,
              "pkm: note: nominal {} -> calibrated {}: {} motion lines rewritten, {} segment lines "
              "added (tolerance {} mm, max step {:.4g} mm), largest correction {:.4g} mm\n",
@@ -91,7 +162,15 @@ void addGcodeCompensateCommand(CLI::App& gcode) {
       "pre-distort PROGRAM for a controller with nominal kinematics (machine: the output of "
       "`pkm calibrate hexapod --out`)");
   c->add_option("program", a->program, "G-code file (.ngc)")->required();
-  c->add_option("--machine", a->machine, "calibrated hexapod machine JSON")->required();
+  c->add_option("--machine", a->machine, "calibrated hexapod machine JSON");
+  c->add_option("--hybrid-frame",
+                a->hybrid_frame,
+                "hybrid machine: pkm-base-frame.txt of `pkm campaign run` (X2-Y2 squareness by "
+                "G-code correction; X Y Z are PKM commands)");
+  c->add_option("--x2", a->x2, "hybrid machine: the X2 position the program runs at, mm");
+  c->add_flag("--base-frame-not-in-controller",
+              a->frame_not_in_controller,
+              "hybrid machine: also apply the base-frame rotation and offset in the program");
   c->add_option("--nominal",
                 a->nominal,
                 "the controller's nominal machine (default: the built-in one the calibrated "

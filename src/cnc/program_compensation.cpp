@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cctype>
 #include <cmath>
 #include <map>
@@ -154,11 +155,10 @@ std::string rewriteLine(std::string_view line, bool arc, const std::string& word
 
 }  // namespace
 
-ProgramCompensation compensateProgram(std::string_view text,
-                                      const std::string& file,
-                                      const kinematics::HexapodModel& nominal,
-                                      const kinematics::HexapodModel& calibrated,
-                                      const ProgramCompensationOptions& options) {
+ProgramCompensation rewriteProgram(std::string_view text,
+                                   const std::string& file,
+                                   const PointMap& map,
+                                   const InterpolationOptions& interpolation) {
   const Program program = Program::parse(text, file);
   for (const Block& b : program.blocks()) checkBlock(b, file);
   MoveCollector moves;
@@ -167,8 +167,7 @@ ProgramCompensation compensateProgram(std::string_view text,
   // Motions per line (one at most) and their interpolated points.
   std::map<std::size_t, std::pair<std::size_t, std::size_t>> span;  // line -> [first, last)
   std::vector<PathPoint> points;
-  PathInterpolator interp(options.interpolation,
-                          moves.moves.empty() ? Axes{} : moves.moves.front().end);
+  PathInterpolator interp(interpolation, moves.moves.empty() ? Axes{} : moves.moves.front().end);
   for (std::size_t m = 0; m < moves.moves.size(); ++m) {
     const Move& mv = moves.moves[m];
     if (span.count(mv.line) != 0) fail(file, mv.line, "gcode compensate needs one motion per line");
@@ -176,27 +175,15 @@ ProgramCompensation compensateProgram(std::string_view text,
     interp.append(mv, static_cast<std::uint32_t>(m), points);
     span[mv.line] = {first, points.size()};
   }
-  std::vector<kinematics::PoseRpy> desired(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-    desired[i] = poseFromAxes(points[i].pos, calibrated.unit);
-  const auto results =
-      compensation::predistortPath(nominal, calibrated, desired, options.predistortion);
+  const std::vector<Axes> commands = map(points);
+  assert(commands.size() == points.size());
   ProgramCompensation r;
   r.points.resize(points.size());
-  const double mm = millimetresPer(nominal.unit);
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (!results[i].ok())
-      fail(file, points[i].line, "the nominal forward kinematics did not converge for this motion");
-    const auto& c = results[i].command;
     CompensatedPoint& cp = r.points[i];
     cp.line = points[i].line;
     cp.desired = points[i].pos;
-    cp.command = {c.position.x() * mm,
-                  c.position.y() * mm,
-                  c.position.z() * mm,
-                  radToDeg(c.rpy.x()),
-                  radToDeg(c.rpy.y()),
-                  radToDeg(c.rpy.z())};
+    cp.command = commands[i];
     r.max_correction = std::max(r.max_correction,
                                 std::hypot(cp.command[0] - cp.desired[0],
                                            cp.command[1] - cp.desired[1],
@@ -240,6 +227,58 @@ ProgramCompensation compensateProgram(std::string_view text,
     start = nl + 1;
   }
   return r;
+}
+
+ProgramCompensation compensateProgram(std::string_view text,
+                                      const std::string& file,
+                                      const kinematics::HexapodModel& nominal,
+                                      const kinematics::HexapodModel& calibrated,
+                                      const ProgramCompensationOptions& options) {
+  const PointMap map = [&](const std::vector<PathPoint>& points) {
+    std::vector<kinematics::PoseRpy> desired(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+      desired[i] = poseFromAxes(points[i].pos, calibrated.unit);
+    const auto results =
+        compensation::predistortPath(nominal, calibrated, desired, options.predistortion);
+    const double mm = millimetresPer(nominal.unit);
+    std::vector<Axes> commands(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (!results[i].ok())
+        fail(file,
+             points[i].line,
+             "the nominal forward kinematics did not converge for this motion");
+      const auto& c = results[i].command;
+      commands[i] = {c.position.x() * mm,
+                     c.position.y() * mm,
+                     c.position.z() * mm,
+                     radToDeg(c.rpy.x()),
+                     radToDeg(c.rpy.y()),
+                     radToDeg(c.rpy.z())};
+    }
+    return commands;
+  };
+  return rewriteProgram(text, file, map, options.interpolation);
+}
+
+ProgramCompensation compensateHybridProgram(std::string_view text,
+                                            const std::string& file,
+                                            const compensation::HybridSquarenessCompensation& c,
+                                            double x2,
+                                            bool base_frame_in_controller,
+                                            const InterpolationOptions& interpolation) {
+  PKM_CHECK(std::isfinite(x2), "the X2 position must be finite, got {}", x2);
+  const PointMap map = [&](const std::vector<PathPoint>& points) {
+    std::vector<Axes> commands(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Eigen::Vector3d p(points[i].pos[0], points[i].pos[1], points[i].pos[2]);
+      const Eigen::Vector3d q =
+          (base_frame_in_controller ? p : Eigen::Vector3d(c.base_rotation * p + c.base_offset)) +
+          x2 * c.per_x2;
+      commands[i] = {q.x(), q.y(), q.z(), points[i].pos[3], points[i].pos[4], points[i].pos[5]};
+    }
+    return commands;
+  };
+  return rewriteProgram(text, file, map, interpolation);
 }
 
 }  // namespace pkm::cnc

@@ -67,4 +67,24 @@ TEST_F(GcodeCompensateCli, RefusesToOverwriteAndReportsErrors) {
   expectUsageError(pkm({"gcode", "compensate", prog}), "--machine");
 }
 
+TEST_F(GcodeCompensateCli, HybridFrameShiftsThePkmProgramByTheX2Term) {
+  const std::string frame = write("frame.txt",
+                                  "# pkm-base-frame\nbase_rpy_rad = 0 0 0.003\n"
+                                  "base_offset_mm = 0 0 0\nper_x2 = 0 -4e-05 0\n");
+  const std::string prog = write("p.ngc", "G21 G90\nN5 G1 X10 Y20 Z-1 F500 (cut)\nM2\n");
+  const auto r = pkm({"gcode", "compensate", "--hybrid-frame", frame, "--x2", "1000", prog});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto lines = splitLines(r.out);
+  ASSERT_EQ(lines.size(), 3U);
+  EXPECT_EQ(lines[0], "G21 G90");
+  // y shifted by 1000 · (−4e-5) = −0.04 mm; the base frame stays in the controller.
+  EXPECT_NE(lines[1].find("Y19.96"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[1].find("(cut)"), std::string::npos) << lines[1];
+  expectUsageError(pkm({"gcode", "compensate", "--hybrid-frame", frame, prog}), "--x2");
+  expectUsageError(pkm({"gcode", "compensate", prog}), "--hybrid-frame");
+  const std::string bad = write("bad.txt", "base_rpy_rad = 0 0\n");
+  expectUsageError(pkm({"gcode", "compensate", "--hybrid-frame", bad, "--x2", "1", prog}),
+                   "bad.txt:1:");
+}
+
 }  // namespace

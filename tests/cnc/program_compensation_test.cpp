@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <cmath>
 #include <random>
 #include <string>
 
@@ -125,6 +127,33 @@ TEST(CompensateProgram, RejectsUnsupportedWithLine) {
       EXPECT_NE(std::string(e.what()).find("bad.ngc:2:"), std::string::npos) << e.what();
     }
   }
+}
+
+TEST(CompensateHybridProgram, AddsTheX2TermAndOptionallyTheBaseFrame) {
+  // b₁ = (1e-6, -4e-5, 2e-6) per mm of X2, a 3 mrad base rotation about z and a 0.1 mm offset.
+  pkm::compensation::HybridSquarenessCompensation c;
+  c.per_x2 = Eigen::Vector3d(1e-6, -4e-5, 2e-6);
+  c.base_rpy = Eigen::Vector3d(0.0, 0.0, 3e-3);
+  c.base_rotation = Eigen::AngleAxisd(3e-3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  c.base_offset = Eigen::Vector3d(0.1, 0.0, 0.0);
+  const std::string text = "G21 G90\nG0 X0 Y0 Z10\nG1 X100 Y50 Z-2 F600 (cut)\nM2\n";
+  const double x2 = 2000.0;
+  const ProgramCompensation in_controller = compensateHybridProgram(text, "h.ngc", c, x2, true);
+  const ProgramCompensation full = compensateHybridProgram(text, "h.ngc", c, x2, false);
+  ASSERT_EQ(in_controller.points.size(), full.points.size());
+  for (std::size_t i = 0; i < full.points.size(); ++i) {
+    const Axes& d = full.points[i].desired;
+    const Eigen::Vector3d p(d[0], d[1], d[2]);
+    const Eigen::Vector3d shifted = p + x2 * c.per_x2;
+    const Eigen::Vector3d rotated = c.base_rotation * p + c.base_offset + x2 * c.per_x2;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(in_controller.points[i].command[static_cast<std::size_t>(k)], shifted[k], 1e-12);
+      EXPECT_NEAR(full.points[i].command[static_cast<std::size_t>(k)], rotated[k], 1e-12);
+    }
+  }
+  EXPECT_NE(in_controller.text.find("(cut)"), std::string::npos);  // comments kept
+  EXPECT_THROW((void)compensateHybridProgram(text, "h.ngc", c, std::nan(""), true),
+               pkm::InvalidArgument);
 }
 
 }  // namespace

@@ -6,11 +6,13 @@
 /// FK_nominal(IK_calibrated(X))), and the program text is rewritten line by line.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "pkm/cnc/path_interpolation.hpp"
+#include "pkm/compensation/hybrid_squareness.hpp"
 #include "pkm/compensation/predistortion.hpp"
 #include "pkm/kinematics/hexapod_model.hpp"
 
@@ -54,5 +56,29 @@ struct ProgramCompensation {
                                                     const kinematics::HexapodModel& nominal,
                                                     const kinematics::HexapodModel& calibrated,
                                                     const ProgramCompensationOptions& options = {});
+
+/// The commands (mm, degrees) for the interpolated points of a program, one per point; may throw
+/// pkm::IoError naming a point's line.
+using PointMap = std::function<std::vector<Axes>(const std::vector<PathPoint>& points)>;
+
+/// The rewriting of compensateProgram with any point map: interpolation by `interpolation`, the
+/// same subset, line structure and throws.
+[[nodiscard]] ProgramCompensation rewriteProgram(std::string_view text,
+                                                 const std::string& file,
+                                                 const PointMap& map,
+                                                 const InterpolationOptions& interpolation);
+
+/// The hybrid machine's squareness correction of a PKM program (X Y Z = PKM command in its P
+/// frame) run with X2 at `x2` (mm): the X2–Y2 part p_c = p + x2·b₁ by G-code, with the base frame
+/// (A, b₀) in the controller's kinematic parameters (seed 000 §3.3); with
+/// `base_frame_in_controller` false also p ← A·p + b₀ first (compensation/hybrid_squareness.hpp).
+/// A, B, C words are kept. Throws pkm::InvalidArgument for a non-finite x2, and as rewriteProgram.
+[[nodiscard]] ProgramCompensation compensateHybridProgram(
+    std::string_view text,
+    const std::string& file,
+    const compensation::HybridSquarenessCompensation& compensation,
+    double x2,
+    bool base_frame_in_controller,
+    const InterpolationOptions& interpolation = {});
 
 }  // namespace pkm::cnc
