@@ -68,6 +68,11 @@ struct StepContext {
   std::function<void(const std::string&)> progress;  ///< prints one progress line
   /// Writes `text` to dir / `name` (creating folders) and records it in `outcome.files`.
   void write(StepOutcome& outcome, const std::string& name, const std::string& text) const;
+  /// write(), and records the file as a compensation of kind `kind` for the result store.
+  void writeCompensation(StepOutcome& outcome,
+                         const std::string& kind,
+                         const std::string& name,
+                         const std::string& text) const;
 };
 
 /// A step kind: runs one step. Throws pkm::IoError / pkm::InvalidArgument for bad input.
@@ -150,6 +155,8 @@ struct LineFiles {
 /// `run` column. Throws pkm::IoError "FILE:LINE: message" for malformed metadata or rows, and
 /// naming the folder when it holds no measurement file.
 [[nodiscard]] LineFiles readLineFolder(const StepContext& context, const std::string& folder);
+/// The step's "data": {"folder": DIR}; throws pkm::IoError naming the step otherwise.
+[[nodiscard]] std::string dataFolder(const StepContext& context);
 
 /// Measured touch-probe files of a "probe-offset" step ("data": {"offset", "circle_before",
 /// "circle_after"}; the `pkm simulate` format): the set-up from their metadata and the touches.

@@ -108,9 +108,7 @@ std::shared_ptr<sim::CompensationChain> compensate(const StepContext& ctx,
       Di(2, 0),
       Di(2, 1),
       Di(2, 2));
-  ctx.write(out, "compensation/squareness.txt", sq_text);
-  out.record.compensations.push_back(
-      {"squareness-matrix", (ctx.dir / "compensation/squareness.txt").string(), sq_text});
+  ctx.writeCompensation(out, "squareness-matrix", "compensation/squareness.txt", sq_text);
 
   return chain;
 }
@@ -118,10 +116,7 @@ std::shared_ptr<sim::CompensationChain> compensate(const StepContext& ctx,
 /// The step on measured laser files ("data": {"folder": DIR}): squareness and compensation
 /// files, no re-measurement (docs/campaign.md, "Measured data").
 StepOutcome fromFiles(const StepContext& ctx) {
-  const Json& data = ctx.spec["data"];
-  if (!data.is_object() || !data.contains("folder") || !data["folder"].is_string())
-    throw IoError(fmt::format("{}: \"data\" must be {{\"folder\": DIR}} (laser measurement files)",
-                              ctx.source));
+  const std::string folder = dataFolder(ctx);
   sim::CartesianLayout layout;
   layout.order = ctx.spec.value("order", std::string("XYZ"));
   try {
@@ -134,7 +129,7 @@ StepOutcome fromFiles(const StepContext& ctx) {
   out.title = "Cartesian machine: squareness from body diagonals in measured files";
   out.record.machine = ctx.spec.value("machine", std::string("cartesian machine"));
   out.record.machine_type = "cartesian";
-  const LineFiles files = readLineFolder(ctx, data["folder"].get<std::string>());
+  const LineFiles files = readLineFolder(ctx, folder);
   out.record.source = fmt::format("{} files", files.paths.size());
   for (const std::string& p : files.paths)
     out.record.measurements.push_back({std::filesystem::path(p).stem().string(), "laser", p, 0});
@@ -157,11 +152,11 @@ StepOutcome fromFiles(const StepContext& ctx) {
   out.record.results.push_back({"squareness.xy", "estimate", sb.squareness_xy, "rad"});
   out.record.results.push_back({"squareness.xz", "estimate", sb.squareness_xz, "rad"});
   out.record.results.push_back({"squareness.yz", "estimate", sb.squareness_yz, "rad"});
-  Json sec = section(out.id,
-                     out.title,
-                     {fmt::format("Measured files: {} in {}; compensation in compensation/.",
-                                  files.paths.size(),
-                                  data["folder"].get<std::string>())});
+  Json sec = section(
+      out.id,
+      out.title,
+      {fmt::format(
+          "Measured files: {} in {}; compensation in compensation/.", files.paths.size(), folder)});
   Json st = table("Squareness from the body diagonals (µrad)", {"angle", "estimate"});
   st["rows"].push_back({"xy", cell(sb.squareness_xy * 1e6)});
   st["rows"].push_back({"xz", cell(sb.squareness_xz * 1e6)});

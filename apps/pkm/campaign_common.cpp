@@ -34,6 +34,14 @@ void StepContext::write(StepOutcome& outcome,
   outcome.files.push_back(fs::relative(path, out).generic_string());
 }
 
+void StepContext::writeCompensation(StepOutcome& outcome,
+                                    const std::string& kind,
+                                    const std::string& name,
+                                    const std::string& text) const {
+  write(outcome, name, text);
+  outcome.record.compensations.push_back({kind, (dir / name).string(), text});
+}
+
 Json plot(const std::string& id,
           const std::string& title,
           const std::string& kind,
@@ -165,9 +173,8 @@ void writeAxisTables(const StepContext& ctx,
     const comp::AxisErrorTable table = comp::tableFromIso230_2(r, axis_name);
     const comp::LinuxcncCompFile file = comp::linuxcncCompFromTable(table, 1);
     const std::string text = comp::writeLinuxcncComp(file);
-    ctx.write(out, fmt::format("compensation/{}.comp", axis_name), text);
-    out.record.compensations.push_back(
-        {"linuxcnc-comp", (ctx.dir / "compensation" / (axis_name + ".comp")).string(), text});
+    ctx.writeCompensation(
+        out, "linuxcnc-comp", fmt::format("compensation/{}.comp", axis_name), text);
     ctx.write(out,
               fmt::format("compensation/{}.eec.spf", axis_name),
               comp::writeSiemensEec(comp::siemensEecFromTable(

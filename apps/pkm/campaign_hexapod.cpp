@@ -178,10 +178,8 @@ StepOutcome runHexapodCalibrationStep(const StepContext& ctx) {
   // 3. Compensation: the calibrated kinematics in the controller.
   io::HexapodMachine machine;
   machine.model = calibrated;
-  ctx.write(out, "compensation/kinematics.hal", io::writeLinuxcncSetp(machine));
-  out.record.compensations.push_back({"linuxcnc-hal",
-                                      (ctx.dir / "compensation/kinematics.hal").string(),
-                                      io::writeLinuxcncSetp(machine)});
+  ctx.writeCompensation(
+      out, "linuxcnc-hal", "compensation/kinematics.hal", io::writeLinuxcncSetp(machine));
   vm->setControllerModel(calibrated);
 
   // 4. Measure again.

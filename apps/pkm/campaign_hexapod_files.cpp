@@ -81,9 +81,7 @@ StepOutcome runHexapodCalibrationFiles(const StepContext& ctx) {
   result.model.name = machine.model.name + "-calibrated";
   result.notices.clear();
   const std::string hal = io::writeLinuxcncSetp(result);
-  ctx.write(out, "compensation/kinematics.hal", hal);
-  out.record.compensations.push_back(
-      {"linuxcnc-hal", (ctx.dir / "compensation/kinematics.hal").string(), hal});
+  ctx.writeCompensation(out, "linuxcnc-hal", "compensation/kinematics.hal", hal);
 
   const std::string unit(toString(model.unit));
   out.rows.push_back({"residual RMS of the fitted files",

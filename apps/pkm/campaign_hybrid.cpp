@@ -165,7 +165,7 @@ std::shared_ptr<sim::CompensationChain> compensate(const StepContext& ctx,
       sq.per_x2.x(),
       sq.per_x2.y(),
       sq.per_x2.z());
-  ctx.write(out, "compensation/pkm-base-frame.txt", frame_text);
+  ctx.writeCompensation(out, "pkm-base-frame", "compensation/pkm-base-frame.txt", frame_text);
   // The X2–Y2 squareness part (b₁, the PKM y correction per mm of X2) as a SINUMERIK cross-axis
   // table over the X2 travel: the error of yp is −b₁,y·x2 (docs/compensation.md, the CEC sign).
   {
@@ -181,12 +181,8 @@ std::shared_ptr<sim::CompensationChain> compensate(const StepContext& ctx,
     }
     const std::string cec = comp::writeSiemensCec(
         comp::siemensCecFromTable(comp::crossTableFromPoints("x2", "yp", pos, err)));
-    ctx.write(out, "compensation/x2-yp.cec.spf", cec);
-    out.record.compensations.push_back(
-        {"siemens-cec", (ctx.dir / "compensation/x2-yp.cec.spf").string(), cec});
+    ctx.writeCompensation(out, "siemens-cec", "compensation/x2-yp.cec.spf", cec);
   }
-  out.record.compensations.push_back(
-      {"pkm-base-frame", (ctx.dir / "compensation/pkm-base-frame.txt").string(), frame_text});
 
   return chain;
 }
@@ -194,10 +190,7 @@ std::shared_ptr<sim::CompensationChain> compensate(const StepContext& ctx,
 /// The step on measured laser files ("data": {"folder": DIR}): analysis and compensation files,
 /// no re-measurement (docs/campaign.md, "Measured data").
 StepOutcome fromFiles(const StepContext& ctx) {
-  const Json& data = ctx.spec["data"];
-  if (!data.is_object() || !data.contains("folder") || !data["folder"].is_string())
-    throw IoError(fmt::format("{}: \"data\" must be {{\"folder\": DIR}} (laser measurement files)",
-                              ctx.source));
+  const std::string folder = dataFolder(ctx);
   const io::ExechonMachine machine =
       io::loadExechonMachine(ctx.spec.value("machine", std::string("default")));
   if (!machine.hybrid)
@@ -209,7 +202,7 @@ StepOutcome fromFiles(const StepContext& ctx) {
                           machine.hybrid->name);
   out.record.machine = machine.hybrid->name;
   out.record.machine_type = "hybrid";
-  const LineFiles files = readLineFolder(ctx, data["folder"].get<std::string>());
+  const LineFiles files = readLineFolder(ctx, folder);
   out.record.source = fmt::format("{} files", files.paths.size());
   for (const std::string& p : files.paths)
     out.record.measurements.push_back({std::filesystem::path(p).stem().string(), "laser", p, 0});
@@ -256,7 +249,7 @@ StepOutcome fromFiles(const StepContext& ctx) {
                                   "compensation/; measuring again with it loaded is the machine's "
                                   "next campaign.",
                                   files.paths.size(),
-                                  data["folder"].get<std::string>())});
+                                  folder)});
   Json sqt = table("Squareness errors (mrad)", {"error", "estimate", "seed 000"});
   sqt["rows"].push_back({"szX2", cell(e.sz_x2 * 1e3), "-0.034"});
   sqt["rows"].push_back({"sxP", cell(e.sx_p * 1e3), "-14.74"});

@@ -57,6 +57,14 @@ sim::LineQuantity quantityOf(const std::string& text, const std::string& file) {
 
 }  // namespace
 
+std::string dataFolder(const StepContext& ctx) {
+  const Json& data = ctx.spec["data"];
+  if (!data.is_object() || !data.contains("folder") || !data["folder"].is_string())
+    throw IoError(fmt::format("{}: \"data\" must be {{\"folder\": DIR}} (laser measurement files)",
+                              ctx.source));
+  return data["folder"].get<std::string>();
+}
+
 LineFiles readLineFolder(const StepContext& ctx, const std::string& folder) {
   fs::path dir(folder);
   if (dir.is_relative()) dir = ctx.base_dir / dir;

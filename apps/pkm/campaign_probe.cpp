@@ -134,9 +134,7 @@ StepOutcome runProbeOffsetStep(const StepContext& ctx) {
       fit.offset.x(),
       fit.offset.y(),
       radius);
-  ctx.write(out, "compensation/probe-offset.txt", offset_text);
-  out.record.compensations.push_back(
-      {"probe-offset", (ctx.dir / "compensation/probe-offset.txt").string(), offset_text});
+  ctx.writeCompensation(out, "probe-offset", "compensation/probe-offset.txt", offset_text);
 
   const double sigma = setup.noise.sigma;
   // Noise-only roundness: the peak-to-valley of N normal trigger errors is about 2·Φ⁻¹(1 −
