@@ -1,12 +1,15 @@
 // `pkm gcode run` throughput: joint-space conversion (IK of every interpolated point of the
 // default hexapod), interpolation of a spiral program, the cycle-time model and the path checks,
-// reported as points per second (items/s). Target: >= 2e6 points/s per core for the conversion.
+// reported as points per second (items/s), and the same for the built-in Exechon (both
+// orientation modes). Target: >= 2e6 points/s per core for the conversion.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <vector>
 
 #include "pkm/cnc/cycle_time.hpp"
+#include "pkm/cnc/exechon_path.hpp"
+#include "pkm/cnc/exechon_path_checks.hpp"
 #include "pkm/cnc/joint_checks.hpp"
 #include "pkm/cnc/joint_path.hpp"
 #include "pkm/cnc/path_interpolation.hpp"
@@ -97,6 +100,57 @@ void BM_CheckPath(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(pts.size()));
 }
 BENCHMARK(BM_CheckPath)->Unit(benchmark::kMillisecond);
+
+const kin::ExechonModel& exechon() {
+  static const kin::ExechonModel m = pkm::io::loadExechonMachine("mxt700s-like").model;
+  return m;
+}
+
+/// A circle of radius 100 mm in the Exechon's PKM frame with a slowly turning tool vector.
+const std::vector<PathPoint>& exechonCircle() {
+  static const std::vector<PathPoint> pts = [] {
+    constexpr std::size_t n = 200'000;
+    std::vector<PathPoint> v(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double u = static_cast<double>(i) / n, a = 20.0 * u;
+      v[i].line = i + 1;
+      v[i].pos = {100 * std::cos(a), 100 * std::sin(a), 50 * u, 15 * std::sin(a), 0, 30 * u};
+      v[i].kind = MoveKind::kLinear;
+      v[i].feed = 3000;
+    }
+    return v;
+  }();
+  return pts;
+}
+
+/// Exechon conversion: tool IK by continuity (vector: A/C give the tool vector; axes: A/C are the
+/// wrist readings and the wrist point is found by fixed-point iteration).
+void BM_ExechonJointConversion(benchmark::State& state) {
+  const auto mode =
+      state.range(0) == 0 ? ExechonOrientation::kToolVector : ExechonOrientation::kWristAxes;
+  const auto& pts = exechonCircle();
+  std::vector<ExechonPathSample> out;
+  for (auto _ : state) {
+    ExechonJointConverter conv(exechon(), mode);
+    conv.solveAll(pts, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetLabel(mode == ExechonOrientation::kToolVector ? "vector" : "axes");
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(pts.size()));
+}
+BENCHMARK(BM_ExechonJointConversion)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+void BM_ExechonCheckPath(benchmark::State& state) {
+  std::vector<PathPoint> pts(exechonCircle().begin(), exechonCircle().begin() + 100'000);
+  ExechonJointConverter conv(exechon(), ExechonOrientation::kToolVector);
+  std::vector<ExechonPathSample> samples;
+  conv.solveAll(pts, samples);
+  const JointRateLimits limits = exechonRateLimits(MotionLimits{}, 180, 1800);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(checkExechonPath(exechon(), pts, samples, limits).points);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(pts.size()));
+}
+BENCHMARK(BM_ExechonCheckPath)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -1,14 +1,18 @@
-// `pkm gcode run --machine M PROGRAM`: interpolate a G-code program, convert it to strut
-// readings of a hexapod, time it and check every limit (docs/gcode.md "gcode run").
+// `pkm gcode run --machine M PROGRAM`: interpolate a G-code program, convert it to the joints of a
+// hexapod or an Exechon, time it and check every limit (docs/gcode.md "gcode run").
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
 #include "pkm/cnc/cycle_time.hpp"
+#include "pkm/cnc/exechon_path.hpp"
+#include "pkm/cnc/exechon_path_checks.hpp"
 #include "pkm/cnc/interpreter.hpp"
 #include "pkm/cnc/joint_checks.hpp"
 #include "pkm/cnc/joint_path.hpp"
@@ -27,25 +31,20 @@ struct RunArgs {
   std::string report;
   bool force = false;
   cnc::MotionLimits limits{200.0, 2000.0, 10000.0};
+  double max_wrist_velocity = 180.0;       ///< deg/s (Exechon)
+  double max_wrist_acceleration = 1800.0;  ///< deg/s² (Exechon)
+  std::string orientation = "vector";      ///< Exechon: how A/C orient the tool
 };
 
 /// Exit code when a check is violated.
 constexpr int kExitViolation = 1;
 
-/// Rejects Exechon machines (not supported yet) with a clear message.
-void rejectExechon(const std::string& spec) {
-  std::string type = "hexapod";
-  if (std::filesystem::is_regular_file(spec)) {
-    type = io::machineType(io::readTextFile(spec));
-  } else {
-    for (const auto& n : io::builtinMachineNames("exechon"))
-      if (n == spec) type = "exechon";
-  }
-  if (type != "hexapod")
-    throw InvalidArgument(fmt::format(
-        "{}: gcode run supports hexapod machines only ({} machines are not supported yet)",
-        spec,
-        type));
+/// "hexapod" or "exechon": the type of a machine file, or of a built-in name.
+std::string machineTypeOf(const std::string& spec) {
+  if (std::filesystem::is_regular_file(spec)) return io::machineType(io::readTextFile(spec));
+  for (const auto& n : io::builtinMachineNames("exechon"))
+    if (n == spec) return "exechon";
+  return "hexapod";
 }
 
 void refuseOverwrite(const std::string& path, bool force) {
@@ -58,7 +57,36 @@ double shown(cnc::PathCheck c, double v) {
   return c == cnc::PathCheck::kJointAngle ? radToDeg(v) : v;
 }
 
-nlohmann::ordered_json eventJson(cnc::PathCheck c, const cnc::CheckEvent& e) {
+/// The unit of a check's values. An Exechon's rates are in the length unit for legs and in
+/// degrees for the wrist: with `item` the unit of that joint, without it both.
+std::string unitOf(cnc::PathCheck c,
+                   const std::string& len,
+                   bool exechon = false,
+                   std::string_view item = {}) {
+  const bool wrist = item.substr(0, 5) == "wrist";
+  const std::string rate = exechon && item.empty() ? fmt::format("{}/s (legs), deg/s (wrist)", len)
+                           : wrist                 ? std::string("deg/s")
+                                                   : fmt::format("{}/s", len);
+  switch (c) {
+    case cnc::PathCheck::kJointAngle:
+      return "deg";
+    case cnc::PathCheck::kSingular:
+    case cnc::PathCheck::kReach:
+      return "";
+    case cnc::PathCheck::kJointVelocity:
+      return rate;
+    case cnc::PathCheck::kJointAcceleration:
+      return exechon && item.empty() ? fmt::format("{}/s^2 (legs), deg/s^2 (wrist)", len)
+                                     : rate + "^2";
+    default:
+      return len;
+  }
+}
+
+nlohmann::ordered_json eventJson(cnc::PathCheck c,
+                                 const cnc::CheckEvent& e,
+                                 const std::string& len,
+                                 bool exechon) {
   nlohmann::ordered_json j;
   j["line"] = e.line;
   j["position"] = std::vector<double>(e.pos.begin(), e.pos.end());
@@ -66,22 +94,107 @@ nlohmann::ordered_json eventJson(cnc::PathCheck c, const cnc::CheckEvent& e) {
   j["value"] = shown(c, e.value);
   j["limit"] = shown(c, e.limit);
   j["margin"] = shown(c, e.margin);
+  j["unit"] = unitOf(c, len, exechon, e.item);
   return j;
 }
 
-std::string unitOf(cnc::PathCheck c, const std::string& len) {
-  switch (c) {
-    case cnc::PathCheck::kJointAngle:
-      return "deg";
-    case cnc::PathCheck::kSingular:
-      return "";
-    case cnc::PathCheck::kJointVelocity:
-      return len + "/s";
-    case cnc::PathCheck::kJointAcceleration:
-      return len + "/s^2";
-    default:
-      return len;
+/// A program converted to joint space on one machine, whatever its type.
+struct JointRun {
+  std::string machine_name;
+  std::string len;  ///< the machine's length unit
+  bool exechon = false;
+  cnc::InterpolationOptions interpolation;
+  std::vector<cnc::PathPoint> points;
+  cnc::CycleTime time;
+  cnc::PathCheckReport report;
+  std::string csv_header;
+  std::function<void(std::string&, std::size_t)> csv_row;  ///< appends point i's row
+};
+
+/// The interpreted program's motions cut into points for joint-space conversion.
+std::vector<cnc::PathPoint> interpolate(const std::vector<cnc::Move>& moves,
+                                        const cnc::InterpolationOptions& options) {
+  // The first motion positions the machine at its end point (the interpreter's start-up
+  // position 0 is not a machine position).
+  cnc::PathInterpolator interp(options, moves.front().end);
+  std::vector<cnc::PathPoint> points;
+  for (std::size_t m = 0; m < moves.size(); ++m)
+    interp.append(moves[m], static_cast<std::uint32_t>(m), points);
+  return points;
+}
+
+void runHexapod(const RunArgs& a, const std::vector<cnc::Move>& moves, JointRun& run) {
+  const io::HexapodMachine machine = io::loadHexapodMachine(a.machine);
+  printNotices(machine.notices);
+  auto model = std::make_shared<kinematics::HexapodModel>(machine.model);
+  run.machine_name = model->name;
+  run.len = std::string(toString(model->unit));
+  run.interpolation = cnc::jointSpaceInterpolation(*model, a.tolerance);
+  run.points = interpolate(moves, run.interpolation);
+  cnc::HexapodJointConverter conv(*model);
+  auto q = std::make_shared<std::vector<kinematics::StrutVector>>();
+  conv.solveAll(run.points, *q);
+  run.time = cnc::estimateCycleTime(run.points, *q, a.limits);
+  run.report = cnc::checkPath(*model, run.points, *q, a.limits);
+  run.csv_header = cnc::kJointCsvHeader;
+  run.csv_row = [&run, q](std::string& out, std::size_t i) {
+    cnc::appendJointCsv(out, run.points[i], run.time.t[i], (*q)[i]);
+  };
+}
+
+void runExechon(const RunArgs& a, const std::vector<cnc::Move>& moves, JointRun& run) {
+  const auto orientation = cnc::parseExechonOrientation(a.orientation);
+  const cnc::JointRateLimits limits =
+      cnc::exechonRateLimits(a.limits, a.max_wrist_velocity, a.max_wrist_acceleration);
+  for (const cnc::Move& m : moves)
+    if (m.end[4] != 0.0)
+      throw InvalidArgument(fmt::format("{}:{}: B{} programmed, but an Exechon has no B axis",
+                                        a.program,
+                                        m.line,
+                                        io::formatNumber(m.end[4])));
+  const io::ExechonMachine machine = io::loadExechonMachine(a.machine);
+  printNotices(machine.notices);
+  auto model = std::make_shared<kinematics::ExechonModel>(machine.model);
+  run.exechon = true;
+  run.machine_name = model->name;
+  run.len = std::string(toString(model->unit));
+  run.interpolation = cnc::exechonInterpolation(*model, a.tolerance);
+  run.points = interpolate(moves, run.interpolation);
+  cnc::ExechonJointConverter conv(*model, orientation);
+  auto samples = std::make_shared<std::vector<cnc::ExechonPathSample>>();
+  conv.solveAll(run.points, *samples);
+  std::vector<kinematics::StrutVector> q(samples->size());
+  for (std::size_t i = 0; i < q.size(); ++i) q[i] = (*samples)[i].joints;
+  run.time = cnc::estimateCycleTime(run.points, q, limits);
+  run.report = cnc::checkExechonPath(*model, run.points, *samples, limits);
+  run.csv_header = cnc::kExechonJointCsvHeader;
+  run.csv_row = [&run, samples](std::string& out, std::size_t i) {
+    cnc::appendExechonJointCsv(out, run.points[i], run.time.t[i], (*samples)[i]);
+  };
+}
+
+/// Writes the joint CSV through a temporary file renamed into place.
+void writeJointCsv(const std::string& path, const JointRun& run) {
+  const std::string tmp = path + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (f == nullptr) throw IoError(fmt::format("{}: cannot write", path));
+  std::string buf = run.csv_header + "\n";
+  for (std::size_t i = 0; i < run.points.size(); ++i) {
+    run.csv_row(buf, i);
+    if (buf.size() > (1u << 20)) {
+      std::fwrite(buf.data(), 1, buf.size(), f);
+      buf.clear();
+    }
   }
+  std::fwrite(buf.data(), 1, buf.size(), f);
+  if (std::fclose(f) != 0) throw IoError(fmt::format("{}: write failed", path));
+  std::filesystem::rename(tmp, path);
+}
+
+/// "-" for a margin that no evaluation set (+infinity), else the margin and its unit.
+std::string marginText(cnc::PathCheck c, double margin, const std::string& unit) {
+  if (std::isinf(margin)) return "-";
+  return fmt::format("{:.4g} {}", shown(c, margin), unit);
 }
 
 void runGcode(const RunArgs& a) {
@@ -89,67 +202,53 @@ void runGcode(const RunArgs& a) {
   PKM_CHECK(a.tolerance > 0.0 && std::isfinite(a.tolerance), "--tolerance must be > 0");
   refuseOverwrite(a.out, a.force);
   refuseOverwrite(a.report, a.force);
-  rejectExechon(a.machine);
-  const io::HexapodMachine machine = io::loadHexapodMachine(a.machine);
-  printNotices(machine.notices);
-  const auto& model = machine.model;
+  const bool exechon = machineTypeOf(a.machine) == "exechon";
+  if (!exechon && a.orientation != "vector")
+    throw InvalidArgument("--orientation applies to Exechon machines only");
   const cnc::Program program = cnc::Program::load(a.program);
   cnc::MoveCollector moves;
   cnc::Interpreter interpreter;
   (void)interpreter.run(program, moves);
   if (moves.moves.empty()) throw InvalidArgument(fmt::format("{}: no motion", a.program));
-  // The first motion positions the machine at its end point (the interpreter's start-up
-  // position 0 is not a machine position).
-  const cnc::InterpolationOptions io = cnc::jointSpaceInterpolation(model, a.tolerance);
-  cnc::PathInterpolator interp(io, moves.moves.front().end);
-  std::vector<cnc::PathPoint> points;
-  for (std::size_t m = 0; m < moves.moves.size(); ++m)
-    interp.append(moves.moves[m], static_cast<std::uint32_t>(m), points);
-  cnc::HexapodJointConverter conv(model);
-  std::vector<kinematics::StrutVector> q;
-  conv.solveAll(points, q);
-  const cnc::CycleTime time = cnc::estimateCycleTime(points, q, a.limits);
-  const cnc::PathCheckReport report = cnc::checkPath(model, points, q, a.limits);
+  JointRun run;
+  if (exechon)
+    runExechon(a, moves.moves, run);
+  else
+    runHexapod(a, moves.moves, run);
+  if (!a.out.empty()) writeJointCsv(a.out, run);
 
-  if (!a.out.empty()) {
-    const std::string tmp = a.out + ".tmp";
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (f == nullptr) throw IoError(fmt::format("{}: cannot write", a.out));
-    std::string buf = std::string(cnc::kJointCsvHeader) + "\n";
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      cnc::appendJointCsv(buf, points[i], time.t[i], q[i]);
-      if (buf.size() > (1u << 20)) {
-        std::fwrite(buf.data(), 1, buf.size(), f);
-        buf.clear();
-      }
-    }
-    std::fwrite(buf.data(), 1, buf.size(), f);
-    if (std::fclose(f) != 0) throw IoError(fmt::format("{}: write failed", a.out));
-    std::filesystem::rename(tmp, a.out);
-  }
-
-  const std::string len(toString(model.unit));
+  const std::string& len = run.len;
+  const auto& io = run.interpolation;
+  const cnc::PathCheckReport& report = run.report;
   Output out;
   std::string& s = out.text();
   s += fmt::format("gcode run: {} on {} ({} lines, {} motions, {} points)\n",
                    a.program,
-                   model.name,
+                   run.machine_name,
                    program.lineCount(),
                    moves.moves.size(),
-                   points.size());
+                   run.points.size());
+  if (exechon)
+    s += fmt::format("orientation: {} (A/C words are {})\n",
+                     a.orientation,
+                     a.orientation == "vector" ? "the tool vector's angles in the world frame"
+                                               : "the wrist axes' readings");
   s += fmt::format(
       "interpolation: tolerance {} mm, max step {:.4g} mm, max rotary step {:.4g} deg\n",
       a.tolerance,
       io.max_step,
       io.max_angle_step);
-  s +=
-      fmt::format("limits: joint velocity {} {}/s, joint acceleration {} {}/s^2, rapid {} mm/min\n",
-                  a.limits.max_joint_velocity,
-                  len,
-                  a.limits.max_joint_acceleration,
-                  len,
-                  a.limits.rapid_rate);
-  s += fmt::format("cycle time: {:.3f} s\n", time.total);
+  s += fmt::format("limits: joint velocity {} {}/s, joint acceleration {} {}/s^2, ",
+                   a.limits.max_joint_velocity,
+                   len,
+                   a.limits.max_joint_acceleration,
+                   len);
+  if (exechon)
+    s += fmt::format("wrist velocity {} deg/s, wrist acceleration {} deg/s^2, ",
+                     a.max_wrist_velocity,
+                     a.max_wrist_acceleration);
+  s += fmt::format("rapid {} mm/min\n", a.limits.rapid_rate);
+  s += fmt::format("cycle time: {:.3f} s\n", run.time.total);
   s += fmt::format("{:<19} {:<9} {:>10} {:>14} {:>7}  {}\n",
                    "check",
                    "status",
@@ -162,23 +261,25 @@ void runGcode(const RunArgs& a) {
     const auto c = static_cast<cnc::PathCheck>(k);
     const cnc::CheckStat& st = report.stats[k];
     const std::string name(cnc::toString(c));
+    const std::string unit = unitOf(c, len, exechon);
     const char* status = !st.enabled ? "n/a" : st.violations > 0 ? "VIOLATED" : "ok";
+    const bool any = std::isfinite(st.worst.margin);
     if (st.enabled)
       s += fmt::format("{:<19} {:<9} {:>10} {:>14} {:>7}  {}\n",
                        name,
                        status,
                        st.violations,
-                       fmt::format("{:.4g} {}", shown(c, st.worst.margin), unitOf(c, len)),
-                       st.worst.line,
+                       marginText(c, st.worst.margin, unitOf(c, len, exechon, st.worst.item)),
+                       any ? std::to_string(st.worst.line) : "-",
                        st.worst.item);
     else
       s += fmt::format("{:<19} {:<9}\n", name, status);
     nlohmann::ordered_json j;
     j["enabled"] = st.enabled;
     j["violations"] = st.violations;
-    j["unit"] = unitOf(c, len);
-    if (st.enabled) j["worst"] = eventJson(c, st.worst);
-    if (st.violations > 0) j["first_violation"] = eventJson(c, st.first);
+    j["unit"] = unit;
+    if (st.enabled && any) j["worst"] = eventJson(c, st.worst, len, exechon);
+    if (st.violations > 0) j["first_violation"] = eventJson(c, st.first, len, exechon);
     checks[name] = j;
   }
   for (std::size_t k = 0; k < cnc::kPathChecks; ++k) {
@@ -202,23 +303,29 @@ void runGcode(const RunArgs& a) {
         shown(c, e.value),
         shown(c, e.limit),
         shown(c, e.margin),
-        unitOf(c, len));
+        unitOf(c, len, exechon, e.item));
   }
   s += report.ok() ? "result: all checks pass\n" : "result: VIOLATIONS (exit code 1)\n";
   if (!a.report.empty()) {
     nlohmann::ordered_json j;
     j["program"] = a.program;
-    j["machine"] = model.name;
+    j["machine"] = run.machine_name;
+    j["machine_type"] = exechon ? "exechon" : "hexapod";
     j["units"] = len;
+    if (exechon) j["orientation"] = a.orientation;
     j["tolerance_mm"] = a.tolerance;
     j["max_step_mm"] = io.max_step;
     j["max_angle_step_deg"] = io.max_angle_step;
     j["max_joint_velocity"] = a.limits.max_joint_velocity;
     j["max_joint_acceleration"] = a.limits.max_joint_acceleration;
+    if (exechon) {
+      j["max_wrist_velocity_deg_per_s"] = a.max_wrist_velocity;
+      j["max_wrist_acceleration_deg_per_s2"] = a.max_wrist_acceleration;
+    }
     j["rapid_rate_mm_per_min"] = a.limits.rapid_rate;
     j["motions"] = moves.moves.size();
-    j["points"] = points.size();
-    j["cycle_time_s"] = time.total;
+    j["points"] = run.points.size();
+    j["cycle_time_s"] = run.time.total;
     j["ok"] = report.ok();
     j["checks"] = checks;
     std::FILE* f = std::fopen(a.report.c_str(), "wb");
@@ -237,12 +344,16 @@ void addGcodeRunCommand(CLI::App& gcode) {
   auto a = std::make_shared<RunArgs>();
   CLI::App* r = gcode.add_subcommand(
       "run",
-      "interpolate PROGRAM, convert it to strut readings of a hexapod, estimate the cycle time "
-      "and check every limit (exit 1 on a violation)");
+      "interpolate PROGRAM, convert it to the joints of a hexapod or an Exechon, estimate the "
+      "cycle time and check every limit (exit 1 on a violation)");
   r->add_option("program", a->program, "G-code file (.ngc)")->required();
-  r->add_option("--machine", a->machine, "hexapod machine: JSON file or built-in name");
+  r->add_option("--machine", a->machine, "hexapod or Exechon machine: JSON file or built-in name");
+  r->add_option("--orientation",
+                a->orientation,
+                "Exechon: A/C words are the tool vector's angles in the world frame (vector, "
+                "default) or the wrist axes' readings (axes)");
   r->add_option("--tolerance", a->tolerance, "chordal tolerance in mm (default 0.01)");
-  r->add_option("--out", a->out, "write the joint CSV (line,t,x,y,z,a,b,c,q0..q5) to FILE");
+  r->add_option("--out", a->out, "write the joint CSV to FILE (docs/gcode.md)");
   r->add_option("--report", a->report, "write the check report as JSON to FILE");
   r->add_flag("--force", a->force, "overwrite existing --out/--report files");
   r->add_option("--max-joint-velocity",
@@ -251,6 +362,12 @@ void addGcodeRunCommand(CLI::App& gcode) {
   r->add_option("--max-joint-acceleration",
                 a->limits.max_joint_acceleration,
                 "strut acceleration limit, machine length unit/s^2 (default 2000)");
+  r->add_option("--max-wrist-velocity",
+                a->max_wrist_velocity,
+                "Exechon wrist C/A speed limit, deg/s (default 180)");
+  r->add_option("--max-wrist-acceleration",
+                a->max_wrist_acceleration,
+                "Exechon wrist C/A acceleration limit, deg/s^2 (default 1800)");
   r->add_option("--rapid-rate", a->limits.rapid_rate, "G0 path speed, mm/min (default 10000)");
   r->callback([a] { runGcode(*a); });
 }

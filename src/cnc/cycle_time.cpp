@@ -27,6 +27,27 @@ void MotionLimits::validate() const {
       std::isfinite(rapid_rate) && rapid_rate > 0.0, "rapid rate must be > 0 (got {})", rapid_rate);
 }
 
+JointRateLimits JointRateLimits::uniform(const MotionLimits& limits) {
+  JointRateLimits r;
+  r.max_velocity.setConstant(limits.max_joint_velocity);
+  r.max_acceleration.setConstant(limits.max_joint_acceleration);
+  r.rapid_rate = limits.rapid_rate;
+  return r;
+}
+
+void JointRateLimits::validate() const {
+  for (int j = 0; j < kinematics::kStruts; ++j) {
+    PKM_CHECK(
+        max_velocity(j) > 0.0, "joint {} velocity limit must be > 0 (got {})", j, max_velocity(j));
+    PKM_CHECK(max_acceleration(j) > 0.0,
+              "joint {} acceleration limit must be > 0 (got {})",
+              j,
+              max_acceleration(j));
+  }
+  PKM_CHECK(
+      std::isfinite(rapid_rate) && rapid_rate > 0.0, "rapid rate must be > 0 (got {})", rapid_rate);
+}
+
 double segmentLength(const Axes& a, const Axes& b) {
   const double l = std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
   if (l > 0.0) return l;
@@ -53,6 +74,19 @@ CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
                             const std::vector<kinematics::StrutVector>& q,
                             const MotionLimits& limits) {
   limits.validate();
+  return estimateCycleTime(points, q, JointRateLimits::uniform(limits));
+}
+
+CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
+                            const std::vector<kinematics::StrutVector>& q,
+                            const JointRateLimits& limits) {
+  limits.validate();
+  // Rates in units of each joint's limit: |dq_j/ds|/vmax_j and |dq_j/ds|/amax_j (0 when
+  // unlimited), so every joint's limit becomes 1.
+  const kinematics::StrutVector inv_v = limits.max_velocity.cwiseInverse();
+  const kinematics::StrutVector inv_a = limits.max_acceleration.cwiseInverse();
+  MotionLimits path;
+  path.rapid_rate = limits.rapid_rate;
   PKM_CHECK(points.size() == q.size(), "{} points but {} joint vectors", points.size(), q.size());
   CycleTime r;
   const std::size_t n = points.size();
@@ -63,14 +97,13 @@ CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
   std::vector<kinematics::StrutVector> dqds(n, kinematics::StrutVector::Zero());
   for (std::size_t k = 1; k < n; ++k) {
     ds[k] = segmentLength(points[k - 1].pos, points[k].pos);
-    vcap[k] = programmedSpeed(points[k], limits);
+    vcap[k] = programmedSpeed(points[k], path);
     if (ds[k] <= 0.0) continue;
     dqds[k] = (q[k] - q[k - 1]) / ds[k];
-    const double g = dqds[k].cwiseAbs().maxCoeff();  // joint units per path unit
-    if (g > 0.0) {
-      vcap[k] = std::min(vcap[k], limits.max_joint_velocity / g);
-      acap[k] = limits.max_joint_acceleration / g;
-    }
+    const double gv = dqds[k].cwiseAbs().cwiseProduct(inv_v).maxCoeff();  // per path unit
+    const double ga = dqds[k].cwiseAbs().cwiseProduct(inv_a).maxCoeff();
+    if (gv > 0.0) vcap[k] = std::min(vcap[k], 1.0 / gv);
+    if (ga > 0.0) acap[k] = 1.0 / ga;
   }
   // Speed bound at each point: rest at both ends; between sub-segments the lower cap and the
   // joint-acceleration bound v² · |Δ(dq/ds)| / ds_mean <= a_max.
@@ -79,8 +112,8 @@ CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
     double vk = std::min(vcap[k], vcap[k + 1]);
     const double mean = 0.5 * (ds[k] + ds[k + 1]);
     if (mean > 0.0) {
-      const double jump = (dqds[k + 1] - dqds[k]).cwiseAbs().maxCoeff() / mean;
-      if (jump > 0.0) vk = std::min(vk, std::sqrt(limits.max_joint_acceleration / jump));
+      const double jump = (dqds[k + 1] - dqds[k]).cwiseAbs().cwiseProduct(inv_a).maxCoeff() / mean;
+      if (jump > 0.0) vk = std::min(vk, std::sqrt(1.0 / jump));
     }
     v[k] = vk;
   }

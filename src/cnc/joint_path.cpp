@@ -1,28 +1,14 @@
 #include "pkm/cnc/joint_path.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <limits>
 
+#include "csv_field.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 
 namespace pkm::cnc {
-namespace {
-
-void appendField(std::string& out, double value) {
-  out.push_back(',');
-  char buf[32];
-  if (value == 0.0) {  // also drops the sign of -0
-    out.push_back('0');
-    return;
-  }
-  const auto result = std::to_chars(buf, buf + sizeof buf, value);
-  out.append(buf, result.ptr);
-}
-
-}  // namespace
 
 kinematics::PoseRpy poseFromAxes(const Axes& pos, LengthUnit unit) {
   const double k = 1.0 / millimetresPer(unit);
@@ -76,12 +62,10 @@ void appendJointCsv(std::string& out,
                     const PathPoint& point,
                     double t,
                     const kinematics::StrutVector& q) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, point.line);
-  out.append(buf, r.ptr);
-  appendField(out, t);
-  for (double v : point.pos) appendField(out, v);
-  for (int i = 0; i < kinematics::kStruts; ++i) appendField(out, q(i));
+  detail::appendCsvIndex(out, point.line);
+  detail::appendCsvField(out, t);
+  for (double v : point.pos) detail::appendCsvField(out, v);
+  for (int i = 0; i < kinematics::kStruts; ++i) detail::appendCsvField(out, q(i));
   out.push_back('\n');
 }
 

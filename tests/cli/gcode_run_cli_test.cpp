@@ -1,5 +1,6 @@
 // `pkm gcode run`: joint CSV format and rows, the report (text and JSON), exit codes 0/1/2,
-// Exechon machines rejected, no overwrite without --force.
+// Exechon machines (tool-vector and wrist-axes modes, the B word refused), no overwrite without
+// --force.
 #include <nlohmann/json.hpp>
 
 #include "support/cli_fixture.hpp"
@@ -59,11 +60,68 @@ TEST_F(GcodeRunCli, UsageAndInputErrors) {
   const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 X10 F600\n");
   expectUsageError(pkm({"gcode", "run", prog, "--tolerance", "0"}), "tolerance");
   expectUsageError(pkm({"gcode", "run", prog, "--max-joint-velocity", "-1"}), "velocity");
-  expectUsageError(pkm({"gcode", "run", prog, "--machine", "mxt700s-like"}),
-                   "hexapod machines only");
+  expectUsageError(pkm({"gcode", "run", prog, "--orientation", "axes"}), "Exechon machines only");
+  expectUsageError(pkm({"gcode", "run", prog, "--machine", "mxt700s-like", "--orientation", "ijk"}),
+                   "orientation");
+  const std::string b = write("b.ngc", "G0 X0 Y0 Z50\nG1 X10 B5 F600\n");
+  expectUsageError(pkm({"gcode", "run", b, "--machine", "mxt700s-like"}), "b.ngc:2: B5");
   const std::string bad = write("bad.ngc", "G0 X0\nG1 X1 Q\n");
   expectUsageError(pkm({"gcode", "run", bad}), "bad.ngc:2:");
   expectUsageError(pkm({"gcode", "run"}), "program");
+}
+
+// The built-in Exechon (PKM frame: z up, origin at the home tool point of a vertical tool).
+TEST_F(GcodeRunCli, ExechonToolVectorProgram) {
+  const std::string prog = write("e.ngc",
+                                 "G21 G90\nG0 X0 Y0 Z50 A0 C0\nG1 Z0 F1000\nG1 X100 Y50 F2000\n"
+                                 "G2 X100 Y-50 I0 J-50\nG1 X0 Y0 A20 C45\nM2\n");
+  const auto r = pkm({"gcode",
+                      "run",
+                      "--machine",
+                      "mxt700s-like",
+                      prog,
+                      "--out",
+                      path("e.csv"),
+                      "--report",
+                      path("e.json")});
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  EXPECT_THAT(r.out, ::testing::HasSubstr("orientation: vector"));
+  const auto lines = splitLines(slurp(path("e.csv")));
+  ASSERT_GT(lines.size(), 10u);
+  EXPECT_EQ(lines[0], "line,t,x,y,z,a,b,c,q0,q1,q2,wrist_c,wrist_a,ux,uy,uz,drm");
+  const auto first = splitFields(lines[1]);
+  ASSERT_EQ(first.size(), 17u);
+  EXPECT_EQ(first[16], "0");  // the DRM is relative to the first point
+  // A vertical tool (A = C = 0) points down: u = (0, 0, -1).
+  EXPECT_NEAR(std::stod(first[15]), -1.0, 1e-12);
+  const auto j = nlohmann::json::parse(slurp(path("e.json")));
+  EXPECT_EQ(j["machine_type"], "exechon");
+  EXPECT_EQ(j["orientation"], "vector");
+  EXPECT_TRUE(j["ok"].get<bool>());
+  EXPECT_FALSE(j["checks"]["interference"]["enabled"].get<bool>());
+  EXPECT_EQ(j["checks"]["reach"]["violations"].get<int>(), 0);
+  EXPECT_EQ(j["points"].get<std::size_t>(), lines.size() - 1);
+}
+
+TEST_F(GcodeRunCli, ExechonWristAxesAndStrokeViolation) {
+  const std::string prog =
+      write("a.ngc", "G0 X0 Y0 Z50 A-20 C0\nG1 X100 Y50 Z0 A-25 C10 F2000\nG1 X1500\n");
+  const auto r = pkm({"gcode",
+                      "run",
+                      "--machine",
+                      "mxt700s-like",
+                      "--orientation",
+                      "axes",
+                      prog,
+                      "--out",
+                      path("a.csv")});
+  EXPECT_EQ(r.code, kExitViolation) << r.err << r.out;
+  EXPECT_THAT(r.out, ::testing::HasSubstr(prog + ":3: stroke violated"));
+  // In axes mode the wrist columns are the programmed A and C.
+  const auto lines = splitLines(slurp(path("a.csv")));
+  const auto row = splitFields(lines[1]);
+  EXPECT_EQ(row[11], "0");
+  EXPECT_EQ(row[12], "-20");
 }
 
 TEST_F(GcodeRunCli, RefusesToOverwrite) {

@@ -89,4 +89,32 @@ TEST(CycleTime, RejectsBadLimits) {
   EXPECT_THROW((void)estimateCycleTime(pts, q, MotionLimits{}), pkm::InvalidArgument);
 }
 
+/// Per-joint limits: a rotary-only move in which only joint 3 moves (1 unit per degree of C) is
+/// timed by joint 3's own limits; the others' limits do not matter, and uniform limits give the
+/// MotionLimits result.
+TEST(CycleTime, PerJointLimits) {
+  std::vector<PathPoint> pts(2);
+  pts[0].pos = {0, 0, 0, 0, 0, 0};
+  pts[1].pos = {0, 0, 0, 0, 0, 90};
+  pts[1].kind = MoveKind::kLinear;
+  pts[1].feed = 6000.0;  // deg/min = 100 deg/s: not limiting
+  std::vector<kin::StrutVector> q(2, kin::StrutVector::Zero());
+  q[1](3) = 90.0;
+  JointRateLimits lim;
+  lim.max_velocity.setConstant(1e-3);  // would dominate if the idle joints counted
+  lim.max_acceleration.setConstant(1e-3);
+  lim.max_velocity(3) = 30.0;
+  lim.max_acceleration(3) = 60.0;
+  const CycleTime t = estimateCycleTime(pts, q, lim);
+  EXPECT_NEAR(t.total, 90.0 / 30.0 + 30.0 / 60.0, kTolRoundTrip);  // cruise + ramps
+  MotionLimits uniform;
+  uniform.max_joint_velocity = 30.0;
+  uniform.max_joint_acceleration = 60.0;
+  EXPECT_NEAR(estimateCycleTime(pts, q, uniform).total,
+              estimateCycleTime(pts, q, JointRateLimits::uniform(uniform)).total,
+              kTolRoundTrip);
+  lim.max_acceleration(0) = 0.0;
+  EXPECT_THROW((void)estimateCycleTime(pts, q, lim), pkm::InvalidArgument);
+}
+
 }  // namespace

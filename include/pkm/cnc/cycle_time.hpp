@@ -25,6 +25,22 @@ struct MotionLimits {
   void validate() const;
 };
 
+/// Per-joint rate limits, for machines whose joints differ in unit or limit (an Exechon's legs in
+/// the length unit and its wrist axes in degrees). Joint j of a joint vector (StrutVector: up to
+/// six joints) may move at most max_velocity(j) per second and accelerate at most
+/// max_acceleration(j) per second²; +infinity leaves a joint unlimited (also for unused slots).
+struct JointRateLimits {
+  kinematics::StrutVector max_velocity = kinematics::StrutVector::Constant(100.0);
+  kinematics::StrutVector max_acceleration = kinematics::StrutVector::Constant(1000.0);
+  double rapid_rate = 10000.0;  ///< G0 path speed, mm/min (or deg/min); > 0
+
+  /// The same limits for all six joints (a hexapod's struts).
+  [[nodiscard]] static JointRateLimits uniform(const MotionLimits& limits);
+  /// Throws pkm::InvalidArgument when a limit is not > 0 (NaN included) or the rapid rate is not
+  /// finite and > 0.
+  void validate() const;
+};
+
 /// Path length of the sub-segment from `a` to `b`: the XYZ length in mm, or for a rotary-only
 /// step the A/B/C length in degrees (LinuxCNC's feed rule for rotary-only moves); 0 if none moves.
 [[nodiscard]] double segmentLength(const Axes& a, const Axes& b);
@@ -50,5 +66,11 @@ struct CycleTime {
 [[nodiscard]] CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
                                           const std::vector<kinematics::StrutVector>& q,
                                           const MotionLimits& limits);
+
+/// As above with per-joint limits: joint j's rate is measured against its own limits (each
+/// joint's |dq_j/ds| divided by its limit), so joints of different units share one path speed.
+[[nodiscard]] CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
+                                          const std::vector<kinematics::StrutVector>& q,
+                                          const JointRateLimits& limits);
 
 }  // namespace pkm::cnc

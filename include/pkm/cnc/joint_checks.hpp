@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -22,6 +23,7 @@ namespace pkm::cnc {
 
 /// The checks, in report order.
 enum class PathCheck {
+  kReach,
   kStroke,
   kJointAngle,
   kInterference,
@@ -30,9 +32,9 @@ enum class PathCheck {
   kJointVelocity,
   kJointAcceleration
 };
-inline constexpr std::size_t kPathChecks = 7;
+inline constexpr std::size_t kPathChecks = 8;
 
-/// "stroke", "joint_angle", "interference", "singular", "degenerate", "joint_velocity",
+/// "reach", "stroke", "joint_angle", "interference", "singular", "degenerate", "joint_velocity",
 /// "joint_acceleration".
 [[nodiscard]] std::string_view toString(PathCheck check);
 
@@ -52,6 +54,9 @@ struct CheckStat {
   std::size_t violations = 0;  ///< points (or sub-segments) where it is violated
   CheckEvent worst;            ///< smallest margin
   CheckEvent first;            ///< first violation (valid when violations > 0)
+  /// What `worst` was chosen by: the margin, or for per-joint rates the margin relative to the
+  /// joint's own limit (joints of different units compare fairly).
+  double worst_rank = std::numeric_limits<double>::infinity();
 };
 
 /// All checks of one path.
@@ -65,6 +70,27 @@ struct PathCheckReport {
   [[nodiscard]] bool ok() const;
 };
 
+/// Records one evaluation of a check at `p`: counts a violation (margin < 0 or NaN), keeps the
+/// first violation, and keeps the evaluation as the worst when `rank` (default: the margin) is the
+/// smallest so far. A margin of +infinity means the limit is disabled and records nothing.
+void recordCheck(CheckStat& stat,
+                 const PathPoint& p,
+                 std::string item,
+                 double value,
+                 double limit,
+                 double margin,
+                 double rank = std::numeric_limits<double>::quiet_NaN());
+
+/// The joint velocity and acceleration checks (as checkPath describes them) with per-joint
+/// limits: joint j is named joint_name(j) and measured against its own limits; the worst point is
+/// the one nearest its limit relative to the limit. Writes report's kJointVelocity and
+/// kJointAcceleration stats. Throws pkm::InvalidArgument on size mismatch or invalid limits.
+void checkJointRates(const std::vector<PathPoint>& points,
+                     const std::vector<kinematics::StrutVector>& q,
+                     const JointRateLimits& limits,
+                     const std::function<std::string(int)>& joint_name,
+                     PathCheckReport& report);
+
 /// Runs every check along points[0..n) with readings q (model length unit, as
 /// HexapodJointConverter gives them). Joint velocity of sub-segment k: max_j |Δq_j|/Δs · v_prog,
 /// v_prog the programmed speed (programmedSpeed). Joint acceleration at a point between two
@@ -72,7 +98,9 @@ struct PathCheckReport {
 /// joint acceleration at the programmed feed; corners between motions are left to the
 /// cycle-time model, which slows down for them). Rapids have no programmed feed (a controller
 /// runs G0 as fast as the joints allow) and are left out of both. Degenerate: the shortest
-/// distance between a strut's joint centres, limit 0. Throws pkm::InvalidArgument on size mismatch.
+/// distance between a strut's joint centres, limit 0. Reach: enabled and never violated (the
+/// hexapod's inverse kinematics is closed-form and always defined). Throws pkm::InvalidArgument on
+/// size mismatch.
 [[nodiscard]] PathCheckReport checkPath(const kinematics::HexapodModel& model,
                                         const std::vector<PathPoint>& points,
                                         const std::vector<kinematics::StrutVector>& q,

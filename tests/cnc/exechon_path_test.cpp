@@ -1,0 +1,190 @@
+// Exechon joint-space conversion: the virtual head's tool vector against Eigen's rotations, IK
+// round trips through the tool forward kinematics in both orientation modes, continuity along a
+// path, failures (B word, singular point), the interpolation step rule checked by forward
+// kinematics between samples, and the CSV row.
+#include "pkm/cnc/exechon_path.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <random>
+
+#include "kinematics/exechon_sample_models.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/core/units.hpp"
+#include "pkm/kinematics/exechon_wrist.hpp"
+#include "support/tolerances.hpp"
+
+namespace {
+
+using namespace pkm::cnc;
+namespace kin = pkm::kinematics;
+using pkm::degToRad;
+using pkm::test::kSeed;
+using pkm::test::kTolExact;
+using pkm::test::kTolRoundTrip;
+
+/// Readings tolerance of the forward kinematics below the round-trip tolerance (mm).
+constexpr double kFkTolerance = 1e-12;
+
+/// Tool forward kinematics of a sample: the tool point and direction its joints give.
+kin::ExechonData forward(const kin::ExechonModel& m, const ExechonPathSample& s) {
+  kin::ExechonData d(m);
+  kin::ExechonJoints j{s.readings, s.config.c, s.config.a};
+  kin::FkOptions options;
+  options.tolerance = kFkTolerance;
+  const kin::FkSummary fk = kin::toolForwardKinematics(m, d, j, s.config, options);
+  EXPECT_TRUE(fk.ok());
+  return d;
+}
+
+/// A random position near the home tool point (mm) with A in [20°, 40°] and C in ±180°.
+Axes randomAxes(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  return {60 * u(rng), 60 * u(rng), 40 * u(rng), 30 + 10 * u(rng), 0, 180 * u(rng)};
+}
+
+TEST(ExechonPath, ToolVectorOfTheVirtualHead) {
+  for (const auto& [a, c] : {std::pair{0.0, 0.0}, {30.0, 0.0}, {25.0, 70.0}, {-40.0, -120.0}}) {
+    const Eigen::Vector3d k = Eigen::AngleAxisd(degToRad(c), Eigen::Vector3d::UnitZ()) *
+                              Eigen::AngleAxisd(degToRad(a), Eigen::Vector3d::UnitX()) *
+                              Eigen::Vector3d::UnitZ();
+    EXPECT_LT((toolDirectionFromAngles(a, c) + k).norm(), kTolExact) << a << " " << c;
+  }
+  EXPECT_EQ(parseExechonOrientation("axes"), ExechonOrientation::kWristAxes);
+  EXPECT_EQ(toString(parseExechonOrientation("vector")), "vector");
+  EXPECT_THROW((void)parseExechonOrientation("ijk"), pkm::InvalidArgument);
+}
+
+TEST(ExechonPath, ToolVectorModeRoundTripsThroughForwardKinematics) {
+  const kin::ExechonModel m = pkm::test::machineModel();
+  std::mt19937 rng(kSeed);
+  for (int k = 0; k < 200; ++k) {
+    ExechonJointConverter conv(m, ExechonOrientation::kToolVector);
+    const Axes pos = randomAxes(rng);
+    const ExechonPathSample s = conv.solve(pos);
+    ASSERT_TRUE(s.ok()) << k;
+    const kin::ExechonData d = forward(m, s);
+    EXPECT_LT((d.world_p_tool - Eigen::Vector3d(pos[0], pos[1], pos[2])).norm(), kTolRoundTrip);
+    EXPECT_LT((d.world_u_tool - toolDirectionFromAngles(pos[3], pos[5])).norm(), kTolRoundTrip);
+    EXPECT_LT((s.direction - d.world_u_tool).norm(), kTolRoundTrip);
+    EXPECT_EQ(s.joints(5), 0.0);
+    EXPECT_DOUBLE_EQ(s.joints(3), pkm::radToDeg(s.config.c));
+  }
+}
+
+TEST(ExechonPath, WristAxesModeKeepsTheReadingsAndReachesThePoint) {
+  const kin::ExechonModel m = pkm::test::machineModel();
+  std::mt19937 rng(kSeed + 1);
+  for (int k = 0; k < 200; ++k) {
+    ExechonJointConverter conv(m, ExechonOrientation::kWristAxes);
+    const Axes pos = randomAxes(rng);
+    const ExechonPathSample s = conv.solve(pos);
+    ASSERT_TRUE(s.ok()) << k;
+    EXPECT_NEAR(s.config.a, degToRad(pos[3]), kTolExact);
+    EXPECT_NEAR(s.config.c, degToRad(pos[5]), kTolExact);
+    const kin::ExechonData d = forward(m, s);
+    EXPECT_LT((d.world_p_tool - Eigen::Vector3d(pos[0], pos[1], pos[2])).norm(), kTolRoundTrip);
+  }
+}
+
+TEST(ExechonPath, ContinuityAlongAPathAndDrmAtTheStart) {
+  const kin::ExechonModel m = pkm::test::machineModel();
+  ExechonJointConverter conv(m, ExechonOrientation::kToolVector);
+  // A circle of radius 50 mm with a constant tilted tool, 1° steps.
+  ExechonPathSample prev;
+  for (int i = 0; i <= 360; ++i) {
+    const double t = degToRad(i);
+    const ExechonPathSample s = conv.solve({50 * std::cos(t), 50 * std::sin(t), 0, 30, 0, 45});
+    ASSERT_TRUE(s.ok()) << i;
+    if (i == 0) {
+      EXPECT_EQ(s.drm, 0.0);
+    } else {
+      // 1° on a 50 mm circle moves the tool 0.87 mm: no joint may jump (branch change).
+      EXPECT_LT((s.readings - prev.readings).cwiseAbs().maxCoeff(), 3.0);
+      EXPECT_LT(std::abs(s.config.c - prev.config.c), degToRad(3.0));
+      EXPECT_LT(std::abs(s.config.a - prev.config.a), degToRad(3.0));
+    }
+    prev = s;
+  }
+}
+
+TEST(ExechonPath, FailuresHoldTheLastJoints) {
+  const kin::ExechonModel m = pkm::test::machineModel();
+  ExechonJointConverter conv(m, ExechonOrientation::kToolVector);
+  const ExechonPathSample good = conv.solve({10, 0, 0, 30, 0, 0});
+  ASSERT_TRUE(good.ok());
+  const ExechonPathSample b = conv.solve({10, 0, 0, 30, 5, 0});  // a B word
+  EXPECT_EQ(b.status, kin::ExechonIkStatus::kInvalidInput);
+  EXPECT_EQ(b.joints, good.joints);
+  // The wrist point on the base axis jb (Zoppi origin): the tripod IK is singular there.
+  const Eigen::Vector3d u = toolDirectionFromAngles(30, 0);
+  const Eigen::Vector3d p = m.world_T_zoppi.translation() + m.wrist.tool_length * u;
+  const ExechonPathSample sing = conv.solve({p.x(), p.y(), p.z(), 30, 0, 0});
+  EXPECT_FALSE(sing.ok());
+  EXPECT_EQ(sing.joints, good.joints);
+  std::string row;
+  appendExechonJointCsv(row, PathPoint{7, 0, MoveKind::kLinear, {1, 2, 3, 30, 0, 0}, 600}, 0.5, b);
+  EXPECT_EQ(row, "7,0.5,1,2,3,30,0,0,,,,,,,,,\n");
+  // Still continuous after the failures.
+  EXPECT_TRUE(conv.solve({11, 0, 0, 30, 0, 0}).ok());
+}
+
+TEST(ExechonPath, CsvRowHasEveryField) {
+  const kin::ExechonModel m = pkm::test::machineModel();
+  ExechonJointConverter conv(m, ExechonOrientation::kToolVector);
+  const ExechonPathSample s = conv.solve({0, 0, 0, 30, 0, 0});
+  std::string row;
+  appendExechonJointCsv(row, PathPoint{3, 0, MoveKind::kRapid, {0, 0, 0, 30, 0, 0}, NAN}, 0, s);
+  std::size_t commas = 0;
+  for (char ch : row) commas += ch == ',' ? 1 : 0;
+  std::size_t header_commas = 0;
+  for (const char* c = kExechonJointCsvHeader; *c != 0; ++c) header_commas += *c == ',' ? 1 : 0;
+  EXPECT_EQ(commas, header_commas);
+  EXPECT_EQ(row.back(), '\n');
+}
+
+/// The step rule: joints interpolated linearly between samples stay within the tolerance of the
+/// programmed line (forward kinematics at the midpoints), for a translation and a reorientation.
+TEST(ExechonPath, InterpolationStepKeepsLinearJointsNearThePath) {
+  const kin::ExechonModel m = pkm::test::machineModel();
+  constexpr double kTol = 0.01;  // mm
+  const InterpolationOptions o = exechonInterpolation(m, kTol);
+  EXPECT_GT(o.max_step, 0.0);
+  EXPECT_LT(o.max_angle_step, 1.0);
+  EXPECT_THROW((void)exechonInterpolation(m, 0.0), pkm::InvalidArgument);
+  const Axes start{-80, -40, 0, 30, 0, 0};
+  for (const Axes& end : {Axes{80, 50, 30, 30, 0, 0}, Axes{-80, -40, 0, 40, 0, 60}}) {
+    PathInterpolator interp(o, start);
+    std::vector<PathPoint> pts{PathPoint{1, 0, MoveKind::kRapid, start, NAN}};
+    Move mv;
+    mv.kind = MoveKind::kLinear;
+    mv.end = end;
+    mv.feed = 1000;
+    interp.append(mv, 1, pts);
+    ExechonJointConverter conv(m, ExechonOrientation::kToolVector);
+    std::vector<ExechonPathSample> s;
+    conv.solveAll(pts, s);
+    double worst = 0.0;
+    for (std::size_t i = 1; i < s.size(); ++i) {
+      ASSERT_TRUE(s[i].ok());
+      ExechonPathSample mid = s[i];
+      mid.readings = 0.5 * (s[i - 1].readings + s[i].readings);
+      mid.config.c = 0.5 * (s[i - 1].config.c + s[i].config.c);
+      mid.config.a = 0.5 * (s[i - 1].config.a + s[i].config.a);
+      const kin::ExechonData d = forward(m, mid);
+      // Distance of the midpoint's tool point from the programmed (straight) tool path.
+      const Eigen::Vector3d a(pts[i - 1].pos[0], pts[i - 1].pos[1], pts[i - 1].pos[2]);
+      const Eigen::Vector3d b(pts[i].pos[0], pts[i].pos[1], pts[i].pos[2]);
+      const Eigen::Vector3d ab = b - a;
+      const double len2 = ab.squaredNorm();
+      const Eigen::Vector3d foot =
+          len2 > 0 ? Eigen::Vector3d(a + ab * ((d.world_p_tool - a).dot(ab) / len2)) : a;
+      worst = std::max(worst, (d.world_p_tool - foot).norm());
+    }
+    EXPECT_LE(worst, kTol) << "end " << end[0];
+  }
+}
+
+}  // namespace
