@@ -1,6 +1,7 @@
 // `pkm gcode run --machine M PROGRAM`: interpolate a G-code program, convert it to the joints of a
 // hexapod or an Exechon, time it and check every limit (docs/gcode.md "gcode run").
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -8,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "pkm/cnc/cycle_time.hpp"
@@ -34,6 +36,9 @@ struct RunArgs {
   double max_wrist_velocity = 180.0;       ///< deg/s (Exechon)
   double max_wrist_acceleration = 1800.0;  ///< deg/s² (Exechon)
   std::string orientation = "vector";      ///< Exechon: how A/C orient the tool
+  /// Which rate options the user gave (the machine file's joint_rates apply to the others).
+  bool velocity_given = false, acceleration_given = false;
+  bool wrist_velocity_given = false, wrist_acceleration_given = false;
 };
 
 /// Exit code when a check is violated.
@@ -109,7 +114,54 @@ struct JointRun {
   cnc::PathCheckReport report;
   std::string csv_header;
   std::function<void(std::string&, std::size_t)> csv_row;  ///< appends point i's row
+  cnc::MotionLimits limits;  ///< in effect: options, else the machine file, else defaults
+  double wrist_velocity = 0.0, wrist_acceleration = 0.0;  ///< deg/s, deg/s² (Exechon)
+  std::vector<std::string> from_file;  ///< the limits taken from the machine file
 };
+
+/// The option's value when given, else the machine file's when it has one (noted in `from`).
+double pick(double option,
+            bool given,
+            const std::optional<io::JointRateSpec>& file,
+            double io::JointRateSpec::*field,
+            const char* name,
+            std::vector<std::string>& from) {
+  if (given || !file || std::isnan((*file).*field)) return option;
+  from.emplace_back(name);
+  return (*file).*field;
+}
+
+/// The rate limits in effect for a machine file's joint_rates.
+void effectiveLimits(const RunArgs& a,
+                     const std::optional<io::JointRateSpec>& file,
+                     bool wrist,
+                     JointRun& run) {
+  using S = io::JointRateSpec;
+  run.limits = a.limits;
+  run.limits.max_joint_velocity = pick(
+      a.limits.max_joint_velocity, a.velocity_given, file, &S::velocity, "velocity", run.from_file);
+  run.limits.max_joint_acceleration = pick(a.limits.max_joint_acceleration,
+                                           a.acceleration_given,
+                                           file,
+                                           &S::acceleration,
+                                           "acceleration",
+                                           run.from_file);
+  run.wrist_velocity = a.max_wrist_velocity;
+  run.wrist_acceleration = a.max_wrist_acceleration;
+  if (!wrist) return;
+  run.wrist_velocity = pick(a.max_wrist_velocity,
+                            a.wrist_velocity_given,
+                            file,
+                            &S::wrist_velocity_deg,
+                            "wrist velocity",
+                            run.from_file);
+  run.wrist_acceleration = pick(a.max_wrist_acceleration,
+                                a.wrist_acceleration_given,
+                                file,
+                                &S::wrist_acceleration_deg,
+                                "wrist acceleration",
+                                run.from_file);
+}
 
 /// The interpreted program's motions cut into points for joint-space conversion.
 std::vector<cnc::PathPoint> interpolate(const std::vector<cnc::Move>& moves,
@@ -129,13 +181,14 @@ void runHexapod(const RunArgs& a, const std::vector<cnc::Move>& moves, JointRun&
   auto model = std::make_shared<kinematics::HexapodModel>(machine.model);
   run.machine_name = model->name;
   run.len = std::string(toString(model->unit));
+  effectiveLimits(a, machine.joint_rates, false, run);
   run.interpolation = cnc::jointSpaceInterpolation(*model, a.tolerance);
   run.points = interpolate(moves, run.interpolation);
   cnc::HexapodJointConverter conv(*model);
   auto q = std::make_shared<std::vector<kinematics::StrutVector>>();
   conv.solveAll(run.points, *q);
-  run.time = cnc::estimateCycleTime(run.points, *q, a.limits);
-  run.report = cnc::checkPath(*model, run.points, *q, a.limits);
+  run.time = cnc::estimateCycleTime(run.points, *q, run.limits);
+  run.report = cnc::checkPath(*model, run.points, *q, run.limits);
   run.csv_header = cnc::kJointCsvHeader;
   run.csv_row = [&run, q](std::string& out, std::size_t i) {
     cnc::appendJointCsv(out, run.points[i], run.time.t[i], (*q)[i]);
@@ -144,8 +197,6 @@ void runHexapod(const RunArgs& a, const std::vector<cnc::Move>& moves, JointRun&
 
 void runExechon(const RunArgs& a, const std::vector<cnc::Move>& moves, JointRun& run) {
   const auto orientation = cnc::parseExechonOrientation(a.orientation);
-  const cnc::JointRateLimits limits =
-      cnc::exechonRateLimits(a.limits, a.max_wrist_velocity, a.max_wrist_acceleration);
   for (const cnc::Move& m : moves)
     if (m.end[4] != 0.0)
       throw InvalidArgument(fmt::format("{}:{}: B{} programmed, but an Exechon has no B axis",
@@ -158,6 +209,9 @@ void runExechon(const RunArgs& a, const std::vector<cnc::Move>& moves, JointRun&
   run.exechon = true;
   run.machine_name = model->name;
   run.len = std::string(toString(model->unit));
+  effectiveLimits(a, machine.joint_rates, true, run);
+  const cnc::JointRateLimits limits =
+      cnc::exechonRateLimits(run.limits, run.wrist_velocity, run.wrist_acceleration);
   run.interpolation = cnc::exechonInterpolation(*model, a.tolerance);
   run.points = interpolate(moves, run.interpolation);
   cnc::ExechonJointConverter conv(*model, orientation);
@@ -239,15 +293,19 @@ void runGcode(const RunArgs& a) {
       io.max_step,
       io.max_angle_step);
   s += fmt::format("limits: joint velocity {} {}/s, joint acceleration {} {}/s^2, ",
-                   a.limits.max_joint_velocity,
+                   run.limits.max_joint_velocity,
                    len,
-                   a.limits.max_joint_acceleration,
+                   run.limits.max_joint_acceleration,
                    len);
   if (exechon)
     s += fmt::format("wrist velocity {} deg/s, wrist acceleration {} deg/s^2, ",
-                     a.max_wrist_velocity,
-                     a.max_wrist_acceleration);
-  s += fmt::format("rapid {} mm/min\n", a.limits.rapid_rate);
+                     run.wrist_velocity,
+                     run.wrist_acceleration);
+  s += fmt::format("rapid {} mm/min{}\n",
+                   a.limits.rapid_rate,
+                   run.from_file.empty() ? std::string()
+                                         : fmt::format(" ({} from the machine file)",
+                                                       fmt::join(run.from_file, ", ")));
   s += fmt::format("cycle time: {:.3f} s\n", run.time.total);
   s += fmt::format("{:<19} {:<9} {:>10} {:>14} {:>7}  {}\n",
                    "check",
@@ -316,13 +374,14 @@ void runGcode(const RunArgs& a) {
     j["tolerance_mm"] = a.tolerance;
     j["max_step_mm"] = io.max_step;
     j["max_angle_step_deg"] = io.max_angle_step;
-    j["max_joint_velocity"] = a.limits.max_joint_velocity;
-    j["max_joint_acceleration"] = a.limits.max_joint_acceleration;
+    j["max_joint_velocity"] = run.limits.max_joint_velocity;
+    j["max_joint_acceleration"] = run.limits.max_joint_acceleration;
     if (exechon) {
-      j["max_wrist_velocity_deg_per_s"] = a.max_wrist_velocity;
-      j["max_wrist_acceleration_deg_per_s2"] = a.max_wrist_acceleration;
+      j["max_wrist_velocity_deg_per_s"] = run.wrist_velocity;
+      j["max_wrist_acceleration_deg_per_s2"] = run.wrist_acceleration;
     }
     j["rapid_rate_mm_per_min"] = a.limits.rapid_rate;
+    j["limits_from_machine_file"] = run.from_file;
     j["motions"] = moves.moves.size();
     j["points"] = run.points.size();
     j["cycle_time_s"] = run.time.total;
@@ -356,20 +415,30 @@ void addGcodeRunCommand(CLI::App& gcode) {
   r->add_option("--out", a->out, "write the joint CSV to FILE (docs/gcode.md)");
   r->add_option("--report", a->report, "write the check report as JSON to FILE");
   r->add_flag("--force", a->force, "overwrite existing --out/--report files");
-  r->add_option("--max-joint-velocity",
-                a->limits.max_joint_velocity,
-                "strut speed limit, machine length unit/s (default 200)");
-  r->add_option("--max-joint-acceleration",
-                a->limits.max_joint_acceleration,
-                "strut acceleration limit, machine length unit/s^2 (default 2000)");
-  r->add_option("--max-wrist-velocity",
-                a->max_wrist_velocity,
-                "Exechon wrist C/A speed limit, deg/s (default 180)");
-  r->add_option("--max-wrist-acceleration",
-                a->max_wrist_acceleration,
-                "Exechon wrist C/A acceleration limit, deg/s^2 (default 1800)");
+  CLI::Option* vel = r->add_option("--max-joint-velocity",
+                                   a->limits.max_joint_velocity,
+                                   "strut speed limit, machine length unit/s (default: the machine "
+                                   "file's joint_rates, else 200)");
+  CLI::Option* acc = r->add_option(
+      "--max-joint-acceleration",
+      a->limits.max_joint_acceleration,
+      "strut acceleration limit, machine length unit/s^2 (default: the machine file's, else 2000)");
+  CLI::Option* wvel =
+      r->add_option("--max-wrist-velocity",
+                    a->max_wrist_velocity,
+                    "Exechon wrist C/A speed limit, deg/s (default: the machine file's, else 180)");
+  CLI::Option* wacc = r->add_option(
+      "--max-wrist-acceleration",
+      a->max_wrist_acceleration,
+      "Exechon wrist C/A acceleration limit, deg/s^2 (default: the machine file's, else 1800)");
   r->add_option("--rapid-rate", a->limits.rapid_rate, "G0 path speed, mm/min (default 10000)");
-  r->callback([a] { runGcode(*a); });
+  r->callback([a, vel, acc, wvel, wacc] {
+    a->velocity_given = vel->count() > 0;
+    a->acceleration_given = acc->count() > 0;
+    a->wrist_velocity_given = wvel->count() > 0;
+    a->wrist_acceleration_given = wacc->count() > 0;
+    runGcode(*a);
+  });
 }
 
 }  // namespace pkm::cli

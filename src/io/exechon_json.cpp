@@ -1,5 +1,6 @@
 #include <cmath>
 
+#include "io/detail/joint_rates_json.hpp"
 #include "io/detail/json_doc.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/so3.hpp"
@@ -144,6 +145,7 @@ ExechonMachine parseExechonJson(const std::string& text, const std::string& sour
                 "home",
                 "max_condition",
                 "forward_kinematics",
+                "joint_rates",
                 "hybrid"});
   ExechonMachine m;
   m.source = source;
@@ -197,6 +199,8 @@ ExechonMachine parseExechonJson(const std::string& text, const std::string& sour
   model.max_condition = doc.number(root, "", "max_condition", model.max_condition);
   if (root.contains("forward_kinematics"))
     detail::readFkOptions(doc, root["forward_kinematics"], m.fk);
+  if (root.contains("joint_rates"))
+    m.joint_rates = detail::readJointRates(doc, root["joint_rates"], "/joint_rates", true);
   if (root.contains("hybrid")) {
     m.hybrid.emplace();
     m.hybrid->name = model.name;
@@ -282,6 +286,7 @@ std::string writeExechonJson(const ExechonMachine& machine) {
   out += fmt::format("  \"forward_kinematics\": {{\"tolerance\": {}, \"max_iterations\": {}}}",
                      formatNumber(machine.fk.tolerance),
                      machine.fk.max_iterations);
+  if (machine.joint_rates) out += ",\n  " + jointRatesJson(*machine.joint_rates, true);
   if (machine.hybrid) {
     const kin::HybridMachineModel& h = *machine.hybrid;
     out += fmt::format(

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -264,6 +265,16 @@ void applyLinuxcncIni(const std::string& ini_path, HexapodMachine& machine) {
         fail(fmt::format("{} {}: expected one number", section, key));
       kin::Strut& s = machine.model.struts[static_cast<std::size_t>(section[7] - '0')];
       (key == "MIN_LIMIT" ? s.min_reading : s.max_reading) = v;
+    } else if (section.size() == 9 && section.starts_with("[JOINT_") && section[7] >= '0' &&
+               section[7] <= '5' && (key == "MAX_VELOCITY" || key == "MAX_ACCELERATION")) {
+      // One limit for all struts: the smallest of the joints' (pkm's rates are uniform).
+      double v = 0.0;
+      if (values.size() != 1 || !parseFiniteDouble(values[0], v) || !(v > 0.0))
+        fail(fmt::format("{} {}: expected one number > 0", section, key));
+      if (!machine.joint_rates) machine.joint_rates.emplace();
+      double& limit =
+          key == "MAX_VELOCITY" ? machine.joint_rates->velocity : machine.joint_rates->acceleration;
+      limit = std::isnan(limit) ? v : std::min(limit, v);
     }
   }
   for (int i = 0; i < kin::kStruts; ++i) {

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "io/detail/joint_rates_json.hpp"
 #include "io/detail/json_doc.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/hexapod_machine.hpp"
@@ -80,6 +81,7 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
                 "strut_diameter",
                 "max_condition",
                 "forward_kinematics",
+                "joint_rates",
                 "struts"});
   HexapodMachine m;
   m.source = source;
@@ -108,6 +110,8 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
   if (!(model.max_condition > 1.0)) doc.fail("/max_condition", "must be > 1");
   if (root.contains("forward_kinematics"))
     detail::readFkOptions(doc, root["forward_kinematics"], m.fk);
+  if (root.contains("joint_rates"))
+    m.joint_rates = detail::readJointRates(doc, root["joint_rates"], "/joint_rates", false);
 
   if (!root.contains("struts")) doc.fail("", "missing key 'struts'");
   const json& struts = root["struts"];
@@ -181,8 +185,9 @@ std::string writeHexapodJson(const HexapodMachine& machine) {
   out += ",\n  \"strut_diameter\": " + formatNumber(model.strut_diameter);
   out += ",\n  \"max_condition\": " + formatNumber(model.max_condition);
   out += ",\n  \"forward_kinematics\": {\"tolerance\": " + formatNumber(machine.fk.tolerance) +
-         ", \"max_iterations\": " + std::to_string(machine.fk.max_iterations) +
-         "},\n  \"struts\": [\n";
+         ", \"max_iterations\": " + std::to_string(machine.fk.max_iterations) + "},\n";
+  if (machine.joint_rates) out += "  " + jointRatesJson(*machine.joint_rates, false) + ",\n";
+  out += "  \"struts\": [\n";
   for (int i = 0; i < kin::kStruts; ++i) {
     const kin::Strut& s = model.struts[static_cast<std::size_t>(i)];
     out += "    {\"base\": ";

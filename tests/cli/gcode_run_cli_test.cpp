@@ -124,6 +124,35 @@ TEST_F(GcodeRunCli, ExechonWristAxesAndStrokeViolation) {
   EXPECT_EQ(row[12], "-20");
 }
 
+/// The machine file's joint_rates are the default limits; an option overrides its own one.
+TEST_F(GcodeRunCli, JointRatesFromTheMachineFile) {
+  auto machine = nlohmann::json::parse(
+      slurp(std::string(PKM_SOURCE_DIR) + "/data/machines/hexapod-default.json"));
+  machine["joint_rates"] = {{"velocity", 5.0}, {"acceleration", 50.0}};
+  const std::string file = write("m.json", machine.dump(2));
+  const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 X60 F3000\n");
+  auto r = pkm({"gcode", "run", prog, "--machine", file, "--report", path("r.json")});
+  EXPECT_EQ(r.code, kExitViolation) << r.err << r.out;  // 5 mm/s is too slow for F3000
+  EXPECT_THAT(r.out, ::testing::HasSubstr("(velocity, acceleration from the machine file)"));
+  auto j = nlohmann::json::parse(slurp(path("r.json")));
+  EXPECT_EQ(j["max_joint_velocity"].get<double>(), 5.0);
+  EXPECT_EQ(j["max_joint_acceleration"].get<double>(), 50.0);
+  r = pkm({"gcode",
+           "run",
+           prog,
+           "--machine",
+           file,
+           "--max-joint-velocity",
+           "500",
+           "--report",
+           path("r.json"),
+           "--force"});
+  j = nlohmann::json::parse(slurp(path("r.json")));
+  EXPECT_EQ(j["max_joint_velocity"].get<double>(), 500.0);
+  EXPECT_EQ(j["max_joint_acceleration"].get<double>(), 50.0);
+  EXPECT_EQ(j["limits_from_machine_file"], nlohmann::json::array({"acceleration"}));
+}
+
 TEST_F(GcodeRunCli, RefusesToOverwrite) {
   const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 X10 F600\n");
   write("q.csv", "keep");

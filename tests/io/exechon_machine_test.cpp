@@ -23,6 +23,7 @@ namespace {
 namespace kin = pkm::kinematics;
 using pkm::IoError;
 using pkm::io::ExechonMachine;
+using pkm::io::JointRateSpec;
 using pkm::io::parseExechonJson;
 using pkm::io::readExechonJson;
 using pkm::io::writeExechonJson;
@@ -349,14 +350,36 @@ TEST(ExechonMachineJson, RoundTripOfEveryField) {
   h.P_p_tcp0 = Eigen::Vector3d(0, 0.1, -0.2);
   h.Y2_p_work = Eigen::Vector3d(7, 8, 9);
   m.hybrid = h;
+  m.joint_rates = JointRateSpec{123.25, 1.0 / 3.0, 45.5, 720};
   ASSERT_NO_THROW(m.model.validate());
   const std::string json = writeExechonJson(m);
   const ExechonMachine back = parseExechonJson(json, "every-field.json");
   expectSameMachine(m, back);
+  ASSERT_TRUE(back.joint_rates.has_value());
+  EXPECT_EQ(back.joint_rates->velocity, 123.25);
+  EXPECT_EQ(back.joint_rates->acceleration, 1.0 / 3.0);
+  EXPECT_EQ(back.joint_rates->wrist_velocity_deg, 45.5);
+  EXPECT_EQ(back.joint_rates->wrist_acceleration_deg, 720);
   EXPECT_TRUE(back.model.world_T_zoppi.isApprox(m.model.world_T_zoppi, kTolExact));
   // Unbounded ends are written as null.
   EXPECT_THAT(json, HasSubstr("[null, 700]"));
   EXPECT_THAT(json, HasSubstr("\"y2_stroke\": [null, 450]"));
+}
+
+TEST(ExechonMachineJson, JointRatesAreOptionalAndPositive) {
+  EXPECT_FALSE(parseExechonJson(text(), kSource).joint_rates.has_value());
+  const std::string line20 = kLines[19];
+  const auto with = [&](const std::string& rates) {
+    return text({{20, "  \"joint_rates\": " + rates + ",\n" + line20}});
+  };
+  const ExechonMachine m = parseExechonJson(with("{\"wrist_velocity_deg\": 90}"), kSource);
+  ASSERT_TRUE(m.joint_rates.has_value());
+  EXPECT_EQ(m.joint_rates->wrist_velocity_deg, 90);
+  EXPECT_TRUE(std::isnan(m.joint_rates->velocity));
+  EXPECT_THAT(errorOf(with("{\"velocity\": 0}")),
+              HasSubstr(std::string(kSource) + ":20: /joint_rates/velocity: must be > 0"));
+  EXPECT_THAT(errorOf(with("{\"jerk\": 1}")),
+              HasSubstr(":20: /joint_rates/jerk: unknown key 'jerk'"));
 }
 
 TEST(ExechonMachineJson, RoundTripWithoutHybridHasNoHybridSection) {

@@ -25,6 +25,7 @@ namespace fs = std::filesystem;
 namespace kin = pkm::kinematics;
 using pkm::IoError;
 using pkm::io::HexapodMachine;
+using pkm::io::JointRateSpec;
 using pkm::io::parseHexapodJson;
 using pkm::io::readHexapodJson;
 using pkm::io::writeHexapodJson;
@@ -252,7 +253,13 @@ TEST(HexapodMachineJson, RandomMachinesRoundTrip) {
     m.model.max_condition = 200 + u(rng);
     m.fk.tolerance = 1e-10 * (2 + u(rng));
     m.fk.max_iterations = 50 + trial;
+    if (trial % 3 == 0) m.joint_rates = JointRateSpec{20 + u(rng), 200 + u(rng)};
     const HexapodMachine back = roundTrip(m);
+    ASSERT_EQ(back.joint_rates.has_value(), m.joint_rates.has_value());
+    if (m.joint_rates) {
+      EXPECT_EQ(back.joint_rates->velocity, m.joint_rates->velocity);
+      EXPECT_EQ(back.joint_rates->acceleration, m.joint_rates->acceleration);
+    }
     EXPECT_EQ(back.model.name, m.model.name);
     EXPECT_EQ(back.description, m.description);
     EXPECT_EQ(back.fk.tolerance, m.fk.tolerance);
@@ -327,6 +334,15 @@ TEST(HexapodMachineJsonErrors, TruncatedText) {
 TEST(HexapodMachineJsonErrors, UnknownTopLevelKey) {
   const std::string msg = errorOf(text({{3, "  \"unitz\": \"inch\","}}));
   EXPECT_THAT(msg, StartsWith(at(3) + "/unitz: unknown key 'unitz'"));
+}
+
+TEST(HexapodMachineJsonErrors, JointRatesMustBePositiveAndKnown) {
+  EXPECT_THAT(errorOf(text({{3, "  \"joint_rates\": {\"velocity\": -5}, \"units\": \"mm\","}})),
+              StartsWith(at(3) + "/joint_rates/velocity: must be > 0"));
+  // The wrist keys belong to Exechon files.
+  EXPECT_THAT(
+      errorOf(text({{3, "  \"joint_rates\": {\"wrist_velocity_deg\": 5}, \"units\": \"mm\","}})),
+      StartsWith(at(3) + "/joint_rates/wrist_velocity_deg: unknown key"));
 }
 
 TEST(HexapodMachineJsonErrors, UnknownStrutKey) {

@@ -611,6 +611,27 @@ TEST_F(LinuxcncHalTest, IniLimitsAreStroke) {
   EXPECT_EQ(m.model.struts[3].min_reading, -1000.0);
 }
 
+TEST_F(LinuxcncHalTest, JointRatesAreTheSmallestOfTheJoints) {
+  const std::string hal = writeHal(simHalLines());
+  std::vector<std::string> ini = simIniLines();
+  EXPECT_FALSE(readLinuxcncHal(hal, {writeIni(ini), false}).joint_rates.has_value());
+  for (int j = 0; j < 6; ++j) {
+    ini.push_back("[JOINT_" + std::to_string(j) + "]");
+    ini.push_back("MAX_VELOCITY = " + std::to_string(j == 4 ? 15 : 20));
+    ini.push_back("MAX_ACCELERATION = " + std::to_string(j == 2 ? 150 : 200));
+  }
+  const HexapodMachine m = readLinuxcncHal(hal, {writeIni(ini), false});
+  ASSERT_TRUE(m.joint_rates.has_value());
+  EXPECT_EQ(m.joint_rates->velocity, 15.0);
+  EXPECT_EQ(m.joint_rates->acceleration, 150.0);
+  ini.push_back("[JOINT_5]");
+  ini.push_back("MAX_VELOCITY = 0");
+  const std::string bad = writeIni(ini);
+  EXPECT_THAT(errorOf(hal, {bad, false}),
+              ::testing::HasSubstr(bad + ":" + std::to_string(ini.size()) +
+                                   ": [JOINT_5] MAX_VELOCITY: expected one number > 0"));
+}
+
 // ---------------------------------------------------------------------------------------------
 // The genuine LinuxCNC sample configuration (scripts/fetch-linuxcnc.sh unpacks it into .cache/)
 
@@ -630,6 +651,10 @@ TEST(LinuxcncGenuineConfig, HexapodSimKinematicsHal) {
     EXPECT_EQ(m.model.struts[i].platform_p_joint, ref.struts[i].platform_p_joint) << i;
   }
   expectReferenceLengths(m.model);
+  // [JOINT_N] MAX_VELOCITY = 20, MAX_ACCELERATION = 200 in the sample's hexapod.ini.
+  ASSERT_TRUE(m.joint_rates.has_value());
+  EXPECT_EQ(m.joint_rates->velocity, 20.0);
+  EXPECT_EQ(m.joint_rates->acceleration, 200.0);
 }
 
 }  // namespace

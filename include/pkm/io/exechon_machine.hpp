@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/io/joint_rates.hpp"
 #include "pkm/kinematics/exechon_model.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hybrid_model.hpp"
@@ -16,7 +17,8 @@ namespace pkm::io {
 /// Everything a machine file says about an Exechon machine.
 struct ExechonMachine {
   kinematics::ExechonModel model;
-  kinematics::FkOptions fk;  ///< tripod forward-kinematics settings
+  kinematics::FkOptions fk;                  ///< tripod forward-kinematics settings
+  std::optional<JointRateSpec> joint_rates;  ///< leg and wrist rate limits, when given
   /// The extending axes X2 (carries the PKM) and Y2 (carries the work table) when the machine is a
   /// hybrid one (seed 000); absent for a stand-alone tripod.
   std::optional<kinematics::HybridMachineModel> hybrid;

@@ -3,9 +3,11 @@
 /// machine file (JSON, docs/machine-format.md) or a LinuxCNC configuration.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "pkm/io/joint_rates.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_model.hpp"
 
@@ -15,8 +17,9 @@ namespace pkm::io {
 struct HexapodMachine {
   kinematics::HexapodModel model;
   kinematics::FkOptions fk;  ///< forward-kinematics settings (convergence criterion, iteration cap)
-  std::string description;   ///< free text from the file
-  std::string source;        ///< file path, or "builtin:NAME"
+  std::optional<JointRateSpec> joint_rates;  ///< strut rate limits, when the file gives them
+  std::string description;                   ///< free text from the file
+  std::string source;                        ///< file path, or "builtin:NAME"
   std::vector<std::string> notices;  ///< things the reader ignored or assumed, for the user to see
 };
 

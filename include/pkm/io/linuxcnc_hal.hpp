@@ -12,7 +12,8 @@ namespace pkm::io {
 
 /// How to find the INI file that goes with a HAL file.
 struct HalReadOptions {
-  /// INI to read ([TRAJ] HOME, LINEAR_UNITS; [JOINT_n] MIN_LIMIT/MAX_LIMIT as strut stroke).
+  /// INI to read ([TRAJ] HOME, LINEAR_UNITS; [JOINT_n] MIN_LIMIT/MAX_LIMIT as strut stroke,
+  /// MAX_VELOCITY/MAX_ACCELERATION as joint_rates, the smallest of the joints).
   std::optional<std::string> ini_path;
   /// Without ini_path: use the one *.ini file in the HAL file's folder whose [HAL] HALFILE lines
   /// name the HAL file (a notice says which). Without any INI: units mm, home 0 0 0 0 0 0 (with a
