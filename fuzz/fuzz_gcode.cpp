@@ -16,17 +16,31 @@ class NullSink final : public pkm::cnc::MoveSink {
 };
 }  // namespace
 
+pkm::cnc::InterpreterOptions fuzzOptions() {
+  pkm::cnc::InterpreterOptions options;
+  options.max_loop_iterations = 2000;
+  options.max_call_depth = 16;
+  options.tools.tools[1] = pkm::cnc::ToolEntry{1, 1, {0, 0, 10, 0, 0, 0}, 3};
+  return options;
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
+  // The whole-program path, and the streaming path `pkm gcode moves` takes without O-words.
   try {
     const pkm::cnc::Program program = pkm::cnc::Program::parse(text, "fuzz.ngc");
-    pkm::cnc::InterpreterOptions options;
-    options.max_loop_iterations = 2000;
-    options.max_call_depth = 16;
-    options.tools.tools[1] = pkm::cnc::ToolEntry{1, 1, {0, 0, 10, 0, 0, 0}, 3};
-    pkm::cnc::Interpreter interp(options);
+    pkm::cnc::Interpreter interp(fuzzOptions());
     NullSink sink;
     interp.run(program, sink);
+  } catch (const pkm::IoError&) {
+  } catch (const pkm::InvalidArgument&) {
+  }
+  try {
+    (void)pkm::cnc::LineReader::mayHaveOWords(text);
+    pkm::cnc::LineReader reader(text, "fuzz.ngc");
+    pkm::cnc::Interpreter interp(fuzzOptions());
+    NullSink sink;
+    interp.runStream(reader, sink);
   } catch (const pkm::IoError&) {
   } catch (const pkm::InvalidArgument&) {
   }

@@ -5,9 +5,11 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "pkm/cnc/interpreter.hpp"
+#include "pkm/cnc/line_reader.hpp"
 #include "pkm/core/error.hpp"
 
 namespace pkm::cli {
@@ -62,7 +64,12 @@ void runMoves(const MovesArgs& a) {
         cnc::ToolTable::load(a.tool_table, a.tool_units == "inch" ? cnc::kMmPerInch : 1.0);
   options.block_delete = a.block_delete;
   options.max_loop_iterations = a.max_iterations;
-  const cnc::Program program = cnc::Program::load(a.program);
+  // A program without O-words is run while it is read (constant memory); one with O-words is
+  // parsed whole first, so that its jumps resolve.
+  const std::string text = cnc::Program::readFile(a.program);
+  std::optional<cnc::Program> program;
+  if (cnc::LineReader::mayHaveOWords(text)) program = cnc::Program::parse(text, a.program);
+  cnc::LineReader reader(text, a.program);
   cnc::Interpreter interpreter(std::move(options));
   // Interpret into a temporary file first so that an error leaves no partial output file.
   std::FILE* f = stdout;
@@ -74,11 +81,12 @@ void runMoves(const MovesArgs& a) {
   }
   try {
     CsvSink sink(f);
-    const cnc::RunSummary s = interpreter.run(program, sink);
+    const cnc::RunSummary s =
+        program ? interpreter.run(*program, sink) : interpreter.runStream(reader, sink);
     sink.flush();
     fmt::print(stderr,
                "pkm: note: {} lines, {} blocks executed, {} moves{}\n",
-               program.lineCount(),
+               program ? program->lineCount() : reader.lines(),
                s.blocks,
                s.moves,
                s.ended_by_m2 ? "" : " (no M2/M30 at the end)");

@@ -215,4 +215,29 @@ RunSummary Interpreter::run(const Program& program, MoveSink& sink) {
   return s.summary;
 }
 
+RunSummary Interpreter::runStream(LineReader& reader, MoveSink& sink) {
+  Impl& s = *impl_;
+  s.summary = RunSummary{};
+  Block b;
+  while (reader.next(b)) {
+    try {
+      if (b.o_kind != OKind::kNone)
+        throw GcodeError(fmt::format(
+            "{} statement: O-words need the whole program (read it with Program::parse)",
+            oLabel(b.o_name)));
+      ++s.summary.blocks;
+      if (b.block_delete && s.options.block_delete) continue;
+      if (!s.execute(b, sink)) {
+        s.summary.ended_by_m2 = true;
+        while (reader.next(b)) {  // the rest is not run, but must still be well formed
+        }
+        return s.summary;
+      }
+    } catch (const GcodeError& e) {
+      throw IoError(locate(reader.file(), b.line, e.what()));
+    }
+  }
+  return s.summary;
+}
+
 }  // namespace pkm::cnc

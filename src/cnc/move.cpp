@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cmath>
 
+#include "csv_field.hpp"
+
 namespace pkm::cnc {
 
 const char* toString(MoveKind kind) {
@@ -34,18 +36,11 @@ namespace {
 void appendField(std::string& out, double value) {
   out.push_back(',');
   if (std::isnan(value)) return;
-  char buf[32];
   if (value == 0.0) {  // also drops the sign of -0
     out.push_back('0');
     return;
   }
-  if (std::abs(value) < 1e15 && value == std::trunc(value)) {  // integers: the fast exact form
-    const auto result = std::to_chars(buf, buf + sizeof buf, static_cast<long long>(value));
-    out.append(buf, result.ptr);
-    return;
-  }
-  const auto result = std::to_chars(buf, buf + sizeof buf, value);
-  out.append(buf, result.ptr);
+  detail::appendShortest(out, value);
 }
 
 }  // namespace

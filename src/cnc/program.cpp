@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "pkm/cnc/gcode_error.hpp"
+#include "pkm/cnc/line_reader.hpp"
 #include "pkm/core/error.hpp"
 
 namespace pkm::cnc {
@@ -16,44 +17,16 @@ namespace pkm::cnc {
 Program Program::parse(std::string_view text, const std::string& file) {
   Program p;
   p.file_ = file;
-  std::size_t pos = 0;
-  std::size_t line = 0;
-  bool seen_content = false;
-  bool percent_open = false;
-  Block block;
   p.blocks_.reserve(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1);
-  while (pos < text.size()) {
-    std::size_t eol = text.find('\n', pos);
-    if (eol == std::string_view::npos) eol = text.size();
-    const std::string_view raw = text.substr(pos, eol - pos);
-    pos = eol + 1;
-    ++line;
-    block.line = line;
-    LineMark mark = LineMark::kNormal;
-    try {
-      mark = parseLine(raw, block);
-    } catch (const GcodeError& e) {
-      throw IoError(locate(file, line, e.what()));
-    }
-    if (mark == LineMark::kPercent) {
-      if (!seen_content && !percent_open) {
-        percent_open = true;
-        seen_content = true;
-        continue;
-      }
-      if (percent_open) break;  // closing '%': the rest of the file is ignored
-      throw IoError(locate(file, line, "'%' closes a program that did not start with '%'"));
-    }
-    if (block.empty()) continue;
-    seen_content = true;
-    p.blocks_.push_back(std::move(block));
-  }
-  p.lines_ = line;
+  LineReader reader(text, file);
+  Block block;
+  while (reader.next(block)) p.blocks_.push_back(std::move(block));
+  p.lines_ = reader.lines();
   p.resolve();
   return p;
 }
 
-Program Program::load(const std::string& path) {
+std::string Program::readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(fmt::format("{}: cannot open G-code file", path));
   std::string text;
@@ -69,8 +42,10 @@ Program Program::load(const std::string& path) {
     ss << in.rdbuf();
     text = ss.str();
   }
-  return parse(text, path);
+  return text;
 }
+
+Program Program::load(const std::string& path) { return parse(readFile(path), path); }
 
 std::size_t Program::findSub(const std::string& name) const {
   const auto it = subs_.find(name);

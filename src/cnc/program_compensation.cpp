@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "pkm/cnc/gcode_error.hpp"
 #include "pkm/cnc/interpreter.hpp"
@@ -21,16 +22,16 @@ namespace {
   throw IoError(fmt::format("{}:{}: {}", file, line, what));
 }
 
-/// G words (×10) the rewrite cannot express in absolute machine coordinates.
+/// G words (×10) the rewrite cannot express one motion per line: G28/G30 (two motions), canned
+/// cycles, probing, spindle-synchronised motion, and inverse time (a feed per source motion).
 bool unsupportedG(long g10) {
-  static constexpr long kBad[] = {200, 910, 911, 920, 921, 922, 923, 100, 430, 431,
-                                  280, 281, 300, 301, 530, 730, 810, 820, 830, 850,
-                                  890, 930, 382, 383, 384, 385, 330, 331, 760};
+  static constexpr long kBad[] = {280, 281, 300, 301, 730, 810, 820, 830, 840, 850, 860,
+                                  870, 880, 890, 930, 382, 383, 384, 385, 330, 331, 760};
   return std::find(std::begin(kBad), std::end(kBad), g10) != std::end(kBad);
 }
 
-/// Rejects blocks outside the supported subset (see the header).
-void checkBlock(const Block& b, const std::string& file) {
+/// Rejects blocks outside the supported subset (see the header); notes the lines with G53.
+void checkBlock(const Block& b, const std::string& file, std::set<std::size_t>& g53_lines) {
   if (b.o_kind != OKind::kNone) fail(file, b.line, "gcode compensate does not support O-words");
   for (const Word& w : b.words) {
     if (w.letter != 'g') continue;
@@ -41,34 +42,95 @@ void checkBlock(const Block& b, const std::string& file) {
       bool exists(const std::string&) override { return false; }
     } params;
     const long g10 = std::lround(w.value.evaluate(params) * 10.0);
+    if (g10 == 530) g53_lines.insert(b.line);
+    // Offsets taken from the current position would differ on the pre-distorted machine (its
+    // position is the command, not the desired point).
+    const bool l20 = std::any_of(b.words.begin(), b.words.end(), [&](const Word& x) {
+      return x.letter == 'l' && x.value.isConstant() && x.value.evaluate(params) == 20.0;
+    });
+    if (g10 == 920 || (g10 == 100 && l20))
+      fail(file,
+           b.line,
+           fmt::format("G{} sets an offset from the current position, which pre-distortion moves: "
+                       "set offsets with G10 L2 (or G54..G59.3) instead",
+                       g10 == 920 ? "92" : "10 L20"));
     if (unsupportedG(g10))
       fail(file,
            b.line,
-           fmt::format("G{} is not supported by gcode compensate (the output is in absolute "
-                       "machine coordinates: G21 G90, no offsets, no cycles)",
+           fmt::format("G{} is not supported by gcode compensate (it rewrites one motion per "
+                       "line: no G28/G30, canned cycles, probing, G33/G76 or G93)",
                        static_cast<double>(g10) / 10.0));
   }
 }
 
-/// Appends `v` with up to 9 decimals, trailing zeros dropped.
-void appendCoord(std::string& out, char letter, double v) {
-  std::string s = fmt::format("{:.9f}", v);
-  while (!s.empty() && s.back() == '0') s.pop_back();
-  if (!s.empty() && s.back() == '.') s.pop_back();
-  if (s == "-0") s = "0";
+/// Appends letter and `nano` / 1e9 with up to 9 decimals, trailing zeros dropped (from the
+/// integer, so incremental words add up exactly to the absolute values they stand for).
+void appendCoord(std::string& out, char letter, long long nano) {
   out.push_back(letter);
-  out += s;
+  if (nano < 0) out.push_back('-');
+  const unsigned long long a = nano < 0 ? 0ull - static_cast<unsigned long long>(nano)
+                                        : static_cast<unsigned long long>(nano);
+  out += std::to_string(a / 1000000000ull);
+  unsigned long long frac = a % 1000000000ull;
+  if (frac == 0) {
+    if (a == 0 && nano < 0) out.pop_back();  // no "-0"
+    return;
+  }
+  char digits[9];
+  for (int i = 8; i >= 0; --i, frac /= 10) digits[i] = static_cast<char>('0' + frac % 10);
+  int len = 9;
+  while (digits[len - 1] == '0') --len;
+  out.push_back('.');
+  out.append(digits, static_cast<std::size_t>(len));
 }
 
-std::string axisWords(const Axes& c) {
+/// What the axis words of a motion's line mean: program = (machine − offset) / scale (scale 25.4
+/// for the lengths under G20, 1 for angles), absolute or relative to the previous position.
+struct WordFrame {
+  Axes offset{};
+  double scale = 1.0;
+  bool incremental = false;
+  bool machine = false;  ///< G53 (non-modal: repeated on the inserted segment lines)
+};
+
+/// A value in program units, in nano-units (1e-9) as written.
+long long nanoUnits(const Axes& machine, const WordFrame& f, std::size_t k) {
+  const double v = (machine[k] - f.offset[k]) / (k < 3 ? f.scale : 1.0);
+  return std::llround(v * 1e9);
+}
+
+/// The six axis words that command machine position `c` from `previous` (the last commanded
+/// machine position) under `f`.
+std::string axisWords(const Axes& c, const Axes& previous, const WordFrame& f) {
   std::string s;
   static constexpr char kLetters[] = {'X', 'Y', 'Z', 'A', 'B', 'C'};
   for (std::size_t k = 0; k < 6; ++k) {
     if (k > 0) s.push_back(' ');
-    appendCoord(s, kLetters[k], c[k]);
+    const long long v = nanoUnits(c, f, k);
+    appendCoord(s, kLetters[k], f.incremental ? v - nanoUnits(previous, f, k) : v);
   }
   return s;
 }
+
+/// Collects the motions with the word frame in effect when each was made.
+class FrameSink final : public MoveSink {
+ public:
+  explicit FrameSink(const Interpreter& interpreter) : interpreter_(&interpreter) {}
+  void onMove(const Move& move) override {
+    moves.push_back(move);
+    const MachineState& st = interpreter_->state();
+    WordFrame f;
+    for (std::size_t k = 0; k < 6; ++k) f.offset[k] = st.offset(k);
+    f.scale = st.scale();
+    f.incremental = st.incremental;
+    frames.push_back(f);
+  }
+  std::vector<Move> moves;
+  std::vector<WordFrame> frames;
+
+ private:
+  const Interpreter* interpreter_;
+};
 
 /// The line with its motion words removed and `words` inserted after the N word; comments,
 /// blanks and other words stay where they are.
@@ -146,7 +208,7 @@ std::string rewriteLine(std::string_view line, bool arc, const std::string& word
     while (insert_at < out.size() &&
            (out[insert_at] == ' ' || out[insert_at] == '\t' || out[insert_at] == '/'))
       ++insert_at;
-    out.insert(insert_at, words + " ");
+    out.insert(insert_at, insert_at < out.size() ? words + " " : words);
   } else {
     out.insert(insert_at, " " + words);
   }
@@ -160,12 +222,21 @@ ProgramCompensation rewriteProgram(std::string_view text,
                                    const PointMap& map,
                                    const InterpolationOptions& interpolation) {
   const Program program = Program::parse(text, file);
-  for (const Block& b : program.blocks()) checkBlock(b, file);
-  MoveCollector moves;
+  std::set<std::size_t> g53_lines;
+  for (const Block& b : program.blocks()) checkBlock(b, file, g53_lines);
   Interpreter interpreter;
+  FrameSink moves(interpreter);
   (void)interpreter.run(program, moves);
+  // G53 words are machine coordinates (absolute, no offsets; in the program's length unit).
+  for (std::size_t m = 0; m < moves.moves.size(); ++m)
+    if (g53_lines.count(moves.moves[m].line) != 0) {
+      moves.frames[m].offset = Axes{};
+      moves.frames[m].incremental = false;
+      moves.frames[m].machine = true;
+    }
   // Motions per line (one at most) and their interpolated points.
   std::map<std::size_t, std::pair<std::size_t, std::size_t>> span;  // line -> [first, last)
+  std::map<std::size_t, std::size_t> motion_of_line;
   std::vector<PathPoint> points;
   PathInterpolator interp(interpolation, moves.moves.empty() ? Axes{} : moves.moves.front().end);
   for (std::size_t m = 0; m < moves.moves.size(); ++m) {
@@ -174,6 +245,7 @@ ProgramCompensation rewriteProgram(std::string_view text,
     const std::size_t first = points.size();
     interp.append(mv, static_cast<std::uint32_t>(m), points);
     span[mv.line] = {first, points.size()};
+    motion_of_line[mv.line] = m;
   }
   const std::vector<Axes> commands = map(points);
   assert(commands.size() == points.size());
@@ -205,18 +277,25 @@ ProgramCompensation rewriteProgram(std::string_view text,
     } else {
       const auto [first, last] = it->second;
       const PathPoint& p0 = points[first];
+      const WordFrame& frame = moves.frames[motion_of_line[line_no]];
+      // The previous commanded position: the interpreter's start-up position before the first.
+      const auto previous = [&](std::size_t k) {
+        return k == 0 ? Axes{} : r.points[k - 1].command;
+      };
       const bool cr = !line.empty() && line.back() == '\r';
       if (cr) line.remove_suffix(1);
       const std::string eol = cr ? "\r\n" : "\n";
       const char* g = p0.kind == MoveKind::kRapid ? "G0 " : "G1 ";
-      r.text +=
-          rewriteLine(line, p0.kind == MoveKind::kArc, g + axisWords(r.points[first].command));
+      r.text += rewriteLine(line,
+                            p0.kind == MoveKind::kArc,
+                            g + axisWords(r.points[first].command, previous(first), frame));
       if (has_nl || last - first > 1) r.text += eol;
       ++r.motion_lines;
       for (std::size_t k = first + 1; k < last; ++k) {
-        r.text += fmt::format("{}{} (pkm: line {} segment {}/{})",
+        r.text += fmt::format("{}{}{} (pkm: line {} segment {}/{})",
+                              frame.machine ? "G53 " : "",
                               g,
-                              axisWords(r.points[k].command),
+                              axisWords(r.points[k].command, previous(k), frame),
                               line_no,
                               k - first + 1,
                               last - first);

@@ -62,8 +62,8 @@ TEST_F(GcodeCompensateCli, RefusesToOverwriteAndReportsErrors) {
                  prog})
                 .code,
             0);
-  const std::string g91 = write("g91.ngc", "G0 X0 Y0 Z200\nG91 G1 X1 F100\n");
-  expectUsageError(pkm({"gcode", "compensate", "--machine", cal, g91}), "g91.ngc:2:");
+  const std::string g92 = write("g92.ngc", "G0 X0 Y0 Z200\nG92 X1\n");
+  expectUsageError(pkm({"gcode", "compensate", "--machine", cal, g92}), "g92.ngc:2:");
   expectUsageError(pkm({"gcode", "compensate", prog}), "--machine");
 }
 

@@ -2,10 +2,14 @@
 // precedence and EQ-tolerance cases were checked with rs274, see docs/gcode.md).
 #include "pkm/cnc/expression.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <charconv>
 #include <cmath>
 #include <map>
+#include <random>
+#include <string>
 
 #include "pkm/cnc/gcode_error.hpp"
 #include "support/tolerances.hpp"
@@ -47,6 +51,25 @@ TEST(Expression, NumbersAndConstantsNeedNoCode) {
   EXPECT_EQ(pos, 5u);
   EXPECT_EQ(eval(".5"), 0.5);
   EXPECT_EQ(eval("+3."), 3.0);
+}
+
+/// Plain decimals (the fast path up to 15 digits, std::from_chars beyond) read exactly as
+/// std::from_chars reads them: random digit strings with the point anywhere.
+TEST(Expression, DecimalsReadAsFromChars) {
+  std::mt19937_64 rng(pkm::test::kSeed);
+  std::uniform_int_distribution<int> length(1, 20), digit(0, 9);
+  for (int trial = 0; trial < 100000; ++trial) {
+    std::string d;
+    const int n = length(rng);
+    for (int i = 0; i < n; ++i) d.push_back(static_cast<char>('0' + digit(rng)));
+    std::uniform_int_distribution<std::size_t> at(0, d.size());
+    const std::size_t split = at(rng);
+    const std::string t = fmt::format("{}.{}", d.substr(0, split), d.substr(split));
+    double want = 0.0;
+    std::from_chars(t.data(), t.data() + t.size(), want);
+    ASSERT_EQ(eval(t), want) << t;
+    ASSERT_EQ(eval(fmt::format("-{}", t)), -want) << t;
+  }
 }
 
 TEST(Expression, PrecedenceAndAssociativity) {

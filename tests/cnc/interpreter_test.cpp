@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "pkm/core/error.hpp"
 #include "support/tolerances.hpp"
@@ -233,6 +234,64 @@ TEST(Interpreter, PositionParameters) {
   const auto m = run("G20 G10 L2 P1 X1\nG0 X2\nG0 Y#5420 Z#5221\nM2\n");
   EXPECT_NEAR(m[1].end[1], 2 * 25.4, kTolRoundTrip);
   EXPECT_NEAR(m[1].end[2], 25.4, kTolRoundTrip);
+}
+
+/// The moves of `text` run while it is read.
+std::vector<Move> runStreamed(const std::string& text, InterpreterOptions options = {}) {
+  Interpreter interp(std::move(options));
+  MoveCollector c;
+  LineReader reader(text, "t.ngc");
+  interp.runStream(reader, c);
+  return c.moves;
+}
+
+/// Streaming gives the moves of the whole-program run on every corpus program without O-words.
+TEST(InterpreterStream, SameMovesAsTheWholeProgramOnTheCorpus) {
+  const std::filesystem::path dir = std::filesystem::path(PKM_SOURCE_DIR) / "tests/cnc/corpus";
+  const ToolTable tools = ToolTable::load((dir / "tools_mm.tbl").string(), 1.0);
+  int compared = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".ngc" || entry.path().stem().string().starts_with("err_"))
+      continue;
+    const std::string text = Program::readFile(entry.path().string());
+    if (LineReader::mayHaveOWords(text)) continue;
+    InterpreterOptions options;
+    options.tools = tools;
+    const std::vector<Move> whole = run(text, options), streamed = runStreamed(text, options);
+    ASSERT_EQ(whole.size(), streamed.size()) << entry.path();
+    for (std::size_t i = 0; i < whole.size(); ++i) {
+      EXPECT_EQ(whole[i].line, streamed[i].line);
+      EXPECT_EQ(whole[i].end, streamed[i].end) << entry.path() << " move " << i;
+      EXPECT_EQ(whole[i].turns, streamed[i].turns);
+    }
+    ++compared;
+  }
+  EXPECT_GE(compared, 8);
+}
+
+TEST(InterpreterStream, ErrorsAndTheEndOfTheProgram) {
+  std::string err;
+  try {
+    (void)runStreamed("G0 X1\no100 sub\no100 endsub\n");
+  } catch (const IoError& e) {
+    err = e.what();
+  }
+  EXPECT_THAT(err, HasSubstr("t.ngc:2: o100 statement: O-words need the whole program"));
+  // After M2 the rest is not run but still read: a malformed line is reported.
+  EXPECT_EQ(runStreamed("G0 X1\nM2\nG0 X5\n").size(), 1u);
+  try {
+    (void)runStreamed("G0 X1\nM2\nG0 X5 (unclosed\n");
+    ADD_FAILURE() << "no error";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("t.ngc:3: comment not closed"));
+  }
+  // Execution errors carry their line as in run().
+  try {
+    (void)runStreamed("G0 X1\nG1 X2\n");
+    ADD_FAILURE() << "no error";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("t.ngc:2:"));
+  }
 }
 
 }  // namespace

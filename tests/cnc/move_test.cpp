@@ -3,6 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <charconv>
+#include <cmath>
+#include <random>
+
+#include "support/tolerances.hpp"
+
 namespace pkm::cnc {
 namespace {
 
@@ -30,6 +36,48 @@ TEST(Move, CsvRowOfAnArc) {
   EXPECT_STREQ(kMoveCsvHeader, "line,kind,x,y,z,a,b,c,cx,cy,cz,turns,plane,feed");
   EXPECT_STREQ(toString(MoveKind::kLinear), "linear");
   EXPECT_STREQ(toString(Plane::kYZ), "YZ");
+}
+
+/// The x field of a rapid to (v, 0, 0).
+std::string xField(double v) {
+  Move m;
+  m.end = {v, 0, 0, 0, 0, 0};
+  std::string s;
+  appendMoveCsv(s, m);
+  const auto a = s.find(',', s.find(',') + 1) + 1;
+  return s.substr(a, s.find(',', a) - a);
+}
+
+std::string toChars(double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return {buf, r.ptr};
+}
+
+/// The fields are std::to_chars' shortest round-trip form: random numbers with 1 to 6 decimals
+/// (the fast path) and with full precision, in and around the fast path's range [0.001, 1e9).
+TEST(Move, NumbersAreShortestRoundTrip) {
+  std::mt19937_64 rng(pkm::test::kSeed);
+  std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-5, 10), decimals(1, 6);
+  for (int k = 0; k < 200000; ++k) {
+    const double scale = std::pow(10.0, exponent(rng));
+    double v = mantissa(rng) * scale;
+    if (k % 2 == 0) {  // a number with few decimals, as G-code coordinates have
+      const double p = std::pow(10.0, decimals(rng));
+      v = std::round(v * p) / p;
+    }
+    if (v == 0.0 || v == std::trunc(v)) continue;  // integers are written as integers
+    const std::string f = xField(v);
+    ASSERT_EQ(f, toChars(v)) << "value " << toChars(v);
+    double back = 0.0;
+    std::from_chars(f.data(), f.data() + f.size(), back);
+    ASSERT_EQ(back, v);
+  }
+  EXPECT_EQ(xField(0.001), "0.001");
+  EXPECT_EQ(xField(-123456.75), "-123456.75");
+  EXPECT_EQ(xField(0.0005), "5e-04");
+  EXPECT_EQ(xField(100000.0), "100000");
 }
 
 }  // namespace

@@ -116,10 +116,12 @@ TEST(CompensateProgram, IdentityForEqualModels) {
 
 TEST(CompensateProgram, RejectsUnsupportedWithLine) {
   const kin::HexapodModel m = pkm::test::millingModel();
-  for (const char* text : {"G0 X0 Y0 Z200\nG91 G1 X1 F100\n",
+  for (const char* text : {"G0 X0 Y0 Z200\nG81 X1 Z150 R190 F100\n",
+                           "G0 X0 Y0 Z200\nG28 X1\n",
+                           "G0 X0 Y0 Z200\nG93 G1 X1 F10\n",
                            "G0 X0 Y0 Z200\nG92 X0\n",
-                           "G0 X0 Y0 Z200\nG20\n",
-                           "G0 X0 Y0 Z200\nG81 X1 Z150 R190 F100\n"}) {
+                           "G0 X0 Y0 Z200\nG10 L20 P1 X0\n",
+                           "G0 X0 Y0 Z200\no1 if [1]\no1 endif\n"}) {
     try {
       (void)compensateProgram(text, "bad.ngc", m, m);
       ADD_FAILURE() << text;
@@ -127,6 +129,54 @@ TEST(CompensateProgram, RejectsUnsupportedWithLine) {
       EXPECT_NE(std::string(e.what()).find("bad.ngc:2:"), std::string::npos) << e.what();
     }
   }
+}
+
+/// Work offsets (G54..G59.3 set by G10 L2, G92.1), tool length offsets (G43.1), inches (G20),
+/// incremental distance (G91) and G53: the written words, read back by the interpreter with the
+/// same offsets and modes, command exactly the compensated machine positions.
+TEST(CompensateProgram, OffsetsUnitsAndIncrementalReadBackToTheCommands) {
+  const kin::HexapodModel nominal = pkm::test::millingModel();
+  const kin::HexapodModel cal = calibrated(nominal);
+  const char* const program =
+      "G21 G90 G17\n"
+      "G10 L2 P2 X5 Y-3 Z150 C2\n"
+      "G55\n"
+      "G0 X0 Y0 Z50\n"
+      "G1 X20 F600\n"
+      "G10 L2 P1 X-2 Y1\n"
+      "G1 X10 Y10\n"
+      "G43.1 Z-20\n"
+      "G1 Z60\n"
+      "G91 G1 X5 Y-5 C3\n"
+      "G2 X10 Y0 I5 J0\n"
+      "G90 G20 G1 X0.5 Y0.25\n"
+      "G21 G53 G0 X0 Y0 Z200\n"
+      "G92.1 G49 G54 G1 X-10 Y5 Z190 C0\n"
+      "M2\n";
+  ProgramCompensationOptions o;
+  o.interpolation = jointSpaceInterpolation(cal, kTol);
+  const ProgramCompensation r = compensateProgram(program, "p.ngc", nominal, cal, o);
+  EXPECT_GT(r.max_correction, 0.1);
+  // Every desired point is where the source program goes (the moves of the source program).
+  MoveCollector source;
+  Interpreter a;
+  (void)a.run(Program::parse(program, "p.ngc"), source);
+  EXPECT_EQ(r.motion_lines, source.moves.size());
+  MoveCollector moves;
+  Interpreter b;
+  (void)b.run(Program::parse(r.text, "out.ngc"), moves);
+  ASSERT_EQ(moves.moves.size(), r.points.size()) << r.text;
+  for (std::size_t i = 0; i < moves.moves.size(); ++i)
+    for (std::size_t k = 0; k < 6; ++k)
+      EXPECT_NEAR(moves.moves[i].end[k], r.points[i].command[k], kTextDigits * 25.4)
+          << "point " << i << " axis " << k << "\n"
+          << r.text;
+  // The modes stay on their lines (after the new motion words); G53 is repeated on the inserted
+  // segment lines of its motion; no trailing blanks appear.
+  EXPECT_NE(r.text.find(" G91\n"), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find(" G21 G53\n"), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find("\nG53 G0 X"), std::string::npos) << r.text;
+  EXPECT_EQ(r.text.find(" \n"), std::string::npos) << r.text;
 }
 
 TEST(CompensateHybridProgram, AddsTheX2TermAndOptionallyTheBaseFrame) {

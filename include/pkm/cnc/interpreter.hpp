@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "pkm/cnc/line_reader.hpp"
 #include "pkm/cnc/modal_state.hpp"
 #include "pkm/cnc/move.hpp"
 #include "pkm/cnc/program.hpp"
@@ -49,6 +50,14 @@ class Interpreter {
   /// an unsupported code, a modal-group conflict, a missing or misplaced word, an expression
   /// error, a runaway loop, an undefined subroutine.
   RunSummary run(const Program& program, MoveSink& sink);
+
+  /// Runs a program without O-word statements while it is read (constant memory, for long
+  /// programs): each block is executed as `reader` delivers it. After M2/M30 the rest is still
+  /// read, so a malformed line anywhere is reported as by Program::parse; errors come in reading
+  /// order (as LinuxCNC reports them). Throws pkm::IoError "FILE:LINE: message" as run() does,
+  /// and for an O-word statement ("needs the whole program"): check
+  /// LineReader::mayHaveOWords first and use Program::parse and run() when it is true.
+  RunSummary runStream(LineReader& reader, MoveSink& sink);
 
   /// The modal state and offsets now.
   [[nodiscard]] const MachineState& state() const;

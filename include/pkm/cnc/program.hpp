@@ -24,6 +24,9 @@ class Program {
   static Program parse(std::string_view text, const std::string& file = "<gcode>");
   /// Reads and parses a file; throws pkm::IoError when it cannot be read.
   static Program load(const std::string& path);
+  /// The whole text of a G-code file (also a pipe). Throws pkm::IoError "PATH: cannot open
+  /// G-code file".
+  static std::string readFile(const std::string& path);
 
   /// The non-empty blocks in source order.
   [[nodiscard]] const std::vector<Block>& blocks() const { return blocks_; }

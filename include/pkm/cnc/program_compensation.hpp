@@ -47,10 +47,12 @@ struct ProgramCompensation {
 /// motion needs more than one segment, the first is written on the line itself and the others on
 /// the following inserted lines `G1 X.. Y.. Z.. A.. B.. C.. (pkm: line L segment k/n)`. The
 /// first motion of the program is taken as positioning to its end point (the interpreter's
-/// start-up position is not a machine position). Supported subset, because the output is in
-/// absolute machine coordinates: G21, G90, no G92/G10/G43 offsets, no canned cycles, G28/G30,
-/// G53, G91, G93 or O-words, one motion per line. Throws pkm::IoError "FILE:LINE: message" for
-/// anything else or when the nominal FK does not converge; pkm::InvalidArgument for bad models.
+/// start-up position is not a machine position). The words are in the source line's frame:
+/// (machine − offset)/scale with the work, G92 and tool offsets and the unit (G20) in effect,
+/// relative to the previous command under G91, machine coordinates under G53 (repeated on the
+/// inserted lines). Not supported: G92 and G10 L20 (offsets from the current position), G28/G30,
+/// canned cycles, G38.x, G33/G76, G93 and O-words. Throws pkm::IoError "FILE:LINE: message" for
+/// those or when the nominal FK does not converge; pkm::InvalidArgument for bad models.
 [[nodiscard]] ProgramCompensation compensateProgram(std::string_view text,
                                                     const std::string& file,
                                                     const kinematics::HexapodModel& nominal,
