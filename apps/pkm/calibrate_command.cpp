@@ -50,7 +50,9 @@ struct CalibrateArgs {
   double sigma_gauge = 0.0;
   int threads = 0;
   bool backlash = false;
-  std::string db;  ///< result store to record the calibration in (empty: none)
+  std::string db;                  ///< result store to record the calibration in (empty: none)
+  double prior_sigma = 0.0;        ///< Tikhonov prior σ_θ, machine unit (0: none)
+  double measurement_sigma = 0.0;  ///< residual σ for the prior and the covariance (0: estimated)
 };
 
 /// Held-out TCP position errors: |FK(q) target in the measurement frame − measured|.
@@ -170,6 +172,8 @@ void runCalibrate(const CalibrateArgs& args) {
   if (args.loss == "cauchy") options.loss = cal::RobustLoss::kCauchy;
   options.loss_scale = args.loss_scale;
   options.estimate_backlash = args.backlash;
+  options.parameter_prior_sigma = args.prior_sigma;
+  options.measurement_sigma = args.measurement_sigma;
 
   const cal::HexapodCalibrationSummary s = cal::calibrateHexapod(model, input.data, options);
   // Plausibility: a model that cannot explain the data is not written.
@@ -342,6 +346,9 @@ void runCalibrate(const CalibrateArgs& args) {
                    s.iterations,
                    s.seconds,
                    s.converged ? "converged" : s.termination);
+  if (!s.converged && !input.data.constrained.empty() && args.prior_sigma == 0.0)
+    t += "  dial-gauge data see some combinations only weakly: --prior-sigma (with "
+         "--measurement-sigma) keeps them near the machine file (docs/calibration.md)\n";
   t += fmt::format("identifiable: {} of {} unknowns (condition number {:.4g})\n",
                    s.identifiability.rank,
                    s.identifiability.parameters,
@@ -527,6 +534,14 @@ void addCalibrateCommand(CLI::App& app) {
       "Monte Carlo: dial-gauge noise, machine unit (default: the fitted residual sigma)");
   hex->add_option("--threads", args->threads, "Monte Carlo worker threads (default: all cores)");
   hex->add_option("--db", args->db, "also record the calibration in this result store (pkm.db)");
+  hex->add_option("--prior-sigma",
+                  args->prior_sigma,
+                  "regularise toward the machine file: how far the true geometry may plausibly be, "
+                  "machine unit (needs --measurement-sigma; for dial-gauge data)");
+  hex->add_option("--measurement-sigma",
+                  args->measurement_sigma,
+                  "residual sigma, machine unit, for --prior-sigma and the covariance (default: "
+                  "estimated from the residuals)");
   hex->add_flag("--backlash",
                 args->backlash,
                 "also estimate a per-strut backlash; approach directions follow from the row order "

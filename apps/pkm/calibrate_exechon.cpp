@@ -4,6 +4,7 @@
 // (docs/calibration.md, "Exechon").
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "calibrate_common.hpp"
 #include "cli_common.hpp"
 #include "pkm/calibration/exechon_calibration.hpp"
+#include "pkm/calibration/exechon_uncertainty.hpp"
 #include "pkm/calibration/hybrid_calibration.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
@@ -42,8 +44,12 @@ struct ExechonArgs {
   double loss_scale = 0.0;
   bool force = false;
   bool json = false;
-  std::string errors;  ///< known geometric errors (PDGE) of a hybrid machine
-  std::string db;      ///< result store to record the calibration in (empty: none)
+  std::string errors;                   ///< known geometric errors (PDGE) of a hybrid machine
+  std::string db;                       ///< result store to record the calibration in (empty: none)
+  int monte_carlo = 0;                  ///< Monte Carlo trials (0: none)
+  double sigma_position = 0.0;          ///< Monte Carlo point noise, machine unit (0: fitted σ)
+  double sigma_orientation_urad = 0.0;  ///< Monte Carlo direction noise, µrad
+  int threads = 0;                      ///< Monte Carlo worker threads (0: all cores)
 };
 
 ordered_json toJson(const cal::ResidualStatistics& s) {
@@ -123,6 +129,90 @@ std::optional<ordered_json> workspaceMap(const io::ExechonMachine& machine,
   ordered_json out{{"before", *before}};
   if (const auto after = statisticsJson(uncertainty)) out["after"] = *after;
   return out;
+}
+
+/// The joints of the PKM working-box grid of workspaceMap (nominal IK), or, without a working box,
+/// the joints of the fitted observations: where the Monte Carlo tool-point spread is evaluated.
+std::vector<kinematics::ExechonJoints> monteCarloWorkspace(
+    const io::ExechonMachine& machine, const cal::ExechonCalibrationData& data) {
+  std::vector<kinematics::ExechonJoints> out;
+  if (machine.hybrid && machine.hybrid->pkm_min.allFinite() &&
+      machine.hybrid->pkm_max.allFinite()) {
+    const Eigen::Vector3d lo = machine.hybrid->pkm_min, hi = machine.hybrid->pkm_max;
+    kinematics::ExechonData nom(machine.model);
+    constexpr int kSteps = 5;
+    for (int i = 0; i < kSteps; ++i)
+      for (int j = 0; j < kSteps; ++j)
+        for (int k = 0; k < kSteps; ++k) {
+          const Eigen::Vector3d f(i / (kSteps - 1.0), j / (kSteps - 1.0), k / (kSteps - 1.0));
+          kinematics::ExechonToolPose target;
+          target.position = lo + f.cwiseProduct(hi - lo);
+          target.direction = -Eigen::Vector3d::UnitZ();
+          if (kinematics::checkToolPose(machine.model, nom, target).ok())
+            out.push_back(kinematics::jointsOf(nom));
+        }
+  }
+  if (out.empty())
+    for (const cal::ExechonObservation& o : data.observations) out.push_back(o.joints);
+  return out;
+}
+
+ordered_json toJson(const cal::TcpErrorStatistics& s) {
+  return {{"samples", s.samples}, {"mean", s.mean}, {"p95", s.p95}, {"max", s.max}};
+}
+
+/// --monte-carlo: the calibration repeated on simulated tracker noise (monteCarloExechon); fills
+/// j["monte_carlo"] and a line of `t`.
+void monteCarlo(const ExechonArgs& args,
+                const io::ExechonMachine& machine,
+                const cal::ExechonCalibrationData& data,
+                const cal::ExechonCalibrationSummary& s,
+                const kinematics::ExechonModel& estimate,
+                const cal::ExechonCalibrationOptions& options,
+                ordered_json& j,
+                std::string& t) {
+  cal::ExechonMonteCarloOptions mc;
+  mc.trials = args.monte_carlo;
+  mc.threads = args.threads;
+  mc.position_sigma = args.sigma_position > 0.0 ? args.sigma_position : s.sigma;
+  mc.direction_sigma = args.sigma_orientation_urad * 1e-6;
+  const bool tty = ::isatty(STDERR_FILENO) != 0;
+  mc.progress = [tty](int done, int total) {
+    if (tty) fmt::print(stderr, "\rpkm: Monte Carlo {}/{}", done, total);
+  };
+  const cal::ExechonMonteCarloSummary u = cal::monteCarloExechon(machine.model,
+                                                                 data,
+                                                                 estimate,
+                                                                 s.measurement_frame,
+                                                                 monteCarloWorkspace(machine, data),
+                                                                 options,
+                                                                 mc);
+  if (tty) fmt::print(stderr, "\n");
+  ordered_json m;
+  m["trials"] = u.trials;
+  m["failures"] = u.failures;
+  m["not_converged"] = u.not_converged;
+  m["seconds"] = u.seconds;
+  m["sigma_position"] = mc.position_sigma;
+  m["sigma_orientation"] = mc.direction_sigma;
+  m["configurations"] = u.configurations;
+  m["tool_sigma"] = toJson(u.tool_sigma);
+  m["tool_deviation"] = toJson(u.tcp);
+  m["parameter_sigma"] = std::vector<double>(u.standard_deviation.data(),
+                                             u.standard_deviation.data() + cal::kExechonParameters);
+  if (s.measurement_frame)
+    m["frame_sigma"] = std::vector<double>(u.frame_standard_deviation.data(),
+                                           u.frame_standard_deviation.data() + 6);
+  j["monte_carlo"] = m;
+  t += fmt::format(
+      "tool-point spread after calibration (Monte Carlo, {} trials, {} failed, {} configurations): "
+      "mean {:.6g}, 95 % {:.6g}, max {:.6g}\n",
+      u.trials,
+      u.failures,
+      u.configurations,
+      u.tool_sigma.mean,
+      u.tool_sigma.p95,
+      u.tool_sigma.max);
 }
 
 /// The tripod and wrist from the PKM tracker files: fills `result`, `j` and the report `t`.
@@ -215,6 +305,9 @@ void fitTripod(const ExechonArgs& args,
   for (const auto& w : s.worst) worst.push_back({{"source", w.source}, {"residual", w.residual}});
   j["worst_observations"] = worst;
   if (const auto map = workspaceMap(machine, result.model, s.covariance)) j["tcp_error_map"] = *map;
+  std::string mc_text;
+  if (args.monte_carlo > 0)
+    monteCarlo(args, machine, input.data, s, result.model, options, j, mc_text);
   ordered_json params = ordered_json::array();
   for (int k = 0; k < cal::kExechonParameters; ++k)
     params.push_back(
@@ -273,6 +366,7 @@ void fitTripod(const ExechonArgs& args,
         j["tcp_error_map"]["after"]["mean"].get<double>(),
         j["tcp_error_map"]["after"]["p95"].get<double>(),
         j["tcp_error_map"]["after"]["max"].get<double>());
+  t += mc_text;
 }
 
 /// CAL.errors.json for --out CAL.json.
@@ -562,6 +656,18 @@ void addCalibrateExechon(CLI::App& calibrate) {
                  "under the squareness fit")
       ->capture_default_str();
   ex->add_option("--db", args->db, "also record the calibration in this result store (pkm.db)");
+  ex->add_option("--monte-carlo",
+                 args->monte_carlo,
+                 "also run N Monte Carlo trials of the tripod calibration under simulated noise")
+      ->check(CLI::Range(2, 100000));
+  ex->add_option(
+      "--sigma-position",
+      args->sigma_position,
+      "Monte Carlo: tracker point noise, machine unit (default: the fitted residual sigma)");
+  ex->add_option("--sigma-orientation",
+                 args->sigma_orientation_urad,
+                 "Monte Carlo: tool-direction noise, urad (default 0)");
+  ex->add_option("--threads", args->threads, "Monte Carlo worker threads (default: all cores)");
   ex->add_flag("--force", args->force, "overwrite existing output files");
   ex->add_flag("--json", args->json, "print the summary as JSON");
   ex->callback([args] { runExechon(*args); });

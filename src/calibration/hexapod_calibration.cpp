@@ -253,6 +253,11 @@ void HexapodCalibrationOptions::validate() const {
             "calibration: a robust loss needs loss_scale > 0");
   PKM_CHECK(measurement_sigma >= 0.0 && std::isfinite(measurement_sigma),
             "calibration: measurement_sigma must be finite and >= 0");
+  PKM_CHECK(parameter_prior_sigma >= 0.0 && std::isfinite(parameter_prior_sigma),
+            "calibration: parameter_prior_sigma must be finite and >= 0");
+  PKM_CHECK(parameter_prior_sigma == 0.0 || measurement_sigma > 0.0,
+            "calibration: parameter_prior_sigma needs measurement_sigma > 0 (the prior's weight is "
+            "measurement_sigma / parameter_prior_sigma)");
 }
 
 geometry::RigidTransform initialMeasurementFrame(const HexapodModel& model,
@@ -432,6 +437,24 @@ HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
     }
     problem.AddResidualBlock(new NullSpacePrior(ns, starts), nullptr, blocks);
   }
+  // Tikhonov prior: (σ_r/σ_θ)·(θ_k − θ₀_k) per free parameter (a NullSpacePrior along e_k).
+  const double prior_weight = options.parameter_prior_sigma > 0.0
+                                  ? options.measurement_sigma / options.parameter_prior_sigma
+                                  : 0.0;
+  if (prior_weight > 0.0)
+    for (const int k : out.free_indices) {
+      std::vector<Eigen::VectorXd> ns{prior_weight * Eigen::VectorXd::Unit(kHexapodParameters, k)};
+      std::vector<Eigen::VectorXd> starts{Eigen::VectorXd(out.initial)};
+      if (has_frame) {
+        ns.emplace_back(Eigen::VectorXd::Zero(6));
+        starts.emplace_back(Eigen::VectorXd::Zero(6));
+      }
+      if (has_backlash) {
+        ns.emplace_back(Eigen::VectorXd::Zero(6));
+        starts.emplace_back(Eigen::VectorXd(backlash0));
+      }
+      problem.AddResidualBlock(new NullSpacePrior(ns, starts), nullptr, blocks);
+    }
   if (n_free < kHexapodParameters) {
     std::vector<int> fixed;
     for (int k = 0; k < kHexapodParameters; ++k)
@@ -473,7 +496,12 @@ HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
         nullptr,
         nullptr,
         has_backlash ? &backlash : nullptr);
-  const Eigen::MatrixXd Js = select(J1);
+  Eigen::MatrixXd Js = select(J1);
+  if (prior_weight > 0.0) {  // the prior's rows: the MAP covariance σ²(JᵀJ + w²·I_θ)⁻¹
+    Js.conservativeResize(Js.rows() + n_free, Eigen::NoChange);
+    Js.bottomRows(n_free).setZero();
+    Js.bottomLeftCorner(n_free, n_free).diagonal().setConstant(prior_weight);
+  }
   const int rank = out.identifiability.rank;
   const double dof = static_cast<double>(out.after.equations - rank);
   out.sigma = options.measurement_sigma > 0.0

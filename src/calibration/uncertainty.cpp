@@ -4,10 +4,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <numbers>
-#include <random>
 #include <thread>
 
+#include "detail/noise_stream.hpp"
 #include "detail/observations.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/so3.hpp"
@@ -17,38 +16,8 @@
 namespace pkm::calibration {
 namespace {
 
-/// Standard normal variates by Box–Muller on a 64-bit Mersenne twister: the same numbers on every
-/// platform (std::normal_distribution is implementation-defined).
-class Gaussian {
- public:
-  explicit Gaussian(std::uint64_t seed) : engine_(seed) {}
-  double operator()() {
-    if (has_spare_) {
-      has_spare_ = false;
-      return spare_;
-    }
-    constexpr double kScale = 1.0 / 9007199254740992.0;  // 2^-53
-    const double u1 = (static_cast<double>(engine_() >> 11) + 0.5) * kScale;
-    const double u2 = static_cast<double>(engine_() >> 11) * kScale;
-    const double r = std::sqrt(-2.0 * std::log(u1));
-    spare_ = r * std::sin(2.0 * std::numbers::pi * u2);
-    has_spare_ = true;
-    return r * std::cos(2.0 * std::numbers::pi * u2);
-  }
-
- private:
-  std::mt19937_64 engine_;
-  double spare_ = 0.0;
-  bool has_spare_ = false;
-};
-
-/// The seed of trial k: a splitmix64 step of (seed, k), so streams do not overlap in practice.
-std::uint64_t trialSeed(std::uint64_t seed, int k) {
-  std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (static_cast<std::uint64_t>(k) + 1);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
+using Gaussian = detail::GaussianStream;
+using detail::trialSeed;
 
 /// `predicted` with Gaussian noise added to every measurement.
 HexapodCalibrationData noisy(const HexapodCalibrationData& predicted,

@@ -109,6 +109,48 @@ TEST_F(CalibrateExechonCli, HybridDataNeedAHybridMachine) {
                    "hybrid");
 }
 
+TEST_F(CalibrateExechonCli, MonteCarloReportsTheSpreadTheCalibrationLeaves) {
+  constexpr int kTrials = 3;  ///< few: the trials re-run the 200-point fit
+  const CliRun r = calibrate({"--data",
+                              path("sim/tracker-fit.csv"),
+                              "--out",
+                              path("cal.json"),
+                              "--monte-carlo",
+                              std::to_string(kTrials),
+                              "--threads",
+                              "2",
+                              "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.contains("monte_carlo"));
+  const auto& mc = j["monte_carlo"];
+  EXPECT_EQ(mc["trials"].get<int>(), kTrials);
+  EXPECT_EQ(mc["failures"].get<int>(), 0);
+  EXPECT_EQ(mc["parameter_sigma"].size(), 24u);
+  EXPECT_EQ(mc["frame_sigma"].size(), 6u);  // the scenario's files are in the tracker frame
+  EXPECT_DOUBLE_EQ(mc["sigma_position"].get<double>(), j["sigma"].get<double>());
+  EXPECT_GT(mc["configurations"].get<int>(), 0);
+  EXPECT_GT(mc["tool_sigma"]["mean"].get<double>(), 0.0);
+  // The spread the calibration leaves is far below the error it removes (7.9 mm mean).
+  EXPECT_LT(mc["tool_sigma"]["max"].get<double>(),
+            j["tcp_error_map"]["before"]["mean"].get<double>());
+  EXPECT_EQ(mc["tool_deviation"]["samples"].get<int>(), kTrials * mc["configurations"].get<int>());
+  // One trial is no spread; a negative noise is refused.
+  expectUsageError(
+      calibrate(
+          {"--data", path("sim/tracker-fit.csv"), "--out", path("m.json"), "--monte-carlo", "1"}),
+      "--monte-carlo");
+  expectUsageError(calibrate({"--data",
+                              path("sim/tracker-fit.csv"),
+                              "--out",
+                              path("m.json"),
+                              "--monte-carlo",
+                              "2",
+                              "--sigma-orientation",
+                              "-1"}),
+                   "direction_sigma");
+}
+
 TEST_F(CalibrateExechonCli, ReadableReportNamesTheLargestResidual) {
   const CliRun r = calibrate({"--data", path("sim/tracker-fit.csv"), "--out", path("cal.json")});
   ASSERT_EQ(r.code, 0) << r.err;

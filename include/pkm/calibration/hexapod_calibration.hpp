@@ -57,6 +57,15 @@ struct HexapodCalibrationOptions {
   /// Also estimate a per-strut backlash b_i (length unit): a strut's length is its reading −
   /// approach_i·b_i/2 (PoseObservation::approach; observations with approach 0 carry no term).
   bool estimate_backlash = false;
+  /// Tikhonov (maximum a posteriori) regularisation toward the initial geometry: when > 0, every
+  /// free parameter gets the prior residual (σ_r/σ_θ)·(θ_k − θ₀_k), σ_θ this value (model length
+  /// unit: how far the true geometry may plausibly lie from the machine file) and σ_r =
+  /// measurement_sigma, which must then be > 0 (Tikhonov & Arsenin 1977, "Solutions of ill-posed
+  /// problems"; Hollerbach, Khalil & Gautier, "Model identification", Springer Handbook of
+  /// Robotics 2008). For data that see some combinations only weakly (dial gauges:
+  /// docs/calibration.md, "Weakly identified directions"). The covariance then includes the
+  /// prior. 0: no prior.
+  double parameter_prior_sigma = 0.0;
   /// Throws pkm::InvalidArgument naming the field when a setting is unusable.
   void validate() const;
 };
