@@ -94,18 +94,21 @@ std::optional<ordered_json> statisticsJson(std::vector<double> values) {
       {"points", values.size()}, {"mean", mean}, {"p95", p95}, {"max", values.back()}};
 }
 
-/// Over the PKM working box (5 × 5 × 5 points, tool vertical −z): "before", the tool-point error
-/// of the nominal controller on the calibrated machine (nominal IK, calibrated FK: what the
-/// calibration removes), and "after", the linearised tool-point uncertainty the calibration leaves
-/// (exechonTargetUncertainty with the estimate's covariance).
-std::optional<ordered_json> workspaceMap(const io::ExechonMachine& machine,
-                                         const kinematics::ExechonModel& calibrated,
-                                         const Eigen::MatrixXd& covariance) {
-  if (!machine.hybrid) return std::nullopt;
+/// A reachable point of the PKM working-box grid: the tool point and the nominal solution there.
+struct GridPoint {
+  Eigen::Vector3d position;
+  kinematics::ExechonJoints joints;
+  kinematics::ExechonConfiguration seed;
+};
+
+/// The PKM working box of a hybrid machine sampled 5 × 5 × 5 with the tool vertical (−z), the
+/// points the nominal machine reaches within its limits; empty without a finite working box.
+std::vector<GridPoint> workingBoxGrid(const io::ExechonMachine& machine) {
+  std::vector<GridPoint> out;
+  if (!machine.hybrid) return out;
   const Eigen::Vector3d lo = machine.hybrid->pkm_min, hi = machine.hybrid->pkm_max;
-  if (!lo.allFinite() || !hi.allFinite()) return std::nullopt;
-  std::vector<double> errors, uncertainty;
-  kinematics::ExechonData nom(machine.model), cal_data(calibrated);
+  if (!lo.allFinite() || !hi.allFinite()) return out;
+  kinematics::ExechonData nom(machine.model);
   constexpr int kSteps = 5;
   for (int i = 0; i < kSteps; ++i)
     for (int j = 0; j < kSteps; ++j)
@@ -114,16 +117,30 @@ std::optional<ordered_json> workspaceMap(const io::ExechonMachine& machine,
         kinematics::ExechonToolPose target;
         target.position = lo + f.cwiseProduct(hi - lo);
         target.direction = -Eigen::Vector3d::UnitZ();
-        if (!kinematics::checkToolPose(machine.model, nom, target).ok()) continue;
-        const kinematics::ExechonJoints joints = kinematics::jointsOf(nom);
-        const kinematics::ExechonConfiguration seed = kinematics::configurationOf(nom);
-        if (!kinematics::toolForwardKinematics(calibrated, cal_data, joints, seed, machine.fk).ok())
-          continue;
-        errors.push_back((cal_data.world_p_tool - target.position).norm());
-        if (const auto u = cal::exechonTargetUncertainty(
-                calibrated, covariance, joints, Eigen::Vector3d::Zero(), seed, machine.fk))
-          uncertainty.push_back(*u);
+        if (kinematics::checkToolPose(machine.model, nom, target).ok())
+          out.push_back(
+              {target.position, kinematics::jointsOf(nom), kinematics::configurationOf(nom)});
       }
+  return out;
+}
+
+/// Over the working-box grid: "before", the tool-point error of the nominal controller on the
+/// calibrated machine (nominal IK, calibrated FK: what the calibration removes), and "after", the
+/// linearised tool-point uncertainty the calibration leaves (exechonTargetUncertainty with the
+/// estimate's covariance).
+std::optional<ordered_json> workspaceMap(const io::ExechonMachine& machine,
+                                         const kinematics::ExechonModel& calibrated,
+                                         const Eigen::MatrixXd& covariance) {
+  std::vector<double> errors, uncertainty;
+  kinematics::ExechonData cal_data(calibrated);
+  for (const GridPoint& g : workingBoxGrid(machine)) {
+    if (!kinematics::toolForwardKinematics(calibrated, cal_data, g.joints, g.seed, machine.fk).ok())
+      continue;
+    errors.push_back((cal_data.world_p_tool - g.position).norm());
+    if (const auto u = cal::exechonTargetUncertainty(
+            calibrated, covariance, g.joints, Eigen::Vector3d::Zero(), g.seed, machine.fk))
+      uncertainty.push_back(*u);
+  }
   const auto before = statisticsJson(errors);
   if (!before) return std::nullopt;
   ordered_json out{{"before", *before}};
@@ -131,27 +148,12 @@ std::optional<ordered_json> workspaceMap(const io::ExechonMachine& machine,
   return out;
 }
 
-/// The joints of the PKM working-box grid of workspaceMap (nominal IK), or, without a working box,
-/// the joints of the fitted observations: where the Monte Carlo tool-point spread is evaluated.
+/// The joints of the working-box grid, or, without a working box, the joints of the fitted
+/// observations: where the Monte Carlo tool-point spread is evaluated.
 std::vector<kinematics::ExechonJoints> monteCarloWorkspace(
     const io::ExechonMachine& machine, const cal::ExechonCalibrationData& data) {
   std::vector<kinematics::ExechonJoints> out;
-  if (machine.hybrid && machine.hybrid->pkm_min.allFinite() &&
-      machine.hybrid->pkm_max.allFinite()) {
-    const Eigen::Vector3d lo = machine.hybrid->pkm_min, hi = machine.hybrid->pkm_max;
-    kinematics::ExechonData nom(machine.model);
-    constexpr int kSteps = 5;
-    for (int i = 0; i < kSteps; ++i)
-      for (int j = 0; j < kSteps; ++j)
-        for (int k = 0; k < kSteps; ++k) {
-          const Eigen::Vector3d f(i / (kSteps - 1.0), j / (kSteps - 1.0), k / (kSteps - 1.0));
-          kinematics::ExechonToolPose target;
-          target.position = lo + f.cwiseProduct(hi - lo);
-          target.direction = -Eigen::Vector3d::UnitZ();
-          if (kinematics::checkToolPose(machine.model, nom, target).ok())
-            out.push_back(kinematics::jointsOf(nom));
-        }
-  }
+  for (const GridPoint& g : workingBoxGrid(machine)) out.push_back(g.joints);
   if (out.empty())
     for (const cal::ExechonObservation& o : data.observations) out.push_back(o.joints);
   return out;
