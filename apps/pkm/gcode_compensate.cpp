@@ -91,12 +91,14 @@ void runHybrid(const CompensateArgs& a) {
   writeProgram(a, r.text);
   fmt::print(stderr,
              "pkm: note: hybrid squareness correction at X2 = {} mm ({}): {} motion lines "
-             "rewritten, {} segment lines added, largest correction {:.4g} mm\n",
+             "rewritten, {} segment lines added, {} G92/G10 L20 lines shifted, largest correction "
+             "{:.4g} mm\n",
              *a.x2,
              a.frame_not_in_controller ? "base frame and X2 term"
                                        : "X2 term; base frame in the controller",
              r.motion_lines,
              r.added_lines,
+             r.offset_lines,
              r.max_correction);
 }
 
@@ -143,11 +145,13 @@ void runCompensate(const CompensateArgs& a) {
   writeProgram(a, r.text);
   fmt::print(stderr,
              "pkm: note: nominal {} -> calibrated {}: {} motion lines rewritten, {} segment lines "
-             "added (tolerance {} mm, max step {:.4g} mm), largest correction {:.4g} mm\n",
+             "added, {} G92/G10 L20 lines shifted (tolerance {} mm, max step {:.4g} mm), largest "
+             "correction {:.4g} mm\n",
              nominal.model.name,
              cal.model.name,
              r.motion_lines,
              r.added_lines,
+             r.offset_lines,
              a.tolerance,
              options.interpolation.max_step,
              r.max_correction);

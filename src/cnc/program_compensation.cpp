@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "pkm/cnc/gcode_error.hpp"
@@ -30,30 +32,44 @@ bool unsupportedG(long g10) {
   return std::find(std::begin(kBad), std::end(kBad), g10) != std::end(kBad);
 }
 
-/// Rejects blocks outside the supported subset (see the header); notes the lines with G53.
-void checkBlock(const Block& b, const std::string& file, std::set<std::size_t>& g53_lines) {
+struct NoParams final : ParameterSource {
+  double numbered(int) override { return 0.0; }
+  double named(const std::string&) override { return 0.0; }
+  bool exists(const std::string&) override { return false; }
+};
+
+/// A G92 or G10 L20 line: it sets an offset so that the *current* position reads as the given
+/// values. On the pre-distorted machine the current position is the last command, not the
+/// desired point, so each value is shifted by (command − desired)/scale to give the same offset.
+struct OffsetLine {
+  std::array<std::optional<double>, 6> values{};  ///< X Y Z A B C as written (program units)
+  double scale = 1.0;                             ///< mm per program length unit on that line
+};
+
+/// The subset's checks and what the rewrite needs from the blocks (one pass in program order:
+/// without O-words that is the order of execution).
+struct BlockScan {
+  std::set<std::size_t> g53_lines;
+  std::map<std::size_t, OffsetLine> offset_lines;
+  double scale = 1.0;  ///< G20/G21 state while scanning
+};
+
+/// Rejects blocks outside the supported subset (see the header); notes G53 and offset lines.
+void checkBlock(const Block& b, const std::string& file, BlockScan& scan) {
   if (b.o_kind != OKind::kNone) fail(file, b.line, "gcode compensate does not support O-words");
+  NoParams params;
+  bool sets_offset = false;
   for (const Word& w : b.words) {
     if (w.letter != 'g') continue;
     if (!w.value.isConstant()) fail(file, b.line, "gcode compensate needs constant G words");
-    struct NoParams final : ParameterSource {
-      double numbered(int) override { return 0.0; }
-      double named(const std::string&) override { return 0.0; }
-      bool exists(const std::string&) override { return false; }
-    } params;
     const long g10 = std::lround(w.value.evaluate(params) * 10.0);
-    if (g10 == 530) g53_lines.insert(b.line);
-    // Offsets taken from the current position would differ on the pre-distorted machine (its
-    // position is the command, not the desired point).
+    if (g10 == 530) scan.g53_lines.insert(b.line);
+    if (g10 == 200) scan.scale = 25.4;
+    if (g10 == 210) scan.scale = 1.0;
     const bool l20 = std::any_of(b.words.begin(), b.words.end(), [&](const Word& x) {
       return x.letter == 'l' && x.value.isConstant() && x.value.evaluate(params) == 20.0;
     });
-    if (g10 == 920 || (g10 == 100 && l20))
-      fail(file,
-           b.line,
-           fmt::format("G{} sets an offset from the current position, which pre-distortion moves: "
-                       "set offsets with G10 L2 (or G54..G59.3) instead",
-                       g10 == 920 ? "92" : "10 L20"));
+    sets_offset = sets_offset || g10 == 920 || (g10 == 100 && l20);
     if (unsupportedG(g10))
       fail(file,
            b.line,
@@ -61,6 +77,21 @@ void checkBlock(const Block& b, const std::string& file, std::set<std::size_t>& 
                        "line: no G28/G30, canned cycles, probing, G33/G76 or G93)",
                        static_cast<double>(g10) / 10.0));
   }
+  if (!sets_offset) return;
+  OffsetLine o;
+  static constexpr std::string_view kAxes = "xyzabc";
+  for (const Word& w : b.words) {
+    const std::size_t k = kAxes.find(w.letter);
+    if (k == std::string_view::npos) continue;
+    if (!w.value.isConstant())
+      fail(file,
+           b.line,
+           "gcode compensate needs constant axis words on a G92 or G10 L20 line (their values "
+           "are shifted by the correction at the current position)");
+    o.values[k] = w.value.evaluate(params);
+  }
+  o.scale = scan.scale;  // G20/G21 act before G10 and G92 within a block
+  scan.offset_lines[b.line] = o;
 }
 
 /// Appends letter and `nano` / 1e9 with up to 9 decimals, trailing zeros dropped (from the
@@ -132,9 +163,16 @@ class FrameSink final : public MoveSink {
   const Interpreter* interpreter_;
 };
 
-/// The line with its motion words removed and `words` inserted after the N word; comments,
-/// blanks and other words stay where they are.
-std::string rewriteLine(std::string_view line, bool arc, const std::string& words) {
+/// What rewriteLine replaces: a line's motion (G0..G3 and X..C, I J K R, P of an arc; the new
+/// words go after the N word) or the axis words of a G92/G10 L20 line (X..C only; the new words
+/// go where the first of them was).
+enum class Rewrite { kMotion, kArc, kOffset };
+
+/// The line with the words `what` names removed and `words` inserted; comments, blanks and
+/// other words stay where they are.
+std::string rewriteLine(std::string_view line, Rewrite what, const std::string& words) {
+  const bool arc = what == Rewrite::kArc, offset = what == Rewrite::kOffset;
+  std::size_t first_drop = std::string::npos;
   std::string out;
   std::size_t insert_at = std::string::npos;
   std::size_t i = 0;
@@ -175,16 +213,13 @@ std::string rewriteLine(std::string_view line, bool arc, const std::string& word
     const std::size_t end = where[pos - 1] + 1;
     const char l = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     bool drop =
-        std::string_view("xyzabcijkr").find(l) != std::string_view::npos || (arc && l == 'p');
-    if (l == 'g') {
+        std::string_view(offset ? "xyzabc" : "xyzabcijkr").find(l) != std::string_view::npos ||
+        (arc && l == 'p');
+    if (l == 'g' && !offset) {
       std::size_t p = 1;
       const Expression e = Expression::parseReal(compact, p);
       if (e.isConstant()) {
-        struct NoParams final : ParameterSource {
-          double numbered(int) override { return 0.0; }
-          double named(const std::string&) override { return 0.0; }
-          bool exists(const std::string&) override { return false; }
-        } params;
+        NoParams params;
         const double g = e.evaluate(params);
         drop = g == 0.0 || g == 1.0 || g == 2.0 || g == 3.0;
       }
@@ -194,6 +229,8 @@ std::string rewriteLine(std::string_view line, bool arc, const std::string& word
       insert_at = out.size();
     } else if (!drop) {
       out.append(line.substr(i, end - i));
+    } else if (first_drop == std::string::npos) {
+      first_drop = out.size();
     }
     i = end;
     if (drop)  // the blanks after a removed word go with it
@@ -202,7 +239,14 @@ std::string rewriteLine(std::string_view line, bool arc, const std::string& word
   // No trailing blanks that the source line did not have.
   const bool blank_end = !line.empty() && (line.back() == ' ' || line.back() == '\t');
   while (!blank_end && !out.empty() && (out.back() == ' ' || out.back() == '\t')) out.pop_back();
-  if (insert_at == std::string::npos) {
+  if (offset && first_drop != std::string::npos) {
+    if (first_drop < out.size()) {
+      out.insert(first_drop, words + " ");
+    } else {  // the axis words ended the line (its trailing blanks are gone)
+      const bool blank = out.empty() || out.back() == ' ' || out.back() == '\t';
+      out += blank ? words : " " + words;
+    }
+  } else if (insert_at == std::string::npos) {
     // After a block-delete slash and leading blanks.
     insert_at = 0;
     while (insert_at < out.size() &&
@@ -222,8 +266,9 @@ ProgramCompensation rewriteProgram(std::string_view text,
                                    const PointMap& map,
                                    const InterpolationOptions& interpolation) {
   const Program program = Program::parse(text, file);
-  std::set<std::size_t> g53_lines;
-  for (const Block& b : program.blocks()) checkBlock(b, file, g53_lines);
+  BlockScan scan;
+  for (const Block& b : program.blocks()) checkBlock(b, file, scan);
+  const std::set<std::size_t>& g53_lines = scan.g53_lines;
   Interpreter interpreter;
   FrameSink moves(interpreter);
   (void)interpreter.run(program, moves);
@@ -262,7 +307,7 @@ ProgramCompensation rewriteProgram(std::string_view text,
                                            cp.command[2] - cp.desired[2]));
   }
   // Rewrite line by line; line numbers are 1-based as in Program.
-  std::size_t line_no = 0, start = 0;
+  std::size_t line_no = 0, start = 0, next_point = 0;
   r.text.reserve(text.size() + text.size() / 2);
   while (start < text.size()) {
     ++line_no;
@@ -271,7 +316,31 @@ ProgramCompensation rewriteProgram(std::string_view text,
     if (!has_nl) nl = text.size();
     std::string_view line = text.substr(start, nl - start);
     const auto it = span.find(line_no);
-    if (it == span.end()) {
+    const auto off = scan.offset_lines.find(line_no);
+    if (off != scan.offset_lines.end()) {
+      // The correction at the current position: that of the last point before this line.
+      while (next_point < r.points.size() && r.points[next_point].line < line_no) ++next_point;
+      Axes delta{};
+      if (next_point > 0) {
+        const CompensatedPoint& cp = r.points[next_point - 1];
+        for (std::size_t k = 0; k < 6; ++k) delta[k] = cp.command[k] - cp.desired[k];
+      }
+      std::string words;
+      static constexpr char kLetters[] = {'X', 'Y', 'Z', 'A', 'B', 'C'};
+      for (std::size_t k = 0; k < 6; ++k) {
+        const auto& v = off->second.values[k];
+        if (!v) continue;
+        if (!words.empty()) words.push_back(' ');
+        const double shifted = *v + delta[k] / (k < 3 ? off->second.scale : 1.0);
+        appendCoord(words, kLetters[k], std::llround(shifted * 1e9));
+      }
+      const bool cr = !line.empty() && line.back() == '\r';
+      if (cr) line.remove_suffix(1);
+      r.text += rewriteLine(line, Rewrite::kOffset, words);
+      if (cr) r.text.push_back('\r');
+      if (has_nl) r.text.push_back('\n');
+      ++r.offset_lines;
+    } else if (it == span.end()) {
       r.text.append(line);
       if (has_nl) r.text.push_back('\n');
     } else {
@@ -287,7 +356,7 @@ ProgramCompensation rewriteProgram(std::string_view text,
       const std::string eol = cr ? "\r\n" : "\n";
       const char* g = p0.kind == MoveKind::kRapid ? "G0 " : "G1 ";
       r.text += rewriteLine(line,
-                            p0.kind == MoveKind::kArc,
+                            p0.kind == MoveKind::kArc ? Rewrite::kArc : Rewrite::kMotion,
                             g + axisWords(r.points[first].command, previous(first), frame));
       if (has_nl || last - first > 1) r.text += eol;
       ++r.motion_lines;

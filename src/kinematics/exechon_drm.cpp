@@ -19,8 +19,11 @@ constexpr double kParallelCos = 0.9063077870366499;
 
 double dependentRotation(const Eigen::Matrix3d& world_R_tool,
                          const Eigen::Matrix3d& world_R_tool_reference) {
-  const Eigen::Matrix3d M = world_R_tool_reference.transpose() * world_R_tool;
-  const double y = M(1, 0) - M(0, 1), x = M(0, 0) + M(1, 1);
+  // The upper-left 2×2 of M = reference⁻¹·R (only these four entries are needed).
+  const auto& ref = world_R_tool_reference;
+  const double m00 = ref.col(0).dot(world_R_tool.col(0)), m01 = ref.col(0).dot(world_R_tool.col(1)),
+               m10 = ref.col(1).dot(world_R_tool.col(0)), m11 = ref.col(1).dot(world_R_tool.col(1));
+  const double y = m10 - m01, x = m00 + m11;
   return (x == 0.0 && y == 0.0) ? 0.0 : std::atan2(y, x);
 }
 

@@ -40,12 +40,14 @@ Eigen::Vector3d wristPointFromParameters(const ExechonTripodGeometry& g, const E
 
 namespace {
 
-/// Zoppi's closed form without the angles: sin/cos of alpha and beta and h for (d1, d2).
-ExechonIkStatus solveTrig(const ExechonTripodGeometry& g,
-                          const Eigen::Vector3d& S,
-                          int d1,
-                          int d2,
-                          detail::ExechonTrig* out) {
+/// The part of Zoppi's closed form shared by the four pose branches: |(Sx, Sz)|², r and a scale.
+struct TrigCommon {
+  double t0sq, r, scale;
+};
+
+ExechonIkStatus trigCommon(const ExechonTripodGeometry& g,
+                           const Eigen::Vector3d& S,
+                           TrigCommon* out) {
   if (!S.allFinite()) return ExechonIkStatus::kInvalidInput;
   const double t0sq = S.x() * S.x() + S.z() * S.z();
   const double rsq = t0sq - g.hx * g.hx;
@@ -53,16 +55,42 @@ ExechonIkStatus solveTrig(const ExechonTripodGeometry& g,
   if (rsq < 0.0 && std::sqrt(-rsq) > kDegenerate * scale) return ExechonIkStatus::kUnreachable;
   const double r = std::sqrt(std::max(rsq, 0.0));
   if (r <= kDegenerate * scale) return ExechonIkStatus::kSingular;
+  *out = {t0sq, r, scale};
+  return ExechonIkStatus::kOk;
+}
+
+/// Zoppi's closed form without the angles: sin/cos of alpha and beta and h for δ1B = d1 and both
+/// δ2B (out[0] for δ2B = +1, out[1] for -1).
+ExechonIkStatus solveTrigD1(const ExechonTripodGeometry& g,
+                            const Eigen::Vector3d& S,
+                            const TrigCommon& c,
+                            int d1,
+                            detail::ExechonTrig out[2]) {
+  const double r = c.r, t0sq = c.t0sq;
   const double ca = (-d1 * S.x() * r + g.hx * S.z()) / t0sq;
   const double sa = (d1 * S.z() * r + g.hx * S.x()) / t0sq;
   const double t6 = (d1 * (t0sq - g.dB * S.x()) * r + g.dB * g.hx * S.z()) / t0sq;
   const double n = std::sqrt(t6 * t6 + S.y() * S.y());
-  if (!(n > kDegenerate * scale)) return ExechonIkStatus::kSingular;
-  const detail::ExechonTrig t{
-      sa, ca, -d2 * S.y() / n, d2 * t6 / n, d2 * (S.y() * S.y() + d1 * t6 * r) / n - g.hz};
-  if (!std::isfinite(t.sa + t.ca + t.sb + t.cb + t.h)) return ExechonIkStatus::kInvalidInput;
-  *out = t;
+  if (!(n > kDegenerate * c.scale)) return ExechonIkStatus::kSingular;
+  const double sb = -S.y() / n, cb = t6 / n, hn = (S.y() * S.y() + d1 * t6 * r) / n;
+  out[0] = {sa, ca, sb, cb, hn - g.hz};
+  out[1] = {sa, ca, -sb, -cb, -hn - g.hz};
+  if (!std::isfinite(sa + ca + sb + cb + hn)) return ExechonIkStatus::kInvalidInput;
   return ExechonIkStatus::kOk;
+}
+
+ExechonIkStatus solveTrig(const ExechonTripodGeometry& g,
+                          const Eigen::Vector3d& S,
+                          int d1,
+                          int d2,
+                          detail::ExechonTrig* out) {
+  TrigCommon c{};
+  ExechonIkStatus status = trigCommon(g, S, &c);
+  if (status != ExechonIkStatus::kOk) return status;
+  detail::ExechonTrig both[2];
+  status = solveTrigD1(g, S, c, d1, both);
+  if (status == ExechonIkStatus::kOk) *out = both[d2 == 1 ? 0 : 1];
+  return status;
 }
 
 Eigen::Vector3d anglesOf(const detail::ExechonTrig& t) {
@@ -81,6 +109,8 @@ void fillTripod(const ExechonModel& model,
       eh(-t.cb * t.ca, -t.sb, t.cb * t.sa);
   const Eigen::Vector3d P = t.h * eh - (g.dB * t.ca * t.sb) * kB5;
   data.e = e;
+  data.e_sin_cos = {t.sa, t.ca, t.sb, t.cb};
+  data.e_of_sin_cos = e;
   data.zoppi_p_S = P + g.hx * kA2 + g.hz * eh;
   data.world_p_S = model.world_T_zoppi * data.zoppi_p_S;
   Eigen::Matrix3d R;
@@ -167,16 +197,26 @@ ExechonIkStatus tripodInverseKinematicsNearest(const ExechonModel& model,
                                                const Eigen::Vector3d& e_near) {
   if (!e_near.allFinite()) return ExechonIkStatus::kInvalidInput;
   const double inv_length = 1.0 / model.characteristicLength();
-  const double sa0 = std::sin(e_near[0]), ca0 = std::cos(e_near[0]), sb0 = std::sin(e_near[1]),
-               cb0 = std::cos(e_near[1]);
+  double sa0, ca0, sb0, cb0;
+  if (e_near == data.e_of_sin_cos) {
+    sa0 = data.e_sin_cos[0], ca0 = data.e_sin_cos[1], sb0 = data.e_sin_cos[2],
+    cb0 = data.e_sin_cos[3];
+  } else {
+    sa0 = std::sin(e_near[0]), ca0 = std::cos(e_near[0]), sb0 = std::sin(e_near[1]),
+    cb0 = std::cos(e_near[1]);
+  }
   ExechonBranch branch = branchOf(model.tripod);
+  TrigCommon common{};
+  const ExechonIkStatus status = trigCommon(model.tripod, zoppi_p_S, &common);
+  if (status != ExechonIkStatus::kOk) return status;
   detail::ExechonTrig best{};
   double best_distance = INFINITY;
   for (int d1 : {1, -1}) {
-    for (int d2 : {1, -1}) {
-      detail::ExechonTrig t{};
-      const ExechonIkStatus status = solveTrig(model.tripod, zoppi_p_S, d1, d2, &t);
-      if (status != ExechonIkStatus::kOk) return status;  // the four share r and t6² + Sy²
+    detail::ExechonTrig both[2];
+    const ExechonIkStatus st = solveTrigD1(model.tripod, zoppi_p_S, common, d1, both);
+    if (st != ExechonIkStatus::kOk) return st;  // any branch failing: S is degenerate
+    for (int k = 0; k < 2; ++k) {
+      const detail::ExechonTrig& t = both[k];
       // Squared chord distances of the angles (monotone in |Δangle|) plus the squared relative Δh.
       const double dh = (t.h - e_near[2]) * inv_length;
       const double distance =
@@ -185,7 +225,7 @@ ExechonIkStatus tripodInverseKinematicsNearest(const ExechonModel& model,
         best_distance = distance;
         best = t;
         branch.delta1B = d1;
-        branch.delta2B = d2;
+        branch.delta2B = k == 0 ? 1 : -1;
       }
     }
   }

@@ -62,7 +62,7 @@ TEST_F(GcodeCompensateCli, RefusesToOverwriteAndReportsErrors) {
                  prog})
                 .code,
             0);
-  const std::string g92 = write("g92.ngc", "G0 X0 Y0 Z200\nG92 X1\n");
+  const std::string g92 = write("g92.ngc", "G0 X0 Y0 Z200\nG92 X[#1]\n");
   expectUsageError(pkm({"gcode", "compensate", "--machine", cal, g92}), "g92.ngc:2:");
   expectUsageError(pkm({"gcode", "compensate", prog}), "--machine");
 }

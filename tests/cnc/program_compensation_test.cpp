@@ -119,8 +119,8 @@ TEST(CompensateProgram, RejectsUnsupportedWithLine) {
   for (const char* text : {"G0 X0 Y0 Z200\nG81 X1 Z150 R190 F100\n",
                            "G0 X0 Y0 Z200\nG28 X1\n",
                            "G0 X0 Y0 Z200\nG93 G1 X1 F10\n",
-                           "G0 X0 Y0 Z200\nG92 X0\n",
-                           "G0 X0 Y0 Z200\nG10 L20 P1 X0\n",
+                           "G0 X0 Y0 Z200\nG92 X[#1]\n",
+                           "G0 X0 Y0 Z200\nG10 L20 P1 X[1 + #2]\n",
                            "G0 X0 Y0 Z200\no1 if [1]\no1 endif\n"}) {
     try {
       (void)compensateProgram(text, "bad.ngc", m, m);
@@ -152,6 +152,12 @@ TEST(CompensateProgram, OffsetsUnitsAndIncrementalReadBackToTheCommands) {
       "G90 G20 G1 X0.5 Y0.25\n"
       "G21 G53 G0 X0 Y0 Z200\n"
       "G92.1 G49 G54 G1 X-10 Y5 Z190 C0\n"
+      "N150 G92 X0 Y0 C5 (here is zero)\n"
+      "G1 X4 Y-3 C8\n"
+      "G10 L20 P3 Z10 B1\n"
+      "G56 G1 Z12 B2\n"
+      "G20 G92 X1\n"
+      "G1 X1.5\n"
       "M2\n";
   ProgramCompensationOptions o;
   o.interpolation = jointSpaceInterpolation(cal, kTol);
@@ -176,6 +182,12 @@ TEST(CompensateProgram, OffsetsUnitsAndIncrementalReadBackToTheCommands) {
   EXPECT_NE(r.text.find(" G91\n"), std::string::npos) << r.text;
   EXPECT_NE(r.text.find(" G21 G53\n"), std::string::npos) << r.text;
   EXPECT_NE(r.text.find("\nG53 G0 X"), std::string::npos) << r.text;
+  // G92 / G10 L20 keep their place and words; the values are shifted by the correction there.
+  EXPECT_EQ(r.offset_lines, 3u);
+  EXPECT_NE(r.text.find("\nN150 G92 X"), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find(" (here is zero)\n"), std::string::npos) << r.text;
+  EXPECT_EQ(r.text.find("G92 X0 Y0 C5 "), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find("\nG10 L20 P3 Z"), std::string::npos) << r.text;
   EXPECT_EQ(r.text.find(" \n"), std::string::npos) << r.text;
 }
 

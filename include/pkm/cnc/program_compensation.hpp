@@ -37,6 +37,7 @@ struct ProgramCompensation {
   std::vector<CompensatedPoint> points;  ///< every commanded point, in order
   std::size_t motion_lines = 0;          ///< source lines whose axis words were replaced
   std::size_t added_lines = 0;           ///< G1/G0 segment lines inserted after them
+  std::size_t offset_lines = 0;          ///< G92 / G10 L20 lines whose axis words were shifted
   double max_correction = 0.0;           ///< largest |command − desired| in XYZ, mm
 };
 
@@ -50,9 +51,12 @@ struct ProgramCompensation {
 /// start-up position is not a machine position). The words are in the source line's frame:
 /// (machine − offset)/scale with the work, G92 and tool offsets and the unit (G20) in effect,
 /// relative to the previous command under G91, machine coordinates under G53 (repeated on the
-/// inserted lines). Not supported: G92 and G10 L20 (offsets from the current position), G28/G30,
-/// canned cycles, G38.x, G33/G76, G93 and O-words. Throws pkm::IoError "FILE:LINE: message" for
-/// those or when the nominal FK does not converge; pkm::InvalidArgument for bad models.
+/// inserted lines). G92 and G10 L20 set an offset from the current position, which on the
+/// pre-distorted machine is the last command: their axis words (constants) are shifted by
+/// (command − desired)/scale of that point, so that the offset is the source program's. Not
+/// supported: G28/G30, canned cycles, G38.x, G33/G76, G93, O-words, and non-constant axis words
+/// on a G92/G10 L20 line. Throws pkm::IoError "FILE:LINE: message" for those or when the
+/// nominal FK does not converge; pkm::InvalidArgument for bad models.
 [[nodiscard]] ProgramCompensation compensateProgram(std::string_view text,
                                                     const std::string& file,
                                                     const kinematics::HexapodModel& nominal,

@@ -56,6 +56,10 @@ struct ExechonData {
   std::array<Eigen::Vector3d, kExechonLegs> zoppi_p_platform_joint{};
   ExechonLegVector lengths = ExechonLegVector::Zero();  ///< Zoppi's q: |platform joint − leg start|
   ExechonLegVector readings = ExechonLegVector::Zero();  ///< lengths − length_offset
+  /// sin α, cos α, sin β, cos β of `e_of_sin_cos`: set with e by the tripod algorithms, so that a
+  /// solve near the previous solution need not recompute them (a cache; not part of the result).
+  std::array<double, 4> e_sin_cos{0.0, 1.0, 0.0, 1.0};
+  Eigen::Vector3d e_of_sin_cos = Eigen::Vector3d::Zero();  ///< the e that e_sin_cos belong to
 
   // ---- Jacobians (filled by computeTripodJacobian) ----
   Eigen::Matrix3d J_q_e = Eigen::Matrix3d::Zero();  ///< d(lengths)/d(alpha, beta, h)
