@@ -2,9 +2,18 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
 #include "pkm/io/machine_loader.hpp"
 
 namespace pkm::cli {
+
+std::string machineTypeOf(const std::string& spec) {
+  if (std::filesystem::is_regular_file(spec)) return io::machineType(io::readTextFile(spec));
+  for (const auto& n : io::builtinMachineNames("exechon"))
+    if (n == spec) return "exechon";
+  return "hexapod";
+}
 
 void printNotices(const std::vector<std::string>& notices) {
   for (const auto& n : notices) fmt::print(stderr, "pkm: note: {}\n", n);

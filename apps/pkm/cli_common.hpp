@@ -40,6 +40,9 @@ class Output {
 /// Prints each notice to stderr as "pkm: note: ...".
 void printNotices(const std::vector<std::string>& notices);
 
+/// "hexapod" or "exechon": the type of a machine file (its "type" field), or of a built-in name.
+[[nodiscard]] std::string machineTypeOf(const std::string& spec);
+
 /// Options every machine-using command shares.
 struct MachineOption {
   std::string spec = "default";

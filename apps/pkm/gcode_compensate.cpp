@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "cli_common.hpp"
+#include "pkm/cnc/exechon_path.hpp"
+#include "pkm/cnc/exechon_program_compensation.hpp"
 #include "pkm/cnc/joint_path.hpp"
 #include "pkm/cnc/program_compensation.hpp"
 #include "pkm/core/error.hpp"
@@ -30,6 +32,7 @@ struct CompensateArgs {
   std::string hybrid_frame;  ///< pkm-base-frame.txt of a hybrid campaign
   std::optional<double> x2;  ///< the X2 position the PKM program runs at, mm
   bool frame_not_in_controller = false;
+  std::optional<std::string> orientation;  ///< Exechon: what A/C mean (as gcode run)
 };
 
 /// Reads `key = a b c` lines of a pkm-base-frame.txt (docs/campaign.md); `#` lines are comments.
@@ -124,6 +127,57 @@ io::HexapodMachine nominalFor(const CompensateArgs& a, const io::HexapodMachine&
       name));
 }
 
+/// The nominal Exechon: --nominal, or the built-in Exechon whose name is the calibrated
+/// machine's name without "-calibrated".
+io::ExechonMachine nominalExechonFor(const CompensateArgs& a, const io::ExechonMachine& cal) {
+  if (!a.nominal.empty()) {
+    if (machineTypeOf(a.nominal) != "exechon")
+      throw InvalidArgument(
+          fmt::format("--nominal {}: not an Exechon machine, but {} is one", a.nominal, a.machine));
+    return io::loadExechonMachine(a.nominal);
+  }
+  const std::string& name = cal.model.name;
+  if (name.size() > kCalibratedSuffix.size() && name.ends_with(kCalibratedSuffix)) {
+    const std::string base = name.substr(0, name.size() - kCalibratedSuffix.size());
+    for (const auto& n : io::builtinMachineNames("exechon")) {
+      io::ExechonMachine m = io::loadExechonMachine(n);
+      if (m.model.name == base) return m;
+    }
+  }
+  throw InvalidArgument(fmt::format(
+      "{}: cannot tell the nominal machine of '{}' (no built-in Exechon named as it without "
+      "'-calibrated'); pass --nominal MACHINE",
+      a.machine,
+      name));
+}
+
+void runExechon(const CompensateArgs& a) {
+  const io::ExechonMachine cal = io::loadExechonMachine(a.machine);
+  const io::ExechonMachine nominal = nominalExechonFor(a, cal);
+  cnc::ExechonProgramCompensationOptions options;
+  const std::string orientation = a.orientation.value_or("vector");
+  options.orientation = cnc::parseExechonOrientation(orientation);
+  options.interpolation = cnc::exechonInterpolation(cal.model, a.tolerance);
+  options.fk = nominal.fk;
+  const std::string text = io::readTextFile(a.program);
+  const cnc::ProgramCompensation r =
+      cnc::compensateExechonProgram(text, a.program, nominal.model, cal.model, options);
+  writeProgram(a, r.text);
+  fmt::print(stderr,
+             "pkm: note: nominal {} -> calibrated {} (Exechon, --orientation {}): {} motion lines "
+             "rewritten, {} segment lines added, {} G92/G10 L20 lines shifted (tolerance {} mm, "
+             "max step {:.4g} mm), largest correction {:.4g} mm\n",
+             nominal.model.name,
+             cal.model.name,
+             orientation,
+             r.motion_lines,
+             r.added_lines,
+             r.offset_lines,
+             a.tolerance,
+             options.interpolation.max_step,
+             r.max_correction);
+}
+
 void runCompensate(const CompensateArgs& a) {
   PKM_CHECK(a.tolerance > 0.0 && std::isfinite(a.tolerance), "--tolerance must be > 0");
   if (!a.out.empty() && !a.force && std::filesystem::exists(a.out))
@@ -132,6 +186,10 @@ void runCompensate(const CompensateArgs& a) {
     throw InvalidArgument(
         "give either --machine CAL.json (hexapod) or --hybrid-frame FILE --x2 POS");
   if (!a.hybrid_frame.empty()) return runHybrid(a);
+  if (machineTypeOf(a.machine) == "exechon") return runExechon(a);
+  if (a.orientation)
+    throw InvalidArgument(
+        fmt::format("--orientation is for Exechon machines; {} is a hexapod", a.machine));
   const io::HexapodMachine cal = io::loadHexapodMachine(a.machine);
   const io::HexapodMachine nominal = nominalFor(a, cal);
   if (nominal.model.unit != cal.model.unit)
@@ -164,9 +222,9 @@ void addGcodeCompensateCommand(CLI::App& gcode) {
   CLI::App* c = gcode.add_subcommand(
       "compensate",
       "pre-distort PROGRAM for a controller with nominal kinematics (machine: the output of "
-      "`pkm calibrate hexapod --out`)");
+      "`pkm calibrate hexapod --out` or `pkm calibrate exechon --out`)");
   c->add_option("program", a->program, "G-code file (.ngc)")->required();
-  c->add_option("--machine", a->machine, "calibrated hexapod machine JSON");
+  c->add_option("--machine", a->machine, "calibrated hexapod or Exechon machine JSON");
   c->add_option("--hybrid-frame",
                 a->hybrid_frame,
                 "hybrid machine: pkm-base-frame.txt of `pkm campaign run` (X2-Y2 squareness by "
@@ -179,6 +237,10 @@ void addGcodeCompensateCommand(CLI::App& gcode) {
                 a->nominal,
                 "the controller's nominal machine (default: the built-in one the calibrated "
                 "machine's name refers to)");
+  c->add_option("--orientation",
+                a->orientation,
+                "Exechon: A/C as the tool vector of a virtual C/A head ('vector', the default) or "
+                "as the wrist readings ('axes'), as in gcode run");
   c->add_option("--tolerance", a->tolerance, "chordal tolerance in mm (default 0.01)");
   c->add_option("--out", a->out, "write the program to FILE instead of standard output");
   c->add_flag("--force", a->force, "overwrite an existing --out file");

@@ -44,14 +44,6 @@ struct RunArgs {
 /// Exit code when a check is violated.
 constexpr int kExitViolation = 1;
 
-/// "hexapod" or "exechon": the type of a machine file, or of a built-in name.
-std::string machineTypeOf(const std::string& spec) {
-  if (std::filesystem::is_regular_file(spec)) return io::machineType(io::readTextFile(spec));
-  for (const auto& n : io::builtinMachineNames("exechon"))
-    if (n == spec) return "exechon";
-  return "hexapod";
-}
-
 void refuseOverwrite(const std::string& path, bool force) {
   if (!path.empty() && !force && std::filesystem::exists(path))
     throw IoError(fmt::format("{} exists; pass --force to overwrite it", path));

@@ -73,7 +73,11 @@ InterpolationOptions exechonInterpolation(const kin::ExechonModel& model, double
 
 ExechonJointConverter::ExechonJointConverter(const kin::ExechonModel& model,
                                              ExechonOrientation orientation)
-    : model_(&model), orientation_(orientation), data_(model), previous_(model.home) {
+    : model_(&model),
+      orientation_(orientation),
+      data_(model),
+      previous_(model.home),
+      zoppi_T_world_(model.world_T_zoppi.inverse(Eigen::Isometry)) {
   model.validate();
   kin::evaluateConfiguration(model, data_, model.home);
   last_joints_ << data_.readings, radToDeg(model.home.c), radToDeg(model.home.a), 0.0;
@@ -89,15 +93,16 @@ kin::ExechonIkStatus ExechonJointConverter::solveVector(const Eigen::Vector3d& p
 
 kin::ExechonIkStatus ExechonJointConverter::toolPointError(const Eigen::Vector3d& world_p_S,
                                                            const Eigen::Vector3d& p,
+                                                           const Eigen::Vector3d& platform_u_tool,
                                                            kin::ExechonConfiguration& cfg,
                                                            Eigen::Vector3d& r) {
   const kin::ExechonModel& m = *model_;
   const kin::ExechonIkStatus st =
-      kin::tripodInverseKinematicsNearest(m, data_, m.world_T_zoppi.inverse() * world_p_S, cfg.e);
+      kin::tripodInverseKinematicsNearest(m, data_, zoppi_T_world_ * world_p_S, cfg.e);
   if (st != kin::ExechonIkStatus::kOk) return st;
   cfg.e = data_.e;
-  kin::evaluateConfiguration(m, data_, cfg);
-  r = data_.world_p_tool - p;
+  r = data_.world_p_S + m.wrist.tool_length * (data_.world_T_platform.linear() * platform_u_tool) -
+      p;
   return st;
 }
 
@@ -107,19 +112,25 @@ kin::ExechonIkStatus ExechonJointConverter::solveAxes(const Eigen::Vector3d& p,
   const kin::ExechonModel& m = *model_;
   // Newton on F(S) = S + L·u(S) − p (u the tool direction the readings give on the platform at
   // the wrist point S), with the inverse Jacobian of the previous point (it changes little along
-  // a path) and a finite-difference one when there is none or convergence slows.
+  // a path) and a finite-difference one when there is none or convergence slows. The readings
+  // are fixed, so the tool direction in the platform frame is too.
+  const Eigen::Vector3d platform_u_tool = kin::toolRotationInPlatform(m.wrist, c, a).col(2);
   kin::ExechonConfiguration cfg{previous_.e, c, a};
-  kin::evaluateConfiguration(m, data_, cfg);
-  Eigen::Vector3d world_p_S = p - m.wrist.tool_length * data_.world_u_tool;  // first guess
+  // data_ holds the previous solution's tripod pose: the first guess keeps it.
+  Eigen::Vector3d world_p_S =
+      p - m.wrist.tool_length * (data_.world_T_platform.linear() * platform_u_tool);
   const double tol = kWristAxesTolerance * m.characteristicLength();
   const double floor = kWristAxesFloor * m.characteristicLength();
   double last = std::numeric_limits<double>::infinity();
   Eigen::Vector3d r;
   for (int it = 0; it < kMaxWristAxesIterations; ++it) {
-    kin::ExechonIkStatus st = toolPointError(world_p_S, p, cfg, r);
+    kin::ExechonIkStatus st = toolPointError(world_p_S, p, platform_u_tool, cfg, r);
     if (st != kin::ExechonIkStatus::kOk) return st;
     const double err = r.norm();
-    if (err <= tol || (err <= floor && err >= last)) return kin::ExechonIkStatus::kOk;
+    if (err <= tol || (err <= floor && err >= last)) {
+      kin::setWristReadings(m, data_, c, a);  // data_ holds the tripod at this world_p_S
+      return kin::ExechonIkStatus::kOk;
+    }
     if (!have_jacobian_ || it >= kRefreshJacobianAfter) {
       const kin::ExechonConfiguration at = cfg;
       const double h = kJacobianStep * m.characteristicLength();
@@ -127,7 +138,8 @@ kin::ExechonIkStatus ExechonJointConverter::solveAxes(const Eigen::Vector3d& p,
       for (int k = 0; k < 3; ++k) {
         kin::ExechonConfiguration probe = at;
         Eigen::Vector3d rk;
-        st = toolPointError(world_p_S + h * Eigen::Vector3d::Unit(k), p, probe, rk);
+        st =
+            toolPointError(world_p_S + h * Eigen::Vector3d::Unit(k), p, platform_u_tool, probe, rk);
         if (st != kin::ExechonIkStatus::kOk) return st;
         J.col(k) = (rk - r) / h;
       }

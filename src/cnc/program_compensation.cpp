@@ -132,11 +132,15 @@ long long nanoUnits(const Axes& machine, const WordFrame& f, std::size_t k) {
 
 /// The six axis words that command machine position `c` from `previous` (the last commanded
 /// machine position) under `f`.
-std::string axisWords(const Axes& c, const Axes& previous, const WordFrame& f) {
+std::string axisWords(const Axes& c,
+                      const Axes& previous,
+                      const WordFrame& f,
+                      const AxisMask& axes) {
   std::string s;
   static constexpr char kLetters[] = {'X', 'Y', 'Z', 'A', 'B', 'C'};
   for (std::size_t k = 0; k < 6; ++k) {
-    if (k > 0) s.push_back(' ');
+    if (!axes[k]) continue;
+    if (!s.empty()) s.push_back(' ');
     const long long v = nanoUnits(c, f, k);
     appendCoord(s, kLetters[k], f.incremental ? v - nanoUnits(previous, f, k) : v);
   }
@@ -264,7 +268,8 @@ std::string rewriteLine(std::string_view line, Rewrite what, const std::string& 
 ProgramCompensation rewriteProgram(std::string_view text,
                                    const std::string& file,
                                    const PointMap& map,
-                                   const InterpolationOptions& interpolation) {
+                                   const InterpolationOptions& interpolation,
+                                   const AxisMask& axes) {
   const Program program = Program::parse(text, file);
   BlockScan scan;
   for (const Block& b : program.blocks()) checkBlock(b, file, scan);
@@ -357,14 +362,14 @@ ProgramCompensation rewriteProgram(std::string_view text,
       const char* g = p0.kind == MoveKind::kRapid ? "G0 " : "G1 ";
       r.text += rewriteLine(line,
                             p0.kind == MoveKind::kArc ? Rewrite::kArc : Rewrite::kMotion,
-                            g + axisWords(r.points[first].command, previous(first), frame));
+                            g + axisWords(r.points[first].command, previous(first), frame, axes));
       if (has_nl || last - first > 1) r.text += eol;
       ++r.motion_lines;
       for (std::size_t k = first + 1; k < last; ++k) {
         r.text += fmt::format("{}{}{} (pkm: line {} segment {}/{})",
                               frame.machine ? "G53 " : "",
                               g,
-                              axisWords(r.points[k].command, previous(k), frame),
+                              axisWords(r.points[k].command, previous(k), frame, axes),
                               line_no,
                               k - first + 1,
                               last - first);

@@ -156,18 +156,22 @@ ExechonIkStatus toolInverseKinematics(const ExechonModel& model,
   return solveTool(model, data, target, &previous);
 }
 
+void setWristReadings(const ExechonModel& model, ExechonData& data, double c, double a) {
+  const Eigen::Matrix3d wrist_R_tool = rzRxOfReadings(model.wrist, c, a);
+  fillTool(model,
+           data,
+           c,
+           a,
+           std::abs(wrist_R_tool(2, 1)) <= kExechonWristPoleTolerance,
+           wristFrame(model.wrist),
+           wrist_R_tool);
+}
+
 void evaluateConfiguration(const ExechonModel& model,
                            ExechonData& data,
                            const ExechonConfiguration& config) {
   evaluateTripod(model, data, config.e, model.tripod.deltaA, model.tripod.deltaC);
-  const Eigen::Matrix3d wrist_R_tool = rzRxOfReadings(model.wrist, config.c, config.a);
-  fillTool(model,
-           data,
-           config.c,
-           config.a,
-           std::abs(wrist_R_tool(2, 1)) <= kExechonWristPoleTolerance,
-           wristFrame(model.wrist),
-           wrist_R_tool);
+  setWristReadings(model, data, config.c, config.a);
 }
 
 FkSummary toolForwardKinematics(const ExechonModel& model,
@@ -176,14 +180,7 @@ FkSummary toolForwardKinematics(const ExechonModel& model,
                                 const ExechonConfiguration& seed,
                                 const FkOptions& options) {
   const FkSummary summary = tripodForwardKinematics(model, data, joints.readings, seed.e, options);
-  const Eigen::Matrix3d wrist_R_tool = rzRxOfReadings(model.wrist, joints.c, joints.a);
-  fillTool(model,
-           data,
-           joints.c,
-           joints.a,
-           std::abs(wrist_R_tool(2, 1)) <= kExechonWristPoleTolerance,
-           wristFrame(model.wrist),
-           wrist_R_tool);
+  setWristReadings(model, data, joints.c, joints.a);
   return summary;
 }
 

@@ -1,6 +1,8 @@
 // `pkm gcode compensate`: a calibrated machine (as `pkm calibrate hexapod` names it) with the
 // nominal found by name, the output's line structure, no overwrite without --force, usage errors.
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include "support/cli_fixture.hpp"
 
@@ -85,6 +87,65 @@ TEST_F(GcodeCompensateCli, HybridFrameShiftsThePkmProgramByTheX2Term) {
   const std::string bad = write("bad.txt", "base_rpy_rad = 0 0\n");
   expectUsageError(pkm({"gcode", "compensate", "--hybrid-frame", bad, "--x2", "1", prog}),
                    "bad.txt:1:");
+}
+
+/// The built-in mxt700s-like renamed as a calibration result, with leg A's base 0.3 mm off and
+/// a 0.2 mm longer tool.
+std::string calibratedExechonJson() {
+  std::ifstream in(std::string(PKM_SOURCE_DIR) + "/data/machines/mxt700s-like.json");
+  std::string j((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto swap = [&j](const std::string& from, const std::string& to) {
+    const std::size_t at = j.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) j.replace(at, from.size(), to);
+  };
+  swap("\"name\": \"mxt700s-like\"", "\"name\": \"mxt700s-like-calibrated\"");
+  swap("\"dA\": -443.4", "\"dA\": -443.1");
+  swap("\"tool_length\": 200", "\"tool_length\": 200.2");
+  return j;
+}
+
+TEST_F(GcodeCompensateCli, ExechonProgramsInBothOrientations) {
+  const std::string cal = write("cal.json", calibratedExechonJson());
+  const std::string prog = std::string(PKM_SOURCE_DIR) + "/examples/gcode/exechon_contour.ngc";
+  for (const char* orientation : {"vector", "axes"}) {
+    const auto r =
+        pkm({"gcode", "compensate", "--machine", cal, "--orientation", orientation, prog});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("Exechon, --orientation " + std::string(orientation)), std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.out.find(" B"), std::string::npos);                 // an Exechon has no B axis
+    EXPECT_NE(r.out.find("N40 G1 X"), std::string::npos) << r.out;  // the arc, as line segments
+    // The result is a valid program for the nominal machine.
+    const std::string out = write(std::string("out-") + orientation + ".ngc", r.out);
+    const auto run = pkm({"gcode",
+                          "run",
+                          "--machine",
+                          "mxt700s-like",
+                          "--orientation",
+                          orientation,
+                          out,
+                          "--out",
+                          path(std::string("joints-") + orientation + ".csv")});
+    EXPECT_EQ(run.code, 0) << run.err;
+  }
+  // --orientation belongs to Exechon machines; the nominal must be one.
+  const std::string hex = write("p.ngc", "G0 X0 Y0 Z200\n");
+  expectUsageError(pkm({"gcode",
+                        "compensate",
+                        "--machine",
+                        "hexapod-default",
+                        "--nominal",
+                        "hexapod-default",
+                        "--orientation",
+                        "axes",
+                        hex}),
+                   "--orientation");
+  expectUsageError(
+      pkm({"gcode", "compensate", "--machine", cal, "--nominal", "hexapod-default", prog}),
+      "not an Exechon");
+  const std::string b = write("b.ngc", "G0 X0 Y0 Z50\nG1 B3 F100\n");
+  expectUsageError(pkm({"gcode", "compensate", "--machine", cal, b}), "b.ngc:2:");
 }
 
 }  // namespace

@@ -78,10 +78,12 @@ class ExechonJointConverter {
  private:
   kinematics::ExechonIkStatus solveVector(const Eigen::Vector3d& p, const Eigen::Vector3d& u);
   kinematics::ExechonIkStatus solveAxes(const Eigen::Vector3d& p, double c, double a);
-  /// Tripod IK at the wrist point (nearest cfg.e), the wrist at cfg's readings, and the tool
-  /// point's error r from p; cfg.e is updated.
+  /// Tripod IK at the wrist point (nearest cfg.e) and the tool point's error r from p with the
+  /// tool along platform_u_tool (platform frame); cfg.e is updated. The wrist fields of data_
+  /// are not filled.
   kinematics::ExechonIkStatus toolPointError(const Eigen::Vector3d& world_p_S,
                                              const Eigen::Vector3d& p,
+                                             const Eigen::Vector3d& platform_u_tool,
                                              kinematics::ExechonConfiguration& cfg,
                                              Eigen::Vector3d& r);
 
@@ -90,6 +92,7 @@ class ExechonJointConverter {
   kinematics::ExechonData data_;
   kinematics::ExechonConfiguration previous_;
   kinematics::StrutVector last_joints_ = kinematics::StrutVector::Zero();
+  Eigen::Isometry3d zoppi_T_world_;  ///< the model's world_T_zoppi, inverted once
   bool have_reference_ = false;
   Eigen::Matrix3d reference_R_ = Eigen::Matrix3d::Identity();
   bool have_jacobian_ = false;  ///< kWristAxes: jacobian_inverse_ holds a previous point's

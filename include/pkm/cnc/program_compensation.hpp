@@ -6,6 +6,7 @@
 /// FK_nominal(IK_calibrated(X))), and the program text is rewritten line by line.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -67,12 +68,19 @@ struct ProgramCompensation {
 /// pkm::IoError naming a point's line.
 using PointMap = std::function<std::vector<Axes>(const std::vector<PathPoint>& points)>;
 
+/// Which of X Y Z A B C a rewritten motion carries.
+using AxisMask = std::array<bool, 6>;
+/// All six axes.
+inline constexpr AxisMask kAllAxes{true, true, true, true, true, true};
+
 /// The rewriting of compensateProgram with any point map: interpolation by `interpolation`, the
-/// same subset, line structure and throws.
+/// same subset, line structure and throws. Rewritten motions carry the axis words `axes` names
+/// (a machine without a B axis is not sent a B word).
 [[nodiscard]] ProgramCompensation rewriteProgram(std::string_view text,
                                                  const std::string& file,
                                                  const PointMap& map,
-                                                 const InterpolationOptions& interpolation);
+                                                 const InterpolationOptions& interpolation,
+                                                 const AxisMask& axes = kAllAxes);
 
 /// The hybrid machine's squareness correction of a PKM program (X Y Z = PKM command in its P
 /// frame) run with X2 at `x2` (mm): the X2–Y2 part p_c = p + x2·b₁ by G-code, with the base frame

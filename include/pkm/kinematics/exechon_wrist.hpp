@@ -78,6 +78,10 @@ void evaluateConfiguration(const ExechonModel& model,
                            ExechonData& data,
                            const ExechonConfiguration& config);
 
+/// Sets the wrist readings (c, a, rad) on the tripod pose held in data and fills data's wrist and
+/// tool fields as evaluateConfiguration does (the tripod fields are left as they are). Never fails.
+void setWristReadings(const ExechonModel& model, ExechonData& data, double c, double a);
+
 /// Tool FK: tripodForwardKinematics(joints.readings, seed.e, options), then the wrist at (joints.c,
 /// joints.a) as in evaluateConfiguration. Returns the tripod FK summary; on failure data must not
 /// be used. Throws pkm::InvalidArgument if `options` is invalid.
