@@ -1,6 +1,6 @@
 // `pkm gcode compensate --machine CAL.json PROGRAM`: the program pre-distorted for a controller
-// that keeps the nominal kinematics; `--hybrid-frame F --x2 POS`: the hybrid machine's X2–Y2
-// squareness corrected in a PKM program (docs/gcode.md "gcode compensate").
+// that keeps the nominal kinematics (a hexapod or an Exechon); `--hybrid-frame F --x2 POS`: the
+// hybrid machine's X2–Y2 squareness corrected in a PKM program (docs/gcode.md "gcode compensate").
 #include <fmt/format.h>
 
 #include <Eigen/Core>
@@ -184,7 +184,7 @@ void runCompensate(const CompensateArgs& a) {
     throw IoError(fmt::format("{} exists; pass --force to overwrite it", a.out));
   if (a.hybrid_frame.empty() == a.machine.empty())
     throw InvalidArgument(
-        "give either --machine CAL.json (hexapod) or --hybrid-frame FILE --x2 POS");
+        "give either --machine CAL.json (hexapod or Exechon) or --hybrid-frame FILE --x2 POS");
   if (!a.hybrid_frame.empty()) return runHybrid(a);
   if (machineTypeOf(a.machine) == "exechon") return runExechon(a);
   if (a.orientation)

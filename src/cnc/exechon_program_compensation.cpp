@@ -77,7 +77,8 @@ ProgramCompensation compensateExechonProgram(std::string_view text,
     std::vector<Axes> commands(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
       const Axes& x = points[i].pos;
-      if (x[4] != 0.0) fail(points[i].line, fmt::format("B{} programmed, but an Exechon has no B axis", x[4]));
+      if (x[4] != 0.0)
+        fail(points[i].line, fmt::format("B{} programmed, but an Exechon has no B axis", x[4]));
       const ExechonPathSample s = real.solve(x);
       if (!s.ok())
         fail(points[i].line,

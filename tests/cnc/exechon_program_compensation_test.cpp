@@ -62,8 +62,8 @@ class ExechonCompensation : public ::testing::TestWithParam<ExechonOrientation> 
 TEST_P(ExechonCompensation, NominalReadingsOfTheCommandAreTheRealMachinesOfTheDesiredPoint) {
   const kin::ExechonModel nominal = pkm::test::machineModel();
   const kin::ExechonModel real = calibratedModel(nominal);
-  const ProgramCompensation r = compensateExechonProgram(
-      kProgram, "p.ngc", nominal, real, optionsFor(real, GetParam()));
+  const ProgramCompensation r =
+      compensateExechonProgram(kProgram, "p.ngc", nominal, real, optionsFor(real, GetParam()));
   ASSERT_GT(r.points.size(), 10u);
   EXPECT_GT(r.max_correction, 0.1);  // the errors matter
   ExechonJointConverter controller(nominal, GetParam()), machine(real, GetParam());
@@ -115,9 +115,8 @@ TEST(ExechonProgramCompensation, RefusesPointsItCannotServeWithTheirLine) {
   }
   kin::ExechonModel inches = real;
   inches.unit = pkm::LengthUnit::kInch;
-  EXPECT_THROW(
-      (void)compensateExechonProgram("G0 X0\n", "p.ngc", nominal, inches, options),
-      pkm::InvalidArgument);
+  EXPECT_THROW((void)compensateExechonProgram("G0 X0\n", "p.ngc", nominal, inches, options),
+               pkm::InvalidArgument);
 }
 
 TEST(ToolAnglesFromDirection, InvertsTheVirtualHead) {

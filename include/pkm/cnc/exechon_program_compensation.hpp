@@ -38,9 +38,9 @@ struct ExechonProgramCompensationOptions {
 /// `calibrated` by continuity (ExechonJointConverter), then the nominal tool FK of those readings
 /// (seeded by the previous point) gives the command: X Y Z its tool point; A, C its tool
 /// direction (kToolVector, nearest the desired A, C) or the wrist readings (kWristAxes). Lines as
-/// rewriteProgram, with X Y Z A C words (no B). Throws pkm::IoError "FILE:LINE: message" where the calibrated machine cannot
-/// reach a point, B is programmed, or the nominal FK fails; pkm::InvalidArgument for invalid
-/// models or models in different length units.
+/// rewriteProgram, with X Y Z A C words (no B). Throws pkm::IoError "FILE:LINE: message" where the
+/// calibrated machine cannot reach a point, B is programmed, or the nominal FK fails;
+/// pkm::InvalidArgument for invalid models or models in different length units.
 [[nodiscard]] ProgramCompensation compensateExechonProgram(
     std::string_view text,
     const std::string& file,
