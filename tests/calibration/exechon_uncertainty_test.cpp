@@ -100,15 +100,7 @@ const Problem& problem() {
   return p;
 }
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kSanitized = true;  // ~700× slower: the statistics run in the Release suite
-#else
-constexpr bool kSanitized = false;
-#endif
-
 TEST(ExechonMonteCarlo, ParameterSpreadAgreesWithTheLinearisedCovariance) {
-  if (kSanitized)
-    GTEST_SKIP() << "statistical check: Release only (the thread test covers the code)";
   const Problem& p = problem();
   ASSERT_EQ(p.fit.identifiability.rank, p.fit.identifiability.parameters);
   const ExechonMonteCarloSummary mc = p.run(kTrials, 2);
