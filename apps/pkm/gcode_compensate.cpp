@@ -105,55 +105,40 @@ void runHybrid(const CompensateArgs& a) {
              r.max_correction);
 }
 
-/// Suffix `pkm calibrate hexapod` appends to the nominal machine's name.
+/// Suffix `pkm calibrate hexapod` and `pkm calibrate exechon` append to the nominal machine's
+/// name.
 constexpr std::string_view kCalibratedSuffix = "-calibrated";
 
-/// The nominal machine: --nominal, or the built-in hexapod whose name is the calibrated
-/// machine's name without "-calibrated".
-io::HexapodMachine nominalFor(const CompensateArgs& a, const io::HexapodMachine& cal) {
-  if (!a.nominal.empty()) return io::loadHexapodMachine(a.nominal);
+/// The nominal machine of calibrated machine `cal`: --nominal (loaded by `load`), or the built-in
+/// machine of `type` ("hexapod" or "exechon", loaded by `builtin`) whose name is cal's without
+/// "-calibrated".
+template <class Machine, class Load, class Builtin>
+Machine nominalFor(
+    const CompensateArgs& a, const Machine& cal, const char* type, Load load, Builtin builtin) {
+  if (!a.nominal.empty()) return load(a.nominal);
   const std::string& name = cal.model.name;
   if (name.size() > kCalibratedSuffix.size() && name.ends_with(kCalibratedSuffix)) {
     const std::string base = name.substr(0, name.size() - kCalibratedSuffix.size());
-    for (const auto& n : io::builtinMachineNames("hexapod")) {
-      io::HexapodMachine m = io::builtinMachine(n);
+    for (const auto& n : io::builtinMachineNames(type)) {
+      Machine m = builtin(n);
       if (m.model.name == base) return m;
     }
   }
-  throw InvalidArgument(fmt::format(
-      "{}: cannot tell the nominal machine of '{}' (no built-in hexapod named as it without "
-      "'-calibrated'); pass --nominal MACHINE",
-      a.machine,
-      name));
-}
-
-/// The nominal Exechon: --nominal, or the built-in Exechon whose name is the calibrated
-/// machine's name without "-calibrated".
-io::ExechonMachine nominalExechonFor(const CompensateArgs& a, const io::ExechonMachine& cal) {
-  if (!a.nominal.empty()) {
-    if (machineTypeOf(a.nominal) != "exechon")
-      throw InvalidArgument(
-          fmt::format("--nominal {}: not an Exechon machine, but {} is one", a.nominal, a.machine));
-    return io::loadExechonMachine(a.nominal);
-  }
-  const std::string& name = cal.model.name;
-  if (name.size() > kCalibratedSuffix.size() && name.ends_with(kCalibratedSuffix)) {
-    const std::string base = name.substr(0, name.size() - kCalibratedSuffix.size());
-    for (const auto& n : io::builtinMachineNames("exechon")) {
-      io::ExechonMachine m = io::loadExechonMachine(n);
-      if (m.model.name == base) return m;
-    }
-  }
-  throw InvalidArgument(fmt::format(
-      "{}: cannot tell the nominal machine of '{}' (no built-in Exechon named as it without "
-      "'-calibrated'); pass --nominal MACHINE",
-      a.machine,
-      name));
+  throw InvalidArgument(
+      fmt::format("{}: cannot tell the nominal machine of '{}' (no built-in {} named as it without "
+                  "'-calibrated'); pass --nominal MACHINE",
+                  a.machine,
+                  name,
+                  type));
 }
 
 void runExechon(const CompensateArgs& a) {
   const io::ExechonMachine cal = io::loadExechonMachine(a.machine);
-  const io::ExechonMachine nominal = nominalExechonFor(a, cal);
+  if (!a.nominal.empty() && machineTypeOf(a.nominal) != "exechon")
+    throw InvalidArgument(
+        fmt::format("--nominal {}: not an Exechon machine, but {} is one", a.nominal, a.machine));
+  const io::ExechonMachine nominal =
+      nominalFor(a, cal, "exechon", &io::loadExechonMachine, &io::loadExechonMachine);
   cnc::ExechonProgramCompensationOptions options;
   const std::string orientation = a.orientation.value_or("vector");
   options.orientation = cnc::parseExechonOrientation(orientation);
@@ -191,7 +176,12 @@ void runCompensate(const CompensateArgs& a) {
     throw InvalidArgument(
         fmt::format("--orientation is for Exechon machines; {} is a hexapod", a.machine));
   const io::HexapodMachine cal = io::loadHexapodMachine(a.machine);
-  const io::HexapodMachine nominal = nominalFor(a, cal);
+  const io::HexapodMachine nominal = nominalFor(
+      a,
+      cal,
+      "hexapod",
+      [](const std::string& spec) { return io::loadHexapodMachine(spec); },
+      &io::builtinMachine);
   if (nominal.model.unit != cal.model.unit)
     throw InvalidArgument("the nominal and calibrated machines use different length units");
   cnc::ProgramCompensationOptions options;
