@@ -132,6 +132,24 @@ Machine nominalFor(
                   type));
 }
 
+/// The note on standard error after a pre-distortion: what was compensated (`what`), the line
+/// counts, the interpolation settings (mm) and the largest correction.
+void printNote(const std::string& what,
+               const cnc::ProgramCompensation& r,
+               double tolerance,
+               double max_step) {
+  fmt::print(stderr,
+             "pkm: note: {}: {} motion lines rewritten, {} segment lines added, {} G92/G10 L20 "
+             "lines shifted (tolerance {} mm, max step {:.4g} mm), largest correction {:.4g} mm\n",
+             what,
+             r.motion_lines,
+             r.added_lines,
+             r.offset_lines,
+             tolerance,
+             max_step,
+             r.max_correction);
+}
+
 void runExechon(const CompensateArgs& a) {
   const io::ExechonMachine cal = io::loadExechonMachine(a.machine);
   if (!a.nominal.empty() && machineTypeOf(a.nominal) != "exechon")
@@ -148,19 +166,13 @@ void runExechon(const CompensateArgs& a) {
   const cnc::ProgramCompensation r =
       cnc::compensateExechonProgram(text, a.program, nominal.model, cal.model, options);
   writeProgram(a, r.text);
-  fmt::print(stderr,
-             "pkm: note: nominal {} -> calibrated {} (Exechon, --orientation {}): {} motion lines "
-             "rewritten, {} segment lines added, {} G92/G10 L20 lines shifted (tolerance {} mm, "
-             "max step {:.4g} mm), largest correction {:.4g} mm\n",
-             nominal.model.name,
-             cal.model.name,
-             orientation,
-             r.motion_lines,
-             r.added_lines,
-             r.offset_lines,
-             a.tolerance,
-             options.interpolation.max_step,
-             r.max_correction);
+  printNote(fmt::format("nominal {} -> calibrated {} (Exechon, --orientation {})",
+                        nominal.model.name,
+                        cal.model.name,
+                        orientation),
+            r,
+            a.tolerance,
+            options.interpolation.max_step);
 }
 
 void runCompensate(const CompensateArgs& a) {
@@ -191,18 +203,10 @@ void runCompensate(const CompensateArgs& a) {
   const cnc::ProgramCompensation r =
       cnc::compensateProgram(text, a.program, nominal.model, cal.model, options);
   writeProgram(a, r.text);
-  fmt::print(stderr,
-             "pkm: note: nominal {} -> calibrated {}: {} motion lines rewritten, {} segment lines "
-             "added, {} G92/G10 L20 lines shifted (tolerance {} mm, max step {:.4g} mm), largest "
-             "correction {:.4g} mm\n",
-             nominal.model.name,
-             cal.model.name,
-             r.motion_lines,
-             r.added_lines,
-             r.offset_lines,
-             a.tolerance,
-             options.interpolation.max_step,
-             r.max_correction);
+  printNote(fmt::format("nominal {} -> calibrated {}", nominal.model.name, cal.model.name),
+            r,
+            a.tolerance,
+            options.interpolation.max_step);
 }
 
 }  // namespace
