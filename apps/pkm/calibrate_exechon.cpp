@@ -1,4 +1,4 @@
-// `pkm calibrate exechon`: identify an Exechon's 24 kinematic parameters (Zoppi's tripod
+// `pkm calibrate exechon`: identify an Exechon's 26 kinematic parameters (Zoppi's tripod
 // dimensions with the base U-joint axis offsets, leg offsets, wrist zeros, tool length, base
 // placement) from laser-tracker files and write the calibrated machine file and a summary
 // (docs/calibration.md, "Exechon").
@@ -378,7 +378,7 @@ std::string errorsOutput(const std::string& out) {
   return stem + ".errors.json";
 }
 
-/// The tripod errors of `calibrated` against `nominal` (the first 18 parameters).
+/// The tripod errors of `calibrated` against `nominal` (the parameters before the base placement).
 sim::ExechonTripodErrors tripodDifference(const kinematics::ExechonModel& nominal,
                                           const kinematics::ExechonModel& calibrated) {
   const cal::ExechonParameterVector d = cal::exechonParameters(calibrated, nominal.world_T_zoppi) -
@@ -389,17 +389,19 @@ sim::ExechonTripodErrors tripodDifference(const kinematics::ExechonModel& nomina
   e.dC = d(2);
   e.l12A = d(3);
   e.l12C = d(4);
-  e.pA = d(5);
-  e.pB = d(6);
-  e.pC = d(7);
-  e.hA = d(8);
-  e.hC = d(9);
-  e.hx = d(10);
-  e.hz = d(11);
-  e.length_offset = d.segment<3>(12);
-  e.c0 = d(15);
-  e.a0 = d(16);
-  e.tool_length = d(17);
+  e.l12B = d(5);
+  e.l23B = d(6);
+  e.pA = d(7);
+  e.pB = d(8);
+  e.pC = d(9);
+  e.hA = d(10);
+  e.hC = d(11);
+  e.hx = d(12);
+  e.hz = d(13);
+  e.length_offset = d.segment<3>(cal::kExechonOffsetParameter);
+  e.c0 = d(cal::kExechonWristParameter);
+  e.a0 = d(cal::kExechonWristParameter + 1);
+  e.tool_length = d(cal::kExechonWristParameter + 2);
   return e;
 }
 

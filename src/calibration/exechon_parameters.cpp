@@ -10,10 +10,12 @@ namespace {
 
 const std::array<const char*, kExechonParameters>& names() {
   static const std::array<const char*, kExechonParameters> n{
-      "tripod.dA", "tripod.dB", "tripod.dC", "tripod.l12A", "tripod.l12C", "tripod.pA",
-      "tripod.pB", "tripod.pC", "tripod.hA", "tripod.hC",   "tripod.hx",   "tripod.hz",
-      "offsetA",   "offsetB",   "offsetC",   "wrist.c0",    "wrist.a0",    "wrist.tool_length",
-      "base.x",    "base.y",    "base.z",    "base.rx",     "base.ry",     "base.rz"};
+      "tripod.dA",   "tripod.dB",   "tripod.dC", "tripod.l12A", "tripod.l12C",
+      "tripod.l12B", "tripod.l23B", "tripod.pA", "tripod.pB",   "tripod.pC",
+      "tripod.hA",   "tripod.hC",   "tripod.hx", "tripod.hz",   "offsetA",
+      "offsetB",     "offsetC",     "wrist.c0",  "wrist.a0",    "wrist.tool_length",
+      "base.x",      "base.y",      "base.z",    "base.rx",     "base.ry",
+      "base.rz"};
   return n;
 }
 
@@ -34,14 +36,15 @@ int exechonParameterIndex(const std::string& name) {
 }
 
 bool exechonParameterIsLength(int index) {
-  return !(index == 15 || index == 16 || index >= kExechonBaseParameter + 3);
+  return !(index == kExechonWristParameter || index == kExechonWristParameter + 1 ||
+           index >= kExechonBaseParameter + 3);
 }
 
 ExechonParameterVector exechonParameters(const kinematics::ExechonModel& model,
                                          const Eigen::Isometry3d& reference_world_T_zoppi) {
   const kinematics::ExechonTripodGeometry& t = model.tripod;
   ExechonParameterVector p;
-  p << t.dA, t.dB, t.dC, t.l12A, t.l12C, t.pA, t.pB, t.pC, t.hA, t.hC, t.hx, t.hz,
+  p << t.dA, t.dB, t.dC, t.l12A, t.l12C, t.l12B, t.l23B, t.pA, t.pB, t.pC, t.hA, t.hC, t.hx, t.hz,
       model.legs[0].length_offset, model.legs[1].length_offset, model.legs[2].length_offset,
       model.wrist.c0, model.wrist.a0, model.wrist.tool_length, 0, 0, 0, 0, 0, 0;
   p.segment<3>(kExechonBaseParameter) =
@@ -61,17 +64,20 @@ kinematics::ExechonModel withExechonParameters(kinematics::ExechonModel model,
   t.dC = p(2);
   t.l12A = p(3);
   t.l12C = p(4);
-  t.pA = p(5);
-  t.pB = p(6);
-  t.pC = p(7);
-  t.hA = p(8);
-  t.hC = p(9);
-  t.hx = p(10);
-  t.hz = p(11);
-  for (std::size_t k = 0; k < 3; ++k) model.legs[k].length_offset = p(12 + static_cast<int>(k));
-  model.wrist.c0 = p(15);
-  model.wrist.a0 = p(16);
-  model.wrist.tool_length = p(17);
+  t.l12B = p(5);
+  t.l23B = p(6);
+  t.pA = p(7);
+  t.pB = p(8);
+  t.pC = p(9);
+  t.hA = p(10);
+  t.hC = p(11);
+  t.hx = p(12);
+  t.hz = p(13);
+  for (int k = 0; k < 3; ++k)
+    model.legs[static_cast<std::size_t>(k)].length_offset = p(kExechonOffsetParameter + k);
+  model.wrist.c0 = p(kExechonWristParameter);
+  model.wrist.a0 = p(kExechonWristParameter + 1);
+  model.wrist.tool_length = p(kExechonWristParameter + 2);
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() =
       geometry::so3Exp(p.segment<3>(kExechonBaseParameter + 3)) * reference_world_T_zoppi.linear();

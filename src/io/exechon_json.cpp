@@ -16,22 +16,50 @@ using detail::JsonDoc;
 
 namespace {
 
+/// Zoppi's 12 dimensions, then leg B's base-joint offsets (written only when non-zero).
 constexpr const char* kTripodKeys[] = {
-    "dA", "dB", "dC", "l12A", "l12C", "pA", "pB", "pC", "hA", "hC", "hx", "hz"};
+    "dA", "dB", "dC", "l12A", "l12C", "pA", "pB", "pC", "hA", "hC", "hx", "hz", "l12B", "l23B"};
+constexpr int kZoppiKeys = 12;
+constexpr int kTripodKeyCount = 14;
 
 double* tripodField(kin::ExechonTripodGeometry& t, int i) {
-  double* fields[] = {
-      &t.dA, &t.dB, &t.dC, &t.l12A, &t.l12C, &t.pA, &t.pB, &t.pC, &t.hA, &t.hC, &t.hx, &t.hz};
+  double* fields[] = {&t.dA,
+                      &t.dB,
+                      &t.dC,
+                      &t.l12A,
+                      &t.l12C,
+                      &t.pA,
+                      &t.pB,
+                      &t.pC,
+                      &t.hA,
+                      &t.hC,
+                      &t.hx,
+                      &t.hz,
+                      &t.l12B,
+                      &t.l23B};
   return fields[i];
 }
 
 void readTripod(const JsonDoc& doc, const json& t, kin::ExechonTripodGeometry& g) {
   const std::string ptr = "/tripod";
-  doc.onlyKeys(
-      t,
-      ptr,
-      {"dA", "dB", "dC", "l12A", "l12C", "pA", "pB", "pC", "hA", "hC", "hx", "hz", "branch"});
-  for (int i = 0; i < 12; ++i) {
+  doc.onlyKeys(t,
+               ptr,
+               {"dA",
+                "dB",
+                "dC",
+                "l12A",
+                "l12C",
+                "pA",
+                "pB",
+                "pC",
+                "hA",
+                "hC",
+                "hx",
+                "hz",
+                "l12B",
+                "l23B",
+                "branch"});
+  for (int i = 0; i < kTripodKeyCount; ++i) {
     const char* key = kTripodKeys[i];
     // dA, dB, dC are required: a tripod without a base is a typo, not a default.
     if (i < 3) doc.required(t, ptr, key);
@@ -232,11 +260,13 @@ std::string writeExechonJson(const ExechonMachine& machine) {
   out += fmt::format("  \"description\": {},\n", json(machine.description).dump());
   out += fmt::format("  \"units\": \"{}\",\n  \"tripod\": {{", toString(m.unit));
   kin::ExechonTripodGeometry t = m.tripod;
-  for (int i = 0; i < 12; ++i)
+  for (int i = 0; i < kTripodKeyCount; ++i) {
+    if (i >= kZoppiKeys && *tripodField(t, i) == 0.0) continue;  // an ideal S joint
     out += fmt::format("{}\"{}\": {}",
                        i == 0 ? "" : (i % 6 == 0 ? ",\n             " : ", "),
                        kTripodKeys[i],
                        formatNumber(*tripodField(t, i)));
+  }
   out += fmt::format(
       ",\n             \"branch\": {{\"delta1B\": {}, \"delta2B\": {}, \"deltaA\": {}, \"deltaC\": "
       "{}}}}},\n",

@@ -15,13 +15,15 @@ namespace {
 constexpr double kUradPerRad = 1e6;
 
 /// The length errors (mm) by key, in the order truth.json writes them.
-std::array<std::pair<const char*, double simulation::ExechonTripodErrors::*>, 13> lengthKeys() {
+std::array<std::pair<const char*, double simulation::ExechonTripodErrors::*>, 15> lengthKeys() {
   using E = simulation::ExechonTripodErrors;
   return {{{"dA", &E::dA},
            {"dB", &E::dB},
            {"dC", &E::dC},
            {"l12A", &E::l12A},
            {"l12C", &E::l12C},
+           {"l12B", &E::l12B},
+           {"l23B", &E::l23B},
            {"pA", &E::pA},
            {"pB", &E::pB},
            {"pC", &E::pC},
@@ -44,6 +46,8 @@ simulation::ExechonTripodErrors readTripodErrors(const JsonDoc& doc,
                 "dC",
                 "l12A",
                 "l12C",
+                "l12B",
+                "l23B",
                 "pA",
                 "pB",
                 "pC",

@@ -1,5 +1,6 @@
 #include "pkm/kinematics/exechon_ik.hpp"
 
+#include <Eigen/LU>
 #include <Eigen/SVD>
 #include <cmath>
 
@@ -12,6 +13,10 @@ namespace {
 
 /// Relative size below which r or sqrt(t6² + Sy²) counts as zero (the solution is undetermined).
 constexpr double kDegenerate = 1e-12;
+/// Leg B's offsets: the IK refinement stops when |S(e) − S| is below this × the closed form's
+/// scale, or fails after kMaxRefineIterations Newton steps.
+constexpr double kRefineTolerance = 1e-13;
+constexpr int kMaxRefineIterations = 20;
 
 bool isSign(int s) { return s == 1 || s == -1; }
 
@@ -31,11 +36,26 @@ std::string_view toString(ExechonIkStatus status) {
   return "unknown";
 }
 
-Eigen::Vector3d wristPointFromParameters(const ExechonTripodGeometry& g, const Eigen::Vector3d& e) {
-  const detail::ExechonTrig t = detail::trigOf(e);
+namespace {
+
+/// P·kB5 at e: Zoppi's −dB·cos α·sin β, or leg B's offset solve (NaN when it fails).
+double platformOffsetB(const ExechonTripodGeometry& g, const detail::ExechonTrig& t) {
+  if (!detail::hasLegBOffsets(g)) return -g.dB * t.ca * t.sb;
+  const detail::LegBSolution b = detail::solveLegB(g, t, false);
+  return b.ok ? b.s : NAN;
+}
+
+Eigen::Vector3d wristPoint(const ExechonTripodGeometry& g, const detail::ExechonTrig& t, double s) {
   const Eigen::Vector3d kA2(t.sa, 0.0, t.ca), kB5(-t.sb * t.ca, t.cb, t.sb * t.sa),
       eh(-t.cb * t.ca, -t.sb, t.cb * t.sa);
-  return g.hx * kA2 + (t.h + g.hz) * eh - (g.dB * t.ca * t.sb) * kB5;
+  return g.hx * kA2 + (t.h + g.hz) * eh + s * kB5;
+}
+
+}  // namespace
+
+Eigen::Vector3d wristPointFromParameters(const ExechonTripodGeometry& g, const Eigen::Vector3d& e) {
+  const detail::ExechonTrig t = detail::trigOf(e);
+  return wristPoint(g, t, platformOffsetB(g, t));
 }
 
 namespace {
@@ -79,6 +99,27 @@ ExechonIkStatus solveTrigD1(const ExechonTripodGeometry& g,
   return ExechonIkStatus::kOk;
 }
 
+/// Newton steps on e from Zoppi's ideal solution `t` until the forward map with leg B's offsets
+/// reaches S (a no-op without offsets). kSingular when it does not converge.
+ExechonIkStatus refineForLegB(const ExechonTripodGeometry& g,
+                              const Eigen::Vector3d& S,
+                              double scale,
+                              detail::ExechonTrig* t) {
+  if (!detail::hasLegBOffsets(g)) return ExechonIkStatus::kOk;
+  Eigen::Vector3d e(std::atan2(t->sa, t->ca), std::atan2(t->sb, t->cb), t->h);
+  for (int it = 0; it < kMaxRefineIterations; ++it) {
+    const detail::LegBSolution b = detail::solveLegB(g, *t, true);
+    if (!b.ok) return ExechonIkStatus::kSingular;
+    const Eigen::Vector3d r = wristPoint(g, *t, b.s) - S;
+    if (!r.allFinite()) return ExechonIkStatus::kSingular;
+    if (r.norm() <= kRefineTolerance * scale) return ExechonIkStatus::kOk;
+    const Eigen::PartialPivLU<Eigen::Matrix3d> lu(detail::wristPointJacobian(g, *t, b.s, b.ds_de));
+    e -= lu.solve(r);
+    *t = detail::trigOf(e);
+  }
+  return ExechonIkStatus::kSingular;
+}
+
 ExechonIkStatus solveTrig(const ExechonTripodGeometry& g,
                           const Eigen::Vector3d& S,
                           int d1,
@@ -89,8 +130,9 @@ ExechonIkStatus solveTrig(const ExechonTripodGeometry& g,
   if (status != ExechonIkStatus::kOk) return status;
   detail::ExechonTrig both[2];
   status = solveTrigD1(g, S, c, d1, both);
-  if (status == ExechonIkStatus::kOk) *out = both[d2 == 1 ? 0 : 1];
-  return status;
+  if (status != ExechonIkStatus::kOk) return status;
+  *out = both[d2 == 1 ? 0 : 1];
+  return refineForLegB(g, S, c.scale, out);
 }
 
 Eigen::Vector3d anglesOf(const detail::ExechonTrig& t) {
@@ -107,7 +149,11 @@ void fillTripod(const ExechonModel& model,
   const ExechonTripodGeometry& g = model.tripod;
   const Eigen::Vector3d kA2(t.sa, 0.0, t.ca), kB5(-t.sb * t.ca, t.cb, t.sb * t.sa),
       eh(-t.cb * t.ca, -t.sb, t.cb * t.sa);
-  const Eigen::Vector3d P = t.h * eh - (g.dB * t.ca * t.sb) * kB5;
+  const bool offsets = detail::hasLegBOffsets(g);
+  const detail::LegBSolution legB =
+      offsets ? detail::solveLegB(g, t, false) : detail::LegBSolution{};
+  const double s = offsets ? (legB.ok ? legB.s : NAN) : -g.dB * t.ca * t.sb;
+  const Eigen::Vector3d P = t.h * eh + s * kB5;
   data.e = e;
   data.e_sin_cos = {t.sa, t.ca, t.sb, t.cb};
   data.e_of_sin_cos = e;
@@ -126,10 +172,14 @@ void fillTripod(const ExechonModel& model,
   data.zoppi_p_platform_joint[2] = {t.ca * k.uC, -k.vC + g.dC, -t.sa * k.uC};
   data.zoppi_p_leg_start[0] = {-deltaA * g.l12A * t.ca, g.dA, deltaA * g.l12A * t.sa};
   data.zoppi_p_leg_start[1] = {g.dB, 0.0, 0.0};
+  if (offsets) {
+    data.zoppi_p_platform_joint[1] = P + g.pB * kA2;
+    data.zoppi_p_leg_start[1] = legB.foot;
+  }
   data.zoppi_p_leg_start[2] = {-deltaC * g.l12C * t.ca, g.dC, deltaC * g.l12C * t.sa};
   const double uA = k.uA + deltaA * g.l12A, uC = k.uC + deltaC * g.l12C;
   data.lengths = {std::sqrt(uA * uA + k.vA * k.vA),
-                  std::sqrt(k.t1 * k.t1 + k.t2 * k.t2),
+                  offsets ? (legB.ok ? legB.q : NAN) : std::sqrt(k.t1 * k.t1 + k.t2 * k.t2),
                   std::sqrt(uC * uC + k.vC * k.vC)};
   for (int i = 0; i < kExechonLegs; ++i)
     data.readings[i] = data.lengths[i] - model.legs[static_cast<std::size_t>(i)].length_offset;
@@ -229,6 +279,8 @@ ExechonIkStatus tripodInverseKinematicsNearest(const ExechonModel& model,
       }
     }
   }
+  const ExechonIkStatus refined = refineForLegB(model.tripod, zoppi_p_S, common.scale, &best);
+  if (refined != ExechonIkStatus::kOk) return refined;
   fillTripod(model, data, best, anglesOf(best), branch.deltaA, branch.deltaC);
   data.branch = branch;
   data.zoppi_p_S = zoppi_p_S;
@@ -240,15 +292,15 @@ const Eigen::Matrix3d& computeTripodJacobian(const ExechonModel& model, ExechonD
   const ExechonTripodGeometry& g = model.tripod;
   const detail::ExechonTrig t = detail::trigOf(data.e);
   detail::legLengths(g, t, data.branch.deltaA, data.branch.deltaC, &data.J_q_e);
-  // S = hx·kA2 + (h + hz)·eh − m·kB5 with m = dB·cα·sβ; ∂β kB5 = eh, ∂β eh = −kB5.
-  const Eigen::Vector3d kB5(-t.sb * t.ca, t.cb, t.sb * t.sa), eh(-t.cb * t.ca, -t.sb, t.cb * t.sa);
-  const double m = g.dB * t.ca * t.sb;
-  const Eigen::Vector3d dkA2(t.ca, 0.0, -t.sa), dkB5(t.sb * t.sa, 0.0, t.sb * t.ca),
-      deh(t.cb * t.sa, 0.0, t.cb * t.ca);
-  const double hh = t.h + g.hz;
-  data.J_S_e.col(0) = g.hx * dkA2 + hh * deh - (-g.dB * t.sa * t.sb) * kB5 - m * dkB5;
-  data.J_S_e.col(1) = -hh * kB5 - (g.dB * t.ca * t.cb) * kB5 - m * eh;
-  data.J_S_e.col(2) = eh;
+  // S = hx·kA2 + (h + hz)·eh + s·kB5 with Zoppi's s = −dB·cα·sβ or leg B's offset solve.
+  if (detail::hasLegBOffsets(g)) {
+    const detail::LegBSolution b = detail::solveLegB(g, t, true);
+    data.J_S_e =
+        b.ok ? detail::wristPointJacobian(g, t, b.s, b.ds_de) : Eigen::Matrix3d::Constant(NAN);
+  } else {
+    data.J_S_e = detail::wristPointJacobian(
+        g, t, -g.dB * t.ca * t.sb, Eigen::Vector3d(g.dB * t.sa * t.sb, -g.dB * t.ca * t.cb, 0.0));
+  }
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(data.J_S_e,
                                               Eigen::ComputeFullU | Eigen::ComputeFullV);
   const Eigen::Vector3d& s = svd.singularValues();

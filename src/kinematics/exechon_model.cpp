@@ -33,7 +33,7 @@ void validateRange(const AngleRange& r, const char* name) {
 void ExechonModel::validate() const {
   const ExechonTripodGeometry& g = tripod;
   const double values[] = {
-      g.dA, g.dB, g.dC, g.l12A, g.l12C, g.pA, g.pB, g.pC, g.hA, g.hC, g.hx, g.hz};
+      g.dA, g.dB, g.dC, g.l12A, g.l12C, g.l12B, g.l23B, g.pA, g.pB, g.pC, g.hA, g.hC, g.hx, g.hz};
   PKM_CHECK(
       std::all_of(std::begin(values), std::end(values), [](double v) { return std::isfinite(v); }),
       "tripod geometry is not finite");

@@ -38,7 +38,39 @@ inline ExechonLegTerms legTerms(const ExechonTripodGeometry& g, const ExechonTri
   return k;
 }
 
-/// Geometric leg lengths (qA, qB, qC) and, if J is not null, d(q)/d(alpha, beta, h).
+/// True when leg B's base joint has axis offsets (l12B or l23B non-zero): Zoppi's closed form no
+/// longer holds and leg B is solved by solveLegB.
+inline bool hasLegBOffsets(const ExechonTripodGeometry& g) {
+  return g.l12B != 0.0 || g.l23B != 0.0;
+}
+
+/// Leg B at one e: the kB5 component s of the platform origin P = h·eh + s·kB5, leg B's length and
+/// where it is measured from, and their derivatives with respect to e = (alpha, beta, h).
+struct LegBSolution {
+  bool ok = false;                                  ///< false: no convergence (degenerate leg)
+  double s = 0.0;                                   ///< P·kB5, model length unit
+  double q = 0.0;                                   ///< leg B's geometric length
+  Eigen::Vector3d foot = Eigen::Vector3d::Zero();   ///< start of the length on the leg axis
+  Eigen::Vector3d ds_de = Eigen::Vector3d::Zero();  ///< ds/de (only with derivatives)
+  Eigen::Vector3d dq_de = Eigen::Vector3d::Zero();  ///< dq/de (only with derivatives)
+};
+
+/// Solves leg B with its base-joint offsets (docs/conventions.md, "Leg B's base-joint offsets") by
+/// Newton on the angle of R2 about R1, started from Zoppi's ideal solution. With zero offsets it
+/// reproduces s = −dB·cos α·sin β, q = |P5B − P1B| and foot = P1B.
+[[nodiscard]] LegBSolution solveLegB(const ExechonTripodGeometry& g,
+                                     const ExechonTrig& t,
+                                     bool derivatives);
+
+/// dS/de for S = hx·kA2 + (h + hz)·eh + s·kB5, given s and ds/de (Zoppi's ideal s = −dB·cα·sβ or
+/// solveLegB's).
+[[nodiscard]] Eigen::Matrix3d wristPointJacobian(const ExechonTripodGeometry& g,
+                                                 const ExechonTrig& t,
+                                                 double s,
+                                                 const Eigen::Vector3d& ds_de);
+
+/// Geometric leg lengths (qA, qB, qC) and, if J is not null, d(q)/d(alpha, beta, h). qB is NaN
+/// when leg B's offset solve fails.
 inline Eigen::Vector3d legLengths(const ExechonTripodGeometry& g,
                                   const ExechonTrig& t,
                                   int deltaA,
@@ -46,9 +78,14 @@ inline Eigen::Vector3d legLengths(const ExechonTripodGeometry& g,
                                   Eigen::Matrix3d* J) {
   const ExechonLegTerms k = legTerms(g, t);
   const double uA = k.uA + deltaA * g.l12A, uC = k.uC + deltaC * g.l12C;
-  const Eigen::Vector3d q(std::sqrt(uA * uA + k.vA * k.vA),
-                          std::sqrt(k.t1 * k.t1 + k.t2 * k.t2),
-                          std::sqrt(uC * uC + k.vC * k.vC));
+  Eigen::Vector3d q(std::sqrt(uA * uA + k.vA * k.vA),
+                    std::sqrt(k.t1 * k.t1 + k.t2 * k.t2),
+                    std::sqrt(uC * uC + k.vC * k.vC));
+  LegBSolution legB;
+  if (hasLegBOffsets(g)) {
+    legB = solveLegB(g, t, J != nullptr);
+    q[1] = legB.ok ? legB.q : NAN;
+  }
   if (J == nullptr) return q;
   // d(t1, t2, t3) / d(alpha, beta, h).
   const double dt1[3] = {g.dB * t.ca, 0.0, 0.0};
@@ -60,7 +97,10 @@ inline Eigen::Vector3d legLengths(const ExechonTripodGeometry& g,
     for (int j = 0; j < 3; ++j) (*J)(row, j) = (u * du[j] + v * dv[j]) / qL;
   };
   leg(uA, k.vA, g.pA, g.hA, q[0], 0);
-  for (int j = 0; j < 3; ++j) (*J)(1, j) = (k.t1 * dt1[j] + k.t2 * dt2[j]) / q[1];
+  if (hasLegBOffsets(g))
+    J->row(1) = legB.dq_de.transpose();
+  else
+    for (int j = 0; j < 3; ++j) (*J)(1, j) = (k.t1 * dt1[j] + k.t2 * dt2[j]) / q[1];
   leg(uC, k.vC, g.pC, g.hC, q[2], 2);
   return q;
 }

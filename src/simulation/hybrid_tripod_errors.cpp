@@ -12,9 +12,10 @@ namespace pkm::simulation {
 namespace kin = pkm::kinematics;
 
 bool ExechonTripodErrors::isZero() const {
-  return dA == 0.0 && dB == 0.0 && dC == 0.0 && l12A == 0.0 && l12C == 0.0 && pA == 0.0 &&
-         pB == 0.0 && pC == 0.0 && hA == 0.0 && hC == 0.0 && hx == 0.0 && hz == 0.0 &&
-         length_offset.isZero(0.0) && c0 == 0.0 && a0 == 0.0 && tool_length == 0.0;
+  return dA == 0.0 && dB == 0.0 && dC == 0.0 && l12A == 0.0 && l12C == 0.0 && l12B == 0.0 &&
+         l23B == 0.0 && pA == 0.0 && pB == 0.0 && pC == 0.0 && hA == 0.0 && hC == 0.0 &&
+         hx == 0.0 && hz == 0.0 && length_offset.isZero(0.0) && c0 == 0.0 && a0 == 0.0 &&
+         tool_length == 0.0;
 }
 
 void ExechonTripodErrors::validate() const {
@@ -26,6 +27,8 @@ void ExechonTripodErrors::validate() const {
   finite(dC, "dC");
   finite(l12A, "l12A");
   finite(l12C, "l12C");
+  finite(l12B, "l12B");
+  finite(l23B, "l23B");
   finite(pA, "pA");
   finite(pB, "pB");
   finite(pC, "pC");
@@ -50,6 +53,8 @@ kin::ExechonModel perturbedExechon(const kin::ExechonModel& nominal,
   t.dC += errors.dC;
   t.l12A += errors.l12A;
   t.l12C += errors.l12C;
+  t.l12B += errors.l12B;
+  t.l23B += errors.l23B;
   t.pA += errors.pA;
   t.pB += errors.pB;
   t.pC += errors.pC;

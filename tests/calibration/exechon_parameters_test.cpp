@@ -26,6 +26,9 @@ TEST(ExechonParameters, NamesRoundTripAndAreUnique) {
   EXPECT_THROW((void)exechonParameterIndex("tripod.dD"), InvalidArgument);
   EXPECT_FALSE(exechonParameterIsLength(exechonParameterIndex("wrist.c0")));
   EXPECT_TRUE(exechonParameterIsLength(exechonParameterIndex("wrist.tool_length")));
+  EXPECT_TRUE(exechonParameterIsLength(exechonParameterIndex("tripod.l12B")));
+  EXPECT_TRUE(exechonParameterIsLength(exechonParameterIndex("tripod.l23B")));
+  EXPECT_TRUE(exechonParameterIsLength(exechonParameterIndex("base.z")));
   EXPECT_FALSE(exechonParameterIsLength(exechonParameterIndex("base.ry")));
 }
 
@@ -33,9 +36,10 @@ TEST(ExechonParameters, ModelAtItsOwnReferenceHasZeroPlacement) {
   const kinematics::ExechonModel m = model();
   const ExechonParameterVector p = exechonParameters(m, m.world_T_zoppi);
   EXPECT_DOUBLE_EQ(p(0), m.tripod.dA);
-  EXPECT_DOUBLE_EQ(p(11), m.tripod.hz);
-  EXPECT_DOUBLE_EQ(p(13), m.legs[1].length_offset);
-  EXPECT_DOUBLE_EQ(p(17), m.wrist.tool_length);
+  EXPECT_DOUBLE_EQ(p(13), m.tripod.hz);
+  EXPECT_DOUBLE_EQ(p(exechonParameterIndex("tripod.l12B")), m.tripod.l12B);
+  EXPECT_DOUBLE_EQ(p(kExechonOffsetParameter + 1), m.legs[1].length_offset);
+  EXPECT_DOUBLE_EQ(p(kExechonWristParameter + 2), m.wrist.tool_length);
   EXPECT_NEAR(p.tail<6>().norm(), 0.0, kExact);
 }
 
@@ -52,6 +56,8 @@ TEST(ExechonParameters, SetThenGetRoundTrips) {
   EXPECT_LT((changed.world_T_zoppi.linear() - expected).norm(), kExact);
   EXPECT_EQ(changed.tripod.delta1B, m.tripod.delta1B);
   EXPECT_EQ(changed.limits.alpha.min, m.limits.alpha.min);
+  EXPECT_EQ(changed.tripod.l12B, p(exechonParameterIndex("tripod.l12B")));
+  EXPECT_EQ(changed.tripod.l23B, p(exechonParameterIndex("tripod.l23B")));
 }
 
 TEST(ExechonParameters, NonFiniteParameterThrows) {

@@ -24,7 +24,7 @@ const char* kTripod = R"({
   "name": "tripod",
   "seed": 3,
   "machine": {"kind": "hybrid", "machine": "mxt700s-like",
-              "tripod_errors": {"dB": 0.02, "pC": -0.015, "length_offset": [0.01, -0.02, 0.005],
+              "tripod_errors": {"dB": 0.02, "pC": -0.015, "l23B": 0.04, "length_offset": [0.01, -0.02, 0.005],
                                 "c0_urad": 25, "tool_length": 0.03}},
   "measurements": [
     {"name": "lin-pz", "quantity": "linear", "from": [400, 100, 0, 0, -50], "to": [400, 100, 0, 0, 250],
@@ -59,6 +59,8 @@ TEST(ScenarioTripod, ParsesTheTripodErrors) {
   const sim::ExechonTripodErrors& e = m.tripod()->errors();
   EXPECT_EQ(e.dB, 0.02);
   EXPECT_EQ(e.pC, -0.015);
+  EXPECT_EQ(e.l23B, 0.04);
+  EXPECT_EQ(e.l12B, 0.0);
   EXPECT_EQ(e.dA, 0.0);
   EXPECT_EQ(e.length_offset, Eigen::Vector3d(0.01, -0.02, 0.005));
   EXPECT_EQ(e.c0, 25 / kUradPerRad);  // µrad in the file, rad in the model
@@ -71,7 +73,7 @@ TEST(ScenarioTripod, ParsesTheTripodErrors) {
 TEST(ScenarioTripod, AbsentOrZeroTripodErrorsKeepTheCartesianChain) {
   const std::string zero =
       replaced(kTripod,
-               R"("dB": 0.02, "pC": -0.015, "length_offset": [0.01, -0.02, 0.005],
+               R"("dB": 0.02, "pC": -0.015, "l23B": 0.04, "length_offset": [0.01, -0.02, 0.005],
                                 "c0_urad": 25, "tool_length": 0.03)",
                R"("dB": 0)");
   EXPECT_FALSE(hybridOf(io::parseScenarioJson(zero, "t.json")).tripod().has_value());

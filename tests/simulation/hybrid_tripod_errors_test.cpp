@@ -156,11 +156,14 @@ TEST(HybridTripod, PerturbedModelAddsTheErrors) {
   ExechonTripodErrors errors;
   errors.dA = 0.1;
   errors.hx = -0.2;
+  errors.l12B = 0.6;
   errors.length_offset = {0.3, 0.0, -0.4};
   errors.tool_length = 0.5;
   const kin::ExechonModel t = pkm::simulation::perturbedExechon(m.model, errors);
   EXPECT_EQ(t.tripod.dA, m.model.tripod.dA + 0.1);
   EXPECT_EQ(t.tripod.hx, m.model.tripod.hx - 0.2);
+  EXPECT_EQ(t.tripod.l12B, m.model.tripod.l12B + 0.6);
+  EXPECT_EQ(t.tripod.l23B, m.model.tripod.l23B);
   EXPECT_EQ(t.legs[0].length_offset, m.model.legs[0].length_offset + 0.3);
   EXPECT_EQ(t.legs[2].length_offset, m.model.legs[2].length_offset - 0.4);
   EXPECT_EQ(t.wrist.tool_length, m.model.wrist.tool_length + 0.5);

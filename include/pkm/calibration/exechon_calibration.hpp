@@ -76,9 +76,9 @@ struct ExechonCalibrationSummary {
   ExechonParameterVector initial = ExechonParameterVector::Zero();
   ExechonParameterVector parameters = ExechonParameterVector::Zero();  ///< the estimate
   Identifiability identifiability;  ///< of the free unknowns (parameters, then frame) at the start
-  std::vector<int> free_indices;    ///< unknown index of each identifiability column (24+: frame)
+  std::vector<int> free_indices;    ///< unknown index of each identifiability column (26+: frame)
   double sigma = 0.0;
-  Eigen::MatrixXd covariance;  ///< (24 + 6·frame)² (zero rows/columns for fixed unknowns)
+  Eigen::MatrixXd covariance;  ///< (26 + 6·frame)² (zero rows/columns for fixed unknowns)
   ExechonParameterVector standard_deviation = ExechonParameterVector::Zero();
   std::optional<geometry::RigidTransform> measurement_frame;  ///< the estimate, when estimated
   Eigen::Matrix<double, 6, 1> frame_standard_deviation = Eigen::Matrix<double, 6, 1>::Zero();
@@ -100,9 +100,9 @@ struct ExechonCalibrationSummary {
     const kinematics::FkOptions& fk = {});
 
 /// The linearised uncertainty of the target position at `joints` left by the calibration:
-/// √trace(J·Σ·Jᵀ) with J = ∂p/∂θ (central differences through the tool FK) and Σ the 24 × 24
+/// √trace(J·Σ·Jᵀ) with J = ∂p/∂θ (central differences through the tool FK) and Σ the 26 × 26
 /// parameter block of ExechonCalibrationSummary::covariance (model length unit). nullopt when the
-/// FK does not converge. Throws pkm::InvalidArgument when Σ is smaller than 24 × 24.
+/// FK does not converge. Throws pkm::InvalidArgument when Σ is smaller than 26 × 26.
 [[nodiscard]] std::optional<double> exechonTargetUncertainty(
     const kinematics::ExechonModel& estimated,
     const Eigen::MatrixXd& covariance,

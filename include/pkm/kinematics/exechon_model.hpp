@@ -40,6 +40,14 @@ struct ExechonTripodGeometry {
   double dC = 0.0;  ///< jb coordinate of leg C's base joint centre P1C = (0, dC, 0)
   double l12A = 0.0;  ///< leg A: distance between its base U-joint's two axes (0: ideal U)
   double l12C = 0.0;  ///< leg C: same as l12A
+  /// Leg B's base S joint as three revolutes whose axes need not meet (the base-joint axis offsets
+  /// of Lopez-Custodio, Dai, Fu, Jin, J. Mech. Robot. 12(2) 021109, 2020): R1 parallel to jb
+  /// through P1B, R2 ⟂ R1, R3 = the leg's own axis ⟂ R2. l12B is the distance from R1 to R2 along
+  /// their common normal, positive towards the platform; l23B the distance from R2 to the leg axis,
+  /// positive towards +jb (0, 0: an ideal S joint and Zoppi's closed form; otherwise the tripod
+  /// kinematics solve leg B numerically, docs/kinematics.md "Leg B's base-joint offsets").
+  double l12B = 0.0;
+  double l23B = 0.0;  ///< see l12B
   double pA = 0.0;    ///< j coordinate of leg A's platform joint P4A (platform frame)
   double pB = 0.0;    ///< i coordinate of leg B's platform joint P5B (platform frame)
   double pC = 0.0;    ///< j coordinate of leg C's platform joint P4C (platform frame)

@@ -33,6 +33,8 @@ struct ExechonTripodErrors {
   double dC = 0.0;    ///< error of dC (base joint P1C on jb)
   double l12A = 0.0;  ///< error of l12A (leg A's U-joint axis offset)
   double l12C = 0.0;  ///< error of l12C
+  double l12B = 0.0;  ///< error of l12B (leg B's base S-joint: R1 to R2)
+  double l23B = 0.0;  ///< error of l23B (leg B's base S-joint: R2 to the leg axis)
   double pA = 0.0;    ///< error of pA (platform joint P4A)
   double pB = 0.0;    ///< error of pB (platform joint P5B)
   double pC = 0.0;    ///< error of pC (platform joint P4C)
