@@ -94,7 +94,8 @@ void runHybrid(const CompensateArgs& a) {
   writeProgram(a, r.text);
   fmt::print(stderr,
              "pkm: note: hybrid squareness correction at X2 = {} mm ({}): {} motion lines "
-             "rewritten, {} segment lines added, {} G92/G10 L20 lines shifted, largest correction "
+             "rewritten, {} lines added (segments, dwells), {} G92/G10 L20 lines shifted, largest "
+             "correction "
              "{:.4g} mm\n",
              *a.x2,
              a.frame_not_in_controller ? "base frame and X2 term"
@@ -138,16 +139,17 @@ void printNote(const std::string& what,
                const cnc::ProgramCompensation& r,
                double tolerance,
                double max_step) {
-  fmt::print(stderr,
-             "pkm: note: {}: {} motion lines rewritten, {} segment lines added, {} G92/G10 L20 "
-             "lines shifted (tolerance {} mm, max step {:.4g} mm), largest correction {:.4g} mm\n",
-             what,
-             r.motion_lines,
-             r.added_lines,
-             r.offset_lines,
-             tolerance,
-             max_step,
-             r.max_correction);
+  fmt::print(
+      stderr,
+      "pkm: note: {}: {} motion lines rewritten, {} lines added (segments, dwells), {} G92/G10 L20 "
+      "lines shifted (tolerance {} mm, max step {:.4g} mm), largest correction {:.4g} mm\n",
+      what,
+      r.motion_lines,
+      r.added_lines,
+      r.offset_lines,
+      tolerance,
+      max_step,
+      r.max_correction);
 }
 
 void runExechon(const CompensateArgs& a) {

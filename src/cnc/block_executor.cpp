@@ -282,6 +282,7 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   if (c.non_modal == 40) {
     if (!rb.hasWord('p')) throw GcodeError("G4 needs a P word (dwell time, s)");
     if (rb.word('p') < 0.0) throw GcodeError("negative G4 dwell time");
+    sink.onDwell(rb.line, rb.word('p'));
   }
   if (c.plane >= 0)
     st.plane = c.plane == 170 ? Plane::kXY : c.plane == 180 ? Plane::kXZ : Plane::kYZ;

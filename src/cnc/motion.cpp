@@ -222,7 +222,10 @@ void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink)
   cycle_steps.clear();
   expandCycle(q, cycle_steps);
   for (const CycleStep& step : cycle_steps) {
-    if (step.kind == CycleStep::Kind::kDwell) continue;
+    if (step.kind == CycleStep::Kind::kDwell) {
+      sink.onDwell(rb.line, step.seconds);
+      continue;
+    }
     Axes to = st.machine;
     for (std::size_t i = 0; i < 3; ++i) to[i] = step.to[i] + st.offset(i);
     emitLine(rb.line, step.kind == CycleStep::Kind::kRapid, to, 0.0, sink);

@@ -24,12 +24,18 @@ namespace {
   throw IoError(fmt::format("{}:{}: {}", file, line, what));
 }
 
-/// G words (×10) the rewrite cannot express one motion per line: G28/G30 (two motions), canned
-/// cycles, probing, spindle-synchronised motion, and inverse time (a feed per source motion).
+/// G words (×10) the rewrite cannot express: G28/G30 (a stored position), the canned cycles with
+/// spindle actions (G84 tapping, G86 spindle stop, G87/G88), probing, spindle-synchronised
+/// motion, and inverse time (a feed per source motion).
 bool unsupportedG(long g10) {
-  static constexpr long kBad[] = {280, 281, 300, 301, 730, 810, 820, 830, 840, 850, 860,
-                                  870, 880, 890, 930, 382, 383, 384, 385, 330, 331, 760};
+  static constexpr long kBad[] = {
+      280, 281, 300, 301, 840, 860, 870, 880, 930, 382, 383, 384, 385, 330, 331, 760};
   return std::find(std::begin(kBad), std::end(kBad), g10) != std::end(kBad);
+}
+
+/// The drilling cycles (G number) that are expanded into G0/G1 lines and G4 dwells.
+bool cycleG(double g) {
+  return g == 73.0 || g == 81.0 || g == 82.0 || g == 83.0 || g == 85.0 || g == 89.0;
 }
 
 struct NoParams final : ParameterSource {
@@ -74,7 +80,8 @@ void checkBlock(const Block& b, const std::string& file, BlockScan& scan) {
       fail(file,
            b.line,
            fmt::format("G{} is not supported by gcode compensate (it rewrites one motion per "
-                       "line: no G28/G30, canned cycles, probing, G33/G76 or G93)",
+                       "line or expands a drilling cycle: no G28/G30, G84/G86/G87/G88, probing, "
+                       "G33/G76 or G93)",
                        static_cast<double>(g10) / 10.0));
   }
   if (!sets_offset) return;
@@ -147,7 +154,14 @@ std::string axisWords(const Axes& c,
   return s;
 }
 
-/// Collects the motions with the word frame in effect when each was made.
+/// A dwell: `seconds` after the first `after` motions of the program.
+struct Dwell {
+  std::size_t line = 0;
+  std::size_t after = 0;
+  double seconds = 0.0;
+};
+
+/// Collects the motions with the word frame in effect when each was made, and the dwells.
 class FrameSink final : public MoveSink {
  public:
   explicit FrameSink(const Interpreter& interpreter) : interpreter_(&interpreter) {}
@@ -160,22 +174,27 @@ class FrameSink final : public MoveSink {
     f.incremental = st.incremental;
     frames.push_back(f);
   }
+  void onDwell(std::size_t line, double seconds) override {
+    dwells.push_back({line, moves.size(), seconds});
+  }
   std::vector<Move> moves;
   std::vector<WordFrame> frames;
+  std::vector<Dwell> dwells;
 
  private:
   const Interpreter* interpreter_;
 };
 
 /// What rewriteLine replaces: a line's motion (G0..G3 and X..C, I J K R, P of an arc; the new
-/// words go after the N word) or the axis words of a G92/G10 L20 line (X..C only; the new words
-/// go where the first of them was).
-enum class Rewrite { kMotion, kArc, kOffset };
+/// words go after the N word), a drilling cycle (also its G word and R, Q, P, L), or the axis
+/// words of a G92/G10 L20 line (X..C only; the new words go where the first of them was).
+enum class Rewrite { kMotion, kArc, kCycle, kOffset };
 
 /// The line with the words `what` names removed and `words` inserted; comments, blanks and
 /// other words stay where they are.
 std::string rewriteLine(std::string_view line, Rewrite what, const std::string& words) {
-  const bool arc = what == Rewrite::kArc, offset = what == Rewrite::kOffset;
+  const bool arc = what == Rewrite::kArc, offset = what == Rewrite::kOffset,
+             cycle = what == Rewrite::kCycle;
   std::size_t first_drop = std::string::npos;
   std::string out;
   std::size_t insert_at = std::string::npos;
@@ -218,14 +237,14 @@ std::string rewriteLine(std::string_view line, Rewrite what, const std::string& 
     const char l = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     bool drop =
         std::string_view(offset ? "xyzabc" : "xyzabcijkr").find(l) != std::string_view::npos ||
-        (arc && l == 'p');
+        (arc && l == 'p') || (cycle && std::string_view("pql").find(l) != std::string_view::npos);
     if (l == 'g' && !offset) {
       std::size_t p = 1;
       const Expression e = Expression::parseReal(compact, p);
       if (e.isConstant()) {
         NoParams params;
         const double g = e.evaluate(params);
-        drop = g == 0.0 || g == 1.0 || g == 2.0 || g == 3.0;
+        drop = g == 0.0 || g == 1.0 || g == 2.0 || g == 3.0 || (cycle && cycleG(g));
       }
     }
     if (l == 'n') {
@@ -284,18 +303,29 @@ ProgramCompensation rewriteProgram(std::string_view text,
       moves.frames[m].incremental = false;
       moves.frames[m].machine = true;
     }
-  // Motions per line (one at most) and their interpolated points.
+  // The interpolated points of each line's motions: one motion, or the consecutive motions of a
+  // drilling cycle.
   std::map<std::size_t, std::pair<std::size_t, std::size_t>> span;  // line -> [first, last)
-  std::map<std::size_t, std::size_t> motion_of_line;
+  std::map<std::size_t, std::size_t> motions_of_line;
   std::vector<PathPoint> points;
   PathInterpolator interp(interpolation, moves.moves.empty() ? Axes{} : moves.moves.front().end);
   for (std::size_t m = 0; m < moves.moves.size(); ++m) {
     const Move& mv = moves.moves[m];
-    if (span.count(mv.line) != 0) fail(file, mv.line, "gcode compensate needs one motion per line");
-    const std::size_t first = points.size();
+    const auto it = span.find(mv.line);
+    if (it != span.end() && it->second.second != points.size())
+      fail(file, mv.line, "gcode compensate needs the motions of a line to be consecutive");
+    const std::size_t first = it == span.end() ? points.size() : it->second.first;
     interp.append(mv, static_cast<std::uint32_t>(m), points);
     span[mv.line] = {first, points.size()};
-    motion_of_line[mv.line] = m;
+    ++motions_of_line[mv.line];
+  }
+  std::map<std::size_t, std::vector<Dwell>> cycle_dwells;  // dwells of multi-motion lines
+  for (const Dwell& d : moves.dwells) {
+    const auto n = motions_of_line.find(d.line);
+    if (n == motions_of_line.end() || n->second < 2) continue;  // a G4 line: copied as it is
+    if (d.after == 0 || moves.moves[d.after - 1].line != d.line)
+      fail(file, d.line, "gcode compensate does not support G4 on a canned-cycle line");
+    cycle_dwells[d.line].push_back(d);
   }
   const std::vector<Axes> commands = map(points);
   assert(commands.size() == points.size());
@@ -351,31 +381,50 @@ ProgramCompensation rewriteProgram(std::string_view text,
     } else {
       const auto [first, last] = it->second;
       const PathPoint& p0 = points[first];
-      const WordFrame& frame = moves.frames[motion_of_line[line_no]];
+      const bool cycle = motions_of_line[line_no] > 1;
       // The previous commanded position: the interpreter's start-up position before the first.
       const auto previous = [&](std::size_t k) {
         return k == 0 ? Axes{} : r.points[k - 1].command;
       };
+      const auto gWord = [&](std::size_t k) {
+        return points[k].kind == MoveKind::kRapid ? "G0 " : "G1 ";
+      };
+      const auto words = [&](std::size_t k) {
+        return axisWords(r.points[k].command, previous(k), moves.frames[points[k].move], axes);
+      };
       const bool cr = !line.empty() && line.back() == '\r';
       if (cr) line.remove_suffix(1);
       const std::string eol = cr ? "\r\n" : "\n";
-      const char* g = p0.kind == MoveKind::kRapid ? "G0 " : "G1 ";
-      r.text += rewriteLine(line,
-                            p0.kind == MoveKind::kArc ? Rewrite::kArc : Rewrite::kMotion,
-                            g + axisWords(r.points[first].command, previous(first), frame, axes));
-      if (has_nl || last - first > 1) r.text += eol;
+      const Rewrite kind = cycle                       ? Rewrite::kCycle
+                           : p0.kind == MoveKind::kArc ? Rewrite::kArc
+                                                       : Rewrite::kMotion;
+      r.text += rewriteLine(line, kind, gWord(first) + words(first));
       ++r.motion_lines;
+      std::vector<std::string> inserted;
+      const auto dwellsAfter = [&](std::size_t k) {
+        if (!cycle || (k + 1 < last && points[k + 1].move == points[k].move)) return;
+        for (const Dwell& d : cycle_dwells[line_no])
+          if (d.after == points[k].move + 1u) {
+            std::string s = "G4 ";
+            appendCoord(s, 'P', std::llround(d.seconds * 1e9));
+            inserted.push_back(fmt::format("{} (pkm: line {} dwell)", s, line_no));
+            ++r.added_lines;
+          }
+      };
+      dwellsAfter(first);
       for (std::size_t k = first + 1; k < last; ++k) {
-        r.text += fmt::format("{}{}{} (pkm: line {} segment {}/{})",
-                              frame.machine ? "G53 " : "",
-                              g,
-                              axisWords(r.points[k].command, previous(k), frame, axes),
-                              line_no,
-                              k - first + 1,
-                              last - first);
-        if (has_nl || k + 1 < last) r.text += eol;
+        inserted.push_back(fmt::format("{}{}{} (pkm: line {} segment {}/{})",
+                                       moves.frames[points[k].move].machine ? "G53 " : "",
+                                       gWord(k),
+                                       words(k),
+                                       line_no,
+                                       k - first + 1,
+                                       last - first));
         ++r.added_lines;
+        dwellsAfter(k);
       }
+      for (const std::string& s : inserted) r.text += eol + s;
+      if (has_nl) r.text += eol;
     }
     start = nl + 1;
   }

@@ -69,6 +69,31 @@ TEST_F(GcodeCompensateCli, RefusesToOverwriteAndReportsErrors) {
   expectUsageError(pkm({"gcode", "compensate", prog}), "--machine");
 }
 
+/// The drilling example (G81..G89, G73, L repeats in G91) is expanded, and the result runs.
+TEST_F(GcodeCompensateCli, DrillingCyclesAreExpandedAndTheResultRuns) {
+  const std::string cal = write("cal.json", calibratedJson());
+  const auto r = pkm({"gcode",
+                      "compensate",
+                      "--machine",
+                      cal,
+                      std::string(PKM_SOURCE_DIR) + "/examples/gcode/drilling.ngc",
+                      "--out",
+                      path("drill.ngc")});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string out = slurp(path("drill.ngc"));
+  const std::string body = out.substr(out.find('\n'));  // line 1 is a comment that names them
+  for (const char* cycle : {"G81", "G82", "G83", "G73", "G85", "G89"})
+    EXPECT_EQ(body.find(cycle), std::string::npos) << cycle;
+  EXPECT_THAT(out, ::testing::HasSubstr("\nG4 P0.5 (pkm: line 12 dwell)\n"));
+  EXPECT_THAT(out, ::testing::HasSubstr("\nG4 P0.2 (pkm: line 16 dwell)\n"));
+  EXPECT_THAT(r.err, ::testing::HasSubstr("14 motion lines rewritten"));
+  // The output is a program the interpreter runs (exit 1: this example exceeds a stroke of the
+  // default hexapod, as the source does).
+  const auto run = pkm({"gcode", "run", "--machine", "hexapod-default", path("drill.ngc")});
+  EXPECT_EQ(run.code, 1) << run.err;
+  EXPECT_THAT(run.err + run.out, ::testing::HasSubstr("stroke violated"));
+}
+
 TEST_F(GcodeCompensateCli, HybridFrameShiftsThePkmProgramByTheX2Term) {
   const std::string frame = write("frame.txt",
                                   "# pkm-base-frame\nbase_rpy_rad = 0 0 0.003\n"

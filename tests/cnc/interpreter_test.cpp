@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <tuple>
 
 #include "pkm/core/error.hpp"
 #include "support/tolerances.hpp"
@@ -146,6 +147,24 @@ TEST(Interpreter, CannedCycleThroughTheInterpreter) {
   expectEnd(m[4], 1, 1, 10);
   expectEnd(m[5], 2, 1, 10);
   EXPECT_EQ(m[5].line, 3u);
+}
+
+TEST(Interpreter, DwellsReachTheSinkInOrderWithTheMotions) {
+  struct Recorder final : MoveSink {
+    void onMove(const Move&) override { ++moves; }
+    void onDwell(std::size_t line, double seconds) override {
+      dwells.push_back({moves, line, seconds});
+    }
+    std::size_t moves = 0;
+    std::vector<std::tuple<std::size_t, std::size_t, double>> dwells;
+  } r;
+  Interpreter interp;
+  interp.run(Program::parse("G4 P0.5\nG0 Z10\nG99 G82 X1 Y1 Z-3 R2 P1.5 F100\nM2\n", "t.ngc"), r);
+  // G4 before any motion; G82's dwell after G0, the rapids to the hole and to R and the feed.
+  ASSERT_EQ(r.dwells.size(), 2u);
+  EXPECT_EQ(r.dwells[0], std::make_tuple(std::size_t{0}, std::size_t{1}, 0.5));
+  EXPECT_EQ(r.dwells[1], std::make_tuple(std::size_t{4}, std::size_t{3}, 1.5));
+  EXPECT_EQ(r.moves, 5u);
 }
 
 TEST(Interpreter, ControlFlow) {

@@ -116,8 +116,9 @@ TEST(CompensateProgram, IdentityForEqualModels) {
 
 TEST(CompensateProgram, RejectsUnsupportedWithLine) {
   const kin::HexapodModel m = pkm::test::millingModel();
-  for (const char* text : {"G0 X0 Y0 Z200\nG81 X1 Z150 R190 F100\n",
+  for (const char* text : {"G0 X0 Y0 Z200\nG84 X1 Z150 R190 F100\n",
                            "G0 X0 Y0 Z200\nG28 X1\n",
+                           "G0 X0 Y0 Z200\nG81 G4 P1 X1 Z150 R190 F100\n",
                            "G0 X0 Y0 Z200\nG93 G1 X1 F10\n",
                            "G0 X0 Y0 Z200\nG92 X[#1]\n",
                            "G0 X0 Y0 Z200\nG10 L20 P1 X[1 + #2]\n",
@@ -129,6 +130,75 @@ TEST(CompensateProgram, RejectsUnsupportedWithLine) {
       EXPECT_NE(std::string(e.what()).find("bad.ngc:2:"), std::string::npos) << e.what();
     }
   }
+}
+
+/// Records the dwells of a program with the number of motions before each.
+struct DwellSink final : MoveSink {
+  void onMove(const Move&) override { ++moves; }
+  void onDwell(std::size_t, double seconds) override { dwells.emplace_back(moves, seconds); }
+  std::size_t moves = 0;
+  std::vector<std::pair<std::size_t, double>> dwells;
+};
+
+/// Drilling cycles (G81, G82 with a dwell, G83, G73 under G91 with L2, G85, G89 with a dwell, and
+/// a line that repeats G81) are expanded: the output reads back to the commands, has no cycle left,
+/// and dwells where the source did, at the bottom of the hole.
+TEST(CompensateProgram, DrillingCyclesAreExpanded) {
+  const kin::HexapodModel nominal = pkm::test::millingModel();
+  const kin::HexapodModel cal = calibrated(nominal);
+  const char* const program =
+      "G21 G90 G17\n"
+      "G0 X0 Y0 Z200\n"
+      "N30 G98 G81 X10 Y5 Z150 R190 F300 (first hole)\n"
+      "X20\n"
+      "G99 G82 X30 Y-5 Z155 R185 P0.5\n"
+      "G83 X0 Y-10 Z160 R190 Q10\n"
+      "G91 G73 X5 Y0 Z-20 R-5 Q8 L2\n"
+      "G90 G85 X-10 Y0 Z170 R190\n"
+      "G89 X-20 Z170 R190 P1.25\n"
+      "G80 G0 Z200\n"
+      "M2\n";
+  ProgramCompensationOptions o;
+  o.interpolation = jointSpaceInterpolation(cal, kTol);
+  o.interpolation.max_step = 5.0;  // the feeds into the holes get several segments
+  const ProgramCompensation r = compensateProgram(program, "p.ngc", nominal, cal, o);
+  EXPECT_GT(r.max_correction, 0.1);
+  HexapodJointConverter n(nominal), c(cal);
+  for (const auto& p : r.points) {
+    const kin::StrutVector qn = n.solve(p.command), qc = c.solve(p.desired);
+    EXPECT_LE((qn - qc).cwiseAbs().maxCoeff(), kJointMatch) << "line " << p.line;
+  }
+  DwellSink out;
+  Interpreter b;
+  (void)b.run(Program::parse(r.text, "out.ngc"), out);
+  MoveCollector back;
+  Interpreter b2;
+  (void)b2.run(Program::parse(r.text, "out.ngc"), back);
+  ASSERT_EQ(back.moves.size(), r.points.size()) << r.text;
+  for (std::size_t i = 0; i < back.moves.size(); ++i)
+    for (std::size_t k = 0; k < 6; ++k)
+      EXPECT_NEAR(back.moves[i].end[k], r.points[i].command[k], kTextDigits) << i << "\n" << r.text;
+  // The source's dwells, in order, after the motion that reaches the bottom of their hole.
+  DwellSink source;
+  Interpreter a;
+  (void)a.run(Program::parse(program, "p.ngc"), source);
+  ASSERT_EQ(source.dwells.size(), 2u);
+  ASSERT_EQ(out.dwells.size(), 2u) << r.text;
+  const double bottoms[] = {155.0, 170.0};
+  for (std::size_t d = 0; d < 2; ++d) {
+    EXPECT_EQ(out.dwells[d].second, source.dwells[d].second);
+    ASSERT_GT(out.dwells[d].first, 0u);
+    EXPECT_NEAR(r.points[out.dwells[d].first - 1].desired[2], bottoms[d], 1e-9);
+  }
+  // No cycle is left; N numbers, comments and the other words stay.
+  for (const char* cycle : {"G81", "G82", "G83", "G73", "G85", "G89", " R", " Q", " L2"})
+    EXPECT_EQ(r.text.find(cycle), std::string::npos) << cycle << "\n" << r.text;
+  EXPECT_NE(r.text.find("\nN30 G0 X"), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find(" G98 F300 (first hole)\n"), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find("\nG4 P0.5 (pkm: line 5 dwell)\n"), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find("\nG4 P1.25 (pkm: line 9 dwell)\n"), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find(" G80\n"), std::string::npos) << r.text;  // after the new words
+  EXPECT_EQ(r.motion_lines, 9u);
 }
 
 /// Work offsets (G54..G59.3 set by G10 L2, G92.1), tool length offsets (G43.1), inches (G20),

@@ -49,6 +49,12 @@ class MoveSink {
   virtual ~MoveSink() = default;
   /// Called once per motion, in execution order.
   virtual void onMove(const Move& move) = 0;
+  /// Called once per dwell, in execution order with the motions: a G4 block and the dwell at the
+  /// bottom of a G82/G89 cycle. `seconds` ≥ 0. The default ignores it.
+  virtual void onDwell(std::size_t line, double seconds) {
+    (void)line;
+    (void)seconds;
+  }
 };
 
 /// A sink that keeps every motion in a vector.

@@ -37,7 +37,7 @@ struct ProgramCompensation {
   std::string text;                      ///< the compensated program
   std::vector<CompensatedPoint> points;  ///< every commanded point, in order
   std::size_t motion_lines = 0;          ///< source lines whose axis words were replaced
-  std::size_t added_lines = 0;           ///< G1/G0 segment lines inserted after them
+  std::size_t added_lines = 0;           ///< G0/G1 segment and G4 dwell lines inserted after them
   std::size_t offset_lines = 0;          ///< G92 / G10 L20 lines whose axis words were shifted
   double max_correction = 0.0;           ///< largest |command − desired| in XYZ, mm
 };
@@ -49,15 +49,19 @@ struct ProgramCompensation {
 /// motion needs more than one segment, the first is written on the line itself and the others on
 /// the following inserted lines `G1 X.. Y.. Z.. A.. B.. C.. (pkm: line L segment k/n)`. The
 /// first motion of the program is taken as positioning to its end point (the interpreter's
-/// start-up position is not a machine position). The words are in the source line's frame:
+/// start-up position is not a machine position). A drilling cycle (G73, G81, G82, G83, G85, G89,
+/// and a line that repeats one) is expanded: its G word and R, Q, P, L words go too, its first
+/// segment is written on the line and the others, each with its own G0 or G1, and the cycle's
+/// dwells as `G4 P..` follow as inserted lines; the output has no cycle left, so a G80 stays
+/// harmless. The words are in the source line's frame:
 /// (machine − offset)/scale with the work, G92 and tool offsets and the unit (G20) in effect,
 /// relative to the previous command under G91, machine coordinates under G53 (repeated on the
 /// inserted lines). G92 and G10 L20 set an offset from the current position, which on the
 /// pre-distorted machine is the last command: their axis words (constants) are shifted by
 /// (command − desired)/scale of that point, so that the offset is the source program's. Not
-/// supported: G28/G30, canned cycles, G38.x, G33/G76, G93, O-words, and non-constant axis words
-/// on a G92/G10 L20 line. Throws pkm::IoError "FILE:LINE: message" for those or when the
-/// nominal FK does not converge; pkm::InvalidArgument for bad models.
+/// supported: G28/G30, G84/G86/G87/G88, G38.x, G33/G76, G93, O-words, G4 on a cycle line, and
+/// non-constant axis words on a G92/G10 L20 line. Throws pkm::IoError "FILE:LINE: message" for
+/// those or when the nominal FK does not converge; pkm::InvalidArgument for bad models.
 [[nodiscard]] ProgramCompensation compensateProgram(std::string_view text,
                                                     const std::string& file,
                                                     const kinematics::HexapodModel& nominal,
