@@ -167,7 +167,8 @@ std::vector<cnc::PathPoint> interpolate(const std::vector<cnc::Move>& moves,
   return points;
 }
 
-void runHexapod(const RunArgs& a, const std::vector<cnc::Move>& moves, JointRun& run) {
+void runHexapod(const RunArgs& a, const cnc::MoveCollector& program, JointRun& run) {
+  const std::vector<cnc::Move>& moves = program.moves;
   const io::HexapodMachine machine = io::loadHexapodMachine(a.machine);
   printNotices(machine.notices);
   auto model = std::make_shared<kinematics::HexapodModel>(machine.model);
@@ -179,7 +180,8 @@ void runHexapod(const RunArgs& a, const std::vector<cnc::Move>& moves, JointRun&
   cnc::HexapodJointConverter conv(*model);
   auto q = std::make_shared<std::vector<kinematics::StrutVector>>();
   conv.solveAll(run.points, *q);
-  run.time = cnc::estimateCycleTime(run.points, *q, run.limits);
+  run.time = cnc::estimateCycleTime(
+      run.points, *q, run.limits, cnc::dwellsOnPath(run.points, program.dwells));
   run.report = cnc::checkPath(*model, run.points, *q, run.limits);
   run.csv_header = cnc::kJointCsvHeader;
   run.csv_row = [&run, q](std::string& out, std::size_t i) {
@@ -187,7 +189,8 @@ void runHexapod(const RunArgs& a, const std::vector<cnc::Move>& moves, JointRun&
   };
 }
 
-void runExechon(const RunArgs& a, const std::vector<cnc::Move>& moves, JointRun& run) {
+void runExechon(const RunArgs& a, const cnc::MoveCollector& program, JointRun& run) {
+  const std::vector<cnc::Move>& moves = program.moves;
   const auto orientation = cnc::parseExechonOrientation(a.orientation);
   for (const cnc::Move& m : moves)
     if (m.end[4] != 0.0)
@@ -211,7 +214,8 @@ void runExechon(const RunArgs& a, const std::vector<cnc::Move>& moves, JointRun&
   conv.solveAll(run.points, *samples);
   std::vector<kinematics::StrutVector> q(samples->size());
   for (std::size_t i = 0; i < q.size(); ++i) q[i] = (*samples)[i].joints;
-  run.time = cnc::estimateCycleTime(run.points, q, limits);
+  run.time =
+      cnc::estimateCycleTime(run.points, q, limits, cnc::dwellsOnPath(run.points, program.dwells));
   run.report = cnc::checkExechonPath(*model, run.points, *samples, limits);
   run.csv_header = cnc::kExechonJointCsvHeader;
   run.csv_row = [&run, samples](std::string& out, std::size_t i) {
@@ -258,9 +262,9 @@ void runGcode(const RunArgs& a) {
   if (moves.moves.empty()) throw InvalidArgument(fmt::format("{}: no motion", a.program));
   JointRun run;
   if (exechon)
-    runExechon(a, moves.moves, run);
+    runExechon(a, moves, run);
   else
-    runHexapod(a, moves.moves, run);
+    runHexapod(a, moves, run);
   if (!a.out.empty()) writeJointCsv(a.out, run);
 
   const std::string& len = run.len;
@@ -298,7 +302,10 @@ void runGcode(const RunArgs& a) {
                    run.from_file.empty() ? std::string()
                                          : fmt::format(" ({} from the machine file)",
                                                        fmt::join(run.from_file, ", ")));
-  s += fmt::format("cycle time: {:.3f} s\n", run.time.total);
+  s += fmt::format(
+      "cycle time: {:.3f} s{}\n",
+      run.time.total,
+      run.time.dwell > 0.0 ? fmt::format(" (dwells {:.3f} s)", run.time.dwell) : std::string());
   s += fmt::format("{:<19} {:<9} {:>10} {:>14} {:>7}  {}\n",
                    "check",
                    "status",
@@ -377,6 +384,7 @@ void runGcode(const RunArgs& a) {
     j["motions"] = moves.moves.size();
     j["points"] = run.points.size();
     j["cycle_time_s"] = run.time.total;
+    j["dwell_time_s"] = run.time.dwell;
     j["ok"] = report.ok();
     j["checks"] = checks;
     std::FILE* f = std::fopen(a.report.c_str(), "wb");

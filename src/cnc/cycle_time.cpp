@@ -70,16 +70,30 @@ double trapezoidTime(double ds, double v0, double v1, double vmax, double a) {
   return (vp - v0) / a + (vp - v1) / a + (vp > 0.0 ? cruise / vp : 0.0);
 }
 
-CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
-                            const std::vector<kinematics::StrutVector>& q,
-                            const MotionLimits& limits) {
-  limits.validate();
-  return estimateCycleTime(points, q, JointRateLimits::uniform(limits));
+std::vector<PathDwell> dwellsOnPath(const std::vector<PathPoint>& points,
+                                    const std::vector<DwellEvent>& dwells) {
+  std::vector<PathDwell> r;
+  r.reserve(dwells.size());
+  std::size_t i = 0;  // dwells come in program order: one pass
+  for (const DwellEvent& d : dwells) {
+    while (i + 1 < points.size() && points[i + 1].move < d.after_moves) ++i;
+    r.push_back({i, d.seconds});
+  }
+  return r;
 }
 
 CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
                             const std::vector<kinematics::StrutVector>& q,
-                            const JointRateLimits& limits) {
+                            const MotionLimits& limits,
+                            const std::vector<PathDwell>& dwells) {
+  limits.validate();
+  return estimateCycleTime(points, q, JointRateLimits::uniform(limits), dwells);
+}
+
+CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
+                            const std::vector<kinematics::StrutVector>& q,
+                            const JointRateLimits& limits,
+                            const std::vector<PathDwell>& dwells) {
   limits.validate();
   // Rates in units of each joint's limit: |dq_j/ds|/vmax_j and |dq_j/ds|/amax_j (0 when
   // unlimited), so every joint's limit becomes 1.
@@ -91,7 +105,20 @@ CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
   CycleTime r;
   const std::size_t n = points.size();
   r.t.assign(n, 0.0);
-  if (n < 2) return r;
+  std::vector<double> wait(n, 0.0);  // dwell at each point
+  for (const PathDwell& d : dwells) {
+    PKM_CHECK(d.point < n && d.seconds >= 0.0 && std::isfinite(d.seconds),
+              "a dwell of {} s at point {} of {}",
+              d.seconds,
+              d.point,
+              n);
+    wait[d.point] += d.seconds;
+    r.dwell += d.seconds;
+  }
+  if (n < 2) {
+    r.total = r.dwell;
+    return r;
+  }
   // Per sub-segment k (from point k−1 to k): length, speed cap, acceleration cap, dq/ds.
   std::vector<double> ds(n, 0.0), vcap(n, 0.0), acap(n, kInf);
   std::vector<kinematics::StrutVector> dqds(n, kinematics::StrutVector::Zero());
@@ -115,15 +142,15 @@ CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
       const double jump = (dqds[k + 1] - dqds[k]).cwiseAbs().cwiseProduct(inv_a).maxCoeff() / mean;
       if (jump > 0.0) vk = std::min(vk, std::sqrt(1.0 / jump));
     }
-    v[k] = vk;
+    v[k] = wait[k] > 0.0 ? 0.0 : vk;  // a dwell is an exact stop
   }
   for (std::size_t k = 1; k < n; ++k)  // forward: what can be reached by accelerating
     v[k] = std::min(v[k], reach(v[k - 1], acap[k], ds[k]));
   for (std::size_t k = n - 1; k >= 1; --k)  // backward: what can still be stopped
     v[k - 1] = std::min(v[k - 1], reach(v[k], acap[k], ds[k]));
   for (std::size_t k = 1; k < n; ++k)
-    r.t[k] = r.t[k - 1] + trapezoidTime(ds[k], v[k - 1], v[k], vcap[k], acap[k]);
-  r.total = r.t.back();
+    r.t[k] = r.t[k - 1] + wait[k - 1] + trapezoidTime(ds[k], v[k - 1], v[k], vcap[k], acap[k]);
+  r.total = r.t.back() + wait[n - 1];
   return r;
 }
 

@@ -154,13 +154,6 @@ std::string axisWords(const Axes& c,
   return s;
 }
 
-/// A dwell: `seconds` after the first `after` motions of the program.
-struct Dwell {
-  std::size_t line = 0;
-  std::size_t after = 0;
-  double seconds = 0.0;
-};
-
 /// Collects the motions with the word frame in effect when each was made, and the dwells.
 class FrameSink final : public MoveSink {
  public:
@@ -179,7 +172,7 @@ class FrameSink final : public MoveSink {
   }
   std::vector<Move> moves;
   std::vector<WordFrame> frames;
-  std::vector<Dwell> dwells;
+  std::vector<DwellEvent> dwells;
 
  private:
   const Interpreter* interpreter_;
@@ -319,11 +312,11 @@ ProgramCompensation rewriteProgram(std::string_view text,
     span[mv.line] = {first, points.size()};
     ++motions_of_line[mv.line];
   }
-  std::map<std::size_t, std::vector<Dwell>> cycle_dwells;  // dwells of multi-motion lines
-  for (const Dwell& d : moves.dwells) {
+  std::map<std::size_t, std::vector<DwellEvent>> cycle_dwells;  // dwells of multi-motion lines
+  for (const DwellEvent& d : moves.dwells) {
     const auto n = motions_of_line.find(d.line);
     if (n == motions_of_line.end() || n->second < 2) continue;  // a G4 line: copied as it is
-    if (d.after == 0 || moves.moves[d.after - 1].line != d.line)
+    if (d.after_moves == 0 || moves.moves[d.after_moves - 1].line != d.line)
       fail(file, d.line, "gcode compensate does not support G4 on a canned-cycle line");
     cycle_dwells[d.line].push_back(d);
   }
@@ -403,8 +396,8 @@ ProgramCompensation rewriteProgram(std::string_view text,
       std::vector<std::string> inserted;
       const auto dwellsAfter = [&](std::size_t k) {
         if (!cycle || (k + 1 < last && points[k + 1].move == points[k].move)) return;
-        for (const Dwell& d : cycle_dwells[line_no])
-          if (d.after == points[k].move + 1u) {
+        for (const DwellEvent& d : cycle_dwells[line_no])
+          if (d.after_moves == points[k].move + 1u) {
             std::string s = "G4 ";
             appendCoord(s, 'P', std::llround(d.seconds * 1e9));
             inserted.push_back(fmt::format("{} (pkm: line {} dwell)", s, line_no));

@@ -46,6 +46,25 @@ TEST_F(GcodeRunCli, CleanProgramWritesCsvAndReport) {
   EXPECT_EQ(j["checks"]["stroke"]["violations"].get<int>(), 0);
 }
 
+TEST_F(GcodeRunCli, DwellsCountInTheCycleTime) {
+  const std::string moves = "G0 X0 Y0 Z200\nG1 X10 F600\n";
+  const std::string plain = write("a.ngc", moves + "G1 X20\nM2\n");
+  const std::string dwell = write("b.ngc", moves + "G4 P1.5\nG1 X20\nM2\n");
+  const auto a =
+      pkm({"gcode", "run", "--machine", "hexapod-default", plain, "--report", path("a.json")});
+  const auto b =
+      pkm({"gcode", "run", "--machine", "hexapod-default", dwell, "--report", path("b.json")});
+  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_THAT(b.out, ::testing::HasSubstr("(dwells 1.500 s)"));
+  const auto ja = nlohmann::json::parse(slurp(path("a.json")));
+  const auto jb = nlohmann::json::parse(slurp(path("b.json")));
+  EXPECT_EQ(ja["dwell_time_s"].get<double>(), 0.0);
+  EXPECT_EQ(jb["dwell_time_s"].get<double>(), 1.5);
+  // The wait, plus the exact stop at X10 that the plain program passes at full feed.
+  EXPECT_GE(jb["cycle_time_s"].get<double>(), ja["cycle_time_s"].get<double>() + 1.5);
+}
+
 TEST_F(GcodeRunCli, StrokeViolationExitsOneWithLine) {
   const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\n");
   const auto r = pkm({"gcode", "run", prog, "--report", path("r.json")});

@@ -118,3 +118,55 @@ TEST(CycleTime, PerJointLimits) {
 }
 
 }  // namespace
+
+namespace {
+
+/// A 100 mm G1 line along X cut into 10 points (move 0 is the start, moves 1 and 2 the halves).
+std::vector<PathPoint> tenPointLine() {
+  std::vector<PathPoint> pts(11);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    pts[i].pos = {10.0 * static_cast<double>(i), 0, 200, 0, 0, 0};
+    pts[i].kind = MoveKind::kLinear;
+    pts[i].feed = kFeed;
+    pts[i].move = i == 0 ? 0u : (i <= 5 ? 1u : 2u);
+  }
+  return pts;
+}
+
+TEST(CycleTime, DwellsStopTheMachineAndAddTheirTime) {
+  const kin::HexapodModel model = pkm::test::millingModel();
+  HexapodJointConverter conv(model);
+  const auto pts = tenPointLine();
+  std::vector<kin::StrutVector> q;
+  conv.solveAll(pts, q);
+  const MotionLimits lim;
+  // An exact stop at point 5 splits the profile into two independent rest-to-rest profiles.
+  const CycleTime with = estimateCycleTime(pts, q, lim, {{5, 2.0}});
+  const std::vector<PathPoint> a(pts.begin(), pts.begin() + 6), b(pts.begin() + 5, pts.end());
+  const std::vector<kin::StrutVector> qa(q.begin(), q.begin() + 6), qb(q.begin() + 5, q.end());
+  const double split =
+      estimateCycleTime(a, qa, lim).total + 2.0 + estimateCycleTime(b, qb, lim).total;
+  EXPECT_NEAR(with.total, split, kTolRoundTrip);
+  EXPECT_EQ(with.dwell, 2.0);
+  EXPECT_GT(with.total, estimateCycleTime(pts, q, lim).total + 2.0);  // and stopping costs time
+  // The arrival times: the dwell starts at point 5's arrival and delays every later point.
+  EXPECT_NEAR(with.t[5], estimateCycleTime(a, qa, lim).total, kTolRoundTrip);
+  EXPECT_NEAR(with.t[6] - with.t[5], 2.0 + estimateCycleTime(b, qb, lim).t[1], kTolRoundTrip);
+  // A dwell at the end adds to the total only.
+  const CycleTime end = estimateCycleTime(pts, q, lim, {{10, 1.5}});
+  EXPECT_NEAR(end.total, estimateCycleTime(pts, q, lim).total + 1.5, kTolRoundTrip);
+  EXPECT_THROW((void)estimateCycleTime(pts, q, lim, {{11, 1.0}}), pkm::InvalidArgument);
+  EXPECT_THROW((void)estimateCycleTime(pts, q, lim, {{3, -1.0}}), pkm::InvalidArgument);
+}
+
+TEST(CycleTime, DwellsOnPathFollowTheMotionCount) {
+  const auto pts = tenPointLine();
+  const std::vector<PathDwell> d = dwellsOnPath(pts, {{1, 0, 0.5}, {2, 1, 1.0}, {3, 2, 2.0}});
+  ASSERT_EQ(d.size(), 3u);
+  EXPECT_EQ(d[0].point, 0u);  // before any motion: at the start
+  EXPECT_EQ(d[1].point, 0u);  // after motion 0 (the start point itself)
+  EXPECT_EQ(d[2].point, 5u);  // after motion 1: its last point
+  EXPECT_EQ(d[2].seconds, 2.0);
+}
+
+}  // namespace

@@ -54,23 +54,39 @@ struct JointRateLimits {
 /// look-ahead guarantees). a = +inf gives ds / vmax.
 [[nodiscard]] double trapezoidTime(double ds, double v0, double v1, double vmax, double a);
 
+/// A stop of `seconds` at path point `point` (a G4 block or a cycle's dwell): the machine arrives
+/// at rest, waits and leaves from rest.
+struct PathDwell {
+  std::size_t point = 0;
+  double seconds = 0.0;
+};
+
+/// The path points where the program's dwells happen: a dwell after k motions is at the last
+/// point of motion k − 1 (points[i].move), or at point 0 before any motion. `points` must be in
+/// motion order (as PathInterpolator writes them).
+[[nodiscard]] std::vector<PathDwell> dwellsOnPath(const std::vector<PathPoint>& points,
+                                                  const std::vector<DwellEvent>& dwells);
+
 /// Result of estimateCycleTime.
 struct CycleTime {
-  std::vector<double> t;  ///< time at each point (s); t[0] = 0
-  double total = 0.0;     ///< t.back()
+  std::vector<double> t;  ///< arrival time at each point (s); t[0] = 0
+  double total = 0.0;     ///< t.back() plus a dwell at the last point
+  double dwell = 0.0;     ///< the dwells' share of total (s)
 };
 
 /// Times the path points[0..n) with strut readings q (model length unit). points[0] is the start
-/// (the speed is 0 there and at the end). Throws pkm::InvalidArgument when sizes differ or the
-/// limits are invalid.
+/// (the speed is 0 there, at the end and at each dwell). Throws pkm::InvalidArgument when sizes
+/// differ, the limits are invalid or a dwell is negative or beyond the last point.
 [[nodiscard]] CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
                                           const std::vector<kinematics::StrutVector>& q,
-                                          const MotionLimits& limits);
+                                          const MotionLimits& limits,
+                                          const std::vector<PathDwell>& dwells = {});
 
 /// As above with per-joint limits: joint j's rate is measured against its own limits (each
 /// joint's |dq_j/ds| divided by its limit), so joints of different units share one path speed.
 [[nodiscard]] CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
                                           const std::vector<kinematics::StrutVector>& q,
-                                          const JointRateLimits& limits);
+                                          const JointRateLimits& limits,
+                                          const std::vector<PathDwell>& dwells = {});
 
 }  // namespace pkm::cnc

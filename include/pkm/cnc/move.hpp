@@ -57,11 +57,22 @@ class MoveSink {
   }
 };
 
-/// A sink that keeps every motion in a vector.
+/// A dwell of a program: `seconds` (≥ 0) after the first `after_moves` motions.
+struct DwellEvent {
+  std::size_t line = 0;         ///< 1-based source line (the G4 block or the cycle)
+  std::size_t after_moves = 0;  ///< motions made before it
+  double seconds = 0.0;
+};
+
+/// A sink that keeps every motion and dwell in a vector.
 class MoveCollector final : public MoveSink {
  public:
   void onMove(const Move& move) override { moves.push_back(move); }
-  std::vector<Move> moves;  ///< the motions received, in order
+  void onDwell(std::size_t line, double seconds) override {
+    dwells.push_back({line, moves.size(), seconds});
+  }
+  std::vector<Move> moves;         ///< the motions received, in order
+  std::vector<DwellEvent> dwells;  ///< the dwells received, in order
 };
 
 /// Header of the moves CSV: `line,kind,x,y,z,a,b,c,cx,cy,cz,turns,plane,feed`.
