@@ -11,27 +11,20 @@
 #include "pkm/core/units.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/simulation/hexapod_workspace.hpp"
+#include "plan_poses.hpp"
 
 namespace pkm::cli {
 namespace {
 
 namespace cal = pkm::calibration;
 
-struct PlanArgs {
-  MachineOption machine;
-  int count = 30;
-  std::string index = "O1";
-  std::string measurement = "pose";
-  int candidates = 1000;
-  std::uint64_t seed = 1;
-  double reach = 0.0;
-  double tilt_deg = 10.0;
-  double feed = 1000.0;
-  std::string gcode;
-  bool force = false;
-};
-
 void runPlan(const PlanArgs& a) {
+  if (machineTypeOf(a.machine.spec) == "exechon") {
+    runExechonPlan(a);
+    return;
+  }
+  if (!a.target_offset.empty())
+    throw InvalidArgument("--target-offset applies to Exechon machines only");
   const io::HexapodMachine machine = a.machine.load();
   const kinematics::HexapodModel& model = machine.model;
   PKM_CHECK(a.candidates >= a.count,
@@ -63,7 +56,7 @@ void runPlan(const PlanArgs& a) {
   options.count = a.count;
   options.index = cal::parseObservabilityIndex(a.index);
   options.measurement = a.measurement == "point" ? cal::PlannedMeasurement::kPoint
-                                                 : cal::PlannedMeasurement::kFullPose;
+                                                 : cal::PlannedMeasurement::kFullPose;  // "" too
   const cal::PosePlan plan = cal::planHexapodPoses(model, pool, options);
 
   Output out;
@@ -139,19 +132,32 @@ void runPlan(const PlanArgs& a) {
 void addPlanPosesCommand(CLI::App& app) {
   auto a = std::make_shared<PlanArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "plan-poses", "choose hexapod calibration poses maximising an observability index");
+      "plan-poses",
+      "choose calibration poses (hexapod or Exechon) maximising an observability index");
   a->machine.add(*cmd);
   cmd->add_option("--count", a->count, "number of poses")->required()->check(CLI::Range(1, 100000));
   cmd->add_option("--index", a->index, "observability index O1..O5")
       ->check(CLI::IsMember({"O1", "O2", "O3", "O4", "O5", "o1", "o2", "o3", "o4", "o5"}));
-  cmd->add_option("--measurement", a->measurement, "pose (6-DOF) or point (SMR)")
+  cmd->add_option("--measurement",
+                  a->measurement,
+                  "pose (6-DOF; the hexapod default) or point (SMR; the only one for an Exechon)")
       ->check(CLI::IsMember({"pose", "point"}));
   cmd->add_option("--candidates", a->candidates, "random workspace candidates to choose from")
       ->check(CLI::Range(1, 1000000));
   cmd->add_option("--seed", a->seed, "random seed of the candidates");
-  cmd->add_option(
-      "--reach", a->reach, "half-range of x, y, z about home (default 0.4 x platform radius)");
-  cmd->add_option("--tilt", a->tilt_deg, "half-range of a, b, c about home, degrees");
+  cmd->add_option("--reach",
+                  a->reach,
+                  "half-range of x, y, z about home (default 0.4 x the platform radius; Exechon: "
+                  "0.3 x the largest base dimension)");
+  cmd->add_option("--tilt",
+                  a->tilt_deg,
+                  "half-range of a, b, c about home, degrees (Exechon: the largest tilt of the "
+                  "tool from its home direction)");
+  cmd->add_option("--target-offset",
+                  a->target_offset,
+                  "Exechon: the tracker target in the tool frame x,y,z (default 0,0,0)")
+      ->delimiter(',')
+      ->expected(3);
   cmd->add_option("--feed", a->feed, "G-code feed rate, machine units per minute");
   cmd->add_option("--gcode", a->gcode, "also write the plan as a G-code program");
   cmd->add_flag("--force", a->force, "overwrite an existing G-code file");

@@ -120,6 +120,29 @@ std::optional<Eigen::Vector3d> exechonTarget(const ExechonModel& model,
   return Eigen::Vector3d(work.world_p_tool + work.world_R_tool * target_offset);
 }
 
+std::optional<ExechonTargetJacobian> exechonTargetJacobian(const ExechonModel& model,
+                                                           const kinematics::ExechonJoints& joints,
+                                                           const Eigen::Vector3d& target_offset,
+                                                           const ExechonConfiguration& seed,
+                                                           const kinematics::FkOptions& fk) {
+  const Eigen::Isometry3d reference = model.world_T_zoppi;
+  const ExechonParameterVector theta = exechonParameters(model, reference);
+  ExechonTargetJacobian J;
+  for (int k = 0; k < kExechonParameters; ++k) {
+    const double h = exechonParameterIsLength(k) ? kLengthStep : kAngleStep;
+    ExechonParameterVector plus = theta, minus = theta;
+    plus(k) += h;
+    minus(k) -= h;
+    const auto a = exechonTarget(
+        withExechonParameters(model, plus, reference), joints, target_offset, seed, fk);
+    const auto b = exechonTarget(
+        withExechonParameters(model, minus, reference), joints, target_offset, seed, fk);
+    if (!a || !b) return std::nullopt;
+    J.col(k) = (*a - *b) / (2.0 * h);
+  }
+  return J;
+}
+
 std::optional<double> exechonTargetUncertainty(const ExechonModel& estimated,
                                                const Eigen::MatrixXd& covariance,
                                                const kinematics::ExechonJoints& joints,
@@ -129,23 +152,10 @@ std::optional<double> exechonTargetUncertainty(const ExechonModel& estimated,
   PKM_CHECK(covariance.rows() >= kExechonParameters && covariance.cols() >= kExechonParameters,
             "calibration: the covariance must be at least {0} x {0}",
             kExechonParameters);
-  const Eigen::Isometry3d reference = estimated.world_T_zoppi;
-  const ExechonParameterVector theta = exechonParameters(estimated, reference);
-  Eigen::Matrix<double, 3, kExechonParameters> J;
-  for (int k = 0; k < kExechonParameters; ++k) {
-    const double h = exechonParameterIsLength(k) ? kLengthStep : kAngleStep;
-    ExechonParameterVector plus = theta, minus = theta;
-    plus(k) += h;
-    minus(k) -= h;
-    const auto a = exechonTarget(
-        withExechonParameters(estimated, plus, reference), joints, target_offset, seed, fk);
-    const auto b = exechonTarget(
-        withExechonParameters(estimated, minus, reference), joints, target_offset, seed, fk);
-    if (!a || !b) return std::nullopt;
-    J.col(k) = (*a - *b) / (2.0 * h);
-  }
+  const auto J = exechonTargetJacobian(estimated, joints, target_offset, seed, fk);
+  if (!J) return std::nullopt;
   const Eigen::Matrix3d C =
-      J * covariance.topLeftCorner<kExechonParameters, kExechonParameters>() * J.transpose();
+      *J * covariance.topLeftCorner<kExechonParameters, kExechonParameters>() * J->transpose();
   return std::sqrt(std::max(0.0, C.trace()));
 }
 

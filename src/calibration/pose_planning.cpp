@@ -104,8 +104,30 @@ PosePlan planHexapodPoses(const kinematics::HexapodModel& model,
   std::vector<int> free;
   for (int k = 0; k < kHexapodParameters; ++k)
     if (options.free[static_cast<std::size_t>(k)]) free.push_back(k);
-  std::vector<Block> blocks = candidateBlocks(model, candidates, options, free);
-  const auto n = static_cast<Eigen::Index>(free.size());
+  return planFromJacobians(candidateBlocks(model, candidates, options, free),
+                           options.count,
+                           options.index,
+                           options.exchange_passes);
+}
+
+PosePlan planFromJacobians(std::vector<Eigen::MatrixXd> blocks,
+                           int count,
+                           ObservabilityIndex index,
+                           int exchange_passes) {
+  PKM_CHECK(count >= 1 && exchange_passes >= 0,
+            "pose planning: count must be >= 1 and exchange passes >= 0 (got {}, {})",
+            count,
+            exchange_passes);
+  PKM_CHECK(blocks.size() >= static_cast<std::size_t>(count),
+            "pose planning: {} candidates for {} poses",
+            blocks.size(),
+            count);
+  const Eigen::Index n = blocks.front().cols();
+  for (const Block& b : blocks)
+    PKM_CHECK(b.cols() == n && b.rows() == blocks.front().rows() && b.allFinite(),
+              "pose planning: every candidate needs finite rows of the same shape");
+  PKM_CHECK(n >= 1, "pose planning: no parameter is free");
+
   // Column scaling over all candidates, so the indices do not depend on units.
   Eigen::VectorXd norm2 = Eigen::VectorXd::Zero(n);
   for (const Block& b : blocks) norm2 += b.colwise().squaredNorm().transpose();
@@ -118,21 +140,21 @@ PosePlan planHexapodPoses(const kinematics::HexapodModel& model,
     info.push_back(b.transpose() * b);
   }
   const Eigen::Index rows_per = blocks.front().rows();
-  const Eigen::Index rows = rows_per * options.count;
+  const Eigen::Index rows = rows_per * count;
   // Greedy phase on a slightly regularised information matrix (the first poses cannot be full
   // rank).
   const double ridge = 1e-9;
   Eigen::MatrixXd M = ridge * Eigen::MatrixXd::Identity(n, n);
   std::vector<char> used(blocks.size(), 0);
   PosePlan plan;
-  for (int k = 0; k < options.count; ++k) {
+  for (int k = 0; k < count; ++k) {
     int best = -1;
     double best_value = -1.0;
-    if (options.index == ObservabilityIndex::kO1) {
+    if (index == ObservabilityIndex::kO1) {
       best = static_cast<int>(shortlist(M, blocks, used, true).front());
     } else {
       for (const std::size_t c : shortlist(M, blocks, used, false)) {
-        const double v = indexOf(M + info[c], options.index, rows);
+        const double v = indexOf(M + info[c], index, rows);
         if (v > best_value) best_value = v, best = static_cast<int>(c);
       }
     }
@@ -141,15 +163,15 @@ PosePlan planHexapodPoses(const kinematics::HexapodModel& model,
     M += info[static_cast<std::size_t>(best)];
   }
   // Exchange passes: swap a chosen pose for an unused candidate when the index grows.
-  double current = indexOf(M, options.index, rows);
-  for (int pass = 0; pass < options.exchange_passes; ++pass) {
+  double current = indexOf(M, index, rows);
+  for (int pass = 0; pass < exchange_passes; ++pass) {
     bool improved = false;
     for (int& chosen : plan.chosen) {
       const Eigen::MatrixXd without = M - info[static_cast<std::size_t>(chosen)];
       int best = -1;
       double best_value = current;
       for (const std::size_t c : shortlist(without, blocks, used, false)) {
-        const double v = indexOf(without + info[c], options.index, rows);
+        const double v = indexOf(without + info[c], index, rows);
         if (v > best_value * (1.0 + 1e-12)) best_value = v, best = static_cast<int>(c);
       }
       if (best < 0) continue;
@@ -165,7 +187,7 @@ PosePlan planHexapodPoses(const kinematics::HexapodModel& model,
   }
   M -= ridge * Eigen::MatrixXd::Identity(n, n);
   const Eigen::VectorXd s = singularValues(M);
-  plan.index_value = observabilityIndex(options.index, s, rows);
+  plan.index_value = observabilityIndex(index, s, rows);
   for (const ObservabilityIndex i : {ObservabilityIndex::kO1,
                                      ObservabilityIndex::kO2,
                                      ObservabilityIndex::kO3,
@@ -184,9 +206,9 @@ PosePlan planHexapodPoses(const kinematics::HexapodModel& model,
   for (int d = 0; d < kBaselineDraws; ++d) {
     std::shuffle(order.begin(), order.end(), rng);
     Eigen::MatrixXd R = Eigen::MatrixXd::Zero(n, n);
-    for (int k = 0; k < options.count; ++k)
+    for (int k = 0; k < count; ++k)
       R += info[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])];
-    sum += indexOf(R, options.index, rows);
+    sum += indexOf(R, index, rows);
   }
   plan.random_baseline = sum / kBaselineDraws;
   return plan;

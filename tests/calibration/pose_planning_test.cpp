@@ -85,3 +85,26 @@ TEST(PosePlanning, RejectsBadOptions) {
 
 }  // namespace
 }  // namespace pkm::calibration
+
+namespace pkm::calibration {
+namespace {
+
+/// The generic planner on a hand-made problem: 40 candidates see only the first unknown, one
+/// sees only the second; two poses must include that one (else the information is singular).
+TEST(PlanFromJacobians, FindsTheOnlyCandidateThatSeesAParameter) {
+  std::vector<Eigen::MatrixXd> blocks;
+  for (int i = 0; i < 40; ++i)
+    blocks.push_back((Eigen::MatrixXd(1, 2) << 1.0 + 0.01 * i, 0.0).finished());
+  blocks.push_back((Eigen::MatrixXd(1, 2) << 0.0, 0.5).finished());
+  for (const ObservabilityIndex index : {ObservabilityIndex::kO1, ObservabilityIndex::kO3}) {
+    const PosePlan plan = planFromJacobians(blocks, 2, index, 1);
+    EXPECT_NE(std::find(plan.chosen.begin(), plan.chosen.end(), 40), plan.chosen.end());
+    EXPECT_EQ(plan.rank, 2);
+  }
+  EXPECT_THROW((void)planFromJacobians(blocks, 42, ObservabilityIndex::kO1, 0), InvalidArgument);
+  blocks.push_back(Eigen::MatrixXd::Ones(2, 2));  // another shape
+  EXPECT_THROW((void)planFromJacobians(blocks, 2, ObservabilityIndex::kO1, 0), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace pkm::calibration

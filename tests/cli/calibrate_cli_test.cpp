@@ -297,5 +297,49 @@ TEST_F(CliTest, PlanPosesWritesAPlanAndAProgram) {
       "--candidates");
 }
 
+/// An Exechon plan: tracker points (tool point and direction) that identify all 26 parameters,
+/// a program in wrist-axes form that `gcode run` passes, and the CSV `exechon ik` reads.
+TEST_F(CliTest, PlanPosesForAnExechon) {
+  const std::vector<std::string> args{"plan-poses",
+                                      "--machine",
+                                      "mxt700s-like",
+                                      "--count",
+                                      "30",
+                                      "--candidates",
+                                      "300",
+                                      "--tilt",
+                                      "30",
+                                      "--target-offset",
+                                      "40,0,0"};
+  std::vector<std::string> with_gcode = args;
+  with_gcode.insert(with_gcode.end(), {"--gcode", path("plan.ngc")});
+  const CliRun r = pkm(with_gcode);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto lines = splitLines(r.out);
+  ASSERT_EQ(lines.size(), 31u);
+  EXPECT_EQ(lines[0], "pose,x,y,z,i,j,k");
+  EXPECT_EQ(splitFields(lines[30]).size(), 7u);
+  EXPECT_THAT(r.err, HasSubstr("rank 26 of 26"));
+  const std::string program = slurp(path("plan.ngc"));
+  EXPECT_THAT(program, HasSubstr("--orientation axes"));
+  EXPECT_EQ(splitLines(program).size(), 3u + 1u + 2u * 30u + 2u);
+  const CliRun run =
+      pkm({"gcode", "run", "--machine", "mxt700s-like", "--orientation", "axes", path("plan.ngc")});
+  EXPECT_EQ(run.code, 0) << run.out << run.err;
+  // The plan's points are tool poses the IK solves (the CSV minus its pose column).
+  std::string poses = "x,y,z,i,j,k\n";
+  for (std::size_t k = 1; k < lines.size(); ++k)
+    poses += lines[k].substr(lines[k].find(',') + 1) + "\n";
+  const CliRun ik =
+      pkm({"exechon", "ik", "--machine", "mxt700s-like", "--poses", write("p.csv", poses)});
+  EXPECT_EQ(ik.code, 0) << ik.err;
+  EXPECT_EQ(pkm(args).out, r.out);  // deterministic
+  std::vector<std::string> pose = args;
+  pose.insert(pose.end(), {"--measurement", "pose"});
+  expectUsageError(pkm(pose), "tracker points");
+  expectUsageError(pkm({"plan-poses", "--count", "3", "--target-offset", "1,2,3"}),
+                   "Exechon machines only");
+}
+
 }  // namespace
 }  // namespace pkm::test

@@ -99,6 +99,18 @@ struct ExechonCalibrationSummary {
     const kinematics::ExechonConfiguration& seed,
     const kinematics::FkOptions& fk = {});
 
+/// ∂p/∂θ of the tool-frame target p at `joints` with respect to the 26 parameters (central
+/// differences through the tool FK seeded with `seed`: 1e-3 length unit, 1e-6 rad; the base
+/// placement relative to model.world_T_zoppi). The rows of one point observation in the
+/// identification Jacobian. std::nullopt when an FK does not converge.
+using ExechonTargetJacobian = Eigen::Matrix<double, 3, kExechonParameters>;
+[[nodiscard]] std::optional<ExechonTargetJacobian> exechonTargetJacobian(
+    const kinematics::ExechonModel& model,
+    const kinematics::ExechonJoints& joints,
+    const Eigen::Vector3d& target_offset,
+    const kinematics::ExechonConfiguration& seed,
+    const kinematics::FkOptions& fk = {});
+
 /// The linearised uncertainty of the target position at `joints` left by the calibration:
 /// √trace(J·Σ·Jᵀ) with J = ∂p/∂θ (central differences through the tool FK) and Σ the 26 × 26
 /// parameter block of ExechonCalibrationSummary::covariance (model length unit). nullopt when the

@@ -6,6 +6,7 @@
 /// index exactly on the best 24 (on all of them for O1, which the gain orders exactly).
 #pragma once
 
+#include <Eigen/Core>
 #include <vector>
 
 #include "pkm/calibration/hexapod_parameters.hpp"
@@ -52,5 +53,15 @@ struct PosePlan {
 [[nodiscard]] PosePlan planHexapodPoses(const kinematics::HexapodModel& model,
                                         const std::vector<kinematics::PoseRpy>& candidates,
                                         const PosePlanOptions& options);
+
+/// The planner of planHexapodPoses for any machine: `blocks` are the identification Jacobian rows
+/// of each candidate (rows of one measurement × the free unknowns; all of one shape and finite).
+/// Chooses `count` of them maximising `index`, with `exchange_passes` exchange passes; the columns
+/// are scaled by their norms over all candidates. Throws pkm::InvalidArgument for fewer blocks
+/// than count, count < 1, exchange_passes < 0, no column, or blocks of different shapes.
+[[nodiscard]] PosePlan planFromJacobians(std::vector<Eigen::MatrixXd> blocks,
+                                         int count,
+                                         ObservabilityIndex index,
+                                         int exchange_passes);
 
 }  // namespace pkm::calibration
