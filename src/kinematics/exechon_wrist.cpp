@@ -111,7 +111,12 @@ ExechonIkStatus solveTool(const ExechonModel& model,
       previous == nullptr ? tripodInverseKinematics(model, data, zoppi_p_S)
                           : tripodInverseKinematicsNearest(model, data, zoppi_p_S, previous->e);
   if (status != ExechonIkStatus::kOk) return status;
-  const Eigen::Matrix3d W = wristFrame(model.wrist);
+  if (data.wrist_axes_of_frame[0] != model.wrist.c_axis ||
+      data.wrist_axes_of_frame[1] != model.wrist.a_axis) {
+    data.wrist_frame = wristFrame(model.wrist);
+    data.wrist_axes_of_frame = {model.wrist.c_axis, model.wrist.a_axis};
+  }
+  const Eigen::Matrix3d& W = data.wrist_frame;
   const Eigen::Vector3d v =
       (W.transpose() * (data.world_T_platform.linear().transpose() * u)).normalized();
   const ExechonConfiguration& near = previous == nullptr ? model.home : *previous;

@@ -178,6 +178,23 @@ TEST(ExechonLegB, JacobiansMatchCentralDifferences) {
   }
 }
 
+TEST(ExechonLegB, LargeOffsetsStillCloseAndRoundTrip) {
+  // Offsets of 5 % of the machine (40 mm) are far beyond manufacturing errors: the Newton solves
+  // from Zoppi's ideal solution still converge.
+  const ExechonModel m = offsetModel(40.0, -30.0);
+  ExechonData data(m), ik(m), fk(m);
+  std::mt19937 rng(test::kSeed + 4);
+  for (int k = 0; k < 20; ++k) {
+    evaluateTripod(m, data, randomE(rng, m), 1, 1);
+    ASSERT_TRUE(data.lengths.allFinite()) << k;
+    expectLegBClosed(m, data);
+    ASSERT_EQ(tripodInverseKinematics(m, ik, data.zoppi_p_S, data.branch), ExechonIkStatus::kOk);
+    EXPECT_LT((ik.lengths - data.lengths).norm(), test::kTolRoundTrip) << k;
+    ASSERT_EQ(tripodForwardKinematics(m, fk, data.readings, m.home.e).status, FkStatus::kOk) << k;
+    EXPECT_LT((fk.zoppi_p_S - data.zoppi_p_S).norm(), test::kTolRoundTrip) << k;
+  }
+}
+
 TEST(ExechonLegB, ModelRejectsNonFiniteOffsets) {
   ExechonModel m = offsetModel();
   EXPECT_NO_THROW(m.validate());

@@ -77,6 +77,24 @@ TEST(ExechonWrist, IkFkRoundTrips) {
   }
 }
 
+TEST(ExechonWrist, ReusedDataFollowsAChangedWrist) {
+  // ExechonData caches the wrist frame: a model with other wrist axes must not reuse it.
+  ExechonModel m = test::machineModel();
+  ExechonModel tilted = m;
+  tilted.wrist.c_axis = Eigen::Vector3d(0.1, 0.0, 1.0).normalized();
+  tilted.wrist.a_axis = Eigen::Vector3d(1.0, 0.0, -0.1).normalized();
+  ExechonData data(m), truth(tilted);
+  std::mt19937 rng(test::kSeed + 7);
+  for (const ExechonModel* model : {&m, &tilted, &m}) {
+    const ExechonConfiguration config = randomConfiguration(rng, *model);
+    evaluateConfiguration(*model, truth, config);
+    ASSERT_EQ(toolInverseKinematics(*model, data, toolPoseOf(truth), config), ExechonIkStatus::kOk);
+    EXPECT_NEAR(data.c, config.c, test::kTolRoundTrip);
+    EXPECT_NEAR(data.a, config.a, test::kTolRoundTrip);
+    EXPECT_LT((data.world_R_tool - truth.world_R_tool).norm(), test::kTolRoundTrip);
+  }
+}
+
 TEST(ExechonWrist, OtherWristSolutionWhenPreviousIsThere) {
   const ExechonModel m = test::machineModel();
   ExechonData truth(m), data(m);

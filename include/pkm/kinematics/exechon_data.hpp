@@ -60,6 +60,11 @@ struct ExechonData {
   /// solve near the previous solution need not recompute them (a cache; not part of the result).
   std::array<double, 4> e_sin_cos{0.0, 1.0, 0.0, 1.0};
   Eigen::Vector3d e_of_sin_cos = Eigen::Vector3d::Zero();  ///< the e that e_sin_cos belong to
+  /// wristFrame(wrist) of the wrist axes `wrist_axes_of_frame` (c_axis, a_axis): a cache of the
+  /// tool IK, recomputed when the model's axes differ.
+  Eigen::Matrix3d wrist_frame = Eigen::Matrix3d::Zero();
+  std::array<Eigen::Vector3d, 2> wrist_axes_of_frame{Eigen::Vector3d::Zero(),
+                                                     Eigen::Vector3d::Zero()};
 
   // ---- Jacobians (filled by computeTripodJacobian) ----
   Eigen::Matrix3d J_q_e = Eigen::Matrix3d::Zero();  ///< d(lengths)/d(alpha, beta, h)
