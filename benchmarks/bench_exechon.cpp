@@ -1,8 +1,10 @@
 // Google Benchmark: Exechon tripod IK (closed form from S), full tool IK (tool pose -> legs + C, A
 // by continuity), tripod FK warm start (one servo step on a smooth 1 kHz path) and cold start (from
-// home).
+// home). Argument 0: Zoppi's closed form; 1: leg B's base-joint offsets (l12B 0.7, l23B -0.45 mm,
+// solved numerically).
 #include <benchmark/benchmark.h>
 
+#include <cstdint>
 #include <numbers>
 #include <vector>
 
@@ -18,11 +20,19 @@ using namespace pkm::kinematics;
 /// A smooth path of 10000 configurations around home, with its wrist points, tool poses and joints.
 struct PathFixture {
   ExechonModel model = pkm::test::machineModel();
+  explicit PathFixture(bool offsets)
+      : PathFixture(offsets ? withOffsets() : pkm::test::machineModel()) {}
+  static ExechonModel withOffsets() {
+    ExechonModel m = pkm::test::machineModel();
+    m.tripod.l12B = 0.7;
+    m.tripod.l23B = -0.45;
+    return m;
+  }
   std::vector<ExechonConfiguration> configs;
   std::vector<Eigen::Vector3d> zoppi_S;
   std::vector<ExechonToolPose> tools;
   std::vector<ExechonLegVector> readings;
-  PathFixture() {
+  explicit PathFixture(const ExechonModel& m) : model(m) {
     ExechonData data(model);
     const int n = 10000;
     for (int k = 0; k < n; ++k) {
@@ -40,13 +50,14 @@ struct PathFixture {
   }
 };
 
-const PathFixture& fixture() {
-  static const PathFixture f;
-  return f;
+const PathFixture& fixture(std::int64_t offsets = 0) {
+  static const PathFixture zoppi(false), legb(true);
+  return offsets != 0 ? legb : zoppi;
 }
 
 void BM_ExechonTripodIk(benchmark::State& state) {
-  const auto& f = fixture();
+  const auto& f = fixture(state.range(0));
+  state.SetLabel(state.range(0) != 0 ? "legB-offsets" : "zoppi");
   ExechonData data(f.model);
   std::size_t k = 0;
   for (auto _ : state) {
@@ -55,10 +66,11 @@ void BM_ExechonTripodIk(benchmark::State& state) {
     k = (k + 1) % f.zoppi_S.size();
   }
 }
-BENCHMARK(BM_ExechonTripodIk);
+BENCHMARK(BM_ExechonTripodIk)->Arg(0)->Arg(1);
 
 void BM_ExechonToolIk(benchmark::State& state) {
-  const auto& f = fixture();
+  const auto& f = fixture(state.range(0));
+  state.SetLabel(state.range(0) != 0 ? "legB-offsets" : "zoppi");
   ExechonData data(f.model);
   ExechonConfiguration previous = f.configs.back();
   std::size_t k = 0;
@@ -68,7 +80,7 @@ void BM_ExechonToolIk(benchmark::State& state) {
     k = (k + 1) % f.tools.size();
   }
 }
-BENCHMARK(BM_ExechonToolIk);
+BENCHMARK(BM_ExechonToolIk)->Arg(0)->Arg(1);
 
 void BM_ExechonTripodIkWithJacobian(benchmark::State& state) {
   const auto& f = fixture();
@@ -83,7 +95,8 @@ void BM_ExechonTripodIkWithJacobian(benchmark::State& state) {
 BENCHMARK(BM_ExechonTripodIkWithJacobian);
 
 void BM_ExechonTripodFkWarm(benchmark::State& state) {
-  const auto& f = fixture();
+  const auto& f = fixture(state.range(0));
+  state.SetLabel(state.range(0) != 0 ? "legB-offsets" : "zoppi");
   ExechonData data(f.model);
   Eigen::Vector3d seed = f.configs.back().e;
   std::size_t k = 0;
@@ -94,7 +107,7 @@ void BM_ExechonTripodFkWarm(benchmark::State& state) {
     k = (k + 1) % f.readings.size();
   }
 }
-BENCHMARK(BM_ExechonTripodFkWarm);
+BENCHMARK(BM_ExechonTripodFkWarm)->Arg(0)->Arg(1);
 
 void BM_ExechonTripodFkCold(benchmark::State& state) {
   const auto& f = fixture();
