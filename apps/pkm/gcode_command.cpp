@@ -16,6 +16,7 @@ namespace pkm::cli {
 
 void addGcodeRunCommand(CLI::App& gcode);         // gcode_run.cpp
 void addGcodeCompensateCommand(CLI::App& gcode);  // gcode_compensate.cpp
+void addGcodeFlattenCommand(CLI::App& gcode);     // gcode_flatten.cpp
 
 namespace {
 
@@ -126,6 +127,7 @@ void addGcodeCommand(CLI::App& app) {
   m->callback([a] { runMoves(*a); });
   addGcodeRunCommand(*g);
   addGcodeCompensateCommand(*g);
+  addGcodeFlattenCommand(*g);
 }
 
 const CommandRegistration kRegisterGcode{60, &addGcodeCommand};

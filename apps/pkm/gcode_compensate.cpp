@@ -68,6 +68,15 @@ compensation::HybridSquarenessCompensation readBaseFrame(const std::string& path
   return c;
 }
 
+/// "; O-words: flattened ..." when the program had to be flattened first.
+std::string flattenedNote(const cnc::ProgramCompensation& r) {
+  if (r.flattened_blocks == 0) return "";
+  return fmt::format(
+      "; the program has O-words: its {} executed blocks were flattened first (pkm gcode "
+      "flatten)",
+      r.flattened_blocks);
+}
+
 void writeProgram(const CompensateArgs& a, const std::string& text) {
   if (a.out.empty()) {
     std::fwrite(text.data(), 1, text.size(), stdout);
@@ -96,14 +105,15 @@ void runHybrid(const CompensateArgs& a) {
              "pkm: note: hybrid squareness correction at X2 = {} mm ({}): {} motion lines "
              "rewritten, {} lines added (segments, dwells), {} G92/G10 L20 lines shifted, largest "
              "correction "
-             "{:.4g} mm\n",
+             "{:.4g} mm{}\n",
              *a.x2,
              a.frame_not_in_controller ? "base frame and X2 term"
                                        : "X2 term; base frame in the controller",
              r.motion_lines,
              r.added_lines,
              r.offset_lines,
-             r.max_correction);
+             r.max_correction,
+             flattenedNote(r));
 }
 
 /// Suffix `pkm calibrate hexapod` and `pkm calibrate exechon` append to the nominal machine's
@@ -142,14 +152,15 @@ void printNote(const std::string& what,
   fmt::print(
       stderr,
       "pkm: note: {}: {} motion lines rewritten, {} lines added (segments, dwells), {} G92/G10 L20 "
-      "lines shifted (tolerance {} mm, max step {:.4g} mm), largest correction {:.4g} mm\n",
+      "lines shifted (tolerance {} mm, max step {:.4g} mm), largest correction {:.4g} mm{}\n",
       what,
       r.motion_lines,
       r.added_lines,
       r.offset_lines,
       tolerance,
       max_step,
-      r.max_correction);
+      r.max_correction,
+      flattenedNote(r));
 }
 
 void runExechon(const CompensateArgs& a) {

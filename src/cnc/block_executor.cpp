@@ -47,11 +47,13 @@ void setOnceG(int& slot, int code) {
 
 }  // namespace
 
-void Interpreter::Impl::resolve(const Block& block, ResolvedBlock& rb) {
+void Interpreter::Impl::resolve(const Block& block, ResolvedBlock& rb, MoveSink& sink) {
   rb = ResolvedBlock{};
   rb.line = block.line;
+  if (report_blocks) evaluated.clear();
   for (const Word& w : block.words) {
     const double v = w.value.evaluate(*this);
+    if (report_blocks) evaluated.push_back({w.letter, v});
     if (w.letter == 'g' || w.letter == 'm') {
       if (w.letter == 'g') {
         const double t = v * 10.0;
@@ -73,6 +75,7 @@ void Interpreter::Impl::resolve(const Block& block, ResolvedBlock& rb) {
     rb.value[i] = v;
     rb.has[i] = true;
   }
+  if (report_blocks) sink.onBlock(block, block_index, evaluated);
   // Parameter settings take effect after every value on the line has been read.
   values.clear();
   for (const Assignment& a : block.assignments) values.push_back(a.value.evaluate(*this));
@@ -101,7 +104,12 @@ BlockCodes Interpreter::Impl::classify(const ResolvedBlock& rb) const {
       case 820:
       case 830:
       case 730:
+      case 740:
+      case 840:
       case 850:
+      case 860:
+      case 870:
+      case 880:
       case 890:
         // rs274 accepts G80 together with another motion code, which wins (checked with rs274:
         // "G80 G0 X1" and "G0 G80 X1" both traverse).
@@ -227,17 +235,19 @@ void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c)
                                        "(motion mode is G80)");
   if (c.non_modal == 920 && !axis) throw GcodeError("G92 needs at least one axis word");
   if ((rb.hasWord('i') || rb.hasWord('j') || rb.hasWord('k')) &&
-      !(arc && c.non_modal != 100 && axis))
-    throw GcodeError("I, J or K word with no G2 or G3 to use it");
+      !(arc && c.non_modal != 100 && axis) && motion != 870)
+    throw GcodeError("I, J or K word with no G2, G3 or G87 to use it");
   if (rb.hasWord('r') && !arc && !canned && c.non_modal != 100)
     throw GcodeError("R word with no G2, G3, G10 or canned cycle to use it");
   if (rb.hasWord('l') && !canned && c.non_modal != 100)
     throw GcodeError("L word with no G10 or canned cycle to use it");
   if (rb.hasWord('q') && !(motion == 830 || motion == 730) && c.path != 640)
     throw GcodeError("Q word with no G73, G83 or G64 to use it");
-  if (rb.hasWord('p') && !(c.non_modal == 40 || c.non_modal == 100 || arc || motion == 820 ||
-                           motion == 890 || c.path == 640))
-    throw GcodeError("P word with no G4, G10, G2/G3, G64, G82 or G89 to use it");
+  const bool dwell_cycle = motion == 740 || motion == 820 || motion == 840 || motion == 860 ||
+                           motion == 880 || motion == 890;
+  if (rb.hasWord('p') &&
+      !(c.non_modal == 40 || c.non_modal == 100 || arc || dwell_cycle || c.path == 640))
+    throw GcodeError("P word with no G4, G10, G2/G3, G64 or dwelling canned cycle to use it");
   if (rb.hasWord('h') && c.tlo != 430) throw GcodeError("H word with no G43 to use it");
   if (rb.hasWord('d')) throw GcodeError("D word (cutter compensation) is not supported");
   if (c.non_modal == 530 && !(c.motion == 0 || c.motion == 10))
@@ -250,7 +260,7 @@ void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c)
 
 bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   ResolvedBlock rb;
-  resolve(block, rb);
+  resolve(block, rb, sink);
   if (rb.n_g == 0 && rb.n_m == 0 && !rb.hasAxis() && !rb.hasWord('f') && !rb.hasWord('s') &&
       !rb.hasWord('t')) {
     for (char l : {'i', 'j', 'k', 'r', 'l', 'p', 'q', 'h', 'd', 'u', 'v', 'w'})
@@ -279,6 +289,7 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
     st.selected_tool = t;
   }
   if (c.m_tool == 6) st.tool_in_spindle = st.selected_tool;
+  if (c.m_spindle >= 0) st.spindle_direction = c.m_spindle == 3 ? 1 : c.m_spindle == 4 ? -1 : 0;
   if (c.non_modal == 40) {
     if (!rb.hasWord('p')) throw GcodeError("G4 needs a P word (dwell time, s)");
     if (rb.word('p') < 0.0) throw GcodeError("negative G4 dwell time");

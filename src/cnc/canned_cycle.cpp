@@ -9,7 +9,14 @@
 //   diagonally), a rapid down to R when not there, the cycle body, which ends at the clear level.
 // Bodies: G81 feed, rapid out; G82 feed, dwell, rapid out; G85 feed in, feed out to R, rapid to
 // clear; G89 feed in, dwell, feed out to the clear level; G83 pecks with rapids to R and back to
-// 0.254 mm above the last depth; G73 pecks with a 0.254 mm rapid retract.
+// 0.254 mm above the last depth; G73 pecks with a 0.254 mm rapid retract. G84 (G74) feeds in
+// with the spindle clockwise (counter-clockwise), reverses it, dwells P and feeds out to the
+// clear level, restoring the spindle; G86 feeds in, dwells, stops the spindle, rapids out and
+// restarts it; G88 feeds in, dwells, stops the spindle and the program for a manual retraction
+// (the program goes on from the clear level, with no motion); G87 back-bores: rapid to the
+// offset point I, J at R, orient the spindle, rapid down to the bottom and over to the hole,
+// start the spindle, feed up to K and back down, orient, rapid to the offset point, up to the
+// clear level and back over the hole, restart the spindle.
 #include "pkm/cnc/canned_cycle.hpp"
 
 #include <fmt/format.h>
@@ -27,6 +34,40 @@ void push(std::vector<CycleStep>& out, CycleStep::Kind k, double x, double y, do
   s.kind = k;
   s.to = {x, y, z};
   out.push_back(s);
+}
+
+void spindle(std::vector<CycleStep>& out, CycleStep::Spindle action, double x, double y, double z) {
+  CycleStep s;
+  s.kind = CycleStep::Kind::kSpindle;
+  s.spindle = action;
+  s.to = {x, y, z};
+  out.push_back(s);
+}
+
+void dwell(std::vector<CycleStep>& out, double seconds, double x, double y, double z) {
+  CycleStep d;
+  d.kind = CycleStep::Kind::kDwell;
+  d.to = {x, y, z};
+  d.seconds = seconds;
+  out.push_back(d);
+}
+
+/// The spindle preconditions of the cycles that use it (rs274ngc's messages).
+void checkSpindle(int code, SpindleDirection dir) {
+  using D = SpindleDirection;
+  if (code == 84 || code == 74) {
+    if (dir == D::kStopped) throw GcodeError(fmt::format("spindle not turning in G{}", code));
+    if (code == 84 && dir == D::kCounterClockwise)
+      throw GcodeError("spindle turning counterclockwise in G84");
+    if (code == 74 && dir == D::kClockwise) throw GcodeError("spindle turning clockwise in G74");
+  }
+  if ((code == 86 || code == 87 || code == 88) && dir == D::kStopped)
+    throw GcodeError(fmt::format("spindle not turning in G{}", code));
+}
+
+CycleStep::Spindle turning(SpindleDirection dir) {
+  return dir == SpindleDirection::kCounterClockwise ? CycleStep::Spindle::kCounterClockwise
+                                                    : CycleStep::Spindle::kClockwise;
 }
 }  // namespace
 
@@ -52,9 +93,11 @@ std::array<double, 3> expandCycle(const CycleRequest& q, std::vector<CycleStep>&
   if (q.repeats < 1) throw GcodeError("canned cycle L must be a positive integer");
   if ((q.code == 73 || q.code == 83) && q.q <= 0.0)
     throw GcodeError("negative or zero Q value in a pecking cycle");
+  checkSpindle(q.code, q.spindle);
+  const double middle = q.incremental ? bottom + q.k : q.k;  // G87's top of the back bore
   {
     const double pecks = (q.code == 73 || q.code == 83) ? std::ceil((r - bottom) / q.q) : 1.0;
-    const double steps = static_cast<double>(q.repeats) * (3.0 * pecks + 4.0);
+    const double steps = static_cast<double>(q.repeats) * (3.0 * pecks + 14.0);
     if (steps > static_cast<double>(q.max_steps))
       throw GcodeError(
           fmt::format("canned cycle would make {:.3g} motions (more than {})", steps, q.max_steps));
@@ -80,11 +123,7 @@ std::array<double, 3> expandCycle(const CycleRequest& q, std::vector<CycleStep>&
       case 82:
       case 89: {
         push(out, K::kFeed, x, y, bottom);
-        CycleStep d;
-        d.kind = K::kDwell;
-        d.to = {x, y, bottom};
-        d.seconds = q.p;
-        out.push_back(d);
+        dwell(out, q.p, x, y, bottom);
         if (q.code == 89)
           push(out, K::kFeed, x, y, clear);  // G89 feeds all the way out (rs274)
         else
@@ -109,6 +148,54 @@ std::array<double, 3> expandCycle(const CycleRequest& q, std::vector<CycleStep>&
         }
         push(out, K::kFeed, x, y, bottom);
         push(out, K::kRapid, x, y, clear);
+        break;
+      }
+      case 84:
+      case 74: {
+        using S = CycleStep::Spindle;
+        const S reverse = q.code == 84 ? S::kCounterClockwise : S::kClockwise;
+        const S forward = q.code == 84 ? S::kClockwise : S::kCounterClockwise;
+        push(out, K::kFeed, x, y, bottom);
+        spindle(out, S::kStop, x, y, bottom);
+        spindle(out, reverse, x, y, bottom);
+        dwell(out, q.p, x, y, bottom);
+        push(out, K::kFeed, x, y, clear);
+        spindle(out, S::kStop, x, y, clear);
+        spindle(out, forward, x, y, clear);
+        break;
+      }
+      case 86:
+        push(out, K::kFeed, x, y, bottom);
+        dwell(out, q.p, x, y, bottom);
+        spindle(out, CycleStep::Spindle::kStop, x, y, bottom);
+        push(out, K::kRapid, x, y, clear);
+        spindle(out, turning(q.spindle), x, y, clear);
+        break;
+      case 88:
+        push(out, K::kFeed, x, y, bottom);
+        dwell(out, q.p, x, y, bottom);
+        spindle(out, CycleStep::Spindle::kStop, x, y, bottom);
+        push(out, K::kManual, x, y, clear);
+        spindle(out, turning(q.spindle), x, y, clear);
+        break;
+      case 87: {
+        using S = CycleStep::Spindle;
+        const double ox = x + q.i;
+        const double oy = y + q.j;
+        push(out, K::kRapid, ox, oy, r);
+        spindle(out, S::kStop, ox, oy, r);
+        spindle(out, S::kOrient, ox, oy, r);
+        push(out, K::kRapid, ox, oy, bottom);
+        push(out, K::kRapid, x, y, bottom);
+        spindle(out, turning(q.spindle), x, y, bottom);
+        push(out, K::kFeed, x, y, middle);
+        push(out, K::kFeed, x, y, bottom);
+        spindle(out, S::kStop, x, y, bottom);
+        spindle(out, S::kOrient, x, y, bottom);
+        push(out, K::kRapid, ox, oy, bottom);
+        push(out, K::kRapid, ox, oy, clear);
+        push(out, K::kRapid, x, y, clear);
+        spindle(out, turning(q.spindle), x, y, clear);
         break;
       }
       default:

@@ -34,6 +34,7 @@ const MachineState& Interpreter::state() const { return impl_->st; }
 RunSummary Interpreter::run(const Program& program, MoveSink& sink) {
   Impl& s = *impl_;
   s.summary = RunSummary{};
+  s.report_blocks = sink.wantsBlocks();
   const std::vector<Block>& blocks = program.blocks();
   std::vector<Frame> frames(1, Frame{kNoBlock, {}});
   std::size_t pc = 0;
@@ -79,6 +80,11 @@ RunSummary Interpreter::run(const Program& program, MoveSink& sink) {
       if (b.block_delete && s.options.block_delete) {
         ++pc;
         continue;
+      }
+      s.block_index = pc;
+      if (s.report_blocks && b.o_kind != OKind::kNone) {
+        s.evaluated.clear();
+        sink.onBlock(b, pc, s.evaluated);
       }
       switch (b.o_kind) {
         case OKind::kNone:
@@ -218,6 +224,8 @@ RunSummary Interpreter::run(const Program& program, MoveSink& sink) {
 RunSummary Interpreter::runStream(LineReader& reader, MoveSink& sink) {
   Impl& s = *impl_;
   s.summary = RunSummary{};
+  s.report_blocks = sink.wantsBlocks();
+  s.block_index = kNoBlock;  // streamed blocks have no index in a Program
   Block b;
   while (reader.next(b)) {
     try {

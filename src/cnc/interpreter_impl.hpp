@@ -52,7 +52,7 @@ struct Interpreter::Impl : ParameterSource {
   // block_executor.cpp
   /// Executes one block; returns false when the program ends (M2/M30).
   bool execute(const Block& block, MoveSink& sink);
-  void resolve(const Block& block, ResolvedBlock& rb);
+  void resolve(const Block& block, ResolvedBlock& rb, MoveSink& sink);
   BlockCodes classify(const ResolvedBlock& rb) const;
   void checkWords(const ResolvedBlock& rb, const BlockCodes& c) const;
   void setTlo(const ResolvedBlock& rb, int code);
@@ -75,8 +75,13 @@ struct Interpreter::Impl : ParameterSource {
   // Canned-cycle memory (rs274ngc cycle_il / cycle_cc and sticky R, Q, P).
   bool cycle_il_flag = false;
   double cycle_il = 0.0, cycle_cc = 0.0, cycle_r = 0.0, cycle_q = 0.0, cycle_p = 0.0;
+  double cycle_i = 0.0, cycle_j = 0.0, cycle_k = 0.0;  // G87's sticky I, J, K
   std::vector<CycleStep> cycle_steps;
   std::vector<double> values;  // scratch: evaluated assignment values
+  // Block reports (MoveSink::wantsBlocks): the index of the block being executed, its words.
+  bool report_blocks = false;
+  std::size_t block_index = kNoBlock;
+  std::vector<EvaluatedWord> evaluated;
 };
 
 }  // namespace pkm::cnc

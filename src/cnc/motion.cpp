@@ -205,12 +205,30 @@ void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink)
     if (rb.hasWord('q')) cycle_q = rb.word('q') * s;
     q.q = cycle_q;
   }
-  if (code == 820 || code == 890) {
-    if (entering && !rb.hasWord('p'))
+  if (code == 820 || code == 860 || code == 880 || code == 890 || code == 840 || code == 740) {
+    // G84/G74 default to the sticky P (0 at start-up); the others need P in their first block.
+    if (entering && !rb.hasWord('p') && code != 840 && code != 740)
       throw GcodeError(fmt::format("dwell time P word missing with G{}", code / 10));
-    if (rb.hasWord('p')) cycle_p = rb.word('p');
+    if (rb.hasWord('p')) {
+      if (rb.word('p') < 0.0) throw GcodeError("negative dwell time P in a canned cycle");
+      cycle_p = rb.word('p');
+    }
     q.p = cycle_p;
   }
+  if (code == 870) {
+    for (char l : {'i', 'j', 'k'})
+      if (entering && !rb.hasWord(l))
+        throw GcodeError(fmt::format("{} word missing with G87", static_cast<char>(l - 32)));
+    if (rb.hasWord('i')) cycle_i = rb.word('i') * s;
+    if (rb.hasWord('j')) cycle_j = rb.word('j') * s;
+    if (rb.hasWord('k')) cycle_k = rb.word('k') * s;
+    q.i = cycle_i;
+    q.j = cycle_j;
+    q.k = cycle_k;
+  }
+  q.spindle = st.spindle_direction > 0   ? SpindleDirection::kClockwise
+              : st.spindle_direction < 0 ? SpindleDirection::kCounterClockwise
+                                         : SpindleDirection::kStopped;
   if (rb.hasWord('l')) {
     const double l = rb.word('l');
     if (!(l >= 0.5 && l < 1e9)) throw GcodeError("canned cycle L must be a positive integer");
@@ -222,13 +240,24 @@ void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink)
   cycle_steps.clear();
   expandCycle(q, cycle_steps);
   for (const CycleStep& step : cycle_steps) {
-    if (step.kind == CycleStep::Kind::kDwell) {
-      sink.onDwell(rb.line, step.seconds);
-      continue;
+    switch (step.kind) {
+      case CycleStep::Kind::kDwell:
+        sink.onDwell(rb.line, step.seconds);
+        break;
+      case CycleStep::Kind::kSpindle:
+        break;  // spindle stops, reversals and orientation take no part in the motion
+      case CycleStep::Kind::kManual:
+        // G88: the operator retracts by hand; the program goes on from the clear level.
+        for (std::size_t i = 0; i < 3; ++i) st.machine[i] = step.to[i] + st.offset(i);
+        break;
+      case CycleStep::Kind::kRapid:
+      case CycleStep::Kind::kFeed: {
+        Axes to = st.machine;
+        for (std::size_t i = 0; i < 3; ++i) to[i] = step.to[i] + st.offset(i);
+        emitLine(rb.line, step.kind == CycleStep::Kind::kRapid, to, 0.0, sink);
+        break;
+      }
     }
-    Axes to = st.machine;
-    for (std::size_t i = 0; i < 3; ++i) to[i] = step.to[i] + st.offset(i);
-    emitLine(rb.line, step.kind == CycleStep::Kind::kRapid, to, 0.0, sink);
   }
 }
 

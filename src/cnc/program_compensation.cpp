@@ -11,6 +11,7 @@
 #include <optional>
 #include <set>
 
+#include "pkm/cnc/flatten.hpp"
 #include "pkm/cnc/gcode_error.hpp"
 #include "pkm/cnc/interpreter.hpp"
 #include "pkm/cnc/joint_path.hpp"
@@ -25,11 +26,11 @@ namespace {
 }
 
 /// G words (×10) the rewrite cannot express: G28/G30 (a stored position), the canned cycles with
-/// spindle actions (G84 tapping, G86 spindle stop, G87/G88), probing, spindle-synchronised
-/// motion, and inverse time (a feed per source motion).
+/// spindle actions (G74/G84 tapping, G86 spindle stop, G87 orientation, G88 manual retraction),
+/// probing, spindle-synchronised motion, and inverse time (a feed per source motion).
 bool unsupportedG(long g10) {
   static constexpr long kBad[] = {
-      280, 281, 300, 301, 840, 860, 870, 880, 930, 382, 383, 384, 385, 330, 331, 760};
+      280, 281, 300, 301, 740, 840, 860, 870, 880, 930, 382, 383, 384, 385, 330, 331, 760};
   return std::find(std::begin(kBad), std::end(kBad), g10) != std::end(kBad);
 }
 
@@ -77,12 +78,13 @@ void checkBlock(const Block& b, const std::string& file, BlockScan& scan) {
     });
     sets_offset = sets_offset || g10 == 920 || (g10 == 100 && l20);
     if (unsupportedG(g10))
-      fail(file,
-           b.line,
-           fmt::format("G{} is not supported by gcode compensate (it rewrites one motion per "
-                       "line or expands a drilling cycle: no G28/G30, G84/G86/G87/G88, probing, "
-                       "G33/G76 or G93)",
-                       static_cast<double>(g10) / 10.0));
+      fail(
+          file,
+          b.line,
+          fmt::format("G{} is not supported by gcode compensate (it rewrites one motion per "
+                      "line or expands a drilling cycle: no G28/G30, G74/G84/G86/G87/G88, probing, "
+                      "G33/G76 or G93)",
+                      static_cast<double>(g10) / 10.0));
   }
   if (!sets_offset) return;
   OffsetLine o;
@@ -275,6 +277,30 @@ std::string rewriteLine(std::string_view line, Rewrite what, const std::string& 
   return out;
 }
 
+/// "FILE:K: message" about line K of the flattened program, told of its source line.
+IoError onSourceLine(const IoError& e, const std::string& file, const FlatProgram& flat) {
+  const std::string what = e.what();
+  const std::string prefix = file + ":";
+  std::size_t k = 0;
+  std::size_t pos = prefix.size();
+  if (what.compare(0, prefix.size(), prefix) != 0) return e;
+  while (pos < what.size() && std::isdigit(static_cast<unsigned char>(what[pos])))
+    k = k * 10 + static_cast<std::size_t>(what[pos++] - '0');
+  if (k == 0 || k > flat.source_line.size() || what.compare(pos, 2, ": ") != 0) return e;
+  return IoError(fmt::format("{}:{}: {} (line {} of the flattened program)",
+                             file,
+                             flat.source_line[k - 1],
+                             what.substr(pos + 2),
+                             k));
+}
+
+ProgramCompensation rewriteFlat(std::string_view text,
+                                const std::string& file,
+                                const Program& program,
+                                const PointMap& map,
+                                const InterpolationOptions& interpolation,
+                                const AxisMask& axes);
+
 }  // namespace
 
 ProgramCompensation rewriteProgram(std::string_view text,
@@ -283,6 +309,30 @@ ProgramCompensation rewriteProgram(std::string_view text,
                                    const InterpolationOptions& interpolation,
                                    const AxisMask& axes) {
   const Program program = Program::parse(text, file);
+  const bool o_words = std::any_of(program.blocks().begin(),
+                                   program.blocks().end(),
+                                   [](const Block& b) { return b.o_kind != OKind::kNone; });
+  if (!o_words) return rewriteFlat(text, file, program, map, interpolation, axes);
+  // Subroutines and loops: rewrite the blocks as executed (docs/gcode.md "gcode flatten").
+  const FlatProgram flat = flattenProgram(text, file);
+  try {
+    ProgramCompensation r =
+        rewriteFlat(flat.text, file, Program::parse(flat.text, file), map, interpolation, axes);
+    r.flattened_blocks = flat.blocks;
+    return r;
+  } catch (const IoError& e) {
+    throw onSourceLine(e, file, flat);
+  }
+}
+
+namespace {
+
+ProgramCompensation rewriteFlat(std::string_view text,
+                                const std::string& file,
+                                const Program& program,
+                                const PointMap& map,
+                                const InterpolationOptions& interpolation,
+                                const AxisMask& axes) {
   BlockScan scan;
   for (const Block& b : program.blocks()) checkBlock(b, file, scan);
   const std::set<std::size_t>& g53_lines = scan.g53_lines;
@@ -423,6 +473,8 @@ ProgramCompensation rewriteProgram(std::string_view text,
   }
   return r;
 }
+
+}  // namespace
 
 ProgramCompensation compensateProgram(std::string_view text,
                                       const std::string& file,

@@ -1,4 +1,5 @@
-// `pkm gcode moves`: CSV format, --out/--force, tool table option, errors with FILE:LINE.
+// `pkm gcode moves` and `pkm gcode flatten`: CSV format, --out/--force, tool table option, errors
+// with FILE:LINE.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -76,6 +77,37 @@ TEST_F(GcodeCli, ShippedExamplesRun) {
     EXPECT_EQ(r.code, 0) << name << ": " << r.err;
     EXPECT_GT(splitLines(r.out).size(), 10u) << name;
   }
+}
+
+/// The shipped sphere (an O-word subroutine called twice) flattens into a program without
+/// O-words that `gcode moves` runs to the same motions.
+TEST_F(GcodeCli, FlattenUnrollsTheSphereSubroutine) {
+  const std::string ex = std::string(PKM_SOURCE_DIR) + "/examples/gcode/";
+  const std::string tbl = ex + "tools.tbl";
+  const CliRun f =
+      pkm({"gcode", "flatten", ex + "sphere.ngc", "--tool-table", tbl, "--out", path("flat.ngc")});
+  ASSERT_EQ(f.code, 0) << f.err;
+  EXPECT_THAT(f.err, HasSubstr("executed blocks written"));
+  const std::string flat = slurp(path("flat.ngc"));
+  EXPECT_EQ(flat.find("o<hemisphere> call"), std::string::npos);
+  EXPECT_EQ(flat.find("o<hemisphere> sub"), std::string::npos);
+  EXPECT_EQ(flat.find("#<"), std::string::npos);
+  EXPECT_THAT(flat, HasSubstr("\nG3 X73 Y40 I-23 J0\n"));  // the equator circle of sphere 1
+  const CliRun a = pkm({"gcode", "moves", ex + "sphere.ngc", "--tool-table", tbl});
+  const CliRun b = pkm({"gcode", "moves", path("flat.ngc"), "--tool-table", tbl});
+  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(b.code, 0) << b.err;
+  const auto la = splitLines(a.out), lb = splitLines(b.out);
+  ASSERT_EQ(la.size(), lb.size());
+  for (std::size_t i = 1; i < la.size(); ++i)  // same motions; the line column differs
+    EXPECT_EQ(la[i].substr(la[i].find(',')), lb[i].substr(lb[i].find(','))) << i;
+  // No overwrite without --force; errors name the file and line.
+  expectUsageError(pkm({"gcode", "flatten", ex + "sphere.ngc", "--out", path("flat.ngc")}),
+                   "--force");
+  EXPECT_EQ(slurp(path("flat.ngc")), flat);
+  expectUsageError(pkm({"gcode", "flatten", ex + "sphere.ngc"}), "sphere.ngc:36: tool 1");
+  const std::string bad = write("bad.ngc", "o1 sub\nG1 X[1/0]\no1 endsub\no1 call\n");
+  expectUsageError(pkm({"gcode", "flatten", bad}), "bad.ngc:2:");
 }
 
 }  // namespace

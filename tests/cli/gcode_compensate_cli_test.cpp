@@ -94,6 +94,36 @@ TEST_F(GcodeCompensateCli, DrillingCyclesAreExpandedAndTheResultRuns) {
   EXPECT_THAT(run.err + run.out, ::testing::HasSubstr("stroke violated"));
 }
 
+/// A program with a subroutine called in a loop is flattened before it is rewritten.
+TEST_F(GcodeCompensateCli, OWordProgramsAreFlattened) {
+  const std::string cal = write("cal.json", calibratedJson());
+  const std::string prog = write("loops.ngc",
+                                 "G21 G90\n"
+                                 "o<side> sub\n"
+                                 "  G1 X#1 Y0 Z#2 F600\n"
+                                 "o<side> endsub\n"
+                                 "G0 X0 Y0 Z200\n"
+                                 "o1 repeat [3]\n"
+                                 "  o<side> call [[#5 + 1] * 10] [200 - #5]\n"
+                                 "  #5 = [#5 + 1]\n"
+                                 "o1 endrepeat\n"
+                                 "M2\n");
+  const auto r = pkm({"gcode", "compensate", "--machine", cal, prog});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.err, ::testing::HasSubstr("O-words: its 6 executed blocks were flattened first"));
+  EXPECT_EQ(r.out.find("o1"), std::string::npos) << r.out;
+  const auto lines = splitLines(r.out);
+  // G21 G90, G0, three passes of one motion cut into segments, M2; the segment comments name
+  // lines of the flattened program (G21 G90, G0, the three G1, M2).
+  ASSERT_GE(lines.size(), 6u) << r.out;
+  EXPECT_EQ(lines[0], "G21 G90");
+  EXPECT_EQ(lines[1].rfind("G0 X", 0), 0u) << lines[1];
+  for (std::size_t i = 2; i + 1 < lines.size(); ++i)
+    EXPECT_EQ(lines[i].rfind("G1 X", 0), 0u) << lines[i];
+  EXPECT_THAT(r.out, ::testing::HasSubstr("(pkm: line 5 segment"));
+  EXPECT_EQ(lines.back(), "M2");
+}
+
 TEST_F(GcodeCompensateCli, HybridFrameShiftsThePkmProgramByTheX2Term) {
   const std::string frame = write("frame.txt",
                                   "# pkm-base-frame\nbase_rpy_rad = 0 0 0.003\n"

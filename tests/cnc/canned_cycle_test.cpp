@@ -137,6 +137,156 @@ TEST(CannedCycle, DwellAndFeedOut) {
   expectStep(s[4], K::kFeed, 0, 0, 5);
 }
 
+std::vector<CycleStep> motions(const std::vector<CycleStep>& steps) {
+  std::vector<CycleStep> out;
+  for (const CycleStep& s : steps)
+    if (s.kind == K::kRapid || s.kind == K::kFeed) out.push_back(s);
+  return out;
+}
+
+TEST(CannedCycle, G84ReversesTheSpindleAndFeedsOutToTheClearLevel) {
+  // rs274 (G98, IL 20): rapid (10,10,20), (10,10,2), feed (10,10,-5), STOP, CCW, DWELL(0.2),
+  // feed (10,10,20), STOP, CW.
+  CycleRequest q;
+  q.code = 84;
+  q.current = {0, 0, 20};
+  q.initial_level = 20;
+  q.retract_to_r = false;
+  q.has_x = q.has_y = true;
+  q.x = q.y = 10;
+  q.r = 2;
+  q.z = -5;
+  q.p = 0.2;
+  std::vector<CycleStep> s;
+  const auto end = expandCycle(q, s);
+  ASSERT_EQ(s.size(), 9u);
+  expectStep(s[2], K::kFeed, 10, 10, -5);
+  EXPECT_EQ(s[3].spindle, CycleStep::Spindle::kStop);
+  EXPECT_EQ(s[4].spindle, CycleStep::Spindle::kCounterClockwise);
+  EXPECT_EQ(s[5].kind, K::kDwell);
+  EXPECT_EQ(s[5].seconds, 0.2);
+  expectStep(s[6], K::kFeed, 10, 10, 20);
+  EXPECT_EQ(s[8].kind, K::kSpindle);
+  EXPECT_EQ(s[8].spindle, CycleStep::Spindle::kClockwise);
+  EXPECT_EQ(end[2], 20.0);
+  // G74 is the mirror image: it needs M4 and reverses to clockwise.
+  q.code = 74;
+  q.spindle = SpindleDirection::kCounterClockwise;
+  s.clear();
+  expandCycle(q, s);
+  EXPECT_EQ(s[4].spindle, CycleStep::Spindle::kClockwise);
+  EXPECT_EQ(s[8].spindle, CycleStep::Spindle::kCounterClockwise);
+}
+
+TEST(CannedCycle, G86StopsTheSpindleAndRapidsOut) {
+  CycleRequest q;
+  q.code = 86;
+  q.current = {0, 0, 5};
+  q.initial_level = 5;
+  q.r = 2;
+  q.z = -3;
+  q.p = 0.5;
+  q.spindle = SpindleDirection::kCounterClockwise;
+  std::vector<CycleStep> s;
+  expandCycle(q, s);
+  // rapid (0,0,5), rapid (0,0,2), feed (0,0,-3), DWELL, STOP, rapid (0,0,2), restart M4.
+  ASSERT_EQ(s.size(), 7u);
+  expectStep(s[2], K::kFeed, 0, 0, -3);
+  EXPECT_EQ(s[3].kind, K::kDwell);
+  EXPECT_EQ(s[4].spindle, CycleStep::Spindle::kStop);
+  expectStep(s[5], K::kRapid, 0, 0, 2);
+  EXPECT_EQ(s[6].spindle, CycleStep::Spindle::kCounterClockwise);
+}
+
+TEST(CannedCycle, G87BackBoresFromBelow) {
+  // The rs274 sequence of "G91 G87 X10 Y10 Z-5 R-18 I1 J2 K3" from (0,0,20), G99: R = 2,
+  // bottom = -3, K = bottom + 3 = 0.
+  CycleRequest q;
+  q.code = 87;
+  q.current = {0, 0, 20};
+  q.initial_level = 20;
+  q.incremental = true;
+  q.has_x = q.has_y = true;
+  q.x = q.y = 10;
+  q.r = -18;
+  q.z = -5;
+  q.i = 1;
+  q.j = 2;
+  q.k = 3;
+  std::vector<CycleStep> s;
+  const auto end = expandCycle(q, s);
+  const auto m = motions(s);
+  const std::vector<std::array<double, 4>> want{{0, 10, 10, 20},
+                                                {0, 10, 10, 2},
+                                                {0, 11, 12, 2},
+                                                {0, 11, 12, -3},
+                                                {0, 10, 10, -3},
+                                                {1, 10, 10, 0},
+                                                {1, 10, 10, -3},
+                                                {0, 11, 12, -3},
+                                                {0, 11, 12, 2},
+                                                {0, 10, 10, 2}};
+  ASSERT_EQ(m.size(), want.size());
+  for (std::size_t k = 0; k < want.size(); ++k)
+    expectStep(m[k], want[k][0] == 0 ? K::kRapid : K::kFeed, want[k][1], want[k][2], want[k][3]);
+  EXPECT_EQ(end[2], 2.0);
+  std::size_t orients = 0;
+  for (const CycleStep& c : s) orients += c.spindle == CycleStep::Spindle::kOrient ? 1 : 0;
+  EXPECT_EQ(orients, 2u);  // oriented before going down through the hole and before leaving
+}
+
+TEST(CannedCycle, G88LeavesTheRetractionToTheOperator) {
+  CycleRequest q;
+  q.code = 88;
+  q.current = {0, 0, 30};
+  q.initial_level = 30;
+  q.has_x = q.has_y = true;
+  q.x = q.y = 5;
+  q.r = 2;
+  q.z = -1;
+  q.p = 1;
+  q.repeats = 2;
+  std::vector<CycleStep> s;
+  const auto end = expandCycle(q, s);
+  // rs274: (5,5,30) (5,5,2) feed (5,5,-1) DWELL STOP PROGRAM_STOP, then the second repeat
+  // rapids to (5,5,2) as if the tool were there, feeds again; the program goes on from R.
+  const auto m = motions(s);
+  ASSERT_EQ(m.size(), 5u);
+  expectStep(m[1], K::kRapid, 5, 5, 2);
+  expectStep(m[2], K::kFeed, 5, 5, -1);
+  expectStep(m[3], K::kRapid, 5, 5, 2);
+  expectStep(m[4], K::kFeed, 5, 5, -1);
+  std::size_t manual = 0;
+  for (const CycleStep& c : s)
+    if (c.kind == K::kManual) {
+      ++manual;
+      expectStep(c, K::kManual, 5, 5, 2);
+    }
+  EXPECT_EQ(manual, 2u);
+  EXPECT_EQ(end[2], 2.0);
+}
+
+TEST(CannedCycle, SpindleMustTurnTheWayTheCycleNeeds) {
+  CycleRequest q;
+  q.r = 2;
+  q.z = -3;
+  std::vector<CycleStep> s;
+  for (int code : {74, 84, 86, 87, 88}) {
+    q.code = code;
+    q.spindle = SpindleDirection::kStopped;
+    EXPECT_THROW(expandCycle(q, s), GcodeError) << code;
+  }
+  q.code = 84;
+  q.spindle = SpindleDirection::kCounterClockwise;
+  EXPECT_THROW(expandCycle(q, s), GcodeError);
+  q.code = 74;
+  q.spindle = SpindleDirection::kClockwise;
+  EXPECT_THROW(expandCycle(q, s), GcodeError);
+  q.code = 81;
+  q.spindle = SpindleDirection::kStopped;  // a drilling cycle does not look at the spindle
+  EXPECT_NO_THROW(expandCycle(q, s));
+}
+
 TEST(CannedCycle, Errors) {
   CycleRequest q;
   q.code = 81;

@@ -167,6 +167,21 @@ TEST(Interpreter, DwellsReachTheSinkInOrderWithTheMotions) {
   EXPECT_EQ(r.moves, 5u);
 }
 
+TEST(Interpreter, BoringCyclesTrackTheSpindle) {
+  // G88 stops for a manual retraction: no motion, but a following G91 move starts from R.
+  const auto m = run("S500 M3 F100\nG0 Z10\nG99 G88 X1 Y1 Z-3 R2 P1\nG91 G0 Z5\nM2\n");
+  ASSERT_EQ(m.size(), 5u);
+  expectEnd(m[3], 1, 1, -3);
+  expectEnd(m[4], 1, 1, 7);
+  EXPECT_THAT(errorOf("F100\nG0 Z10\nG86 X1 Z-3 R2 P1\n"),
+              HasSubstr("t.ngc:3: spindle not turning in G86"));
+  EXPECT_THAT(errorOf("F100 M3\nM5\nG84 X1 Z-3 R2\n"), HasSubstr("t.ngc:3: spindle not turning"));
+  EXPECT_THAT(errorOf("F100 M4\nG84 X1 Z-3 R2\n"), HasSubstr("t.ngc:2: spindle turning counter"));
+  EXPECT_THAT(errorOf("F100 M3\nG87 X1 Z-3 R2 I1 K-1\n"), HasSubstr("t.ngc:2: J word missing"));
+  EXPECT_THAT(errorOf("F100 M3\nG88 X1 Z-3 R2\n"), HasSubstr("t.ngc:2: dwell time P word missing"));
+  EXPECT_THAT(errorOf("F100 M3\nG86 X1 Z-3 R2 P-1\n"), HasSubstr("t.ngc:2: negative dwell"));
+}
+
 TEST(Interpreter, ControlFlow) {
   const auto m =
       run("#1 = 0\no1 while [#1 LT 3]\nG0 X#1\n#1 = [#1 + 1]\no1 endwhile\n"

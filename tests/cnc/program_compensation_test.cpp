@@ -122,13 +122,70 @@ TEST(CompensateProgram, RejectsUnsupportedWithLine) {
                            "G0 X0 Y0 Z200\nG93 G1 X1 F10\n",
                            "G0 X0 Y0 Z200\nG92 X[#1]\n",
                            "G0 X0 Y0 Z200\nG10 L20 P1 X[1 + #2]\n",
-                           "G0 X0 Y0 Z200\no1 if [1]\no1 endif\n"}) {
+                           "G0 X0 Y0 Z200\nG86 X1 Z150 R190 P1 F100 S100 M3\n"}) {
     try {
       (void)compensateProgram(text, "bad.ngc", m, m);
       ADD_FAILURE() << text;
     } catch (const pkm::IoError& e) {
       EXPECT_NE(std::string(e.what()).find("bad.ngc:2:"), std::string::npos) << e.what();
     }
+  }
+}
+
+/// A program with a subroutine called in a loop is flattened, then rewritten: the output has no
+/// O-word, reads back to the commands, and an unsupported code inside the subroutine is reported
+/// on its source line.
+TEST(CompensateProgram, OWordProgramsAreFlattenedFirst) {
+  const kin::HexapodModel nominal = pkm::test::millingModel();
+  const kin::HexapodModel cal = calibrated(nominal);
+  const char* const program =
+      "G21 G90 G17\n"
+      "o<square> sub (side #1 at height #2)\n"
+      "  G1 X[-#1] Y[-#1] Z#2 F600\n"
+      "  G1 X#1\n"
+      "  G2 Y#1 I0 J#1 (a half circle)\n"
+      "  G1 X[-#1] Y[-#1]\n"
+      "o<square> endsub\n"
+      "G0 X0 Y0 Z200\n"
+      "#<k> = 0\n"
+      "o1 while [#<k> LT 3]\n"
+      "  o<square> call [10 + 5 * #<k>] [190 - #<k>]\n"
+      "  #<k> = [#<k> + 1]\n"
+      "o1 endwhile\n"
+      "M2\n";
+  ProgramCompensationOptions o;
+  o.interpolation = jointSpaceInterpolation(cal, kTol);
+  const ProgramCompensation r = compensateProgram(program, "p.ngc", nominal, cal, o);
+  EXPECT_EQ(r.flattened_blocks, 15u);  // G21, G0, M2 and 3 passes of 4 motions
+  EXPECT_GT(r.max_correction, 0.1);
+  const Program out = Program::parse(r.text, "out.ngc");
+  for (const Block& b : out.blocks()) EXPECT_EQ(b.o_kind, OKind::kNone) << r.text;
+  MoveCollector back;
+  Interpreter i;
+  (void)i.run(out, back);
+  ASSERT_EQ(back.moves.size(), r.points.size()) << r.text;
+  for (std::size_t k = 0; k < back.moves.size(); ++k)
+    for (std::size_t a = 0; a < 6; ++a)
+      EXPECT_NEAR(back.moves[k].end[a], r.points[k].command[a], kTextDigits) << k;
+  HexapodJointConverter n(nominal), c(cal);
+  for (const auto& p : r.points) {
+    const kin::StrutVector qn = n.solve(p.command), qc = c.solve(p.desired);
+    EXPECT_LE((qn - qc).cwiseAbs().maxCoeff(), kJointMatch);
+  }
+  EXPECT_NE(r.text.find("(a half circle)"), std::string::npos) << r.text;
+  try {
+    (void)compensateProgram(
+        "G0 X0 Y0 Z200 S100 M3\no1 sub\n  G1 Z190 F100\n  G86 X1 Z150 R190 P1\no1 endsub\no1 "
+        "call\n",
+        "bad.ngc",
+        nominal,
+        nominal);
+    ADD_FAILURE();
+  } catch (const pkm::IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.ngc:4: G86 is not supported"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("(line 3 of the flattened program)"), std::string::npos)
+        << e.what();
   }
 }
 

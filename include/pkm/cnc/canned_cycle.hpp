@@ -1,7 +1,7 @@
 /// @file
-/// @brief Expansion of the XY-plane drilling cycles G73, G81, G82, G83, G85, G89 into rapids,
-/// feeds and dwells, after LinuxCNC 2.9 (G-code reference "G73", "G81".."G89", "G98, G99",
-/// "Preliminary and In-Between Motion"; checked motion by motion against rs274).
+/// @brief Expansion of the XY-plane canned cycles G73, G74, G81..G89 into rapids, feeds, dwells
+/// and spindle actions, after LinuxCNC 2.9 (G-code reference "G73", "G74", "G81".."G89",
+/// "G98, G99", "Preliminary and In-Between Motion"; checked motion by motion against rs274).
 #pragma once
 
 #include <array>
@@ -12,15 +12,25 @@ namespace pkm::cnc {
 
 /// One step of an expanded cycle, in program coordinates (mm).
 struct CycleStep {
-  enum class Kind { kRapid, kFeed, kDwell };
+  /// kRapid/kFeed: a motion to `to`. kDwell: wait `seconds` at `to`. kSpindle: a spindle action
+  /// at `to` (`spindle`), no motion. kManual: G88's stop for the operator, who retracts the tool by
+  /// hand to `to`; the program goes on from there without a programmed motion (rs274 makes no
+  /// move either, but continues from the clear level).
+  enum class Kind { kRapid, kFeed, kDwell, kSpindle, kManual };
+  /// Spindle actions of the tapping and boring cycles (kSpindle steps).
+  enum class Spindle { kStop, kClockwise, kCounterClockwise, kOrient };
   Kind kind = Kind::kRapid;
   std::array<double, 3> to{};  ///< target X, Y, Z (program coordinates, mm)
   double seconds = 0.0;        ///< dwell time of kDwell
+  Spindle spindle = Spindle::kStop;
 };
+
+/// Spindle direction before a cycle (M3, M4, M5).
+enum class SpindleDirection { kStopped, kClockwise, kCounterClockwise };
 
 /// Inputs of one canned-cycle block (all lengths in mm, program coordinates).
 struct CycleRequest {
-  int code = 81;                    ///< 73, 81, 82, 83, 85 or 89
+  int code = 81;                    ///< 73, 74 or 81..89
   std::array<double, 3> current{};  ///< position before the block
   bool incremental = false;         ///< G91: X Y R are increments, Z is relative to R
   bool retract_to_r = true;         ///< G99 (true) or G98 (false)
@@ -30,16 +40,23 @@ struct CycleRequest {
   double z = 0.0;              ///< Z word (absolute, or increment from the R plane)
   double initial_level = 0.0;  ///< Z before the first cycle block of the sequence (cycle_il)
   double q = 0.0;              ///< peck increment of G73/G83 (> 0)
-  double p = 0.0;              ///< dwell of G82/G89 (s)
-  int repeats = 1;             ///< L
+  double p = 0.0;              ///< dwell of G74/G82/G84/G86/G88/G89 (s)
+  /// G87: the offset I, J (always increments from the hole's X, Y) and K, the top of the back
+  /// bore (absolute in G90, relative to the bottom in G91).
+  double i = 0.0, j = 0.0, k = 0.0;
+  /// The spindle before the cycle: G84 needs it clockwise, G74 counter-clockwise, G86/G87/G88
+  /// turning.
+  SpindleDirection spindle = SpindleDirection::kClockwise;
+  int repeats = 1;  ///< L
   /// Most steps the expansion may produce (L repeats times pecks): guards against a runaway
   /// cycle such as L1e9 or a tiny Q.
   std::uint64_t max_steps = 10'000'000;
 };
 
-/// Expands a cycle. Appends the steps to `out` and returns the final position. Throws
-/// GcodeError when the R plane is below the bottom, Q <= 0 for a pecking cycle, or the expansion
-/// would exceed `max_steps`.
+/// Expands a cycle. Appends the steps to `out` and returns the final position (where the program
+/// goes on from; after G88 the clear level the operator retracts to). Throws GcodeError when the
+/// R plane is below the bottom, Q <= 0 for a pecking cycle, the spindle is not turning (the way
+/// the cycle needs), or the expansion would exceed `max_steps`.
 std::array<double, 3> expandCycle(const CycleRequest& request, std::vector<CycleStep>& out);
 
 /// The small retract of G73 and the approach gap of G83: 0.010 in = 0.254 mm (rs274ngc

@@ -24,11 +24,12 @@ struct MachineState {
   bool ijk_absolute = false;   ///< G90.1 / G91.1
   bool inverse_time = false;   ///< G93 / G94
   bool retract_to_r = true;    ///< G99 / G98 (rs274's start-up mode is G99)
-  int motion = 800;            ///< active motion mode x10 (0, 10, 20, 30, 730, 800..890)
+  int motion = 800;            ///< active motion mode x10 (0, 10, 20, 30, 730, 740, 800..890)
   int coordinate_system = 1;   ///< 1 = G54 .. 9 = G59.3
   int path_mode = 640;         ///< G61 / G61.1 / G64, recorded only
   double feed = 0.0;           ///< feed rate, mm/min (units-per-minute mode)
   double spindle_speed = 0.0;  ///< S
+  int spindle_direction = 0;   ///< M3 (+1, clockwise), M4 (-1), M5 (0; stopped at start-up)
   int selected_tool = 0;       ///< T
   int tool_in_spindle = 0;     ///< after M6
   Axes machine{};              ///< current position, machine coordinates

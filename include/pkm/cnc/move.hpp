@@ -43,10 +43,31 @@ struct Move {
   double feed = std::numeric_limits<double>::quiet_NaN();
 };
 
+struct Block;
+
+/// A word of an executed block with the value its expression had when the block ran.
+struct EvaluatedWord {
+  char letter = 0;  ///< lower case, as in Block::words
+  double value = 0.0;
+};
+
 /// Receives motions in program order (a later `gcode run` streams them instead of collecting).
 class MoveSink {
  public:
   virtual ~MoveSink() = default;
+  /// True when the sink wants onBlock calls (asked once per run; evaluating them costs time).
+  [[nodiscard]] virtual bool wantsBlocks() const { return false; }
+  /// Called for every block the interpreter reaches, in execution order (loop bodies once per
+  /// pass), before the block's motions: `index` is its position in Program::blocks(); `words`
+  /// holds the evaluated words of an ordinary block in source order (empty for an O-word
+  /// statement, which reaches it unevaluated). Blocks skipped by block delete are not reported.
+  virtual void onBlock(const Block& block,
+                       std::size_t index,
+                       const std::vector<EvaluatedWord>& words) {
+    (void)block;
+    (void)index;
+    (void)words;
+  }
   /// Called once per motion, in execution order.
   virtual void onMove(const Move& move) = 0;
   /// Called once per dwell, in execution order with the motions: a G4 block and the dwell at the

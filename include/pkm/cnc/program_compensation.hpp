@@ -40,6 +40,8 @@ struct ProgramCompensation {
   std::size_t added_lines = 0;           ///< G0/G1 segment and G4 dwell lines inserted after them
   std::size_t offset_lines = 0;          ///< G92 / G10 L20 lines whose axis words were shifted
   double max_correction = 0.0;           ///< largest |command − desired| in XYZ, mm
+  /// Executed blocks of a program with O-words, which is flattened first; 0 when it had none.
+  std::size_t flattened_blocks = 0;
 };
 
 /// Rewrites program `text` (`file` names it in messages). Lines without motion are copied byte
@@ -59,9 +61,13 @@ struct ProgramCompensation {
 /// inserted lines). G92 and G10 L20 set an offset from the current position, which on the
 /// pre-distorted machine is the last command: their axis words (constants) are shifted by
 /// (command − desired)/scale of that point, so that the offset is the source program's. Not
-/// supported: G28/G30, G84/G86/G87/G88, G38.x, G33/G76, G93, O-words, G4 on a cycle line, and
-/// non-constant axis words on a G92/G10 L20 line. Throws pkm::IoError "FILE:LINE: message" for
-/// those or when the nominal FK does not converge; pkm::InvalidArgument for bad models.
+/// supported: G28/G30, G74/G84/G86/G87/G88, G38.x, G33/G76, G93, G4 on a cycle line, and
+/// non-constant axis words on a G92/G10 L20 line. A program with O-words (subroutines, loops,
+/// conditions) is flattened first (flattenProgram): the output is the flattened program,
+/// rewritten, and its "(pkm: line L ...)" comments name lines of the flattened program. Throws
+/// pkm::IoError "FILE:LINE: message" (the source line; for a flattened program also the
+/// flattened line) for those or when the nominal FK does not converge; pkm::InvalidArgument for
+/// bad models.
 [[nodiscard]] ProgramCompensation compensateProgram(std::string_view text,
                                                     const std::string& file,
                                                     const kinematics::HexapodModel& nominal,
