@@ -119,6 +119,10 @@ BlockCodes Interpreter::Impl::classify(const ResolvedBlock& rb) const {
         break;
       case 40:
       case 100:
+      case 280:
+      case 281:
+      case 300:
+      case 301:
       case 530:
       case 920:
       case 921:
@@ -224,7 +228,8 @@ void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c)
   const int motion = c.motion >= 0 ? c.motion : st.motion;
   const bool arc = motion == 20 || motion == 30;
   const bool canned = motion >= 730 && motion != 800;
-  const bool axis_user0 = c.non_modal == 100 || c.non_modal == 920 || c.tlo == 431;
+  const bool axis_user0 = c.non_modal == 100 || c.non_modal == 920 || c.non_modal == 280 ||
+                          c.non_modal == 300 || c.tlo == 431;
   if (axis_user0 && c.motion >= 0 && c.motion != 800 && axis)
     throw GcodeError(fmt::format("cannot use two G codes that both use axis values ({} and {})",
                                  gName(c.non_modal >= 0 ? c.non_modal : c.tlo),
@@ -310,6 +315,7 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   if (c.retract >= 0) st.retract_to_r = c.retract == 990;
   if (c.non_modal == 100) doG10(rb);
   if (c.non_modal >= 920) doG92(rb, c.non_modal);
+  if (c.non_modal >= 280 && c.non_modal <= 301) doHome(rb, c.non_modal, sink);
   doMotion(rb, c, sink);
   return !(c.m_stop == 2 || c.m_stop == 30);
 }

@@ -59,6 +59,10 @@ struct Interpreter::Impl : ParameterSource {
   void selectSystem(int n);
   void doG10(const ResolvedBlock& rb);
   void doG92(const ResolvedBlock& rb, int code);
+  /// G28/G30: rapid to the intermediate point of the axis words, then to the stored position
+  /// (#5161-#5166, #5181-#5186, machine coordinates) of those axes, or of all without words;
+  /// G28.1/G30.1 store the current machine position there.
+  void doHome(const ResolvedBlock& rb, int code, MoveSink& sink);
 
   // motion.cpp
   void doMotion(const ResolvedBlock& rb, const BlockCodes& c, MoveSink& sink);

@@ -261,11 +261,34 @@ void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink)
   }
 }
 
+void Interpreter::Impl::doHome(const ResolvedBlock& rb, int code, MoveSink& sink) {
+  const int base = code / 10 == 28 ? kG28Base : kG30Base;
+  if (code % 10 == 1) {  // G28.1 / G30.1
+    for (std::size_t i = 0; i < 6; ++i) params.set(base + static_cast<int>(i), st.machine[i]);
+    return;
+  }
+  // The intermediate point is a G0 target (offsets, units, G90/G91); rs274 makes this rapid
+  // even when it goes nowhere (no axis words).
+  Axes mid = st.machine;
+  const bool any = rb.hasAxis();
+  for (std::size_t i = 0; i < 6; ++i) {
+    if (!rb.hasWord(kAxes[i])) continue;
+    const double v = rb.word(kAxes[i]) * st.axisScale(i);
+    mid[i] = st.incremental ? st.machine[i] + v : v + st.offset(i);
+  }
+  emitLine(rb.line, true, mid, 0.0, sink);
+  Axes home = mid;
+  for (std::size_t i = 0; i < 6; ++i)
+    if (!any || rb.hasWord(kAxes[i])) home[i] = params.get(base + static_cast<int>(i));
+  emitLine(rb.line, true, home, 0.0, sink);
+}
+
 void Interpreter::Impl::doMotion(const ResolvedBlock& rb, const BlockCodes& c, MoveSink& sink) {
   const int motion = c.motion >= 0 ? c.motion : st.motion;
   const bool is_cycle = motion >= 730 && motion != 800;
   if (!is_cycle) cycle_il_flag = false;  // a non-cycle motion mode ends the cycle sequence
-  const bool axis_user0 = c.non_modal == 100 || c.non_modal == 920 || c.tlo == 431;
+  const bool axis_user0 = c.non_modal == 100 || c.non_modal == 920 || c.non_modal == 280 ||
+                          c.non_modal == 300 || c.tlo == 431;
   const bool axis = rb.hasAxis() && !axis_user0;
   switch (motion) {
     case 0:

@@ -25,18 +25,19 @@ namespace {
   throw IoError(fmt::format("{}:{}: {}", file, line, what));
 }
 
-/// G words (×10) the rewrite cannot express: G28/G30 (a stored position), the canned cycles with
-/// spindle actions (G74/G84 tapping, G86 spindle stop, G87 orientation, G88 manual retraction),
-/// probing, spindle-synchronised motion, and inverse time (a feed per source motion).
+/// G words (×10) the rewrite cannot express: the canned cycles with spindle actions (G74/G84
+/// tapping, G86 spindle stop, G87 orientation, G88 manual retraction), probing,
+/// spindle-synchronised motion, and inverse time (a feed per source motion).
 bool unsupportedG(long g10) {
-  static constexpr long kBad[] = {
-      280, 281, 300, 301, 740, 840, 860, 870, 880, 930, 382, 383, 384, 385, 330, 331, 760};
+  static constexpr long kBad[] = {740, 840, 860, 870, 880, 930, 382, 383, 384, 385, 330, 331, 760};
   return std::find(std::begin(kBad), std::end(kBad), g10) != std::end(kBad);
 }
 
-/// The drilling cycles (G number) that are expanded into G0/G1 lines and G4 dwells.
+/// The codes (G number) that are expanded into G0/G1 lines and G4 dwells: the drilling cycles,
+/// and G28/G30 (the rapids to the intermediate point and to the stored position).
 bool cycleG(double g) {
-  return g == 73.0 || g == 81.0 || g == 82.0 || g == 83.0 || g == 85.0 || g == 89.0;
+  return g == 73.0 || g == 81.0 || g == 82.0 || g == 83.0 || g == 85.0 || g == 89.0 || g == 28.0 ||
+         g == 30.0;
 }
 
 struct NoParams final : ParameterSource {
@@ -78,13 +79,12 @@ void checkBlock(const Block& b, const std::string& file, BlockScan& scan) {
     });
     sets_offset = sets_offset || g10 == 920 || (g10 == 100 && l20);
     if (unsupportedG(g10))
-      fail(
-          file,
-          b.line,
-          fmt::format("G{} is not supported by gcode compensate (it rewrites one motion per "
-                      "line or expands a drilling cycle: no G28/G30, G74/G84/G86/G87/G88, probing, "
-                      "G33/G76 or G93)",
-                      static_cast<double>(g10) / 10.0));
+      fail(file,
+           b.line,
+           fmt::format("G{} is not supported by gcode compensate (it rewrites one motion per "
+                       "line, or expands a drilling cycle or G28/G30: no G74/G84/G86/G87/G88, "
+                       "probing, G33/G76 or G93)",
+                       static_cast<double>(g10) / 10.0));
   }
   if (!sets_offset) return;
   OffsetLine o;

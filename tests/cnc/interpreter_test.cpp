@@ -182,6 +182,20 @@ TEST(Interpreter, BoringCyclesTrackTheSpindle) {
   EXPECT_THAT(errorOf("F100 M3\nG86 X1 Z-3 R2 P-1\n"), HasSubstr("t.ngc:2: negative dwell"));
 }
 
+TEST(Interpreter, HomeReturnsG28AndG30) {
+  // G28.1 stores the machine position (offsets included); G28 Z goes up to the intermediate
+  // point and then homes Z only; G30 without words homes every axis to #5181.. (0 here).
+  const auto m = run("G10 L2 P1 X10\nG0 X1 Y2 Z3\nG28.1\nG0 X5 Z7\nG91 G28 Z2\nG90 G30\nM2\n");
+  ASSERT_EQ(m.size(), 6u);
+  expectEnd(m[2], 15, 2, 9);  // intermediate: Z + 2
+  expectEnd(m[3], 15, 2, 3);  // home Z only
+  expectEnd(m[4], 15, 2, 3);  // G30 without words: the intermediate rapid goes nowhere
+  expectEnd(m[5], 0, 0, 0);   // then all axes to the G30 position
+  EXPECT_EQ(m[5].kind, MoveKind::kRapid);
+  EXPECT_THAT(errorOf("G1 G28 X1 F100\n"), HasSubstr("t.ngc:1: cannot use two G codes"));
+  EXPECT_THAT(errorOf("G28 G92 X1\n"), HasSubstr("t.ngc:1: two G codes from the same modal"));
+}
+
 TEST(Interpreter, ControlFlow) {
   const auto m =
       run("#1 = 0\no1 while [#1 LT 3]\nG0 X#1\n#1 = [#1 + 1]\no1 endwhile\n"

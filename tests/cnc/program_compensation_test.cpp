@@ -117,7 +117,7 @@ TEST(CompensateProgram, IdentityForEqualModels) {
 TEST(CompensateProgram, RejectsUnsupportedWithLine) {
   const kin::HexapodModel m = pkm::test::millingModel();
   for (const char* text : {"G0 X0 Y0 Z200\nG84 X1 Z150 R190 F100\n",
-                           "G0 X0 Y0 Z200\nG28 X1\n",
+                           "G0 X0 Y0 Z200\nG33 X1 K1\n",
                            "G0 X0 Y0 Z200\nG81 G4 P1 X1 Z150 R190 F100\n",
                            "G0 X0 Y0 Z200\nG93 G1 X1 F10\n",
                            "G0 X0 Y0 Z200\nG92 X[#1]\n",
@@ -187,6 +187,47 @@ TEST(CompensateProgram, OWordProgramsAreFlattenedFirst) {
     EXPECT_NE(std::string(e.what()).find("(line 3 of the flattened program)"), std::string::npos)
         << e.what();
   }
+}
+
+/// G28/G30 are expanded into their two rapids (intermediate point, stored position), each
+/// pre-distorted; G28.1 stays.
+TEST(CompensateProgram, HomeReturnsAreExpanded) {
+  const kin::HexapodModel nominal = pkm::test::millingModel();
+  const kin::HexapodModel cal = calibrated(nominal);
+  const char* const program =
+      "G21 G90\n"
+      "G0 X0 Y0 Z200\n"
+      "G1 X10 Y5 Z190 F600\n"
+      "G28.1\n"
+      "G0 X30 Z195\n"
+      "G91 G28 Z2 (up 2 mm, then home in Z)\n"
+      "G90 G30 X5\n"
+      "M2\n";
+  ProgramCompensationOptions o;
+  o.interpolation = jointSpaceInterpolation(cal, kTol);
+  const ProgramCompensation r = compensateProgram(program, "p.ngc", nominal, cal, o);
+  MoveCollector source;
+  Interpreter a;
+  (void)a.run(Program::parse(program, "p.ngc"), source);
+  ASSERT_EQ(source.moves.size(), 7u);
+  EXPECT_EQ(source.moves[4].end[2], 190.0);  // G28 Z: the Z stored by G28.1
+  EXPECT_EQ(source.moves[6].end[0], 0.0);    // G30 X: #5181 = 0
+  MoveCollector back;
+  Interpreter b;
+  (void)b.run(Program::parse(r.text, "out.ngc"), back);
+  ASSERT_EQ(back.moves.size(), r.points.size()) << r.text;
+  for (std::size_t i = 0; i < back.moves.size(); ++i)
+    for (std::size_t k = 0; k < 6; ++k)
+      EXPECT_NEAR(back.moves[i].end[k], r.points[i].command[k], kTextDigits) << i << "\n" << r.text;
+  HexapodJointConverter n(nominal), c(cal);
+  for (const auto& p : r.points) {
+    const kin::StrutVector qn = n.solve(p.command), qc = c.solve(p.desired);
+    EXPECT_LE((qn - qc).cwiseAbs().maxCoeff(), kJointMatch);
+  }
+  EXPECT_EQ(r.text.find("G28 "), std::string::npos) << r.text;
+  EXPECT_EQ(r.text.find("G30"), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find("\nG28.1\n"), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find("(up 2 mm, then home in Z)"), std::string::npos) << r.text;
 }
 
 /// Records the dwells of a program with the number of motions before each.

@@ -17,6 +17,10 @@ namespace pkm::cnc {
 inline constexpr int kParameterCount = 5602;
 /// #5211: first G92 offset parameter (X); #5210 says whether G92 offsets are applied.
 inline constexpr int kG92Base = 5211;
+/// First of the G28 (#5161-#5166) and G30 (#5181-#5186) stored positions, X Y Z A B C in machine
+/// coordinates (mm, degrees).
+inline constexpr int kG28Base = 5161;
+inline constexpr int kG30Base = 5181;
 /// #5220: the active coordinate system, 1 (G54) .. 9 (G59.3).
 inline constexpr int kActiveSystemParam = 5220;
 /// First parameter (X) of coordinate system `n` (1 = G54 .. 9 = G59.3): 5201 + 20 n.
