@@ -205,6 +205,10 @@ BlockCodes Interpreter::Impl::classify(const ResolvedBlock& rb) const {
       case 5:
         setOnce(c.m_spindle, m, "M");
         break;
+      case 48:
+      case 49:
+        setOnce(c.m_override, m, "M");
+        break;
       case 7:
         c.m_mist = true;
         break;
@@ -294,6 +298,7 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
     st.selected_tool = t;
   }
   if (c.m_tool == 6) st.tool_in_spindle = st.selected_tool;
+  if (c.m_override >= 0) st.overrides_enabled = c.m_override == 48;
   if (c.m_spindle >= 0) st.spindle_direction = c.m_spindle == 3 ? 1 : c.m_spindle == 4 ? -1 : 0;
   if (c.non_modal == 40) {
     if (!rb.hasWord('p')) throw GcodeError("G4 needs a P word (dwell time, s)");

@@ -11,12 +11,12 @@
 // clear; G89 feed in, dwell, feed out to the clear level; G83 pecks with rapids to R and back to
 // 0.254 mm above the last depth; G73 pecks with a 0.254 mm rapid retract. G84 (G74) feeds in
 // with the spindle clockwise (counter-clockwise), reverses it, dwells P and feeds out to the
-// clear level, restoring the spindle; G86 feeds in, dwells, stops the spindle, rapids out and
-// restarts it; G88 feeds in, dwells, stops the spindle and the program for a manual retraction
-// (the program goes on from the clear level, with no motion); G87 back-bores: rapid to the
-// offset point I, J at R, orient the spindle, rapid down to the bottom and over to the hole,
-// start the spindle, feed up to K and back down, orient, rapid to the offset point, up to the
-// clear level and back over the hole, restart the spindle.
+// clear level, restoring the spindle, with the feed and speed overrides off meanwhile; G86 feeds
+// in, dwells, stops the spindle, rapids out and restarts it; G88 feeds in, dwells, stops the
+// spindle and the program for a manual retraction (the program goes on from the clear level, with
+// no motion); G87 back-bores: rapid to the offset point I, J at R, orient the spindle, rapid down
+// to the bottom and over to the hole, start the spindle, feed up to K and back down, orient, rapid
+// to the offset point, up to the clear level and back over the hole, restart the spindle.
 #include "pkm/cnc/canned_cycle.hpp"
 
 #include <fmt/format.h>
@@ -36,10 +36,10 @@ void push(std::vector<CycleStep>& out, CycleStep::Kind k, double x, double y, do
   out.push_back(s);
 }
 
-void spindle(std::vector<CycleStep>& out, CycleStep::Spindle action, double x, double y, double z) {
+void act(std::vector<CycleStep>& out, CycleAction action, double x, double y, double z) {
   CycleStep s;
-  s.kind = CycleStep::Kind::kSpindle;
-  s.spindle = action;
+  s.kind = CycleStep::Kind::kAction;
+  s.action = action;
   s.to = {x, y, z};
   out.push_back(s);
 }
@@ -65,9 +65,9 @@ void checkSpindle(int code, SpindleDirection dir) {
     throw GcodeError(fmt::format("spindle not turning in G{}", code));
 }
 
-CycleStep::Spindle turning(SpindleDirection dir) {
-  return dir == SpindleDirection::kCounterClockwise ? CycleStep::Spindle::kCounterClockwise
-                                                    : CycleStep::Spindle::kClockwise;
+CycleAction turning(SpindleDirection dir) {
+  return dir == SpindleDirection::kCounterClockwise ? CycleAction::kSpindleCounterClockwise
+                                                    : CycleAction::kSpindleClockwise;
 }
 }  // namespace
 
@@ -152,50 +152,53 @@ std::array<double, 3> expandCycle(const CycleRequest& q, std::vector<CycleStep>&
       }
       case 84:
       case 74: {
-        using S = CycleStep::Spindle;
-        const S reverse = q.code == 84 ? S::kCounterClockwise : S::kClockwise;
-        const S forward = q.code == 84 ? S::kClockwise : S::kCounterClockwise;
+        using A = CycleAction;
+        const A reverse = q.code == 84 ? A::kSpindleCounterClockwise : A::kSpindleClockwise;
+        const A forward = q.code == 84 ? A::kSpindleClockwise : A::kSpindleCounterClockwise;
+        act(out, A::kOverridesOff, x, y, r);
         push(out, K::kFeed, x, y, bottom);
-        spindle(out, S::kStop, x, y, bottom);
-        spindle(out, reverse, x, y, bottom);
+        act(out, A::kSpindleStop, x, y, bottom);
+        act(out, reverse, x, y, bottom);
         dwell(out, q.p, x, y, bottom);
         push(out, K::kFeed, x, y, clear);
-        spindle(out, S::kStop, x, y, clear);
-        spindle(out, forward, x, y, clear);
+        act(out, A::kSpindleStop, x, y, clear);
+        act(out, forward, x, y, clear);
+        if (q.overrides_enabled) act(out, A::kOverridesOn, x, y, clear);
         break;
       }
       case 86:
         push(out, K::kFeed, x, y, bottom);
         dwell(out, q.p, x, y, bottom);
-        spindle(out, CycleStep::Spindle::kStop, x, y, bottom);
+        act(out, CycleAction::kSpindleStop, x, y, bottom);
         push(out, K::kRapid, x, y, clear);
-        spindle(out, turning(q.spindle), x, y, clear);
+        act(out, turning(q.spindle), x, y, clear);
         break;
       case 88:
         push(out, K::kFeed, x, y, bottom);
         dwell(out, q.p, x, y, bottom);
-        spindle(out, CycleStep::Spindle::kStop, x, y, bottom);
+        act(out, CycleAction::kSpindleStop, x, y, bottom);
+        act(out, CycleAction::kProgramStop, x, y, bottom);
         push(out, K::kManual, x, y, clear);
-        spindle(out, turning(q.spindle), x, y, clear);
+        act(out, turning(q.spindle), x, y, clear);
         break;
       case 87: {
-        using S = CycleStep::Spindle;
+        using A = CycleAction;
         const double ox = x + q.i;
         const double oy = y + q.j;
         push(out, K::kRapid, ox, oy, r);
-        spindle(out, S::kStop, ox, oy, r);
-        spindle(out, S::kOrient, ox, oy, r);
+        act(out, A::kSpindleStop, ox, oy, r);
+        act(out, A::kSpindleOrient, ox, oy, r);
         push(out, K::kRapid, ox, oy, bottom);
         push(out, K::kRapid, x, y, bottom);
-        spindle(out, turning(q.spindle), x, y, bottom);
+        act(out, turning(q.spindle), x, y, bottom);
         push(out, K::kFeed, x, y, middle);
         push(out, K::kFeed, x, y, bottom);
-        spindle(out, S::kStop, x, y, bottom);
-        spindle(out, S::kOrient, x, y, bottom);
+        act(out, A::kSpindleStop, x, y, bottom);
+        act(out, A::kSpindleOrient, x, y, bottom);
         push(out, K::kRapid, ox, oy, bottom);
         push(out, K::kRapid, ox, oy, clear);
         push(out, K::kRapid, x, y, clear);
-        spindle(out, turning(q.spindle), x, y, clear);
+        act(out, turning(q.spindle), x, y, clear);
         break;
       }
       default:

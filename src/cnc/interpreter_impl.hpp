@@ -36,7 +36,7 @@ struct BlockCodes {
   int non_modal = -1;  // group 0 (G4, G10, G53, G92, G92.x)
   int plane = -1, distance = -1, ijk = -1, feed_mode = -1, units = -1, cutter = -1, tlo = -1,
       retract = -1, wcs = -1, path = -1;
-  int m_stop = -1, m_tool = -1, m_spindle = -1;
+  int m_stop = -1, m_tool = -1, m_spindle = -1, m_override = -1;
   bool m_mist = false, m_flood = false, m_coolant_off = false;
 };
 

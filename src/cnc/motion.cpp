@@ -226,6 +226,7 @@ void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink)
     q.j = cycle_j;
     q.k = cycle_k;
   }
+  q.overrides_enabled = st.overrides_enabled;
   q.spindle = st.spindle_direction > 0   ? SpindleDirection::kClockwise
               : st.spindle_direction < 0 ? SpindleDirection::kCounterClockwise
                                          : SpindleDirection::kStopped;
@@ -244,8 +245,9 @@ void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink)
       case CycleStep::Kind::kDwell:
         sink.onDwell(rb.line, step.seconds);
         break;
-      case CycleStep::Kind::kSpindle:
-        break;  // spindle stops, reversals and orientation take no part in the motion
+      case CycleStep::Kind::kAction:
+        sink.onCycleAction(rb.line, step.action);
+        break;
       case CycleStep::Kind::kManual:
         // G88: the operator retracts by hand; the program goes on from the clear level.
         for (std::size_t i = 0; i < 3; ++i) st.machine[i] = step.to[i] + st.offset(i);

@@ -25,19 +25,41 @@ namespace {
   throw IoError(fmt::format("{}:{}: {}", file, line, what));
 }
 
-/// G words (×10) the rewrite cannot express: the canned cycles with spindle actions (G74/G84
-/// tapping, G86 spindle stop, G87 orientation, G88 manual retraction), probing,
-/// spindle-synchronised motion, and inverse time (a feed per source motion).
+/// G words (×10) the rewrite cannot express: G87 (spindle orientation, M19, which the
+/// interpreter does not run), G88 (the operator retracts by hand, so the rewritten program would
+/// not know where the tool is), probing, spindle-synchronised motion, and inverse time (a feed
+/// per source motion).
 bool unsupportedG(long g10) {
-  static constexpr long kBad[] = {740, 840, 860, 870, 880, 930, 382, 383, 384, 385, 330, 331, 760};
+  static constexpr long kBad[] = {870, 880, 930, 382, 383, 384, 385, 330, 331, 760};
   return std::find(std::begin(kBad), std::end(kBad), g10) != std::end(kBad);
 }
 
-/// The codes (G number) that are expanded into G0/G1 lines and G4 dwells: the drilling cycles,
-/// and G28/G30 (the rapids to the intermediate point and to the stored position).
+/// The codes (G number) that are expanded into G0/G1 lines, G4 dwells and M codes: the drilling,
+/// tapping and boring cycles, and G28/G30 (the rapids to the intermediate point and to the stored
+/// position).
 bool cycleG(double g) {
-  return g == 73.0 || g == 81.0 || g == 82.0 || g == 83.0 || g == 85.0 || g == 89.0 || g == 28.0 ||
-         g == 30.0;
+  return g == 73.0 || g == 74.0 || g == 81.0 || g == 82.0 || g == 83.0 || g == 84.0 || g == 85.0 ||
+         g == 86.0 || g == 89.0 || g == 28.0 || g == 30.0;
+}
+
+/// The block that does a canned cycle's action, with a "{}" for the source line.
+const char* actionBlock(CycleAction a) {
+  switch (a) {
+    case CycleAction::kSpindleStop:
+      return "M5 (pkm: line {} spindle stop)";
+    case CycleAction::kSpindleClockwise:
+      return "M3 (pkm: line {} spindle clockwise)";
+    case CycleAction::kSpindleCounterClockwise:
+      return "M4 (pkm: line {} spindle counter-clockwise)";
+    case CycleAction::kOverridesOff:
+      return "M49 (pkm: line {} overrides off)";
+    case CycleAction::kOverridesOn:
+      return "M48 (pkm: line {} overrides on)";
+    case CycleAction::kSpindleOrient:  // G87, G88: refused by checkBlock
+    case CycleAction::kProgramStop:
+      break;
+  }
+  return "(pkm: line {} unsupported cycle action)";
 }
 
 struct NoParams final : ParameterSource {
@@ -82,8 +104,8 @@ void checkBlock(const Block& b, const std::string& file, BlockScan& scan) {
       fail(file,
            b.line,
            fmt::format("G{} is not supported by gcode compensate (it rewrites one motion per "
-                       "line, or expands a drilling cycle or G28/G30: no G74/G84/G86/G87/G88, "
-                       "probing, G33/G76 or G93)",
+                       "line, or expands a canned cycle or G28/G30: no G87/G88, probing, G33/G76 "
+                       "or G93)",
                        static_cast<double>(g10) / 10.0));
   }
   if (!sets_offset) return;
@@ -156,7 +178,15 @@ std::string axisWords(const Axes& c,
   return s;
 }
 
-/// Collects the motions with the word frame in effect when each was made, and the dwells.
+/// A block inserted after a motion of an expanded cycle: a dwell or a cycle action.
+struct CycleEvent {
+  std::size_t line = 0;         ///< source line (the cycle's)
+  std::size_t after_moves = 0;  ///< motions made before it
+  std::string text;             ///< the block
+};
+
+/// Collects the motions with the word frame in effect when each was made, and the dwells and
+/// cycle actions.
 class FrameSink final : public MoveSink {
  public:
   explicit FrameSink(const Interpreter& interpreter) : interpreter_(&interpreter) {}
@@ -170,11 +200,16 @@ class FrameSink final : public MoveSink {
     frames.push_back(f);
   }
   void onDwell(std::size_t line, double seconds) override {
-    dwells.push_back({line, moves.size(), seconds});
+    std::string w = "G4 ";
+    appendCoord(w, 'P', std::llround(seconds * 1e9));
+    events.push_back({line, moves.size(), fmt::format("{} (pkm: line {} dwell)", w, line)});
+  }
+  void onCycleAction(std::size_t line, CycleAction action) override {
+    events.push_back({line, moves.size(), fmt::format(fmt::runtime(actionBlock(action)), line)});
   }
   std::vector<Move> moves;
   std::vector<WordFrame> frames;
-  std::vector<DwellEvent> dwells;
+  std::vector<CycleEvent> events;
 
  private:
   const Interpreter* interpreter_;
@@ -362,13 +397,14 @@ ProgramCompensation rewriteFlat(std::string_view text,
     span[mv.line] = {first, points.size()};
     ++motions_of_line[mv.line];
   }
-  std::map<std::size_t, std::vector<DwellEvent>> cycle_dwells;  // dwells of multi-motion lines
-  for (const DwellEvent& d : moves.dwells) {
+  // Dwells and actions of multi-motion lines (a G4 line is copied as it is).
+  std::map<std::size_t, std::vector<CycleEvent>> cycle_events;
+  for (const CycleEvent& d : moves.events) {
     const auto n = motions_of_line.find(d.line);
-    if (n == motions_of_line.end() || n->second < 2) continue;  // a G4 line: copied as it is
+    if (n == motions_of_line.end() || n->second < 2) continue;
     if (d.after_moves == 0 || moves.moves[d.after_moves - 1].line != d.line)
       fail(file, d.line, "gcode compensate does not support G4 on a canned-cycle line");
-    cycle_dwells[d.line].push_back(d);
+    cycle_events[d.line].push_back(d);
   }
   const std::vector<Axes> commands = map(points);
   assert(commands.size() == points.size());
@@ -444,17 +480,15 @@ ProgramCompensation rewriteFlat(std::string_view text,
       r.text += rewriteLine(line, kind, gWord(first) + words(first));
       ++r.motion_lines;
       std::vector<std::string> inserted;
-      const auto dwellsAfter = [&](std::size_t k) {
+      const auto eventsAfter = [&](std::size_t k) {
         if (!cycle || (k + 1 < last && points[k + 1].move == points[k].move)) return;
-        for (const DwellEvent& d : cycle_dwells[line_no])
+        for (const CycleEvent& d : cycle_events[line_no])
           if (d.after_moves == points[k].move + 1u) {
-            std::string s = "G4 ";
-            appendCoord(s, 'P', std::llround(d.seconds * 1e9));
-            inserted.push_back(fmt::format("{} (pkm: line {} dwell)", s, line_no));
+            inserted.push_back(d.text);
             ++r.added_lines;
           }
       };
-      dwellsAfter(first);
+      eventsAfter(first);
       for (std::size_t k = first + 1; k < last; ++k) {
         inserted.push_back(fmt::format("{}{}{} (pkm: line {} segment {}/{})",
                                        moves.frames[points[k].move].machine ? "G53 " : "",
@@ -464,7 +498,7 @@ ProgramCompensation rewriteFlat(std::string_view text,
                                        k - first + 1,
                                        last - first));
         ++r.added_lines;
-        dwellsAfter(k);
+        eventsAfter(k);
       }
       for (const std::string& s : inserted) r.text += eol + s;
       if (has_nl) r.text += eol;

@@ -145,8 +145,8 @@ std::vector<CycleStep> motions(const std::vector<CycleStep>& steps) {
 }
 
 TEST(CannedCycle, G84ReversesTheSpindleAndFeedsOutToTheClearLevel) {
-  // rs274 (G98, IL 20): rapid (10,10,20), (10,10,2), feed (10,10,-5), STOP, CCW, DWELL(0.2),
-  // feed (10,10,20), STOP, CW.
+  // rs274 (G98, IL 20): rapid (10,10,20), (10,10,2), overrides off, feed (10,10,-5), STOP, CCW,
+  // DWELL(0.2), feed (10,10,20), STOP, CW, overrides on.
   CycleRequest q;
   q.code = 84;
   q.current = {0, 0, 20};
@@ -159,23 +159,28 @@ TEST(CannedCycle, G84ReversesTheSpindleAndFeedsOutToTheClearLevel) {
   q.p = 0.2;
   std::vector<CycleStep> s;
   const auto end = expandCycle(q, s);
-  ASSERT_EQ(s.size(), 9u);
-  expectStep(s[2], K::kFeed, 10, 10, -5);
-  EXPECT_EQ(s[3].spindle, CycleStep::Spindle::kStop);
-  EXPECT_EQ(s[4].spindle, CycleStep::Spindle::kCounterClockwise);
-  EXPECT_EQ(s[5].kind, K::kDwell);
-  EXPECT_EQ(s[5].seconds, 0.2);
-  expectStep(s[6], K::kFeed, 10, 10, 20);
-  EXPECT_EQ(s[8].kind, K::kSpindle);
-  EXPECT_EQ(s[8].spindle, CycleStep::Spindle::kClockwise);
+  ASSERT_EQ(s.size(), 11u);
+  EXPECT_EQ(s[2].action, CycleAction::kOverridesOff);
+  expectStep(s[3], K::kFeed, 10, 10, -5);
+  EXPECT_EQ(s[4].action, CycleAction::kSpindleStop);
+  EXPECT_EQ(s[5].action, CycleAction::kSpindleCounterClockwise);
+  EXPECT_EQ(s[6].kind, K::kDwell);
+  EXPECT_EQ(s[6].seconds, 0.2);
+  expectStep(s[7], K::kFeed, 10, 10, 20);
+  EXPECT_EQ(s[9].kind, K::kAction);
+  EXPECT_EQ(s[9].action, CycleAction::kSpindleClockwise);
+  EXPECT_EQ(s[10].action, CycleAction::kOverridesOn);
   EXPECT_EQ(end[2], 20.0);
-  // G74 is the mirror image: it needs M4 and reverses to clockwise.
+  // G74 is the mirror image: it needs M4 and reverses to clockwise. Overrides that were off
+  // (M49) stay off.
   q.code = 74;
   q.spindle = SpindleDirection::kCounterClockwise;
+  q.overrides_enabled = false;
   s.clear();
   expandCycle(q, s);
-  EXPECT_EQ(s[4].spindle, CycleStep::Spindle::kClockwise);
-  EXPECT_EQ(s[8].spindle, CycleStep::Spindle::kCounterClockwise);
+  ASSERT_EQ(s.size(), 10u);
+  EXPECT_EQ(s[5].action, CycleAction::kSpindleClockwise);
+  EXPECT_EQ(s[9].action, CycleAction::kSpindleCounterClockwise);
 }
 
 TEST(CannedCycle, G86StopsTheSpindleAndRapidsOut) {
@@ -193,9 +198,9 @@ TEST(CannedCycle, G86StopsTheSpindleAndRapidsOut) {
   ASSERT_EQ(s.size(), 7u);
   expectStep(s[2], K::kFeed, 0, 0, -3);
   EXPECT_EQ(s[3].kind, K::kDwell);
-  EXPECT_EQ(s[4].spindle, CycleStep::Spindle::kStop);
+  EXPECT_EQ(s[4].action, CycleAction::kSpindleStop);
   expectStep(s[5], K::kRapid, 0, 0, 2);
-  EXPECT_EQ(s[6].spindle, CycleStep::Spindle::kCounterClockwise);
+  EXPECT_EQ(s[6].action, CycleAction::kSpindleCounterClockwise);
 }
 
 TEST(CannedCycle, G87BackBoresFromBelow) {
@@ -231,7 +236,7 @@ TEST(CannedCycle, G87BackBoresFromBelow) {
     expectStep(m[k], want[k][0] == 0 ? K::kRapid : K::kFeed, want[k][1], want[k][2], want[k][3]);
   EXPECT_EQ(end[2], 2.0);
   std::size_t orients = 0;
-  for (const CycleStep& c : s) orients += c.spindle == CycleStep::Spindle::kOrient ? 1 : 0;
+  for (const CycleStep& c : s) orients += c.action == CycleAction::kSpindleOrient ? 1 : 0;
   EXPECT_EQ(orients, 2u);  // oriented before going down through the hole and before leaving
 }
 

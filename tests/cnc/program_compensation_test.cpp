@@ -116,13 +116,13 @@ TEST(CompensateProgram, IdentityForEqualModels) {
 
 TEST(CompensateProgram, RejectsUnsupportedWithLine) {
   const kin::HexapodModel m = pkm::test::millingModel();
-  for (const char* text : {"G0 X0 Y0 Z200\nG84 X1 Z150 R190 F100\n",
+  for (const char* text : {"G0 X0 Y0 Z200 M3\nG87 X1 Z150 R190 I1 J0 K160 F100\n",
                            "G0 X0 Y0 Z200\nG33 X1 K1\n",
                            "G0 X0 Y0 Z200\nG81 G4 P1 X1 Z150 R190 F100\n",
                            "G0 X0 Y0 Z200\nG93 G1 X1 F10\n",
                            "G0 X0 Y0 Z200\nG92 X[#1]\n",
                            "G0 X0 Y0 Z200\nG10 L20 P1 X[1 + #2]\n",
-                           "G0 X0 Y0 Z200\nG86 X1 Z150 R190 P1 F100 S100 M3\n"}) {
+                           "G0 X0 Y0 Z200\nG88 X1 Z150 R190 P1 F100 S100 M3\n"}) {
     try {
       (void)compensateProgram(text, "bad.ngc", m, m);
       ADD_FAILURE() << text;
@@ -175,14 +175,14 @@ TEST(CompensateProgram, OWordProgramsAreFlattenedFirst) {
   EXPECT_NE(r.text.find("(a half circle)"), std::string::npos) << r.text;
   try {
     (void)compensateProgram(
-        "G0 X0 Y0 Z200 S100 M3\no1 sub\n  G1 Z190 F100\n  G86 X1 Z150 R190 P1\no1 endsub\no1 "
+        "G0 X0 Y0 Z200 S100 M3\no1 sub\n  G1 Z190 F100\n  G88 X1 Z150 R190 P1\no1 endsub\no1 "
         "call\n",
         "bad.ngc",
         nominal,
         nominal);
     ADD_FAILURE();
   } catch (const pkm::IoError& e) {
-    EXPECT_NE(std::string(e.what()).find("bad.ngc:4: G86 is not supported"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("bad.ngc:4: G88 is not supported"), std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find("(line 3 of the flattened program)"), std::string::npos)
         << e.what();
@@ -297,6 +297,88 @@ TEST(CompensateProgram, DrillingCyclesAreExpanded) {
   EXPECT_NE(r.text.find("\nG4 P1.25 (pkm: line 9 dwell)\n"), std::string::npos) << r.text;
   EXPECT_NE(r.text.find(" G80\n"), std::string::npos) << r.text;  // after the new words
   EXPECT_EQ(r.motion_lines, 9u);
+}
+
+/// Records the spindle, override and dwell events of a program as (motions before, code): the
+/// source's from the cycles (onCycleAction, onDwell), the output's from its M-code and G4 blocks.
+struct EventSink final : MoveSink {
+  [[nodiscard]] bool wantsBlocks() const override { return reportBlocks; }
+  void onMove(const Move&) override { ++moves; }
+  void onDwell(std::size_t, double seconds) override { events.emplace_back(moves, 4.0 + seconds); }
+  void onCycleAction(std::size_t, CycleAction a) override {
+    static constexpr double kCode[] = {5, 3, 4, 19, 49, 48, 0};
+    events.emplace_back(moves, 100.0 + kCode[static_cast<int>(a)]);
+  }
+  void onBlock(const Block&, std::size_t, const std::vector<EvaluatedWord>& words) override {
+    for (const EvaluatedWord& w : words)
+      if (w.letter == 'm' && w.value != 2.0) events.emplace_back(moves, 100.0 + w.value);
+  }
+  bool reportBlocks = false;
+  std::size_t moves = 0;
+  std::vector<std::pair<std::size_t, double>> events;
+};
+
+/// G84 (with its override switches), G74 and G86 are expanded into motions, dwells and M codes
+/// in the order the cycles make them, each at the same desired position.
+TEST(CompensateProgram, TappingAndBoringCyclesAreExpanded) {
+  const kin::HexapodModel nominal = pkm::test::millingModel();
+  const kin::HexapodModel cal = calibrated(nominal);
+  const char* const program =
+      "G21 G90 G17 S500\n"
+      "G0 X0 Y0 Z200\n"
+      "M3\n"
+      "N30 G98 G84 X10 Y5 Z170 R190 F300 P0.3 (tap)\n"
+      "G99 G86 X20 Z175 R185 P0.5\n"
+      "M4\n"
+      "G74 X-10 Z170 R190\n"
+      "G80 G0 Z200\n"
+      "M2\n";
+  ProgramCompensationOptions o;
+  o.interpolation = jointSpaceInterpolation(cal, kTol);
+  const ProgramCompensation r = compensateProgram(program, "p.ngc", nominal, cal, o);
+  EXPECT_GT(r.max_correction, 0.1);
+  HexapodJointConverter n(nominal), c(cal);
+  for (const auto& p : r.points) {
+    const kin::StrutVector qn = n.solve(p.command), qc = c.solve(p.desired);
+    EXPECT_LE((qn - qc).cwiseAbs().maxCoeff(), kJointMatch);
+  }
+  EventSink source;
+  MoveCollector source_moves;
+  {
+    Interpreter a;
+    (void)a.run(Program::parse(program, "p.ngc"), source);
+    Interpreter a2;
+    (void)a2.run(Program::parse(program, "p.ngc"), source_moves);
+  }
+  EventSink out;
+  out.reportBlocks = true;
+  Interpreter b;
+  (void)b.run(Program::parse(r.text, "out.ngc"), out);
+  EXPECT_EQ(out.moves, r.points.size());
+  // The output's events: the source's M3/M4 lines, then the cycles' events.
+  std::vector<std::pair<std::size_t, double>> got;
+  for (const auto& e : out.events)
+    if (e.first > 1) got.push_back(e);  // drop M3 before the first cycle
+  std::vector<std::pair<std::size_t, double>> want;
+  for (const auto& e : source.events) want.push_back(e);
+  // The M4 block of line 6 is in the output's list only: it is skipped below.
+  ASSERT_EQ(got.size(), want.size() + 1) << r.text;
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    if (got[i].second == 104.0 && (j >= want.size() || want[j].second != 104.0)) continue;  // M4
+    ASSERT_LT(j, want.size());
+    EXPECT_EQ(got[i].second, want[j].second) << i;
+    // The same desired position: the end of the source motion before the event.
+    const auto& d = r.points[got[i].first - 1].desired;
+    const auto& e = source_moves.moves[want[j].first - 1].end;
+    for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(d[k], e[k], 1e-9) << i;
+    ++j;
+  }
+  EXPECT_EQ(j, want.size());
+  for (const char* cycle : {"G84", "G74", "G86", " R1", " P0.3 (tap)"})
+    EXPECT_EQ(r.text.find(cycle), std::string::npos) << cycle << "\n" << r.text;
+  EXPECT_NE(r.text.find("\nM49 (pkm: line 4 overrides off)\n"), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find("\nM48 (pkm: line 4 overrides on)\n"), std::string::npos) << r.text;
 }
 
 /// Work offsets (G54..G59.3 set by G10 L2, G92.1), tool length offsets (G43.1), inches (G20),

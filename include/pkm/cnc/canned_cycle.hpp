@@ -8,21 +8,21 @@
 #include <cstdint>
 #include <vector>
 
+#include "pkm/cnc/move.hpp"
+
 namespace pkm::cnc {
 
 /// One step of an expanded cycle, in program coordinates (mm).
 struct CycleStep {
-  /// kRapid/kFeed: a motion to `to`. kDwell: wait `seconds` at `to`. kSpindle: a spindle action
-  /// at `to` (`spindle`), no motion. kManual: G88's stop for the operator, who retracts the tool by
-  /// hand to `to`; the program goes on from there without a programmed motion (rs274 makes no
-  /// move either, but continues from the clear level).
-  enum class Kind { kRapid, kFeed, kDwell, kSpindle, kManual };
-  /// Spindle actions of the tapping and boring cycles (kSpindle steps).
-  enum class Spindle { kStop, kClockwise, kCounterClockwise, kOrient };
+  /// kRapid/kFeed: a motion to `to`. kDwell: wait `seconds` at `to`. kAction: `action` at `to`
+  /// (spindle, overrides, program stop), no motion. kManual: G88's retraction by the operator to
+  /// `to`; the program goes on from there without a programmed motion (rs274 makes no move
+  /// either, but continues from the clear level).
+  enum class Kind { kRapid, kFeed, kDwell, kAction, kManual };
   Kind kind = Kind::kRapid;
-  std::array<double, 3> to{};  ///< target X, Y, Z (program coordinates, mm)
-  double seconds = 0.0;        ///< dwell time of kDwell
-  Spindle spindle = Spindle::kStop;
+  std::array<double, 3> to{};                      ///< target X, Y, Z (program coordinates, mm)
+  double seconds = 0.0;                            ///< dwell time of kDwell
+  CycleAction action = CycleAction::kSpindleStop;  ///< the action of kAction
 };
 
 /// Spindle direction before a cycle (M3, M4, M5).
@@ -47,6 +47,9 @@ struct CycleRequest {
   /// The spindle before the cycle: G84 needs it clockwise, G74 counter-clockwise, G86/G87/G88
   /// turning.
   SpindleDirection spindle = SpindleDirection::kClockwise;
+  /// Feed and speed overrides enabled before the cycle (M48/M49): G74/G84 turn them off for the
+  /// tap and back on only when they were on.
+  bool overrides_enabled = true;
   int repeats = 1;  ///< L
   /// Most steps the expansion may produce (L repeats times pecks): guards against a runaway
   /// cycle such as L1e9 or a tiny Q.

@@ -45,6 +45,20 @@ struct Move {
 
 struct Block;
 
+/// What a canned cycle does besides moving and dwelling, in order with its motions
+/// (MoveSink::onCycleAction): spindle stop (M5), start clockwise (M3) or counter-clockwise (M4),
+/// orientation (M19), feed and speed overrides off (M49) and on again (M48) around a tap, and
+/// G88's program stop (M0) for a manual retraction.
+enum class CycleAction {
+  kSpindleStop,
+  kSpindleClockwise,
+  kSpindleCounterClockwise,
+  kSpindleOrient,
+  kOverridesOff,
+  kOverridesOn,
+  kProgramStop
+};
+
 /// A word of an executed block with the value its expression had when the block ran.
 struct EvaluatedWord {
   char letter = 0;  ///< lower case, as in Block::words
@@ -75,6 +89,12 @@ class MoveSink {
   virtual void onDwell(std::size_t line, double seconds) {
     (void)line;
     (void)seconds;
+  }
+  /// Called for each non-motion action of a canned cycle (G74/G84/G86/G87/G88), in execution
+  /// order with the motions and dwells. The default ignores it.
+  virtual void onCycleAction(std::size_t line, CycleAction action) {
+    (void)line;
+    (void)action;
   }
 };
 
