@@ -1,10 +1,14 @@
-// libFuzzer harness for the G-code reader and interpreter: any input must either run or throw
-// pkm::IoError / pkm::InvalidArgument; never crash, hang (loops are capped), or trip a sanitizer.
+// libFuzzer harness for the G-code reader, interpreter and flattener: any input must either run or
+// throw pkm::IoError / pkm::InvalidArgument; never crash, hang (loops are capped), or trip a
+// sanitizer. A program that runs and flattens must give a flattened program that runs to the same
+// number of motions (a trap otherwise).
 // Build and run: fuzz/run.sh (clang++-14 -fsanitize=fuzzer,address,undefined).
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <string_view>
 
+#include "pkm/cnc/flatten.hpp"
 #include "pkm/cnc/interpreter.hpp"
 #include "pkm/core/error.hpp"
 
@@ -27,13 +31,34 @@ pkm::cnc::InterpreterOptions fuzzOptions() {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   // The whole-program path, and the streaming path `pkm gcode moves` takes without O-words.
+  std::size_t moves = 0;
+  bool ran = false;
   try {
     const pkm::cnc::Program program = pkm::cnc::Program::parse(text, "fuzz.ngc");
     pkm::cnc::Interpreter interp(fuzzOptions());
     NullSink sink;
-    interp.run(program, sink);
+    moves = interp.run(program, sink).moves;
+    ran = true;
   } catch (const pkm::IoError&) {
   } catch (const pkm::InvalidArgument&) {
+  }
+  if (ran) {
+    std::string flat;
+    try {
+      flat = pkm::cnc::flattenProgram(text, "fuzz.ngc", fuzzOptions()).text;
+    } catch (const pkm::IoError&) {  // a block too long for a line, a non-finite value
+      flat.clear();
+    }
+    if (!flat.empty()) {
+      try {
+        pkm::cnc::Interpreter again(fuzzOptions());
+        NullSink sink;
+        if (again.run(pkm::cnc::Program::parse(flat, "flat.ngc"), sink).moves != moves)
+          __builtin_trap();
+      } catch (const pkm::IoError&) {
+        __builtin_trap();  // the flattened program of a program that runs must run
+      }
+    }
   }
   try {
     (void)pkm::cnc::LineReader::mayHaveOWords(text);

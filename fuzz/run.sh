@@ -13,7 +13,7 @@ cp "$root"/examples/gcode/*.ngc "$root"/tests/cnc/corpus/*.ngc "$out/corpus/"
 sources=()
 for f in "$root"/src/cnc/*.cpp; do
   case "$(basename "$f")" in
-    cycle_time.cpp | exechon_path*.cpp | joint_*.cpp | program_compensation.cpp) ;;
+    cycle_time.cpp | exechon_*.cpp | joint_*.cpp | *program_compensation.cpp) ;;
     *) sources+=("$f") ;;
   esac
 done

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "pkm/cnc/program.hpp"
+#include "pkm/core/error.hpp"
 
 namespace pkm::cnc {
 
@@ -83,17 +84,23 @@ class FlattenSink final : public MoveSink {
     const std::string_view src = block.line <= lines_.size() ? lines_[block.line - 1] : "";
     const std::string comments = commentsOf(src);
     if (words.empty() && comments.empty()) return;  // a line of parameter settings only
-    std::string text = block.block_delete ? "/" : "";
-    for (const EvaluatedWord& w : words) {
-      if (text.size() > (block.block_delete ? 1u : 0u)) text.push_back(' ');
-      text.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(w.letter))));
-      text += formatGcodeNumber(w.value);
-    }
+    std::string text = wordsText(block, words, false);
+    if (text.size() > kMaxLine) text = wordsText(block, words, true);
+    if (text.size() > kMaxLine)
+      throw IoError(fmt::format("{}:{}: the evaluated block is longer than {} characters",
+                                program_.file(),
+                                block.line,
+                                kMaxLine));
     if (!comments.empty()) {
-      if (!text.empty() && text != "/") text.push_back(' ');
-      text += comments;
+      // Comments go on a line of their own when the block would be too long with them.
+      if (text.size() + 1 + comments.size() > kMaxLine) {
+        emit(comments, block.line);
+      } else {
+        if (!text.empty() && text != "/") text.push_back(' ');
+        text += comments;
+      }
     }
-    emit(text, block.line);
+    if (!text.empty()) emit(text, block.line);
     ++out_.blocks;
   }
 
@@ -128,6 +135,29 @@ class FlattenSink final : public MoveSink {
       default:
         return false;
     }
+  }
+
+  /// LinuxCNC's longest line (LINELEN).
+  static constexpr std::size_t kMaxLine = 256;
+
+  /// The block's words as a line: exact values, or (`rounded`, for a line that would be too
+  /// long) values rounded to 9 decimals, as gcode compensate writes its words.
+  std::string wordsText(const Block& block,
+                        const std::vector<EvaluatedWord>& words,
+                        bool rounded) const {
+    std::string text = block.block_delete ? "/" : "";
+    for (const EvaluatedWord& w : words) {
+      if (!std::isfinite(w.value))
+        throw IoError(fmt::format("{}:{}: {} word value is not a finite number",
+                                  program_.file(),
+                                  block.line,
+                                  static_cast<char>(std::toupper(w.letter))));
+      if (text.size() > (block.block_delete ? 1u : 0u)) text.push_back(' ');
+      text.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(w.letter))));
+      const bool round = rounded && std::abs(w.value) < 1e9;
+      text += formatGcodeNumber(round ? std::round(w.value * 1e9) / 1e9 : w.value);
+    }
+    return text;
   }
 
   /// Copies source lines [from, to) (1-based): they hold no block, only comments or blanks.

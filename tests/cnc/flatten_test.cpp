@@ -152,6 +152,32 @@ TEST(Flatten, ShippedExamplesAndCorpusMakeTheSameMotions) {
   EXPECT_GE(programs, 15u);
 }
 
+TEST(Flatten, LinesStayWithinLinuxcncLimit) {
+  // Seven words of 1/3 multiples and a 120-character comment: the comment goes on its own line.
+  const std::string comment = "(" + std::string(118, 'c') + ")";
+  const std::string a =
+      "#1 = [1/3]\nG1 X#1 Y[#1*2] Z[#1*4] A[#1*5] B[#1*7] C[#1*8] F[#1*10] " + comment + "\nM2\n";
+  const FlatProgram f = flattenProgram(a, "t.ngc");
+  EXPECT_EQ(f.text.rfind(comment + "\nG1 X0.3333333333333333 ", 0), 0u) << f.text;
+  expectSameMotion(movesOf(a), movesOf(f.text), "long comment");
+  // Eight G codes and ten 25-character values exceed 256 characters: rounded to 9 decimals.
+  const std::string b =
+      "#2 = [-1/300000]\nG17 G90 G94 G21 G54 G99 G64 P[-#2] Q[-#2] G1 X#2 Y#2 Z#2 A#2 B#2 C#2 "
+      "F[-#2] S[-#2]\nM2\n";
+  const FlatProgram g = flattenProgram(b, "t.ngc");
+  EXPECT_NE(g.text.find(" X-0.000003333 "), std::string::npos) << g.text;
+  const MoveCollector mb = movesOf(b), mg = movesOf(g.text);
+  ASSERT_EQ(mb.moves.size(), 1u);
+  ASSERT_EQ(mg.moves.size(), 1u);
+  for (std::size_t k = 0; k < 6; ++k) EXPECT_NEAR(mg.moves[0].end[k], mb.moves[0].end[k], 1e-9);
+  for (const std::string& text : {f.text, g.text})
+    for (std::size_t start = 0; start < text.size();) {
+      const std::size_t nl = text.find('\n', start);
+      EXPECT_LE(nl - start, 256u) << text;
+      start = nl + 1;
+    }
+}
+
 TEST(Flatten, ErrorsNameTheSourceLine) {
   try {
     (void)flattenProgram("o1 sub\nG1 X1\no1 endsub\no1 call\n", "bad.ngc");

@@ -30,7 +30,10 @@ struct FlatProgram {
 /// source line. The N number, parameter settings and O-word statements are left out; comment
 /// and blank lines are copied where the source runs straight through them (between two blocks
 /// executed one after the other, before the first block and after the last). A program enclosed
-/// in `%` lines stays enclosed. Throws pkm::IoError "FILE:LINE: message" as Interpreter::run does.
+/// in `%` lines stays enclosed. A line is at most 256 characters (LinuxCNC's limit): when the
+/// comments would make it longer they go on a line of their own before the block, and when the
+/// words alone would, their values are rounded to 9 decimals. Throws pkm::IoError
+/// "FILE:LINE: message" as Interpreter::run does, and when a block is still too long.
 [[nodiscard]] FlatProgram flattenProgram(std::string_view text,
                                          const std::string& file,
                                          const InterpreterOptions& options = {});
