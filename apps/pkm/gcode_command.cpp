@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "cli_common.hpp"
+#include "gcode_options.hpp"
 #include "pkm/cnc/interpreter.hpp"
 #include "pkm/cnc/line_reader.hpp"
 #include "pkm/core/error.hpp"
@@ -24,10 +25,7 @@ struct MovesArgs {
   std::string program;
   std::string out;
   bool force = false;
-  std::string tool_table;
-  std::string tool_units = "mm";
-  bool block_delete = false;
-  std::uint64_t max_iterations = 10'000'000;
+  InterpreterArgs interpreter;
 };
 
 /// Streams rows into a buffer flushed to stdout or a file.
@@ -54,17 +52,9 @@ class CsvSink final : public cnc::MoveSink {
 };
 
 void runMoves(const MovesArgs& a) {
-  if (a.tool_units != "mm" && a.tool_units != "inch")
-    throw InvalidArgument(fmt::format("--tool-units must be mm or inch, not '{}'", a.tool_units));
-  if (a.max_iterations == 0) throw InvalidArgument("--max-iterations must be positive");
+  cnc::InterpreterOptions options = a.interpreter.options();
   if (!a.out.empty() && !a.force && std::filesystem::exists(a.out))
     throw IoError(fmt::format("{} exists; pass --force to overwrite it", a.out));
-  cnc::InterpreterOptions options;
-  if (!a.tool_table.empty())
-    options.tools =
-        cnc::ToolTable::load(a.tool_table, a.tool_units == "inch" ? cnc::kMmPerInch : 1.0);
-  options.block_delete = a.block_delete;
-  options.max_loop_iterations = a.max_iterations;
   // A program without O-words is run while it is read (constant memory); one with O-words is
   // parsed whole first, so that its jumps resolve.
   const std::string text = cnc::Program::readFile(a.program);
@@ -116,14 +106,7 @@ void addGcodeCommand(CLI::App& app) {
   m->add_option("program", a->program, "G-code file (.ngc)")->required();
   m->add_option("--out", a->out, "write the CSV to FILE instead of standard output");
   m->add_flag("--force", a->force, "overwrite an existing --out file");
-  m->add_option("--tool-table", a->tool_table, "LinuxCNC tool table (.tbl) for G43 and M6");
-  m->add_option("--tool-units",
-                a->tool_units,
-                "length unit of the tool table: mm (default) or inch (the machine's unit)");
-  m->add_flag("--block-delete", a->block_delete, "skip lines starting with '/'");
-  m->add_option("--max-iterations",
-                a->max_iterations,
-                "iterations one loop may make before the program is rejected (default 1e7)");
+  a->interpreter.add(*m);
   m->callback([a] { runMoves(*a); });
   addGcodeRunCommand(*g);
   addGcodeCompensateCommand(*g);

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "cli_common.hpp"
+#include "gcode_options.hpp"
 #include "pkm/cnc/exechon_path.hpp"
 #include "pkm/cnc/exechon_program_compensation.hpp"
 #include "pkm/cnc/joint_path.hpp"
@@ -33,6 +34,7 @@ struct CompensateArgs {
   std::optional<double> x2;  ///< the X2 position the PKM program runs at, mm
   bool frame_not_in_controller = false;
   std::optional<std::string> orientation;  ///< Exechon: what A/C mean (as gcode run)
+  InterpreterArgs interpreter;             ///< the tool table (G43 H)
 };
 
 /// Reads `key = a b c` lines of a pkm-base-frame.txt (docs/campaign.md); `#` lines are comments.
@@ -98,8 +100,8 @@ void runHybrid(const CompensateArgs& a) {
   cnc::InterpolationOptions options;
   options.tolerance = a.tolerance;
   const std::string text = io::readTextFile(a.program);
-  const cnc::ProgramCompensation r =
-      cnc::compensateHybridProgram(text, a.program, c, *a.x2, !a.frame_not_in_controller, options);
+  const cnc::ProgramCompensation r = cnc::compensateHybridProgram(
+      text, a.program, c, *a.x2, !a.frame_not_in_controller, options, a.interpreter.options());
   writeProgram(a, r.text);
   fmt::print(stderr,
              "pkm: note: hybrid squareness correction at X2 = {} mm ({}): {} motion lines "
@@ -175,6 +177,7 @@ void runExechon(const CompensateArgs& a) {
   options.orientation = cnc::parseExechonOrientation(orientation);
   options.interpolation = cnc::exechonInterpolation(cal.model, a.tolerance);
   options.fk = nominal.fk;
+  options.interpreter = a.interpreter.options();
   const std::string text = io::readTextFile(a.program);
   const cnc::ProgramCompensation r =
       cnc::compensateExechonProgram(text, a.program, nominal.model, cal.model, options);
@@ -212,6 +215,7 @@ void runCompensate(const CompensateArgs& a) {
   cnc::ProgramCompensationOptions options;
   options.interpolation = cnc::jointSpaceInterpolation(cal.model, a.tolerance);
   options.predistortion.fk = nominal.fk;
+  options.interpreter = a.interpreter.options();
   const std::string text = io::readTextFile(a.program);
   const cnc::ProgramCompensation r =
       cnc::compensateProgram(text, a.program, nominal.model, cal.model, options);
@@ -249,6 +253,7 @@ void addGcodeCompensateCommand(CLI::App& gcode) {
                 "Exechon: A/C as the tool vector of a virtual C/A head ('vector', the default) or "
                 "as the wrist readings ('axes'), as in gcode run");
   c->add_option("--tolerance", a->tolerance, "chordal tolerance in mm (default 0.01)");
+  a->interpreter.add(*c, false);
   c->add_option("--out", a->out, "write the program to FILE instead of standard output");
   c->add_flag("--force", a->force, "overwrite an existing --out file");
   c->callback([a] { runCompensate(*a); });

@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "cli_common.hpp"
+#include "gcode_options.hpp"
 #include "pkm/cnc/cycle_time.hpp"
 #include "pkm/cnc/exechon_path.hpp"
 #include "pkm/cnc/exechon_path_checks.hpp"
@@ -36,6 +37,7 @@ struct RunArgs {
   double max_wrist_velocity = 180.0;       ///< deg/s (Exechon)
   double max_wrist_acceleration = 1800.0;  ///< deg/s² (Exechon)
   std::string orientation = "vector";      ///< Exechon: how A/C orient the tool
+  InterpreterArgs interpreter;             ///< tool table, block delete, loop guard
   /// Which rate options the user gave (the machine file's joint_rates apply to the others).
   bool velocity_given = false, acceleration_given = false;
   bool wrist_velocity_given = false, wrist_acceleration_given = false;
@@ -255,9 +257,9 @@ void runGcode(const RunArgs& a) {
   const bool exechon = machineTypeOf(a.machine) == "exechon";
   if (!exechon && a.orientation != "vector")
     throw InvalidArgument("--orientation applies to Exechon machines only");
+  cnc::Interpreter interpreter(a.interpreter.options());
   const cnc::Program program = cnc::Program::load(a.program);
   cnc::MoveCollector moves;
-  cnc::Interpreter interpreter;
   (void)interpreter.run(program, moves);
   if (moves.moves.empty()) throw InvalidArgument(fmt::format("{}: no motion", a.program));
   JointRun run;
@@ -412,6 +414,7 @@ void addGcodeRunCommand(CLI::App& gcode) {
                 "Exechon: A/C words are the tool vector's angles in the world frame (vector, "
                 "default) or the wrist axes' readings (axes)");
   r->add_option("--tolerance", a->tolerance, "chordal tolerance in mm (default 0.01)");
+  a->interpreter.add(*r);
   r->add_option("--out", a->out, "write the joint CSV to FILE (docs/gcode.md)");
   r->add_option("--report", a->report, "write the check report as JSON to FILE");
   r->add_flag("--force", a->force, "overwrite existing --out/--report files");

@@ -102,8 +102,12 @@ ProgramCompensation compensateExechonProgram(std::string_view text,
     return commands;
   };
   // An Exechon has no B axis: its motions carry X Y Z A C.
-  return rewriteProgram(
-      text, file, map, options.interpolation, AxisMask{true, true, true, true, false, true});
+  return rewriteProgram(text,
+                        file,
+                        map,
+                        options.interpolation,
+                        AxisMask{true, true, true, true, false, true},
+                        options.interpreter);
 }
 
 }  // namespace pkm::cnc

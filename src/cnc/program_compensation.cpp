@@ -334,7 +334,8 @@ ProgramCompensation rewriteFlat(std::string_view text,
                                 const Program& program,
                                 const PointMap& map,
                                 const InterpolationOptions& interpolation,
-                                const AxisMask& axes);
+                                const AxisMask& axes,
+                                const InterpreterOptions& interpreter);
 
 }  // namespace
 
@@ -342,17 +343,18 @@ ProgramCompensation rewriteProgram(std::string_view text,
                                    const std::string& file,
                                    const PointMap& map,
                                    const InterpolationOptions& interpolation,
-                                   const AxisMask& axes) {
+                                   const AxisMask& axes,
+                                   const InterpreterOptions& interpreter) {
   const Program program = Program::parse(text, file);
   const bool o_words = std::any_of(program.blocks().begin(),
                                    program.blocks().end(),
                                    [](const Block& b) { return b.o_kind != OKind::kNone; });
-  if (!o_words) return rewriteFlat(text, file, program, map, interpolation, axes);
+  if (!o_words) return rewriteFlat(text, file, program, map, interpolation, axes, interpreter);
   // Subroutines and loops: rewrite the blocks as executed (docs/gcode.md "gcode flatten").
-  const FlatProgram flat = flattenProgram(text, file);
+  const FlatProgram flat = flattenProgram(text, file, interpreter);
   try {
-    ProgramCompensation r =
-        rewriteFlat(flat.text, file, Program::parse(flat.text, file), map, interpolation, axes);
+    ProgramCompensation r = rewriteFlat(
+        flat.text, file, Program::parse(flat.text, file), map, interpolation, axes, interpreter);
     r.flattened_blocks = flat.blocks;
     return r;
   } catch (const IoError& e) {
@@ -367,11 +369,12 @@ ProgramCompensation rewriteFlat(std::string_view text,
                                 const Program& program,
                                 const PointMap& map,
                                 const InterpolationOptions& interpolation,
-                                const AxisMask& axes) {
+                                const AxisMask& axes,
+                                const InterpreterOptions& interpreter_options) {
   BlockScan scan;
   for (const Block& b : program.blocks()) checkBlock(b, file, scan);
   const std::set<std::size_t>& g53_lines = scan.g53_lines;
-  Interpreter interpreter;
+  Interpreter interpreter(interpreter_options);
   FrameSink moves(interpreter);
   (void)interpreter.run(program, moves);
   // G53 words are machine coordinates (absolute, no offsets; in the program's length unit).
@@ -538,7 +541,7 @@ ProgramCompensation compensateProgram(std::string_view text,
     }
     return commands;
   };
-  return rewriteProgram(text, file, map, options.interpolation);
+  return rewriteProgram(text, file, map, options.interpolation, kAllAxes, options.interpreter);
 }
 
 ProgramCompensation compensateHybridProgram(std::string_view text,
@@ -546,7 +549,8 @@ ProgramCompensation compensateHybridProgram(std::string_view text,
                                             const compensation::HybridSquarenessCompensation& c,
                                             double x2,
                                             bool base_frame_in_controller,
-                                            const InterpolationOptions& interpolation) {
+                                            const InterpolationOptions& interpolation,
+                                            const InterpreterOptions& interpreter) {
   PKM_CHECK(std::isfinite(x2), "the X2 position must be finite, got {}", x2);
   const PointMap map = [&](const std::vector<PathPoint>& points) {
     std::vector<Axes> commands(points.size());
@@ -559,7 +563,7 @@ ProgramCompensation compensateHybridProgram(std::string_view text,
     }
     return commands;
   };
-  return rewriteProgram(text, file, map, interpolation);
+  return rewriteProgram(text, file, map, interpolation, kAllAxes, interpreter);
 }
 
 }  // namespace pkm::cnc

@@ -124,6 +124,37 @@ TEST_F(GcodeCompensateCli, OWordProgramsAreFlattened) {
   EXPECT_EQ(lines.back(), "M2");
 }
 
+/// Seed 004's sphere: flattened (two calls of an O-word subroutine), read with the tool table
+/// (G43 H1), pre-distorted; the result runs through the machine without a violation.
+TEST_F(GcodeCompensateCli, ShippedSphereWithTheToolTable) {
+  const std::string cal = write("cal.json", calibratedJson());
+  const std::string ex = std::string(PKM_SOURCE_DIR) + "/examples/gcode/";
+  const auto r = pkm({"gcode",
+                      "compensate",
+                      "--machine",
+                      cal,
+                      ex + "sphere.ngc",
+                      "--tool-table",
+                      ex + "tools.tbl",
+                      "--out",
+                      path("sphere.ngc")});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.err, ::testing::HasSubstr("its 104 executed blocks were flattened first"));
+  const std::string out = slurp(path("sphere.ngc"));
+  EXPECT_THAT(out, ::testing::HasSubstr("\nG43 H1\n"));
+  EXPECT_EQ(out.find("o<hemisphere> call"), std::string::npos);
+  const auto run = pkm({"gcode",
+                        "run",
+                        "--machine",
+                        "hexapod-default",
+                        path("sphere.ngc"),
+                        "--tool-table",
+                        ex + "tools.tbl"});
+  EXPECT_EQ(run.code, 0) << run.err << run.out;
+  expectUsageError(pkm({"gcode", "compensate", "--machine", cal, ex + "sphere.ngc"}),
+                   "sphere.ngc:36: tool 1");
+}
+
 TEST_F(GcodeCompensateCli, HybridFrameShiftsThePkmProgramByTheX2Term) {
   const std::string frame = write("frame.txt",
                                   "# pkm-base-frame\nbase_rpy_rad = 0 0 0.003\n"

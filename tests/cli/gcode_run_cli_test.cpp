@@ -65,6 +65,33 @@ TEST_F(GcodeRunCli, DwellsCountInTheCycleTime) {
   EXPECT_GE(jb["cycle_time_s"].get<double>(), ja["cycle_time_s"].get<double>() + 1.5);
 }
 
+/// Seed 004's sphere (an O-word subroutine with G43 H1) runs through the hexapod with the shipped
+/// tool table; without one, G43 H1 is an input error naming the line.
+TEST_F(GcodeRunCli, ShippedSphereWithTheToolTable) {
+  const std::string ex = std::string(PKM_SOURCE_DIR) + "/examples/gcode/";
+  const auto r = pkm({"gcode",
+                      "run",
+                      "--machine",
+                      "hexapod-default",
+                      ex + "sphere.ngc",
+                      "--tool-table",
+                      ex + "tools.tbl"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, ::testing::HasSubstr("result: all checks pass"));
+  expectUsageError(pkm({"gcode", "run", "--machine", "hexapod-default", ex + "sphere.ngc"}),
+                   "sphere.ngc:36: tool 1 (G43 H1) is not in the tool table");
+  expectUsageError(pkm({"gcode",
+                        "run",
+                        "--machine",
+                        "hexapod-default",
+                        ex + "sphere.ngc",
+                        "--tool-table",
+                        ex + "tools.tbl",
+                        "--tool-units",
+                        "cm"}),
+                   "--tool-units");
+}
+
 TEST_F(GcodeRunCli, StrokeViolationExitsOneWithLine) {
   const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\n");
   const auto r = pkm({"gcode", "run", prog, "--report", path("r.json")});

@@ -31,6 +31,7 @@ struct ExechonProgramCompensationOptions {
   ExechonOrientation orientation = ExechonOrientation::kToolVector;  ///< what A/C mean
   InterpolationOptions interpolation;  ///< e.g. exechonInterpolation(calibrated, tolerance)
   kinematics::FkOptions fk;            ///< the nominal tool FK's settings
+  InterpreterOptions interpreter;      ///< how the program is read (tool table for G43 H)
 };
 
 /// Pre-distorts an Exechon program. X Y Z are the tool point in the machine's world frame, A/C

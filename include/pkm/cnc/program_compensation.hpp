@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pkm/cnc/interpreter.hpp"
 #include "pkm/cnc/path_interpolation.hpp"
 #include "pkm/compensation/hybrid_squareness.hpp"
 #include "pkm/compensation/predistortion.hpp"
@@ -23,6 +24,7 @@ namespace pkm::cnc {
 struct ProgramCompensationOptions {
   InterpolationOptions interpolation;                ///< how motions are cut into G1 segments
   compensation::PredistortionOptions predistortion;  ///< nominal FK settings
+  InterpreterOptions interpreter;  ///< how the program is read (tool table for G43 H)
 };
 
 /// One compensated point.
@@ -90,7 +92,8 @@ inline constexpr AxisMask kAllAxes{true, true, true, true, true, true};
                                                  const std::string& file,
                                                  const PointMap& map,
                                                  const InterpolationOptions& interpolation,
-                                                 const AxisMask& axes = kAllAxes);
+                                                 const AxisMask& axes = kAllAxes,
+                                                 const InterpreterOptions& interpreter = {});
 
 /// The hybrid machine's squareness correction of a PKM program (X Y Z = PKM command in its P
 /// frame) run with X2 at `x2` (mm): the X2–Y2 part p_c = p + x2·b₁ by G-code, with the base frame
@@ -103,6 +106,7 @@ inline constexpr AxisMask kAllAxes{true, true, true, true, true, true};
     const compensation::HybridSquarenessCompensation& compensation,
     double x2,
     bool base_frame_in_controller,
-    const InterpolationOptions& interpolation = {});
+    const InterpolationOptions& interpolation = {},
+    const InterpreterOptions& interpreter = {});
 
 }  // namespace pkm::cnc
