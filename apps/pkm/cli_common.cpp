@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "pkm/core/error.hpp"
 #include "pkm/io/machine_loader.hpp"
 
 namespace pkm::cli {
@@ -13,6 +14,24 @@ std::string machineTypeOf(const std::string& spec) {
   for (const auto& n : io::builtinMachineNames("exechon"))
     if (n == spec) return "exechon";
   return "hexapod";
+}
+
+void writeTextOutput(const std::string& out, const std::string& text) {
+  if (out.empty()) {
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    std::fflush(stdout);
+    return;
+  }
+  const std::string tmp = out + ".tmp";
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (f == nullptr) throw IoError(fmt::format("{}: cannot write", out));
+  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !written) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw IoError(fmt::format("{}: write failed", out));
+  }
+  std::filesystem::rename(tmp, out);
 }
 
 void printNotices(const std::vector<std::string>& notices) {

@@ -37,6 +37,11 @@ class Output {
   std::string buffer_;
 };
 
+/// Writes `text` to standard output when `out` is empty, otherwise to the file `out` through
+/// `out + ".tmp"` renamed into place (a failed write leaves no partial file). Throws pkm::IoError
+/// "PATH: cannot write" / "PATH: write failed". Does not check for an existing file.
+void writeTextOutput(const std::string& out, const std::string& text);
+
 /// Prints each notice to stderr as "pkm: note: ...".
 void printNotices(const std::vector<std::string>& notices);
 

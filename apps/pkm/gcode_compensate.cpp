@@ -79,20 +79,6 @@ std::string flattenedNote(const cnc::ProgramCompensation& r) {
       r.flattened_blocks);
 }
 
-void writeProgram(const CompensateArgs& a, const std::string& text) {
-  if (a.out.empty()) {
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    std::fflush(stdout);
-    return;
-  }
-  const std::string tmp = a.out + ".tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (f == nullptr) throw IoError(fmt::format("{}: cannot write", a.out));
-  std::fwrite(text.data(), 1, text.size(), f);
-  if (std::fclose(f) != 0) throw IoError(fmt::format("{}: write failed", a.out));
-  std::filesystem::rename(tmp, a.out);
-}
-
 /// The hybrid machine's squareness correction (--hybrid-frame, --x2).
 void runHybrid(const CompensateArgs& a) {
   if (!a.x2) throw InvalidArgument("--hybrid-frame needs --x2 POS (the X2 position, mm)");
@@ -102,7 +88,7 @@ void runHybrid(const CompensateArgs& a) {
   const std::string text = io::readTextFile(a.program);
   const cnc::ProgramCompensation r = cnc::compensateHybridProgram(
       text, a.program, c, *a.x2, !a.frame_not_in_controller, options, a.interpreter.options());
-  writeProgram(a, r.text);
+  writeTextOutput(a.out, r.text);
   fmt::print(stderr,
              "pkm: note: hybrid squareness correction at X2 = {} mm ({}): {} motion lines "
              "rewritten, {} lines added (segments, dwells), {} G92/G10 L20 lines shifted, largest "
@@ -181,7 +167,7 @@ void runExechon(const CompensateArgs& a) {
   const std::string text = io::readTextFile(a.program);
   const cnc::ProgramCompensation r =
       cnc::compensateExechonProgram(text, a.program, nominal.model, cal.model, options);
-  writeProgram(a, r.text);
+  writeTextOutput(a.out, r.text);
   printNote(fmt::format("nominal {} -> calibrated {} (Exechon, --orientation {})",
                         nominal.model.name,
                         cal.model.name,
@@ -219,7 +205,7 @@ void runCompensate(const CompensateArgs& a) {
   const std::string text = io::readTextFile(a.program);
   const cnc::ProgramCompensation r =
       cnc::compensateProgram(text, a.program, nominal.model, cal.model, options);
-  writeProgram(a, r.text);
+  writeTextOutput(a.out, r.text);
   printNote(fmt::format("nominal {} -> calibrated {}", nominal.model.name, cal.model.name),
             r,
             a.tolerance,

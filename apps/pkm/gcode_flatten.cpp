@@ -29,17 +29,7 @@ void runFlatten(const FlattenArgs& a) {
     throw IoError(fmt::format("{} exists; pass --force to overwrite it", a.out));
   const std::string text = cnc::Program::readFile(a.program);
   const cnc::FlatProgram flat = cnc::flattenProgram(text, a.program, options);
-  if (a.out.empty()) {
-    std::fwrite(flat.text.data(), 1, flat.text.size(), stdout);
-    std::fflush(stdout);
-  } else {
-    const std::string tmp = a.out + ".tmp";
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (f == nullptr) throw IoError(fmt::format("{}: cannot write", a.out));
-    std::fwrite(flat.text.data(), 1, flat.text.size(), f);
-    if (std::fclose(f) != 0) throw IoError(fmt::format("{}: write failed", a.out));
-    std::filesystem::rename(tmp, a.out);
-  }
+  writeTextOutput(a.out, flat.text);
   fmt::print(stderr,
              "pkm: note: {} executed blocks written, {} lines{}\n",
              flat.blocks,
