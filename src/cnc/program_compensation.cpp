@@ -335,41 +335,6 @@ ProgramCompensation rewriteFlat(std::string_view text,
                                 const PointMap& map,
                                 const InterpolationOptions& interpolation,
                                 const AxisMask& axes,
-                                const InterpreterOptions& interpreter);
-
-}  // namespace
-
-ProgramCompensation rewriteProgram(std::string_view text,
-                                   const std::string& file,
-                                   const PointMap& map,
-                                   const InterpolationOptions& interpolation,
-                                   const AxisMask& axes,
-                                   const InterpreterOptions& interpreter) {
-  const Program program = Program::parse(text, file);
-  const bool o_words = std::any_of(program.blocks().begin(),
-                                   program.blocks().end(),
-                                   [](const Block& b) { return b.o_kind != OKind::kNone; });
-  if (!o_words) return rewriteFlat(text, file, program, map, interpolation, axes, interpreter);
-  // Subroutines and loops: rewrite the blocks as executed (docs/gcode.md "gcode flatten").
-  const FlatProgram flat = flattenProgram(text, file, interpreter);
-  try {
-    ProgramCompensation r = rewriteFlat(
-        flat.text, file, Program::parse(flat.text, file), map, interpolation, axes, interpreter);
-    r.flattened_blocks = flat.blocks;
-    return r;
-  } catch (const IoError& e) {
-    throw onSourceLine(e, file, flat);
-  }
-}
-
-namespace {
-
-ProgramCompensation rewriteFlat(std::string_view text,
-                                const std::string& file,
-                                const Program& program,
-                                const PointMap& map,
-                                const InterpolationOptions& interpolation,
-                                const AxisMask& axes,
                                 const InterpreterOptions& interpreter_options) {
   BlockScan scan;
   for (const Block& b : program.blocks()) checkBlock(b, file, scan);
@@ -512,6 +477,29 @@ ProgramCompensation rewriteFlat(std::string_view text,
 }
 
 }  // namespace
+
+ProgramCompensation rewriteProgram(std::string_view text,
+                                   const std::string& file,
+                                   const PointMap& map,
+                                   const InterpolationOptions& interpolation,
+                                   const AxisMask& axes,
+                                   const InterpreterOptions& interpreter) {
+  const Program program = Program::parse(text, file);
+  const bool o_words = std::any_of(program.blocks().begin(),
+                                   program.blocks().end(),
+                                   [](const Block& b) { return b.o_kind != OKind::kNone; });
+  if (!o_words) return rewriteFlat(text, file, program, map, interpolation, axes, interpreter);
+  // Subroutines and loops: rewrite the blocks as executed (docs/gcode.md "gcode flatten").
+  const FlatProgram flat = flattenProgram(text, file, interpreter);
+  try {
+    ProgramCompensation r = rewriteFlat(
+        flat.text, file, Program::parse(flat.text, file), map, interpolation, axes, interpreter);
+    r.flattened_blocks = flat.blocks;
+    return r;
+  } catch (const IoError& e) {
+    throw onSourceLine(e, file, flat);
+  }
+}
 
 ProgramCompensation compensateProgram(std::string_view text,
                                       const std::string& file,

@@ -28,8 +28,9 @@ struct FlatProgram {
 /// one, then its words in source order (letters upper case, values as evaluated, in the shortest
 /// decimal form that reads back to the same double, never an exponent), then the comments of the
 /// source line. The N number, parameter settings and O-word statements are left out; comment
-/// and blank lines are copied where the source runs straight through them (between two blocks
-/// executed one after the other, before the first block and after the last). A program enclosed
+/// and blank lines are copied where the run passes straight through them (between two blocks
+/// executed one after the other, at the start of a sub body, a branch or a loop pass, before the
+/// first block and after the last). A program enclosed
 /// in `%` lines stays enclosed. A line is at most 256 characters (LinuxCNC's limit): when the
 /// comments would make it longer they go on a line of their own before the block, and when the
 /// words alone would, their values are rounded to 9 decimals. Throws pkm::IoError
