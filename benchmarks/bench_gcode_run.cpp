@@ -106,25 +106,30 @@ const kin::ExechonModel& exechon() {
   return m;
 }
 
-/// A circle of radius 100 mm in the Exechon's PKM frame with a slowly turning tool vector.
+/// 200 000 points on a circle of radius 100 mm in the Exechon's PKM frame, `step_mm` apart, rising
+/// 50 mm, with a turning tool vector (A ±15° once per turn, C over 30°).
+std::vector<PathPoint> exechonCircle(double step_mm) {
+  constexpr std::size_t n = 200'000;
+  std::vector<PathPoint> v(n);
+  const double turn = step_mm / 100.0;  // rad per point
+  for (std::size_t i = 0; i < n; ++i) {
+    const double u = static_cast<double>(i) / n, a = turn * static_cast<double>(i);
+    v[i].line = i + 1;
+    v[i].pos = {100 * std::cos(a), 100 * std::sin(a), 50 * u, 15 * std::sin(a), 0, 30 * u};
+    v[i].kind = MoveKind::kLinear;
+    v[i].feed = 3000;
+  }
+  return v;
+}
+
 const std::vector<PathPoint>& exechonCircle() {
-  static const std::vector<PathPoint> pts = [] {
-    constexpr std::size_t n = 200'000;
-    std::vector<PathPoint> v(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const double u = static_cast<double>(i) / n, a = 20.0 * u;
-      v[i].line = i + 1;
-      v[i].pos = {100 * std::cos(a), 100 * std::sin(a), 50 * u, 15 * std::sin(a), 0, 30 * u};
-      v[i].kind = MoveKind::kLinear;
-      v[i].feed = 3000;
-    }
-    return v;
-  }();
+  static const std::vector<PathPoint> pts = exechonCircle(0.01);
   return pts;
 }
 
 /// Exechon conversion: tool IK by continuity (vector: A/C give the tool vector; axes: A/C are the
-/// wrist readings and the wrist point is found by fixed-point iteration).
+/// wrist readings and the tripod parameters are found by Newton's method from an extrapolated
+/// start).
 void BM_ExechonJointConversion(benchmark::State& state) {
   const auto mode =
       state.range(0) == 0 ? ExechonOrientation::kToolVector : ExechonOrientation::kWristAxes;
@@ -139,6 +144,24 @@ void BM_ExechonJointConversion(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(pts.size()));
 }
 BENCHMARK(BM_ExechonJointConversion)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+/// As above with 1 mm between points, about the step `gcode run` takes on the mxt700s-like at
+/// its default 0.01 mm chordal tolerance (max step 3.6 mm there): the wrist-axes solve's
+/// predictor no longer saves its second tripod IK.
+void BM_ExechonJointConversionCoarse(benchmark::State& state) {
+  const auto mode =
+      state.range(0) == 0 ? ExechonOrientation::kToolVector : ExechonOrientation::kWristAxes;
+  static const std::vector<PathPoint> pts = exechonCircle(1.0);
+  std::vector<ExechonPathSample> out;
+  for (auto _ : state) {
+    ExechonJointConverter conv(exechon(), mode);
+    conv.solveAll(pts, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetLabel(mode == ExechonOrientation::kToolVector ? "vector" : "axes");
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(pts.size()));
+}
+BENCHMARK(BM_ExechonJointConversionCoarse)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_ExechonCheckPath(benchmark::State& state) {
   std::vector<PathPoint> pts(exechonCircle().begin(), exechonCircle().begin() + 100'000);

@@ -16,17 +16,6 @@ namespace pkm::cnc {
 namespace {
 namespace kin = kinematics;
 
-/// Newton iterations of the wrist-axes solve before it gives up, and the iteration from which
-/// the Jacobian is refreshed by finite differences at every step.
-constexpr int kMaxWristAxesIterations = 50;
-constexpr int kRefreshJacobianAfter = 4;
-/// Finite-difference step of that Jacobian, relative to the characteristic length.
-constexpr double kJacobianStep = 1e-7;
-/// Convergence of the wrist-axes solve, relative to the machine's characteristic length: the
-/// tool point error is below kWristAxesTolerance, or below kWristAxesFloor and no longer falling
-/// (rounding).
-constexpr double kWristAxesTolerance = 1e-14;
-constexpr double kWristAxesFloor = 1e-12;
 }  // namespace
 
 std::string_view toString(ExechonOrientation o) {
@@ -73,11 +62,7 @@ InterpolationOptions exechonInterpolation(const kin::ExechonModel& model, double
 
 ExechonJointConverter::ExechonJointConverter(const kin::ExechonModel& model,
                                              ExechonOrientation orientation)
-    : model_(&model),
-      orientation_(orientation),
-      data_(model),
-      previous_(model.home),
-      zoppi_T_world_(model.world_T_zoppi.inverse(Eigen::Isometry)) {
+    : model_(&model), orientation_(orientation), data_(model), previous_(model.home) {
   model.validate();
   kin::evaluateConfiguration(model, data_, model.home);
   last_joints_ << data_.readings, radToDeg(model.home.c), radToDeg(model.home.a), 0.0;
@@ -91,69 +76,15 @@ kin::ExechonIkStatus ExechonJointConverter::solveVector(const Eigen::Vector3d& p
   return kin::toolInverseKinematics(*model_, data_, target, previous_);
 }
 
-kin::ExechonIkStatus ExechonJointConverter::toolPointError(const Eigen::Vector3d& world_p_S,
-                                                           const Eigen::Vector3d& p,
-                                                           const Eigen::Vector3d& platform_u_tool,
-                                                           kin::ExechonConfiguration& cfg,
-                                                           Eigen::Vector3d& r) {
-  const kin::ExechonModel& m = *model_;
-  const kin::ExechonIkStatus st =
-      kin::tripodInverseKinematicsNearest(m, data_, zoppi_T_world_ * world_p_S, cfg.e);
-  if (st != kin::ExechonIkStatus::kOk) return st;
-  cfg.e = data_.e;
-  r = data_.world_p_S + m.wrist.tool_length * (data_.world_T_platform.linear() * platform_u_tool) -
-      p;
-  return st;
-}
-
 kin::ExechonIkStatus ExechonJointConverter::solveAxes(const Eigen::Vector3d& p,
                                                       double c,
                                                       double a) {
-  const kin::ExechonModel& m = *model_;
-  // Newton on F(S) = S + L·u(S) − p (u the tool direction the readings give on the platform at
-  // the wrist point S), with the inverse Jacobian of the previous point (it changes little along
-  // a path) and a finite-difference one when there is none or convergence slows. The readings
-  // are fixed, so the tool direction in the platform frame is too.
-  const Eigen::Vector3d platform_u_tool = kin::toolRotationInPlatform(m.wrist, c, a).col(2);
-  kin::ExechonConfiguration cfg{previous_.e, c, a};
-  // data_ holds the previous solution's tripod pose: the first guess keeps it.
-  Eigen::Vector3d world_p_S =
-      p - m.wrist.tool_length * (data_.world_T_platform.linear() * platform_u_tool);
-  const double tol = kWristAxesTolerance * m.characteristicLength();
-  const double floor = kWristAxesFloor * m.characteristicLength();
-  double last = std::numeric_limits<double>::infinity();
-  Eigen::Vector3d r;
-  for (int it = 0; it < kMaxWristAxesIterations; ++it) {
-    kin::ExechonIkStatus st = toolPointError(world_p_S, p, platform_u_tool, cfg, r);
-    if (st != kin::ExechonIkStatus::kOk) return st;
-    const double err = r.norm();
-    if (err <= tol || (err <= floor && err >= last)) {
-      kin::setWristReadings(m, data_, c, a);  // data_ holds the tripod at this world_p_S
-      return kin::ExechonIkStatus::kOk;
-    }
-    if (!have_jacobian_ || it >= kRefreshJacobianAfter) {
-      const kin::ExechonConfiguration at = cfg;
-      const double h = kJacobianStep * m.characteristicLength();
-      Eigen::Matrix3d J;
-      for (int k = 0; k < 3; ++k) {
-        kin::ExechonConfiguration probe = at;
-        Eigen::Vector3d rk;
-        st =
-            toolPointError(world_p_S + h * Eigen::Vector3d::Unit(k), p, platform_u_tool, probe, rk);
-        if (st != kin::ExechonIkStatus::kOk) return st;
-        J.col(k) = (rk - r) / h;
-      }
-      bool invertible = false;
-      double det = 0.0;
-      J.computeInverseAndDetWithCheck(jacobian_inverse_, det, invertible);
-      if (!invertible) return kin::ExechonIkStatus::kSingular;
-      have_jacobian_ = true;
-      cfg = at;
-    }
-    last = err;
-    world_p_S -= jacobian_inverse_ * r;
-  }
-  return kin::ExechonIkStatus::kSingular;
+  // Newton's method starts from the linear extrapolation of the last two solutions: along an
+  // evenly sampled path its error is second order in the step, as a Newton step's would be, and
+  // one iteration fewer is needed. A start 2·pi away in alpha or beta is the same pose.
+  const Eigen::Vector3d start =
+      have_before_previous_ ? Eigen::Vector3d(2.0 * previous_.e - before_previous_e_) : previous_.e;
+  return kin::toolPointInverseKinematics(*model_, data_, p, c, a, start);
 }
 
 ExechonPathSample ExechonJointConverter::solve(const Axes& pos) {
@@ -171,9 +102,13 @@ ExechonPathSample ExechonJointConverter::solve(const Axes& pos) {
   }
   if (!out.ok()) {
     kin::evaluateConfiguration(*model_, data_, previous_);  // data back at the last solution
+    have_before_previous_ = false;  // no extrapolation across a failed point
     out.joints = last_joints_;
     return out;
   }
+  before_previous_e_ = previous_.e;
+  have_before_previous_ = have_previous_solution_;
+  have_previous_solution_ = true;
   previous_ = kin::configurationOf(data_);
   if (!have_reference_) {
     reference_R_ = data_.world_R_tool;

@@ -17,6 +17,9 @@ constexpr double kDegenerate = 1e-12;
 /// scale, or fails after kMaxRefineIterations Newton steps.
 constexpr double kRefineTolerance = 1e-13;
 constexpr int kMaxRefineIterations = 20;
+/// Rounding allowance when a squared chord bounds a branch distance from below (both are sums of
+/// products of unit-circle coordinates, exact to a few ulps).
+constexpr double kChordRounding = 1e-12;
 
 bool isSign(int s) { return s == 1 || s == -1; }
 
@@ -259,12 +262,28 @@ ExechonIkStatus tripodInverseKinematicsNearest(const ExechonModel& model,
   TrigCommon common{};
   const ExechonIkStatus status = trigCommon(model.tripod, zoppi_p_S, &common);
   if (status != ExechonIkStatus::kOk) return status;
+  // The squared alpha chord of each δ1B (sin/cos of alpha as solveTrigD1 gives them) bounds that
+  // branch pair's distance from below: the pair nearer in alpha is solved first, and the other
+  // only when its alpha chord alone does not already exceed the best distance (the same choice
+  // as solving all four, at a fraction of the cost along a path).
+  const Eigen::Vector3d& S = zoppi_p_S;
+  const double hx = model.tripod.hx;
+  double alpha_chord_sq[2];
+  for (int k = 0; k < 2; ++k) {
+    const double d1 = k == 0 ? 1.0 : -1.0;
+    const double ca = (-d1 * S.x() * common.r + hx * S.z()) / common.t0sq;
+    const double sa = (d1 * S.z() * common.r + hx * S.x()) / common.t0sq;
+    alpha_chord_sq[k] = (ca - ca0) * (ca - ca0) + (sa - sa0) * (sa - sa0);
+  }
+  const int first = alpha_chord_sq[1] < alpha_chord_sq[0] ? 1 : 0;
   detail::ExechonTrig best{};
   double best_distance = INFINITY;
-  for (int d1 : {1, -1}) {
+  for (int k1 : {first, 1 - first}) {
+    if (k1 != first && alpha_chord_sq[k1] > best_distance + kChordRounding) break;
+    const int d1 = k1 == 0 ? 1 : -1;
     detail::ExechonTrig both[2];
     const ExechonIkStatus st = solveTrigD1(model.tripod, zoppi_p_S, common, d1, both);
-    if (st != ExechonIkStatus::kOk) return st;  // any branch failing: S is degenerate
+    if (st != ExechonIkStatus::kOk) return st;  // a branch failing: S is degenerate
     for (int k = 0; k < 2; ++k) {
       const detail::ExechonTrig& t = both[k];
       // Squared chord distances of the angles (monotone in |Δangle|) plus the squared relative Δh.
@@ -312,6 +331,37 @@ const Eigen::Matrix3d& computeTripodJacobian(const ExechonModel& model, ExechonD
   }
   return data.J_q_S;
 }
+
+namespace detail {
+
+bool platformPointAt(const ExechonTripodGeometry& g,
+                     const ExechonTrig& t,
+                     const Eigen::Vector3d& v,
+                     Eigen::Vector3d* point,
+                     Eigen::Matrix3d* J_point_e) {
+  double s = -g.dB * t.ca * t.sb;
+  Eigen::Vector3d ds_de(g.dB * t.sa * t.sb, -g.dB * t.ca * t.cb, 0.0);
+  if (hasLegBOffsets(g)) {
+    const LegBSolution b = solveLegB(g, t, J_point_e != nullptr);
+    if (!b.ok) return false;
+    s = b.s;
+    ds_de = b.ds_de;
+  }
+  // R·v = v0·kA2 + v1·kB5 + v2·eh: d(kB5)/dβ = eh, d(eh)/dβ = −kB5, nothing depends on h.
+  const Eigen::Vector3d kA2(t.sa, 0.0, t.ca), kB5(-t.sb * t.ca, t.cb, t.sb * t.sa),
+      eh(-t.cb * t.ca, -t.sb, t.cb * t.sa);
+  const Eigen::Vector3d dkA2_da(t.ca, 0.0, -t.sa), dkB5_da(t.sb * t.sa, 0.0, t.sb * t.ca),
+      deh_da(t.cb * t.sa, 0.0, t.cb * t.ca);
+  *point = wristPoint(g, t, s) + v[0] * kA2 + v[1] * kB5 + v[2] * eh;
+  if (J_point_e == nullptr) return point->allFinite();
+  Eigen::Matrix3d Rv_e;
+  Rv_e << v[0] * dkA2_da + v[1] * dkB5_da + v[2] * deh_da, v[1] * eh - v[2] * kB5,
+      Eigen::Vector3d::Zero();
+  *J_point_e = wristPointJacobian(g, t, s, ds_de) + Rv_e;
+  return point->allFinite() && J_point_e->allFinite();
+}
+
+}  // namespace detail
 
 double tripodConditionNumber(const ExechonData& data) {
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(data.J_q_S);

@@ -69,6 +69,16 @@ struct LegBSolution {
                                                  double s,
                                                  const Eigen::Vector3d& ds_de);
 
+/// The Zoppi-frame position S(e) + R(e)·v of a point offset by v (platform frame, model length
+/// unit) from the wrist point, and (unless J_point_e is null) its derivative with respect to
+/// e = (alpha, beta, h), at t. False when leg B's offset solve fails or a value is not finite.
+/// Defined in exechon_ik.cpp.
+[[nodiscard]] bool platformPointAt(const ExechonTripodGeometry& g,
+                                   const ExechonTrig& t,
+                                   const Eigen::Vector3d& v,
+                                   Eigen::Vector3d* point,
+                                   Eigen::Matrix3d* J_point_e);
+
 /// Geometric leg lengths (qA, qB, qC) and, if J is not null, d(q)/d(alpha, beta, h). qB is NaN
 /// when leg B's offset solve fails.
 inline Eigen::Vector3d legLengths(const ExechonTripodGeometry& g,

@@ -4,11 +4,19 @@
 #include <cmath>
 #include <numbers>
 
+#include "kinematics/exechon_tripod_math.hpp"
+
 namespace pkm::kinematics {
 
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
+/// toolPointInverseKinematics: Newton iterations, step halvings per iteration, and the
+/// convergence thresholds relative to the characteristic length (tolerance; rounding floor).
+constexpr int kMaxToolPointIterations = 50;
+constexpr int kMaxStepHalvings = 30;
+constexpr double kToolPointTolerance = 1e-14;
+constexpr double kToolPointFloor = 1e-12;
 
 /// x + 2·pi·k nearest `near` (x itself, bit for bit, when k = 0).
 double nearestTurn(double x, double near) {
@@ -28,6 +36,17 @@ Eigen::Matrix3d rzRx(double sc, double cc, double sa, double ca) {
 Eigen::Matrix3d rzRxOfReadings(const ExechonWrist& wrist, double c, double a) {
   const double tc = wrist.c_sign * c + wrist.c0, ta = wrist.a_sign * a + wrist.a0;
   return rzRx(std::sin(tc), std::cos(tc), std::sin(ta), std::cos(ta));
+}
+
+/// data.wrist_frame: wristFrame(model.wrist), recomputed only when the model's axes differ from
+/// those it was computed for.
+const Eigen::Matrix3d& cachedWristFrame(const ExechonModel& model, ExechonData& data) {
+  if (data.wrist_axes_of_frame[0] != model.wrist.c_axis ||
+      data.wrist_axes_of_frame[1] != model.wrist.a_axis) {
+    data.wrist_frame = wristFrame(model.wrist);
+    data.wrist_axes_of_frame = {model.wrist.c_axis, model.wrist.a_axis};
+  }
+  return data.wrist_frame;
 }
 
 /// Fills data's wrist and tool fields from data's tripod pose, the readings (c, a) and
@@ -111,12 +130,7 @@ ExechonIkStatus solveTool(const ExechonModel& model,
       previous == nullptr ? tripodInverseKinematics(model, data, zoppi_p_S)
                           : tripodInverseKinematicsNearest(model, data, zoppi_p_S, previous->e);
   if (status != ExechonIkStatus::kOk) return status;
-  if (data.wrist_axes_of_frame[0] != model.wrist.c_axis ||
-      data.wrist_axes_of_frame[1] != model.wrist.a_axis) {
-    data.wrist_frame = wristFrame(model.wrist);
-    data.wrist_axes_of_frame = {model.wrist.c_axis, model.wrist.a_axis};
-  }
-  const Eigen::Matrix3d& W = data.wrist_frame;
+  const Eigen::Matrix3d& W = cachedWristFrame(model, data);
   const Eigen::Vector3d v =
       (W.transpose() * (data.world_T_platform.linear().transpose() * u)).normalized();
   const ExechonConfiguration& near = previous == nullptr ? model.home : *previous;
@@ -161,6 +175,62 @@ ExechonIkStatus toolInverseKinematics(const ExechonModel& model,
   return solveTool(model, data, target, &previous);
 }
 
+ExechonIkStatus toolPointInverseKinematics(const ExechonModel& model,
+                                           ExechonData& data,
+                                           const Eigen::Vector3d& world_p_tool,
+                                           double c,
+                                           double a,
+                                           const Eigen::Vector3d& e_start) {
+  if (!world_p_tool.allFinite() || !std::isfinite(c) || !std::isfinite(a) || !e_start.allFinite())
+    return ExechonIkStatus::kInvalidInput;
+  const ExechonTripodGeometry& g = model.tripod;
+  const Eigen::Vector3d v =
+      model.wrist.tool_length *
+      (cachedWristFrame(model, data) * rzRxOfReadings(model.wrist, c, a)).col(2);
+  const Eigen::Vector3d p = model.world_T_zoppi.inverse(Eigen::Isometry) * world_p_tool;
+  const double tol = kToolPointTolerance * model.characteristicLength();
+  const double floor = kToolPointFloor * model.characteristicLength();
+  Eigen::Vector3d e = e_start, point;
+  detail::ExechonTrig t = detail::trigOf(e);
+  if (!detail::platformPointAt(g, t, v, &point, nullptr)) return ExechonIkStatus::kSingular;
+  double last = INFINITY;
+  for (int it = 0;; ++it) {
+    const Eigen::Vector3d r = point - p;
+    const double err = r.norm();
+    if (err <= tol || (err <= floor && err >= last)) break;
+    if (it == kMaxToolPointIterations) return ExechonIkStatus::kSingular;
+    Eigen::Vector3d unused;
+    Eigen::Matrix3d J;
+    if (!detail::platformPointAt(g, t, v, &unused, &J)) return ExechonIkStatus::kSingular;
+    // Cramer's rule for J·step = −r.
+    const Eigen::Vector3d j12 = J.col(1).cross(J.col(2));
+    const double det = J.col(0).dot(j12);
+    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return ExechonIkStatus::kSingular;
+    Eigen::Vector3d step =
+        -Eigen::Vector3d(
+            r.dot(j12), J.col(0).dot(r.cross(J.col(2))), J.col(0).dot(J.col(1).cross(r))) /
+        det;
+    for (int halving = 0;; ++halving) {
+      const detail::ExechonTrig trial_t = detail::trigOf(e + step);
+      Eigen::Vector3d trial_point;
+      if (detail::platformPointAt(g, trial_t, v, &trial_point, nullptr) &&
+          ((trial_point - p).norm() < err || (trial_point - p).norm() <= floor)) {
+        e += step;
+        t = trial_t;
+        point = trial_point;
+        break;
+      }
+      if (halving == kMaxStepHalvings) return ExechonIkStatus::kSingular;
+      step *= 0.5;
+    }
+    last = err;
+  }
+  for (int i = 0; i < 2; ++i) e[i] = std::remainder(e[i], kTwoPi);
+  evaluateTripod(model, data, e, g.deltaA, g.deltaC);
+  setWristReadings(model, data, c, a);
+  return ExechonIkStatus::kOk;
+}
+
 void setWristReadings(const ExechonModel& model, ExechonData& data, double c, double a) {
   const Eigen::Matrix3d wrist_R_tool = rzRxOfReadings(model.wrist, c, a);
   fillTool(model,
@@ -168,7 +238,7 @@ void setWristReadings(const ExechonModel& model, ExechonData& data, double c, do
            c,
            a,
            std::abs(wrist_R_tool(2, 1)) <= kExechonWristPoleTolerance,
-           wristFrame(model.wrist),
+           cachedWristFrame(model, data),
            wrist_R_tool);
 }
 

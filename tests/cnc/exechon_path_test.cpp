@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "kinematics/exechon_sample_models.hpp"
@@ -87,6 +88,53 @@ TEST(ExechonPath, WristAxesModeKeepsTheReadingsAndReachesThePoint) {
     const kin::ExechonData d = forward(m, s);
     EXPECT_LT((d.world_p_tool - Eigen::Vector3d(pos[0], pos[1], pos[2])).norm(), kTolRoundTrip);
   }
+}
+
+TEST(ExechonPath, WristAxesModeAlongAPathAgreesWithVectorMode) {
+  // Readings that change along a circle: each axes-mode sample keeps them and puts the tool on
+  // the point, and vector mode, given the direction that sample found, solves to the same joints.
+  const kin::ExechonModel m = pkm::test::machineModel();
+  ExechonJointConverter axes(m, ExechonOrientation::kWristAxes);
+  ExechonJointConverter vector(m, ExechonOrientation::kToolVector);
+  for (int i = 0; i <= 720; ++i) {
+    const double t = degToRad(0.5 * i);
+    const Axes pos{40 * std::cos(t),
+                   40 * std::sin(t),
+                   5 * std::sin(3 * t),
+                   25 + 10 * std::sin(t),
+                   0,
+                   0.5 * i - 90};
+    const ExechonPathSample s = axes.solve(pos);
+    ASSERT_TRUE(s.ok()) << i;
+    EXPECT_NEAR(s.config.a, degToRad(pos[3]), kTolExact) << i;
+    EXPECT_NEAR(s.config.c, degToRad(pos[5]), kTolExact) << i;
+    const kin::ExechonData d = forward(m, s);
+    EXPECT_LT((d.world_p_tool - Eigen::Vector3d(pos[0], pos[1], pos[2])).norm(), kTolRoundTrip);
+    // toolDirectionFromAngles(a, c) = (−sin c·sin a, cos c·sin a, −cos a).
+    const double a = pkm::radToDeg(std::acos(-s.direction.z()));
+    const double c = pkm::radToDeg(std::atan2(-s.direction.x(), s.direction.y()));
+    const ExechonPathSample v = vector.solve({pos[0], pos[1], pos[2], a, 0, c});
+    ASSERT_TRUE(v.ok()) << i;
+    EXPECT_LT((v.readings - s.readings).cwiseAbs().maxCoeff(), kTolRoundTrip) << i;
+    EXPECT_NEAR(std::remainder(v.config.c - s.config.c, 2 * std::numbers::pi), 0.0, kTolRoundTrip);
+    EXPECT_NEAR(v.config.a, s.config.a, kTolRoundTrip) << i;
+  }
+}
+
+TEST(ExechonPath, WristAxesModeFailsOutsideTheWorkspaceAndRecovers) {
+  const kin::ExechonModel m = pkm::test::machineModel();
+  ExechonJointConverter conv(m, ExechonOrientation::kWristAxes);
+  const ExechonPathSample good = conv.solve({10, 0, 0, 30, 0, 20});
+  ASSERT_TRUE(good.ok());
+  // A tool point on the base axis jb: the wrist point, within the tool length (250 mm) of it,
+  // would be inside the cylinder |(Sx, Sz)| < hx (282.8 mm) that the tripod cannot reach.
+  const Eigen::Vector3d far = m.world_T_zoppi * Eigen::Vector3d(0.0, 700.0, 0.0);
+  const ExechonPathSample bad = conv.solve({far.x(), far.y(), far.z(), 30, 0, 20});
+  EXPECT_FALSE(bad.ok());
+  EXPECT_EQ(bad.joints, good.joints);
+  const ExechonPathSample again = conv.solve({11, 0, 0, 30, 0, 20});
+  ASSERT_TRUE(again.ok());
+  EXPECT_LT((again.readings - good.readings).cwiseAbs().maxCoeff(), 2.0);
 }
 
 TEST(ExechonPath, ContinuityAlongAPathAndDrmAtTheStart) {

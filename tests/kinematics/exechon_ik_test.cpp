@@ -195,6 +195,52 @@ TEST(ExechonIk, JacobianMatchesCentralDifferences) {
   }
 }
 
+/// The four pose branches' solutions at S and the index of the one tripodInverseKinematicsNearest
+/// must pick for e_near: its documented distance, evaluated branch by branch.
+int nearestByBruteForce(const ExechonModel& m,
+                        const Eigen::Vector3d& S,
+                        const Eigen::Vector3d& e_near) {
+  ExechonData probe(m);
+  int best = -1;
+  double best_distance = INFINITY;
+  for (int b = 0; b < 4; ++b) {
+    if (tripodInverseKinematics(m, probe, S, ExechonBranch::fromIndex(b)) != ExechonIkStatus::kOk)
+      return -1;
+    const double dh = (probe.e[2] - e_near[2]) / m.characteristicLength();
+    const double distance = 2.0 * (1.0 - std::cos(probe.e[0] - e_near[0])) +
+                            2.0 * (1.0 - std::cos(probe.e[1] - e_near[1])) + dh * dh;
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = b;
+    }
+  }
+  return best;
+}
+
+TEST(ExechonIk, NearestAgreesWithEveryBranchSolved) {
+  // tripodInverseKinematicsNearest skips the δ1B pair whose alpha alone is farther than the best
+  // solution found: it must still choose as if all four were solved, for near and far e_near.
+  const ExechonModel m = test::zoppiTable1Model();
+  ExechonData data(m);
+  std::mt19937 rng(test::kSeed + 7);
+  std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi);
+  int checked = 0;
+  for (int k = 0; k < 400; ++k) {
+    const Eigen::Vector3d S =
+        wristPointFromParameters(m.tripod, randomE(rng, m.home.e, m.characteristicLength()));
+    const Eigen::Vector3d e_near =
+        k % 2 == 0
+            ? randomE(rng, m.home.e, m.characteristicLength())
+            : Eigen::Vector3d(angle(rng), angle(rng), m.home.e[2] * (0.5 + std::abs(angle(rng))));
+    const int expected = nearestByBruteForce(m, S, e_near);
+    ASSERT_GE(expected, 0) << k;
+    ASSERT_EQ(tripodInverseKinematicsNearest(m, data, S, e_near), ExechonIkStatus::kOk) << k;
+    EXPECT_EQ(data.branch.index() & 3, expected) << k;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 400);
+}
+
 TEST(ExechonIk, ConditionNumberIsUnitFree) {
   ExechonModel m = test::zoppiTable1Model();
   ExechonData data(m);

@@ -178,6 +178,35 @@ TEST(ExechonLegB, JacobiansMatchCentralDifferences) {
   }
 }
 
+TEST(ExechonLegB, PlatformPointJacobianMatchesCentralDifferences) {
+  // detail::platformPointAt (the tool-point IK's Newton map): S(e) + R(e)·v and its e-derivative,
+  // with and without leg B's offsets.
+  std::mt19937 rng(test::kSeed + 4);
+  for (const ExechonModel& m : {test::zoppiTable1Model(), offsetModel(4.0, -3.0)}) {
+    ExechonData data(m);
+    for (int k = 0; k < 20; ++k) {
+      const Eigen::Vector3d e = randomE(rng, m);
+      const Eigen::Vector3d v(120.0 + k, -40.0, 250.0 - 3 * k);
+      Eigen::Vector3d point, plus, minus;
+      Eigen::Matrix3d J, unused;
+      ASSERT_TRUE(detail::platformPointAt(m.tripod, detail::trigOf(e), v, &point, &J));
+      evaluateTripod(m, data, e, 1, 1);
+      EXPECT_LT((point - (data.zoppi_p_S + data.zoppi_T_platform.linear() * v)).norm(),
+                test::kTolRoundTrip)
+          << k;
+      Eigen::Matrix3d numeric;
+      for (int j = 0; j < 3; ++j) {
+        const double h = j < 2 ? 1e-6 : 1e-4 * m.characteristicLength();
+        const Eigen::Vector3d de = h * Eigen::Vector3d::Unit(j);
+        ASSERT_TRUE(detail::platformPointAt(m.tripod, detail::trigOf(e + de), v, &plus, nullptr));
+        ASSERT_TRUE(detail::platformPointAt(m.tripod, detail::trigOf(e - de), v, &minus, &unused));
+        numeric.col(j) = (plus - minus) / (2 * h);
+      }
+      EXPECT_LT((numeric - J).norm(), test::kTolFiniteDiff * (1 + J.norm())) << k;
+    }
+  }
+}
+
 TEST(ExechonLegB, LargeOffsetsStillCloseAndRoundTrip) {
   // Offsets of 5 % of the machine (40 mm) are far beyond manufacturing errors: the Newton solves
   // from Zoppi's ideal solution still converge.

@@ -194,5 +194,57 @@ TEST(ExechonWrist, BadInputLeavesDataUntouched) {
   EXPECT_EQ(data.c, before.c);
 }
 
+TEST(ExechonWrist, ToolPointIkRoundTripsWithTheReadingsHeld) {
+  ExechonModel offsets = test::machineModel();
+  offsets.tripod.l12B = 3.0;  // leg B's base-joint offsets: S(e) by its own Newton solve
+  offsets.tripod.l23B = -2.0;
+  for (const ExechonModel& m : {test::machineModel(), test::biJinToyModel(), offsets}) {
+    std::mt19937 rng(test::kSeed + 11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    ExechonData truth(m), data(m);
+    for (int k = 0; k < 100; ++k) {
+      const ExechonConfiguration cfg = randomConfiguration(rng, m);
+      evaluateConfiguration(m, truth, cfg);
+      // Started a few degrees and millimetres away, or a turn away in alpha (the same pose).
+      const Eigen::Vector3d start =
+          k % 10 == 0 ? Eigen::Vector3d(cfg.e + Eigen::Vector3d(2 * std::numbers::pi, 0, 0))
+                      : Eigen::Vector3d(cfg.e + Eigen::Vector3d(degToRad(3) * u(rng),
+                                                                degToRad(3) * u(rng),
+                                                                5.0 * u(rng)));
+      ASSERT_EQ(toolPointInverseKinematics(m, data, truth.world_p_tool, cfg.c, cfg.a, start),
+                ExechonIkStatus::kOk)
+          << m.name << " " << k;
+      EXPECT_LT((data.world_p_tool - truth.world_p_tool).norm(), test::kTolRoundTrip) << k;
+      EXPECT_LT((data.e - cfg.e).norm(), test::kTolRoundTrip) << m.name << " " << k;
+      EXPECT_LT((data.readings - truth.readings).cwiseAbs().maxCoeff(), test::kTolRoundTrip);
+      EXPECT_LT((data.world_u_tool - truth.world_u_tool).norm(), test::kTolRoundTrip);
+      EXPECT_EQ(data.c, cfg.c);
+      EXPECT_EQ(data.a, cfg.a);
+      EXPECT_EQ(data.branch, truth.branch);
+    }
+  }
+}
+
+TEST(ExechonWrist, ToolPointIkFailuresLeaveDataUntouched) {
+  const ExechonModel m = test::machineModel();
+  ExechonData data(m);
+  evaluateConfiguration(m, data, m.home);
+  const Eigen::Vector3d p = data.world_p_tool, e_before = data.e;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(toolPointInverseKinematics(m, data, {nan, 0, 0}, 0, 0, m.home.e),
+            ExechonIkStatus::kInvalidInput);
+  EXPECT_EQ(toolPointInverseKinematics(m, data, p, nan, 0, m.home.e),
+            ExechonIkStatus::kInvalidInput);
+  EXPECT_EQ(toolPointInverseKinematics(m, data, p, 0, 0, {0, nan, 0}),
+            ExechonIkStatus::kInvalidInput);
+  // A tool point on the base axis jb: its wrist point, within the tool length (250 mm), would lie
+  // inside the cylinder |(Sx, Sz)| < hx (282.8 mm) that no tripod pose reaches.
+  const Eigen::Vector3d on_axis = m.world_T_zoppi * Eigen::Vector3d(0.0, 700.0, 0.0);
+  EXPECT_EQ(toolPointInverseKinematics(m, data, on_axis, m.home.c, m.home.a, m.home.e),
+            ExechonIkStatus::kSingular);
+  EXPECT_EQ(data.e, e_before);
+  EXPECT_EQ(data.world_p_tool, p);
+}
+
 }  // namespace
 }  // namespace pkm::kinematics

@@ -6,8 +6,10 @@
 ///   k = Rz(C)·Rx(A)·ẑ (from the tool point towards the spindle, the CAM convention; A = C = 0 is
 ///   a vertical tool), and the wrist readings follow from the tool IK by continuity;
 /// - kWristAxes: A and C are the wrist axes' readings themselves (degrees, as a LinuxCNC TCP
-///   kinematics reads rotary words), and the wrist point S solves S + L·u(S) = tool point, u the
-///   tool direction the readings give on the platform at S (Newton's method).
+///   kinematics reads rotary words), and the tripod parameters e solve S(e) + L·R(e)·u = tool
+///   point, u the tool direction the readings give in the platform frame
+///   (kinematics::toolPointInverseKinematics, started from the extrapolation of the last two
+///   solutions).
 /// B must be 0 (an Exechon has no B axis). Each point is solved by continuity from the previous
 /// one (tripod branch and wrist branch nearest), starting from the machine's home.
 #pragma once
@@ -66,8 +68,8 @@ class ExechonJointConverter {
 
   /// Solves `pos` (mm, degrees) by continuity from the last successful point (the home
   /// configuration at first). A failure leaves the previous solution in place. A non-zero B is
-  /// kInvalidInput (the caller reports the line). kWristAxes: kSingular when Newton's method does
-  /// not converge in 50 iterations or its Jacobian is singular.
+  /// kInvalidInput (the caller reports the line). kWristAxes: the status of
+  /// kinematics::toolPointInverseKinematics (kSingular when Newton's method fails).
   ExechonPathSample solve(const Axes& pos);
 
   /// Converts every point.
@@ -78,25 +80,18 @@ class ExechonJointConverter {
  private:
   kinematics::ExechonIkStatus solveVector(const Eigen::Vector3d& p, const Eigen::Vector3d& u);
   kinematics::ExechonIkStatus solveAxes(const Eigen::Vector3d& p, double c, double a);
-  /// Tripod IK at the wrist point (nearest cfg.e) and the tool point's error r from p with the
-  /// tool along platform_u_tool (platform frame); cfg.e is updated. The wrist fields of data_
-  /// are not filled.
-  kinematics::ExechonIkStatus toolPointError(const Eigen::Vector3d& world_p_S,
-                                             const Eigen::Vector3d& p,
-                                             const Eigen::Vector3d& platform_u_tool,
-                                             kinematics::ExechonConfiguration& cfg,
-                                             Eigen::Vector3d& r);
-
   const kinematics::ExechonModel* model_;
   ExechonOrientation orientation_;
   kinematics::ExechonData data_;
   kinematics::ExechonConfiguration previous_;
   kinematics::StrutVector last_joints_ = kinematics::StrutVector::Zero();
-  Eigen::Isometry3d zoppi_T_world_;  ///< the model's world_T_zoppi, inverted once
   bool have_reference_ = false;
+  /// kWristAxes: the solution before previous_ (its e), the start of Newton's method being their
+  /// extrapolation; valid when have_before_previous_.
+  Eigen::Vector3d before_previous_e_ = Eigen::Vector3d::Zero();
+  bool have_before_previous_ = false;
+  bool have_previous_solution_ = false;  ///< previous_ is a solved point, not the home
   Eigen::Matrix3d reference_R_ = Eigen::Matrix3d::Identity();
-  bool have_jacobian_ = false;  ///< kWristAxes: jacobian_inverse_ holds a previous point's
-  Eigen::Matrix3d jacobian_inverse_ = Eigen::Matrix3d::Identity();
 };
 
 /// Header of the Exechon joint CSV.

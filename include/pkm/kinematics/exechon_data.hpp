@@ -61,7 +61,7 @@ struct ExechonData {
   std::array<double, 4> e_sin_cos{0.0, 1.0, 0.0, 1.0};
   Eigen::Vector3d e_of_sin_cos = Eigen::Vector3d::Zero();  ///< the e that e_sin_cos belong to
   /// wristFrame(wrist) of the wrist axes `wrist_axes_of_frame` (c_axis, a_axis): a cache of the
-  /// tool IK, recomputed when the model's axes differ.
+  /// tool IK and setWristReadings, recomputed when the model's axes differ.
   Eigen::Matrix3d wrist_frame = Eigen::Matrix3d::Zero();
   std::array<Eigen::Vector3d, 2> wrist_axes_of_frame{Eigen::Vector3d::Zero(),
                                                      Eigen::Vector3d::Zero()};
