@@ -79,11 +79,15 @@ kin::ExechonIkStatus ExechonJointConverter::solveVector(const Eigen::Vector3d& p
 kin::ExechonIkStatus ExechonJointConverter::solveAxes(const Eigen::Vector3d& p,
                                                       double c,
                                                       double a) {
-  // Newton's method starts from the linear extrapolation of the last two solutions: along an
-  // evenly sampled path its error is second order in the step, as a Newton step's would be, and
-  // one iteration fewer is needed. A start 2·pi away in alpha or beta is the same pose.
-  const Eigen::Vector3d start =
-      have_before_previous_ ? Eigen::Vector3d(2.0 * previous_.e - before_previous_e_) : previous_.e;
+  // Newton's method starts from the quadratic extrapolation of the last three solutions (linear
+  // of two, or the last one, at the start of a path or after a failed point): along an evenly
+  // sampled path its error is third order in the step, and one Newton step (none on a dense path)
+  // reaches the tolerance. A start a multiple of 2·pi away in alpha or beta is the same pose.
+  const Eigen::Vector3d& e1 = previous_.e;
+  const Eigen::Vector3d start = solved_in_row_ >= 3
+                                    ? Eigen::Vector3d(3.0 * (e1 - older_e_[0]) + older_e_[1])
+                                : solved_in_row_ == 2 ? Eigen::Vector3d(2.0 * e1 - older_e_[0])
+                                                      : e1;
   return kin::toolPointInverseKinematics(*model_, data_, p, c, a, start);
 }
 
@@ -102,13 +106,12 @@ ExechonPathSample ExechonJointConverter::solve(const Axes& pos) {
   }
   if (!out.ok()) {
     kin::evaluateConfiguration(*model_, data_, previous_);  // data back at the last solution
-    have_before_previous_ = false;  // no extrapolation across a failed point
+    solved_in_row_ = std::min(solved_in_row_, 1);  // no extrapolation across a failed point
     out.joints = last_joints_;
     return out;
   }
-  before_previous_e_ = previous_.e;
-  have_before_previous_ = have_previous_solution_;
-  have_previous_solution_ = true;
+  older_e_ = {previous_.e, older_e_[0]};
+  solved_in_row_ = std::min(solved_in_row_ + 1, 3);
   previous_ = kin::configurationOf(data_);
   if (!have_reference_) {
     reference_R_ = data_.world_R_tool;

@@ -14,6 +14,7 @@
 /// one (tripod branch and wrist branch nearest), starting from the machine's home.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -86,11 +87,11 @@ class ExechonJointConverter {
   kinematics::ExechonConfiguration previous_;
   kinematics::StrutVector last_joints_ = kinematics::StrutVector::Zero();
   bool have_reference_ = false;
-  /// kWristAxes: the solution before previous_ (its e), the start of Newton's method being their
-  /// extrapolation; valid when have_before_previous_.
-  Eigen::Vector3d before_previous_e_ = Eigen::Vector3d::Zero();
-  bool have_before_previous_ = false;
-  bool have_previous_solution_ = false;  ///< previous_ is a solved point, not the home
+  /// kWristAxes: e of the two solutions before previous_ (newest first) and how many consecutive
+  /// solved points previous_ ends (0 for the home, at most 3): Newton's start is their
+  /// extrapolation.
+  std::array<Eigen::Vector3d, 2> older_e_{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  int solved_in_row_ = 0;
   Eigen::Matrix3d reference_R_ = Eigen::Matrix3d::Identity();
 };
 
