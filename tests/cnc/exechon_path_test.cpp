@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include "kinematics/exechon_sample_models.hpp"
 #include "pkm/core/error.hpp"
@@ -118,6 +119,28 @@ TEST(ExechonPath, WristAxesModeAlongAPathAgreesWithVectorMode) {
     EXPECT_LT((v.readings - s.readings).cwiseAbs().maxCoeff(), kTolRoundTrip) << i;
     EXPECT_NEAR(std::remainder(v.config.c - s.config.c, 2 * std::numbers::pi), 0.0, kTolRoundTrip);
     EXPECT_NEAR(v.config.a, s.config.a, kTolRoundTrip) << i;
+  }
+}
+
+TEST(ExechonPath, WristAxesModeThroughReversalsAndUnevenSteps) {
+  // The extrapolated Newton start overshoots where the path turns back or its step changes: every
+  // point must still be reached with the readings held.
+  const kin::ExechonModel m = pkm::test::machineModel();
+  ExechonJointConverter conv(m, ExechonOrientation::kWristAxes);
+  std::vector<Axes> path;
+  for (int i = 0; i <= 40; ++i) path.push_back({0, 0, -2.0 * i, 20, 0, 10});  // plunge
+  for (int i = 40; i >= 0; --i) path.push_back({0, 0, -2.0 * i, 20, 0, 10});  // retract
+  for (int i = 0; i <= 30; ++i)
+    path.push_back({i * i * 0.1, 0, 0, 20.0 + i, 0, 10.0 - i});  // growing
+  path.push_back({0, 0, 0, 20, 0, 10});                          // a jump back
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    const Axes& pos = path[k];
+    const ExechonPathSample s = conv.solve(pos);
+    ASSERT_TRUE(s.ok()) << k;
+    EXPECT_NEAR(s.config.a, degToRad(pos[3]), kTolExact) << k;
+    const kin::ExechonData d = forward(m, s);
+    EXPECT_LT((d.world_p_tool - Eigen::Vector3d(pos[0], pos[1], pos[2])).norm(), kTolRoundTrip)
+        << k;
   }
 }
 
