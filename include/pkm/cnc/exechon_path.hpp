@@ -8,7 +8,7 @@
 /// - kWristAxes: A and C are the wrist axes' readings themselves (degrees, as a LinuxCNC TCP
 ///   kinematics reads rotary words), and the tripod parameters e solve S(e) + L·R(e)·u = tool
 ///   point, u the tool direction the readings give in the platform frame
-///   (kinematics::toolPointInverseKinematics, started from the extrapolation of the last two
+///   (kinematics::toolPointInverseKinematics, started from the extrapolation of the last three
 ///   solutions).
 /// B must be 0 (an Exechon has no B axis). Each point is solved by continuity from the previous
 /// one (tripod branch and wrist branch nearest), starting from the machine's home.

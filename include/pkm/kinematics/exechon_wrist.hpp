@@ -75,13 +75,13 @@ ExechonIkStatus toolInverseKinematics(const ExechonModel& model,
 /// words: the tripod parameters e that put the tool point at `world_p_tool` (world frame, model
 /// length unit), the tool's direction then following the platform. Newton's method on
 /// F(e) = S(e) + R(e)·v − p (Zoppi frame; v the tool offset the readings give in the platform
-/// frame), with the analytic dF/de, from e_start (the previous solution along a path), halving a
-/// step that increases |F|; converged when |F| <= 1e-14 × characteristicLength(), or <= 1e-12 ×
-/// and no longer falling (rounding). The tripod stays on e_start's pose branch, in the model's leg
-/// working modes. Fills data as evaluateConfiguration(e, c, a); alpha and beta are wrapped into
-/// [−pi, pi]. kInvalidInput for a non-finite argument; kSingular when dF/de is singular or
-/// Newton's method does not converge in 50 iterations (e.g. a point out of reach). On failure data
-/// is not modified.
+/// frame), with the analytic dF/de, from e_start (along a path, the previous solution or an
+/// extrapolation of the last ones), halving a step that increases |F|; converged when
+/// |F| <= 1e-14 × characteristicLength(), or <= 1e-12 × and no longer falling (rounding). The
+/// tripod stays on e_start's pose branch, in the model's leg working modes. Fills data as
+/// evaluateConfiguration(e, c, a); alpha and beta are wrapped into [−pi, pi]. kInvalidInput for a
+/// non-finite argument; kSingular when dF/de is singular or Newton's method does not converge in
+/// 50 iterations (e.g. a point out of reach). On failure data is not modified.
 ExechonIkStatus toolPointInverseKinematics(const ExechonModel& model,
                                            ExechonData& data,
                                            const Eigen::Vector3d& world_p_tool,
