@@ -127,13 +127,10 @@ const std::vector<PathPoint>& exechonCircle() {
   return pts;
 }
 
-/// Exechon conversion: tool IK by continuity (vector: A/C give the tool vector; axes: A/C are the
-/// wrist readings and the tripod parameters are found by Newton's method from an extrapolated
-/// start).
-void BM_ExechonJointConversion(benchmark::State& state) {
+/// Converts `pts` with a fresh converter per iteration (Arg 0: vector, 1: axes).
+void runExechonConversion(benchmark::State& state, const std::vector<PathPoint>& pts) {
   const auto mode =
       state.range(0) == 0 ? ExechonOrientation::kToolVector : ExechonOrientation::kWristAxes;
-  const auto& pts = exechonCircle();
   std::vector<ExechonPathSample> out;
   for (auto _ : state) {
     ExechonJointConverter conv(exechon(), mode);
@@ -143,23 +140,21 @@ void BM_ExechonJointConversion(benchmark::State& state) {
   state.SetLabel(mode == ExechonOrientation::kToolVector ? "vector" : "axes");
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(pts.size()));
 }
+
+/// Exechon conversion: tool IK by continuity (vector: A/C give the tool vector; axes: A/C are the
+/// wrist readings and the tripod parameters are found by Newton's method from an extrapolated
+/// start).
+void BM_ExechonJointConversion(benchmark::State& state) {
+  runExechonConversion(state, exechonCircle());
+}
 BENCHMARK(BM_ExechonJointConversion)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 /// As above with 1 mm between points, about the step `gcode run` takes on the mxt700s-like at
-/// its default 0.01 mm chordal tolerance (max step 3.6 mm there): the wrist-axes solve's
-/// predictor no longer saves its second tripod IK.
+/// its default 0.01 mm chordal tolerance (max step 3.6 mm there): axes mode needs one Newton step
+/// per point here, none on the dense circle.
 void BM_ExechonJointConversionCoarse(benchmark::State& state) {
-  const auto mode =
-      state.range(0) == 0 ? ExechonOrientation::kToolVector : ExechonOrientation::kWristAxes;
   static const std::vector<PathPoint> pts = exechonCircle(1.0);
-  std::vector<ExechonPathSample> out;
-  for (auto _ : state) {
-    ExechonJointConverter conv(exechon(), mode);
-    conv.solveAll(pts, out);
-    benchmark::DoNotOptimize(out.data());
-  }
-  state.SetLabel(mode == ExechonOrientation::kToolVector ? "vector" : "axes");
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(pts.size()));
+  runExechonConversion(state, pts);
 }
 BENCHMARK(BM_ExechonJointConversionCoarse)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
