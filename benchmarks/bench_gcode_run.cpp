@@ -150,8 +150,8 @@ void BM_ExechonJointConversion(benchmark::State& state) {
 BENCHMARK(BM_ExechonJointConversion)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 /// As above with 1 mm between points, about the step `gcode run` takes on the mxt700s-like at
-/// its default 0.01 mm chordal tolerance (max step 3.6 mm there): axes mode needs one Newton step
-/// per point here, none on the dense circle.
+/// its default 0.01 mm chordal tolerance (max step 3.6 mm there). Axes mode takes one Newton step
+/// per point on both circles.
 void BM_ExechonJointConversionCoarse(benchmark::State& state) {
   static const std::vector<PathPoint> pts = exechonCircle(1.0);
   runExechonConversion(state, pts);

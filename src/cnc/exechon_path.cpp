@@ -81,8 +81,8 @@ kin::ExechonIkStatus ExechonJointConverter::solveAxes(const Eigen::Vector3d& p,
                                                       double a) {
   // Newton's method starts from the quadratic extrapolation of the last three solutions (linear
   // of two, or the last one, at the start of a path or after a failed point): along an evenly
-  // sampled path its error is third order in the step, and one Newton step (none on a dense path)
-  // reaches the tolerance. A start a multiple of 2·pi away in alpha or beta is the same pose.
+  // sampled path its error is third order in the step, and one Newton step reaches the tolerance.
+  // A start a multiple of 2·pi away in alpha or beta is the same pose.
   const Eigen::Vector3d& e1 = previous_.e;
   const Eigen::Vector3d start = solved_in_row_ >= 3
                                     ? Eigen::Vector3d(3.0 * (e1 - older_e_[0]) + older_e_[1])
