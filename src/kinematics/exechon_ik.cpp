@@ -41,10 +41,17 @@ std::string_view toString(ExechonIkStatus status) {
 
 namespace {
 
-/// P·kB5 at e: Zoppi's −dB·cos α·sin β, or leg B's offset solve (NaN when it fails).
-double platformOffsetB(const ExechonTripodGeometry& g, const detail::ExechonTrig& t) {
-  if (!detail::hasLegBOffsets(g)) return -g.dB * t.ca * t.sb;
-  const detail::LegBSolution b = detail::solveLegB(g, t, false);
+/// s = P·kB5 at e and, if ds_de is not null, ds/de: Zoppi's −dB·cos α·sin β, or leg B's offset
+/// solve (NaN when it fails).
+double platformOffsetB(const ExechonTripodGeometry& g,
+                       const detail::ExechonTrig& t,
+                       Eigen::Vector3d* ds_de = nullptr) {
+  if (!detail::hasLegBOffsets(g)) {
+    if (ds_de != nullptr) *ds_de = {g.dB * t.sa * t.sb, -g.dB * t.ca * t.cb, 0.0};
+    return -g.dB * t.ca * t.sb;
+  }
+  const detail::LegBSolution b = detail::solveLegB(g, t, ds_de != nullptr);
+  if (ds_de != nullptr) *ds_de = b.ok ? b.ds_de : Eigen::Vector3d::Constant(NAN);
   return b.ok ? b.s : NAN;
 }
 
@@ -311,15 +318,11 @@ const Eigen::Matrix3d& computeTripodJacobian(const ExechonModel& model, ExechonD
   const ExechonTripodGeometry& g = model.tripod;
   const detail::ExechonTrig t = detail::trigOf(data.e);
   detail::legLengths(g, t, data.branch.deltaA, data.branch.deltaC, &data.J_q_e);
-  // S = hx·kA2 + (h + hz)·eh + s·kB5 with Zoppi's s = −dB·cα·sβ or leg B's offset solve.
-  if (detail::hasLegBOffsets(g)) {
-    const detail::LegBSolution b = detail::solveLegB(g, t, true);
-    data.J_S_e =
-        b.ok ? detail::wristPointJacobian(g, t, b.s, b.ds_de) : Eigen::Matrix3d::Constant(NAN);
-  } else {
-    data.J_S_e = detail::wristPointJacobian(
-        g, t, -g.dB * t.ca * t.sb, Eigen::Vector3d(g.dB * t.sa * t.sb, -g.dB * t.ca * t.cb, 0.0));
-  }
+  // S = hx·kA2 + (h + hz)·eh + s·kB5 (NaN when leg B's offset solve fails).
+  Eigen::Vector3d ds_de;
+  const double s_B = platformOffsetB(g, t, &ds_de);
+  data.J_S_e = std::isfinite(s_B) ? detail::wristPointJacobian(g, t, s_B, ds_de)
+                                  : Eigen::Matrix3d::Constant(NAN);
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(data.J_S_e,
                                               Eigen::ComputeFullU | Eigen::ComputeFullV);
   const Eigen::Vector3d& s = svd.singularValues();
@@ -339,14 +342,9 @@ bool platformPointAt(const ExechonTripodGeometry& g,
                      const Eigen::Vector3d& v,
                      Eigen::Vector3d* point,
                      Eigen::Matrix3d* J_point_e) {
-  double s = -g.dB * t.ca * t.sb;
-  Eigen::Vector3d ds_de(g.dB * t.sa * t.sb, -g.dB * t.ca * t.cb, 0.0);
-  if (hasLegBOffsets(g)) {
-    const LegBSolution b = solveLegB(g, t, J_point_e != nullptr);
-    if (!b.ok) return false;
-    s = b.s;
-    ds_de = b.ds_de;
-  }
+  Eigen::Vector3d ds_de;
+  const double s = platformOffsetB(g, t, J_point_e != nullptr ? &ds_de : nullptr);
+  if (!std::isfinite(s)) return false;
   // R·v = v0·kA2 + v1·kB5 + v2·eh: d(kB5)/dβ = eh, d(eh)/dβ = −kB5, nothing depends on h.
   const Eigen::Vector3d kA2(t.sa, 0.0, t.ca), kB5(-t.sb * t.ca, t.cb, t.sb * t.sa),
       eh(-t.cb * t.ca, -t.sb, t.cb * t.sa);

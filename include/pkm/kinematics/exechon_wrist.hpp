@@ -81,7 +81,8 @@ ExechonIkStatus toolInverseKinematics(const ExechonModel& model,
 /// tripod stays on e_start's pose branch, in the model's leg working modes. Fills data as
 /// evaluateConfiguration(e, c, a); alpha and beta are wrapped into [−pi, pi]. kInvalidInput for a
 /// non-finite argument; kSingular when dF/de is singular or Newton's method does not converge in
-/// 50 iterations (e.g. a point out of reach). On failure data is not modified.
+/// 50 iterations (e.g. a point out of reach). On failure data's results are not modified (its
+/// wrist-frame cache may be).
 ExechonIkStatus toolPointInverseKinematics(const ExechonModel& model,
                                            ExechonData& data,
                                            const Eigen::Vector3d& world_p_tool,
