@@ -1,4 +1,4 @@
-// Google Benchmark: hexapod calibration (issue 6 target: 42 parameters from 200 poses in under
+// Google Benchmark: hexapod calibration (target: 42 parameters from 200 poses in under
 // 100 ms): full-pose identification in the base frame and in a tracker frame (48 unknowns), the
 // identification Jacobian and the identifiability SVD, and pose planning.
 #include <benchmark/benchmark.h>

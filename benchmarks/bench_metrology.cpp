@@ -1,6 +1,6 @@
 // Google Benchmark: least-squares circle (Kåsa start + Levenberg-Marquardt) and exact minimum-zone
 // circle (Remez exchange, certified) on 1e3, 1e5 and 1e6 noisy points of a 40 mm ring with a
-// 3-lobe form (issue 5: LSC + MZC of 1 000 000 points in well under a second).
+// 3-lobe form (target: LSC + MZC of 1 000 000 points in well under a second).
 #include <benchmark/benchmark.h>
 
 #include <cmath>

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Whole-process benchmark of the default campaign (`make demo`'s job): simulate, analyse,
 # calibrate, compensate and re-measure the four papers' scenarios, write every file and
-# report.html. The issue's target is under 10 s after the build.
+# report.html. The target is under 10 s after the build.
 # Usage: benchmarks/campaign_whole_process.sh [path/to/pkm]
 set -euo pipefail
 pkm=${1:-build/bin/pkm}

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Whole-process timing of `pkm simulate` for every built-in scenario (issue 4: "simulating every
-# built-in scenario takes well under a second"). Prints the best of 5 wall times per scenario and
+# Whole-process timing of `pkm simulate` for every built-in scenario (target: simulating every
+# built-in scenario takes well under a second). Prints the best of 5 wall times per scenario and
 # for all of them together, process start and file writing included.
 # Usage: benchmarks/simulate_whole_process.sh [path/to/pkm]
 set -euo pipefail

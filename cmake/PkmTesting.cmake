@@ -1,12 +1,19 @@
-# pkm_add_test(<module> <name>): builds tests/<module>/<name>_test.cpp as one gtest binary
-# and registers its tests with CTest.
+# pkm_add_test(<module> <name> [LIBS ...]): builds tests/<module>/<name>_test.cpp as one gtest
+# binary and registers its tests with CTest. It links the module it tests (pkm::<module>, when
+# there is such a library: the CLI tests run the pkm program instead) and LIBS, nothing else.
 include(GoogleTest)
 function(pkm_add_test module name)
+  cmake_parse_arguments(ARG "" "" "LIBS" ${ARGN})
   set(target test_${module}_${name})
   add_executable(${target} ${CMAKE_CURRENT_SOURCE_DIR}/${module}/${name}_test.cpp)
-  target_link_libraries(${target} PRIVATE pkm::pkm pkm_test_support GTest::gtest GTest::gmock
-                                          GTest::gtest_main)
+  set(module_lib)
+  if(TARGET pkm::${module})
+    set(module_lib pkm::${module})
+  endif()
+  target_link_libraries(${target} PRIVATE ${module_lib} ${ARG_LIBS} pkm_test_support GTest::gtest
+                                          GTest::gmock GTest::gtest_main)
   pkm_set_warnings(${target})
+  pkm_use_pch(${target} pkm_pch_test)
   set_target_properties(${target} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
   gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60
                        PROPERTIES ENVIRONMENT "PKM_SOURCE_DIR=${PROJECT_SOURCE_DIR}")

@@ -18,6 +18,8 @@
 #include "pkm/calibration/hybrid_calibration.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
+#include "pkm/geometry/so3.hpp"
+#include "pkm/io/atomic_file.hpp"
 #include "pkm/io/exechon_machine.hpp"
 #include "pkm/io/exechon_tracker_files.hpp"
 #include "pkm/io/geometric_errors.hpp"
@@ -25,6 +27,8 @@
 #include "pkm/kinematics/exechon_checks.hpp"
 #include "pkm/kinematics/exechon_data.hpp"
 #include "pkm/simulation/hybrid_tripod_errors.hpp"
+#include "pkm/workflow/calibrate_hexapod.hpp"
+#include "pkm/workflow/calibration_record.hpp"
 
 namespace pkm::cli {
 namespace {
@@ -565,7 +569,7 @@ void fitSquareness(const ExechonArgs& args,
 void runExechon(const ExechonArgs& args) {
   io::ExechonMachine machine = io::loadExechonMachine(args.machine);
   printNotices(machine.notices);
-  const CalibrationOutputs paths = calibrationOutputs(args.out);
+  const workflow::CalibrationOutputs paths = workflow::calibrationOutputs(args.out);
   const std::string errors_path = errorsOutput(args.out);
   io::ExechonCalibrationInput input, held;
   for (const std::string& f : args.data) io::addExechonCalibrationFile(f, input);
@@ -598,21 +602,23 @@ void runExechon(const ExechonArgs& args) {
   }
   j["outputs"] = {{"machine", paths.machine}, {"summary", paths.summary}};
   if (hybrid) j["outputs"]["errors"] = errors_path;
-  writeOutputFile(paths.machine, io::writeExechonJson(result));
-  if (hybrid) writeOutputFile(errors_path, j["hybrid"]["errors_file"].get<std::string>());
+  constexpr io::Overwrite kReplace = io::Overwrite::kAllow;  // checked above
+  io::writeFileAtomic(paths.machine, io::writeExechonJson(result), kReplace);
+  if (hybrid)
+    io::writeFileAtomic(errors_path, j["hybrid"]["errors_file"].get<std::string>(), kReplace);
   if (hybrid) j["hybrid"].erase("errors_file");
-  writeOutputFile(paths.summary, j.dump(2) + "\n");
+  io::writeFileAtomic(paths.summary, j.dump(2) + "\n", kReplace);
   if (!args.db.empty()) {
     std::vector<std::pair<std::string, std::string>> comps{{"machine-json", paths.machine}};
     if (hybrid) comps.emplace_back("errors-json", errors_path);
-    recordCalibration(args.db,
-                      machine.model.name,
-                      machine.hybrid ? "hybrid" : "exechon",
-                      "calibrate exechon",
-                      args.data,
-                      j,
-                      std::string(toString(machine.model.unit)),
-                      comps);
+    workflow::recordCalibration(args.db,
+                                {machine.model.name,
+                                 machine.hybrid ? "hybrid" : "exechon",
+                                 "calibrate exechon",
+                                 args.data,
+                                 j.dump(2) + "\n",
+                                 std::string(toString(machine.model.unit)),
+                                 comps});
   }
   if (args.json) {
     printJson(j);
@@ -623,6 +629,12 @@ void runExechon(const ExechonArgs& args) {
 }
 
 }  // namespace
+
+ordered_json frameJson(const geometry::RigidTransform& f) {
+  const Eigen::Vector3d rpy = geometry::rpyFromRotation(f.rotation);
+  return {{"position", {f.translation.x(), f.translation.y(), f.translation.z()}},
+          {"rpy_deg", {radToDeg(rpy.x()), radToDeg(rpy.y()), radToDeg(rpy.z())}}};
+}
 
 void addCalibrateExechon(CLI::App& calibrate) {
   auto args = std::make_shared<ExechonArgs>();

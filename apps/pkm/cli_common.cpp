@@ -38,7 +38,9 @@ void printNotices(const std::vector<std::string>& notices) {
   for (const auto& n : notices) fmt::print(stderr, "pkm: note: {}\n", n);
 }
 
-void MachineOption::add(CLI::App& cmd) {
+void MachineOption::add(CLI::App& cmd) { addMachineOptions(cmd, spec, ini); }
+
+void addMachineOptions(CLI::App& cmd, std::string& spec, std::string& ini) {
   cmd.add_option(
       "--machine,-m",
       spec,

@@ -14,6 +14,12 @@ namespace pkm::cli {
 /// Exit code for usage and input errors.
 inline constexpr int kExitUsage = 2;
 
+/// Thrown by a command that has printed its result and must end the program with `code` (e.g. 1
+/// for a missed campaign target); main() returns the code.
+struct ExitCode {
+  int code;
+};
+
 /// Buffers text for stdout and writes it in large blocks.
 class Output {
  public:
@@ -47,6 +53,9 @@ void printNotices(const std::vector<std::string>& notices);
 
 /// "hexapod" or "exechon": the type of a machine file (its "type" field), or of a built-in name.
 [[nodiscard]] std::string machineTypeOf(const std::string& spec);
+
+/// Adds --machine (-m) and --ini to `cmd`, stored in `spec` and `ini`.
+void addMachineOptions(CLI::App& cmd, std::string& spec, std::string& ini);
 
 /// Options every machine-using command shares.
 struct MachineOption {

@@ -32,6 +32,9 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
+  } catch (const pkm::cli::ExitCode& e) {
+    std::fflush(stdout);
+    return e.code;
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return pkm::cli::kExitUsage;

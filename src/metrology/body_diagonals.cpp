@@ -71,7 +71,7 @@ BodyDiagonalSolution solveBodyDiagonals(const Eigen::Vector3d& size,
   const double d = size.norm();
   const double ppp = length_errors[0], npp = length_errors[1], pnp = length_errors[2],
                nnp = length_errors[3];
-  // metrology.md §1.3, the closed form of the four first-order diagonal equations.
+  // The closed form of the four first-order diagonal equations (docs/analysis.md, "--method body").
   const double ec0y = d * (-ppp + npp + pnp - nnp) / (4.0 * lx * ly);
   const double eb0z = d * (ppp - npp + pnp - nnp) / (4.0 * lx * lz);
   const double ea0z = d * (-ppp - npp + pnp + nnp) / (4.0 * ly * lz);
@@ -86,7 +86,7 @@ BodyDiagonalSolution solveBodyDiagonals(const Eigen::Vector3d& size,
 
 namespace {
 
-/// Least-squares line through (x, y): slope and RMS residual (metrology.md §1.2.2).
+/// Least-squares line through (x, y): slope and RMS residual (ISO 230-1).
 std::pair<double, double> lsqLine(const std::vector<double>& x, const std::vector<double>& y) {
   const auto n = static_cast<double>(x.size());
   double mx = 0.0, my = 0.0;

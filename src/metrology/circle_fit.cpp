@@ -12,7 +12,7 @@ namespace pkm::metrology {
 namespace {
 
 /// Centroid and RMS distance from it: the shift and scale under which the fits are conditioned
-/// (large coordinates made circle regressions unstable, metrology.md §1.5 pitfalls).
+/// (large coordinates are known to make circle regressions unstable).
 struct Frame {
   Point2 origin = Point2::Zero();
   double scale = 1.0;

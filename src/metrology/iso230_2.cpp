@@ -13,7 +13,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// Mean and sample standard deviation (divisor n - 1, metrology.md §1.1.1) of deviations.
+/// Mean and sample standard deviation (divisor n - 1, ISO 230-2:2014) of deviations.
 struct DirectionStats {
   double mean = kNaN;
   double s = kNaN;

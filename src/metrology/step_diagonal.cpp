@@ -153,7 +153,7 @@ StepDiagonalResult extractStepDiagonal(std::span<const StepDiagonalPass> passes,
       }
       r[k] = std::move(val);
     }
-    // metrology.md §2.2: the 4×4 sign system solved per position.
+    // Wang 2000: the 4×4 sign system solved per position.
     StepDiagonalAxis& axis = result.axes[qi];
     axis.positions = positions;
     for (auto& c : axis.components) c.resize(positions.size());
@@ -170,7 +170,8 @@ StepDiagonalResult extractStepDiagonal(std::span<const StepDiagonalPass> passes,
       std::tie(axis.slopes[c], axis.straightness[c]) =
           slopeAndStraightness(positions, axis.components[c]);
   }
-  // §2.2 squareness from the slope pairs (model of §1.2.1), then the project convention.
+  // Wang 2000: squareness from the slope pairs (first-order rigid-body model, ISO 230-1 names),
+  // then the project convention.
   const auto& ax = result.axes;
   const double ec0y = -(ax[0].slopes[1] + ax[1].slopes[0]);
   const double eb0z = ax[2].slopes[0] + ax[0].slopes[2];

@@ -93,7 +93,7 @@ ReferenceLine endpointLine(std::span<const double> x, std::span<const double> d)
   }
   d1 /= n1;
   dn /= nn;
-  // m_EP = (d_N - d_1) / (x_N - x_1); line(x) = d_1 + m_EP (x - x_1)   (metrology.md §1.2.2)
+  // m_EP = (d_N - d_1) / (x_N - x_1); line(x) = d_1 + m_EP (x - x_1)   (HP 5528A User's Guide §21)
   const double slope = (dn - d1) / (xn - x1);
   return {slope, d1 - slope * x1};
 }
@@ -108,7 +108,7 @@ ReferenceLine leastSquaresLine(std::span<const double> x, std::span<const double
     sxx += (x[k] - xm) * (x[k] - xm);
     sxd += (x[k] - xm) * (d[k] - dm);
   }
-  // m_LS = [N Σxd - Σx Σd] / [N Σx² - (Σx)²] = Σ(x-x̄)(d-d̄) / Σ(x-x̄)²   (metrology.md §1.2.2)
+  // m_LS = [N Σxd - Σx Σd] / [N Σx² - (Σx)²] = Σ(x-x̄)(d-d̄) / Σ(x-x̄)²   (ISO 230-1)
   const double slope = sxd / sxx;
   return {slope, dm - slope * xm};
 }
@@ -231,7 +231,7 @@ StraightnessResult evaluateStraightness(std::span<const double> x,
   result.residuals.resize(x.size());
   for (std::size_t k = 0; k < x.size(); ++k) result.residuals[k] = d[k] - result.line.at(x[k]);
   const auto [lo, hi] = std::minmax_element(result.residuals.begin(), result.residuals.end());
-  result.straightness = *hi - *lo;  // max_k r_k - min_k r_k   (metrology.md §1.2.2)
+  result.straightness = *hi - *lo;  // max_k r_k - min_k r_k   (ISO 230-1)
   return result;
 }
 

@@ -24,7 +24,7 @@ constexpr double kStep = 1e-5;             ///< central-difference step, mm
 constexpr double kJointError = 0.5;        ///< mm, injected joint errors
 constexpr double kPlanarRange = 150.0;     ///< mm, station moves in x and y
 constexpr double kYawRange = 0.2;          ///< rad, station moves about z
-constexpr double kRemovedFraction = 0.95;  ///< issue 6: at least 95 % of the error removed
+constexpr double kRemovedFraction = 0.95;  ///< acceptance: at least 95 % of the error removed
 
 HexapodModel perturbed(const HexapodModel& nominal, unsigned seed) {
   std::mt19937 rng(seed);

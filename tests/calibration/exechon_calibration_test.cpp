@@ -17,7 +17,7 @@ using kinematics::ExechonModel;
 
 constexpr double kExactFit = 1e-6;      // mm: noise-free data, after the fit
 constexpr double kNoise = 0.005;        // mm: tracker noise per axis in the noisy tests
-constexpr double kHeldOutFactor = 3.0;  // held-out error <= 3 x the measurement noise (issue 6)
+constexpr double kHeldOutFactor = 3.0;  // acceptance: held-out error <= 3 x the measurement noise
 constexpr double kOutlier = 2.0;        // mm added to one observation
 constexpr double kDeg = M_PI / 180.0;
 

@@ -35,7 +35,8 @@ constexpr double kTolBodyVsStep = 2 * kUrad;
 /// measured ≈ 0.2 µm; the Abbe terms are outside the model.
 constexpr double kTolPrediction = 1e-3;  // mm
 
-/// Body-diagonal file from the first-order model of metrology.md §1.3 (box 400 × 300 × 200 mm).
+/// Body-diagonal file from the first-order model (docs/analysis.md, "--method body"), box
+/// 400 × 300 × 200 mm.
 std::string bodyFile(double ec0y, double eb0z, double ea0z, bool runs) {
   const double lx = 400, ly = 300, lz = 200, d = std::sqrt(lx * lx + ly * ly + lz * lz);
   const double dd[4] = {(-ec0y * lx * ly + eb0z * lx * lz - ea0z * ly * lz) / d,

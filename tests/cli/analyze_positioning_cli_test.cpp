@@ -28,7 +28,7 @@ constexpr double kTolFirstOrder = 40e-6;
 class AnalyzePositioningCli : public CliTest {};
 
 TEST_F(AnalyzePositioningCli, Iso230_2JsonKeysAndHandComputedValues) {
-  // Targets 0 and 10: up {1, 3} / {0, 2}, down {-1, -1} / {2, 4} (deviations, metrology.md §1.1.1).
+  // Targets 0 and 10: up {1, 3} / {0, 2}, down {-1, -1} / {2, 4} (deviations, ISO 230-2:2014).
   const std::string f = write("pos.csv",
                               "target,direction,run,measured\n"
                               "0,+,1,1\n0,+,2,3\n10,+,1,10\n10,+,2,12\n"
@@ -111,7 +111,7 @@ TEST_F(AnalyzePositioningCli, StraightnessReferencesAndContacts) {
 }
 
 TEST_F(AnalyzePositioningCli, SquarenessClosedFormWithScale) {
-  // metrology.md §1.2.4: EC0Y = D (ΔD_NP - ΔD_PP) / (2 a b).
+  // First-order face diagonals (docs/conventions.md): EC0Y = D (ΔD_NP - ΔD_PP) / (2 a b).
   const double a = 600, b = 450, D = std::hypot(a, b), dPP = -0.0123, dNP = 0.0051;
   const std::string pp = write("pp.csv", "u,v,deviation\n0,0,0\n600,450,-0.0123\n");
   const std::string np = write("np.csv", "u,v,deviation\n0,0,0\n-600,450,0.0051\n");

@@ -15,7 +15,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-/// Issue 6: held-out TCP error after calibration ≤ 3× the measurement noise. The scenario's
+/// Acceptance: held-out TCP error after calibration ≤ 3× the measurement noise. The scenario's
 /// tracker reads ~3 µm per coordinate plus 20 µrad orientation noise, and the machine has 5 µm
 /// backlash and 2 µm repeatability the 42-parameter model cannot absorb: 3 × ~5 µm.
 constexpr double kHeldOutRmsLimit = 0.015;  ///< mm

@@ -13,9 +13,9 @@ namespace {
 
 using ::testing::HasSubstr;
 
-/// Issue 6: held-out error ≤ 3× the measurement noise. The scenario's tracker reads 5 µm in range
-/// and 2 µrad per angle at ~2 m (4 µm across the line of sight): ~5 µm per coordinate, ~8 µm in
-/// 3-D; the held-out RMS compares a prediction with a noisy measurement.
+/// Acceptance: held-out error ≤ 3× the measurement noise. The scenario's tracker reads 5 µm in
+/// range and 2 µrad per angle at ~2 m (4 µm across the line of sight): ~5 µm per coordinate, ~8 µm
+/// in 3-D; the held-out RMS compares a prediction with a noisy measurement.
 constexpr double kHeldOutRmsLimit = 3 * 0.008;  ///< mm
 constexpr double kBeforeAtLeast = 0.2;          ///< mm: in the tracker frame (rigid part absorbed)
 

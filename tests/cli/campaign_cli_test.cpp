@@ -1,4 +1,4 @@
-// `pkm campaign run`: the built-in default campaign meets the targets on every paper
+// `pkm campaign run`: the built-in default campaign meets the campaign's targets on every paper
 // scenario (seed 000 parallelism <= 0.010 mm and face diagonals <= 0.02 mm, seed 003 roundness
 // down to the probe noise, seed 004 TCP error <= 0.05 mm), writes its report, summary,
 // compensation files and measurements, stores its results, and refuses bad input with exit 2.

@@ -1,4 +1,4 @@
-// `pkm simulate seed004-hexapod-calibration` writes the laser-tracker files (issue 6's full-pose
+// `pkm simulate seed004-hexapod-calibration` writes the laser-tracker files (the full-pose
 // calibration data and held-out poses, and a point file), byte-identical for the same seed, with
 // the tracker placement in truth.json; every built-in scenario simulates well under a second.
 #include <gmock/gmock.h>
@@ -55,7 +55,7 @@ TEST_F(SimulateTrackerCli, Seed004WritesTheTrackerFiles) {
   EXPECT_TRUE(std::filesystem::exists(dir_ / "a" / "linear-x_run1.csv"));
 }
 
-// The time budget (issue 4: well under a second) is measured by benchmarks/
+// The time budget (well under a second per scenario) is measured by benchmarks/
 // simulate_whole_process.sh, not asserted here; the test prints the times.
 TEST_F(SimulateTrackerCli, EveryBuiltinScenarioSimulates) {
   for (const std::string& name : pkm::io::builtinScenarioNames()) {

@@ -24,7 +24,7 @@ using namespace pkm::cnc;
 namespace kin = pkm::kinematics;
 using pkm::test::kSeed;
 
-constexpr double kJointMatch = 1e-6;  // mm: the brief's round-trip requirement
+constexpr double kJointMatch = 1e-6;  // mm: the round-trip requirement
 constexpr double kTextDigits = 1e-8;  // mm/deg: the 9 decimals of the written words
 constexpr double kJointError = 0.5;   // mm, joint errors of the "calibrated" model
 constexpr double kTol = 0.01;         // mm

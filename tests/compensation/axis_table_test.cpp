@@ -1,5 +1,5 @@
 // Axis error tables: construction from ISO 230-2 results, validation, interpolation, the format
-// conventions (metrology.md §3.9) and resampling to controller limits.
+// conventions (the sign table of docs/compensation.md) and resampling to controller limits.
 #include "pkm/compensation/axis_table.hpp"
 
 #include <gtest/gtest.h>
@@ -95,7 +95,7 @@ TEST(AxisTable, ErrorAtInterpolatesAndHoldsTheEnds) {
 }
 
 TEST(AxisTable, ConventionMatrix) {
-  // An axis that overshoots by e = +0.01 mm at P = 100 mm (metrology.md §3.9).
+  // An axis that overshoots by e = +0.01 mm at P = 100 mm (docs/compensation.md, sign table).
   constexpr double kP = 100.0, kE = 0.01;
   using comp::StoredValue;
   EXPECT_EQ(comp::storedValue(StoredValue::kError, kP, kE), kE);

@@ -67,7 +67,7 @@ TEST(LinuxcncComp, WriteParseRoundTripIsExact) {
 }
 
 TEST(LinuxcncComp, DocumentedExamples) {
-  // docs/src/config/ini-config.adoc (metrology.md §3.7): type 1 trims and type 0 actual positions.
+  // LinuxCNC docs/src/config/ini-config.adoc: type 1 trims and type 0 actual positions.
   const auto t1 = comp::parseLinuxcncComp(
       "-1.000 0.005 -0.005\n0.000 0.002 -0.003\n1.000 0.003 -0.004\n", "type1.txt", 1);
   EXPECT_NEAR(comp::applyLinuxcncComp(t1, 0.0, 1), 0.002, kTolExact);

@@ -52,7 +52,8 @@ TEST(SiemensComp, EecExactText) {
 }
 
 TEST(SiemensComp, ParsesTheK3Example) {
-  // The structure of the K3 example (metrology.md §3.3), shortened to points 0..2.
+  // The structure of the example in the SINUMERIK 840D sl Function Manual K3 (§4.4), shortened to
+  // points 0..2.
   const comp::SiemensEecTable t = comp::parseSiemensEec(
       "%_N_AX_EEC_INI\nCHANDATA(1)\n"
       "$AA_ENC_COMP[0,0,X1]=0.003      ; 1st compensation value: +3 um\n"

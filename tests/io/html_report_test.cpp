@@ -22,7 +22,7 @@ using nlohmann::json;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-/// Upper size of a rendered report of the fixture (the brief's budget for a typical campaign).
+/// Upper size of a rendered report of the fixture (the size budget for a typical campaign).
 constexpr std::size_t kMaxReportBytes = 600 * 1024;
 
 std::string fixtureText() {

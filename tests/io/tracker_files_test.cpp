@@ -1,4 +1,4 @@
-// Laser-tracker files: the issue 6 header, a write/read round trip of pose and point files with
+// Laser-tracker files: the pose-file header, a write/read round trip of pose and point files with
 // metadata, unit-suffixed and reordered columns, and FILE:LINE errors for bad files.
 #include "pkm/io/tracker_files.hpp"
 

@@ -15,7 +15,9 @@ PoseRpy pose(double x, double y, double z, double a, double b, double c) {
   return {{x, y, z}, {degToRad(a), degToRad(b), degToRad(c)}};
 }
 
-// LinuxCNC genhexkins reference (kinematics notes §1.6; home row from the issue).
+// LinuxCNC genhexkins reference: strut lengths of the default geometry (genhexkins.h, the same as
+// configs/sim/axis/vismach/hexapod-sim/kinematics.hal; inches). The home row reproduces the sim's
+// HOME strut length 29.7466 (hexapod.ini); the last row is given to five decimals.
 struct Reference {
   PoseRpy pose;
   std::array<double, 6> lengths;

@@ -1,6 +1,6 @@
-// Body diagonals (ISO 230-6): the closed form against the metrology notes' check case and an
-// independent least-squares fit, recovery of injected squareness and scale from simulated
-// readings, ISO 230-2 per diagonal, bad input.
+// Body diagonals (ISO 230-6): the closed form against a synthetic check case and an independent
+// least-squares fit, recovery of injected squareness and scale from simulated readings, ISO 230-2
+// per diagonal, bad input.
 #include "pkm/metrology/body_diagonals.hpp"
 
 #include <gtest/gtest.h>
@@ -21,14 +21,15 @@ using pkm::metrology::BodyDiagonalSample;
 using pkm::metrology::kBodyDiagonals;
 using pkm::test::kTolExact;
 
-const Eigen::Vector3d kBox(400.0, 300.0, 200.0);  // metrology.md §1.3 check case, mm
+const Eigen::Vector3d kBox(400.0, 300.0, 200.0);  // the check case's box, mm
 constexpr double kUrad = 1e-6;
 constexpr double kPpm = 1e-6;
 /// Squareness recovered from noise-free simulated readings: the model is first order, the
 /// truncation is O(ε²·D) in ΔD (ε ≈ 5e-5), i.e. ~1e-9 rad in the angles.
 constexpr double kTolFirstOrderAngle = 1e-8;
 
-/// ΔD of each diagonal from the first-order model of metrology.md §1.3 (ISO symbols).
+/// ΔD of each diagonal from the first-order model (docs/analysis.md, "--method body"; ISO
+/// symbols).
 std::array<double, 4> modelLengthErrors(
     const Eigen::Vector3d& size, const Eigen::Vector3d& k, double ec0y, double eb0z, double ea0z) {
   const double lx = size.x(), ly = size.y(), lz = size.z(), d = size.norm();
@@ -128,7 +129,7 @@ TEST(BodyDiagonals, NoisyReadingsRecoverSquarenessWithinTheInstrumentUncertainty
   pkm::test::InjectedErrors inj;
   inj.squareness = {50 * kUrad, -30 * kUrad, 20 * kUrad};
   auto machine = pkm::test::diagonalTestMachine(inj);
-  pkm::simulation::NoiseModel xl80;  // metrology.md §5: XL-80, 10 nm + 0.25 ppm (1 σ)
+  pkm::simulation::NoiseModel xl80;  // XL-80 datasheet: 10 nm + 0.25 ppm (1 σ)
   xl80.sigma = 1e-5;
   xl80.sigma_ppm = 0.25;
   xl80.resolution = 1e-6;

@@ -76,7 +76,7 @@ TEST(CircleFit, ShortArcBeatsKasaBias) {
 
 TEST(CircleFit, AgreesWithTheIso4291LinearisedFormula) {
   // Equally spaced angles about the origin, small eccentricity and a 3-lobe form: the explicit
-  // ISO 4291 Annex F equations (metrology.md §1.5) agree with the exact fit to second order.
+  // ISO 4291 Annex F equations agree with the exact fit to second order.
   const int n = 72;
   const Point2 ecc(0.002, -0.001);
   std::vector<Point2> pts;

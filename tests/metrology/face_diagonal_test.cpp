@@ -97,7 +97,8 @@ TEST(FaceDiagonal, RecoversModelSquarenessAndScaleAfterPdgeRemoval) {
 }
 
 TEST(FaceDiagonal, TwoDiagonalsOfOneRectangleMatchTheClosedForm) {
-  // metrology.md §1.2.4: EC0Y = D (ΔD_NP - ΔD_PP) / (2 a b) from the end-point length errors.
+  // First order (docs/conventions.md): EC0Y = D (ΔD_NP - ΔD_PP) / (2 a b) from the end-point
+  // length errors.
   const double a = 600.0, b = 450.0, D = std::hypot(a, b);
   const double dPP = -0.0123, dNP = 0.0051;
   const std::vector<FaceDiagonal> diags{{{{0, 0, 0}, {a, b, dPP}}, 0, 0},

@@ -29,7 +29,7 @@ void addRuns(std::vector<PositioningSample>& out,
 }
 
 TEST(Iso230_2, HandComputedTwoTargetsTwoRuns) {
-  // Target 0: up {1, 3}, down {-1, -1}; target 10: up {0, 2}, down {2, 4} (metrology.md §1.1.1).
+  // Target 0: up {1, 3}, down {-1, -1}; target 10: up {0, 2}, down {2, 4} (ISO 230-2:2014).
   std::vector<PositioningSample> samples;
   addRuns(samples, 10.0, -1, {2.0, 4.0});
   addRuns(samples, 0.0, 1, {1.0, 3.0});
@@ -74,7 +74,7 @@ TEST(Iso230_2, HandComputedTwoTargetsTwoRuns) {
   EXPECT_NEAR(r3.E, r.E, kTolHand);
 }
 
-/// Brute-force reference: direct transcription of metrology.md §1.1.1 over a map.
+/// Brute-force reference: direct transcription of the ISO 230-2:2014 definitions over a map.
 struct Reference {
   double B = 0, B_mean = 0, R_up = 0, R_down = 0, R = 0, E_up, E_down, E, M, A_up, A_down, A;
 };

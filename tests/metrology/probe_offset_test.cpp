@@ -86,7 +86,7 @@ TEST(ProbeOffset, LeastSquaresRecoversOffsetCentreAndStylusRadius) {
   EXPECT_NEAR(effectiveStylusRadius(2.0 * kRing, fit.ball_path_radius), kBall, kTolProbe);
   EXPECT_LT(fit.rms, kTolProbe);
 
-  // With noise of an RMP600 (0.25 µm 2σ, metrology.md §5) the offset is within a few σ/√N.
+  // With noise of an RMP600 (0.25 µm 2σ, datasheet) the offset is within a few σ/√N.
   std::mt19937 rng(kSeed);
   const double sigma = 0.125e-3;
   std::normal_distribution<double> noise(0.0, sigma);

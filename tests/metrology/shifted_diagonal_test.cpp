@@ -110,7 +110,7 @@ TEST(ShiftedDiagonal, NoisyReadingsRecoverSquarenessWithinTheInstrumentUncertain
   inj.scale = {10 * kPpm, -5 * kPpm, 3 * kPpm};
   inj.squareness = {50 * kUrad, -30 * kUrad, 20 * kUrad};
   auto machine = pkm::test::diagonalTestMachine(inj);
-  pkm::simulation::NoiseModel xl80;  // metrology.md §5: XL-80, 10 nm + 0.25 ppm (1 σ)
+  pkm::simulation::NoiseModel xl80;  // XL-80 datasheet: 10 nm + 0.25 ppm (1 σ)
   xl80.sigma = 1e-5;
   xl80.sigma_ppm = 0.25;
   xl80.resolution = 1e-6;

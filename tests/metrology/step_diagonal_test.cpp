@@ -1,7 +1,7 @@
-// Wang's step-diagonal extraction: the metrology notes' §2.3 numerical verification (additive
-// model, exact recovery, Q = 0), recovery of injected scale and squareness from the virtual
-// machine's step-diagonal readings, the consistency residual under a non-additive (Abbe) error,
-// bad input.
+// Wang's step-diagonal extraction: a synthetic numerical verification (additive model,
+// box 400 × 300 × 200 mm, N = 10: exact recovery, Q = 0), recovery of injected scale and
+// squareness from the virtual machine's step-diagonal readings, the consistency residual under a
+// non-additive (Abbe) error, bad input.
 #include "pkm/metrology/step_diagonal.hpp"
 
 #include <gtest/gtest.h>
@@ -23,21 +23,21 @@ using pkm::metrology::StepDiagonalPass;
 
 constexpr double kUrad = 1e-6;
 constexpr double kPpm = 1e-6;
-/// §2.3 reports recovery to 6e-18 mm; sums of ~30 terms of a few µm in double precision.
+/// Exact in exact arithmetic; sums of ~30 terms of a few µm in double precision.
 constexpr double kTolExtraction = 1e-15;
 /// Noise-free virtual machine: first-order model, truncation O(ε²·L) ≈ 1e-9 mm in the functions
 /// and ε²/2 = 1.25e-9 in slopes and angles (e.g. the Y travel y·cos(squareness_xy)), ε = 50 µrad.
 constexpr double kTolFirstOrderMm = 1e-8;
 constexpr double kTolFirstOrderAngle = 5e-9;
 
-const Eigen::Vector3d kBox(400.0, 300.0, 200.0);  // §2.3
-constexpr int kSteps = 10;                        // §2.3: N = 10
+const Eigen::Vector3d kBox(400.0, 300.0, 200.0);  // the synthetic check case
+constexpr int kSteps = 10;                        // steps per diagonal, N
 const double kTwoPi = 2.0 * std::numbers::pi;
 
-/// The additive error model of §1.2.1 with nonlinear functions of a few µm: E[axis](q) is the
-/// error vector (along X, Y, Z) due to that axis at position q. Straightness functions are
-/// symmetric about mid-travel (zero least-squares slope on a symmetric grid), so the slopes the
-/// extraction sees are the squareness terms alone.
+/// The additive error model (first-order rigid body, no angular terms) with nonlinear functions of
+/// a few µm: E[axis](q) is the error vector (along X, Y, Z) due to that axis at position q.
+/// Straightness functions are symmetric about mid-travel (zero least-squares slope on a symmetric
+/// grid), so the slopes the extraction sees are the squareness terms alone.
 struct AdditiveModel {
   double ec0y = 20 * kUrad, eb0z = -15 * kUrad, ea0z = 10 * kUrad;
   Eigen::Vector3d e(int axis, double q) const {
@@ -164,7 +164,7 @@ TEST(StepDiagonal, NoisyReadingsRecoverSquarenessWithinTheInstrumentUncertainty)
   inj.scale = {10 * kPpm, -5 * kPpm, 3 * kPpm};
   inj.squareness = {50 * kUrad, -30 * kUrad, 20 * kUrad};
   auto machine = pkm::test::diagonalTestMachine(inj);
-  pkm::simulation::NoiseModel xl80;  // metrology.md §5: XL-80, 10 nm + 0.25 ppm (1 σ)
+  pkm::simulation::NoiseModel xl80;  // XL-80 datasheet: 10 nm + 0.25 ppm (1 σ)
   xl80.sigma = 1e-5;
   xl80.sigma_ppm = 0.25;
   xl80.resolution = 1e-6;
@@ -182,7 +182,7 @@ TEST(StepDiagonal, NoisyReadingsRecoverSquarenessWithinTheInstrumentUncertainty)
 }
 
 TEST(StepDiagonal, AbbeErrorsShowInTheConsistencyResidual) {
-  // §2.4-2.5: an angular error acting through an Abbe offset is outside the additive model. A
+  // Chapman 2003: an angular error acting through an Abbe offset is outside the additive model. A
   // roll of X (EAX, 30 µrad over the travel) with the tool 100 mm below the Z carriage gives
   // ey = −EAX(x)·(z − 100), which depends on x and z together: Q ≠ 0 and squareness is biased.
   const Eigen::Vector3d size(500.0, 400.0, 300.0);

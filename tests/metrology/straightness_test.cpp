@@ -123,7 +123,7 @@ TEST(Straightness, LeastSquaresMatchesNormalEquations) {
     sxx += x.back() * x.back();
     sxd += x.back() * d.back();
   }
-  const double n = 30.0, den = n * sxx - sx * sx;  // metrology.md §1.2.2 closed forms
+  const double n = 30.0, den = n * sxx - sx * sx;  // closed forms of the least-squares line
   const ReferenceLine l = leastSquaresLine(x, d);
   EXPECT_NEAR(l.slope, (n * sxd - sx * sd) / den, test::kTolExact);
   EXPECT_NEAR(l.intercept, (sxx * sd - sx * sxd) / den, test::kTolExact);

@@ -167,8 +167,8 @@ TEST(CartesianMachine, ReversalValueEqualsTheInjectedBacklash) {
   EXPECT_NEAR(down.x() - up.x(), kBacklash, kTolExact);
   EXPECT_EQ(down.y(), up.y());
   EXPECT_EQ(down.z(), up.z());
-  // Through the ISO 230-2 cycle: B_i = x̄_i↑ − x̄_i↓ = −b at every target (§2.13 / metrology
-  // notes §1.1.1), so the axis reversal value B = max |B_i| is the backlash.
+  // Through the ISO 230-2 cycle: B_i = x̄_i↑ − x̄_i↓ = −b at every target (ISO 230-2:2014 §2.13),
+  // so the axis reversal value B = max |B_i| is the backlash.
   constexpr int kTargets = 9;
   pkm::simulation::RandomStream rng(pkm::test::kSeed);
   const auto runs = pkm::simulation::simulateLine(m, positioningOfX(kTargets, 5), rng);

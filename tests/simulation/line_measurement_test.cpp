@@ -170,7 +170,7 @@ TEST(LineMeasurement, Y2PositioningReadsEyyWithItsSign) {
 }
 
 TEST(LineMeasurement, StepDiagonalReadsAfterEachSingleAxisMove) {
-  // Metrology notes §2.2: during the X sub-move the reading changes by ux·ΔEXX (flat mirror).
+  // Wang's step diagonal: during the X sub-move the reading changes by ux·ΔEXX (flat mirror).
   sim::CartesianErrors e;
   e.axes[0] = ramp(pkm::geometry::kDx, kSlope * kTravel);
   sim::CartesianMachine m({}, e);

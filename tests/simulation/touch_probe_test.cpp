@@ -20,7 +20,7 @@ using test::kSeed;
 constexpr double kTolNominal = 1e-9;  ///< zero noise: touch geometry and recovered offset, mm
 /// Eq. 9 small-angle error for the paper's offset on the 40.001 mm ring with a 3 mm ball, mm.
 constexpr double kTolEq9 = 3e-3;
-constexpr double kRmp600Sigma = 0.125e-3;  ///< RMP600: 0.25 µm 2σ (metrology.md §5), mm
+constexpr double kRmp600Sigma = 0.125e-3;  ///< RMP600: 0.25 µm 2σ (datasheet), mm
 
 TouchProbeSetup paperSetup(double sigma) {
   TouchProbeSetup s;

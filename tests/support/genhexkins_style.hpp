@@ -1,9 +1,9 @@
 /// @file
-/// @brief A re-implementation, from its published description (kinematics notes §1.3), of the
-/// iteration LinuxCNC's genhexkins uses for forward kinematics: Newton steps whose angular part (a
-/// world-frame rotation vector) is subtracted directly from the roll-pitch-yaw angles. Used only as
-/// a baseline in tests and benchmarks ("no failure where genhexkins converges", iteration counts).
-/// No LinuxCNC code.
+/// @brief A re-implementation, from a description of the algorithm (its source is LinuxCNC's
+/// src/emc/kinematics/genhexkins.c), of the iteration LinuxCNC's genhexkins uses for forward
+/// kinematics: Newton steps whose angular part (a world-frame rotation vector) is subtracted
+/// directly from the roll-pitch-yaw angles. Used only as a baseline in tests and benchmarks ("no
+/// failure where genhexkins converges", iteration counts). No LinuxCNC code.
 #pragma once
 
 #include <Eigen/Geometry>

@@ -1,9 +1,9 @@
 /// @file
-/// @brief Distance observations of a hexapod for calibration (kinematics notes §3.2, "Ball-bar /
-/// sphere"): a length measured between the TCP and a fixed point (a ball bar on a pivot at a
-/// known position) or between the TCPs of two configurations (a laser interferometer along a
-/// diagonal, zeroed at its first target). Distances see no rigid motion of the whole machine, so
-/// they identify shape, not placement (docs/calibration.md, "Distances").
+/// @brief Distance observations of a hexapod for calibration (the ball-bar constraint of PKM
+/// calibration, generalised): a length measured between the TCP and a fixed point (a ball bar on a
+/// pivot at a known position) or between the TCPs of two configurations (a laser interferometer
+/// along a diagonal, zeroed at its first target). Distances see no rigid motion of the whole
+/// machine, so they identify shape, not placement (docs/calibration.md, "Distances").
 #pragma once
 
 #include <Eigen/Core>

@@ -37,11 +37,11 @@ using PoseParameterJacobian = Eigen::Matrix<double, 6, kHexapodParameters>;
 /// Jacobian of 3 residuals with respect to the 42 parameters.
 using PointParameterJacobian = Eigen::Matrix<double, 3, kHexapodParameters>;
 
-/// Inverse-kinematic residuals of a full-pose observation (Zhuang, Yan, Masory 1998; kinematics
-/// notes §3.2): r_i = |p + R·a_i − b_i| − offset_i − q_i, i = 0..5, in the model length unit, with
+/// Inverse-kinematic residuals of a full-pose observation (Zhuang, Yan, Masory, J. Robotic Systems
+/// 15(7), 1998): r_i = |p + R·a_i − b_i| − offset_i − q_i, i = 0..5, in the model length unit, with
 /// (p, R) the measured pose and a_i, b_i the effective joint points. When `J` is given it receives
-/// dr/dθ: dr_i/db_i = −u_iᵀ, dr_i/da_i = u_iᵀR, dr_i/doffset_i = −1 (u_i the unit leg vector).
-/// Uses `data` as workspace.
+/// dr/dθ: dr_i/db_i = −u_iᵀ, dr_i/da_i = u_iᵀR, dr_i/doffset_i = −1 (u_i the unit leg vector). Uses
+/// `data` as workspace.
 [[nodiscard]] kinematics::StrutVector poseResiduals(const kinematics::HexapodModel& model,
                                                     kinematics::HexapodData& data,
                                                     const PoseObservation& observation,

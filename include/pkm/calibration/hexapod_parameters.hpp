@@ -1,7 +1,7 @@
 /// @file
 /// @brief The 42 kinematic parameters of a 6-UPS hexapod as a vector (per strut: base joint centre,
-/// platform joint centre, length offset; ../shared/reference/kinematics.md §3.1), with names,
-/// flags and scales for identification (docs/calibration.md).
+/// platform joint centre, length offset: the standard 7-per-leg model, e.g. Zhuang, Yan & Masory
+/// 1998), with names, flags and scales for identification (docs/calibration.md).
 #pragma once
 
 #include <Eigen/Core>

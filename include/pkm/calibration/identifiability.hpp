@@ -1,8 +1,8 @@
 /// @file
-/// @brief Identifiability of kinematic parameters from the identification Jacobian
-/// (kinematics notes §3.1 and §3.3; Besnard & Khalil 2001): numerical rank, condition number,
-/// the unidentifiable parameter combinations named in parameter terms, and the observability
-/// indices O1–O5 used by pose planning (docs/calibration.md).
+/// @brief Identifiability of kinematic parameters from the identification Jacobian (Besnard &
+/// Khalil, "Identifiable parameters for parallel robots kinematic calibration", ICRA 2001):
+/// numerical rank, condition number, the unidentifiable parameter combinations named in parameter
+/// terms, and the observability indices O1–O5 used by pose planning (docs/calibration.md).
 #pragma once
 
 #include <Eigen/Core>
@@ -52,7 +52,7 @@ struct Identifiability {
                                                      const IdentifiabilityOptions& options = {});
 
 /// The observability indices of a column-scaled identification Jacobian with m rows and singular
-/// values s₁ ≥ … ≥ s_L (kinematics notes §3.3). All are "larger is better".
+/// values s₁ ≥ … ≥ s_L (sources per index below). All are "larger is better".
 enum class ObservabilityIndex {
   kO1,  ///< (s₁·…·s_L)^(1/L) / √m (Borm & Menq 1991; D-optimality)
   kO2,  ///< s_L / s₁, the inverse condition number (Driels & Pathre 1990)

@@ -1,9 +1,10 @@
 /// @file
-/// @brief Pose planning for calibration (kinematics notes §3.3): choose N measurement poses from a
-/// candidate set so that an observability index of the identification Jacobian is largest, by
-/// greedy selection followed by exchange passes (DETMAX-style; Mitchell 1974). Each step ranks the
-/// candidates by their D-optimal gain (matrix determinant lemma, cheap) and evaluates the chosen
-/// index exactly on the best 24 (on all of them for O1, which the gain orders exactly).
+/// @brief Pose planning for calibration (observability indices, identifiability.hpp): choose N
+/// measurement poses from a candidate set so that an observability index of the identification
+/// Jacobian is largest, by greedy selection followed by exchange passes (DETMAX-style; Mitchell
+/// 1974). Each step ranks the candidates by their D-optimal gain (matrix determinant lemma, cheap)
+/// and evaluates the chosen index exactly on the best 24 (on all of them for O1, which the gain
+/// orders exactly).
 #pragma once
 
 #include <Eigen/Core>

@@ -2,7 +2,7 @@
 /// @brief Axis error tables for controller compensation: the positioning error of one axis per
 /// approach direction (from an ISO 230-2 evaluation), a cross-axis (straightness/sag) error table,
 /// the controller formats' sign conventions and point limits, and resampling to those limits
-/// (docs/compensation.md; ../shared/reference/metrology.md §1.1.3 and §3.9).
+/// (docs/compensation.md; ISO 230-2:2014 for the deviation's sign).
 #pragma once
 
 #include <cstddef>
@@ -16,7 +16,7 @@
 namespace pkm::compensation {
 
 /// The positioning error of one axis as a table over the commanded (nominal) position. The error is
-/// the ISO 230-2 deviation x = actual − commanded (metrology.md §1.1.3): positive when the axis
+/// the ISO 230-2 deviation x = actual − commanded (ISO 230-2:2014): positive when the axis
 /// travels further than commanded. Linear interpolation between rows, end values held outside.
 struct AxisErrorTable {
   std::string axis;                ///< axis name as the controller knows it (e.g. "X", "AX1")
@@ -83,7 +83,7 @@ enum class TableFormat {
 [[nodiscard]] TableFormat parseTableFormat(std::string_view name);
 
 /// What a format stores for an axis whose error (actual − commanded) is e at nominal position P
-/// (metrology.md §3.9, the convention matrix).
+/// (the sign table of docs/compensation.md).
 enum class StoredValue {
   kError,           ///< +e (Siemens $AA_ENC_COMP / $AN_CEC, ISG EXX/EYX)
   kCorrection,      ///< −e, added to the command (LinuxCNC type 1 trims)
@@ -92,7 +92,7 @@ enum class StoredValue {
 
 /// The conventions and limits of one format.
 struct FormatTraits {
-  StoredValue stored = StoredValue::kError;  ///< the sign convention (§3.9)
+  StoredValue stored = StoredValue::kError;  ///< the sign convention (docs/compensation.md)
   bool bidirectional = false;  ///< separate + and − columns (else the mean x̄i is written)
   bool even_spacing = false;   ///< rows must be equidistant (MIN, MAX, STEP)
   /// Default largest number of rows: LinuxCNC EMCMOT_COMP_SIZE = 256 (a hard limit); Siemens 200
@@ -106,7 +106,8 @@ struct FormatTraits {
 /// The traits of `format`.
 [[nodiscard]] FormatTraits traits(TableFormat format);
 
-/// The stored value for error `error` at nominal position `nominal` under `stored` (§3.9).
+/// The stored value for error `error` at nominal position `nominal` under `stored`
+/// (docs/compensation.md, sign table).
 [[nodiscard]] double storedValue(StoredValue stored, double nominal, double error);
 
 /// `table` resampled at `points` equidistant positions from its first to its last nominal

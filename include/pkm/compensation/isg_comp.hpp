@@ -1,13 +1,13 @@
 /// @file
 /// @brief ISG / Beckhoff TwinCAT CNC volumetric compensation (TF5280) tables in the "ISG CSV"
-/// format (ISG kernel documentation 296429067; ../shared/reference/metrology.md §3.6(b), §3.9;
-/// docs/compensation.md).
+/// format (ISG kernel documentation, page 296429067 "ISG CSV"; docs/compensation.md).
 ///
 /// Format: whitespace-separated columns named in a header line; `//` starts a comment; a line `#`
 /// starts a new block (with its own header). The first column is the argument (the commanded axis
 /// position X, Y or Z in mm), the others ISO 230-1 component errors named E<error direction><axis>
 /// (EXX positioning of X, EYX straightness of X in Y, ...) in mm. The values are errors
-/// (actual − nominal), which the controller subtracts (§3.9: +e for an axis that overshoots by e).
+/// (actual − nominal), which the controller subtracts (+e for an axis that overshoots by e; the
+/// sign table of docs/compensation.md).
 #pragma once
 
 #include <span>

@@ -1,8 +1,9 @@
 /// @file
 /// @brief LinuxCNC joint compensation files ([JOINT_n] COMP_FILE, COMP_FILE_TYPE 0 or 1): writer,
-/// strict reader and a model of how LinuxCNC's motion controller applies them
-/// (../shared/reference/metrology.md §3.7; ecosystem.md §1.5; LinuxCNC docs/src/config/
-/// ini-config.adoc and the sample configs' screwcompX.dat; docs/compensation.md).
+/// strict reader and a model of how LinuxCNC's motion controller applies them (LinuxCNC
+/// documentation docs/src/config/ini-config.adoc, [JOINT_n] COMP_FILE; LinuxCNC sources
+/// src/emc/motion/usrmotintf.cc and control.c; the sample configs' screwcompX.dat;
+/// docs/compensation.md).
 #pragma once
 
 #include <cstddef>
@@ -36,7 +37,7 @@ struct LinuxcncCompFile {
   [[nodiscard]] double trim(std::size_t i, int direction) const;
 };
 
-/// The file for `table` (metrology.md §3.7, per target P_i):
+/// The file for `table` (LinuxCNC ini-config.adoc, COMP_FILE_TYPE; per target P_i):
 ///   type 0: `P_i  P_i + x̄i↑  P_i + x̄i↓`;   type 1: `P_i  −x̄i↑  −x̄i↓`.
 /// Numbers in shortest round-trip form. Tables with more than 256 rows must be resampled first
 /// (fitToTarget). Throws pkm::InvalidArgument for an invalid table, a type other than 0/1 or more

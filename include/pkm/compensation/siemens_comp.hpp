@@ -1,14 +1,14 @@
 /// @file
 /// @brief SINUMERIK 840D sl interpolatory compensation part programs: measuring-system error
 /// compensation (MSEC/EEC, `$AA_ENC_COMP`) and sag/cross compensation (CEC, `$AN_CEC`): writers,
-/// strict readers and the controller's use of a table (Siemens Function Manual Extended Functions
-/// K3, 6FC5397-1BP40-3BA1, §4.4; ../shared/reference/metrology.md §3.3 and §3.9;
-/// docs/compensation.md).
+/// strict readers and the controller's use of a table (SINUMERIK 840D sl Function Manual
+/// Extended Functions K3, 6FC5397-1BP40-3BA1, §4.4; the sign table of docs/compensation.md).
 ///
 /// Sign (K3): "A positive compensation value causes the corresponding machine axis to move in the
-/// negative direction", so the stored value is the error e = actual − commanded (§3.9 gives the
-/// same for $AN_CEC). Values and positions in mm; positions below MIN / above MAX use the first /
-/// last value; linear interpolation between equidistant points.
+/// negative direction", so the stored value is the error e = actual − commanded (pkm uses the
+/// same sign for $AN_CEC; docs/compensation.md, "CEC"). Values and positions in mm; positions
+/// below MIN / above MAX use the first / last value; linear interpolation between equidistant
+/// points.
 #pragma once
 
 #include <string>

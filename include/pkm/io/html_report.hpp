@@ -1,5 +1,5 @@
 /// @file
-/// @brief The self-contained HTML campaign report (issue 7, docs/report.md): renders a report-data
+/// @brief The self-contained HTML campaign report (docs/report.md): renders a report-data
 /// document (schema `pkm.report/1`) into one HTML file that opens offline, with the plotting
 /// library (uPlot, MIT), the client code and the style sheet inlined at build time.
 #pragma once

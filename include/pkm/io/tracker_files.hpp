@@ -1,7 +1,7 @@
 /// @file
 /// @brief Laser-tracker files (docs/formats.md, "Laser-tracker files"): the strut readings a
 /// hexapod's controller commanded and the pose (6-DOF probe) or point (SMR) a laser tracker
-/// measured there, one row per pose: the full-pose calibration data of issue 6, header
+/// measured there, one row per pose: the full-pose data of a hexapod calibration, header
 /// `l0,l1,l2,l3,l4,l5,x,y,z,a,b,c` (mm and degrees, R = Rz(c)·Ry(b)·Rx(a)), or
 /// `l0,l1,l2,l3,l4,l5,x,y,z` for points, after "# key: value" metadata lines.
 #pragma once

@@ -45,7 +45,7 @@ struct ExechonTripodGeometry {
   /// through P1B, R2 ⟂ R1, R3 = the leg's own axis ⟂ R2. l12B is the distance from R1 to R2 along
   /// their common normal, positive towards the platform; l23B the distance from R2 to the leg axis,
   /// positive towards +jb (0, 0: an ideal S joint and Zoppi's closed form; otherwise the tripod
-  /// kinematics solve leg B numerically, docs/kinematics.md "Leg B's base-joint offsets").
+  /// kinematics solve leg B numerically, docs/conventions.md "Leg B's base-joint offsets").
   double l12B = 0.0;
   double l23B = 0.0;  ///< see l12B
   double pA = 0.0;    ///< j coordinate of leg A's platform joint P4A (platform frame)

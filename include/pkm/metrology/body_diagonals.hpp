@@ -1,7 +1,8 @@
 /// @file
 /// @brief ISO 230-6 body-diagonal displacement tests: the four body diagonals of a box, ISO 230-2
 /// statistics per diagonal and the closed-form first-order solution for the three squareness
-/// errors and the volumetric scale (../shared/reference/metrology.md §1.2.4, §1.3).
+/// errors and the volumetric scale (ISO 230-6; the closed form is given in docs/analysis.md,
+/// "--method body").
 #pragma once
 
 #include <Eigen/Core>
@@ -48,7 +49,7 @@ struct BodyDiagonalSolution {
   double scale = 0.0;
 };
 
-/// The closed form of metrology.md §1.3 (first order in the errors; no angular or Abbe terms):
+/// The closed form (first order in the errors; no angular or Abbe terms; docs/analysis.md):
 ///   D·ΔD_PPP = K − EC0Y·Lx·Ly + EB0Z·Lx·Lz − EA0Z·Ly·Lz, and the three sign patterns of NPP, PNP,
 ///   NNP, solved as EC0Y = D(−ΔPPP + ΔNPP + ΔPNP − ΔNNP)/(4·Lx·Ly),
 ///   EB0Z = D(ΔPPP − ΔNPP + ΔPNP − ΔNNP)/(4·Lx·Lz), EA0Z = D(−ΔPPP − ΔNPP + ΔPNP + ΔNNP)/(4·Ly·Lz),

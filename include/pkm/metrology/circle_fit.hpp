@@ -1,7 +1,8 @@
 /// @file
 /// @brief Least-squares (Gauss) circle: the geometric fit that minimises the sum of squared
-/// orthogonal distances, started from the algebraic Kåsa fit (../shared/reference/metrology.md
-/// §1.5; ISO 4291 / ISO 12181 "LSC"), and the radial deviations and roundness about any centre.
+/// orthogonal distances, started from the algebraic Kåsa fit (I. Kåsa, IEEE Trans. Instrum.
+/// Meas. 25(1), 1976; ISO 4291 / ISO 12181 "LSC"), and the radial deviations and roundness about
+/// any centre.
 #pragma once
 
 #include <Eigen/Core>
@@ -20,7 +21,7 @@ struct Circle {
 };
 
 /// Kåsa's algebraic fit: minimises Σ((x−a)² + (y−b)² − R²)², a linear least-squares problem in
-/// (2a, 2b, R² − a² − b²) (metrology.md §1.5, "Kasa"), solved on centroid-shifted, scaled data.
+/// (2a, 2b, R² − a² − b²) (Kåsa 1976), solved on centroid-shifted, scaled data.
 /// Biased towards small radii on short arcs; used as the start of fitCircle. Throws
 /// pkm::InvalidArgument for fewer than 3 points, non-finite coordinates, or collinear/coincident
 /// points.
@@ -43,8 +44,8 @@ struct CircleFit {
   bool converged = false;         ///< the step criterion was met within max_iterations
 };
 
-/// Geometric least-squares circle: minimises Σ(|p_k − c| − R)² (metrology.md §1.5, "Least
-/// squares. Geometric") by Levenberg-Marquardt from the Kåsa start. Throws pkm::InvalidArgument
+/// Geometric least-squares circle: minimises Σ(|p_k − c| − R)² (orthogonal distances, ISO 4291 /
+/// ISO 12181 LSC) by Levenberg-Marquardt from the Kåsa start. Throws pkm::InvalidArgument
 /// like fitCircleKasa or when the options are invalid.
 [[nodiscard]] CircleFit fitCircle(std::span<const Point2> points,
                                   const CircleFitOptions& options = {});
@@ -53,7 +54,7 @@ struct CircleFit {
 [[nodiscard]] std::vector<double> radialDistances(std::span<const Point2> points,
                                                   const Point2& center);
 
-/// Roundness of `points` about `center`: max_k |p_k − c| − min_k |p_k − c| (metrology.md §1.5).
+/// Roundness of `points` about `center`: max_k |p_k − c| − min_k |p_k − c| (ISO 12181).
 /// Throws pkm::InvalidArgument when `points` is empty.
 [[nodiscard]] double roundnessAbout(std::span<const Point2> points, const Point2& center);
 

@@ -1,7 +1,7 @@
 /// @file
 /// @brief ISO 230-4 circular tests (ballbar or any bidirectional circular path): circular
 /// deviation G per direction, bidirectional circular deviation G(b), circular hysteresis H and the
-/// radial deviations F (../shared/reference/metrology.md §1.4; ISO 230-4:2005 clauses 3.1-3.4).
+/// radial deviations F (ISO 230-4:2005 clauses 3.1-3.4).
 #pragma once
 
 #include <optional>
@@ -11,8 +11,8 @@
 
 namespace pkm::metrology {
 
-/// Which centre the deviations are referred to (ISO 230-4 leaves it to the report; the LSC is the
-/// default of metrology.md §1.4).
+/// Which centre the deviations are referred to (ISO 230-4 leaves it to the report; pkm's default
+/// is the LSC).
 enum class CircularCentre {
   kLeastSquares,  ///< least-squares circle of the data (fitCircle)
   kMinimumZone,   ///< minimum-zone circle of the data (fitMinimumZoneCircle)

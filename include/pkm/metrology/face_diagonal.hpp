@@ -1,7 +1,8 @@
 /// @file
 /// @brief Squareness of two linear axes from face-diagonal displacement measurements by least
 /// squares, after removing the measured position-dependent geometric errors (PDGEs) (seed 000
-/// §3.2, eqs 4-10; metrology.md §1.2.4), optionally with the two axes' scale errors.
+/// §3.2, eqs 4-10; docs/conventions.md, "First-order diagonal formula"), optionally with the two
+/// axes' scale errors.
 #pragma once
 
 #include <array>

@@ -1,7 +1,7 @@
 /// @file
 /// @brief ISO 230-2 evaluation of the accuracy and repeatability of positioning of a single NC
-/// axis (ISO 230-2:2014 definitions; formulas as cross-checked in ../shared/reference/metrology.md
-/// §1.1.1).
+/// axis (ISO 230-2:2014 definitions; the formulas are listed in docs/analysis.md, "ISO 230-2
+/// positioning").
 #pragma once
 
 #include <span>
@@ -24,7 +24,7 @@ struct Iso230_2Options {
   double coverage_factor = 2.0;
 };
 
-/// Per-target statistics (ISO 230-2 terms; metrology.md §1.1.1). Deviations x_ij = P_ij - P_i.
+/// Per-target statistics (ISO 230-2:2014 terms). Deviations x_ij = P_ij - P_i.
 /// Quantities of a direction without data, and the bidirectional ones of unidirectional data, are
 /// NaN.
 struct TargetStatistics {
@@ -43,7 +43,7 @@ struct TargetStatistics {
   int runs_down = 0;  ///< number of runs n↓ at this target
 };
 
-/// Axis results (ISO 230-2 terms; metrology.md §1.1.1). Same unit as the targets. Bidirectional
+/// Axis results (ISO 230-2:2014 terms). Same unit as the targets. Bidirectional
 /// quantities (B, B_mean, R, E, M, A) and those of a missing direction are NaN when `bidirectional`
 /// is false.
 struct Iso230_2Result {

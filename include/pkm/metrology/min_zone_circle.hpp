@@ -1,18 +1,18 @@
 /// @file
 /// @brief Minimum-zone (Chebyshev) circle: the two concentric circles of least radial separation
-/// that enclose all points (ISO 12181 "MZC"; ../shared/reference/metrology.md §1.5), solved
-/// exactly (no linearisation) and certified by its contact points.
+/// that enclose all points (ISO 12181 "MZC"), solved exactly (no linearisation) and certified by
+/// its contact points.
 ///
-/// Characterisation used. The zone width about c is w(c) = max_k f_k(c) − min_k f_k(c) with
-/// f_k = |p_k − c|, a maximum of the smooth functions f_i − f_j. A minimum needs 0 in the convex
-/// hull of their gradients u_j − u_i (u = unit vector from c to the point), i.e. the hull of the
-/// outer contacts' directions must meet the hull of the inner contacts' directions. With unit
-/// vectors this is impossible for 1 outer + n inner or n outer + 1 inner points; the generic
-/// optimum has 2 outer and 2 inner contacts that alternate in angle (outer, inner, outer, inner:
-/// the chord of the outer pair crosses the chord of the inner pair) — the Chebyshev alternation of
-/// metrology.md §1.5. Its centre is the intersection of the perpendicular bisectors of the outer
-/// pair and of the inner pair, found here by a Remez exchange on the exact distances, started from
-/// the least-squares centre.
+/// Characterisation used. The zone width about c is w(c) = max_k f_k(c) − min_k f_k(c) with f_k =
+/// |p_k − c|, a maximum of the smooth functions f_i − f_j. A minimum needs 0 in the convex hull of
+/// their gradients u_j − u_i (u = unit vector from c to the point), i.e. the hull of the outer
+/// contacts' directions must meet the hull of the inner contacts' directions. With unit vectors
+/// this is impossible for 1 outer + n inner or n outer + 1 inner points; the generic optimum has 2
+/// outer and 2 inner contacts that alternate in angle (outer, inner, outer, inner: the chord of the
+/// outer pair crosses the chord of the inner pair) — the Chebyshev alternation known from the
+/// linearised minimum-zone problem. Its centre is the intersection of the perpendicular bisectors
+/// of the outer pair and of the inner pair, found here by a Remez exchange on the exact distances,
+/// started from the least-squares centre.
 #pragma once
 
 #include <array>

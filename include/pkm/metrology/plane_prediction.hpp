@@ -1,8 +1,9 @@
 /// @file
 /// @brief 2-D error prediction on the XY plane from extracted error components (seed 001 §3): the
 /// tool-position error e(x, y) = (EXX(x) + EXY(y), EYX(x) + EYY(y)) of the additive model
-/// (metrology.md §1.2.1, z fixed), built from a step-diagonal or shifted-diagonal evaluation, and
-/// its comparison with direct measurements along lines in the plane (linear or straightness).
+/// (first-order rigid-body model, ISO 230-1 names, z fixed), built from a step-diagonal or
+/// shifted-diagonal evaluation, and its comparison with direct measurements along lines in the
+/// plane (linear or straightness).
 #pragma once
 
 #include <Eigen/Core>

@@ -2,7 +2,7 @@
 /// @brief Touch-probe stylus offset from touches on a master ring with spindle reversal (Lee, Lee,
 /// Yang, JKSPE 36(5):463-469, 2019 = seed 003, sec. 3.2, eqs. 8-9), its least-squares
 /// generalisation to any set of spindle angles, the effective stylus radius
-/// (../shared/reference/metrology.md §1.5, "Touch probe + master ring") and the correction of
+/// (ring-gauge calibration of the stylus: touch probe + master ring) and the correction of
 /// touches by the offset rotated with the tool (seed 003 sec. 3.3).
 ///
 /// Conventions. All vectors lie in the measurement plane (x, y of the machine). A touch records
@@ -61,8 +61,8 @@ struct ProbeOffsetFit {
 /// problem (c and d not separable).
 [[nodiscard]] ProbeOffsetFit fitProbeOffset(std::span<const ProbeTouch> touches);
 
-/// Effective stylus-ball radius from a ring of certified diameter D (metrology.md §1.5: d_eff =
-/// D_cert − D_c for an internal ring): D/2 − ρ. Throws pkm::InvalidArgument unless D > 0.
+/// Effective stylus-ball radius from a ring of certified diameter D (ring-gauge calibration:
+/// d_eff = D_cert − D_c for an internal ring): D/2 − ρ. Throws pkm::InvalidArgument unless D > 0.
 [[nodiscard]] double effectiveStylusRadius(double ring_diameter, double ball_path_radius);
 
 /// Seed 003 sec. 3.3: the measured surface points of touches on an internal circle, the ball

@@ -1,9 +1,11 @@
 /// @file
-/// @brief Wang's step-diagonal ("laser vector") extraction (../shared/reference/metrology.md §2,
-/// after C. Wang, Rev. Sci. Instrum. 71(10), 2000): from the readings after each single-axis
+/// @brief Wang's step-diagonal ("laser vector") extraction (C. Wang, "Laser vector measurement
+/// technique for the determination and compensation of volumetric positioning errors. Part I: Basic
+/// theory", Rev. Sci. Instrum. 71(10):3933-3937, 2000): from the readings after each single-axis
 /// sub-move along the four body diagonals, the 9 displacement and straightness functions, the three
 /// squareness errors from their slopes and the consistency residual Q. Model-based estimates: the
-/// additive model (no angular/Abbe coupling) is assumed; Q shows where it fails (§2.4-2.5).
+/// additive model (no angular/Abbe coupling) is assumed; Q shows where it fails (Chapman,
+/// "Limitations of laser diagonal measurements", Precision Engineering 27(4), 2003).
 #pragma once
 
 #include <array>
@@ -36,7 +38,7 @@ struct StepDiagonalPass {
 struct StepDiagonalAxis {
   std::vector<double> positions;  ///< axis positions, ascending (from the box corner, mm)
   /// The error components along X, Y and Z caused by this axis (for axis X: EXX, EYX, EZX), mm,
-  /// referred to 0 at the first position (axis position 0 for targets from 0 to D; §2.2).
+  /// referred to 0 at the first position (axis position 0 for targets from 0 to D; Wang 2000).
   std::array<std::vector<double>, 3> components;
   /// Least-squares slopes of the three components over position (rad or ratio).
   std::array<double, 3> slopes{};
@@ -56,18 +58,18 @@ struct StepDiagonalResult {
   double residual_max = 0.0;             ///< max |Q| over all axes and positions, mm
 };
 
-/// Wang's extraction (metrology.md §2.2). Per diagonal k (1 PPP, 2 NPP, 3 PNP, 4 NNP) and axis q,
+/// Wang's extraction (Wang 2000). Per diagonal k (1 PPP, 2 NPP, 3 PNP, 4 NNP) and axis q,
 /// the deviation increments of the q sub-moves are averaged over passes per interval and summed
 /// into R_k(q), referred to 0 at axis position 0. Direction cosines a = Lx/D, b = Ly/D, c = Lz/D:
 ///   E_Xq = (R1 − R2 + R3 − R4)/(4a),  E_Yq = (R1 + R2 − R3 − R4)/(4b),  E_Zq = ΣR/(4c),
 ///   Q = R1 − R2 − R3 + R4;
-/// squareness from the least-squares slopes: EC0Y = −(slope EYX + slope EXY),
-/// EB0Z = slope EXZ + slope EZX, EA0Z = −(slope EYZ + slope EZY) (model of §1.2.1); reported in
-/// the project convention (xy = EC0Y, xz = −EB0Z, yz = EA0Z). One pass per diagonal suffices; the
-/// axis grids of the four must coincide (uniform targets from 0 to D give that). Throws
-/// pkm::InvalidArgument for a missing diagonal, a pass with fewer than 2 steps, non-finite values,
-/// passes of one diagonal on different grids, or grids of the four diagonals that do not coincide
-/// within 1e-6 mm.
+/// squareness from the least-squares slopes: EC0Y = −(slope EYX + slope EXY), EB0Z = slope EXZ +
+/// slope EZX, EA0Z = −(slope EYZ + slope EZY) (first-order rigid-body model, ISO 230-1 names);
+/// reported in the project convention (xy = EC0Y, xz = −EB0Z, yz = EA0Z). One pass per diagonal
+/// suffices; the axis grids of the four must coincide (uniform targets from 0 to D give that).
+/// Throws pkm::InvalidArgument for a missing diagonal, a pass with fewer than 2 steps, non-finite
+/// values, passes of one diagonal on different grids, or grids of the four diagonals that do not
+/// coincide within 1e-6 mm.
 [[nodiscard]] StepDiagonalResult extractStepDiagonal(std::span<const StepDiagonalPass> passes,
                                                      const Eigen::Vector3d& size);
 

@@ -1,5 +1,5 @@
 /// @file
-/// @brief Straightness of a line of motion (ISO 230-1; metrology.md §1.2.2): the
+/// @brief Straightness of a line of motion (ISO 230-1; HP 5528A User's Guide §21): the
 /// end-point, least-squares and minimum-zone reference lines and the straightness deviation about
 /// them.
 #pragma once
@@ -46,11 +46,11 @@ struct StraightnessResult {
 };
 
 /// End-point line through the mean deviation at the smallest and at the largest position
-/// (metrology.md §1.2.2, HP 5528A §21). Throws pkm::InvalidArgument (see evaluateStraightness).
+/// (ISO 230-1, HP 5528A User's Guide §21). Throws pkm::InvalidArgument (see evaluateStraightness).
 [[nodiscard]] ReferenceLine endpointLine(std::span<const double> positions,
                                          std::span<const double> deviations);
 
-/// Least-squares line (metrology.md §1.2.2), computed about the centroid for accuracy.
+/// Least-squares line (ISO 230-1), computed about the centroid for accuracy.
 /// Throws pkm::InvalidArgument (see evaluateStraightness).
 [[nodiscard]] ReferenceLine leastSquaresLine(std::span<const double> positions,
                                              std::span<const double> deviations);

@@ -2,7 +2,7 @@
 /// @brief A laser tracker measuring a hexapod virtual machine: a spherically mounted retroreflector
 /// (SMR, point mode) or a 6-DOF probe (pose mode) on the tool, read in the tracker's own frame at
 /// a list of commanded poses, with the strut readings the controller commanded there (the data of
-/// a kinematic calibration, kinematics notes §3.2; docs/formats.md, "Laser-tracker files").
+/// a kinematic calibration; docs/formats.md, "Laser-tracker files").
 #pragma once
 
 #include <optional>
@@ -55,7 +55,7 @@ struct TrackerNoise {
   [[nodiscard]] Eigen::Matrix3d rotation(const Eigen::Matrix3d& R, RandomStream& rng) const;
 };
 
-/// Tracker noise from datasheet figures (metrology notes §5; typical values, k = 2 halved):
+/// Tracker noise from datasheet figures (typical values, k = 2 halved):
 /// - "ideal": none.
 /// - "laser-tracker": a current tracker's U(k = 2) = 15 µm + 6 µm/m taken as the standard
 ///   uncertainty 7.5 µm + 3 µm/m: range_sigma 7.5 µm, range_ppm 3, angle_sigma 3 µrad (3 µm/m

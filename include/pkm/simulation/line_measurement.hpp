@@ -27,10 +27,10 @@ enum class LineQuantity {
 /// How the machine travels between targets.
 enum class LineProcedure {
   kContinuous,  ///< all axes together along the line; one reading per target
-  /// The step-diagonal ("laser vector") procedure (metrology notes §2, after Wang 2000): from one
-  /// target to the next each moving axis moves alone, in axis order, and the laser (with a flat
-  /// mirror, which tolerates the lateral motion) is read after every single-axis sub-move. Only for
-  /// kLinear on a line that moves at least two axes.
+  /// The step-diagonal ("laser vector") procedure (after C. Wang, Rev. Sci. Instrum. 71(10), 2000):
+  /// from one target to the next each moving axis moves alone, in axis order, and the laser (with a
+  /// flat mirror, which tolerates the lateral motion) is read after every single-axis sub-move.
+  /// Only for kLinear on a line that moves at least two axes.
   kStepDiagonal,
 };
 
@@ -47,11 +47,11 @@ struct MotionLine {
   [[nodiscard]] Eigen::VectorXd at(double s) const { return start + s * direction; }
 };
 
-/// The ISO 230-2 measurement cycle: m targets from `first` to `last` (line coordinate, mm),
-/// each interior target shifted by a uniform random offset in ±`target_jitter` (the same targets in
-/// every run, ISO 230-2 §5.3.2 / metrology notes §1); `runs` runs; each run approaches every target
-/// in the + direction (ascending s, starting `overshoot` below `first`) and, when `bidirectional`,
-/// then in the − direction (descending, starting `overshoot` above `last`).
+/// The ISO 230-2 measurement cycle: m targets from `first` to `last` (line coordinate, mm), each
+/// interior target shifted by a uniform random offset in ±`target_jitter` (the same targets in
+/// every run, ISO 230-2 §5.3.2); `runs` runs; each run approaches every target in the + direction
+/// (ascending s, starting `overshoot` below `first`) and, when `bidirectional`, then in the −
+/// direction (descending, starting `overshoot` above `last`).
 struct PositioningCycle {
   double first = 0.0;          ///< first target, mm
   double last = 0.0;           ///< last target, mm (≠ first when targets ≥ 2)

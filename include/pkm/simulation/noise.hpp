@@ -1,6 +1,7 @@
 /// @file
 /// @brief Noise model of an instrument reading: a constant Gaussian term, a term proportional to
-/// the measured length (ppm), and quantisation to the instrument's resolution (metrology notes §5).
+/// the measured length (ppm), and quantisation to the instrument's resolution (instrument
+/// datasheets).
 #pragma once
 
 #include <optional>
@@ -35,9 +36,9 @@ struct NoiseModel {
   [[nodiscard]] double apply(double truth, double length, RandomStream& rng) const;
 };
 
-/// The noise of a named instrument, from datasheet values (metrology notes §5, typical Renishaw
-/// XL-80 figures; k = 2 accuracies are halved to a standard deviation). Units: mm for the linear
-/// and straightness presets, rad for the angular one.
+/// The noise of a named instrument, from datasheet values (typical Renishaw XL-80 figures; k = 2
+/// accuracies are halved to a standard deviation). Units: mm for the linear and straightness
+/// presets, rad for the angular one.
 /// - "ideal": no noise, no rounding.
 /// - "xl80-linear": 10 nm per reading, 0.25 ppm of the travel (±0.5 ppm, k = 2), resolution 1 nm.
 /// - "xl80-straightness": 0.25 µm (±0.5 µm, short range), resolution 0.01 µm.

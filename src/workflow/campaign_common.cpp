@@ -1,25 +1,23 @@
-// Helpers shared by the campaign steps (campaign.hpp).
+// Helpers shared by the campaign steps (campaign_steps.hpp).
 #include <fmt/format.h>
 
 #include <cmath>
 #include <fstream>
 #include <map>
 
-#include "campaign.hpp"
 #include "campaign_compensation.hpp"
+#include "campaign_steps.hpp"
 #include "pkm/compensation/axis_table.hpp"
 #include "pkm/compensation/siemens_comp.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/io/atomic_file.hpp"
 #include "pkm/io/measurement_files.hpp"
+#include "pkm/io/simulation_metadata.hpp"
 
-namespace pkm::cli::campaign {
+namespace pkm::workflow::campaign {
 
 namespace fs = std::filesystem;
 namespace sim = pkm::simulation;
-
-bool SummaryRow::pass() const {
-  return !target || (std::isfinite(after) && std::abs(after) <= *target);
-}
 
 void StepContext::write(StepOutcome& outcome,
                         const std::string& name,
@@ -27,10 +25,7 @@ void StepContext::write(StepOutcome& outcome,
   const fs::path path = dir / name;
   std::error_code ec;
   fs::create_directories(path.parent_path(), ec);
-  std::ofstream f(path, std::ios::binary);
-  f << text;
-  f.close();
-  if (!f) throw IoError(fmt::format("{}: cannot write the file", path.string()));
+  io::writeFileAtomic(path, text, io::Overwrite::kAllow);
   outcome.files.push_back(fs::relative(path, out).generic_string());
 }
 
@@ -108,7 +103,7 @@ void writeLineFiles(const StepContext& context,
           outcome,
           fmt::format("{}/{}_run{}.csv", folder, r.setup->name, run.run),
           io::lineRunCsv(
-              r.setup->quantity, lineRunMetadata(scenario, seed, *r.setup, run.run), run));
+              r.setup->quantity, io::lineRunMetadata(scenario, seed, *r.setup, run.run), run));
 }
 
 metrology::Iso230_2Result iso230_2(const std::vector<sim::LineRun>& runs) {
@@ -183,4 +178,4 @@ void writeAxisTables(const StepContext& ctx,
   }
 }
 
-}  // namespace pkm::cli::campaign
+}  // namespace pkm::workflow::campaign

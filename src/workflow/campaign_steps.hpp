@@ -1,9 +1,10 @@
 /// @file
-/// @brief `pkm campaign run`: measure -> analyse -> calibrate -> compensate -> re-measure ->
-/// report (docs/campaign.md). A campaign (`pkm.campaign/1`) is a list of steps; each step kind
-/// (apps/pkm/campaign_<kind>.cpp) simulates its scenario's measurements on the virtual machine
-/// (or reads measured files), analyses them, writes the controller compensation, applies it to
-/// the virtual machine, measures again and returns its before/after figures and report section.
+/// @brief The campaign's step kinds (workflow/campaign.hpp, docs/campaign.md): measure ->
+/// analyse -> calibrate -> compensate -> re-measure -> report. A campaign (`pkm.campaign/1`) is a
+/// list of steps; each step kind (src/workflow/campaign_<kind>.cpp) simulates its scenario's
+/// measurements on the virtual machine (or reads measured files), analyses them, writes the
+/// controller compensation, applies it to the virtual machine, measures again and returns its
+/// before/after figures and report section.
 #pragma once
 
 #include <filesystem>
@@ -20,32 +21,14 @@
 #include "pkm/metrology/iso230_2.hpp"
 #include "pkm/simulation/campaign.hpp"
 #include "pkm/simulation/touch_probe.hpp"
+#include "pkm/workflow/campaign.hpp"
 
-namespace pkm::cli {
-/// The metadata of a simulated line-measurement file (simulate_command.cpp).
-[[nodiscard]] io::Metadata lineRunMetadata(const io::Scenario& s,
-                                           std::uint64_t seed,
-                                           const simulation::LineSetup& m,
-                                           int run);
-}  // namespace pkm::cli
-
-namespace pkm::cli::campaign {
+namespace pkm::workflow::campaign {
 
 using Json = nlohmann::ordered_json;
 
 /// One line of the summary table.
-struct SummaryRow {
-  std::string quantity;  ///< what, e.g. "parallelism Y2-PY (horizontal)"
-  std::string unit;      ///< "mm", "µm", "mrad" ...
-  double before = 0.0;   ///< measured before compensation (NaN: not measured)
-  double after = 0.0;    ///< measured after compensation on the virtual machine (NaN: none)
-  /// The target for `after` (|after| <= target), when there is one.
-  std::optional<double> target;
-  std::string paper;  ///< the paper's published before -> after, as text ("" when none)
-  std::string noise;  ///< the instrument noise of the measurement
-  /// True when there is no target or |after| <= target.
-  [[nodiscard]] bool pass() const;
-};
+using SummaryRow = CampaignRow;
 
 /// What one step produced.
 struct StepOutcome {
@@ -65,7 +48,8 @@ struct StepContext {
   std::filesystem::path out;       ///< the campaign's output directory
   std::filesystem::path dir;       ///< out / id: the step's own directory
   std::filesystem::path base_dir;  ///< the campaign file's directory (relative data paths)
-  std::function<void(const std::string&)> progress;  ///< prints one progress line
+  /// Reports one progress line (and checks for cancellation).
+  std::function<void(const std::string&)> progress;
   /// Writes `text` to dir / `name` (creating folders) and records it in `outcome.files`.
   void write(StepOutcome& outcome, const std::string& name, const std::string& text) const;
   /// write(), and records the file as a compensation of kind `kind` for the result store.
@@ -105,9 +89,9 @@ Json cell(double value, int digits = 4);
 /// A report section with id, title and paragraphs.
 Json section(const std::string& id, const std::string& title, std::vector<std::string> text);
 
-}  // namespace pkm::cli::campaign
+}  // namespace pkm::workflow::campaign
 
-namespace pkm::cli::campaign {
+namespace pkm::workflow::campaign {
 
 /// The line measurements of a scenario by name, with their results.
 struct LineData {
@@ -173,4 +157,4 @@ struct ProbeFiles {
 /// built-in name) and the seed ("seed", default the scenario's).
 [[nodiscard]] io::Scenario stepScenario(const StepContext& context, std::uint64_t& seed);
 
-}  // namespace pkm::cli::campaign
+}  // namespace pkm::workflow::campaign

@@ -1,4 +1,4 @@
-// Laser measurement files of a campaign step read back into line data (campaign.hpp,
+// Laser measurement files of a campaign step read back into line data (campaign_steps.hpp,
 // readLineFolder): the same files `pkm simulate` writes, or a user's in that format.
 #include <fmt/format.h>
 
@@ -7,12 +7,12 @@
 #include <map>
 #include <regex>
 
-#include "campaign.hpp"
+#include "campaign_steps.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/measurement_files.hpp"
 #include "pkm/io/text_table.hpp"
 
-namespace pkm::cli::campaign {
+namespace pkm::workflow::campaign {
 
 namespace sim = pkm::simulation;
 namespace fs = std::filesystem;
@@ -138,4 +138,4 @@ LineFiles readLineFolder(const StepContext& ctx, const std::string& folder) {
   return out;
 }
 
-}  // namespace pkm::cli::campaign
+}  // namespace pkm::workflow::campaign

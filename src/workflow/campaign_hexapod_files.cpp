@@ -6,7 +6,8 @@
 
 #include <cmath>
 
-#include "campaign.hpp"
+#include "campaign_steps.hpp"
+#include "pkm/calibration/acceptance.hpp"
 #include "pkm/calibration/hexapod_calibration.hpp"
 #include "pkm/calibration/hexapod_parameters.hpp"
 #include "pkm/core/error.hpp"
@@ -15,7 +16,7 @@
 #include "pkm/io/linuxcnc_hal.hpp"
 #include "pkm/io/machine_loader.hpp"
 
-namespace pkm::cli::campaign {
+namespace pkm::workflow::campaign {
 
 namespace cal = pkm::calibration;
 
@@ -71,7 +72,7 @@ StepOutcome runHexapodCalibrationFiles(const StepContext& ctx) {
   if (input.tracker_frame)
     input.data.measurement_frame = cal::initialMeasurementFrame(model, input.data);
   const cal::HexapodCalibrationSummary s = cal::calibrateHexapod(model, input.data, {});
-  if (!(s.after.rms < 1e-3 * model.characteristicLength()))
+  if (!cal::explainsData(s.after.rms, model.characteristicLength()))
     throw InvalidArgument(
         fmt::format("{}: the calibration does not explain the data (residual RMS {:.4g})",
                     ctx.source,
@@ -139,4 +140,4 @@ StepOutcome runHexapodCalibrationFiles(const StepContext& ctx) {
   return out;
 }
 
-}  // namespace pkm::cli::campaign
+}  // namespace pkm::workflow::campaign

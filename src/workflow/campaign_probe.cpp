@@ -10,14 +10,14 @@
 #include <numbers>
 #include <optional>
 
-#include "campaign.hpp"
+#include "campaign_steps.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/probe_files.hpp"
 #include "pkm/metrology/circle_fit.hpp"
 #include "pkm/metrology/probe_offset.hpp"
 #include "pkm/simulation/touch_probe.hpp"
 
-namespace pkm::cli::campaign {
+namespace pkm::workflow::campaign {
 
 namespace sim = pkm::simulation;
 namespace met = pkm::metrology;
@@ -200,4 +200,4 @@ StepOutcome runProbeOffsetStep(const StepContext& ctx) {
   return out;
 }
 
-}  // namespace pkm::cli::campaign
+}  // namespace pkm::workflow::campaign

@@ -8,12 +8,12 @@
 #include <filesystem>
 #include <numbers>
 
-#include "campaign.hpp"
+#include "campaign_steps.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/calibration_files.hpp"
 #include "pkm/io/text_table.hpp"
 
-namespace pkm::cli::campaign {
+namespace pkm::workflow::campaign {
 
 namespace sim = pkm::simulation;
 
@@ -103,4 +103,4 @@ ProbeFiles readProbeFiles(const StepContext& ctx) {
   return f;
 }
 
-}  // namespace pkm::cli::campaign
+}  // namespace pkm::workflow::campaign

@@ -7,14 +7,14 @@
 #include <Eigen/LU>
 #include <cmath>
 
-#include "campaign.hpp"
 #include "campaign_compensation.hpp"
+#include "campaign_steps.hpp"
 #include "pkm/compensation/axis_table.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/metrology/body_diagonals.hpp"
 #include "pkm/simulation/cartesian_machine.hpp"
 
-namespace pkm::cli::campaign {
+namespace pkm::workflow::campaign {
 
 namespace sim = pkm::simulation;
 namespace met = pkm::metrology;
@@ -292,4 +292,4 @@ StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
   return out;
 }
 
-}  // namespace pkm::cli::campaign
+}  // namespace pkm::workflow::campaign

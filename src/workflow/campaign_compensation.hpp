@@ -6,12 +6,12 @@
 
 #include <map>
 
-#include "campaign.hpp"
+#include "campaign_steps.hpp"
 #include "pkm/compensation/hybrid_squareness.hpp"
 #include "pkm/compensation/linuxcnc_comp.hpp"
 #include "pkm/simulation/compensated_machine.hpp"
 
-namespace pkm::cli::campaign {
+namespace pkm::workflow::campaign {
 
 /// LinuxCNC COMP_FILE tables on some axes of a command: the motor position of axis i is
 /// applyLinuxcncComp(table_i, command_i, direction_i), the direction the sign of the last change
@@ -75,4 +75,4 @@ class HybridSquarenessController final : public simulation::CommandCompensation 
   compensation::HybridSquarenessCompensation c_;
 };
 
-}  // namespace pkm::cli::campaign
+}  // namespace pkm::workflow::campaign

@@ -5,7 +5,8 @@
 
 #include <cmath>
 
-#include "campaign.hpp"
+#include "campaign_steps.hpp"
+#include "pkm/calibration/acceptance.hpp"
 #include "pkm/calibration/hexapod_calibration.hpp"
 #include "pkm/calibration/hexapod_parameters.hpp"
 #include "pkm/core/error.hpp"
@@ -18,7 +19,7 @@
 #include "pkm/simulation/hexapod_virtual_machine.hpp"
 #include "pkm/simulation/random.hpp"
 
-namespace pkm::cli::campaign {
+namespace pkm::workflow::campaign {
 
 namespace sim = pkm::simulation;
 namespace cal = pkm::calibration;
@@ -167,7 +168,7 @@ StepOutcome runHexapodCalibrationStep(const StepContext& ctx) {
   }
   for (cal::PointObservation& o : input.data.points) o.point = world_T_tracker * o.point;
   const cal::HexapodCalibrationSummary s = cal::calibrateHexapod(model, input.data, {});
-  if (!(s.after.rms < 1e-3 * model.characteristicLength()))
+  if (!cal::explainsData(s.after.rms, model.characteristicLength()))
     throw InvalidArgument(
         fmt::format("{}: the calibration does not explain the data (residual RMS {:.4g} mm)",
                     ctx.source,
@@ -315,4 +316,4 @@ StepOutcome runHexapodCalibrationStep(const StepContext& ctx) {
   return out;
 }
 
-}  // namespace pkm::cli::campaign
+}  // namespace pkm::workflow::campaign

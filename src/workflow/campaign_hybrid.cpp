@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "campaign.hpp"
 #include "campaign_compensation.hpp"
+#include "campaign_steps.hpp"
 #include "pkm/compensation/axis_table.hpp"
 #include "pkm/compensation/hybrid_squareness.hpp"
 #include "pkm/compensation/linuxcnc_comp.hpp"
@@ -19,7 +19,7 @@
 #include "pkm/simulation/compensated_machine.hpp"
 #include "pkm/simulation/hybrid_virtual_machine.hpp"
 
-namespace pkm::cli::campaign {
+namespace pkm::workflow::campaign {
 
 namespace sim = pkm::simulation;
 namespace met = pkm::metrology;
@@ -412,4 +412,4 @@ StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
   return out;
 }
 
-}  // namespace pkm::cli::campaign
+}  // namespace pkm::workflow::campaign

@@ -1,0 +1,30 @@
+/// @file
+/// @brief The "# key: value" metadata of simulated line-measurement and dial-gauge files
+/// (docs/formats.md, "Measurement files"): what `pkm simulate` and the campaign write above
+/// the rows, and what the campaign's file readers rebuild a set-up from.
+#pragma once
+
+#include <cstdint>
+
+#include "pkm/io/scenario.hpp"
+#include "pkm/io/text_table.hpp"
+#include "pkm/simulation/dial_gauges.hpp"
+#include "pkm/simulation/line_measurement.hpp"
+
+namespace pkm::io {
+
+/// The metadata of run `run` of line measurement `setup` of `scenario` simulated with `seed`:
+/// format, scenario, seed, measurement, quantity, instrument, procedure, run, axes, line start and
+/// direction (angular axes in degrees), reflector offset, noise, and lateral / misalignment where
+/// they apply.
+[[nodiscard]] Metadata lineRunMetadata(const Scenario& scenario,
+                                       std::uint64_t seed,
+                                       const simulation::LineSetup& setup,
+                                       int run);
+
+/// The metadata of the dial-gauge file of constrained-motion set-up `setup`.
+[[nodiscard]] Metadata dialGaugeMetadata(const Scenario& scenario,
+                                         std::uint64_t seed,
+                                         const simulation::DialGaugeSetup& setup);
+
+}  // namespace pkm::io

@@ -1,0 +1,68 @@
+/// @file
+/// @brief `pkm calibrate hexapod` as a workflow (docs/calibration.md): the 42 kinematic parameters
+/// of a hexapod from laser-tracker pose/point files, dial-gauge and distance files; the acceptance
+/// rule; the held-out check; the outlier ranking; the TCP error map of the workspace; optionally
+/// a Monte Carlo of the calibration; then the calibrated machine file, its LinuxCNC setp block and
+/// the summary, and optionally a record in the result store.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pkm/io/calibration_report.hpp"
+#include "pkm/io/hexapod_machine.hpp"
+#include "pkm/workflow/progress.hpp"
+
+namespace pkm::workflow {
+
+/// A hexapod calibration request.
+struct HexapodCalibrationRequest {
+  std::string machine = "default";   ///< machine file, LinuxCNC .hal, or built-in name
+  std::string ini;                   ///< the LinuxCNC INI of a .hal machine ("" : found from it)
+  std::vector<std::string> data;     ///< calibration files (required)
+  std::vector<std::string> holdout;  ///< tracker files kept out of the fit
+  std::string out;                   ///< CAL.json; CAL.hal and CAL.summary.json beside it
+  std::string frame = "auto";  ///< tracker readings: "auto" (files' metadata), "world", "tracker"
+  /// The tracker target in the tool frame; default the files' `smr offset mm`.
+  std::optional<Eigen::Vector3d> target_offset;
+  std::vector<std::string> fix;         ///< parameters held at their initial value (e.g. "offset0")
+  std::string loss = "none";            ///< robust loss: "none", "huber", "cauchy"
+  double loss_scale = 0.0;              ///< robust loss scale, machine unit
+  bool force = false;                   ///< replace existing output files
+  bool backlash = false;                ///< also estimate a per-strut backlash
+  double prior_sigma = 0.0;             ///< Tikhonov prior σ_θ, machine unit (0: none)
+  double measurement_sigma = 0.0;       ///< residual σ for the prior and covariance (0: estimated)
+  int monte_carlo = 0;                  ///< Monte Carlo trials (0: none; else 2 … 100000)
+  double sigma_position = 0.0;          ///< Monte Carlo position noise (0: the fitted σ)
+  double sigma_orientation_urad = 0.0;  ///< Monte Carlo 6-DOF orientation noise, µrad
+  double sigma_gauge = 0.0;             ///< Monte Carlo gauge noise (0: the fitted σ)
+  int threads = 0;                      ///< Monte Carlo worker threads (0: all cores)
+  std::string db;                       ///< result store to record the calibration in ("" : none)
+  /// Throws pkm::InvalidArgument naming the option for an unusable setting.
+  void validate() const;
+};
+
+/// What a hexapod calibration produced.
+struct HexapodCalibrationResult {
+  io::HexapodCalibrationReport report;  ///< every figure (io::hexapodCalibrationJson)
+  std::string summary_json;             ///< the summary document, as written
+  io::HexapodMachine calibrated;        ///< the calibrated machine, as written
+  std::vector<std::string> notices;     ///< the machine reader's notes and the data files' notes
+};
+
+/// The output paths for `--out CAL.json`: CAL.json, CAL.hal, CAL.summary.json.
+struct CalibrationOutputs {
+  std::string machine, hal, summary;
+};
+[[nodiscard]] CalibrationOutputs calibrationOutputs(const std::string& out);
+
+/// Runs the calibration and writes its files (atomically; refused when one exists unless
+/// `force`). Progress: Monte Carlo trials ("Monte Carlo N/M"), with cancellation checked between
+/// them. Throws pkm::IoError for unreadable files (FILE:LINE), pkm::InvalidArgument for a bad
+/// request, too few observations or a fit that does not explain the data
+/// (calibration::explainsData) — in which case nothing is written.
+[[nodiscard]] HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& request,
+                                                        const RunControl& control = {});
+
+}  // namespace pkm::workflow

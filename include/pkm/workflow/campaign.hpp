@@ -1,0 +1,87 @@
+/// @file
+/// @brief The end-to-end campaign (docs/campaign.md): every step of a `pkm.campaign/1` file
+/// measures on a virtual machine with known errors (or reads measured files), analyses,
+/// calibrates, writes the controller compensation, measures again through the compensating
+/// controller, and reports its before/after figures; then the campaign's summary.json,
+/// report-data.json, self-contained report.html and, optionally, the result store.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pkm/workflow/progress.hpp"
+
+namespace pkm::workflow {
+
+/// One line of a campaign's summary table.
+struct CampaignRow {
+  std::string quantity;  ///< what, e.g. "parallelism Y2-PY (horizontal)"
+  std::string unit;      ///< "mm", "µm", "mrad" ...
+  double before = 0.0;   ///< measured before compensation (NaN: not measured)
+  double after = 0.0;    ///< measured after compensation on the virtual machine (NaN: none)
+  /// The campaign's target for `after` (|after| <= target), when there is one.
+  std::optional<double> target;
+  std::string paper;  ///< the paper's published before -> after, as text ("" when none)
+  std::string noise;  ///< the instrument noise of the measurement
+  /// True when there is no target or |after| <= target.
+  [[nodiscard]] bool pass() const;
+};
+
+/// What one step produced.
+struct CampaignStepResult {
+  std::string id;     ///< the step's id
+  std::string title;  ///< one line
+  std::vector<CampaignRow> rows;
+  std::vector<std::string> files;  ///< files written, relative to the output directory
+};
+
+/// A campaign run.
+struct CampaignOptions {
+  std::string campaign = "default";  ///< a pkm.campaign/1 file or a built-in campaign's name
+  std::filesystem::path out;         ///< the output directory (required)
+  bool force = false;                ///< write into a non-empty output directory
+  std::string db;                    ///< the result store (SQLite) to add to; empty: none
+  /// Throws pkm::IoError "give --out DIR" when `out` is empty.
+  void validate() const;
+};
+
+/// What a campaign run produced.
+struct CampaignResult {
+  std::string name;         ///< the campaign's "name"
+  std::string source;       ///< the campaign file, or "builtin:NAME"
+  std::string description;  ///< the campaign's "description"
+  std::vector<CampaignStepResult> steps;
+  int targets = 0;               ///< summary rows with a target
+  bool all_pass = true;          ///< every target met
+  double seconds = 0.0;          ///< wall-clock time of the run
+  std::filesystem::path report;  ///< report.html, absolute
+};
+
+/// A campaign's name, number of steps and description (`pkm campaign list`).
+struct CampaignInfo {
+  std::string name;
+  std::size_t steps = 0;
+  std::string description;
+};
+
+/// The built-in campaigns' names (data/campaigns/*.json), sorted.
+[[nodiscard]] std::vector<std::string> builtinCampaignNames();
+
+/// Loads and checks the campaign `spec` (a file or a built-in name). Throws pkm::IoError
+/// "FILE:LINE: ..." for invalid JSON, a wrong schema, a bad step id or an unknown step kind.
+[[nodiscard]] CampaignInfo describeCampaign(const std::string& spec);
+
+/// Runs the campaign. Progress: first an event with index 0, count = the number of steps and
+/// message = the campaign's name, once the output directory is ready; then, per step, events
+/// with stage = the step's id, index = its 1-based number, elapsed = seconds since the start,
+/// ending with "done in X.XX s". Cancellation is checked at every progress event.
+/// Throws pkm::IoError for a bad campaign, step or data file (naming it) and for an output
+/// directory that is a file or is not empty without `force`; workflow::Cancelled.
+/// A missed target is not an error: see CampaignResult::all_pass.
+[[nodiscard]] CampaignResult runCampaign(const CampaignOptions& options,
+                                         const RunControl& control = {});
+
+}  // namespace pkm::workflow

@@ -1,0 +1,59 @@
+/// @file
+/// @brief `pkm simulate`: a measurement campaign on a virtual machine with known errors
+/// (docs/formats.md, "Measurement files", "Scenario files"): every measurement of a scenario
+/// simulated with one seed, as the files an instrument would export, with truth.json and the
+/// scenario itself.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pkm::workflow {
+
+/// A simulation run.
+struct SimulateOptions {
+  std::string scenario;               ///< a scenario file or a built-in scenario's name (required)
+  std::filesystem::path out;          ///< the folder to write into (required)
+  std::optional<std::uint64_t> seed;  ///< the random seed; default the scenario's "seed"
+  bool force = false;                 ///< replace files that exist
+  /// Throws pkm::IoError "give a SCENARIO ..." or "give --out DIR" for a missing field.
+  void validate() const;
+};
+
+/// One file of a simulation: its name in the output folder and its text.
+struct SimulatedFile {
+  std::string name;
+  std::string text;
+};
+
+/// What a simulation produced.
+struct SimulateResult {
+  std::string scenario;  ///< the scenario's name
+  std::uint64_t seed = 0;
+  std::vector<SimulatedFile> files;  ///< in the order written
+};
+
+/// A built-in scenario: its name, number of measurements and description (`simulate --list`).
+struct ScenarioInfo {
+  std::string name;
+  std::size_t measurements = 0;
+  std::string description;
+};
+
+/// Every built-in scenario, sorted by name.
+[[nodiscard]] std::vector<ScenarioInfo> listScenarios();
+
+/// Simulates every measurement of the scenario and returns the files without writing them.
+/// Throws pkm::IoError for a scenario that cannot be loaded (naming it and the line).
+[[nodiscard]] SimulateResult simulateScenario(const std::string& scenario,
+                                              std::optional<std::uint64_t> seed);
+
+/// Simulates, then writes the files into `options.out` (created). Nothing is written for a
+/// failing scenario, and (without `force`) nothing when any of the files exists: pkm::IoError
+/// "PATH: exists; refusing to overwrite (use --force)".
+[[nodiscard]] SimulateResult runSimulate(const SimulateOptions& options);
+
+}  // namespace pkm::workflow

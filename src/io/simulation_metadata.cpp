@@ -1,0 +1,107 @@
+// Metadata of simulated measurement files (simulation_metadata.hpp).
+#include "pkm/io/simulation_metadata.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <array>
+#include <string>
+
+#include "pkm/core/units.hpp"
+#include "pkm/io/number_format.hpp"
+
+namespace pkm::io {
+
+namespace sim = pkm::simulation;
+
+namespace {
+
+std::string vectorText(const Eigen::VectorXd& v) {
+  std::string out = "(";
+  for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? ", " : "") + formatNumber(v[i]);
+  return out + ")";
+}
+
+/// A command with its angular axes in degrees.
+std::string commandText(const Eigen::VectorXd& v, const std::vector<bool>& angular) {
+  Eigen::VectorXd w = v;
+  for (Eigen::Index i = 0; i < w.size(); ++i)
+    if (angular[static_cast<std::size_t>(i)]) w[i] = radToDeg(w[i]);
+  return vectorText(w);
+}
+
+const char* instrumentName(sim::LineQuantity q) {
+  switch (q) {
+    case sim::LineQuantity::kLinear:
+      return "laser interferometer, linear optics (simulated)";
+    case sim::LineQuantity::kStraightness:
+      return "laser interferometer, straightness optics (simulated)";
+    case sim::LineQuantity::kAngular:
+      return "laser interferometer, angular optics (simulated)";
+  }
+  return "?";
+}
+
+}  // namespace
+
+Metadata lineRunMetadata(const Scenario& s, std::uint64_t seed, const sim::LineSetup& m, int run) {
+  const std::vector<std::string> axes = s.campaign.machine->axisNames();
+  const std::vector<bool> angular_axes = s.campaign.machine->angularAxes();
+  const bool angular = m.quantity == sim::LineQuantity::kAngular;
+  const char* unit = angular ? "urad" : "mm";
+  const double scale = angular ? 1e6 : 1.0;
+  Metadata md = {
+      {"format", "pkm.measurement/1"},
+      {"scenario", s.campaign.name},
+      {"seed", std::to_string(seed)},
+      {"measurement", m.name},
+      {"quantity", sim::toString(m.quantity)},
+      {"instrument", instrumentName(m.quantity)},
+      {"procedure", sim::toString(m.procedure)},
+      {"run", fmt::format("{} of {}", run, m.cycle.runs)},
+      {"axes", fmt::format("{}", fmt::join(axes, ","))},
+      {"line start", commandText(m.line.start, angular_axes)},
+      {"line direction", commandText(m.line.direction, angular_axes)},
+      {"reflector offset mm", vectorText(m.reflector_offset)},
+      {"noise",
+       fmt::format("sigma {} {}, {} ppm, resolution {} {}",
+                   formatNumber(m.noise.sigma * scale),
+                   unit,
+                   formatNumber(m.noise.sigma_ppm),
+                   formatNumber(m.noise.resolution * scale),
+                   unit)},
+  };
+  if (m.quantity != sim::LineQuantity::kLinear) md.emplace_back("lateral", vectorText(m.lateral));
+  if (m.quantity == sim::LineQuantity::kStraightness)
+    md.emplace_back("misalignment urad", formatNumber(m.misalignment * 1e6));
+  return md;
+}
+
+namespace {
+
+std::string pointsText(const std::array<Eigen::Vector3d, 3>& points) {
+  std::string out;
+  for (const Eigen::Vector3d& p : points) out += (out.empty() ? "" : ", ") + vectorText(p);
+  return out;
+}
+
+}  // namespace
+
+Metadata dialGaugeMetadata(const Scenario& s, std::uint64_t seed, const sim::DialGaugeSetup& d) {
+  return {
+      {"format", "pkm.constrained-motion/1"},
+      {"scenario", s.campaign.name},
+      {"seed", std::to_string(seed)},
+      {"measurement", d.name},
+      {"instrument", "three dial gauges on the platform, tips on the table (simulated)"},
+      {"gauge points mm", pointsText(d.gauge_points)},
+      {"table normal", vectorText(d.table_normal)},
+      {"tolerance mm", formatNumber(d.tolerance)},
+      {"noise",
+       fmt::format("sigma {} mm, resolution {} mm",
+                   formatNumber(d.noise.sigma),
+                   formatNumber(d.noise.resolution))},
+  };
+}
+
+}  // namespace pkm::io

@@ -1,0 +1,261 @@
+// `pkm calibrate hexapod` as a workflow (workflow/calibrate_hexapod.hpp).
+#include "pkm/workflow/calibrate_hexapod.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <numeric>
+
+#include "pkm/calibration/acceptance.hpp"
+#include "pkm/calibration/hexapod_calibration.hpp"
+#include "pkm/calibration/holdout.hpp"
+#include "pkm/calibration/uncertainty.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/core/units.hpp"
+#include "pkm/io/atomic_file.hpp"
+#include "pkm/io/calibration_files.hpp"
+#include "pkm/io/linuxcnc_hal.hpp"
+#include "pkm/io/machine_loader.hpp"
+#include "pkm/simulation/hexapod_workspace.hpp"
+#include "pkm/simulation/random.hpp"
+#include "pkm/workflow/calibration_record.hpp"
+
+namespace pkm::workflow {
+namespace {
+
+namespace cal = pkm::calibration;
+
+/// The workspace poses of the TCP error map: 200 poses about home (±0.4 × the characteristic
+/// length, ±10°), every limit respected, from a fixed random stream.
+std::vector<kinematics::PoseRpy> workspacePoses(const kinematics::HexapodModel& model) {
+  simulation::PoseBox box;
+  const double reach = 0.4 * model.characteristicLength();
+  for (int i = 0; i < 3; ++i) {
+    box.lo(i) = model.home.position(i) - reach;
+    box.hi(i) = model.home.position(i) + reach;
+    box.lo(3 + i) = model.home.rpy(i) - degToRad(10.0);
+    box.hi(3 + i) = model.home.rpy(i) + degToRad(10.0);
+  }
+  simulation::RandomStream rng(1, "calibration-workspace");
+  std::vector<kinematics::PoseRpy> out;
+  for (const Eigen::VectorXd& c : simulation::sampleHexapodWorkspace(model, box, 200, rng)) {
+    kinematics::PoseRpy p;
+    p.position = c.head<3>();
+    p.rpy = c.tail<3>();
+    out.push_back(p);
+  }
+  return out;
+}
+
+cal::HexapodCalibrationOptions fitOptions(const HexapodCalibrationRequest& r) {
+  cal::HexapodCalibrationOptions options;
+  for (const std::string& name : r.fix)
+    options.free[static_cast<std::size_t>(cal::hexapodParameterIndex(name))] = false;
+  if (r.loss == "huber") options.loss = cal::RobustLoss::kHuber;
+  if (r.loss == "cauchy") options.loss = cal::RobustLoss::kCauchy;
+  options.loss_scale = r.loss_scale;
+  options.estimate_backlash = r.backlash;
+  options.parameter_prior_sigma = r.prior_sigma;
+  options.measurement_sigma = r.measurement_sigma;
+  return options;
+}
+
+/// The five observations with the largest residuals under the fitted model, by source.
+std::vector<io::ObservationResidual> worstObservations(const kinematics::HexapodModel& fitted,
+                                                       const io::CalibrationInput& input,
+                                                       const cal::HexapodCalibrationSummary& s) {
+  const std::vector<double> norms =
+      cal::observationResidualNorms(fitted, input.data, s.measurement_frame);
+  std::vector<std::string> sources = input.pose_origin;
+  sources.insert(sources.end(), input.point_origin.begin(), input.point_origin.end());
+  for (std::size_t c = 0; c < input.data.constrained.size(); ++c)
+    for (std::size_t k = 0; k < input.data.constrained[c].stations.size(); ++k)
+      sources.push_back(fmt::format("constrained set {} station {}", c + 1, k + 1));
+  sources.insert(sources.end(), input.distance_origin.begin(), input.distance_origin.end());
+  std::vector<std::size_t> order(norms.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return norms[a] > norms[b];
+  });
+  std::vector<io::ObservationResidual> worst;
+  for (std::size_t k = 0; k < std::min<std::size_t>(5, order.size()); ++k)
+    worst.push_back({order[k] < sources.size() ? sources[order[k]] : "?", norms[order[k]]});
+  return worst;
+}
+
+/// --monte-carlo: the calibration repeated under simulated noise.
+io::HexapodCalibrationReport::MonteCarlo monteCarlo(const HexapodCalibrationRequest& r,
+                                                    const kinematics::HexapodModel& model,
+                                                    const io::CalibrationInput& input,
+                                                    const cal::HexapodCalibrationSummary& s,
+                                                    const std::vector<kinematics::PoseRpy>& ws,
+                                                    const cal::HexapodCalibrationOptions& options,
+                                                    const RunControl& control) {
+  cal::MonteCarloOptions mc;
+  mc.trials = r.monte_carlo;
+  mc.threads = r.threads;
+  mc.position_sigma = r.sigma_position > 0.0 ? r.sigma_position : s.sigma;
+  mc.orientation_sigma = r.sigma_orientation_urad * 1e-6;
+  mc.gauge_sigma = r.sigma_gauge > 0.0 ? r.sigma_gauge : s.sigma;
+  mc.progress = [&control](int done, int total) {
+    control.report({"monte-carlo",
+                    static_cast<std::size_t>(done),
+                    static_cast<std::size_t>(total),
+                    0.0,
+                    fmt::format("Monte Carlo {}/{}", done, total)});
+  };
+  const kinematics::HexapodModel estimate = cal::withHexapodParameters(model, s.parameters);
+  io::HexapodCalibrationReport::MonteCarlo out;
+  out.summary =
+      cal::monteCarloHexapod(model, input.data, estimate, s.measurement_frame, ws, options, mc);
+  out.sigma_position = mc.position_sigma;
+  out.sigma_orientation = mc.orientation_sigma;
+  out.sigma_gauge = mc.gauge_sigma;
+  control.checkCancelled();
+  return out;
+}
+
+/// The held-out check: the nominal model with the frame fitted through it, against the
+/// calibrated model with the estimated frame; each with the held-out files' own target.
+io::HexapodCalibrationReport::Holdout holdout(const io::HexapodMachine& machine,
+                                              const io::HexapodMachine& result,
+                                              const kinematics::HexapodModel& model,
+                                              const io::CalibrationInput& input,
+                                              const io::CalibrationInput& held,
+                                              const cal::HexapodCalibrationSummary& s,
+                                              bool use_frame,
+                                              const Eigen::Vector3d& target) {
+  io::HexapodCalibrationReport::Holdout h;
+  h.target_offset = held.target_offset.value_or(target);
+  kinematics::HexapodModel before_model = machine.model, after_model = result.model;
+  before_model.tool_offset += h.target_offset;
+  after_model.tool_offset += h.target_offset;
+  std::optional<geometry::RigidTransform> f0;
+  if (use_frame) f0 = cal::initialMeasurementFrame(model, input.data);
+  h.before = cal::hexapodHoldoutErrors(before_model, f0, held.data);
+  h.after = cal::hexapodHoldoutErrors(after_model, s.measurement_frame, held.data, s.backlash);
+  return h;
+}
+
+/// The report's description of the fit: machine, data, counts, target, free parameters.
+void describe(io::HexapodCalibrationReport& rep,
+              const io::HexapodMachine& machine,
+              const kinematics::HexapodModel& model,
+              const io::CalibrationInput& input,
+              const Eigen::Vector3d& target,
+              const cal::HexapodCalibrationOptions& options) {
+  rep.machine = machine.model.name;
+  rep.unit = model.unit;
+  rep.data_notes = input.notes;
+  rep.poses = static_cast<int>(input.data.poses.size());
+  rep.points = static_cast<int>(input.data.points.size());
+  rep.constrained_sets = static_cast<int>(input.data.constrained.size());
+  rep.distances = static_cast<int>(input.data.distances.size());
+  rep.equations = static_cast<int>(input.data.equations());
+  rep.target_offset = target;
+  for (std::size_t k = 0; k < rep.free.size(); ++k) rep.free[k] = options.free[k];
+}
+
+}  // namespace
+
+void HexapodCalibrationRequest::validate() const {
+  PKM_CHECK(!data.empty(), "--data: give at least one calibration file");
+  PKM_CHECK(!out.empty(), "--out: give the calibrated machine file CAL.json");
+  PKM_CHECK(frame == "auto" || frame == "world" || frame == "tracker",
+            "--frame must be auto, world or tracker, got '{}'",
+            frame);
+  PKM_CHECK(loss == "none" || loss == "huber" || loss == "cauchy",
+            "--loss must be none, huber or cauchy, got '{}'",
+            loss);
+  PKM_CHECK(monte_carlo == 0 || (monte_carlo >= 2 && monte_carlo <= 100000),
+            "--monte-carlo must be 2 … 100000, got {}",
+            monte_carlo);
+}
+
+CalibrationOutputs calibrationOutputs(const std::string& out) {
+  std::string stem = out;
+  if (stem.size() > 5 && stem.ends_with(".json")) stem.resize(stem.size() - 5);
+  return {out, stem + ".hal", stem + ".summary.json"};
+}
+
+HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
+                                          const RunControl& control) {
+  r.validate();
+  io::HalReadOptions hal;
+  if (!r.ini.empty()) hal.ini_path = r.ini;
+  const io::HexapodMachine machine = io::loadHexapodMachine(r.machine, hal);
+  control.note(machine.notices);
+  const CalibrationOutputs paths = calibrationOutputs(r.out);
+  const io::Overwrite overwrite = r.force ? io::Overwrite::kAllow : io::Overwrite::kRefuse;
+  for (const std::string& p : {paths.machine, paths.hal, paths.summary})
+    io::checkOverwrite(p, overwrite);
+  io::CalibrationInput input, held;
+  for (const std::string& f : r.data) io::addCalibrationFile(f, input);
+  for (const std::string& f : r.holdout) io::addCalibrationFile(f, held);
+  control.note(input.notes);
+
+  // The target (SMR or 6-DOF probe) is the TCP of the fitted model: tool offset += target offset.
+  const Eigen::Vector3d target =
+      r.target_offset.value_or(input.target_offset.value_or(Eigen::Vector3d::Zero()));
+  kinematics::HexapodModel model = machine.model;
+  model.tool_offset += target;
+  const bool use_frame = r.frame == "tracker" || (r.frame == "auto" && input.tracker_frame);
+  if (use_frame && input.data.poses.empty() && input.data.points.empty())
+    throw InvalidArgument("--frame tracker needs tracker pose or point data");
+  if (use_frame) input.data.measurement_frame = cal::initialMeasurementFrame(model, input.data);
+  const cal::HexapodCalibrationOptions options = fitOptions(r);
+
+  HexapodCalibrationResult result;
+  io::HexapodCalibrationReport& rep = result.report;
+  rep.fit = cal::calibrateHexapod(model, input.data, options);
+  const cal::HexapodCalibrationSummary& s = rep.fit;
+  // Plausibility: a model that cannot explain the data is not written.
+  if (!cal::explainsData(s.after.rms, model.characteristicLength()))
+    throw InvalidArgument(fmt::format(
+        "calibration does not explain the data: residual RMS {:.4g} (max {:.4g}) after {} "
+        "iterations ({}); check the units of the data against the machine's ({}), the --frame "
+        "option, and outliers (--loss cauchy --loss-scale ...); nothing was written",
+        s.after.rms,
+        s.after.max,
+        s.iterations,
+        s.termination,
+        toString(model.unit)));
+
+  result.calibrated = machine;
+  result.calibrated.model = cal::withHexapodParameters(machine.model, s.parameters);
+  result.calibrated.model.name = machine.model.name + "-calibrated";
+  result.calibrated.notices.clear();
+  describe(rep, machine, model, input, target, options);
+  if (!held.data.poses.empty() || !held.data.points.empty())
+    rep.holdout = holdout(machine, result.calibrated, model, input, held, s, use_frame, target);
+  rep.worst = worstObservations(cal::withHexapodParameters(model, s.parameters), input, s);
+  // The TCP error over the workspace: the nominal controller on the calibrated machine (what
+  // calibration removes), and with Monte Carlo the spread the calibration itself leaves.
+  const std::vector<kinematics::PoseRpy> workspace = workspacePoses(machine.model);
+  rep.workspace_poses = static_cast<int>(workspace.size());
+  rep.tcp_before = cal::tcpErrorOverWorkspace(machine.model, result.calibrated.model, workspace);
+  if (r.monte_carlo > 0)
+    rep.monte_carlo = monteCarlo(r, model, input, s, workspace, options, control);
+  rep.out_machine = paths.machine;
+  rep.out_hal = paths.hal;
+  rep.out_summary = paths.summary;
+
+  result.summary_json = io::hexapodCalibrationJson(rep);
+  io::writeFileAtomic(paths.machine, io::writeHexapodJson(result.calibrated), overwrite);
+  io::writeFileAtomic(paths.hal, io::writeLinuxcncSetp(result.calibrated), overwrite);
+  io::writeFileAtomic(paths.summary, result.summary_json, overwrite);
+  if (!r.db.empty())
+    recordCalibration(r.db,
+                      {machine.model.name,
+                       "hexapod",
+                       "calibrate hexapod",
+                       r.data,
+                       result.summary_json,
+                       std::string(toString(model.unit)),
+                       {{"linuxcnc-hal", paths.hal}, {"machine-json", paths.machine}}});
+  result.notices = machine.notices;
+  result.notices.insert(result.notices.end(), input.notes.begin(), input.notes.end());
+  return result;
+}
+
+}  // namespace pkm::workflow

@@ -1,0 +1,282 @@
+// The campaign runner (workflow/campaign.hpp): loads and checks a pkm.campaign/1 file, runs each
+// step kind (campaign_steps.hpp), then writes summary.json, report-data.json, report.html and the
+// result store.
+#include "pkm/workflow/campaign.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <regex>
+
+#include "campaign_steps.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/io/atomic_file.hpp"
+#include "pkm/io/html_report.hpp"
+
+namespace pkm::io::detail {
+/// The built-in campaigns, data/campaigns/*.json (cmake/PkmEmbed.cmake).
+const std::vector<std::pair<std::string_view, std::string_view>>& embeddedCampaigns();
+}  // namespace pkm::io::detail
+
+namespace pkm::workflow {
+namespace {
+
+namespace fs = std::filesystem;
+using campaign::Json;
+using Clock = std::chrono::steady_clock;
+
+const std::map<std::string, campaign::StepRunner>& stepKinds() {
+  static const std::map<std::string, campaign::StepRunner> kinds = {
+      {"hybrid-squareness", &campaign::runHybridSquarenessStep},
+      {"cartesian-diagonals", &campaign::runCartesianDiagonalsStep},
+      {"probe-offset", &campaign::runProbeOffsetStep},
+      {"hexapod-calibration", &campaign::runHexapodCalibrationStep},
+  };
+  return kinds;
+}
+
+/// The campaign text and its source name ("FILE" or "builtin:NAME").
+std::pair<std::string, std::string> loadText(const std::string& spec) {
+  std::error_code ec;
+  if (fs::is_regular_file(spec, ec)) return {io::readFileText(spec), spec};
+  for (const auto& [stem, text] : io::detail::embeddedCampaigns())
+    if (stem == spec) return {std::string(text), "builtin:" + spec};
+  throw IoError(fmt::format("{}: no such file, and not a built-in campaign (built-in: {})",
+                            spec,
+                            fmt::join(builtinCampaignNames(), ", ")));
+}
+
+/// Checks one step's id (unique, lower case) and kind.
+void checkStep(const Json& s, const std::string& where, std::map<std::string, int>& ids) {
+  static const std::regex id_re("[a-z0-9][a-z0-9-]*");
+  if (!s.is_object()) throw IoError(where + ": a step must be an object");
+  const std::string id = s.value("id", std::string());
+  if (!std::regex_match(id, id_re))
+    throw IoError(where + ": \"id\" must be lower-case letters, digits and '-'");
+  if (ids[id]++) throw IoError(fmt::format("{}: id '{}' is used twice", where, id));
+  const std::string kind = s.value("kind", std::string());
+  if (!stepKinds().count(kind)) {
+    std::vector<std::string> known;
+    for (const auto& [name, run] : stepKinds()) known.push_back(name);
+    throw IoError(
+        fmt::format("{}: unknown \"kind\" '{}' (known: {})", where, kind, fmt::join(known, ", ")));
+  }
+}
+
+Json parseCampaign(const std::string& text, const std::string& source) {
+  Json j;
+  try {
+    j = Json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // nlohmann reports a byte offset; turn it into a line number.
+    const std::size_t at = std::min<std::size_t>(e.byte, text.size());
+    const long line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
+    throw IoError(fmt::format("{}:{}: invalid JSON ({})", source, line, e.what()));
+  }
+  if (!j.is_object() || j.value("schema", std::string()) != "pkm.campaign/1")
+    throw IoError(
+        fmt::format("{}: not a campaign (\"schema\": \"pkm.campaign/1\" expected)", source));
+  if (!j.contains("steps") || !j["steps"].is_array() || j["steps"].empty())
+    throw IoError(fmt::format("{}: \"steps\" must be a non-empty array", source));
+  std::map<std::string, int> ids;
+  for (std::size_t k = 0; k < j["steps"].size(); ++k)
+    checkStep(j["steps"][k], fmt::format("{}: steps[{}]", source, k), ids);
+  return j;
+}
+
+/// The output directory, created; refuses a file or (without force) a non-empty directory.
+void prepareOutput(const CampaignOptions& o) {
+  const std::string out = o.out.string();
+  std::error_code ec;
+  if (fs::exists(o.out, ec) && !fs::is_directory(o.out, ec))
+    throw IoError(fmt::format("{}: exists and is not a directory", out));
+  if (!o.force && fs::exists(o.out, ec) && !fs::is_empty(o.out, ec))
+    throw IoError(
+        fmt::format("{}: exists and is not empty; refusing to overwrite (use --force)", out));
+  fs::create_directories(o.out, ec);
+  if (!fs::is_directory(o.out, ec))
+    throw IoError(fmt::format("{}: cannot create the directory", out));
+}
+
+/// Runs step `k` of `n`.
+campaign::StepOutcome runStep(const Json& step,
+                              std::size_t k,
+                              std::size_t n,
+                              const std::string& source,
+                              const CampaignOptions& o,
+                              const fs::path& base_dir,
+                              const RunControl& control,
+                              Clock::time_point t0) {
+  const std::string id = step["id"].get<std::string>();
+  campaign::StepContext ctx;
+  ctx.spec = step;
+  ctx.source = fmt::format("{}: steps[{}] ({})", source, k, id);
+  ctx.out = o.out;
+  ctx.dir = o.out / id;
+  ctx.base_dir = base_dir;
+  const auto ts = Clock::now();
+  ctx.progress = [&, k, id](const std::string& what) {
+    control.checkCancelled();
+    control.report({id, k + 1, n, std::chrono::duration<double>(Clock::now() - t0).count(), what});
+  };
+  campaign::StepOutcome outcome = stepKinds().at(step["kind"].get<std::string>())(ctx);
+  outcome.id = id;
+  // Every summary row goes into the result store (before and after, where measured).
+  for (const campaign::SummaryRow& r : outcome.rows)
+    for (const auto& [stage, value] : {std::pair{"before", r.before}, std::pair{"after", r.after}})
+      if (std::isfinite(value))
+        outcome.record.results.push_back({r.quantity, stage, value, r.unit});
+  ctx.progress(
+      fmt::format("done in {:.2f} s", std::chrono::duration<double>(Clock::now() - ts).count()));
+  return outcome;
+}
+
+/// summary.json's rows.
+Json summaryRows(const std::vector<campaign::StepOutcome>& steps) {
+  Json rows = Json::array();
+  for (const campaign::StepOutcome& s : steps)
+    for (const campaign::SummaryRow& r : s.rows)
+      rows.push_back({{"step", s.id},
+                      {"quantity", r.quantity},
+                      {"unit", r.unit},
+                      {"before", campaign::cell(r.before, 6)},
+                      {"after", campaign::cell(r.after, 6)},
+                      {"target", r.target ? Json(*r.target) : Json(nullptr)},
+                      {"paper", r.paper},
+                      {"noise", r.noise},
+                      {"pass", r.pass()}});
+  return rows;
+}
+
+/// report-data.json (pkm.report/1): the summary table, then each step's section.
+Json reportData(const std::string& name,
+                const Json& spec,
+                const std::vector<campaign::StepOutcome>& outcomes) {
+  Json report{{"schema", "pkm.report/1"},
+              {"title", fmt::format("pkm campaign '{}'", name)},
+              {"subtitle", spec.value("description", std::string())}};
+  Json summary = campaign::table("Before and after compensation, beside the papers' results",
+                                 {"step",
+                                  "quantity",
+                                  "unit",
+                                  "before",
+                                  "after",
+                                  "target",
+                                  "paper (before -> after)",
+                                  "instrument noise",
+                                  "result"});
+  for (const campaign::StepOutcome& s : outcomes)
+    for (const campaign::SummaryRow& r : s.rows)
+      summary["rows"].push_back({s.id,
+                                 r.quantity,
+                                 r.unit,
+                                 campaign::cell(r.before),
+                                 campaign::cell(r.after),
+                                 r.target ? Json(fmt::format("<= {:g}", *r.target)) : Json(nullptr),
+                                 r.paper.empty() ? Json(nullptr) : Json(r.paper),
+                                 r.noise,
+                                 r.target ? Json(r.pass() ? "PASS" : "FAIL") : Json(nullptr)});
+  report["summary"] = summary;
+  report["sections"] = Json::array();
+  for (const campaign::StepOutcome& s : outcomes) report["sections"].push_back(s.section);
+  return report;
+}
+
+/// summary.json, report-data.json, report.html.
+void writeCampaignFiles(const fs::path& out,
+                        const std::string& name,
+                        const std::string& source,
+                        const Json& spec,
+                        const std::vector<campaign::StepOutcome>& outcomes) {
+  const std::string report_text = reportData(name, spec, outcomes).dump(1) + "\n";
+  io::writeFileAtomic(out / "report-data.json", report_text, io::Overwrite::kAllow);
+  io::writeFileAtomic(out / "report.html",
+                      io::renderHtmlReport(report_text, (out / "report-data.json").string()),
+                      io::Overwrite::kAllow);
+  Json sj{{"schema", "pkm.campaign-summary/1"},
+          {"campaign", name},
+          {"source", source},
+          {"rows", summaryRows(outcomes)}};
+  sj["steps"] = Json::array();
+  for (const campaign::StepOutcome& s : outcomes)
+    sj["steps"].push_back({{"id", s.id}, {"title", s.title}, {"files", s.files}});
+  io::writeFileAtomic(out / "summary.json", sj.dump(2) + "\n", io::Overwrite::kAllow);
+}
+
+/// Adds every step to the result store `db`.
+void storeResults(const std::string& db,
+                  const fs::path& out,
+                  const std::string& name,
+                  std::vector<campaign::StepOutcome>& outcomes) {
+  io::ResultStore store(db);
+  for (campaign::StepOutcome& s : outcomes) {
+    s.record.name = fmt::format("campaign {} / {}", name, s.id);
+    for (const std::string& f : s.files) {
+      if (f.find("/measured-before/") == std::string::npos) continue;
+      s.record.measurements.push_back(
+          {fs::path(f).stem().string(), "measurement", (out / f).string(), 0});
+    }
+    store.store(s.record);
+  }
+}
+
+}  // namespace
+
+bool CampaignRow::pass() const {
+  return !target || (std::isfinite(after) && std::abs(after) <= *target);
+}
+
+void CampaignOptions::validate() const {
+  if (out.empty()) throw IoError("give --out DIR");
+}
+
+std::vector<std::string> builtinCampaignNames() {
+  std::vector<std::string> names;
+  for (const auto& [stem, text] : io::detail::embeddedCampaigns()) names.emplace_back(stem);
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+CampaignInfo describeCampaign(const std::string& spec) {
+  const auto [text, source] = loadText(spec);
+  const Json j = parseCampaign(text, source);
+  return {j.value("name", std::string("campaign")),
+          j["steps"].size(),
+          j.value("description", std::string())};
+}
+
+CampaignResult runCampaign(const CampaignOptions& options, const RunControl& control) {
+  options.validate();
+  const auto [text, source] = loadText(options.campaign);
+  const Json spec = parseCampaign(text, source);
+  prepareOutput(options);
+  const fs::path base_dir =
+      source.rfind("builtin:", 0) == 0 ? fs::current_path() : fs::path(source).parent_path();
+  CampaignResult result;
+  result.name = spec.value("name", std::string("campaign"));
+  result.source = source;
+  result.description = spec.value("description", std::string());
+  const std::size_t n = spec["steps"].size();
+  const auto t0 = Clock::now();
+  control.report({"", 0, n, 0.0, result.name});
+  std::vector<campaign::StepOutcome> outcomes;
+  for (std::size_t k = 0; k < n; ++k)
+    outcomes.push_back(runStep(spec["steps"][k], k, n, source, options, base_dir, control, t0));
+  control.checkCancelled();
+  writeCampaignFiles(options.out, result.name, source, spec, outcomes);
+  if (!options.db.empty()) storeResults(options.db, options.out, result.name, outcomes);
+  for (const campaign::StepOutcome& s : outcomes) {
+    result.steps.push_back({s.id, s.title, s.rows, s.files});
+    for (const campaign::SummaryRow& r : s.rows) {
+      result.all_pass = result.all_pass && r.pass();
+      if (r.target) ++result.targets;
+    }
+  }
+  result.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  result.report = (fs::absolute(options.out) / "report.html").lexically_normal();
+  return result;
+}
+
+}  // namespace pkm::workflow

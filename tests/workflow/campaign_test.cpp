@@ -1,0 +1,150 @@
+// workflow::runCampaign from the library: a one-step campaign file meets its target and reports
+// its progress in order, cancellation stops it with nothing half-written, and bad campaigns and
+// output folders are refused with messages that name them.
+#include "pkm/workflow/campaign.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "pkm/core/error.hpp"
+
+namespace pkm::workflow {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+class CampaignWorkflow : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("pkm_workflow_campaign_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  /// Writes `text` to dir_/name and returns the path.
+  std::string write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return (dir_ / name).string();
+  }
+  /// A campaign of the touch-probe step alone (seed 003: the shortest step).
+  std::string probeCampaign() {
+    return write("probe.json",
+                 R"({"schema": "pkm.campaign/1", "name": "probe", "description": "one step",
+ "steps": [{"id": "probe", "kind": "probe-offset", "scenario": "seed003-probe-offset"}]})");
+  }
+  fs::path dir_;
+};
+
+TEST_F(CampaignWorkflow, OneStepCampaignMeetsItsTargetAndReportsProgressInOrder) {
+  CampaignOptions o;
+  o.campaign = probeCampaign();
+  o.out = dir_ / "out";
+  std::vector<ProgressEvent> events;
+  RunControl control;
+  control.progress = [&](const ProgressEvent& e) { events.push_back(e); };
+  const CampaignResult r = runCampaign(o, control);
+
+  EXPECT_EQ(r.name, "probe");
+  EXPECT_EQ(r.source, o.campaign);
+  ASSERT_EQ(r.steps.size(), 1u);
+  EXPECT_EQ(r.steps[0].id, "probe");
+  EXPECT_TRUE(r.all_pass);
+  EXPECT_EQ(r.targets, 1);
+  for (const CampaignRow& row : r.steps[0].rows) {
+    if (row.target) {
+      EXPECT_LE(std::abs(row.after), *row.target) << row.quantity;
+    }
+  }
+  for (const std::string& f : r.steps[0].files) EXPECT_TRUE(fs::is_regular_file(o.out / f)) << f;
+  for (const char* f : {"summary.json", "report-data.json", "report.html"})
+    EXPECT_TRUE(fs::is_regular_file(o.out / f)) << f;
+  EXPECT_EQ(r.report, fs::absolute(o.out / "report.html").lexically_normal());
+  EXPECT_FALSE(fs::exists("pkm.db"));  // no store unless asked
+
+  ASSERT_GE(events.size(), 3u);
+  EXPECT_EQ(events.front().index, 0u);
+  EXPECT_EQ(events.front().count, 1u);
+  EXPECT_EQ(events.front().message, "probe");
+  for (std::size_t k = 1; k < events.size(); ++k) {
+    EXPECT_EQ(events[k].stage, "probe");
+    EXPECT_EQ(events[k].index, 1u);
+    EXPECT_GE(events[k].elapsed, events[k - 1].elapsed);
+  }
+  EXPECT_THAT(events.back().message, HasSubstr("done in"));
+}
+
+TEST_F(CampaignWorkflow, CancellationStopsTheRunBeforeTheReport) {
+  CampaignOptions o;
+  o.campaign = probeCampaign();
+  o.out = dir_ / "out";
+  CancellationToken token;
+  RunControl control;
+  control.cancel = &token;
+  int seen = 0;
+  control.progress = [&](const ProgressEvent& e) {
+    if (e.index == 1 && ++seen == 1) token.cancel();
+  };
+  EXPECT_THROW((void)runCampaign(o, control), Cancelled);
+  EXPECT_FALSE(fs::exists(o.out / "summary.json"));
+  EXPECT_FALSE(fs::exists(o.out / "report.html"));
+  // Nothing half-written: no temporary file is left anywhere.
+  for (const auto& e : fs::recursive_directory_iterator(o.out))
+    EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+}
+
+TEST_F(CampaignWorkflow, BadCampaignsAndOutputFoldersAreRefused) {
+  CampaignOptions o;
+  o.out = dir_ / "out";
+  o.campaign = write("bad.json", "{\n\"schema\": \"pkm.campaign/1\",\n\"steps\": [\n");
+  try {
+    (void)runCampaign(o);
+    FAIL() << "accepted invalid JSON";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("bad.json:4: invalid JSON"));
+  }
+  o.campaign =
+      write("kind.json", R"({"schema": "pkm.campaign/1", "steps": [{"id": "a", "kind": "nope"}]})");
+  try {
+    (void)runCampaign(o);
+    FAIL() << "accepted an unknown kind";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("steps[0]: unknown \"kind\" 'nope'"));
+  }
+  EXPECT_THROW((void)describeCampaign("no-such-campaign"), IoError);
+  o.campaign = probeCampaign();
+  fs::create_directories(o.out);
+  write("out/keep.txt", "the user's file");
+  try {
+    (void)runCampaign(o);
+    FAIL() << "wrote into a non-empty folder";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("refusing to overwrite (use --force)"));
+  }
+  o.out.clear();
+  EXPECT_THROW((void)runCampaign(o), IoError);
+}
+
+TEST_F(CampaignWorkflow, BuiltInCampaignsAreListedAndDescribed) {
+  const std::vector<std::string> names = builtinCampaignNames();
+  ASSERT_FALSE(names.empty());
+  EXPECT_EQ(names.front(), "default");
+  const CampaignInfo info = describeCampaign("default");
+  EXPECT_EQ(info.name, "default");
+  EXPECT_EQ(info.steps, 4u);
+  EXPECT_FALSE(info.description.empty());
+}
+
+}  // namespace
+}  // namespace pkm::workflow
