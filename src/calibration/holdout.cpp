@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pkm/core/error.hpp"
 #include "pkm/kinematics/hexapod_data.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 
@@ -40,6 +41,68 @@ HoldoutErrors hexapodHoldoutErrors(const kinematics::HexapodModel& model,
     e.mean = sum / e.poses;
   }
   return e;
+}
+
+HoldoutErrors exechonHoldoutErrors(const kinematics::ExechonModel& model,
+                                   const std::optional<geometry::RigidTransform>& frame,
+                                   const ExechonCalibrationData& held,
+                                   const kinematics::FkOptions& fk) {
+  HoldoutErrors e;
+  double sum = 0.0;
+  for (const ExechonObservation& o : held.observations) {
+    const auto p = exechonTarget(model, o.joints, held.target_offset, model.home, fk);
+    if (!p) {
+      ++e.failures;
+      continue;
+    }
+    const Eigen::Vector3d m =
+        frame ? Eigen::Vector3d(frame->rotation * o.point + frame->translation) : o.point;
+    const double d = (m - *p).norm();
+    sum += d * d;
+    e.max = std::max(e.max, d);
+    ++e.poses;
+  }
+  e.rms = e.poses > 0 ? std::sqrt(sum / e.poses) : 0.0;
+  return e;
+}
+
+HoldoutErrors hybridHoldoutErrors(const kinematics::HybridMachineModel& model,
+                                  const kinematics::GeometricErrors& known,
+                                  const kinematics::HybridSquareness& squareness,
+                                  const HybridCalibrationData& held,
+                                  const std::optional<geometry::RigidTransform>& frame,
+                                  const TripodMotion& tripod) {
+  HoldoutErrors e;
+  double sum = 0.0;
+  for (const HybridObservation& o : held.observations) {
+    const auto p = hybridTarget(model, known, squareness, o.command, held.target_offset, tripod);
+    if (!p) continue;
+    const Eigen::Vector3d m =
+        frame ? Eigen::Vector3d(frame->rotation * o.point + frame->translation) : o.point;
+    const double d = (m - *p).norm();
+    sum += d * d;
+    e.max = std::max(e.max, d);
+    ++e.poses;
+  }
+  e.rms = e.poses > 0 ? std::sqrt(sum / e.poses) : 0.0;
+  return e;
+}
+
+geometry::RigidTransform initialHybridMeasurementFrame(
+    const kinematics::HybridMachineModel& model,
+    const kinematics::GeometricErrors& known,
+    const kinematics::HybridSquareness& squareness,
+    const HybridCalibrationData& data,
+    const TripodMotion& tripod) {
+  std::vector<Eigen::Vector3d> work, measured;
+  for (const HybridObservation& o : data.observations)
+    if (const auto p =
+            hybridTarget(model, known, squareness, o.command, data.target_offset, tripod)) {
+      work.push_back(*p);
+      measured.push_back(o.point);
+    }
+  if (work.size() < 3) throw InvalidArgument("hybrid data: fewer than 3 reachable commands");
+  return geometry::fitRigidTransform(work, measured);
 }
 
 }  // namespace pkm::calibration

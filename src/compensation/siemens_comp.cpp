@@ -325,8 +325,8 @@ std::string writeSiemensCec(const SiemensCecTable& t) {
   t.validate();
   std::string out = "%_N_NC_CEC_INI\nCHANDATA(1)\n";
   out += fmt::format(
-      "; pkm compensate: value = error of {} (actual - nominal) over {}, mm (metrology.md "
-      "3.9)\n",
+      "; pkm compensate: value = error of {} (actual - nominal) over {}, mm (sign: pkm "
+      "docs/compensation.md)\n",
       t.output_axis,
       t.input_axis);
   for (std::size_t i = 0; i < t.values.size(); ++i) {

@@ -249,7 +249,7 @@ StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
                            seed,
                            scenario.campaign.description),
                "Analysis: the four body diagonals' length errors give the three squareness "
-               "errors and the volumetric scale (ISO 230-6; metrology notes §1.3). "
+               "errors and the volumetric scale (ISO 230-6). "
                "Compensation: the command correction q' = D⁻¹·q with D the axis directions of "
                "the estimated squareness (compensation/squareness.txt) and LinuxCNC COMP_FILE "
                "type 1 tables of X and Y (compensation/*.comp)."});

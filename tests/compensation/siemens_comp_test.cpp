@@ -136,8 +136,8 @@ TEST(SiemensComp, CecExactTextAndRoundTrip) {
   EXPECT_EQ(text,
             "%_N_NC_CEC_INI\n"
             "CHANDATA(1)\n"
-            "; pkm compensate: value = error of Z1 (actual - nominal) over Y1, mm (metrology.md "
-            "3.9)\n"
+            "; pkm compensate: value = error of Z1 (actual - nominal) over Y1, mm (sign: pkm "
+            "docs/compensation.md)\n"
             "$AN_CEC[2,0]=0\n"
             "$AN_CEC[2,1]=-0.004\n"
             "$AN_CEC[2,2]=-0.0105\n"

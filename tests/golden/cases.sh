@@ -80,6 +80,16 @@ run calibrate-exechon calibrate exechon --machine mxt700s-like --data "$se/track
   --holdout "$se/tracker-holdout.csv" --out cal.json
 run calibrate-exechon-json calibrate exechon --machine mxt700s-like --data "$se/tracker-fit.csv" \
   --holdout "$se/tracker-holdout.csv" --out cal.json --json
+run calibrate-exechon-hybrid calibrate exechon --machine mxt700s-like --data "$se/tracker-fit.csv" \
+  "$se/tracker-hybrid.csv" --holdout "$se/tracker-hybrid-holdout.csv" --errors mxt700s-seed000 \
+  --out cal.json
+run calibrate-exechon-hybrid-json calibrate exechon --machine mxt700s-like \
+  --data "$se/tracker-fit.csv" "$se/tracker-hybrid.csv" --holdout "$se/tracker-hybrid-holdout.csv" \
+  --errors mxt700s-seed000 --out cal.json --json
+run calibrate-exechon-monte-carlo calibrate exechon --machine mxt700s-like \
+  --data "$se/tracker-fit.csv" --out cal.json --monte-carlo 3 --threads 2
+run calibrate-hexapod-monte-carlo calibrate hexapod --machine hexapod-default \
+  --data "$s4/tracker-pose.csv" --out cal.json --monte-carlo 4 --threads 2
 run analyze-circular-one-file analyze circular --data "$s3/probe_circle_compensated.csv"
 run calibrate-hexapod-missing calibrate hexapod --machine hexapod-default --data nothing.csv \
   --out cal.json

@@ -4,6 +4,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -43,7 +44,8 @@ TEST(SimulateWorkflow, TheSameSeedGivesTheSameFilesAndAnotherSeedOtherReadings) 
 }
 
 TEST(SimulateWorkflow, WritesEveryFileOrNone) {
-  const fs::path dir = fs::temp_directory_path() / "pkm_workflow_simulate";
+  const fs::path dir =
+      fs::temp_directory_path() / ("pkm_workflow_simulate_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   SimulateOptions o;
   o.scenario = "seed003-probe-offset";

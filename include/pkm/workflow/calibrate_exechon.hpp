@@ -1,0 +1,63 @@
+/// @file
+/// @brief `pkm calibrate exechon` as a workflow (docs/calibration.md, "Exechon"): the 26
+/// kinematic parameters of an Exechon (Zoppi's tripod dimensions with leg B's base-joint offsets,
+/// leg offsets, wrist zeros, tool length, base placement) from PKM tracker files, and/or the four
+/// squareness errors of the hybrid machine from hybrid tracker files; the acceptance rule, the
+/// held-out checks, the working-box error map, optionally a Monte Carlo; then the calibrated
+/// machine file, CAL.errors.json with hybrid data, the summary and optionally a result-store
+/// record.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pkm/io/exechon_calibration_report.hpp"
+#include "pkm/io/exechon_machine.hpp"
+#include "pkm/workflow/progress.hpp"
+
+namespace pkm::workflow {
+
+/// An Exechon calibration request.
+struct ExechonCalibrationRequest {
+  std::string machine = "mxt700s-like";  ///< Exechon machine file or built-in name
+  std::vector<std::string> data;         ///< Exechon and hybrid tracker files (required)
+  std::vector<std::string> holdout;      ///< tracker files kept out of the fit
+  std::string out;             ///< CAL.json; CAL.summary.json (and CAL.errors.json) beside
+  std::string frame = "auto";  ///< tracker readings: "auto", "world", "tracker"
+  /// The tracker target in the tool frame; default the files' `smr offset mm`.
+  std::optional<Eigen::Vector3d> target_offset;
+  std::vector<std::string> fix;  ///< parameters held at their initial value (e.g. "tripod.hx")
+  std::string loss = "none";     ///< robust loss: "none", "huber", "cauchy"
+  double loss_scale = 0.0;       ///< robust loss scale, machine unit
+  std::string errors;   ///< hybrid: the known geometric errors (PDGE) under the squareness fit
+  bool force = false;   ///< replace existing output files
+  int monte_carlo = 0;  ///< Monte Carlo trials of the tripod fit (0: none)
+  double sigma_position = 0.0;          ///< Monte Carlo point noise (0: the fitted σ)
+  double sigma_orientation_urad = 0.0;  ///< Monte Carlo tool-direction noise, µrad
+  int threads = 0;                      ///< Monte Carlo worker threads (0: all cores)
+  std::string db;                       ///< result store to record the calibration in ("" : none)
+  /// Throws pkm::InvalidArgument naming the option for an unusable setting.
+  void validate() const;
+};
+
+/// What an Exechon calibration produced.
+struct ExechonCalibrationResult {
+  io::ExechonCalibrationReport report;  ///< every figure (io::exechonCalibrationJson)
+  std::string summary_json;             ///< the summary document, as written
+  io::ExechonMachine calibrated;        ///< the calibrated machine, as written
+  std::vector<std::string> written;     ///< the files written, in order
+};
+
+/// CAL.errors.json for `--out CAL.json`.
+[[nodiscard]] std::string calibrationErrorsOutput(const std::string& out);
+
+/// Runs the calibration and writes its files (atomically; refused when one exists unless
+/// `force`). Notices: the machine reader's and the data files' notes. Progress: Monte Carlo
+/// trials, cancellation checked after them. Throws pkm::IoError for unreadable files
+/// (FILE:LINE), pkm::InvalidArgument for a bad request, hybrid data without a hybrid machine, or a
+/// fit that does not explain the data or is implausible — in which case nothing is written.
+[[nodiscard]] ExechonCalibrationResult calibrateExechon(const ExechonCalibrationRequest& request,
+                                                        const RunControl& control = {});
+
+}  // namespace pkm::workflow

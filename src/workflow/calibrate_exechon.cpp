@@ -1,0 +1,216 @@
+// `pkm calibrate exechon` as a workflow (workflow/calibrate_exechon.hpp): the request, the
+// output files and the hybrid squareness fit; the tripod fit is in calibrate_exechon_tripod.cpp.
+#include "pkm/workflow/calibrate_exechon.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "calibrate_exechon_detail.hpp"
+#include "pkm/calibration/acceptance.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/io/atomic_file.hpp"
+#include "pkm/io/geometric_errors.hpp"
+#include "pkm/io/machine_loader.hpp"
+#include "pkm/simulation/hybrid_tripod_errors.hpp"
+#include "pkm/workflow/calibrate_hexapod.hpp"
+#include "pkm/workflow/calibration_record.hpp"
+
+namespace pkm::workflow {
+namespace {
+
+namespace cal = pkm::calibration;
+namespace sim = pkm::simulation;
+
+/// The tripod errors of `calibrated` against `nominal` (the parameters before the base placement).
+sim::ExechonTripodErrors tripodDifference(const kinematics::ExechonModel& nominal,
+                                          const kinematics::ExechonModel& calibrated) {
+  const cal::ExechonParameterVector d = cal::exechonParameters(calibrated, nominal.world_T_zoppi) -
+                                        cal::exechonParameters(nominal, nominal.world_T_zoppi);
+  sim::ExechonTripodErrors e;
+  e.dA = d(0);
+  e.dB = d(1);
+  e.dC = d(2);
+  e.l12A = d(3);
+  e.l12C = d(4);
+  e.l12B = d(5);
+  e.l23B = d(6);
+  e.pA = d(7);
+  e.pB = d(8);
+  e.pC = d(9);
+  e.hA = d(10);
+  e.hC = d(11);
+  e.hx = d(12);
+  e.hz = d(13);
+  e.length_offset = d.segment<3>(cal::kExechonOffsetParameter);
+  e.c0 = d(cal::kExechonWristParameter);
+  e.a0 = d(cal::kExechonWristParameter + 1);
+  e.tool_length = d(cal::kExechonWristParameter + 2);
+  return e;
+}
+
+/// Throws when the squareness fit does not explain the hybrid data.
+void acceptSquareness(const cal::HybridCalibrationSummary& s, double characteristic_length) {
+  if (cal::explainsData(s.after.rms, characteristic_length)) return;
+  std::string worst;
+  for (const auto& w : s.worst) worst += fmt::format("\n  {}: {:.4g}", w.source, w.residual);
+  throw InvalidArgument(fmt::format(
+      "squareness calibration does not explain the hybrid data: residual RMS {:.4g} (max "
+      "{:.4g}); check the units, --errors and outliers; nothing was written. Largest "
+      "residuals:{}",
+      s.after.rms,
+      s.after.max,
+      worst));
+}
+
+/// The four squareness errors from the hybrid tracker files, with the calibrated tripod's error
+/// motion when the PKM was calibrated too; returns the estimated errors (CAL.errors.json).
+kinematics::GeometricErrors fitSquareness(const ExechonCalibrationRequest& r,
+                                          const io::ExechonMachine& machine,
+                                          const io::ExechonMachine& calibrated,
+                                          io::ExechonCalibrationInput& input,
+                                          io::ExechonCalibrationInput& held,
+                                          io::HybridSquarenessReport& report) {
+  if (!machine.hybrid)
+    throw InvalidArgument(
+        fmt::format("hybrid tracker data needs a machine with a \"hybrid\" section; '{}' has none",
+                    machine.model.name));
+  const kinematics::HybridMachineModel& model = *machine.hybrid;
+  kinematics::GeometricErrors known;
+  if (!r.errors.empty()) known = io::loadGeometricErrors(r.errors);
+  known.squareness = {};
+  std::optional<sim::HybridTripod> tripod;
+  const sim::ExechonTripodErrors diff = tripodDifference(machine.model, calibrated.model);
+  if (!diff.isZero()) tripod.emplace(machine.model, diff, machine.fk);
+  cal::TripodMotion motion;
+  if (tripod)
+    motion = [&tripod](const Eigen::Vector3d& p) -> std::optional<Eigen::Isometry3d> {
+      try {
+        return tripod->errorMotion(p);
+      } catch (const InvalidArgument&) {
+        return std::nullopt;
+      }
+    };
+  cal::HybridCalibrationData& d = input.hybrid;
+  std::optional<geometry::RigidTransform> before_frame;
+  if (d.measurement_frame) {
+    d.measurement_frame = cal::initialHybridMeasurementFrame(model, known, {}, d, motion);
+    before_frame = d.measurement_frame;
+  }
+  cal::HybridCalibrationOptions options;
+  options.loss = detail::robustLoss(r.loss);
+  options.loss_scale = r.loss_scale;
+  report.fit = cal::calibrateHybridSquareness(model, known, d, options, motion);
+  const cal::HybridCalibrationSummary& s = report.fit;
+  acceptSquareness(s, machine.model.characteristicLength());
+  report.observations = d.observations.size();
+  report.known_errors = r.errors.empty() ? "none" : r.errors;
+  report.tripod_error_motion = tripod.has_value();
+  if (!held.hybrid.observations.empty()) {
+    // A held-out file without `smr offset mm` is taken to carry the fitted files' target.
+    held.hybrid.target_offset = held.hybrid_target_offset.value_or(d.target_offset);
+    report.holdout = io::HoldoutComparison{
+        cal::hybridHoldoutErrors(model, known, {}, held.hybrid, before_frame, {}),
+        cal::hybridHoldoutErrors(
+            model, known, s.squareness, held.hybrid, s.measurement_frame, motion)};
+  }
+  kinematics::GeometricErrors estimated = known;
+  estimated.squareness = s.squareness;
+  return estimated;
+}
+
+/// Reads the data and held-out files and sets their target offsets.
+void readInput(const ExechonCalibrationRequest& r,
+               io::ExechonCalibrationInput& input,
+               io::ExechonCalibrationInput& held,
+               const RunControl& control) {
+  for (const std::string& f : r.data) io::addExechonCalibrationFile(f, input);
+  for (const std::string& f : r.holdout) io::addExechonCalibrationFile(f, held);
+  control.note(input.notes);
+}
+
+}  // namespace
+
+cal::RobustLoss detail::robustLoss(const std::string& name) {
+  if (name == "huber") return cal::RobustLoss::kHuber;
+  if (name == "cauchy") return cal::RobustLoss::kCauchy;
+  return cal::RobustLoss::kNone;
+}
+
+void ExechonCalibrationRequest::validate() const {
+  PKM_CHECK(!data.empty(), "--data: give at least one tracker file");
+  PKM_CHECK(!out.empty(), "--out: give the calibrated machine file CAL.json");
+  PKM_CHECK(frame == "auto" || frame == "world" || frame == "tracker",
+            "--frame must be auto, world or tracker, got '{}'",
+            frame);
+  PKM_CHECK(loss == "none" || loss == "huber" || loss == "cauchy",
+            "--loss must be none, huber or cauchy, got '{}'",
+            loss);
+  PKM_CHECK(monte_carlo == 0 || (monte_carlo >= 2 && monte_carlo <= 100000),
+            "--monte-carlo must be 2 … 100000, got {}",
+            monte_carlo);
+}
+
+std::string calibrationErrorsOutput(const std::string& out) {
+  std::string stem = out;
+  if (stem.size() > 5 && stem.ends_with(".json")) stem.resize(stem.size() - 5);
+  return stem + ".errors.json";
+}
+
+ExechonCalibrationResult calibrateExechon(const ExechonCalibrationRequest& r,
+                                          const RunControl& control) {
+  r.validate();
+  const io::ExechonMachine machine = io::loadExechonMachine(r.machine);
+  control.note(machine.notices);
+  const CalibrationOutputs paths = calibrationOutputs(r.out);
+  const std::string errors_path = calibrationErrorsOutput(r.out);
+  io::ExechonCalibrationInput input, held;
+  readInput(r, input, held, control);
+  const bool hybrid = !input.hybrid.observations.empty();
+  const io::Overwrite overwrite = r.force ? io::Overwrite::kAllow : io::Overwrite::kRefuse;
+  io::checkOverwrite(paths.machine, overwrite);
+  io::checkOverwrite(paths.summary, overwrite);
+  if (hybrid) io::checkOverwrite(errors_path, overwrite);
+  const Eigen::Vector3d target =
+      r.target_offset.value_or(input.target_offset.value_or(Eigen::Vector3d::Zero()));
+  input.data.target_offset = target;
+  held.data.target_offset = held.target_offset.value_or(target);
+
+  ExechonCalibrationResult result;
+  io::ExechonCalibrationReport& rep = result.report;
+  result.calibrated = machine;
+  rep.machine = machine.model.name;
+  rep.unit = machine.model.unit;
+  rep.data_notes = input.notes;
+  if (!input.data.observations.empty())
+    rep.tripod = detail::fitTripod(r, machine, input, held, result.calibrated, control);
+  std::string errors_text;
+  if (hybrid) {
+    rep.hybrid.emplace();
+    errors_text = io::writeGeometricErrorsJson(
+        fitSquareness(r, machine, result.calibrated, input, held, *rep.hybrid));
+  }
+  rep.out_machine = paths.machine;
+  rep.out_summary = paths.summary;
+  if (hybrid) rep.out_errors = errors_path;
+  result.summary_json = io::exechonCalibrationJson(rep);
+  io::writeFileAtomic(paths.machine, io::writeExechonJson(result.calibrated), overwrite);
+  if (hybrid) io::writeFileAtomic(errors_path, errors_text, overwrite);
+  io::writeFileAtomic(paths.summary, result.summary_json, overwrite);
+  result.written = {paths.machine, paths.summary};
+  if (hybrid) result.written.push_back(errors_path);
+  if (!r.db.empty()) {
+    std::vector<std::pair<std::string, std::string>> comps{{"machine-json", paths.machine}};
+    if (hybrid) comps.emplace_back("errors-json", errors_path);
+    recordCalibration(r.db,
+                      {machine.model.name,
+                       machine.hybrid ? "hybrid" : "exechon",
+                       "calibrate exechon",
+                       r.data,
+                       result.summary_json,
+                       std::string(toString(machine.model.unit)),
+                       comps});
+  }
+  return result;
+}
+
+}  // namespace pkm::workflow

@@ -1,0 +1,47 @@
+// io::lineRunMetadata / dialGaugeMetadata on a built-in scenario: the keys the file readers rebuild
+// a set-up from, with angular axes in degrees and the noise in the measurement's unit.
+#include "pkm/io/simulation_metadata.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <map>
+
+namespace pkm::io {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::map<std::string, std::string> asMap(const Metadata& m) { return {m.begin(), m.end()}; }
+
+TEST(SimulationMetadata, LineRunsCarryTheirSetUp) {
+  const Scenario s = loadScenario("seed000-parallelism");
+  ASSERT_FALSE(s.campaign.measurements.empty());
+  for (const simulation::LineSetup& m : s.campaign.measurements) {
+    const auto md = asMap(lineRunMetadata(s, 7, m, 2));
+    EXPECT_EQ(md.at("format"), "pkm.measurement/1");
+    EXPECT_EQ(md.at("scenario"), "seed000-parallelism");
+    EXPECT_EQ(md.at("seed"), "7");
+    EXPECT_EQ(md.at("measurement"), m.name);
+    EXPECT_THAT(md.at("run"), HasSubstr("2 of "));
+    EXPECT_EQ(md.count("line start"), 1u);
+    EXPECT_EQ(md.count("lateral"), m.quantity == simulation::LineQuantity::kLinear ? 0u : 1u);
+    EXPECT_EQ(md.count("misalignment urad"),
+              m.quantity == simulation::LineQuantity::kStraightness ? 1u : 0u);
+    EXPECT_THAT(md.at("noise"),
+                HasSubstr(m.quantity == simulation::LineQuantity::kAngular ? "urad" : "mm"));
+  }
+}
+
+TEST(SimulationMetadata, DialGaugeSetsCarryTheirGeometry) {
+  const Scenario s = loadScenario("seed004-hexapod-calibration");
+  ASSERT_FALSE(s.campaign.constrained.empty());
+  const auto md = asMap(dialGaugeMetadata(s, 4, s.campaign.constrained.front()));
+  EXPECT_EQ(md.at("format"), "pkm.constrained-motion/1");
+  EXPECT_EQ(md.at("seed"), "4");
+  EXPECT_THAT(md.at("gauge points mm"), HasSubstr("("));
+  EXPECT_THAT(md.at("noise"), HasSubstr("sigma"));
+}
+
+}  // namespace
+}  // namespace pkm::io

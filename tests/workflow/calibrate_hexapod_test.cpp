@@ -1,0 +1,150 @@
+// workflow::calibrateHexapod from the library: on the simulator's tracker files of a machine with
+// known errors it meets the held-out target and writes its three files; it passes the data
+// files' notes on; refuses to overwrite; and a fit that cannot explain the data (readings in the
+// wrong unit) writes nothing.
+#include "pkm/workflow/calibrate_hexapod.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "pkm/core/error.hpp"
+#include "pkm/io/atomic_file.hpp"
+#include "pkm/workflow/simulate.hpp"
+
+namespace pkm::workflow {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+/// Acceptance: held-out TCP error after calibration ≤ 3× the tracker's noise (about 8 µm in 3-D
+/// for the scenario's tracker at its distance) and at least 100× smaller than before.
+constexpr double kHeldOutRmsLimit = 3 * 0.008;  ///< mm
+constexpr double kImprovementAtLeast = 100.0;
+
+class CalibrateHexapodWorkflow : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    // One folder per process: CTest runs the cases of this suite in parallel processes.
+    dir_ = fs::temp_directory_path() /
+           ("pkm_workflow_calibrate_hexapod_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    SimulateOptions o;
+    o.scenario = "seed004-hexapod-calibration";
+    o.out = dir_ / "sim";
+    (void)runSimulate(o);
+  }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+  static HexapodCalibrationRequest request(const std::string& out) {
+    HexapodCalibrationRequest r;
+    r.machine = "hexapod-default";
+    r.data = {(dir_ / "sim/tracker-pose.csv").string()};
+    r.holdout = {(dir_ / "sim/tracker-holdout.csv").string()};
+    r.out = (dir_ / out).string();
+    return r;
+  }
+  static fs::path dir_;
+};
+fs::path CalibrateHexapodWorkflow::dir_;
+
+TEST_F(CalibrateHexapodWorkflow, MeetsTheHeldOutTargetAndWritesItsFiles) {
+  std::vector<std::string> notices;
+  RunControl control;
+  control.notice = [&](const std::string& n) { notices.push_back(n); };
+  const HexapodCalibrationResult r = calibrateHexapod(request("cal.json"), control);
+  const io::HexapodCalibrationReport& rep = r.report;
+  ASSERT_TRUE(rep.holdout.has_value());
+  EXPECT_LT(rep.holdout->after.rms, kHeldOutRmsLimit);
+  EXPECT_GT(rep.holdout->before.rms, kImprovementAtLeast * rep.holdout->after.rms);
+  // 42 parameters and the tracker's 6-DOF placement: the base frame's rigid motion is the one
+  // thing tracker data cannot see.
+  EXPECT_EQ(rep.fit.identifiability.parameters, 48);
+  EXPECT_EQ(rep.fit.identifiability.rank, 42);
+  EXPECT_EQ(rep.worst.size(), 5u);
+  EXPECT_THAT(rep.worst[0].source, HasSubstr("tracker-pose.csv:"));
+  EXPECT_EQ(rep.workspace_poses, 200);
+  EXPECT_EQ(r.calibrated.model.name, rep.machine + "-calibrated");
+  // The notes reached the callback and the result, and the summary is the document written.
+  EXPECT_FALSE(notices.empty());
+  EXPECT_EQ(notices, r.notices);
+  EXPECT_EQ(io::readFileText(dir_ / "cal.summary.json"), r.summary_json);
+  EXPECT_EQ(r.summary_json, io::hexapodCalibrationJson(rep));
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "cal.json"));
+  EXPECT_THAT(io::readFileText(dir_ / "cal.hal"), HasSubstr("setp"));
+}
+
+TEST_F(CalibrateHexapodWorkflow, RefusesToOverwriteWithoutForce) {
+  io::writeFileAtomic(dir_ / "mine.hal", "the user's HAL file", io::Overwrite::kAllow);
+  try {
+    (void)calibrateHexapod(request("mine.json"));
+    FAIL() << "overwrote mine.hal";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("mine.hal exists; pass --force to overwrite it"));
+  }
+  EXPECT_EQ(io::readFileText(dir_ / "mine.hal"), "the user's HAL file");
+  EXPECT_FALSE(fs::exists(dir_ / "mine.json"));
+}
+
+TEST_F(CalibrateHexapodWorkflow, DataTheModelCannotExplainWritesNothing) {
+  // The tracker positions given in µm instead of mm: no geometry explains them.
+  std::istringstream in(io::readFileText(dir_ / "sim/tracker-pose.csv"));
+  std::ostringstream bad;
+  bool header = false;
+  std::vector<std::string> columns;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#' || !header) {
+      header = header || (!line.empty() && line[0] != '#');
+      bad << line << '\n';
+      if (columns.empty() && header) {
+        std::istringstream h(line);
+        for (std::string c; std::getline(h, c, ',');) columns.push_back(c);
+      }
+      continue;
+    }
+    std::istringstream row(line);
+    std::size_t k = 0;
+    std::string out;
+    for (std::string field; std::getline(row, field, ','); ++k) {
+      const bool position = columns[k] == "x" || columns[k] == "y" || columns[k] == "z";
+      out += (k ? "," : "") + (position ? std::to_string(1000.0 * std::stod(field)) : field);
+    }
+    bad << out << '\n';
+  }
+  io::writeFileAtomic(dir_ / "um.csv", bad.str(), io::Overwrite::kAllow);
+  HexapodCalibrationRequest r = request("um-cal.json");
+  r.data = {(dir_ / "um.csv").string()};
+  r.holdout.clear();
+  try {
+    (void)calibrateHexapod(r);
+    FAIL() << "accepted positions in the wrong unit";
+  } catch (const InvalidArgument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("does not explain the data"));
+  }
+  for (const char* f : {"um-cal.json", "um-cal.hal", "um-cal.summary.json"})
+    EXPECT_FALSE(fs::exists(dir_ / f)) << f;
+}
+
+TEST_F(CalibrateHexapodWorkflow, RequestsAreChecked) {
+  HexapodCalibrationRequest r = request("x.json");
+  r.frame = "sideways";
+  EXPECT_THROW(r.validate(), InvalidArgument);
+  r = request("x.json");
+  r.data.clear();
+  EXPECT_THROW(r.validate(), InvalidArgument);
+  r = request("x.json");
+  r.monte_carlo = 1;
+  EXPECT_THROW(r.validate(), InvalidArgument);
+  EXPECT_EQ(calibrationOutputs("a/cal.json").hal, "a/cal.hal");
+  EXPECT_EQ(calibrationOutputs("a/cal.json").summary, "a/cal.summary.json");
+  EXPECT_EQ(calibrationOutputs("cal").summary, "cal.summary.json");
+}
+
+}  // namespace
+}  // namespace pkm::workflow
