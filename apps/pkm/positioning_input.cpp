@@ -1,9 +1,12 @@
 // Readers of positioning and straightness files (positioning_input.hpp).
 #include "positioning_input.hpp"
 
+#include "pkm/metrology/per_target.hpp"
+
 #include <fmt/format.h>
 
 #include <map>
+#include <optional>
 #include <tuple>
 #include <utility>
 
@@ -14,22 +17,19 @@ bool isMeasurementFile(const io::TextTable& t) {
 }
 
 Profile meanProfile(const std::vector<io::TextTable>& tables, bool minus_target) {
-  std::map<double, std::pair<double, int>> sums;
+  std::vector<metrology::TargetSample> samples;
   for (const io::TextTable& t : tables) {
     const std::size_t ct = t.column({"target_mm"}), cr = t.column({"reading_mm"});
+    // A step-diagonal run's intermediate readings (sub_step > 0) are not readings at the target.
+    const std::optional<std::size_t> cs = t.findColumn({"sub_step"});
     for (std::size_t r = 0; r < t.rows(); ++r) {
+      if (cs && t.integer(r, *cs) != 0) continue;
       const double target = t.number(r, ct);
-      auto& [sum, n] = sums[target];
-      sum += t.number(r, cr) - (minus_target ? target : 0.0);
-      ++n;
+      samples.push_back({target, t.number(r, cr) - (minus_target ? target : 0.0)});
     }
   }
-  Profile p;
-  for (const auto& [target, sum] : sums) {
-    p.position.push_back(target);
-    p.value.push_back(sum.first / sum.second);
-  }
-  return p;
+  const metrology::TargetMeans m = metrology::perTargetMeans(samples);
+  return {m.target, m.mean};
 }
 
 Profile readStraightness(const std::vector<std::string>& files) {

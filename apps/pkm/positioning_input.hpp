@@ -20,8 +20,9 @@ struct Profile {
   std::vector<double> position, value;
 };
 
-/// Per-target mean of the readings of simulator files (over runs and directions), sorted by
-/// target; `minus_target` subtracts the target (positioning deviation).
+/// Per-target mean of the readings of simulator files (over runs and directions; rows with a
+/// sub_step other than 0 left out; metrology::perTargetMeans), sorted by target; `minus_target`
+/// subtracts the target (positioning deviation).
 [[nodiscard]] Profile meanProfile(const std::vector<io::TextTable>& tables, bool minus_target);
 
 /// Points (position, deviation) from plain `position,deviation` files (concatenated) or simulator

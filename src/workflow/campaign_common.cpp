@@ -13,6 +13,7 @@
 #include "pkm/io/atomic_file.hpp"
 #include "pkm/io/measurement_files.hpp"
 #include "pkm/io/simulation_metadata.hpp"
+#include "pkm/metrology/per_target.hpp"
 
 namespace pkm::workflow::campaign {
 
@@ -117,20 +118,13 @@ metrology::Iso230_2Result iso230_2(const std::vector<sim::LineRun>& runs) {
 void meanReadings(const std::vector<sim::LineRun>& runs,
                   std::vector<double>& targets,
                   std::vector<double>& means) {
-  std::map<double, std::pair<double, int>> acc;
+  std::vector<metrology::TargetSample> samples;
   for (const sim::LineRun& run : runs)
     for (const sim::LineReading& r : run.readings)
-      if (r.sub_step == 0) {
-        auto& [sum, n] = acc[r.target];
-        sum += r.reading;
-        ++n;
-      }
-  targets.clear();
-  means.clear();
-  for (const auto& [t, v] : acc) {
-    targets.push_back(t);
-    means.push_back(v.first / v.second);
-  }
+      if (r.sub_step == 0) samples.push_back({r.target, r.reading});
+  metrology::TargetMeans m = metrology::perTargetMeans(samples);
+  targets = std::move(m.target);
+  means = std::move(m.mean);
 }
 
 io::Scenario stepScenario(const StepContext& context, std::uint64_t& seed) {
