@@ -7,7 +7,7 @@ CMAKE_FLAGS ?=
 # CI builds treat warnings as errors.
 WERROR := $(if $(CI),-DPKM_WARNINGS_AS_ERRORS=ON,)
 
-.PHONY: all setup build demo test test-release test-asan bench format clean
+.PHONY: all setup build build-asan demo test test-release test-asan bench format clean
 
 all: build
 
@@ -31,9 +31,11 @@ test-release: build
 # derivatives at -O0 run some tests hundreds of times slower than Release), line-table debug
 # information only (-g1: file:line in sanitizer reports at a fraction of -g's compile time),
 # shared module libraries (static ones put ~220 MB into each test program: 29 GB in all).
-test-asan: setup
+build-asan: setup
 	@cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-g1 -O1" "-DPKM_SANITIZERS=address;undefined" -DPKM_SHARED_LIBS=ON $(WERROR) $(CMAKE_FLAGS) >/dev/null
 	@cmake --build $(ASAN_BUILD) -j $(JOBS)
+
+test-asan: build-asan
 	@cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
 
 test: test-release test-asan

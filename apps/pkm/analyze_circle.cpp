@@ -27,7 +27,8 @@ namespace {
 using Json = nlohmann::ordered_json;
 using metrology::Point2;
 
-std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : "-"; }
+/// A number with 9 significant digits for the tables, "-" when not finite.
+std::string num9(double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : "-"; }
 Json pair(const Point2& p) { return Json::array({p.x(), p.y()}); }
 
 /// Where a point came from, for the contact points.
@@ -91,23 +92,23 @@ void runCircle(const CircleState& st) {
   Output out;
   out.text() += fmt::format("circle ({} points)\n", p.size());
   out.text() += fmt::format("LSC centre\t{}\t{}\nLSC radius\t{}\nLSC diameter\t{}\n",
-                            num(lsc.circle.center.x()),
-                            num(lsc.circle.center.y()),
-                            num(lsc.circle.radius),
-                            num(2.0 * lsc.circle.radius));
-  out.text() +=
-      fmt::format("roundness LSC\t{}\nroundness MZC\t{}\n", num(lsc.roundness), num(mzc.roundness));
+                            num9(lsc.circle.center.x()),
+                            num9(lsc.circle.center.y()),
+                            num9(lsc.circle.radius),
+                            num9(2.0 * lsc.circle.radius));
+  out.text() += fmt::format(
+      "roundness LSC\t{}\nroundness MZC\t{}\n", num9(lsc.roundness), num9(mzc.roundness));
   out.text() += fmt::format("MZC centre\t{}\t{}\nMZC radii\t{}\t{}\nMZC certified\t{}\n",
-                            num(mzc.center.x()),
-                            num(mzc.center.y()),
-                            num(mzc.inner_radius),
-                            num(mzc.outer_radius),
+                            num9(mzc.center.x()),
+                            num9(mzc.center.y()),
+                            num9(mzc.inner_radius),
+                            num9(mzc.outer_radius),
                             mzc.certified ? "yes" : "no");
   for (const metrology::ZoneContact& c : mzc.contacts)
     out.text() += fmt::format("MZC contact\t{}\t{}\t{}\t{}:{}\n",
                               c.outer ? "outer" : "inner",
-                              num(c.point.x()),
-                              num(c.point.y()),
+                              num9(c.point.x()),
+                              num9(c.point.y()),
                               origin[c.index].file,
                               origin[c.index].line);
 }
@@ -201,19 +202,19 @@ void runCircular(const CircularState& st) {
                             ccw.size(),
                             st.centre);
   out.text() += fmt::format("G cw\t{}\nG ccw\t{}\nG(b)\t{}\nH\t{}\nH at deg\t{}\n",
-                            num(r.cw.circular_deviation),
-                            num(r.ccw.circular_deviation),
-                            num(r.bidirectional_deviation),
-                            num(r.hysteresis),
-                            num(radToDeg(r.hysteresis_angle)));
+                            num9(r.cw.circular_deviation),
+                            num9(r.ccw.circular_deviation),
+                            num9(r.bidirectional_deviation),
+                            num9(r.hysteresis),
+                            num9(radToDeg(r.hysteresis_angle)));
   if (r.cw.radial_deviation_max)
     out.text() += fmt::format("F cw max/min/mean\t{}\t{}\t{}\nF ccw max/min/mean\t{}\t{}\t{}\n",
-                              num(*r.cw.radial_deviation_max),
-                              num(*r.cw.radial_deviation_min),
-                              num(*r.cw.mean_radial_deviation),
-                              num(*r.ccw.radial_deviation_max),
-                              num(*r.ccw.radial_deviation_min),
-                              num(*r.ccw.mean_radial_deviation));
+                              num9(*r.cw.radial_deviation_max),
+                              num9(*r.cw.radial_deviation_min),
+                              num9(*r.cw.mean_radial_deviation),
+                              num9(*r.ccw.radial_deviation_max),
+                              num9(*r.ccw.radial_deviation_min),
+                              num9(*r.ccw.mean_radial_deviation));
 }
 
 void addCircular(CLI::App& analyze) {
@@ -350,21 +351,23 @@ void runProbeOffset(const ProbeOffsetState& st) {
   }
   Output out;
   out.text() += fmt::format("probe offset ({} touches, least squares)\n", touches.size());
-  out.text() +=
-      fmt::format("offset d (spindle -> ball)\t{}\t{}\n", num(fit.offset.x()), num(fit.offset.y()));
-  out.text() += fmt::format("o_probe = -d (seed 003 eq. 8)\t{}\t{}\n", num(o.x()), num(o.y()));
+  out.text() += fmt::format(
+      "offset d (spindle -> ball)\t{}\t{}\n", num9(fit.offset.x()), num9(fit.offset.y()));
+  out.text() += fmt::format("o_probe = -d (seed 003 eq. 8)\t{}\t{}\n", num9(o.x()), num9(o.y()));
   out.text() += fmt::format("ring centre\t{}\t{}\nball path radius\t{}\nrms\t{}\n",
-                            num(fit.ring_center.x()),
-                            num(fit.ring_center.y()),
-                            num(fit.ball_path_radius),
-                            num(fit.rms));
+                            num9(fit.ring_center.x()),
+                            num9(fit.ring_center.y()),
+                            num9(fit.ball_path_radius),
+                            num9(fit.rms));
   if (effective)
-    out.text() += fmt::format("effective stylus diameter\t{}\n", num(2.0 * *effective));
+    out.text() += fmt::format("effective stylus diameter\t{}\n", num9(2.0 * *effective));
   if (paper) {
     out.text() += fmt::format(
-        "eq. 9 o_probe ({} runs)\t{}\t{}\n", runs, num(paper->first.x()), num(paper->first.y()));
-    out.text() += fmt::format(
-        "eq. 8 o_probe ({} runs)\t{}\t{}\n", runs, num(paper->second.x()), num(paper->second.y()));
+        "eq. 9 o_probe ({} runs)\t{}\t{}\n", runs, num9(paper->first.x()), num9(paper->first.y()));
+    out.text() += fmt::format("eq. 8 o_probe ({} runs)\t{}\t{}\n",
+                              runs,
+                              num9(paper->second.x()),
+                              num9(paper->second.y()));
   }
 }
 
