@@ -3,7 +3,6 @@
 // summary.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <unistd.h>
 
 #include <cstdio>
 
@@ -97,18 +96,10 @@ void runCalibrate(CalibrateArgs args) {
     args.request.target_offset =
         Eigen::Vector3d(args.target_offset[0], args.target_offset[1], args.target_offset[2]);
   }
-  const bool tty = ::isatty(STDERR_FILENO) != 0;
-  workflow::RunControl control;
-  control.notice = [](const std::string& n) { printNotices({n}); };
-  bool progress_shown = false;
-  control.progress = [tty, &progress_shown](const workflow::ProgressEvent& e) {
-    if (!tty) return;
-    fmt::print(stderr, "\rpkm: {}", e.message);
-    progress_shown = true;
-  };
+  CliRunControl run;
   const workflow::HexapodCalibrationResult result =
-      workflow::calibrateHexapod(args.request, control);
-  if (progress_shown) fmt::print(stderr, "\n");
+      workflow::calibrateHexapod(args.request, run.control());
+  run.finish();
   if (args.json) {
     std::fwrite(result.summary_json.data(), 1, result.summary_json.size(), stdout);
     std::fflush(stdout);

@@ -5,7 +5,6 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <unistd.h>
 
 #include <cstdio>
 
@@ -127,17 +126,10 @@ void runExechon(ExechonArgs args) {
     args.request.target_offset =
         Eigen::Vector3d(args.target_offset[0], args.target_offset[1], args.target_offset[2]);
   }
-  const bool tty = ::isatty(STDERR_FILENO) != 0;
-  workflow::RunControl control;
-  control.notice = [](const std::string& n) { printNotices({n}); };
-  bool progress_shown = false;
-  control.progress = [tty, &progress_shown](const workflow::ProgressEvent& e) {
-    if (!tty) return;
-    fmt::print(stderr, "\rpkm: {}", e.message);
-    progress_shown = true;
-  };
-  const workflow::ExechonCalibrationResult r = workflow::calibrateExechon(args.request, control);
-  if (progress_shown) fmt::print(stderr, "\n");
+  CliRunControl run;
+  const workflow::ExechonCalibrationResult r =
+      workflow::calibrateExechon(args.request, run.control());
+  run.finish();
   if (args.json) {
     std::fwrite(r.summary_json.data(), 1, r.summary_json.size(), stdout);
     std::fflush(stdout);

@@ -1,6 +1,7 @@
 #include "cli_common.hpp"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <filesystem>
 
@@ -36,6 +37,20 @@ void writeTextOutput(const std::string& out, const std::string& text) {
 
 void printNotices(const std::vector<std::string>& notices) {
   for (const auto& n : notices) fmt::print(stderr, "pkm: note: {}\n", n);
+}
+
+CliRunControl::CliRunControl() {
+  control_.notice = [](const std::string& n) { printNotices({n}); };
+  if (::isatty(STDERR_FILENO) == 0) return;
+  control_.progress = [this](const workflow::ProgressEvent& e) {
+    fmt::print(stderr, "\rpkm: {}", e.message);
+    shown_ = true;
+  };
+}
+
+void CliRunControl::finish() {
+  if (shown_) fmt::print(stderr, "\n");
+  shown_ = false;
 }
 
 void MachineOption::add(CLI::App& cmd) { addMachineOptions(cmd, spec, ini); }

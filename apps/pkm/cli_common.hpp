@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pkm/io/hexapod_machine.hpp"
+#include "pkm/workflow/progress.hpp"
 
 namespace pkm::cli {
 
@@ -53,6 +54,23 @@ void printNotices(const std::vector<std::string>& notices);
 
 /// "hexapod" or "exechon": the type of a machine file (its "type" field), or of a built-in name.
 [[nodiscard]] std::string machineTypeOf(const std::string& spec);
+
+/// A workflow's RunControl for a command: notices printed as "pkm: note: ...", progress messages
+/// as one line rewritten in place on a terminal's standard error (nothing when it is not a
+/// terminal). Call finish() after the workflow to end that line.
+class CliRunControl {
+ public:
+  CliRunControl();
+  CliRunControl(const CliRunControl&) = delete;
+  CliRunControl& operator=(const CliRunControl&) = delete;
+  [[nodiscard]] const workflow::RunControl& control() const { return control_; }
+  /// Ends the progress line, if one was shown.
+  void finish();
+
+ private:
+  workflow::RunControl control_;
+  bool shown_ = false;
+};
 
 /// Adds --machine (-m) and --ini to `cmd`, stored in `spec` and `ini`.
 void addMachineOptions(CLI::App& cmd, std::string& spec, std::string& ini);

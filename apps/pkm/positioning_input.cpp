@@ -1,14 +1,14 @@
 // Readers of positioning and straightness files (positioning_input.hpp).
 #include "positioning_input.hpp"
 
-#include "pkm/metrology/per_target.hpp"
-
 #include <fmt/format.h>
 
 #include <map>
 #include <optional>
 #include <tuple>
 #include <utility>
+
+#include "pkm/metrology/per_target.hpp"
 
 namespace pkm::cli {
 

@@ -43,16 +43,21 @@ HoldoutErrors hexapodHoldoutErrors(const kinematics::HexapodModel& model,
   return e;
 }
 
-HoldoutErrors exechonHoldoutErrors(const kinematics::ExechonModel& model,
-                                   const std::optional<geometry::RigidTransform>& frame,
-                                   const ExechonCalibrationData& held,
-                                   const kinematics::FkOptions& fk) {
+namespace {
+
+/// |world_T_measurement · measured − predicted| over observations; `predict` gives nullopt for an
+/// observation without a prediction, counted in `failures` when `count_failures`.
+template <class Observation, class Predict>
+HoldoutErrors targetErrors(const std::vector<Observation>& observations,
+                           const std::optional<geometry::RigidTransform>& frame,
+                           bool count_failures,
+                           Predict predict) {
   HoldoutErrors e;
   double sum = 0.0;
-  for (const ExechonObservation& o : held.observations) {
-    const auto p = exechonTarget(model, o.joints, held.target_offset, model.home, fk);
+  for (const Observation& o : observations) {
+    const std::optional<Eigen::Vector3d> p = predict(o);
     if (!p) {
-      ++e.failures;
+      if (count_failures) ++e.failures;
       continue;
     }
     const Eigen::Vector3d m =
@@ -66,26 +71,26 @@ HoldoutErrors exechonHoldoutErrors(const kinematics::ExechonModel& model,
   return e;
 }
 
+}  // namespace
+
+HoldoutErrors exechonHoldoutErrors(const kinematics::ExechonModel& model,
+                                   const std::optional<geometry::RigidTransform>& frame,
+                                   const ExechonCalibrationData& held,
+                                   const kinematics::FkOptions& fk) {
+  return targetErrors(held.observations, frame, true, [&](const ExechonObservation& o) {
+    return exechonTarget(model, o.joints, held.target_offset, model.home, fk);
+  });
+}
+
 HoldoutErrors hybridHoldoutErrors(const kinematics::HybridMachineModel& model,
                                   const kinematics::GeometricErrors& known,
                                   const kinematics::HybridSquareness& squareness,
                                   const HybridCalibrationData& held,
                                   const std::optional<geometry::RigidTransform>& frame,
                                   const TripodMotion& tripod) {
-  HoldoutErrors e;
-  double sum = 0.0;
-  for (const HybridObservation& o : held.observations) {
-    const auto p = hybridTarget(model, known, squareness, o.command, held.target_offset, tripod);
-    if (!p) continue;
-    const Eigen::Vector3d m =
-        frame ? Eigen::Vector3d(frame->rotation * o.point + frame->translation) : o.point;
-    const double d = (m - *p).norm();
-    sum += d * d;
-    e.max = std::max(e.max, d);
-    ++e.poses;
-  }
-  e.rms = e.poses > 0 ? std::sqrt(sum / e.poses) : 0.0;
-  return e;
+  return targetErrors(held.observations, frame, false, [&](const HybridObservation& o) {
+    return hybridTarget(model, known, squareness, o.command, held.target_offset, tripod);
+  });
 }
 
 geometry::RigidTransform initialHybridMeasurementFrame(

@@ -6,6 +6,7 @@
 #include <fmt/ranges.h>
 
 #include "calibrate_exechon_detail.hpp"
+#include "calibration_common.hpp"
 #include "pkm/calibration/acceptance.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/atomic_file.hpp"
@@ -51,15 +52,13 @@ sim::ExechonTripodErrors tripodDifference(const kinematics::ExechonModel& nomina
 /// Throws when the squareness fit does not explain the hybrid data.
 void acceptSquareness(const cal::HybridCalibrationSummary& s, double characteristic_length) {
   if (cal::explainsData(s.after.rms, characteristic_length)) return;
-  std::string worst;
-  for (const auto& w : s.worst) worst += fmt::format("\n  {}: {:.4g}", w.source, w.residual);
   throw InvalidArgument(fmt::format(
       "squareness calibration does not explain the hybrid data: residual RMS {:.4g} (max "
       "{:.4g}); check the units, --errors and outliers; nothing was written. Largest "
       "residuals:{}",
       s.after.rms,
       s.after.max,
-      worst));
+      detail::worstList(s.worst)));
 }
 
 /// The four squareness errors from the hybrid tracker files, with the calibrated tripod's error
@@ -137,17 +136,7 @@ cal::RobustLoss detail::robustLoss(const std::string& name) {
 }
 
 void ExechonCalibrationRequest::validate() const {
-  PKM_CHECK(!data.empty(), "--data: give at least one tracker file");
-  PKM_CHECK(!out.empty(), "--out: give the calibrated machine file CAL.json");
-  PKM_CHECK(frame == "auto" || frame == "world" || frame == "tracker",
-            "--frame must be auto, world or tracker, got '{}'",
-            frame);
-  PKM_CHECK(loss == "none" || loss == "huber" || loss == "cauchy",
-            "--loss must be none, huber or cauchy, got '{}'",
-            loss);
-  PKM_CHECK(monte_carlo == 0 || (monte_carlo >= 2 && monte_carlo <= 100000),
-            "--monte-carlo must be 2 … 100000, got {}",
-            monte_carlo);
+  detail::checkCalibrationRequest(data, "tracker file", out, frame, loss, monte_carlo);
 }
 
 std::string calibrationErrorsOutput(const std::string& out) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "calibrate_exechon_detail.hpp"
+#include "calibration_common.hpp"
 #include "pkm/calibration/acceptance.hpp"
 #include "pkm/calibration/exechon_uncertainty.hpp"
 #include "pkm/calibration/holdout.hpp"
@@ -104,13 +105,7 @@ io::ExechonTripodReport::MonteCarlo monteCarlo(const ExechonCalibrationRequest& 
   mc.threads = r.threads;
   mc.position_sigma = r.sigma_position > 0.0 ? r.sigma_position : s.sigma;
   mc.direction_sigma = r.sigma_orientation_urad * 1e-6;
-  mc.progress = [&control](int done, int total) {
-    control.report({"monte-carlo",
-                    static_cast<std::size_t>(done),
-                    static_cast<std::size_t>(total),
-                    0.0,
-                    fmt::format("Monte Carlo {}/{}", done, total)});
-  };
+  mc.progress = detail::monteCarloProgress(control);
   io::ExechonTripodReport::MonteCarlo out;
   out.summary = cal::monteCarloExechon(machine.model,
                                        data,
@@ -132,8 +127,6 @@ void accept(const cal::ExechonCalibrationSummary& s, const kinematics::ExechonMo
         fmt::format("calibration result is implausible; nothing was written:\n  {}",
                     fmt::join(s.warnings, "\n  ")));
   if (cal::explainsData(s.after.rms, model.characteristicLength())) return;
-  std::string worst;
-  for (const auto& w : s.worst) worst += fmt::format("\n  {}: {:.4g}", w.source, w.residual);
   throw InvalidArgument(fmt::format(
       "calibration does not explain the data: residual RMS {:.4g} (max {:.4g}) after {} "
       "iterations ({}); check the units (legs {}, wrist angles in degrees), the --frame option "
@@ -143,7 +136,7 @@ void accept(const cal::ExechonCalibrationSummary& s, const kinematics::ExechonMo
       s.iterations,
       s.termination,
       toString(model.unit),
-      worst));
+      detail::worstList(s.worst)));
 }
 
 }  // namespace

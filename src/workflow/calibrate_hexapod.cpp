@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "calibration_common.hpp"
 #include "pkm/calibration/acceptance.hpp"
 #include "pkm/calibration/hexapod_calibration.hpp"
 #include "pkm/calibration/holdout.hpp"
@@ -97,13 +98,7 @@ io::HexapodCalibrationReport::MonteCarlo monteCarlo(const HexapodCalibrationRequ
   mc.position_sigma = r.sigma_position > 0.0 ? r.sigma_position : s.sigma;
   mc.orientation_sigma = r.sigma_orientation_urad * 1e-6;
   mc.gauge_sigma = r.sigma_gauge > 0.0 ? r.sigma_gauge : s.sigma;
-  mc.progress = [&control](int done, int total) {
-    control.report({"monte-carlo",
-                    static_cast<std::size_t>(done),
-                    static_cast<std::size_t>(total),
-                    0.0,
-                    fmt::format("Monte Carlo {}/{}", done, total)});
-  };
+  mc.progress = detail::monteCarloProgress(control);
   const kinematics::HexapodModel estimate = cal::withHexapodParameters(model, s.parameters);
   io::HexapodCalibrationReport::MonteCarlo out;
   out.summary =
@@ -159,17 +154,7 @@ void describe(io::HexapodCalibrationReport& rep,
 }  // namespace
 
 void HexapodCalibrationRequest::validate() const {
-  PKM_CHECK(!data.empty(), "--data: give at least one calibration file");
-  PKM_CHECK(!out.empty(), "--out: give the calibrated machine file CAL.json");
-  PKM_CHECK(frame == "auto" || frame == "world" || frame == "tracker",
-            "--frame must be auto, world or tracker, got '{}'",
-            frame);
-  PKM_CHECK(loss == "none" || loss == "huber" || loss == "cauchy",
-            "--loss must be none, huber or cauchy, got '{}'",
-            loss);
-  PKM_CHECK(monte_carlo == 0 || (monte_carlo >= 2 && monte_carlo <= 100000),
-            "--monte-carlo must be 2 … 100000, got {}",
-            monte_carlo);
+  detail::checkCalibrationRequest(data, "calibration file", out, frame, loss, monte_carlo);
 }
 
 CalibrationOutputs calibrationOutputs(const std::string& out) {

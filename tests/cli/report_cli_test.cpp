@@ -12,7 +12,9 @@ namespace {
 
 using ::testing::HasSubstr;
 
-std::string fixture() { return std::string(PKM_SOURCE_DIR) + "/tests/data/report/example.json"; }
+std::string fixture() {
+  return (std::filesystem::path(PKM_SOURCE_DIR) / "tests/data/report/example.json").string();
+}
 
 TEST_F(CliTest, RendersTheFixture) {
   const CliRun r = pkm({"report", "render", fixture(), "--out", path("report.html")});
