@@ -172,11 +172,7 @@ StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
   if (ctx.spec.contains("data")) return fromFiles(ctx);
   std::uint64_t seed = 0;
   io::Scenario scenario = stepScenario(ctx, seed);
-  auto vm = std::dynamic_pointer_cast<sim::CartesianMachine>(scenario.campaign.machine);
-  if (!vm)
-    throw IoError(fmt::format("{}: scenario '{}' is not a Cartesian-machine scenario",
-                              ctx.source,
-                              scenario.campaign.name));
+  const auto vm = scenarioMachine<sim::CartesianMachine>(ctx, scenario, "Cartesian-machine");
   const std::string& src = ctx.source;
   StepOutcome out;
   out.id = ctx.spec.value("id", std::string("seed001"));

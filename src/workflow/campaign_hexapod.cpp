@@ -118,10 +118,7 @@ StepOutcome runHexapodCalibrationStep(const StepContext& ctx) {
   if (ctx.spec.contains("data")) return runHexapodCalibrationFiles(ctx);
   std::uint64_t seed = 0;
   io::Scenario scenario = stepScenario(ctx, seed);
-  auto vm = std::dynamic_pointer_cast<sim::HexapodVirtualMachine>(scenario.campaign.machine);
-  if (!vm)
-    throw IoError(fmt::format(
-        "{}: scenario '{}' is not a hexapod scenario", ctx.source, scenario.campaign.name));
+  const auto vm = scenarioMachine<sim::HexapodVirtualMachine>(ctx, scenario, "hexapod");
   const std::vector<std::string> fit = names(ctx.spec, "fit", "tracker-pose");
   const std::vector<std::string> holdout = names(ctx.spec, "holdout", "tracker-holdout");
   const std::string linear = ctx.spec.value("positioning", std::string("linear-x"));

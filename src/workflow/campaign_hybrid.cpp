@@ -266,10 +266,7 @@ StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
   if (ctx.spec.contains("data")) return fromFiles(ctx);
   std::uint64_t seed = 0;
   io::Scenario scenario = stepScenario(ctx, seed);
-  auto vm = std::dynamic_pointer_cast<sim::HybridVirtualMachine>(scenario.campaign.machine);
-  if (!vm)
-    throw IoError(fmt::format(
-        "{}: scenario '{}' is not a hybrid-machine scenario", ctx.source, scenario.campaign.name));
+  const auto vm = scenarioMachine<sim::HybridVirtualMachine>(ctx, scenario, "hybrid-machine");
   const std::string& src = ctx.source;
   StepOutcome out;
   out.id = ctx.spec.value("id", std::string("seed000"));

@@ -7,14 +7,19 @@
 /// before/after figures and report section.
 #pragma once
 
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <functional>
 #include <list>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "pkm/core/error.hpp"
 #include "pkm/io/result_store.hpp"
 #include "pkm/io/scenario.hpp"
 #include "pkm/io/text_table.hpp"
@@ -152,6 +157,19 @@ struct ProbeFiles {
 /// Reads them; throws pkm::IoError "FILE:LINE: message" for a missing column or metadata key, a
 /// bad number, or a set-up that cannot be (a ball larger than the ring, a tilted tool).
 [[nodiscard]] ProbeFiles readProbeFiles(const StepContext& context);
+
+/// The virtual machine of `scenario` as a `Machine` (simulation::CartesianMachine, ...). Throws
+/// pkm::IoError "SOURCE: scenario 'NAME' is not a KIND scenario" when it is another kind.
+template <class Machine>
+[[nodiscard]] std::shared_ptr<Machine> scenarioMachine(const StepContext& context,
+                                                       const io::Scenario& scenario,
+                                                       std::string_view kind) {
+  auto vm = std::dynamic_pointer_cast<Machine>(scenario.campaign.machine);
+  if (!vm)
+    throw IoError(fmt::format(
+        "{}: scenario '{}' is not a {} scenario", context.source, scenario.campaign.name, kind));
+  return vm;
+}
 
 /// The scenario named by the step's "scenario" (a file relative to the campaign's folder, or a
 /// built-in name) and the seed ("seed", default the scenario's).
