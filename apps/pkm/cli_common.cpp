@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "pkm/core/error.hpp"
+#include "pkm/io/atomic_file.hpp"
 #include "pkm/io/machine_loader.hpp"
 
 namespace pkm::cli {
@@ -23,16 +24,7 @@ void writeTextOutput(const std::string& out, const std::string& text) {
     std::fflush(stdout);
     return;
   }
-  const std::string tmp = out + ".tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (f == nullptr) throw IoError(fmt::format("{}: cannot write", out));
-  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !written) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw IoError(fmt::format("{}: write failed", out));
-  }
-  std::filesystem::rename(tmp, out);
+  io::writeFileAtomic(out, text, io::Overwrite::kAllow);
 }
 
 void printNotices(const std::vector<std::string>& notices) {

@@ -45,8 +45,8 @@ class Output {
 };
 
 /// Writes `text` to standard output when `out` is empty, otherwise to the file `out` through
-/// `out + ".tmp"` renamed into place (a failed write leaves no partial file). Throws pkm::IoError
-/// "PATH: cannot write" / "PATH: write failed". Does not check for an existing file.
+/// io::writeFileAtomic (a failed write leaves no partial file). Does not check for an existing
+/// file.
 void writeTextOutput(const std::string& out, const std::string& text);
 
 /// Prints each notice to stderr as "pkm: note: ...".

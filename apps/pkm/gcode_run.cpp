@@ -20,6 +20,7 @@
 #include "pkm/cnc/joint_checks.hpp"
 #include "pkm/cnc/joint_path.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/io/atomic_file.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/number_format.hpp"
 
@@ -47,8 +48,8 @@ struct RunArgs {
 constexpr int kExitViolation = 1;
 
 void refuseOverwrite(const std::string& path, bool force) {
-  if (!path.empty() && !force && std::filesystem::exists(path))
-    throw IoError(fmt::format("{} exists; pass --force to overwrite it", path));
+  if (!path.empty())
+    io::checkOverwrite(path, force ? io::Overwrite::kAllow : io::Overwrite::kRefuse);
 }
 
 /// Angles (joint_angle) are reported in degrees, everything else in its own unit.
@@ -225,22 +226,19 @@ void runExechon(const RunArgs& a, const cnc::MoveCollector& program, JointRun& r
   };
 }
 
-/// Writes the joint CSV through a temporary file renamed into place.
+/// Writes the joint CSV through io::AtomicFile, in blocks of about 1 MiB.
 void writeJointCsv(const std::string& path, const JointRun& run) {
-  const std::string tmp = path + ".tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (f == nullptr) throw IoError(fmt::format("{}: cannot write", path));
+  io::AtomicFile f(path, io::Overwrite::kAllow);
   std::string buf = run.csv_header + "\n";
   for (std::size_t i = 0; i < run.points.size(); ++i) {
     run.csv_row(buf, i);
     if (buf.size() > (1u << 20)) {
-      std::fwrite(buf.data(), 1, buf.size(), f);
+      f.write(buf);
       buf.clear();
     }
   }
-  std::fwrite(buf.data(), 1, buf.size(), f);
-  if (std::fclose(f) != 0) throw IoError(fmt::format("{}: write failed", path));
-  std::filesystem::rename(tmp, path);
+  f.write(buf);
+  f.commit();
 }
 
 /// "-" for a margin that no evaluation set (+infinity), else the margin and its unit.

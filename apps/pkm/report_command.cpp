@@ -4,13 +4,12 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <memory>
 #include <string>
 
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/io/atomic_file.hpp"
 #include "pkm/io/html_report.hpp"
 
 namespace pkm::cli {
@@ -22,33 +21,11 @@ struct ReportArgs {
   bool force = false;
 };
 
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(fmt::format("{}: cannot open for reading", path));
-  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw IoError(fmt::format("{}: read error", path));
-  return text;
-}
-
 void runRender(const ReportArgs& args) {
-  std::error_code ec;
-  if (!args.force && std::filesystem::exists(args.out, ec))
-    throw IoError(fmt::format("{} exists; pass --force to overwrite it", args.out));
-  const std::string html = io::renderHtmlReport(readText(args.data), args.data);
-  // Written next to the target first, so that a failed write never leaves half a report.
-  const std::string tmp = args.out + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw IoError(fmt::format("{}: cannot open for writing", tmp));
-    out.write(html.data(), static_cast<std::streamsize>(html.size()));
-    out.close();
-    if (!out) throw IoError(fmt::format("{}: write error", tmp));
-  }
-  std::filesystem::rename(tmp, args.out, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw IoError(fmt::format("{}: cannot write the report", args.out));
-  }
+  const io::Overwrite overwrite = args.force ? io::Overwrite::kAllow : io::Overwrite::kRefuse;
+  io::checkOverwrite(args.out, overwrite);
+  const std::string html = io::renderHtmlReport(io::readFileText(args.data), args.data);
+  io::writeFileAtomic(args.out, html, overwrite);
   fmt::print("pkm: wrote {} ({} bytes)\n", args.out, html.size());
 }
 
