@@ -11,6 +11,7 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/csv.hpp"
+#include "pkm/io/named_text.hpp"
 
 namespace pkm::io {
 namespace {
@@ -23,23 +24,11 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-std::string readAll(const std::string& path) {
-  std::ostringstream text;
-  if (path == "-") {
-    text << std::cin.rdbuf();
-    return text.str();
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(locate(path, 0, "cannot open the file"));
-  text << in.rdbuf();
-  if (in.bad()) throw IoError(locate(path, 0, "cannot read the file"));
-  return text.str();
-}
-
 }  // namespace
 
 TextTable TextTable::read(const std::string& path) {
-  return parse(readAll(path), path == "-" ? std::string("<stdin>") : path);
+  NamedText in = readNamedText(path);
+  return parse(std::move(in.text), in.name);
 }
 
 TextTable TextTable::parse(std::string text, const std::string& source) {
