@@ -3,10 +3,10 @@
 #include <ceres/ceres.h>
 
 #include <Eigen/SVD>
-#include <chrono>
 #include <cmath>
 #include <memory>
 
+#include "detail/least_squares.hpp"
 #include "detail/observations.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/so3.hpp"
@@ -455,30 +455,13 @@ HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
       }
       problem.AddResidualBlock(new NullSpacePrior(ns, starts), nullptr, blocks);
     }
-  if (n_free < kHexapodParameters) {
-    std::vector<int> fixed;
-    for (int k = 0; k < kHexapodParameters; ++k)
-      if (!options.free[static_cast<std::size_t>(k)]) fixed.push_back(k);
-    problem.SetManifold(theta.data(), new ceres::SubsetManifold(kHexapodParameters, fixed));
-  }
-  ceres::Solver::Options solver;
-  solver.minimizer_type = ceres::TRUST_REGION;
-  solver.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = options.max_iterations;
-  solver.function_tolerance = options.function_tolerance;
-  solver.gradient_tolerance = options.gradient_tolerance;
-  solver.parameter_tolerance = options.parameter_tolerance;
-  solver.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  const auto t0 = std::chrono::steady_clock::now();
-  ceres::Solve(solver, &problem, &summary);
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  out.converged = summary.termination_type == ceres::CONVERGENCE;
-  out.termination = summary.message;
-  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  out.initial_cost = summary.initial_cost;
-  out.final_cost = summary.final_cost;
+  detail::holdFixedParameters(problem, theta.data(), kHexapodParameters, options.free);
+  detail::solveLeastSquares(problem,
+                            {options.max_iterations,
+                             options.function_tolerance,
+                             options.gradient_tolerance,
+                             options.parameter_tolerance})
+      .copyTo(out);
   out.parameters = theta;
 
   const HexapodModel estimated = withHexapodParameters(initial, theta);

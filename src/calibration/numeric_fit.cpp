@@ -3,9 +3,9 @@
 #include <ceres/ceres.h>
 
 #include <Eigen/SVD>
-#include <chrono>
 #include <cmath>
 
+#include "detail/least_squares.hpp"
 #include "pkm/core/error.hpp"
 
 namespace pkm::calibration::detail {
@@ -175,30 +175,13 @@ NumericSolution solveNumeric(const NumericProblem& problem,
       v(out.free_indices[static_cast<std::size_t>(c)]) = out.identifiability.null_space(c, k);
     cp.AddResidualBlock(new Prior(v, theta0), nullptr, theta.data());
   }
-  if (n_free < n) {
-    std::vector<int> fixed;
-    for (Eigen::Index k = 0; k < n; ++k)
-      if (!options.free[static_cast<std::size_t>(k)]) fixed.push_back(static_cast<int>(k));
-    cp.SetManifold(theta.data(), new ceres::SubsetManifold(static_cast<int>(n), fixed));
-  }
-  ceres::Solver::Options solver;
-  solver.minimizer_type = ceres::TRUST_REGION;
-  solver.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = options.max_iterations;
-  solver.function_tolerance = options.function_tolerance;
-  solver.gradient_tolerance = options.gradient_tolerance;
-  solver.parameter_tolerance = options.parameter_tolerance;
-  solver.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  const auto t0 = std::chrono::steady_clock::now();
-  ceres::Solve(solver, &cp, &summary);
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  out.converged = summary.termination_type == ceres::CONVERGENCE;
-  out.termination = summary.message;
-  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  out.initial_cost = summary.initial_cost;
-  out.final_cost = summary.final_cost;
+  detail::holdFixedParameters(cp, theta.data(), static_cast<int>(n), options.free);
+  solveLeastSquares(cp,
+                    {options.max_iterations,
+                     options.function_tolerance,
+                     options.gradient_tolerance,
+                     options.parameter_tolerance})
+      .copyTo(out);
   out.theta = theta;
 
   // Covariance σ²(JᵀJ)⁺ of the free unknowns on the identifiable subspace.
