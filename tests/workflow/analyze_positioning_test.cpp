@@ -2,8 +2,12 @@
 // data with closed-form results; upload-named errors; bad requests refused.
 #include "pkm/workflow/analyze_positioning.hpp"
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
 
 #include "pkm/core/error.hpp"
 
@@ -77,19 +81,20 @@ TEST(AnalyzePositioningWorkflow, ParallelismIsTheSlopeDifference) {
 }
 
 TEST(AnalyzePositioningWorkflow, SquarenessOfOneFaceDiagonal) {
-  // d(u, v) = u·v/L · s for a squareness s on a diagonal of slope 1 (seed 000 eq 4, first order).
-  const double s = 1e-4, l = std::sqrt(2.0) * 100.0;
+  // A squareness xy shortens the diagonal (u, v) by xy·u·v/√(u² + v²) (docs/conventions.md,
+  // "First-order diagonal formula").
+  const double s = 1e-4;
   std::string text = "u,v,deviation\n";
   for (int k = 0; k <= 4; ++k) {
     const double u = 25.0 * k;
-    text += fmt::format("{},{},{}\n", u, u, u * u / l * s);
+    text += fmt::format("{},{},{}\n", u, u, k == 0 ? 0.0 : -s * u * u / std::hypot(u, u));
   }
   SquarenessRequest r;
   r.data = {{"diag", text}};
   const io::SquarenessReport rep = analyzeSquareness(r);
   EXPECT_EQ(rep.diagonals, 1u);
   EXPECT_EQ(rep.result.points_used, 4);
-  EXPECT_NEAR(std::abs(rep.result.squareness), s, 2e-6);
+  EXPECT_NEAR(rep.result.squareness, s, 1e-12);
 }
 
 }  // namespace
