@@ -44,6 +44,11 @@ void printJson(const nlohmann::ordered_json& json) {
   std::fflush(stdout);
 }
 
+void printText(const std::string& text) {
+  std::fwrite(text.data(), 1, text.size(), stdout);
+  std::fflush(stdout);
+}
+
 void addAnalyzeCommand(CLI::App& app) {
   CLI::App* analyze = app.add_subcommand(
       "analyze",

@@ -1,7 +1,8 @@
 /// @file
 /// @brief `pkm analyze <kind>`: the registry of analysis kinds and the options and output helpers
-/// they share (docs/analysis.md). Each kind lives in its own apps/pkm/analyze_*.cpp and registers
-/// itself with a static AnalyzeRegistration.
+/// they share (docs/analysis.md). Each kind lives in its own apps/pkm/analyze_*.cpp, registers
+/// itself with a static AnalyzeRegistration, turns its options into a workflow request
+/// (pkm/workflow/analyze_*.hpp) and prints the report.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -9,6 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "pkm/io/analysis_report.hpp"
+#include "pkm/io/analysis_text.hpp"
 
 namespace pkm::cli {
 
@@ -33,6 +37,16 @@ struct AnalyzeIo {
 /// Writes `json` to stdout as one JSON object (2-space indent, a final newline). Non-finite
 /// numbers become null.
 void printJson(const nlohmann::ordered_json& json);
+
+/// Writes `text` to stdout as it is.
+void printText(const std::string& text);
+
+/// Prints an analysis report: its JSON document (io::analysisJson) with --json, else its table
+/// (io::analysisText).
+template <class Report>
+void printReport(const AnalyzeIo& io, const Report& report) {
+  printText(io.json ? io::analysisJson(report) : io::analysisText(report));
+}
 
 /// Adds `pkm analyze` with every registered kind to `app`.
 void addAnalyzeCommand(CLI::App& app);

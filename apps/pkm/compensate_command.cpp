@@ -20,9 +20,10 @@
 #include "pkm/compensation/linuxcnc_comp.hpp"
 #include "pkm/compensation/siemens_comp.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/io/named_text.hpp"
+#include "pkm/io/positioning_files.hpp"
 #include "pkm/metrology/iso230_2.hpp"
 #include "pkm/metrology/straightness.hpp"
-#include "positioning_input.hpp"
 
 namespace pkm::cli {
 namespace {
@@ -67,7 +68,7 @@ Built buildAxisTable(const TableState& st, comp::TableFormat format, std::size_t
   if (st.axis.empty()) {
     throw InvalidArgument(fmt::format("--axis is required for --format {}", st.format));
   }
-  const auto samples = readPositioningSamples(st.data);
+  const auto samples = io::readPositioningSamples(io::readNamedTexts(st.data));
   Built b;
   b.iso = metrology::evaluateIso230_2(samples);
   const comp::FormatTraits tr = comp::traits(format);
@@ -121,7 +122,7 @@ Built buildCrossTable(const TableState& st, comp::TableFormat format, std::size_
     throw InvalidArgument(fmt::format(
         "--format {} with straightness data needs --input-axis and --output-axis", st.format));
   }
-  const Profile p = readStraightness(st.data);
+  const io::Profile p = io::readStraightness(io::readNamedTexts(st.data));
   comp::CrossAxisTable raw =
       comp::crossTableFromPoints(st.input_axis, st.output_axis, p.position, p.value);
   if (st.line != "raw") {

@@ -1,24 +1,25 @@
-// Readers of positioning and straightness files (positioning_input.hpp).
-#include "positioning_input.hpp"
+// Readers of positioning and straightness files (positioning_files.hpp).
+#include "pkm/io/positioning_files.hpp"
 
 #include <fmt/format.h>
 
 #include <map>
 #include <optional>
+#include <string>
 #include <tuple>
 #include <utility>
 
 #include "pkm/metrology/per_target.hpp"
 
-namespace pkm::cli {
+namespace pkm::io {
 
-bool isMeasurementFile(const io::TextTable& t) {
+bool isMeasurementFile(const TextTable& t) {
   return t.findColumn({"target_mm"}).has_value() && t.findColumn({"reading_mm"}).has_value();
 }
 
-Profile meanProfile(const std::vector<io::TextTable>& tables, bool minus_target) {
+Profile meanProfile(std::span<const TextTable> tables, bool minus_target) {
   std::vector<metrology::TargetSample> samples;
-  for (const io::TextTable& t : tables) {
+  for (const TextTable& t : tables) {
     const std::size_t ct = t.column({"target_mm"}), cr = t.column({"reading_mm"});
     // A step-diagonal run's intermediate readings (sub_step > 0) are not readings at the target.
     const std::optional<std::size_t> cs = t.findColumn({"sub_step"});
@@ -32,11 +33,11 @@ Profile meanProfile(const std::vector<io::TextTable>& tables, bool minus_target)
   return {m.target, m.mean};
 }
 
-Profile readStraightness(const std::vector<std::string>& files) {
-  std::vector<io::TextTable> sim;
+Profile readStraightness(std::span<const NamedText> inputs) {
+  std::vector<TextTable> sim;
   Profile p;
-  for (const std::string& f : files) {
-    io::TextTable t = io::TextTable::read(f);
+  for (const NamedText& in : inputs) {
+    TextTable t = TextTable::parse(in.text, in.name);
     if (isMeasurementFile(t)) {
       sim.push_back(std::move(t));
       continue;
@@ -56,11 +57,11 @@ Profile readStraightness(const std::vector<std::string>& files) {
 }
 
 std::vector<metrology::PositioningSample> readPositioningSamples(
-    const std::vector<std::string>& files) {
+    std::span<const NamedText> inputs) {
   std::vector<metrology::PositioningSample> samples;
   std::map<std::tuple<double, int, long long>, std::pair<std::string, std::size_t>> seen;
-  for (const std::string& f : files) {
-    const io::TextTable t = io::TextTable::read(f);
+  for (const NamedText& in : inputs) {
+    const TextTable t = TextTable::parse(in.text, in.name);
     const std::size_t ct = t.column({"target", "target_mm"});
     const std::size_t cd = t.column({"direction"});
     const std::size_t cr = t.column({"run"});
@@ -86,4 +87,4 @@ std::vector<metrology::PositioningSample> readPositioningSamples(
   return samples;
 }
 
-}  // namespace pkm::cli
+}  // namespace pkm::io

@@ -1,0 +1,62 @@
+/// @file
+/// @brief `pkm analyze circle | circular | probe-offset` as workflows (docs/analysis.md,
+/// "Circles"): least-squares and minimum-zone circles with roundness, the ISO 230-4 circular
+/// deviation and hysteresis, and the touch-probe stylus offset from master-ring touches with
+/// spindle reversal (seed 003). Inputs come from memory (io::NamedText); every input error is
+/// pkm::IoError "NAME:LINE: message".
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "pkm/io/analysis_report.hpp"
+#include "pkm/io/named_text.hpp"
+
+namespace pkm::workflow {
+
+/// Circle fits of `x,y` points (x_mm, y_mm accepted).
+struct CircleRequest {
+  std::vector<io::NamedText> data;  ///< `x,y` tables, concatenated (required)
+  /// Throws pkm::IoError without data.
+  void validate() const;
+};
+
+/// Least-squares circle (metrology::fitCircle) and minimum-zone circle started from its centre
+/// (metrology::fitMinimumZoneCircle). Throws as validate(), pkm::IoError for a bad input,
+/// pkm::InvalidArgument for too few or degenerate points.
+[[nodiscard]] io::CircleReport analyzeCircle(const CircleRequest& request);
+
+/// ISO 230-4:2005 circular test.
+struct CircularRequest {
+  /// One `x,y,direction` table (cw/CW/- or ccw/CCW/+), or two `x,y` tables: CW then CCW.
+  std::vector<io::NamedText> data;
+  metrology::CircularCentre centre = metrology::CircularCentre::kLeastSquares;  ///< of G and H
+  std::optional<metrology::Point2> nominal_center;  ///< for kNominal and the radial deviations F
+  std::optional<double> nominal_radius;             ///< R0 > 0: enables F
+  /// Throws pkm::IoError without data or with more than two inputs, pkm::InvalidArgument for a
+  /// nominal radius not > 0.
+  void validate() const;
+};
+
+/// Validates, reads the runs and evaluates them (metrology::evaluateCircularTest). Throws as
+/// validate(), pkm::IoError for a bad input or an unlabelled single input.
+[[nodiscard]] io::CircularReport analyzeCircular(const CircularRequest& request);
+
+/// Touch-probe stylus offset (seed 003).
+struct ProbeOffsetRequest {
+  /// `spindle_deg,x,y[,drm_deg,touch,run]` tables (required); `touch` labels +x, -x, +y, -y.
+  std::vector<io::NamedText> data;
+  std::optional<double> ring_diameter;    ///< certified ring diameter, mm (> 0)
+  std::optional<double> stylus_diameter;  ///< ball diameter for eqs. 8-9 (> 0; default effective)
+  bool tool_plus_z = false;  ///< tool direction +z (angles clockwise seen from above) or −z
+  /// Throws pkm::IoError without data, pkm::InvalidArgument for a diameter not > 0.
+  void validate() const;
+};
+
+/// The least-squares offset (metrology::fitProbeOffset) and, with a ring diameter, the effective
+/// stylus radius and seed 003 eqs. 8-9 averaged over the runs that have the six labelled touches
+/// (+x, -x, +y, -y at turn 0°; +x, +y at 180°, ±10°). Throws as validate(), pkm::IoError for a
+/// bad input or label, pkm::InvalidArgument for too few touches.
+[[nodiscard]] io::ProbeOffsetReport analyzeProbeOffset(const ProbeOffsetRequest& request);
+
+}  // namespace pkm::workflow

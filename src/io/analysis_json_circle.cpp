@@ -1,0 +1,105 @@
+// The JSON documents of the circle analyses (analysis_report.hpp): circle, circular (ISO 230-4),
+// probe-offset (seed 003).
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+
+#include "pkm/core/units.hpp"
+#include "pkm/io/analysis_report.hpp"
+
+namespace pkm::io {
+namespace {
+
+using Json = nlohmann::ordered_json;
+using metrology::Point2;
+
+Json pair(const Point2& p) { return Json::array({p.x(), p.y()}); }
+
+std::string dump(const Json& j) { return j.dump(2) + "\n"; }
+
+Json runJson(const metrology::CircularRun& r) {
+  Json j{{"center", pair(r.center)}, {"radius", r.radius}, {"G", r.circular_deviation}};
+  if (r.radial_deviation_max) {
+    j["F_max"] = *r.radial_deviation_max;
+    j["F_min"] = *r.radial_deviation_min;
+    j["F_mean"] = *r.mean_radial_deviation;
+  }
+  return j;
+}
+
+}  // namespace
+
+const char* centreName(metrology::CircularCentre centre) {
+  switch (centre) {
+    case metrology::CircularCentre::kLeastSquares:
+      return "lsc";
+    case metrology::CircularCentre::kMinimumZone:
+      return "mzc";
+    case metrology::CircularCentre::kNominal:
+      return "nominal";
+  }
+  return "lsc";
+}
+
+std::string analysisJson(const CircleReport& report) {
+  const metrology::CircleFit& lsc = report.lsc;
+  const metrology::MinZoneCircle& mzc = report.mzc;
+  Json contacts = Json::array();
+  for (const metrology::ZoneContact& c : mzc.contacts)
+    contacts.push_back(Json{{"circle", c.outer ? "outer" : "inner"},
+                            {"x", c.point.x()},
+                            {"y", c.point.y()},
+                            {"index", c.index},
+                            {"file", report.sources[c.index].name},
+                            {"line", report.sources[c.index].line}});
+  return dump(Json{{"center", pair(lsc.circle.center)},
+                   {"radius", lsc.circle.radius},
+                   {"diameter", 2.0 * lsc.circle.radius},
+                   {"roundness_lsc", lsc.roundness},
+                   {"roundness_mzc", mzc.roundness},
+                   {"mzc_center", pair(mzc.center)},
+                   {"mzc_inner_radius", mzc.inner_radius},
+                   {"mzc_outer_radius", mzc.outer_radius},
+                   {"mzc_contacts", std::move(contacts)},
+                   {"mzc_certified", mzc.certified},
+                   {"rms", lsc.rms},
+                   {"points", report.sources.size()}});
+}
+
+std::string analysisJson(const CircularReport& report) {
+  const metrology::CircularTestResult& r = report.result;
+  return dump(Json{{"centre", centreName(r.centre)},
+                   {"G_cw", r.cw.circular_deviation},
+                   {"G_ccw", r.ccw.circular_deviation},
+                   {"G_bidirectional", r.bidirectional_deviation},
+                   {"H", r.hysteresis},
+                   {"H_angle_deg", radToDeg(r.hysteresis_angle)},
+                   {"common_center", pair(r.common_center)},
+                   {"cw", runJson(r.cw)},
+                   {"ccw", runJson(r.ccw)},
+                   {"points_cw", report.points_cw},
+                   {"points_ccw", report.points_ccw}});
+}
+
+std::string analysisJson(const ProbeOffsetReport& report) {
+  const metrology::ProbeOffsetFit& fit = report.fit;
+  Json j{{"offset", pair(fit.offset)},
+         {"o_probe", pair(-fit.offset)},
+         {"ring_center", pair(fit.ring_center)},
+         {"ball_path_radius", fit.ball_path_radius},
+         {"rms", fit.rms},
+         {"touches", report.touches},
+         {"tool_direction", report.tool_plus_z ? "+z" : "-z"}};
+  if (report.effective_stylus_radius) {
+    j["effective_stylus_radius"] = *report.effective_stylus_radius;
+    j["effective_stylus_diameter"] = 2.0 * *report.effective_stylus_radius;
+  }
+  if (report.paper) {
+    j["eq9_o_probe"] = pair(report.paper->eq9);
+    j["eq8_o_probe"] = pair(report.paper->eq8);
+    j["eq_runs"] = report.paper->runs;
+  }
+  return dump(j);
+}
+
+}  // namespace pkm::io

@@ -1,0 +1,105 @@
+// The tables of the positioning analyses (analysis_text.hpp): iso230-2, straightness,
+// parallelism, squareness.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pkm/io/analysis_text.hpp"
+
+namespace pkm::io {
+namespace {
+
+/// 6 significant digits, "-" when not finite.
+std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : "-"; }
+
+}  // namespace
+
+std::string analysisText(const Iso230_2Report& report) {
+  const metrology::Iso230_2Result& r = report.result;
+  std::string out = fmt::format(
+      "ISO 230-2 positioning ({} targets, k = {})\n", r.targets.size(), report.coverage);
+  out += "target\tmean_up\tmean_down\treversal\ts_up\ts_down\tR_up\tR_down\tR\n";
+  for (const auto& t : r.targets) {
+    out += fmt::format("{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\n",
+                       num(t.target),
+                       num(t.mean_up),
+                       num(t.mean_down),
+                       num(t.reversal),
+                       num(t.s_up),
+                       num(t.s_down),
+                       num(t.repeatability_up),
+                       num(t.repeatability_down),
+                       num(t.repeatability));
+  }
+  const std::vector<std::pair<const char*, double>> summary{{"B", r.B},
+                                                            {"B_mean", r.B_mean},
+                                                            {"R_up", r.R_up},
+                                                            {"R_down", r.R_down},
+                                                            {"R", r.R},
+                                                            {"E_up", r.E_up},
+                                                            {"E_down", r.E_down},
+                                                            {"E", r.E},
+                                                            {"M", r.M},
+                                                            {"A_up", r.A_up},
+                                                            {"A_down", r.A_down},
+                                                            {"A", r.A}};
+  for (const auto& [name, v] : summary) out += fmt::format("{}\t{}\n", name, num(v));
+  return out;
+}
+
+std::string analysisText(const StraightnessReport& report) {
+  const metrology::StraightnessResult& r = report.result;
+  std::string out = fmt::format("straightness ({} reference line, {} points)\n",
+                                metrology::toString(report.reference),
+                                report.position.size());
+  out += fmt::format("slope\t{}\nintercept\t{}\nstraightness\t{}\n",
+                     num(r.line.slope),
+                     num(r.line.intercept),
+                     num(r.straightness));
+  for (std::size_t k : r.contact_points) {
+    out += fmt::format("contact\t{}\t{}\n", num(report.position[k]), num(r.residuals[k]));
+  }
+  return out;
+}
+
+std::string analysisText(const ParallelismReport& report) {
+  const metrology::ParallelismResult& r = report.result;
+  std::string out = fmt::format("parallelism ({} plane, {} representative lines)\n",
+                                toString(report.plane),
+                                metrology::toString(report.line));
+  out += fmt::format(
+      "reference_slope\t{}\naxis_slope\t{}\n{}\t{}\nparallelism\t{}\n"
+      "max_deviation\t{}\n",
+      num(r.reference_slope),
+      num(r.axis_slope),
+      report.plane == ParallelismPlane::kHorizontal ? "dgamma" : "dalpha",
+      num(r.slope_difference),
+      num(r.parallelism),
+      num(r.max_deviation));
+  if (report.sxP) out += fmt::format("sxP\t{}\n", num(*report.sxP));
+  if (report.szP) out += fmt::format("szP\t{}\n", num(*report.szP));
+  return out;
+}
+
+std::string analysisText(const SquarenessReport& report) {
+  const metrology::FaceDiagonalResult& r = report.result;
+  std::string out =
+      fmt::format("face-diagonal squareness ({} diagonals, {} readings, {} PDGE tables)\n",
+                  report.diagonals,
+                  r.points_used,
+                  report.pdge_tables);
+  out +=
+      fmt::format("squareness\t{} rad\nresidual_rms\t{}\n", num(r.squareness), num(r.residual_rms));
+  if (r.scale) {
+    out += fmt::format("scale\t{}\t{}\t({})\n",
+                       num((*r.scale)[0]),
+                       num((*r.scale)[1]),
+                       r.scale_per_axis ? "per axis" : "common");
+  }
+  return out;
+}
+
+}  // namespace pkm::io

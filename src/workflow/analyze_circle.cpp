@@ -1,0 +1,197 @@
+// `pkm analyze circle | circular | probe-offset` as workflows (workflow/analyze_circle.hpp).
+#include "pkm/workflow/analyze_circle.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <utility>
+
+#include "pkm/core/error.hpp"
+#include "pkm/core/units.hpp"
+#include "pkm/io/text_table.hpp"
+
+namespace pkm::workflow {
+namespace {
+
+using metrology::Point2;
+
+void requireData(const std::vector<io::NamedText>& data) {
+  if (data.empty()) throw IoError("give at least one data file");
+}
+
+void requirePositive(const std::optional<double>& v, const char* what) {
+  if (v && !(std::isfinite(*v) && *v > 0.0))
+    throw InvalidArgument(fmt::format("{} must be > 0, got {}", what, *v));
+}
+
+/// "cw"/"CW"/"-" or "ccw"/"CCW"/"+" of row r; throws pkm::IoError otherwise.
+bool clockwise(const io::TextTable& t, std::size_t r, std::size_t col) {
+  const std::string_view d = t.text(r, col);
+  if (d == "cw" || d == "CW" || d == "-") return true;
+  if (d == "ccw" || d == "CCW" || d == "+") return false;
+  t.fail(r, fmt::format("direction must be cw or ccw, got '{}'", d));
+}
+
+/// Nearest multiple of 360° to `deg` removed: (−180, 180].
+double wrapDeg(double deg) {
+  double w = std::remainder(deg, 360.0);
+  return w <= -180.0 ? w + 360.0 : w;
+}
+
+struct Labelled {
+  std::string touch;
+  long long run = 1;
+  double turn_deg = 0.0;
+  Point2 p;
+};
+
+/// Seed 003 eqs. 8-9 per run from labelled touches: x1, y1 from the ±x and ±y touches at turn 0,
+/// x2 and y3 from the +x and +y touches at turn 180°; averaged over the runs that have all six
+/// touches, or nullopt.
+std::optional<io::PaperProbeOffset> paperOffset(const std::vector<Labelled>& touches,
+                                                double ring_radius,
+                                                double stylus_radius) {
+  constexpr double kTurnToleranceDeg = 10.0;
+  std::map<long long, std::map<std::string, Point2>> by_run;
+  for (const Labelled& t : touches) {
+    const double w = wrapDeg(t.turn_deg);
+    const char* tag = std::abs(w) < kTurnToleranceDeg                     ? "@0"
+                      : std::abs(std::abs(w) - 180.0) < kTurnToleranceDeg ? "@180"
+                                                                          : nullptr;
+    if (tag != nullptr) by_run[t.run][t.touch + tag] = t.p;
+  }
+  Eigen::Vector2d s9 = Eigen::Vector2d::Zero(), s8 = Eigen::Vector2d::Zero();
+  int runs = 0;
+  for (const auto& [run, m] : by_run) {
+    const char* need[] = {"+x@0", "-x@0", "+y@0", "-y@0", "+x@180", "+y@180"};
+    bool all = true;
+    for (const char* n : need) all = all && m.count(n) > 0;
+    if (!all) continue;
+    const double x1 = 0.5 * (m.at("+x@0").x() + m.at("-x@0").x());
+    const double y1 = 0.5 * (m.at("+y@0").y() + m.at("-y@0").y());
+    s9 += metrology::probeOffsetEq9(
+        x1, y1, m.at("+x@180").x(), m.at("+y@180").y(), ring_radius, stylus_radius);
+    s8 += metrology::probeOffsetEq8(
+        x1, y1, m.at("+x@180").x(), m.at("+y@180").y(), ring_radius, stylus_radius);
+    ++runs;
+  }
+  if (runs == 0) return std::nullopt;
+  return io::PaperProbeOffset{s9 / runs, s8 / runs, runs};
+}
+
+/// The touches of one input (angles signed by the tool direction) and its labelled touches.
+void readTouches(const io::TextTable& t,
+                 double sign,
+                 std::vector<metrology::ProbeTouch>& touches,
+                 std::vector<Labelled>& labelled) {
+  const std::size_t cs = t.column({"spindle_deg"});
+  const std::size_t cx = t.column({"x", "x_mm"});
+  const std::size_t cy = t.column({"y", "y_mm"});
+  const auto cd = t.findColumn({"drm_deg"});
+  const auto ct = t.findColumn({"touch"});
+  const auto cr = t.findColumn({"run"});
+  for (std::size_t r = 0; r < t.rows(); ++r) {
+    const double turn = t.number(r, cs) + (cd ? t.number(r, *cd) : 0.0);
+    const Point2 p(t.number(r, cx), t.number(r, cy));
+    touches.push_back({sign * degToRad(turn), p});
+    if (ct) {
+      const std::string label(t.text(r, *ct));
+      if (label != "+x" && label != "-x" && label != "+y" && label != "-y")
+        t.fail(r, fmt::format("touch must be +x, -x, +y or -y, got '{}'", label));
+      labelled.push_back({label, cr ? t.integer(r, *cr) : 1, turn, p});
+    }
+  }
+}
+
+}  // namespace
+
+void CircleRequest::validate() const { requireData(data); }
+
+io::CircleReport analyzeCircle(const CircleRequest& request) {
+  request.validate();
+  io::CircleReport report;
+  std::vector<Point2> p;
+  for (const io::NamedText& in : request.data) {
+    const io::TextTable t = io::TextTable::parse(in.text, in.name);
+    const std::size_t cx = t.column({"x", "x_mm"});
+    const std::size_t cy = t.column({"y", "y_mm"});
+    for (std::size_t r = 0; r < t.rows(); ++r) {
+      p.emplace_back(t.number(r, cx), t.number(r, cy));
+      report.sources.push_back({t.source(), t.line(r)});
+    }
+  }
+  report.lsc = metrology::fitCircle(p);
+  metrology::MinZoneOptions opt;
+  opt.start = report.lsc.circle.center;
+  report.mzc = metrology::fitMinimumZoneCircle(p, opt);
+  return report;
+}
+
+void CircularRequest::validate() const {
+  requireData(data);
+  if (data.size() > 2) throw IoError("circular: give one or two data files");
+  requirePositive(nominal_radius, "the nominal radius");
+}
+
+io::CircularReport analyzeCircular(const CircularRequest& request) {
+  request.validate();
+  std::vector<Point2> cw, ccw;
+  std::vector<io::TextTable> tables;
+  for (const io::NamedText& in : request.data)
+    tables.push_back(io::TextTable::parse(in.text, in.name));
+  const bool labelled = tables.front().findColumn({"direction"}).has_value();
+  if (!labelled && tables.size() != 2)
+    throw IoError(
+        "circular: give one file with a 'direction' column (cw/ccw) or two files, CW then CCW");
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    const io::TextTable& t = tables[i];
+    const std::size_t cx = t.column({"x", "x_mm"});
+    const std::size_t cy = t.column({"y", "y_mm"});
+    const std::optional<std::size_t> cd =
+        labelled ? std::optional<std::size_t>(t.column({"direction"})) : std::nullopt;
+    for (std::size_t r = 0; r < t.rows(); ++r) {
+      const bool is_cw = cd ? clockwise(t, r, *cd) : i == 0;
+      (is_cw ? cw : ccw).emplace_back(t.number(r, cx), t.number(r, cy));
+    }
+  }
+  metrology::CircularTestOptions opt;
+  opt.centre = request.centre;
+  opt.nominal_center = request.nominal_center;
+  opt.nominal_radius = request.nominal_radius;
+  return {metrology::evaluateCircularTest(cw, ccw, opt), cw.size(), ccw.size()};
+}
+
+void ProbeOffsetRequest::validate() const {
+  requireData(data);
+  requirePositive(ring_diameter, "the ring diameter");
+  requirePositive(stylus_diameter, "the stylus diameter");
+}
+
+io::ProbeOffsetReport analyzeProbeOffset(const ProbeOffsetRequest& request) {
+  request.validate();
+  std::vector<metrology::ProbeTouch> touches;
+  std::vector<Labelled> labelled;
+  for (const io::NamedText& in : request.data)
+    readTouches(io::TextTable::parse(in.text, in.name),
+                request.tool_plus_z ? 1.0 : -1.0,
+                touches,
+                labelled);
+  io::ProbeOffsetReport report;
+  report.fit = metrology::fitProbeOffset(touches);
+  report.touches = touches.size();
+  report.tool_plus_z = request.tool_plus_z;
+  std::optional<double> stylus_radius;
+  if (request.stylus_diameter) stylus_radius = *request.stylus_diameter / 2.0;
+  if (request.ring_diameter) {
+    report.effective_stylus_radius =
+        metrology::effectiveStylusRadius(*request.ring_diameter, report.fit.ball_path_radius);
+    if (!stylus_radius) stylus_radius = report.effective_stylus_radius;
+    if (!labelled.empty())
+      report.paper = paperOffset(labelled, *request.ring_diameter / 2.0, *stylus_radius);
+  }
+  return report;
+}
+
+}  // namespace pkm::workflow
