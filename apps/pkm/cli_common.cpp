@@ -3,20 +3,11 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <filesystem>
-
 #include "pkm/core/error.hpp"
 #include "pkm/io/atomic_file.hpp"
 #include "pkm/io/machine_loader.hpp"
 
 namespace pkm::cli {
-
-std::string machineTypeOf(const std::string& spec) {
-  if (std::filesystem::is_regular_file(spec)) return io::machineType(io::readTextFile(spec));
-  for (const auto& n : io::builtinMachineNames("exechon"))
-    if (n == spec) return "exechon";
-  return "hexapod";
-}
 
 void writeTextOutput(const std::string& out, const std::string& text) {
   if (out.empty()) {

@@ -52,9 +52,6 @@ void writeTextOutput(const std::string& out, const std::string& text);
 /// Prints each notice to stderr as "pkm: note: ...".
 void printNotices(const std::vector<std::string>& notices);
 
-/// "hexapod" or "exechon": the type of a machine file (its "type" field), or of a built-in name.
-[[nodiscard]] std::string machineTypeOf(const std::string& spec);
-
 /// A workflow's RunControl for a command: notices printed as "pkm: note: ...", progress messages
 /// as one line rewritten in place on a terminal's standard error (nothing when it is not a
 /// terminal). Call finish() after the workflow to end that line.

@@ -1,16 +1,14 @@
 // `pkm gcode flatten PROGRAM`: the blocks a program executes, in execution order, with every
-// expression evaluated and no O-word statements (docs/gcode.md "gcode flatten").
+// expression evaluated and no O-word statements (docs/gcode.md "gcode flatten";
+// workflow::flattenGcode).
+#include "pkm/workflow/gcode_flatten.hpp"
+
 #include <fmt/format.h>
 
-#include <cstdio>
-#include <filesystem>
 #include <memory>
 
 #include "cli_common.hpp"
 #include "gcode_options.hpp"
-#include "pkm/cnc/flatten.hpp"
-#include "pkm/cnc/program.hpp"
-#include "pkm/core/error.hpp"
 
 namespace pkm::cli {
 
@@ -18,23 +16,15 @@ namespace {
 
 struct FlattenArgs {
   std::string program;
-  std::string out;
-  bool force = false;
-  InterpreterArgs interpreter;
+  workflow::GcodeFlattenRequest request;
 };
 
-void runFlatten(const FlattenArgs& a) {
-  const cnc::InterpreterOptions options = a.interpreter.options();
-  if (!a.out.empty() && !a.force && std::filesystem::exists(a.out))
-    throw IoError(fmt::format("{} exists; pass --force to overwrite it", a.out));
-  const std::string text = cnc::Program::readFile(a.program);
-  const cnc::FlatProgram flat = cnc::flattenProgram(text, a.program, options);
-  writeTextOutput(a.out, flat.text);
-  fmt::print(stderr,
-             "pkm: note: {} executed blocks written, {} lines{}\n",
-             flat.blocks,
-             flat.source_line.size(),
-             flat.had_o_words ? "" : " (the program has no O-words)");
+void runFlatten(FlattenArgs& a) {
+  a.request.validate();  // option errors before the program is read
+  a.request.program = readProgram(a.program);
+  const workflow::GcodeFlattenResult r = workflow::flattenGcode(a.request);
+  if (a.request.out.empty()) writeTextOutput("", r.flat.text);
+  fmt::print(stderr, "pkm: note: {}\n", r.note);
 }
 
 }  // namespace
@@ -46,9 +36,9 @@ void addGcodeFlattenCommand(CLI::App& gcode) {
       "write the blocks PROGRAM executes, in execution order, with expressions evaluated and no "
       "O-words (subroutines, loops and conditions unrolled)");
   f->add_option("program", a->program, "G-code file (.ngc)")->required();
-  f->add_option("--out", a->out, "write the program to FILE instead of standard output");
-  f->add_flag("--force", a->force, "overwrite an existing --out file");
-  a->interpreter.add(*f);
+  f->add_option("--out", a->request.out, "write the program to FILE instead of standard output");
+  f->add_flag("--force", a->request.force, "overwrite an existing --out file");
+  addInterpreterOptions(*f, a->request.interpreter);
   f->callback([a] { runFlatten(*a); });
 }
 

@@ -1,27 +1,24 @@
 /// @file
-/// @brief The interpreter options the `pkm gcode` commands share: tool table, block delete, loop
-/// guard.
+/// @brief What the `pkm gcode` commands share: the interpreter options (tool table, block delete,
+/// loop guard) and the reading of the program.
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <cstdint>
 #include <string>
 
-#include "pkm/cnc/interpreter.hpp"
+#include "pkm/io/named_text.hpp"
+#include "pkm/workflow/gcode_interpreter.hpp"
 
 namespace pkm::cli {
 
-/// --tool-table, --tool-units, --block-delete and --max-iterations.
-struct InterpreterArgs {
-  std::string tool_table;
-  std::string tool_units = "mm";
-  bool block_delete = false;
-  std::uint64_t max_iterations = 10'000'000;
-  /// Adds the options to `cmd` (all four, or the tool table's two only).
-  void add(CLI::App& cmd, bool all = true);
-  /// The interpreter options. Throws pkm::InvalidArgument for a bad unit or a zero iteration
-  /// cap, pkm::IoError when the tool table cannot be read.
-  [[nodiscard]] cnc::InterpreterOptions options() const;
-};
+/// Adds --tool-table, --tool-units, --block-delete and --max-iterations (all four, or the tool
+/// table's two only) to `cmd`, stored in `settings`.
+void addInterpreterOptions(CLI::App& cmd,
+                           workflow::GcodeInterpreterSettings& settings,
+                           bool all = true);
+
+/// The G-code file `path`, named by its path. Throws pkm::IoError "PATH: cannot open G-code
+/// file".
+[[nodiscard]] io::NamedText readProgram(const std::string& path);
 
 }  // namespace pkm::cli

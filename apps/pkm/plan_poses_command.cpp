@@ -9,6 +9,7 @@
 #include "pkm/calibration/pose_planning.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
+#include "pkm/io/machine_loader.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/simulation/hexapod_workspace.hpp"
 #include "plan_poses.hpp"
@@ -19,7 +20,7 @@ namespace {
 namespace cal = pkm::calibration;
 
 void runPlan(const PlanArgs& a) {
-  if (machineTypeOf(a.machine.spec) == "exechon") {
+  if (io::machineTypeOf(a.machine.spec) == "exechon") {
     runExechonPlan(a);
     return;
   }

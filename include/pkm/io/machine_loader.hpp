@@ -25,6 +25,11 @@ inline constexpr const char* kDefaultExechonMachine = "mxt700s-like";
 /// object; the typed readers report malformed text).
 [[nodiscard]] std::string machineType(const std::string& text);
 
+/// The type of machine `spec` names: an existing file's "type" (machineType), "exechon" for a
+/// built-in Exechon's name, else "hexapod" (the loaders report a spec that names nothing).
+/// Throws pkm::IoError when the file cannot be read.
+[[nodiscard]] std::string machineTypeOf(const std::string& spec);
+
 /// Parses the embedded hexapod machine `name` ("default" means kDefaultMachine). Throws
 /// pkm::IoError if there is no hexapod by that name.
 [[nodiscard]] HexapodMachine builtinMachine(const std::string& name);

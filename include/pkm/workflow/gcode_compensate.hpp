@@ -1,0 +1,58 @@
+/// @file
+/// @brief `pkm gcode compensate` as a workflow (docs/gcode.md "gcode compensate"): a program
+/// pre-distorted for a controller that keeps the nominal kinematics of a calibrated hexapod or
+/// Exechon (X_cmd = FK_nominal(IK_calibrated(X)), docs/compensation.md), or the hybrid machine's
+/// X2–Y2 squareness corrected in a PKM program from a campaign's pkm-base-frame.txt (seed 000).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "pkm/cnc/program_compensation.hpp"
+#include "pkm/io/named_text.hpp"
+#include "pkm/workflow/gcode_interpreter.hpp"
+
+namespace pkm::workflow {
+
+/// A `gcode compensate` request: either `machine` or `hybrid_frame` with `x2`.
+struct GcodeCompensateRequest {
+  io::NamedText program;  ///< the program; its name prefixes every message (NAME:LINE: ...)
+  /// The calibrated machine: the output of `pkm calibrate hexapod|exechon --out` (a file or a
+  /// built-in name).
+  std::string machine;
+  /// The controller's nominal machine ("" : the built-in machine the calibrated machine's name
+  /// refers to, its name without "-calibrated").
+  std::string nominal;
+  double tolerance = 0.01;  ///< chordal tolerance of the interpolation, mm (> 0)
+  std::string out;          ///< the file to write ("" : none, the caller shows the text)
+  bool force = false;       ///< replace an existing `out`
+  std::string
+      hybrid_frame;  ///< hybrid machine: pkm-base-frame.txt of a campaign (docs/campaign.md)
+  std::optional<double> x2;  ///< hybrid machine: the X2 position the program runs at, mm
+  /// Hybrid machine: also apply the base frame's rotation and offset in the program.
+  bool frame_not_in_controller = false;
+  /// Exechon: what A/C mean, "vector" (default) or "axes", as in `gcode run`.
+  std::optional<std::string> orientation;
+  GcodeInterpreterSettings interpreter;  ///< the tool table (G43 H)
+  /// Throws pkm::InvalidArgument for a tolerance that is not > 0, neither or both of `machine`
+  /// and `hybrid_frame`, a hybrid frame without `x2`, or an orientation for a hexapod;
+  /// pkm::IoError "OUT exists; pass --force to overwrite it" when `out` exists and `force` is not
+  /// set.
+  void validate() const;
+};
+
+/// A compensated program.
+struct GcodeCompensateResult {
+  cnc::ProgramCompensation compensation;  ///< the text, the line counts, the largest correction
+  /// One line saying what was compensated, the line counts and the largest correction, no
+  /// newline.
+  std::string note;
+};
+
+/// Reads the machines (or the base frame), compensates the program and, when `out` is set,
+/// writes it through io::AtomicFile. Throws pkm::IoError for unreadable machine or frame files
+/// (FILE:LINE) and programs the compensation rejects (NAME:LINE: message), pkm::InvalidArgument
+/// for a nominal machine that cannot be told or does not match, and as validate().
+[[nodiscard]] GcodeCompensateResult compensateGcode(const GcodeCompensateRequest& request);
+
+}  // namespace pkm::workflow

@@ -1,0 +1,34 @@
+/// @file
+/// @brief The interpreter settings every G-code job shares (`pkm gcode moves|run|compensate|
+/// flatten`, docs/gcode.md): tool table, block delete, runaway-loop guard, and the check interval
+/// of the long G-code jobs' progress reports and cancellation.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "pkm/cnc/interpreter.hpp"
+
+namespace pkm::workflow {
+
+/// Motions (or interpolated points) between two progress reports of a G-code job; each report is
+/// also a cancellation check (RunControl).
+inline constexpr std::size_t kGcodeProgressInterval = 10'000;
+
+/// How a G-code program is interpreted (LinuxCNC 2.9 semantics).
+struct GcodeInterpreterSettings {
+  std::string tool_table;         ///< LinuxCNC tool table (.tbl) for G43 and M6 ("" : none)
+  std::string tool_units = "mm";  ///< the tool table's length unit: "mm" or "inch"
+  bool block_delete = false;      ///< skip lines starting with '/'
+  /// Iterations one loop may make before the program is rejected as runaway (> 0).
+  std::uint64_t max_iterations = 10'000'000;
+  /// Throws pkm::InvalidArgument for a unit other than mm or inch (naming --tool-units) or a
+  /// zero iteration cap (naming --max-iterations).
+  void validate() const;
+  /// The interpreter options, with the tool table read (lengths converted to mm). Throws as
+  /// validate(), and pkm::IoError "FILE:LINE: message" for an unreadable or malformed table.
+  [[nodiscard]] cnc::InterpreterOptions options() const;
+};
+
+}  // namespace pkm::workflow

@@ -1,0 +1,58 @@
+/// @file
+/// @brief `pkm gcode run` as a workflow (docs/gcode.md "gcode run"): a G-code program
+/// interpolated within a chordal tolerance, converted to the joints of a hexapod or an Exechon,
+/// timed under joint velocity and acceleration limits and checked against every limit of the
+/// machine (strokes, joint angles, interference, conditioning, joint rates).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "pkm/io/gcode_run_report.hpp"
+#include "pkm/io/named_text.hpp"
+#include "pkm/workflow/gcode_interpreter.hpp"
+#include "pkm/workflow/progress.hpp"
+
+namespace pkm::workflow {
+
+/// A `gcode run` request. A rate limit left unset is the machine file's `joint_rates` value
+/// when it has one, else the default named.
+struct GcodeRunRequest {
+  io::NamedText program;            ///< the program; its name prefixes every message (NAME:LINE:)
+  std::string machine = "default";  ///< hexapod or Exechon: machine file or built-in name
+  double tolerance = 0.01;          ///< chordal tolerance, mm (> 0)
+  std::string out;                  ///< joint CSV file ("" : none; docs/gcode.md)
+  std::string report;               ///< the report's JSON file ("" : none; io::gcodeRunJson)
+  bool force = false;               ///< replace existing `out` and `report` files
+  std::optional<double> max_joint_velocity;      ///< strut/leg speed, machine unit/s (200)
+  std::optional<double> max_joint_acceleration;  ///< machine unit/s² (2000)
+  std::optional<double> max_wrist_velocity;      ///< Exechon wrist C/A speed, deg/s (180)
+  std::optional<double> max_wrist_acceleration;  ///< Exechon wrist, deg/s² (1800)
+  double rapid_rate = 10000.0;                   ///< G0 path speed, mm/min
+  /// Exechon: A/C words are the tool vector's angles in the world frame ("vector") or the wrist
+  /// axes' readings ("axes").
+  std::string orientation = "vector";
+  GcodeInterpreterSettings interpreter;  ///< tool table, block delete, loop guard
+  /// Throws pkm::InvalidArgument for a limit or tolerance that is not > 0 or an orientation for a
+  /// hexapod, pkm::IoError "PATH exists; pass --force to overwrite it" for an existing `out` or
+  /// `report` without `force`, and as GcodeInterpreterSettings::validate.
+  void validate() const;
+};
+
+/// What a `gcode run` found.
+struct GcodeRunResult {
+  io::GcodeRunReport report;  ///< every figure (io::gcodeRunText, io::gcodeRunJson)
+  /// False when a check is violated (the CLI then exits with code 1).
+  [[nodiscard]] bool ok() const { return report.ok; }
+};
+
+/// Interprets, interpolates, converts, times and checks the program, then writes `out` and
+/// `report` (io::AtomicFile). Notices: the machine reader's notes. Progress: every
+/// kGcodeProgressInterval motions or points of each stage (interpreting, interpolating,
+/// converting), with cancellation checked (workflow::Cancelled; nothing is written). Throws
+/// pkm::IoError "NAME:LINE: message" for a program the interpreter rejects or unreadable files,
+/// pkm::InvalidArgument for a program without motion, a B word on an Exechon, and as validate().
+[[nodiscard]] GcodeRunResult runGcode(const GcodeRunRequest& request,
+                                      const RunControl& control = {});
+
+}  // namespace pkm::workflow

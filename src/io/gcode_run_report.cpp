@@ -1,0 +1,175 @@
+// The `pkm gcode run` report as text and JSON (io/gcode_run_report.hpp).
+#include "pkm/io/gcode_run_report.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "pkm/io/number_format.hpp"
+
+namespace pkm::io {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json eventJson(const GcodeCheckEvent& e) {
+  Json j;
+  j["line"] = e.line;
+  j["position"] = std::vector<double>(e.position.begin(), e.position.end());
+  j["item"] = e.item;
+  j["value"] = e.value;
+  j["limit"] = e.limit;
+  j["margin"] = e.margin;
+  j["unit"] = e.unit;
+  return j;
+}
+
+Json checksJson(const std::vector<GcodeCheckSummary>& checks) {
+  Json all;
+  for (const GcodeCheckSummary& c : checks) {
+    Json j;
+    j["enabled"] = c.enabled;
+    j["violations"] = c.violations;
+    j["unit"] = c.unit;
+    if (c.enabled && std::isfinite(c.worst.margin)) j["worst"] = eventJson(c.worst);
+    if (c.violations > 0) j["first_violation"] = eventJson(c.first);
+    all[c.name] = j;
+  }
+  return all;
+}
+
+/// The settings lines: program, orientation, interpolation, limits, cycle time.
+void appendSettings(const GcodeRunReport& r, std::string& s) {
+  s += fmt::format("gcode run: {} on {} ({} lines, {} motions, {} points)\n",
+                   r.program,
+                   r.machine,
+                   r.lines,
+                   r.motions,
+                   r.points);
+  if (r.exechon())
+    s += fmt::format("orientation: {} (A/C words are {})\n",
+                     r.orientation,
+                     r.orientation == "vector" ? "the tool vector's angles in the world frame"
+                                               : "the wrist axes' readings");
+  s += fmt::format(
+      "interpolation: tolerance {} mm, max step {:.4g} mm, max rotary step {:.4g} deg\n",
+      r.tolerance_mm,
+      r.max_step_mm,
+      r.max_angle_step_deg);
+  s += fmt::format("limits: joint velocity {} {}/s, joint acceleration {} {}/s^2, ",
+                   r.max_joint_velocity,
+                   r.units,
+                   r.max_joint_acceleration,
+                   r.units);
+  if (r.exechon())
+    s += fmt::format("wrist velocity {} deg/s, wrist acceleration {} deg/s^2, ",
+                     r.max_wrist_velocity_deg_per_s,
+                     r.max_wrist_acceleration_deg_per_s2);
+  const std::vector<std::string>& from = r.limits_from_machine_file;
+  s +=
+      fmt::format("rapid {} mm/min{}\n",
+                  r.rapid_rate_mm_per_min,
+                  from.empty() ? std::string()
+                               : fmt::format(" ({} from the machine file)", fmt::join(from, ", ")));
+  s += fmt::format(
+      "cycle time: {:.3f} s{}\n",
+      r.cycle_time_s,
+      r.dwell_time_s > 0.0 ? fmt::format(" (dwells {:.3f} s)", r.dwell_time_s) : std::string());
+}
+
+/// "-" for a margin that no evaluation set (+infinity), else the margin and its unit.
+std::string marginText(const GcodeCheckEvent& e) {
+  if (std::isinf(e.margin)) return "-";
+  return fmt::format("{:.4g} {}", e.margin, e.unit);
+}
+
+void appendTable(const GcodeRunReport& r, std::string& s) {
+  s += fmt::format("{:<19} {:<9} {:>10} {:>14} {:>7}  {}\n",
+                   "check",
+                   "status",
+                   "violations",
+                   "worst margin",
+                   "line",
+                   "item");
+  for (const GcodeCheckSummary& c : r.checks) {
+    const char* status = !c.enabled ? "n/a" : c.violations > 0 ? "VIOLATED" : "ok";
+    if (!c.enabled) {
+      s += fmt::format("{:<19} {:<9}\n", c.name, status);
+      continue;
+    }
+    s += fmt::format("{:<19} {:<9} {:>10} {:>14} {:>7}  {}\n",
+                     c.name,
+                     status,
+                     c.violations,
+                     marginText(c.worst),
+                     std::isfinite(c.worst.margin) ? std::to_string(c.worst.line) : "-",
+                     c.worst.item);
+  }
+}
+
+void appendViolations(const GcodeRunReport& r, std::string& s) {
+  for (const GcodeCheckSummary& c : r.checks) {
+    if (c.violations == 0) continue;
+    const GcodeCheckEvent& e = c.first;
+    s += fmt::format(
+        "{}:{}: {} violated first at X{} Y{} Z{} A{} B{} C{}: {} value {:.6g}, "
+        "limit {:.6g}, margin {:.4g} {}\n",
+        r.program,
+        e.line,
+        c.name,
+        formatNumber(e.position[0]),
+        formatNumber(e.position[1]),
+        formatNumber(e.position[2]),
+        formatNumber(e.position[3]),
+        formatNumber(e.position[4]),
+        formatNumber(e.position[5]),
+        e.item,
+        e.value,
+        e.limit,
+        e.margin,
+        e.unit);
+  }
+}
+
+}  // namespace
+
+std::string gcodeRunJson(const GcodeRunReport& r) {
+  Json j;
+  j["program"] = r.program;
+  j["machine"] = r.machine;
+  j["machine_type"] = r.machine_type;
+  j["units"] = r.units;
+  if (r.exechon()) j["orientation"] = r.orientation;
+  j["tolerance_mm"] = r.tolerance_mm;
+  j["max_step_mm"] = r.max_step_mm;
+  j["max_angle_step_deg"] = r.max_angle_step_deg;
+  j["max_joint_velocity"] = r.max_joint_velocity;
+  j["max_joint_acceleration"] = r.max_joint_acceleration;
+  if (r.exechon()) {
+    j["max_wrist_velocity_deg_per_s"] = r.max_wrist_velocity_deg_per_s;
+    j["max_wrist_acceleration_deg_per_s2"] = r.max_wrist_acceleration_deg_per_s2;
+  }
+  j["rapid_rate_mm_per_min"] = r.rapid_rate_mm_per_min;
+  j["limits_from_machine_file"] = r.limits_from_machine_file;
+  j["motions"] = r.motions;
+  j["points"] = r.points;
+  j["cycle_time_s"] = r.cycle_time_s;
+  j["dwell_time_s"] = r.dwell_time_s;
+  j["ok"] = r.ok;
+  j["checks"] = checksJson(r.checks);
+  return j.dump(2) + "\n";
+}
+
+std::string gcodeRunText(const GcodeRunReport& r) {
+  std::string s;
+  appendSettings(r, s);
+  appendTable(r, s);
+  appendViolations(r, s);
+  s += r.ok ? "result: all checks pass\n" : "result: VIOLATIONS (exit code 1)\n";
+  return s;
+}
+
+}  // namespace pkm::io

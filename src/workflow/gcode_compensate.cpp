@@ -1,0 +1,150 @@
+// `pkm gcode compensate --machine CAL.json` as a workflow (workflow/gcode_compensate.hpp): the
+// program pre-distorted for a controller that keeps the nominal kinematics of a hexapod or an
+// Exechon.
+#include "pkm/workflow/gcode_compensate.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string_view>
+
+#include "gcode_compensate_detail.hpp"
+#include "pkm/cnc/exechon_path.hpp"
+#include "pkm/cnc/exechon_program_compensation.hpp"
+#include "pkm/cnc/joint_path.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/io/atomic_file.hpp"
+#include "pkm/io/machine_loader.hpp"
+
+namespace pkm::workflow {
+
+namespace {
+
+/// Suffix `pkm calibrate hexapod` and `pkm calibrate exechon` append to the nominal machine's
+/// name.
+constexpr std::string_view kCalibratedSuffix = "-calibrated";
+
+/// The nominal machine of calibrated machine `cal`: request.nominal (loaded by `load`), or the
+/// built-in machine of `type` ("hexapod" or "exechon", loaded by `builtin`) whose name is cal's
+/// without "-calibrated".
+template <class Machine, class Load, class Builtin>
+Machine nominalFor(const GcodeCompensateRequest& request,
+                   const Machine& cal,
+                   const char* type,
+                   Load load,
+                   Builtin builtin) {
+  if (!request.nominal.empty()) return load(request.nominal);
+  const std::string& name = cal.model.name;
+  if (name.size() > kCalibratedSuffix.size() && name.ends_with(kCalibratedSuffix)) {
+    const std::string base = name.substr(0, name.size() - kCalibratedSuffix.size());
+    for (const auto& n : io::builtinMachineNames(type)) {
+      Machine m = builtin(n);
+      if (m.model.name == base) return m;
+    }
+  }
+  throw InvalidArgument(
+      fmt::format("{}: cannot tell the nominal machine of '{}' (no built-in {} named as it without "
+                  "'-calibrated'); pass --nominal MACHINE",
+                  request.machine,
+                  name,
+                  type));
+}
+
+/// The note after a pre-distortion: what was compensated (`what`), the line counts, the
+/// interpolation settings (mm) and the largest correction.
+std::string predistortionNote(const std::string& what,
+                              const cnc::ProgramCompensation& r,
+                              double tolerance,
+                              double max_step) {
+  return fmt::format(
+      "{}: {} motion lines rewritten, {} lines added (segments, dwells), {} G92/G10 L20 lines "
+      "shifted (tolerance {} mm, max step {:.4g} mm), largest correction {:.4g} mm{}",
+      what,
+      r.motion_lines,
+      r.added_lines,
+      r.offset_lines,
+      tolerance,
+      max_step,
+      r.max_correction,
+      detail::flattenedNote(r));
+}
+
+GcodeCompensateResult compensateExechon(const GcodeCompensateRequest& request) {
+  const io::ExechonMachine cal = io::loadExechonMachine(request.machine);
+  if (!request.nominal.empty() && io::machineTypeOf(request.nominal) != "exechon")
+    throw InvalidArgument(fmt::format(
+        "--nominal {}: not an Exechon machine, but {} is one", request.nominal, request.machine));
+  const io::ExechonMachine nominal =
+      nominalFor(request, cal, "exechon", &io::loadExechonMachine, &io::loadExechonMachine);
+  cnc::ExechonProgramCompensationOptions options;
+  const std::string orientation = request.orientation.value_or("vector");
+  options.orientation = cnc::parseExechonOrientation(orientation);
+  options.interpolation = cnc::exechonInterpolation(cal.model, request.tolerance);
+  options.fk = nominal.fk;
+  options.interpreter = request.interpreter.options();
+  GcodeCompensateResult result;
+  result.compensation = cnc::compensateExechonProgram(
+      request.program.text, request.program.name, nominal.model, cal.model, options);
+  detail::writeCompensated(request, result);
+  result.note =
+      predistortionNote(fmt::format("nominal {} -> calibrated {} (Exechon, --orientation {})",
+                                    nominal.model.name,
+                                    cal.model.name,
+                                    orientation),
+                        result.compensation,
+                        request.tolerance,
+                        options.interpolation.max_step);
+  return result;
+}
+
+GcodeCompensateResult compensateHexapod(const GcodeCompensateRequest& request) {
+  const io::HexapodMachine cal = io::loadHexapodMachine(request.machine);
+  const io::HexapodMachine nominal = nominalFor(
+      request,
+      cal,
+      "hexapod",
+      [](const std::string& spec) { return io::loadHexapodMachine(spec); },
+      &io::builtinMachine);
+  if (nominal.model.unit != cal.model.unit)
+    throw InvalidArgument("the nominal and calibrated machines use different length units");
+  cnc::ProgramCompensationOptions options;
+  options.interpolation = cnc::jointSpaceInterpolation(cal.model, request.tolerance);
+  options.predistortion.fk = nominal.fk;
+  options.interpreter = request.interpreter.options();
+  GcodeCompensateResult result;
+  result.compensation = cnc::compensateProgram(
+      request.program.text, request.program.name, nominal.model, cal.model, options);
+  detail::writeCompensated(request, result);
+  result.note = predistortionNote(
+      fmt::format("nominal {} -> calibrated {}", nominal.model.name, cal.model.name),
+      result.compensation,
+      request.tolerance,
+      options.interpolation.max_step);
+  return result;
+}
+
+}  // namespace
+
+void GcodeCompensateRequest::validate() const {
+  PKM_CHECK(tolerance > 0.0 && std::isfinite(tolerance), "--tolerance must be > 0");
+  if (!out.empty()) io::checkOverwrite(out, force ? io::Overwrite::kAllow : io::Overwrite::kRefuse);
+  if (hybrid_frame.empty() == machine.empty())
+    throw InvalidArgument(
+        "give either --machine CAL.json (hexapod or Exechon) or --hybrid-frame FILE --x2 POS");
+  if (!hybrid_frame.empty()) {
+    if (!x2) throw InvalidArgument("--hybrid-frame needs --x2 POS (the X2 position, mm)");
+    return;
+  }
+  if (orientation && io::machineTypeOf(machine) != "exechon")
+    throw InvalidArgument(
+        fmt::format("--orientation is for Exechon machines; {} is a hexapod", machine));
+}
+
+GcodeCompensateResult compensateGcode(const GcodeCompensateRequest& request) {
+  request.validate();
+  if (!request.hybrid_frame.empty()) return detail::compensateHybridGcode(request);
+  if (io::machineTypeOf(request.machine) == "exechon") return compensateExechon(request);
+  return compensateHexapod(request);
+}
+
+}  // namespace pkm::workflow

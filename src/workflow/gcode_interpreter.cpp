@@ -1,0 +1,50 @@
+// The interpreter settings of the G-code workflows (workflow/gcode_interpreter.hpp) and their
+// progress reports (gcode_progress.hpp).
+#include "pkm/workflow/gcode_interpreter.hpp"
+
+#include <fmt/format.h>
+
+#include "gcode_progress.hpp"
+#include "pkm/core/error.hpp"
+
+namespace pkm::workflow {
+
+void GcodeInterpreterSettings::validate() const {
+  if (tool_units != "mm" && tool_units != "inch")
+    throw InvalidArgument(fmt::format("--tool-units must be mm or inch, not '{}'", tool_units));
+  if (max_iterations == 0) throw InvalidArgument("--max-iterations must be positive");
+}
+
+cnc::InterpreterOptions GcodeInterpreterSettings::options() const {
+  validate();
+  cnc::InterpreterOptions o;
+  if (!tool_table.empty())
+    o.tools = cnc::ToolTable::load(tool_table, tool_units == "inch" ? cnc::kMmPerInch : 1.0);
+  o.block_delete = block_delete;
+  o.max_loop_iterations = max_iterations;
+  return o;
+}
+
+namespace detail {
+
+void GcodeProgress::report(const char* stage,
+                           const char* what,
+                           std::size_t index,
+                           std::size_t count,
+                           std::size_t done,
+                           std::size_t total) const {
+  if (control_.progress) {
+    ProgressEvent e;
+    e.stage = stage;
+    e.index = index;
+    e.count = count;
+    e.elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    e.message = total > 0 ? fmt::format("{}: {}/{} {}", stage, done, total, what)
+                          : fmt::format("{}: {} {}", stage, done, what);
+    control_.report(e);
+  }
+  control_.checkCancelled();
+}
+
+}  // namespace detail
+}  // namespace pkm::workflow

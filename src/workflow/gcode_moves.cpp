@@ -1,0 +1,90 @@
+// `pkm gcode moves` as a workflow (workflow/gcode_moves.hpp).
+#include "pkm/workflow/gcode_moves.hpp"
+
+#include <fmt/format.h>
+
+#include <optional>
+#include <utility>
+
+#include "gcode_progress.hpp"
+#include "pkm/cnc/interpreter.hpp"
+#include "pkm/cnc/line_reader.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/io/atomic_file.hpp"
+
+namespace pkm::workflow {
+
+namespace {
+
+/// Collects CSV rows and hands them on in blocks of about 1 MiB.
+class CsvSink final : public cnc::MoveSink {
+ public:
+  explicit CsvSink(TextOutput write) : write_(std::move(write)) {
+    buffer_.reserve(kFlush + 4096);
+    buffer_ += cnc::kMoveCsvHeader;
+    buffer_ += '\n';
+  }
+  void onMove(const cnc::Move& m) override {
+    cnc::appendMoveCsv(buffer_, m);
+    if (buffer_.size() > kFlush) flush();
+  }
+  void flush() {
+    if (!buffer_.empty()) write_(buffer_);
+    buffer_.clear();
+  }
+
+ private:
+  static constexpr std::size_t kFlush = 1 << 20;
+  TextOutput write_;
+  std::string buffer_;
+};
+
+}  // namespace
+
+void GcodeMovesRequest::validate() const {
+  interpreter.validate();
+  if (!out.empty()) io::checkOverwrite(out, force ? io::Overwrite::kAllow : io::Overwrite::kRefuse);
+}
+
+GcodeMovesResult runGcodeMoves(const GcodeMovesRequest& request,
+                               const RunControl& control,
+                               const TextOutput& output) {
+  request.validate();
+  cnc::Interpreter interpreter(request.interpreter.options());
+  // A program without O-words is run while it is read (constant memory); one with O-words is
+  // parsed whole first, so that its jumps resolve.
+  const io::NamedText& source = request.program;
+  std::optional<cnc::Program> program;
+  if (cnc::LineReader::mayHaveOWords(source.text))
+    program = cnc::Program::parse(source.text, source.name);
+  cnc::LineReader reader(source.text, source.name);
+  GcodeMovesResult result;
+  std::optional<io::AtomicFile> file;  // an error leaves no partial file
+  if (!request.out.empty()) file.emplace(request.out, io::Overwrite::kAllow);
+  CsvSink sink([&](std::string_view text) {
+    if (file)
+      file->write(text);
+    else if (output)
+      output(text);
+    else
+      result.csv += text;
+  });
+  const detail::GcodeProgress progress(control);
+  detail::ProgressMoveSink watched(sink, progress, 0, 0);
+  const cnc::RunSummary s =
+      program ? interpreter.run(*program, watched) : interpreter.runStream(reader, watched);
+  sink.flush();
+  if (file) file->commit();
+  result.lines = program ? program->lineCount() : reader.lines();
+  result.blocks = s.blocks;
+  result.moves = s.moves;
+  result.ended_by_m2 = s.ended_by_m2;
+  result.note = fmt::format("{} lines, {} blocks executed, {} moves{}",
+                            result.lines,
+                            s.blocks,
+                            s.moves,
+                            s.ended_by_m2 ? "" : " (no M2/M30 at the end)");
+  return result;
+}
+
+}  // namespace pkm::workflow

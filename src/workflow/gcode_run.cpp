@@ -1,0 +1,159 @@
+// `pkm gcode run` as a workflow (workflow/gcode_run.hpp).
+#include "pkm/workflow/gcode_run.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "gcode_run_detail.hpp"
+#include "pkm/cnc/interpreter.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/core/units.hpp"
+#include "pkm/io/atomic_file.hpp"
+#include "pkm/io/machine_loader.hpp"
+
+namespace pkm::workflow {
+
+namespace {
+
+/// Angles (joint_angle) are reported in degrees, everything else in its own unit.
+double shown(cnc::PathCheck c, double v) {
+  return c == cnc::PathCheck::kJointAngle ? radToDeg(v) : v;
+}
+
+/// The unit of a check's values. An Exechon's rates are in the length unit for legs and in
+/// degrees for the wrist: with `item` the unit of that joint, without it both.
+std::string unitOf(cnc::PathCheck c,
+                   const std::string& len,
+                   bool exechon = false,
+                   std::string_view item = {}) {
+  const bool wrist = item.substr(0, 5) == "wrist";
+  const std::string rate = exechon && item.empty() ? fmt::format("{}/s (legs), deg/s (wrist)", len)
+                           : wrist                 ? std::string("deg/s")
+                                                   : fmt::format("{}/s", len);
+  switch (c) {
+    case cnc::PathCheck::kJointAngle:
+      return "deg";
+    case cnc::PathCheck::kSingular:
+    case cnc::PathCheck::kReach:
+      return "";
+    case cnc::PathCheck::kJointVelocity:
+      return rate;
+    case cnc::PathCheck::kJointAcceleration:
+      return exechon && item.empty() ? fmt::format("{}/s^2 (legs), deg/s^2 (wrist)", len)
+                                     : rate + "^2";
+    default:
+      return len;
+  }
+}
+
+io::GcodeCheckEvent eventOf(cnc::PathCheck c, const cnc::CheckEvent& e, const detail::JointRun& r) {
+  io::GcodeCheckEvent out;
+  out.line = e.line;
+  out.position = e.pos;
+  out.item = e.item;
+  out.value = shown(c, e.value);
+  out.limit = shown(c, e.limit);
+  out.margin = shown(c, e.margin);
+  out.unit = unitOf(c, r.len, r.exechon, e.item);
+  return out;
+}
+
+void refuseOverwrite(const std::string& path, bool force) {
+  if (!path.empty())
+    io::checkOverwrite(path, force ? io::Overwrite::kAllow : io::Overwrite::kRefuse);
+}
+
+/// The program's motions and dwells. Throws pkm::IoError "NAME:LINE: message" for a program the
+/// interpreter rejects, pkm::InvalidArgument for one without motion.
+cnc::MoveCollector interpret(const GcodeRunRequest& request,
+                             const detail::GcodeProgress& progress,
+                             std::size_t& lines) {
+  cnc::Interpreter interpreter(request.interpreter.options());
+  const cnc::Program program = cnc::Program::parse(request.program.text, request.program.name);
+  lines = program.lineCount();
+  cnc::MoveCollector moves;
+  progress.report("interpreting", "motions", 1, detail::kRunStages, 0, 0);
+  detail::ProgressMoveSink watched(moves, progress, 1, detail::kRunStages);
+  (void)interpreter.run(program, watched);
+  if (moves.moves.empty())
+    throw InvalidArgument(fmt::format("{}: no motion", request.program.name));
+  return moves;
+}
+
+}  // namespace
+
+namespace detail {
+
+io::GcodeRunReport runReport(const GcodeRunRequest& request,
+                             std::size_t lines,
+                             std::size_t motions,
+                             const JointRun& run) {
+  io::GcodeRunReport r;
+  r.program = request.program.name;
+  r.machine = run.machine_name;
+  r.machine_type = run.exechon ? "exechon" : "hexapod";
+  r.units = run.len;
+  r.orientation = request.orientation;
+  r.lines = lines;
+  r.motions = motions;
+  r.points = run.points.size();
+  r.tolerance_mm = request.tolerance;
+  r.max_step_mm = run.interpolation.max_step;
+  r.max_angle_step_deg = run.interpolation.max_angle_step;
+  r.max_joint_velocity = run.limits.max_joint_velocity;
+  r.max_joint_acceleration = run.limits.max_joint_acceleration;
+  r.max_wrist_velocity_deg_per_s = run.wrist_velocity;
+  r.max_wrist_acceleration_deg_per_s2 = run.wrist_acceleration;
+  r.rapid_rate_mm_per_min = run.limits.rapid_rate;
+  r.limits_from_machine_file = run.from_file;
+  r.cycle_time_s = run.time.total;
+  r.dwell_time_s = run.time.dwell;
+  r.ok = run.report.ok();
+  for (std::size_t k = 0; k < cnc::kPathChecks; ++k) {
+    const auto c = static_cast<cnc::PathCheck>(k);
+    const cnc::CheckStat& st = run.report.stats[k];
+    r.checks.push_back({std::string(cnc::toString(c)),
+                        st.enabled,
+                        st.violations,
+                        unitOf(c, run.len, run.exechon),
+                        eventOf(c, st.worst, run),
+                        eventOf(c, st.first, run)});
+  }
+  return r;
+}
+
+}  // namespace detail
+
+void GcodeRunRequest::validate() const {
+  cnc::MotionLimits{
+      max_joint_velocity.value_or(200.0), max_joint_acceleration.value_or(2000.0), rapid_rate}
+      .validate();
+  PKM_CHECK(tolerance > 0.0 && std::isfinite(tolerance), "--tolerance must be > 0");
+  refuseOverwrite(out, force);
+  refuseOverwrite(report, force);
+  if (io::machineTypeOf(machine) != "exechon" && orientation != "vector")
+    throw InvalidArgument("--orientation applies to Exechon machines only");
+  interpreter.validate();
+}
+
+GcodeRunResult runGcode(const GcodeRunRequest& request, const RunControl& control) {
+  request.validate();
+  const bool exechon = io::machineTypeOf(request.machine) == "exechon";
+  const detail::GcodeProgress progress(control);
+  std::size_t lines = 0;
+  const cnc::MoveCollector moves = interpret(request, progress, lines);
+  detail::JointRun run;
+  if (exechon)
+    detail::runExechon(request, moves, control, progress, run);
+  else
+    detail::runHexapod(request, moves, control, progress, run);
+  GcodeRunResult result;
+  result.report = detail::runReport(request, lines, moves.moves.size(), run);
+  if (!request.out.empty()) detail::writeJointCsv(request.out, run);
+  if (!request.report.empty())
+    io::writeFileAtomic(request.report, io::gcodeRunJson(result.report), io::Overwrite::kAllow);
+  return result;
+}
+
+}  // namespace pkm::workflow

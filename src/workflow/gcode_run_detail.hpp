@@ -1,0 +1,62 @@
+// Shared by the `gcode run` workflow's sources (workflow/gcode_run.hpp): a program converted to
+// joint space on one machine, whatever its type.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "gcode_progress.hpp"
+#include "pkm/cnc/cycle_time.hpp"
+#include "pkm/cnc/joint_checks.hpp"
+#include "pkm/cnc/move.hpp"
+#include "pkm/cnc/path_interpolation.hpp"
+#include "pkm/workflow/gcode_run.hpp"
+
+namespace pkm::workflow::detail {
+
+/// Stages of a run, for the progress reports: interpreting, interpolating, converting.
+inline constexpr std::size_t kRunStages = 3;
+
+/// A program converted to joint space on one machine, timed and checked. Not copied or moved:
+/// `csv_row` refers to it.
+struct JointRun {
+  std::string machine_name;
+  std::string len;  ///< the machine's length unit
+  bool exechon = false;
+  cnc::InterpolationOptions interpolation;
+  std::vector<cnc::PathPoint> points;
+  cnc::CycleTime time;
+  cnc::PathCheckReport report;
+  std::string csv_header;
+  std::function<void(std::string&, std::size_t)> csv_row;  ///< appends point i's row
+  cnc::MotionLimits limits;  ///< in effect: request, else the machine file, else defaults
+  double wrist_velocity = 0.0, wrist_acceleration = 0.0;  ///< deg/s, deg/s² (Exechon)
+  std::vector<std::string> from_file;  ///< the limits taken from the machine file
+};
+
+/// Converts, times and checks `program` on the request's hexapod.
+void runHexapod(const GcodeRunRequest& request,
+                const cnc::MoveCollector& program,
+                const RunControl& control,
+                const GcodeProgress& progress,
+                JointRun& run);
+
+/// Converts, times and checks `program` on the request's Exechon. Throws pkm::InvalidArgument
+/// "NAME:LINE: B... programmed" for a B word.
+void runExechon(const GcodeRunRequest& request,
+                const cnc::MoveCollector& program,
+                const RunControl& control,
+                const GcodeProgress& progress,
+                JointRun& run);
+
+/// Writes the joint CSV through io::AtomicFile, in blocks of about 1 MiB.
+void writeJointCsv(const std::string& path, const JointRun& run);
+
+/// The report of a run (angles in degrees, every value with its unit).
+[[nodiscard]] io::GcodeRunReport runReport(const GcodeRunRequest& request,
+                                           std::size_t lines,
+                                           std::size_t motions,
+                                           const JointRun& run);
+
+}  // namespace pkm::workflow::detail

@@ -1,0 +1,169 @@
+// `gcode run` on a hexapod or an Exechon: the program interpolated, converted to joints, timed
+// and checked (workflow/gcode_run.hpp).
+#include <fmt/format.h>
+
+#include <cmath>
+#include <memory>
+#include <optional>
+
+#include "gcode_run_detail.hpp"
+#include "pkm/cnc/exechon_path.hpp"
+#include "pkm/cnc/exechon_path_checks.hpp"
+#include "pkm/cnc/joint_path.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/io/atomic_file.hpp"
+#include "pkm/io/machine_loader.hpp"
+#include "pkm/io/number_format.hpp"
+
+namespace pkm::workflow::detail {
+
+namespace {
+
+/// The option's value when given, else the machine file's when it has one (noted in `from`),
+/// else `fallback`.
+double pick(const std::optional<double>& option,
+            double fallback,
+            const std::optional<io::JointRateSpec>& file,
+            double io::JointRateSpec::*field,
+            const char* name,
+            std::vector<std::string>& from) {
+  if (option) return *option;
+  if (!file || std::isnan((*file).*field)) return fallback;
+  from.emplace_back(name);
+  return (*file).*field;
+}
+
+/// The rate limits in effect for a machine file's joint_rates.
+void effectiveLimits(const GcodeRunRequest& r,
+                     const std::optional<io::JointRateSpec>& file,
+                     bool wrist,
+                     JointRun& run) {
+  using S = io::JointRateSpec;
+  std::vector<std::string>& from = run.from_file;
+  run.limits.rapid_rate = r.rapid_rate;
+  run.limits.max_joint_velocity =
+      pick(r.max_joint_velocity, 200.0, file, &S::velocity, "velocity", from);
+  run.limits.max_joint_acceleration =
+      pick(r.max_joint_acceleration, 2000.0, file, &S::acceleration, "acceleration", from);
+  run.wrist_velocity = r.max_wrist_velocity.value_or(180.0);
+  run.wrist_acceleration = r.max_wrist_acceleration.value_or(1800.0);
+  if (!wrist) return;
+  run.wrist_velocity =
+      pick(r.max_wrist_velocity, 180.0, file, &S::wrist_velocity_deg, "wrist velocity", from);
+  run.wrist_acceleration = pick(r.max_wrist_acceleration,
+                                1800.0,
+                                file,
+                                &S::wrist_acceleration_deg,
+                                "wrist acceleration",
+                                from);
+}
+
+/// The interpreted program's motions cut into points for joint-space conversion.
+std::vector<cnc::PathPoint> interpolate(const std::vector<cnc::Move>& moves,
+                                        const cnc::InterpolationOptions& options,
+                                        const GcodeProgress& progress) {
+  // The first motion positions the machine at its end point (the interpreter's start-up
+  // position 0 is not a machine position).
+  cnc::PathInterpolator interp(options, moves.front().end);
+  std::vector<cnc::PathPoint> points;
+  progress.report("interpolating", "motions", 2, kRunStages, 0, moves.size());
+  for (std::size_t m = 0; m < moves.size(); ++m) {
+    interp.append(moves[m], static_cast<std::uint32_t>(m), points);
+    progress.every("interpolating", "motions", 2, kRunStages, m + 1, moves.size());
+  }
+  return points;
+}
+
+/// converter.solve of every point, in order.
+template <class Converter, class Joints>
+void convert(Converter& converter,
+             const std::vector<cnc::PathPoint>& points,
+             const GcodeProgress& progress,
+             std::vector<Joints>& out) {
+  progress.report("converting", "points", 3, kRunStages, 0, points.size());
+  out.resize(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    out[i] = converter.solve(points[i].pos);
+    progress.every("converting", "points", 3, kRunStages, i + 1, points.size());
+  }
+}
+
+}  // namespace
+
+void runHexapod(const GcodeRunRequest& request,
+                const cnc::MoveCollector& program,
+                const RunControl& control,
+                const GcodeProgress& progress,
+                JointRun& run) {
+  const io::HexapodMachine machine = io::loadHexapodMachine(request.machine);
+  control.note(machine.notices);
+  auto model = std::make_shared<kinematics::HexapodModel>(machine.model);
+  run.machine_name = model->name;
+  run.len = std::string(toString(model->unit));
+  effectiveLimits(request, machine.joint_rates, false, run);
+  run.interpolation = cnc::jointSpaceInterpolation(*model, request.tolerance);
+  run.points = interpolate(program.moves, run.interpolation, progress);
+  cnc::HexapodJointConverter conv(*model);
+  auto q = std::make_shared<std::vector<kinematics::StrutVector>>();
+  convert(conv, run.points, progress, *q);
+  run.time = cnc::estimateCycleTime(
+      run.points, *q, run.limits, cnc::dwellsOnPath(run.points, program.dwells));
+  run.report = cnc::checkPath(*model, run.points, *q, run.limits);
+  run.csv_header = cnc::kJointCsvHeader;
+  run.csv_row = [&run, q](std::string& out, std::size_t i) {
+    cnc::appendJointCsv(out, run.points[i], run.time.t[i], (*q)[i]);
+  };
+}
+
+void runExechon(const GcodeRunRequest& request,
+                const cnc::MoveCollector& program,
+                const RunControl& control,
+                const GcodeProgress& progress,
+                JointRun& run) {
+  const auto orientation = cnc::parseExechonOrientation(request.orientation);
+  for (const cnc::Move& m : program.moves)
+    if (m.end[4] != 0.0)
+      throw InvalidArgument(fmt::format("{}:{}: B{} programmed, but an Exechon has no B axis",
+                                        request.program.name,
+                                        m.line,
+                                        io::formatNumber(m.end[4])));
+  const io::ExechonMachine machine = io::loadExechonMachine(request.machine);
+  control.note(machine.notices);
+  auto model = std::make_shared<kinematics::ExechonModel>(machine.model);
+  run.exechon = true;
+  run.machine_name = model->name;
+  run.len = std::string(toString(model->unit));
+  effectiveLimits(request, machine.joint_rates, true, run);
+  const cnc::JointRateLimits limits =
+      cnc::exechonRateLimits(run.limits, run.wrist_velocity, run.wrist_acceleration);
+  run.interpolation = cnc::exechonInterpolation(*model, request.tolerance);
+  run.points = interpolate(program.moves, run.interpolation, progress);
+  cnc::ExechonJointConverter conv(*model, orientation);
+  auto samples = std::make_shared<std::vector<cnc::ExechonPathSample>>();
+  convert(conv, run.points, progress, *samples);
+  std::vector<kinematics::StrutVector> q(samples->size());
+  for (std::size_t i = 0; i < q.size(); ++i) q[i] = (*samples)[i].joints;
+  run.time =
+      cnc::estimateCycleTime(run.points, q, limits, cnc::dwellsOnPath(run.points, program.dwells));
+  run.report = cnc::checkExechonPath(*model, run.points, *samples, limits);
+  run.csv_header = cnc::kExechonJointCsvHeader;
+  run.csv_row = [&run, samples](std::string& out, std::size_t i) {
+    cnc::appendExechonJointCsv(out, run.points[i], run.time.t[i], (*samples)[i]);
+  };
+}
+
+void writeJointCsv(const std::string& path, const JointRun& run) {
+  io::AtomicFile f(path, io::Overwrite::kAllow);
+  std::string buf = run.csv_header + "\n";
+  for (std::size_t i = 0; i < run.points.size(); ++i) {
+    run.csv_row(buf, i);
+    if (buf.size() > (1u << 20)) {
+      f.write(buf);
+      buf.clear();
+    }
+  }
+  f.write(buf);
+  f.commit();
+}
+
+}  // namespace pkm::workflow::detail

@@ -1,0 +1,140 @@
+// workflow::compensateGcode: the pre-distorted program drives the nominal controller's struts to
+// where the calibrated machine needs them (round trip), the hybrid X2 term, errors named after an
+// upload, bad requests refused, no overwrite without force.
+#include "pkm/workflow/gcode_compensate.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "pkm/cnc/joint_path.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/io/machine_loader.hpp"
+
+namespace pkm::workflow {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class GcodeCompensateWorkflow : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ =
+        fs::temp_directory_path() / ("pkm_workflow_gcode_compensate_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+    return (dir_ / name).string();
+  }
+  /// The built-in default machine renamed as a calibration result, one base joint moved 0.4 mm.
+  std::string calibratedMachine() {
+    std::string j = slurp(std::string(PKM_SOURCE_DIR) + "/data/machines/hexapod-default.json");
+    const std::string name = "\"name\": \"pkm-hx1200\"";
+    j.replace(j.find(name), name.size(), "\"name\": \"pkm-hx1200-calibrated\"");
+    const std::string base = "[-124.747, 586.8886, 1200.0]";
+    j.replace(j.find(base), base.size(), "[-124.347, 586.8886, 1200.0]");
+    return write("cal.json", j);
+  }
+  GcodeCompensateRequest request(std::string text) {
+    GcodeCompensateRequest r;
+    r.program = {"upload.ngc", std::move(text)};
+    r.machine = calibratedMachine();
+    return r;
+  }
+  fs::path dir_;
+};
+
+TEST_F(GcodeCompensateWorkflow, TheNominalControllerReachesTheCalibratedStrutLengths) {
+  const GcodeCompensateResult r =
+      compensateGcode(request("(keep)\nG0 X0 Y0 Z200\nG1 X30 Y10 F600\nG1 Z150\nM2\n"));
+  const cnc::ProgramCompensation& c = r.compensation;
+  EXPECT_THAT(c.text, StartsWith("(keep)\n"));
+  EXPECT_EQ(c.motion_lines, 3u);
+  EXPECT_GT(c.max_correction, 0.01);
+  EXPECT_THAT(r.note,
+              StartsWith("nominal pkm-hx1200 -> calibrated pkm-hx1200-calibrated: 3 motion"));
+  const io::HexapodMachine nominal = io::loadHexapodMachine("hexapod-default");
+  const io::HexapodMachine cal = io::loadHexapodMachine(request("").machine);
+  cnc::HexapodJointConverter controller(nominal.model), machine(cal.model);
+  ASSERT_FALSE(c.points.empty());
+  for (const cnc::CompensatedPoint& p : c.points) {
+    const kinematics::StrutVector commanded = controller.solve(p.command);
+    const kinematics::StrutVector needed = machine.solve(p.desired);
+    EXPECT_LT((commanded - needed).cwiseAbs().maxCoeff(), 1e-6) << "line " << p.line;
+  }
+}
+
+TEST_F(GcodeCompensateWorkflow, TheHybridFrameShiftsByTheX2Term) {
+  GcodeCompensateRequest q;
+  q.program = {"upload.ngc", "G21 G90\nN5 G1 X10 Y20 Z-1 F500 (cut)\nM2\n"};
+  q.hybrid_frame =
+      write("frame.txt", "base_rpy_rad = 0 0 0.003\nbase_offset_mm = 0 0 0\nper_x2 = 0 -4e-05 0\n");
+  q.x2 = 1000.0;
+  const GcodeCompensateResult r = compensateGcode(q);
+  EXPECT_THAT(r.compensation.text, HasSubstr("Y19.96"));
+  EXPECT_THAT(r.note, StartsWith("hybrid squareness correction at X2 = 1000 mm (X2 term;"));
+  q.hybrid_frame = write("bad.txt", "base_rpy_rad = 0 0\n");
+  try {
+    (void)compensateGcode(q);
+    FAIL() << "accepted a malformed frame";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("bad.txt:1: expected 'key = a b c'"));
+  }
+}
+
+TEST_F(GcodeCompensateWorkflow, ErrorsNameTheUploadAndItsLine) {
+  try {
+    (void)compensateGcode(request("G0 X0 Y0 Z200\nG33 X1\n"));
+    FAIL() << "accepted G33";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), StartsWith("upload.ngc:2:"));
+  }
+}
+
+TEST_F(GcodeCompensateWorkflow, RejectsBadRequests) {
+  GcodeCompensateRequest q = request("G0 X0 Y0 Z200\n");
+  q.tolerance = -1.0;
+  EXPECT_THROW(q.validate(), InvalidArgument);
+  q = request("G0 X0 Y0 Z200\n");
+  q.hybrid_frame = "frame.txt";  // both a machine and a frame
+  EXPECT_THROW((void)compensateGcode(q), InvalidArgument);
+  q.machine.clear();  // a frame without --x2
+  EXPECT_THROW((void)compensateGcode(q), InvalidArgument);
+  q = request("G0 X0 Y0 Z200\n");
+  q.orientation = "axes";  // a hexapod
+  EXPECT_THROW((void)compensateGcode(q), InvalidArgument);
+  q = request("G0 X0 Y0 Z200\n");
+  q.machine = "hexapod-default";  // its nominal cannot be told from its name
+  EXPECT_THROW((void)compensateGcode(q), InvalidArgument);
+}
+
+TEST_F(GcodeCompensateWorkflow, WritesTheFileAndRefusesToOverwriteIt) {
+  GcodeCompensateRequest q = request("G0 X0 Y0 Z200\nG1 X30 F600\n");
+  q.out = (dir_ / "out.ngc").string();
+  const GcodeCompensateResult r = compensateGcode(q);
+  EXPECT_EQ(slurp(q.out), r.compensation.text);
+  write("out.ngc", "keep");
+  EXPECT_THROW((void)compensateGcode(q), IoError);
+  EXPECT_EQ(slurp(q.out), "keep");
+  q.force = true;
+  (void)compensateGcode(q);
+  EXPECT_EQ(slurp(q.out), r.compensation.text);
+}
+
+}  // namespace
+}  // namespace pkm::workflow

@@ -1,0 +1,152 @@
+// workflow::runGcode: a short program's motions, points and checks on a hexapod, a violation
+// found at its line, errors named after an upload, bad requests refused, the report file written
+// and never over an existing one without force, progress and cancellation.
+#include "pkm/workflow/gcode_run.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "pkm/core/error.hpp"
+
+namespace pkm::workflow {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("pkm_workflow_gcode_run_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+GcodeRunRequest request(std::string text, std::string machine = "hexapod-default") {
+  GcodeRunRequest r;
+  r.program = {"upload.ngc", std::move(text)};
+  r.machine = std::move(machine);
+  return r;
+}
+
+const io::GcodeCheckSummary& check(const io::GcodeRunReport& r, const std::string& name) {
+  for (const io::GcodeCheckSummary& c : r.checks)
+    if (c.name == name) return c;
+  throw std::runtime_error("no check " + name);
+}
+
+TEST(GcodeRunWorkflow, AShortProgramPassesEveryCheck) {
+  const GcodeRunResult r = runGcode(request("G0 X0 Y0 Z200\nG1 X10 F600\nG1 X20\nM2\n"));
+  const io::GcodeRunReport& rep = r.report;
+  EXPECT_TRUE(r.ok());
+  EXPECT_EQ(rep.program, "upload.ngc");
+  EXPECT_EQ(rep.machine_type, "hexapod");
+  EXPECT_EQ(rep.lines, 4u);
+  EXPECT_EQ(rep.motions, 3u);
+  EXPECT_GE(rep.points, rep.motions);
+  EXPECT_EQ(rep.checks.size(), 8u);
+  EXPECT_EQ(check(rep, "stroke").violations, 0u);
+  EXPECT_TRUE(check(rep, "stroke").enabled);
+  EXPECT_GT(rep.cycle_time_s, 0.0);
+  EXPECT_EQ(rep.max_joint_velocity, 200.0);  // the built-in machine has no joint_rates
+  EXPECT_EQ(rep.tolerance_mm, 0.01);
+}
+
+TEST(GcodeRunWorkflow, AStrokeViolationIsFoundAtItsLine) {
+  GcodeRunRequest q = request("G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\n");
+  q.max_joint_velocity = 150.0;
+  const GcodeRunResult r = runGcode(q);
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(r.report.max_joint_velocity, 150.0);
+  const io::GcodeCheckSummary& stroke = check(r.report, "stroke");
+  EXPECT_GT(stroke.violations, 0u);
+  EXPECT_EQ(stroke.first.line, 3u);
+  EXPECT_LT(stroke.first.margin, 0.0);
+}
+
+TEST(GcodeRunWorkflow, ErrorsNameTheUploadAndItsLine) {
+  try {
+    (void)runGcode(request("G0 X0\nG1 X1 Q\n"));
+    FAIL() << "accepted a bad word";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), StartsWith("upload.ngc:2:"));
+  }
+  try {
+    (void)runGcode(request("G0 X0 Y0 Z50\nG1 X10 B5 F600\n", "mxt700s-like"));
+    FAIL() << "accepted a B word on an Exechon";
+  } catch (const InvalidArgument& e) {
+    EXPECT_THAT(e.what(), StartsWith("upload.ngc:2: B5"));
+  }
+  EXPECT_THROW((void)runGcode(request("(nothing)\nM2\n")), InvalidArgument);
+}
+
+TEST(GcodeRunWorkflow, RejectsBadRequests) {
+  GcodeRunRequest q = request("G0 X0 Y0 Z200\n");
+  q.tolerance = 0.0;
+  EXPECT_THROW(q.validate(), InvalidArgument);
+  q = request("G0 X0 Y0 Z200\n");
+  q.max_joint_acceleration = -1.0;
+  EXPECT_THROW((void)runGcode(q), InvalidArgument);
+  q = request("G0 X0 Y0 Z200\n");
+  q.orientation = "axes";  // a hexapod has no wrist
+  EXPECT_THROW((void)runGcode(q), InvalidArgument);
+  q = request("G0 X0 Y0 Z200\n");
+  q.interpreter.tool_units = "furlong";
+  EXPECT_THROW((void)runGcode(q), InvalidArgument);
+}
+
+TEST(GcodeRunWorkflow, WritesTheReportAndRefusesToOverwriteIt) {
+  GcodeRunRequest q = request("G0 X0 Y0 Z200\nG1 X10 F600\nM2\n");
+  q.report = scratch("report.json").string();
+  q.out = scratch("joints.csv").string();
+  fs::remove(q.report);
+  fs::remove(q.out);
+  const GcodeRunResult r = runGcode(q);
+  EXPECT_EQ(slurp(q.report), io::gcodeRunJson(r.report));
+  EXPECT_THAT(slurp(q.out), StartsWith("line,t,x,y,z,a,b,c,q0,q1,q2,q3,q4,q5\n"));
+  std::ofstream(q.report) << "keep";
+  EXPECT_THROW((void)runGcode(q), IoError);
+  EXPECT_EQ(slurp(q.report), "keep");
+  q.force = true;
+  (void)runGcode(q);
+  EXPECT_EQ(slurp(q.report), io::gcodeRunJson(r.report));
+}
+
+TEST(GcodeRunWorkflow, ReportsProgressAndStopsWhenCancelled) {
+  // 20000 motions: progress every kGcodeProgressInterval motions or points of each stage.
+  GcodeRunRequest q =
+      request("G0 X0 Y0 Z200\no1 repeat [10000]\nG1 X1 F6000\nG1 X0\no1 endrepeat\nM2\n");
+  q.report = scratch("cancelled.json").string();
+  fs::remove(q.report);
+  CancellationToken token;
+  std::vector<ProgressEvent> events;
+  RunControl control;
+  control.cancel = &token;
+  control.progress = [&](const ProgressEvent& e) {
+    events.push_back(e);
+    if (e.stage == "interpolating") token.cancel();
+  };
+  EXPECT_THROW((void)runGcode(q, control), Cancelled);
+  ASSERT_GE(events.size(), 3u);
+  EXPECT_EQ(events.front().message, "interpreting: 0 motions");
+  EXPECT_EQ(events[1].message, "interpreting: 10000 motions");
+  EXPECT_EQ(events.back().stage, "interpolating");
+  EXPECT_EQ(events.back().index, 2u);
+  EXPECT_EQ(events.back().count, 3u);
+  EXPECT_FALSE(fs::exists(q.report));
+}
+
+}  // namespace
+}  // namespace pkm::workflow
