@@ -52,6 +52,13 @@ std::string machineType(const std::string& text) {
   return "hexapod";
 }
 
+std::string machineSpecType(const std::string& spec) {
+  if (std::filesystem::is_regular_file(spec)) return machineType(readTextFile(spec));
+  for (const auto& n : builtinMachineNames("exechon"))
+    if (n == spec) return "exechon";
+  return "hexapod";
+}
+
 std::vector<std::string> builtinMachineNames(const std::string& type) {
   std::vector<std::string> names;
   for (const auto& [name, text] : detail::embeddedMachines())

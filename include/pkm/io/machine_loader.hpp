@@ -25,6 +25,11 @@ inline constexpr const char* kDefaultExechonMachine = "mxt700s-like";
 /// object; the typed readers report malformed text).
 [[nodiscard]] std::string machineType(const std::string& text);
 
+/// The type of the machine a `--machine` spec names: machineType() of an existing file's text,
+/// "exechon" for a built-in Exechon's name, otherwise "hexapod" (the hexapod loader reports an
+/// unknown name). Throws pkm::IoError "PATH: cannot read the file" for an unreadable file.
+[[nodiscard]] std::string machineSpecType(const std::string& spec);
+
 /// Parses the embedded hexapod machine `name` ("default" means kDefaultMachine). Throws
 /// pkm::IoError if there is no hexapod by that name.
 [[nodiscard]] HexapodMachine builtinMachine(const std::string& name);
