@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 
 #include "pkm/core/error.hpp"
@@ -11,12 +13,7 @@
 
 namespace pkm::cli {
 
-std::string machineTypeOf(const std::string& spec) {
-  if (std::filesystem::is_regular_file(spec)) return io::machineType(io::readTextFile(spec));
-  for (const auto& n : io::builtinMachineNames("exechon"))
-    if (n == spec) return "exechon";
-  return "hexapod";
-}
+std::string machineTypeOf(const std::string& spec) { return io::machineSpecType(spec); }
 
 void writeTextOutput(const std::string& out, const std::string& text) {
   if (out.empty()) {
@@ -25,6 +22,15 @@ void writeTextOutput(const std::string& out, const std::string& text) {
     return;
   }
   io::writeFileAtomic(out, text, io::Overwrite::kAllow);
+}
+
+io::NamedText readCsvInput(const std::string& path) {
+  if (path == "-") return {"-", io::readNamedText("-").text};
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr)
+    throw IoError(locate(path, 0, fmt::format("cannot open: {}", std::strerror(errno))));
+  std::fclose(f);
+  return io::readNamedText(path);
 }
 
 void printNotices(const std::vector<std::string>& notices) {
