@@ -9,6 +9,7 @@
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/csv.hpp"
+#include "pkm/io/kinematics_csv.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/kinematics/exechon_checks.hpp"
@@ -180,49 +181,15 @@ void runCheck(const ExechonState& st) {
   if (rows.has_x2y2 && !machine.hybrid)
     rows.reader.fail("x2,y2 columns need a machine with a \"hybrid\" section");
   Output out;
-  out.text() +=
-      "row,status,min_stroke_margin,stroke_leg,alpha_margin_deg,beta_margin_deg,c_margin_deg,a_"
-      "margin_deg,"
-      "wrist_at_pole,condition_number,condition_margin,violations\n";
+  out.text() += io::exechonCheckCsvHeader();
   std::array<double, 8> row{};
   std::span<double> values(row.data(), rows.has_x2y2 ? 8 : 6);
   workflow::ExechonPosePath path(machine);
   std::size_t index = 0;
-  const auto margin = [](std::string& o, double v, double scale) {
-    if (!std::isinf(v)) io::appendNumber(o, v * scale);
-    o += ',';
-  };
   while (rows.reader.next(values)) {
     const kin::ExechonToolPose target{{row[0], row[1], row[2]}, {row[3], row[4], row[5]}};
     const workflow::ExechonPoseStep step = path.solve(target, x2y2Of(rows, row));
-    const kin::ExechonCheckResult& c = step.check;
-    std::string& o = out.text();
-    o += fmt::format("{},{},", index++, step.status);
-    if (c.solver_status != "ok") {
-      o += ",,,,,,,,,\n";
-      continue;
-    }
-    int k = 0;
-    c.stroke_margin.minCoeff(&k);
-    margin(o, c.stroke_margin[k], 1.0);
-    o += std::isinf(c.stroke_margin[k]) ? std::string(",") : fmt::format("{},", "ABC"[k]);
-    margin(o, c.alpha_margin, radToDeg(1.0));
-    margin(o, c.beta_margin, radToDeg(1.0));
-    margin(o, c.c_margin, radToDeg(1.0));
-    margin(o, c.a_margin, radToDeg(1.0));
-    o += c.wrist_at_pole ? "1," : "0,";
-    margin(o, c.condition_number, 1.0);
-    margin(o, c.condition_margin, 1.0);
-    std::vector<std::string> parts;
-    for (const auto& v : c.violations) {
-      const bool angle = v.kind == kin::LimitKind::kJointAngle;
-      parts.push_back(fmt::format("{} {} value={:.6g} limit={:.6g}",
-                                  kin::toString(v.kind),
-                                  v.item,
-                                  angle ? radToDeg(v.value) : v.value,
-                                  angle ? radToDeg(v.limit) : v.limit));
-    }
-    o += fmt::format("{}\n", fmt::join(parts, "; "));
+    io::appendExechonCheckRow(out.text(), index++, step.status, step.check);
     out.maybeFlush();
   }
 }
@@ -252,35 +219,13 @@ void runDrm(const ExechonState& st) {
   kin::ExechonData data(model);
   const kin::DrmCircleResult r = kin::sampleDrmCircle(model, data, opt);
   Output out;
-  std::string& o = out.text();
-  o += "theta_deg,phi_drm_deg,fit_deg,residual_deg\n";
-  for (std::size_t i = 0; i < r.theta.size() && i < r.phi.size(); ++i) {
-    appendCsv(o, radToDeg(r.theta[i]));
-    io::appendNumber(o, radToDeg(r.phi[i]));
-    if (r.ok()) {  // no fit for a circle that failed part-way
-      const double fit = kin::evaluateDrmPolynomial(r.coefficients, r.theta[i]);
-      o += ',';
-      appendCsv(o, radToDeg(fit));
-      io::appendNumber(o, radToDeg(r.phi[i] - fit));
-    } else {
-      o += ",,";
-    }
-    o += '\n';
-  }
-  o += fmt::format("# status {}\n", kin::toString(r.status));
+  out.text() += io::drmCircleCsv(r);
   if (!r.ok()) {
-    o += fmt::format("# failed at point {}\n", r.failed_index);
     out.flush();
     throw IoError(fmt::format("the circle leaves the workspace at point {} ({})",
                               r.failed_index,
                               kin::toString(r.status)));
   }
-  o += "# fit phi(theta) = sum c_n theta^n, theta and phi in rad (seed 003 eq. 10)\n";
-  for (int n = 0; n < 6; ++n)
-    o +=
-        fmt::format("# c{} {}\n", n, io::formatNumber(r.coefficients[static_cast<std::size_t>(n)]));
-  o += fmt::format("# max |phi_drm| {} deg\n", io::formatNumber(radToDeg(r.max_abs_phi)));
-  o += fmt::format("# max fit deviation {} deg\n", io::formatNumber(radToDeg(r.max_fit_deviation)));
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/csv.hpp"
+#include "pkm/io/kinematics_csv.hpp"
 #include "pkm/io/linuxcnc_hal.hpp"
 #include "pkm/io/machine_description.hpp"
 #include "pkm/io/machine_loader.hpp"
@@ -145,53 +146,17 @@ void runFk(const MachineOption& machine_opt,
   emit();
 }
 
-void appendMargin(std::string& out, double v) {
-  if (!std::isinf(v)) io::appendNumber(out, v);  // empty = limit disabled
-  out += ',';
-}
-
 void runCheck(const MachineOption& machine_opt, const std::string& poses) {
   const io::HexapodMachine machine = machine_opt.load();
   kin::HexapodData data(machine.model);
   io::CsvReader reader(poses, kPoseColumns);
   Output out;
-  out.text() +=
-      "row,status,min_stroke_margin,stroke_strut,min_base_angle_margin_deg,base_joint,"
-      "min_platform_angle_margin_deg,platform_joint,min_leg_distance,leg_pair,interference_margin,"
-      "condition_number,condition_margin,violations\n";
+  out.text() += io::hexapodCheckCsvHeader();
   std::array<double, 6> row{};
   std::size_t index = 0;
   while (reader.next(row)) {
-    const kin::HexapodCheckResult c = kin::checkPose(machine.model, data, poseFromRow(row));
-    std::string& o = out.text();
-    o += std::to_string(index++);
-    o += ',';
-    o += c.status();
-    o += ',';
-    // Smallest margin and the strut or joint it belongs to; both empty when the limit is disabled.
-    for (const kin::StrutVector* margins :
-         {&c.stroke_margin, &c.base_angle_margin, &c.platform_angle_margin}) {
-      int k = 0;
-      margins->minCoeff(&k);
-      const double scale = margins == &c.stroke_margin ? 1.0 : radToDeg(1.0);
-      appendMargin(o, (*margins)[k] * scale);
-      o += std::isinf((*margins)[k]) ? std::string(",") : std::to_string(k) + ',';
-    }
-    appendMargin(o, c.min_leg_distance);
-    o += c.closest_pair[0] >= 0 ? fmt::format("{}-{},", c.closest_pair[0], c.closest_pair[1])
-                                : std::string(",");
-    appendMargin(o, c.interference_margin);
-    appendMargin(o, c.condition_number);
-    appendMargin(o, c.condition_margin);
-    std::vector<std::string> parts;
-    for (const auto& v : c.violations)
-      parts.push_back(
-          fmt::format("{} {} value={:.6g} limit={:.6g}",
-                      kin::toString(v.kind),
-                      v.item,
-                      v.kind == kin::LimitKind::kJointAngle ? radToDeg(v.value) : v.value,
-                      v.kind == kin::LimitKind::kJointAngle ? radToDeg(v.limit) : v.limit));
-    o += fmt::format("{}\n", fmt::join(parts, "; "));
+    io::appendHexapodCheckRow(
+        out.text(), index++, kin::checkPose(machine.model, data, poseFromRow(row)));
     out.maybeFlush();
   }
 }
