@@ -3,6 +3,10 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+
 #include "pkm/core/error.hpp"
 #include "pkm/io/atomic_file.hpp"
 #include "pkm/io/machine_loader.hpp"
@@ -16,6 +20,15 @@ void writeTextOutput(const std::string& out, const std::string& text) {
     return;
   }
   io::writeFileAtomic(out, text, io::Overwrite::kAllow);
+}
+
+io::NamedText readCsvInput(const std::string& path) {
+  if (path == "-") return {"-", io::readNamedText("-").text};
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr)
+    throw IoError(locate(path, 0, fmt::format("cannot open: {}", std::strerror(errno))));
+  std::fclose(f);
+  return io::readNamedText(path);
 }
 
 void printNotices(const std::vector<std::string>& notices) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pkm/io/hexapod_machine.hpp"
+#include "pkm/io/named_text.hpp"
 #include "pkm/workflow/progress.hpp"
 
 namespace pkm::cli {
@@ -48,6 +49,11 @@ class Output {
 /// io::writeFileAtomic (a failed write leaves no partial file). Does not check for an existing
 /// file.
 void writeTextOutput(const std::string& out, const std::string& text);
+
+/// Reads the CSV input `path` whole for a workflow, named as a streaming io::CsvReader names it:
+/// "-" is standard input, named "-"; a file that cannot be opened throws pkm::IoError
+/// "PATH: cannot open: REASON".
+[[nodiscard]] io::NamedText readCsvInput(const std::string& path);
 
 /// Prints each notice to stderr as "pkm: note: ...".
 void printNotices(const std::vector<std::string>& notices);
@@ -103,11 +109,4 @@ struct CommandRegistration {
 /// Adds every registered command group to `app` (called once by main()).
 void addRegisteredCommands(CLI::App& app);
 
-}  // namespace pkm::cli
-
-namespace pkm::cli {
-/// The Exechon part of `pkm demo` on the built-in hybrid machine; true when its round trip passes.
-bool runExechonDemo(int points);
-/// Appends a human-readable description of `machine` (geometry table and home-pose checks).
-void describeMachine(const io::HexapodMachine& machine, std::string& out);
 }  // namespace pkm::cli

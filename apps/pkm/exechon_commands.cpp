@@ -9,12 +9,14 @@
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/csv.hpp"
+#include "pkm/io/kinematics_csv.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/kinematics/exechon_checks.hpp"
 #include "pkm/kinematics/exechon_drm.hpp"
 #include "pkm/kinematics/exechon_wrist.hpp"
 #include "pkm/kinematics/hybrid_model.hpp"
+#include "pkm/workflow/kinematics_path.hpp"
 
 namespace pkm::cli {
 
@@ -63,34 +65,26 @@ Eigen::Vector3d parseTriple(const std::string& text, const char* option) {
   return v;
 }
 
-/// The first violation that is not about the wrist (the --wrist form has no tool direction).
-std::string_view tripodStatus(const kin::ExechonCheckResult& c) {
-  for (const auto& v : c.violations)
-    if (v.item.rfind("wrist", 0) != 0) return kin::toString(v.kind);
-  return "ok";
-}
-
 void runIkWrist(const ExechonState& st) {
   const io::ExechonMachine machine = st.load();
-  const kin::ExechonModel& model = machine.model;
-  kin::ExechonData data(model);
+  kin::ExechonData data(machine.model);
   io::CsvReader reader(st.wrist, {"sx", "sy", "sz"});
   Output out;
   out.text() += "q1,q2,q3,alpha,beta,h,status\n";
   std::array<double, 3> row{};
   while (reader.next(row)) {
-    const Eigen::Vector3d S(row[0], row[1], row[2]);
-    const kin::ExechonIkStatus s = kin::tripodInverseKinematics(model, data, S);
+    const workflow::ExechonWristStep w =
+        workflow::solveWristPoint(machine.model, data, Eigen::Vector3d(row[0], row[1], row[2]));
     std::string& o = out.text();
-    if (s != kin::ExechonIkStatus::kOk) {
-      o += fmt::format(",,,,,,{}\n", kin::toString(s));
+    if (w.ik != kin::ExechonIkStatus::kOk) {
+      o += fmt::format(",,,,,,{}\n", kin::toString(w.ik));
       continue;
     }
-    for (int i = 0; i < 3; ++i) appendCsv(o, data.readings[i]);
-    appendCsv(o, radToDeg(data.e[0]));
-    appendCsv(o, radToDeg(data.e[1]));
-    appendCsv(o, data.e[2]);
-    o += tripodStatus(kin::checkConfiguration(model, data));
+    for (int i = 0; i < 3; ++i) appendCsv(o, w.readings[i]);
+    appendCsv(o, radToDeg(w.e[0]));
+    appendCsv(o, radToDeg(w.e[1]));
+    appendCsv(o, w.e[2]);
+    o += w.status;
     o += '\n';
     out.maybeFlush();
   }
@@ -110,10 +104,15 @@ struct PoseRows {
   }
 };
 
+/// The row's x2, y2 when the file has them.
+std::optional<std::array<double, 2>> x2y2Of(const PoseRows& rows,
+                                            const std::array<double, 8>& row) {
+  if (!rows.has_x2y2) return std::nullopt;
+  return std::array<double, 2>{row[6], row[7]};
+}
+
 void runIkPoses(const ExechonState& st) {
   const io::ExechonMachine machine = st.load();
-  const kin::ExechonModel& model = machine.model;
-  kin::ExechonData data(model);
   PoseRows rows(st.poses);
   if (rows.has_x2y2 && !machine.hybrid)
     rows.reader.fail("x2,y2 columns need a machine with a \"hybrid\" section");
@@ -122,37 +121,23 @@ void runIkPoses(const ExechonState& st) {
   out.text() += hybrid ? "q1,q2,q3,c,a,drm,status,x2,y2\n" : "q1,q2,q3,c,a,drm,status\n";
   std::array<double, 8> row{};
   std::span<double> values(row.data(), rows.has_x2y2 ? 8 : 6);
-  kin::ExechonConfiguration previous = model.home;
-  std::optional<Eigen::Matrix3d> reference;  // tool frame of the first solved row (frame H)
+  workflow::ExechonPosePath path(machine);
   while (rows.reader.next(values)) {
-    kin::ExechonToolPose target;
-    target.position = {row[0], row[1], row[2]};
-    target.direction = {row[3], row[4], row[5]};
-    kin::HybridCommand command;
-    if (hybrid) {
-      command = rows.has_x2y2
-                    ? kin::hybridCommandForTool(*machine.hybrid, target.position, row[6], row[7])
-                    : kin::hybridCommandCentred(*machine.hybrid, target.position);
-      target.position = command.pkm;
-    }
-    const kin::ExechonCheckResult c = kin::checkToolPose(model, data, target, previous);
+    const kin::ExechonToolPose target{{row[0], row[1], row[2]}, {row[3], row[4], row[5]}};
+    const workflow::ExechonPoseStep step = path.solve(target, x2y2Of(rows, row));
     std::string& o = out.text();
-    if (c.solver_status != "ok") {
-      o += fmt::format(",,,,,,{}", c.solver_status);
+    if (!step.solved) {
+      o += fmt::format(",,,,,,{}", step.check.solver_status);
     } else {
-      previous = kin::configurationOf(data);
-      if (!reference) reference = data.world_R_tool;
-      for (int i = 0; i < 3; ++i) appendCsv(o, data.readings[i]);
-      appendCsv(o, radToDeg(data.c));
-      appendCsv(o, radToDeg(data.a));
-      appendCsv(o, radToDeg(kin::dependentRotation(data.world_R_tool, *reference)));
-      std::string_view status = c.status();
-      if (status == "ok" && hybrid && !kin::hybridWithinLimits(*machine.hybrid, command))
-        status = "axis_limit";
-      o += status;
+      for (int i = 0; i < 3; ++i) appendCsv(o, step.joints.readings[i]);
+      appendCsv(o, radToDeg(step.joints.c));
+      appendCsv(o, radToDeg(step.joints.a));
+      appendCsv(o, radToDeg(step.drm));
+      o += step.status;
     }
     if (hybrid)
-      o += fmt::format(",{},{}", io::formatNumber(command.x2), io::formatNumber(command.y2));
+      o += fmt::format(
+          ",{},{}", io::formatNumber(step.command.x2), io::formatNumber(step.command.y2));
     o += '\n';
     out.maybeFlush();
   }
@@ -160,8 +145,6 @@ void runIkPoses(const ExechonState& st) {
 
 void runFk(const ExechonState& st) {
   const io::ExechonMachine machine = st.load();
-  const kin::ExechonModel& model = machine.model;
-  kin::ExechonData data(model);
   io::CsvReader reader(st.joints, {"q1", "q2", "q3", "c", "a"});
   const bool x2 = reader.addOptionalColumn("x2");
   const bool y2 = reader.addOptionalColumn("y2");
@@ -171,96 +154,42 @@ void runFk(const ExechonState& st) {
   out.text() += "x,y,z,i,j,k,iterations,status\n";
   std::array<double, 7> row{};
   std::span<double> values(row.data(), x2 ? 7 : 5);
-  kin::ExechonConfiguration seed = model.home;
+  workflow::ExechonFkPath path(machine);
   while (reader.next(values)) {
     kin::ExechonJoints joints;
     joints.readings = {row[0], row[1], row[2]};
     joints.c = degToRad(row[3]);
     joints.a = degToRad(row[4]);
-    const kin::FkSummary s = kin::toolForwardKinematics(model, data, joints, seed, machine.fk);
+    std::optional<std::array<double, 2>> x2y2;
+    if (x2) x2y2 = std::array<double, 2>{row[5], row[6]};
+    const workflow::FkStep s = path.solve(joints, x2y2);
     std::string& o = out.text();
-    if (s.ok()) {
-      seed = kin::configurationOf(data);
-      Eigen::Vector3d p = data.world_p_tool;
-      if (x2) {  // tool in the work frame: the nominal chain of the hybrid machine
-        kin::HybridCommand command;
-        command.x2 = row[5];
-        command.y2 = row[6];
-        command.pkm = p;
-        p = kin::hybridNominalToolPosition(*machine.hybrid, command);
-      }
-      for (int i = 0; i < 3; ++i) appendCsv(o, p[i]);
-      for (int i = 0; i < 3; ++i) appendCsv(o, data.world_u_tool[i]);
+    if (s.summary.ok()) {
+      for (int i = 0; i < 3; ++i) appendCsv(o, s.tool_point[i]);
+      for (int i = 0; i < 3; ++i) appendCsv(o, s.tool_direction[i]);
     } else {
       o += ",,,,,,";
-      seed = model.home;
     }
-    o += fmt::format("{},{}\n", s.iterations, kin::toString(s.status));
+    o += fmt::format("{},{}\n", s.summary.iterations, kin::toString(s.summary.status));
     out.maybeFlush();
   }
 }
 
 void runCheck(const ExechonState& st) {
   const io::ExechonMachine machine = st.load();
-  const kin::ExechonModel& model = machine.model;
-  kin::ExechonData data(model);
   PoseRows rows(st.poses);
   if (rows.has_x2y2 && !machine.hybrid)
     rows.reader.fail("x2,y2 columns need a machine with a \"hybrid\" section");
   Output out;
-  out.text() +=
-      "row,status,min_stroke_margin,stroke_leg,alpha_margin_deg,beta_margin_deg,c_margin_deg,a_"
-      "margin_deg,"
-      "wrist_at_pole,condition_number,condition_margin,violations\n";
+  out.text() += io::exechonCheckCsvHeader();
   std::array<double, 8> row{};
   std::span<double> values(row.data(), rows.has_x2y2 ? 8 : 6);
-  kin::ExechonConfiguration previous = model.home;
+  workflow::ExechonPosePath path(machine);
   std::size_t index = 0;
-  const auto margin = [](std::string& o, double v, double scale) {
-    if (!std::isinf(v)) io::appendNumber(o, v * scale);
-    o += ',';
-  };
   while (rows.reader.next(values)) {
-    kin::ExechonToolPose target{{row[0], row[1], row[2]}, {row[3], row[4], row[5]}};
-    kin::HybridCommand command;
-    if (machine.hybrid) {
-      command = rows.has_x2y2
-                    ? kin::hybridCommandForTool(*machine.hybrid, target.position, row[6], row[7])
-                    : kin::hybridCommandCentred(*machine.hybrid, target.position);
-      target.position = command.pkm;
-    }
-    const kin::ExechonCheckResult c = kin::checkToolPose(model, data, target, previous);
-    if (c.solver_status == "ok") previous = kin::configurationOf(data);
-    std::string_view status = c.status();
-    if (status == "ok" && machine.hybrid && !kin::hybridWithinLimits(*machine.hybrid, command))
-      status = "axis_limit";
-    std::string& o = out.text();
-    o += fmt::format("{},{},", index++, status);
-    if (c.solver_status != "ok") {
-      o += ",,,,,,,,,\n";
-      continue;
-    }
-    int k = 0;
-    c.stroke_margin.minCoeff(&k);
-    margin(o, c.stroke_margin[k], 1.0);
-    o += std::isinf(c.stroke_margin[k]) ? std::string(",") : fmt::format("{},", "ABC"[k]);
-    margin(o, c.alpha_margin, radToDeg(1.0));
-    margin(o, c.beta_margin, radToDeg(1.0));
-    margin(o, c.c_margin, radToDeg(1.0));
-    margin(o, c.a_margin, radToDeg(1.0));
-    o += c.wrist_at_pole ? "1," : "0,";
-    margin(o, c.condition_number, 1.0);
-    margin(o, c.condition_margin, 1.0);
-    std::vector<std::string> parts;
-    for (const auto& v : c.violations) {
-      const bool angle = v.kind == kin::LimitKind::kJointAngle;
-      parts.push_back(fmt::format("{} {} value={:.6g} limit={:.6g}",
-                                  kin::toString(v.kind),
-                                  v.item,
-                                  angle ? radToDeg(v.value) : v.value,
-                                  angle ? radToDeg(v.limit) : v.limit));
-    }
-    o += fmt::format("{}\n", fmt::join(parts, "; "));
+    const kin::ExechonToolPose target{{row[0], row[1], row[2]}, {row[3], row[4], row[5]}};
+    const workflow::ExechonPoseStep step = path.solve(target, x2y2Of(rows, row));
+    io::appendExechonCheckRow(out.text(), index++, step.status, step.check);
     out.maybeFlush();
   }
 }
@@ -290,35 +219,13 @@ void runDrm(const ExechonState& st) {
   kin::ExechonData data(model);
   const kin::DrmCircleResult r = kin::sampleDrmCircle(model, data, opt);
   Output out;
-  std::string& o = out.text();
-  o += "theta_deg,phi_drm_deg,fit_deg,residual_deg\n";
-  for (std::size_t i = 0; i < r.theta.size() && i < r.phi.size(); ++i) {
-    appendCsv(o, radToDeg(r.theta[i]));
-    io::appendNumber(o, radToDeg(r.phi[i]));
-    if (r.ok()) {  // no fit for a circle that failed part-way
-      const double fit = kin::evaluateDrmPolynomial(r.coefficients, r.theta[i]);
-      o += ',';
-      appendCsv(o, radToDeg(fit));
-      io::appendNumber(o, radToDeg(r.phi[i] - fit));
-    } else {
-      o += ",,";
-    }
-    o += '\n';
-  }
-  o += fmt::format("# status {}\n", kin::toString(r.status));
+  out.text() += io::drmCircleCsv(r);
   if (!r.ok()) {
-    o += fmt::format("# failed at point {}\n", r.failed_index);
     out.flush();
     throw IoError(fmt::format("the circle leaves the workspace at point {} ({})",
                               r.failed_index,
                               kin::toString(r.status)));
   }
-  o += "# fit phi(theta) = sum c_n theta^n, theta and phi in rad (seed 003 eq. 10)\n";
-  for (int n = 0; n < 6; ++n)
-    o +=
-        fmt::format("# c{} {}\n", n, io::formatNumber(r.coefficients[static_cast<std::size_t>(n)]));
-  o += fmt::format("# max |phi_drm| {} deg\n", io::formatNumber(radToDeg(r.max_abs_phi)));
-  o += fmt::format("# max fit deviation {} deg\n", io::formatNumber(radToDeg(r.max_fit_deviation)));
 }
 
 }  // namespace

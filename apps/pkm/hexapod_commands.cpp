@@ -5,16 +5,20 @@
 #include <cmath>
 #include <future>
 #include <memory>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/csv.hpp"
+#include "pkm/io/kinematics_csv.hpp"
 #include "pkm/io/linuxcnc_hal.hpp"
+#include "pkm/io/machine_description.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/kinematics/hexapod_checks.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
+#include "pkm/workflow/kinematics_path.hpp"
 
 namespace pkm::cli {
 
@@ -105,9 +109,8 @@ void runFk(const MachineOption& machine_opt,
            const std::string& lengths,
            const std::string& seed_text) {
   const io::HexapodMachine machine = machine_opt.load();
-  const kin::PoseRpy home = machine.model.home;
-  kin::PoseRpy seed = seed_text.empty() ? home : parseSeed(seed_text);
-  kin::HexapodData data(machine.model);
+  workflow::HexapodFkPath path(
+      machine, seed_text.empty() ? std::nullopt : std::optional(parseSeed(seed_text)));
   io::CsvReader reader(lengths, kLengthColumns);
   Output out;
   out.text() += "x,y,z,a,b,c,iterations,status\n";
@@ -129,9 +132,8 @@ void runFk(const MachineOption& machine_opt,
     more = reader.next(row);
     if (more) {
       for (int i = 0; i < kin::kStruts; ++i) q[i] = row[static_cast<std::size_t>(i)];
-      const kin::FkSummary s = kin::forwardKinematics(machine.model, data, q, seed, machine.fk);
-      rows.push_back({data.pose, s.iterations, s.status});
-      seed = s.ok() ? data.pose : home;  // re-seed from home after a failed solve
+      const workflow::FkStep s = path.solve(q);
+      rows.push_back({s.pose, s.summary.iterations, s.summary.status});
     }
     if (rows.size() == kChunk || (!more && !rows.empty())) {
       emit();
@@ -144,126 +146,22 @@ void runFk(const MachineOption& machine_opt,
   emit();
 }
 
-void appendMargin(std::string& out, double v) {
-  if (!std::isinf(v)) io::appendNumber(out, v);  // empty = limit disabled
-  out += ',';
-}
-
 void runCheck(const MachineOption& machine_opt, const std::string& poses) {
   const io::HexapodMachine machine = machine_opt.load();
   kin::HexapodData data(machine.model);
   io::CsvReader reader(poses, kPoseColumns);
   Output out;
-  out.text() +=
-      "row,status,min_stroke_margin,stroke_strut,min_base_angle_margin_deg,base_joint,"
-      "min_platform_angle_margin_deg,platform_joint,min_leg_distance,leg_pair,interference_margin,"
-      "condition_number,condition_margin,violations\n";
+  out.text() += io::hexapodCheckCsvHeader();
   std::array<double, 6> row{};
   std::size_t index = 0;
   while (reader.next(row)) {
-    const kin::HexapodCheckResult c = kin::checkPose(machine.model, data, poseFromRow(row));
-    std::string& o = out.text();
-    o += std::to_string(index++);
-    o += ',';
-    o += c.status();
-    o += ',';
-    // Smallest margin and the strut or joint it belongs to; both empty when the limit is disabled.
-    for (const kin::StrutVector* margins :
-         {&c.stroke_margin, &c.base_angle_margin, &c.platform_angle_margin}) {
-      int k = 0;
-      margins->minCoeff(&k);
-      const double scale = margins == &c.stroke_margin ? 1.0 : radToDeg(1.0);
-      appendMargin(o, (*margins)[k] * scale);
-      o += std::isinf((*margins)[k]) ? std::string(",") : std::to_string(k) + ',';
-    }
-    appendMargin(o, c.min_leg_distance);
-    o += c.closest_pair[0] >= 0 ? fmt::format("{}-{},", c.closest_pair[0], c.closest_pair[1])
-                                : std::string(",");
-    appendMargin(o, c.interference_margin);
-    appendMargin(o, c.condition_number);
-    appendMargin(o, c.condition_margin);
-    std::vector<std::string> parts;
-    for (const auto& v : c.violations)
-      parts.push_back(
-          fmt::format("{} {} value={:.6g} limit={:.6g}",
-                      kin::toString(v.kind),
-                      v.item,
-                      v.kind == kin::LimitKind::kJointAngle ? radToDeg(v.value) : v.value,
-                      v.kind == kin::LimitKind::kJointAngle ? radToDeg(v.limit) : v.limit));
-    o += fmt::format("{}\n", fmt::join(parts, "; "));
+    io::appendHexapodCheckRow(
+        out.text(), index++, kin::checkPose(machine.model, data, poseFromRow(row)));
     out.maybeFlush();
   }
 }
 
 }  // namespace
-
-void describeMachine(const io::HexapodMachine& machine, std::string& o) {
-  const kin::HexapodModel& m = machine.model;
-  const std::string u(toString(m.unit));
-  o += fmt::format("machine      {} ({})\n", m.name, machine.source);
-  if (!machine.description.empty()) o += fmt::format("description  {}\n", machine.description);
-  o += fmt::format("units        {} (angles in degrees)\n", u);
-  o += fmt::format("home         x {:g} y {:g} z {:g} a {:g} b {:g} c {:g}\n",
-                   m.home.position.x(),
-                   m.home.position.y(),
-                   m.home.position.z(),
-                   radToDeg(m.home.rpy.x()),
-                   radToDeg(m.home.rpy.y()),
-                   radToDeg(m.home.rpy.z()));
-  o += fmt::format("tool offset  [{:g}, {:g}, {:g}] {} (TCP in the platform frame)\n",
-                   m.tool_offset.x(),
-                   m.tool_offset.y(),
-                   m.tool_offset.z(),
-                   u);
-  if (m.spindle_offset != 0.0)
-    o += fmt::format("spindle off. {:g} {} (genhexkins)\n", m.spindle_offset, u);
-  o += fmt::format("strut dia.   {:g} {}{}\n",
-                   m.strut_diameter,
-                   u,
-                   m.strut_diameter > 0 ? "" : " (interference check off)");
-  o += fmt::format("FK           tolerance {:g} {}, at most {} iterations\n",
-                   machine.fk.tolerance,
-                   u,
-                   machine.fk.max_iterations);
-  kin::HexapodData data(m);
-  const kin::HexapodCheckResult home = kin::checkPose(m, data, m.home);
-  o += fmt::format("{:>5} {:>30} {:>30} {:>9} {:>21} {:>12} {:>8} {:>8}\n",
-                   "strut",
-                   "base joint (world)",
-                   "platform joint (platform)",
-                   "offset",
-                   "stroke",
-                   "home read.",
-                   "base°",
-                   "plat.°");
-  for (int i = 0; i < kin::kStruts; ++i) {
-    const kin::Strut& s = m.struts[static_cast<std::size_t>(i)];
-    const auto lim = [](double a) {
-      return a > 0 ? fmt::format("{:.1f}", radToDeg(a)) : std::string("-");
-    };
-    o += fmt::format(
-        "{:>5} {:>30} {:>30} {:>9.3f} {:>21} {:>12.6f} {:>8} {:>8}\n",
-        i,
-        fmt::format(
-            "[{:.4f}, {:.4f}, {:.4f}]", s.world_p_base.x(), s.world_p_base.y(), s.world_p_base.z()),
-        fmt::format("[{:.4f}, {:.4f}, {:.4f}]",
-                    s.platform_p_joint.x(),
-                    s.platform_p_joint.y(),
-                    s.platform_p_joint.z()),
-        s.length_offset,
-        fmt::format("[{:g}, {:g}]", s.min_reading, s.max_reading),
-        home.readings[i],
-        lim(s.base_cone.max_angle),
-        lim(s.platform_cone.max_angle));
-  }
-  o += fmt::format(
-      "at home      status {}, condition number {:.2f} (limit {:g}), closest struts {:.3f} {}\n",
-      home.status(),
-      home.condition_number,
-      m.max_condition,
-      home.min_leg_distance,
-      u);
-}
 
 void addHexapodCommands(CLI::App& app) {
   CLI::App* hex = app.add_subcommand("hexapod", "hexapod (6-UPS Stewart platform) kinematics");
@@ -312,7 +210,7 @@ void addHexapodCommands(CLI::App& app) {
     if (st->json)
       out.text() += io::writeHexapodJson(m);
     else
-      describeMachine(m, out.text());
+      out.text() += io::describeHexapodMachine(m);
   });
 
   CLI::App* hal =

@@ -3,30 +3,24 @@
 // docs/report.md).
 #include <fmt/format.h>
 
-#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "cli_common.hpp"
-#include "pkm/core/error.hpp"
-#include "pkm/io/atomic_file.hpp"
-#include "pkm/io/html_report.hpp"
+#include "pkm/workflow/report_render.hpp"
 
 namespace pkm::cli {
 namespace {
 
 struct ReportArgs {
+  workflow::ReportRenderRequest request;
   std::string data;
-  std::string out;
-  bool force = false;
 };
 
-void runRender(const ReportArgs& args) {
-  const io::Overwrite overwrite = args.force ? io::Overwrite::kAllow : io::Overwrite::kRefuse;
-  io::checkOverwrite(args.out, overwrite);
-  const std::string html = io::renderHtmlReport(io::readFileText(args.data), args.data);
-  io::writeFileAtomic(args.out, html, overwrite);
-  fmt::print("pkm: wrote {} ({} bytes)\n", args.out, html.size());
+void runRender(ReportArgs& args) {
+  args.request.data = io::readNamedText(args.data);
+  const workflow::ReportRenderResult r = workflow::renderReport(args.request);
+  fmt::print("pkm: wrote {} ({} bytes)\n", r.out, r.bytes);
 }
 
 void addReport(CLI::App& app) {
@@ -38,8 +32,8 @@ void addReport(CLI::App& app) {
   render->add_option("data", args->data, "report-data JSON file")
       ->required()
       ->check(CLI::ExistingFile);
-  render->add_option("--out,-o", args->out, "the HTML file to write")->required();
-  render->add_flag("--force", args->force, "overwrite an existing --out file");
+  render->add_option("--out,-o", args->request.out, "the HTML file to write")->required();
+  render->add_flag("--force", args->request.force, "overwrite an existing --out file");
   render->callback([args] { runRender(*args); });
 }
 

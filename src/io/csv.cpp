@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -45,6 +46,15 @@ CsvReader::CsvReader(const std::string& path,
     if (file_ == nullptr)
       throw IoError(locate(name_, 0, fmt::format("cannot open: {}", std::strerror(errno))));
   }
+  readHeader(required_columns);
+}
+
+CsvReader::CsvReader(NamedText input, std::vector<std::string> required_columns)
+    : text_(std::move(input.text)), name_(std::move(input.name)), buffer_(kChunk) {
+  readHeader(required_columns);
+}
+
+void CsvReader::readHeader(const std::vector<std::string>& required_columns) {
   std::string_view text;
   bool got = false;
   while (readLine(text)) {
@@ -138,9 +148,16 @@ bool CsvReader::readLine(std::string_view& out) {
       out = long_line_;
       return true;
     }
-    const std::size_t n = std::fread(buffer_.data(), 1, buffer_.size(), file_);
+    std::size_t n = 0;
+    if (file_ != nullptr) {
+      n = std::fread(buffer_.data(), 1, buffer_.size(), file_);
+    } else {
+      n = std::min(buffer_.size(), text_.size() - text_pos_);
+      std::memcpy(buffer_.data(), text_.data() + text_pos_, n);
+      text_pos_ += n;
+    }
     if (n < buffer_.size()) {
-      if (std::ferror(file_)) fail("read error");
+      if (file_ != nullptr && std::ferror(file_)) fail("read error");
       eof_ = true;
     }
     end_ = n;

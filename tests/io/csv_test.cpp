@@ -448,4 +448,35 @@ TEST(ParseFiniteDouble, RejectsEverythingElse) {
   }
 }
 
+/// A reader of text in memory reads as the reader of the same file does, over many buffer
+/// chunks, and names the text in its messages.
+TEST_F(CsvTest, TextInMemoryReadsAsTheFile) {
+  std::string text = "\xEF\xBB\xBF# comment\nb,a\r\n";
+  for (int i = 0; i < 20000; ++i) text += std::to_string(i) + "," + std::to_string(-i) + "\n";
+  text += "1,2";  // no final newline
+  const std::string path = write("big.csv", text);
+  CsvReader file(path, {"a", "b"});
+  CsvReader memory(pkm::io::NamedText{"upload.csv", text}, {"a", "b"});
+  std::array<double, 2> f{}, m{};
+  std::size_t rows = 0;
+  while (file.next(f)) {
+    ASSERT_TRUE(memory.next(m));
+    ASSERT_EQ(f, m);
+    ASSERT_EQ(file.line(), memory.line());
+    ++rows;
+  }
+  EXPECT_FALSE(memory.next(m));
+  EXPECT_EQ(rows, 20001u);
+  try {
+    CsvReader bad(pkm::io::NamedText{"upload.csv", "a\n1\nx\n"}, {"a"});
+    std::array<double, 1> v{};
+    while (bad.next(v)) {
+    }
+    FAIL();
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("upload.csv:3:"));
+  }
+  EXPECT_THROW(CsvReader(pkm::io::NamedText{"empty.csv", ""}, {"a"}), IoError);
+}
+
 }  // namespace

@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "pkm/io/named_text.hpp"
+
 namespace pkm::io {
 
 /// Reads a CSV file row by row, picking the columns named at construction by their header names.
@@ -26,6 +28,10 @@ class CsvReader {
   CsvReader(const std::string& path,
             std::vector<std::string> required_columns,
             std::string display_name = {});
+  /// Reads the text of `input` (a file read whole, standard input or an upload), named
+  /// `input.name` in messages, and its header. Throws as the constructor from a path (except
+  /// that nothing is opened).
+  CsvReader(NamedText input, std::vector<std::string> required_columns);
   ~CsvReader();
   CsvReader(const CsvReader&) = delete;
   CsvReader& operator=(const CsvReader&) = delete;
@@ -52,8 +58,11 @@ class CsvReader {
 
  private:
   bool readLine(std::string_view& out);
+  void readHeader(const std::vector<std::string>& required_columns);
 
-  std::FILE* file_ = nullptr;
+  std::FILE* file_ = nullptr;  ///< null: reading text_
+  std::string text_;
+  std::size_t text_pos_ = 0;
   bool owns_file_ = false;
   std::string name_;
   std::vector<char> buffer_;

@@ -1,0 +1,118 @@
+/// @file
+/// @brief The row-by-row jobs of `pkm hexapod fk` and `pkm exechon ik/fk/check` (docs/formats.md):
+/// kinematics along a path of rows, where each row depends on the ones before as on a machine's
+/// controller (FK seeded by the previous solution, IK by continuity, the dependent rotational
+/// motion measured from the first pose). A front end reads the rows and prints the steps; these
+/// classes hold the rules. Angles are in rad, lengths in the machine unit.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string_view>
+
+#include "pkm/io/exechon_machine.hpp"
+#include "pkm/io/hexapod_machine.hpp"
+#include "pkm/kinematics/exechon_checks.hpp"
+#include "pkm/kinematics/exechon_data.hpp"
+#include "pkm/kinematics/exechon_wrist.hpp"
+#include "pkm/kinematics/hexapod_data.hpp"
+#include "pkm/kinematics/hexapod_fk.hpp"
+#include "pkm/kinematics/hybrid_model.hpp"
+
+namespace pkm::workflow {
+
+/// One forward solve along a path.
+struct FkStep {
+  kinematics::FkSummary summary;  ///< status and iterations
+  kinematics::PoseRpy pose;       ///< hexapod: the solution (valid when summary.ok())
+  /// Exechon: the tool point (world frame, or the work frame of a hybrid machine given x2, y2)
+  /// and the unit tool direction (valid when summary.ok()).
+  Eigen::Vector3d tool_point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d tool_direction = Eigen::Vector3d::Zero();
+};
+
+/// Hexapod FK along a path of strut readings as a servo loop solves it
+/// (kinematics::forwardKinematics with the machine's FkOptions): each solve is seeded by the
+/// previous solution, the first by `seed` (default home), and the one after a failure by home.
+class HexapodFkPath {
+ public:
+  /// `machine` must outlive the path.
+  explicit HexapodFkPath(const io::HexapodMachine& machine,
+                         const std::optional<kinematics::PoseRpy>& seed = std::nullopt);
+  /// Solves the next row.
+  FkStep solve(const kinematics::StrutVector& readings);
+
+ private:
+  const io::HexapodMachine& machine_;
+  kinematics::HexapodData data_;
+  kinematics::PoseRpy seed_;
+};
+
+/// Exechon tool FK along a path of joint readings (kinematics::toolForwardKinematics), seeded as
+/// HexapodFkPath. With x2, y2 (a hybrid machine) the tool point is carried into the work frame by
+/// the nominal chain (kinematics::hybridNominalToolPosition).
+class ExechonFkPath {
+ public:
+  /// `machine` must outlive the path.
+  explicit ExechonFkPath(const io::ExechonMachine& machine);
+  /// Solves the next row. Throws pkm::InvalidArgument for x2, y2 on a machine without a hybrid
+  /// section.
+  FkStep solve(const kinematics::ExechonJoints& joints,
+               const std::optional<std::array<double, 2>>& x2y2 = std::nullopt);
+
+ private:
+  const io::ExechonMachine& machine_;
+  kinematics::ExechonData data_;
+  kinematics::ExechonConfiguration seed_;
+};
+
+/// One tool pose of an Exechon path, solved and checked.
+struct ExechonPoseStep {
+  kinematics::ExechonCheckResult check;  ///< kinematics::checkToolPose
+  /// The IK succeeded (check.solver_status is "ok"); joints and drm are valid only then.
+  bool solved = false;
+  /// check.status(), or "axis_limit" when every PKM limit holds but X2 or Y2 is outside its
+  /// stroke.
+  std::string_view status;
+  kinematics::ExechonJoints joints;   ///< leg readings and wrist readings C, A
+  double drm = 0.0;                   ///< φ_DRM from the path's first solved pose, rad (seed 003)
+  kinematics::HybridCommand command;  ///< hybrid machine: x2, y2 and the PKM command
+};
+
+/// Exechon tool IK and checks along a path of tool poses (`exechon ik --poses`, `exechon check`):
+/// IK by continuity from the previous solved pose (the first from home). On a hybrid machine the
+/// tool position is in the work frame, and X2/Y2 take their share first: the given x2, y2
+/// (kinematics::hybridCommandForTool) or the centred split (hybridCommandCentred).
+class ExechonPosePath {
+ public:
+  /// `machine` must outlive the path.
+  explicit ExechonPosePath(const io::ExechonMachine& machine);
+  /// Solves and checks the next pose. Throws pkm::InvalidArgument for x2, y2 on a machine
+  /// without a hybrid section.
+  ExechonPoseStep solve(const kinematics::ExechonToolPose& tool,
+                        const std::optional<std::array<double, 2>>& x2y2 = std::nullopt);
+
+ private:
+  const io::ExechonMachine& machine_;
+  kinematics::ExechonData data_;
+  kinematics::ExechonConfiguration previous_;
+  std::optional<Eigen::Matrix3d> reference_;  ///< tool frame of the first solved pose (frame H)
+};
+
+/// The tripod of an Exechon at one wrist point (`exechon ik --wrist`).
+struct ExechonWristStep {
+  kinematics::ExechonIkStatus ik = kinematics::ExechonIkStatus::kOk;
+  kinematics::ExechonLegVector readings = kinematics::ExechonLegVector::Zero();  ///< legs A, B, C
+  Eigen::Vector3d e = Eigen::Vector3d::Zero();  ///< (α, β in rad, h)
+  /// "ok" or the status word of the first violation that is not about the wrist (a wrist point
+  /// has no tool direction); empty when the IK failed.
+  std::string_view status;
+};
+
+/// Tripod IK at wrist point S (Zoppi base frame, machine unit) in the machine's branch, then the
+/// tripod's limits (kinematics::tripodInverseKinematics, checkConfiguration).
+[[nodiscard]] ExechonWristStep solveWristPoint(const kinematics::ExechonModel& model,
+                                               kinematics::ExechonData& data,
+                                               const Eigen::Vector3d& S);
+
+}  // namespace pkm::workflow

@@ -1,0 +1,95 @@
+// Kinematics along a path of rows (kinematics_path.hpp).
+#include "pkm/workflow/kinematics_path.hpp"
+
+#include "pkm/core/error.hpp"
+#include "pkm/kinematics/exechon_drm.hpp"
+#include "pkm/kinematics/exechon_ik.hpp"
+
+namespace pkm::workflow {
+
+namespace kin = pkm::kinematics;
+
+HexapodFkPath::HexapodFkPath(const io::HexapodMachine& machine,
+                             const std::optional<kin::PoseRpy>& seed)
+    : machine_(machine), data_(machine.model), seed_(seed.value_or(machine.model.home)) {}
+
+FkStep HexapodFkPath::solve(const kin::StrutVector& readings) {
+  FkStep step;
+  step.summary = kin::forwardKinematics(machine_.model, data_, readings, seed_, machine_.fk);
+  step.pose = data_.pose;
+  seed_ = step.summary.ok() ? data_.pose : machine_.model.home;  // home again after a failure
+  return step;
+}
+
+ExechonFkPath::ExechonFkPath(const io::ExechonMachine& machine)
+    : machine_(machine), data_(machine.model), seed_(machine.model.home) {}
+
+FkStep ExechonFkPath::solve(const kin::ExechonJoints& joints,
+                            const std::optional<std::array<double, 2>>& x2y2) {
+  PKM_CHECK(!x2y2 || machine_.hybrid, "x2,y2 need a machine with a \"hybrid\" section");
+  FkStep step;
+  step.summary = kin::toolForwardKinematics(machine_.model, data_, joints, seed_, machine_.fk);
+  if (!step.summary.ok()) {
+    seed_ = machine_.model.home;
+    return step;
+  }
+  seed_ = kin::configurationOf(data_);
+  step.tool_point = data_.world_p_tool;
+  step.tool_direction = data_.world_u_tool;
+  if (x2y2) {  // tool in the work frame: the nominal chain of the hybrid machine
+    kin::HybridCommand command;
+    command.x2 = (*x2y2)[0];
+    command.y2 = (*x2y2)[1];
+    command.pkm = step.tool_point;
+    step.tool_point = kin::hybridNominalToolPosition(*machine_.hybrid, command);
+  }
+  return step;
+}
+
+ExechonPosePath::ExechonPosePath(const io::ExechonMachine& machine)
+    : machine_(machine), data_(machine.model), previous_(machine.model.home) {}
+
+ExechonPoseStep ExechonPosePath::solve(const kin::ExechonToolPose& tool,
+                                       const std::optional<std::array<double, 2>>& x2y2) {
+  PKM_CHECK(!x2y2 || machine_.hybrid, "x2,y2 need a machine with a \"hybrid\" section");
+  ExechonPoseStep step;
+  kin::ExechonToolPose target = tool;
+  if (machine_.hybrid) {
+    step.command =
+        x2y2 ? kin::hybridCommandForTool(*machine_.hybrid, tool.position, (*x2y2)[0], (*x2y2)[1])
+             : kin::hybridCommandCentred(*machine_.hybrid, tool.position);
+    target.position = step.command.pkm;
+  }
+  step.check = kin::checkToolPose(machine_.model, data_, target, previous_);
+  step.solved = step.check.solver_status == "ok";
+  step.status = step.check.status();
+  if (!step.solved) return step;
+  previous_ = kin::configurationOf(data_);
+  if (!reference_) reference_ = data_.world_R_tool;
+  step.joints = kin::jointsOf(data_);
+  step.drm = kin::dependentRotation(data_.world_R_tool, *reference_);
+  if (step.status == "ok" && machine_.hybrid &&
+      !kin::hybridWithinLimits(*machine_.hybrid, step.command))
+    step.status = "axis_limit";
+  return step;
+}
+
+ExechonWristStep solveWristPoint(const kin::ExechonModel& model,
+                                 kin::ExechonData& data,
+                                 const Eigen::Vector3d& S) {
+  ExechonWristStep step;
+  step.ik = kin::tripodInverseKinematics(model, data, S);
+  if (step.ik != kin::ExechonIkStatus::kOk) return step;
+  step.readings = data.readings;
+  step.e = data.e;
+  step.status = "ok";
+  const kin::ExechonCheckResult check = kin::checkConfiguration(model, data);
+  for (const auto& v : check.violations)
+    if (v.item.rfind("wrist", 0) != 0) {
+      step.status = kin::toString(v.kind);
+      break;
+    }
+  return step;
+}
+
+}  // namespace pkm::workflow

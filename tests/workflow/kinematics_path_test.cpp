@@ -1,0 +1,83 @@
+// workflow::HexapodFkPath, ExechonPosePath, ExechonFkPath and solveWristPoint: round trips along a
+// path, the re-seed after a failed solve, the hybrid split and the dependent rotation's reference.
+#include "pkm/workflow/kinematics_path.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "pkm/core/error.hpp"
+#include "pkm/io/machine_loader.hpp"
+#include "pkm/kinematics/exechon_ik.hpp"
+#include "pkm/kinematics/hexapod_ik.hpp"
+
+namespace pkm::workflow {
+namespace {
+
+namespace kin = pkm::kinematics;
+
+TEST(HexapodFkPath, ReturnsThePosesAndRecoversAfterAFailure) {
+  const io::HexapodMachine machine = io::loadHexapodMachine("hexapod-default");
+  kin::HexapodData data(machine.model);
+  HexapodFkPath path(machine);
+  for (int k = 0; k < 5; ++k) {
+    kin::PoseRpy pose = machine.model.home;
+    pose.position += Eigen::Vector3d(2.0 * k, -1.0 * k, 0.5 * k);
+    pose.rpy.x() += 0.01 * k;
+    const kin::StrutVector q = kin::inverseKinematics(machine.model, data, pose);
+    const FkStep step = path.solve(q);
+    ASSERT_TRUE(step.summary.ok());
+    EXPECT_LT((step.pose.position - pose.position).norm(), 1e-9);
+    if (k == 2) {  // readings no pose has: fails, and the next row starts from home again
+      kin::StrutVector bad = q;
+      bad.setConstant(std::nan(""));
+      EXPECT_FALSE(path.solve(bad).summary.ok());
+    }
+  }
+}
+
+TEST(ExechonPosePath, SplitsAHybridCommandAndRoundTripsThroughFk) {
+  const io::ExechonMachine machine = io::loadExechonMachine("mxt700s-like");
+  ASSERT_TRUE(machine.hybrid.has_value());
+  ExechonPosePath poses(machine);
+  ExechonFkPath fk(machine);
+  for (int k = 0; k < 4; ++k) {
+    const kin::ExechonToolPose tool{{1000.0 + 20.0 * k, 50.0, -40.0 + 5.0 * k},
+                                    {0.05 * k, 0.0, -1.0}};
+    const ExechonPoseStep step = poses.solve(tool);
+    ASSERT_TRUE(step.solved) << step.check.solver_status;
+    EXPECT_EQ(step.status, "ok");
+    if (k == 0) {
+      EXPECT_EQ(step.drm, 0.0);  // the first pose is the reference
+    }
+    const FkStep back =
+        fk.solve(step.joints, std::array<double, 2>{step.command.x2, step.command.y2});
+    ASSERT_TRUE(back.summary.ok());
+    EXPECT_LT((back.tool_point - tool.position).norm(), 1e-8);
+    EXPECT_LT((back.tool_direction - tool.direction.normalized()).norm(), 1e-8);
+  }
+}
+
+TEST(ExechonPosePath, RefusesX2Y2WithoutAHybridMachine) {
+  io::ExechonMachine machine = io::loadExechonMachine("mxt700s-like");
+  machine.hybrid.reset();
+  ExechonPosePath poses(machine);
+  EXPECT_THROW((void)poses.solve({}, std::array<double, 2>{0.0, 0.0}), InvalidArgument);
+}
+
+TEST(SolveWristPoint, SolvesTheHomeWristPoint) {
+  const io::ExechonMachine machine = io::loadExechonMachine("mxt700s-like");
+  kin::ExechonData data(machine.model);
+  kin::evaluateConfiguration(machine.model, data, machine.model.home);
+  const Eigen::Vector3d S = data.zoppi_p_S;
+  const kin::ExechonLegVector readings = data.readings;
+  const ExechonWristStep step = solveWristPoint(machine.model, data, S);
+  ASSERT_EQ(step.ik, kin::ExechonIkStatus::kOk);
+  EXPECT_EQ(step.status, "ok");
+  EXPECT_LT((step.readings - readings).norm(), 1e-9);
+  EXPECT_NE(solveWristPoint(machine.model, data, Eigen::Vector3d::Constant(std::nan(""))).ik,
+            kin::ExechonIkStatus::kOk);
+}
+
+}  // namespace
+}  // namespace pkm::workflow
