@@ -38,12 +38,6 @@ void AnalyzeIo::add(CLI::App& cmd, std::size_t min_files, std::size_t max_files)
   cmd.add_flag("--json", json, "print one JSON object instead of a table");
 }
 
-void printJson(const nlohmann::ordered_json& json) {
-  const std::string text = json.dump(2) + "\n";
-  std::fwrite(text.data(), 1, text.size(), stdout);
-  std::fflush(stdout);
-}
-
 void printText(const std::string& text) {
   std::fwrite(text.data(), 1, text.size(), stdout);
   std::fflush(stdout);

@@ -7,7 +7,6 @@
 
 #include <CLI/CLI.hpp>
 #include <cstddef>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -33,10 +32,6 @@ struct AnalyzeIo {
   /// max_files means no limit) and `--json` to `cmd`.
   void add(CLI::App& cmd, std::size_t min_files = 1, std::size_t max_files = 0);
 };
-
-/// Writes `json` to stdout as one JSON object (2-space indent, a final newline). Non-finite
-/// numbers become null.
-void printJson(const nlohmann::ordered_json& json);
 
 /// Writes `text` to stdout as it is.
 void printText(const std::string& text);

@@ -1,4 +1,4 @@
-// Precompiled for the pkm program (cmake/PkmPch.cmake): CLI11, nlohmann_json, fmt, Eigen.
+// Precompiled for the pkm program (cmake/PkmPch.cmake): CLI11, fmt, Eigen.
 #pragma once
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -12,7 +12,6 @@
 #include <fstream>
 #include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>

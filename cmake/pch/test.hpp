@@ -15,7 +15,6 @@
 #include <fstream>
 #include <limits>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <numbers>
 #include <random>
 #include <sstream>
