@@ -22,30 +22,12 @@ int toInt(double v, char letter) {
   return static_cast<int>(r);
 }
 
+}  // namespace
+
 std::string gName(int code) {
   return code % 10 == 0 ? fmt::format("G{}", code / 10)
                         : fmt::format("G{}.{}", code / 10, code % 10);
 }
-
-void setOnce(int& slot, int code, const char* prefix) {
-  if (slot >= 0)
-    throw GcodeError(fmt::format("two {} codes from the same modal group: {}{} and {}{}",
-                                 prefix,
-                                 prefix,
-                                 slot,
-                                 prefix,
-                                 code));
-  slot = code;
-}
-
-void setOnceG(int& slot, int code) {
-  if (slot >= 0)
-    throw GcodeError(
-        fmt::format("two G codes from the same modal group: {} and {}", gName(slot), gName(code)));
-  slot = code;
-}
-
-}  // namespace
 
 void Interpreter::Impl::resolve(const Block& block, ResolvedBlock& rb, MoveSink& sink) {
   rb = ResolvedBlock{};
@@ -88,143 +70,6 @@ void Interpreter::Impl::resolve(const Block& block, ResolvedBlock& rb, MoveSink&
       setNumbered(toInt(idx, '#'), values[k]);
     }
   }
-}
-
-BlockCodes Interpreter::Impl::classify(const ResolvedBlock& rb) const {
-  BlockCodes c;
-  for (int k = 0; k < rb.n_g; ++k) {
-    const int g = rb.g[static_cast<std::size_t>(k)];
-    switch (g) {
-      case 0:
-      case 10:
-      case 20:
-      case 30:
-      case 800:
-      case 810:
-      case 820:
-      case 830:
-      case 730:
-      case 740:
-      case 840:
-      case 850:
-      case 860:
-      case 870:
-      case 880:
-      case 890:
-        // rs274 accepts G80 together with another motion code, which wins (checked with rs274:
-        // "G80 G0 X1" and "G0 G80 X1" both traverse).
-        if (g == 800 && c.motion >= 0) break;
-        if (c.motion == 800) c.motion = -1;
-        setOnceG(c.motion, g);
-        break;
-      case 40:
-      case 100:
-      case 280:
-      case 281:
-      case 300:
-      case 301:
-      case 530:
-      case 920:
-      case 921:
-      case 922:
-      case 923:
-        setOnceG(c.non_modal, g);
-        break;
-      case 170:
-      case 180:
-      case 190:
-        setOnceG(c.plane, g);
-        break;
-      case 900:
-      case 910:
-        setOnceG(c.distance, g);
-        break;
-      case 901:
-      case 911:
-        setOnceG(c.ijk, g);
-        break;
-      case 930:
-      case 940:
-        setOnceG(c.feed_mode, g);
-        break;
-      case 200:
-      case 210:
-        setOnceG(c.units, g);
-        break;
-      case 400:
-        setOnceG(c.cutter, g);
-        break;
-      case 430:
-      case 431:
-      case 490:
-        setOnceG(c.tlo, g);
-        break;
-      case 980:
-      case 990:
-        setOnceG(c.retract, g);
-        break;
-      case 540:
-      case 550:
-      case 560:
-      case 570:
-      case 580:
-      case 590:
-      case 591:
-      case 592:
-      case 593:
-        setOnceG(c.wcs, g);
-        break;
-      case 610:
-      case 611:
-      case 640:
-        setOnceG(c.path, g);
-        break;
-      case 410:
-      case 420:
-      case 411:
-      case 421:
-        throw GcodeError(fmt::format("{} cutter radius compensation is not supported", gName(g)));
-      default:
-        throw GcodeError(fmt::format("unsupported G code {}", gName(g)));
-    }
-  }
-  for (int k = 0; k < rb.n_m; ++k) {
-    const int m = rb.m[static_cast<std::size_t>(k)];
-    switch (m) {
-      case 0:
-      case 1:
-      case 2:
-      case 30:
-        setOnce(c.m_stop, m, "M");
-        break;
-      case 6:
-        setOnce(c.m_tool, m, "M");
-        break;
-      case 3:
-      case 4:
-      case 5:
-        setOnce(c.m_spindle, m, "M");
-        break;
-      case 48:
-      case 49:
-        setOnce(c.m_override, m, "M");
-        break;
-      case 7:
-        c.m_mist = true;
-        break;
-      case 8:
-        c.m_flood = true;
-        break;
-      case 9:
-        c.m_coolant_off = true;
-        break;
-      default:
-        throw GcodeError(fmt::format("unsupported M code M{}", m));
-    }
-  }
-  if (c.m_coolant_off && (c.m_mist || c.m_flood))
-    throw GcodeError("two M codes from the same modal group: M9 with M7/M8");
-  return c;
 }
 
 void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c) const {

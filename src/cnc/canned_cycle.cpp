@@ -69,141 +69,198 @@ CycleAction turning(SpindleDirection dir) {
   return dir == SpindleDirection::kCounterClockwise ? CycleAction::kSpindleCounterClockwise
                                                     : CycleAction::kSpindleClockwise;
 }
-}  // namespace
 
-std::array<double, 3> expandCycle(const CycleRequest& q, std::vector<CycleStep>& out) {
-  using K = CycleStep::Kind;
-  double old_z = q.initial_level;
-  double r = q.r;
-  double bottom = q.z;
-  double x = q.current[0];
-  double y = q.current[1];
-  double dx = 0.0;
-  double dy = 0.0;
+/// Where a cycle works: the R plane, the bottom, G87's top of the back bore, the hole position
+/// before the first repeat and its increment per repeat.
+struct CyclePlan {
+  double r = 0.0, bottom = 0.0, middle = 0.0;
+  double x = 0.0, y = 0.0, dx = 0.0, dy = 0.0;
+};
+
+/// The plan of `q`; throws GcodeError for an R plane below the bottom, a bad L or Q, a spindle
+/// the cycle cannot use, or too many motions.
+CyclePlan planCycle(const CycleRequest& q) {
+  CyclePlan p;
+  p.r = q.r;
+  p.bottom = q.z;
+  p.x = q.current[0];
+  p.y = q.current[1];
   if (q.incremental) {
-    r = q.r + old_z;
-    bottom = r + q.z;
-    dx = q.has_x ? q.x : 0.0;
-    dy = q.has_y ? q.y : 0.0;
+    p.r = q.r + q.initial_level;
+    p.bottom = p.r + q.z;
+    p.dx = q.has_x ? q.x : 0.0;
+    p.dy = q.has_y ? q.y : 0.0;
   } else {
-    if (q.has_x) x = q.x;
-    if (q.has_y) y = q.y;
+    if (q.has_x) p.x = q.x;
+    if (q.has_y) p.y = q.y;
   }
-  if (r < bottom) throw GcodeError("R plane below the bottom Z of the canned cycle");
+  if (p.r < p.bottom) throw GcodeError("R plane below the bottom Z of the canned cycle");
   if (q.repeats < 1) throw GcodeError("canned cycle L must be a positive integer");
   if ((q.code == 73 || q.code == 83) && q.q <= 0.0)
     throw GcodeError("negative or zero Q value in a pecking cycle");
   checkSpindle(q.code, q.spindle);
-  const double middle = q.incremental ? bottom + q.k : q.k;  // G87's top of the back bore
-  {
-    const double pecks = (q.code == 73 || q.code == 83) ? std::ceil((r - bottom) / q.q) : 1.0;
-    const double steps = static_cast<double>(q.repeats) * (3.0 * pecks + 14.0);
-    if (steps > static_cast<double>(q.max_steps))
-      throw GcodeError(
-          fmt::format("canned cycle would make {:.3g} motions (more than {})", steps, q.max_steps));
+  p.middle = q.incremental ? p.bottom + q.k : q.k;  // G87's top of the back bore
+  const double pecks = (q.code == 73 || q.code == 83) ? std::ceil((p.r - p.bottom) / q.q) : 1.0;
+  const double steps = static_cast<double>(q.repeats) * (3.0 * pecks + 14.0);
+  if (steps > static_cast<double>(q.max_steps))
+    throw GcodeError(
+        fmt::format("canned cycle would make {:.3g} motions (more than {})", steps, q.max_steps));
+  return p;
+}
+
+/// G83 / G73: pecks of Q from R, then the bottom and a rapid out.
+void peck(const CycleRequest& q,
+          const CyclePlan& p,
+          double x,
+          double y,
+          double clear,
+          std::vector<CycleStep>& out) {
+  using K = CycleStep::Kind;
+  for (double depth = p.r - q.q; depth > p.bottom; depth -= q.q) {
+    push(out, K::kFeed, x, y, depth);
+    if (q.code == 83) {
+      push(out, K::kRapid, x, y, p.r);
+      push(out, K::kRapid, x, y, depth + kPeckClearanceMm);
+    } else {
+      push(out, K::kRapid, x, y, depth + kPeckClearanceMm);
+    }
   }
+  push(out, K::kFeed, x, y, p.bottom);
+  push(out, K::kRapid, x, y, clear);
+}
+
+/// G84 / G74: tapping with the spindle reversed at the bottom, overrides off meanwhile.
+void tap(const CycleRequest& q,
+         const CyclePlan& p,
+         double x,
+         double y,
+         double clear,
+         std::vector<CycleStep>& out) {
+  using K = CycleStep::Kind;
+  using A = CycleAction;
+  const A reverse = q.code == 84 ? A::kSpindleCounterClockwise : A::kSpindleClockwise;
+  const A forward = q.code == 84 ? A::kSpindleClockwise : A::kSpindleCounterClockwise;
+  act(out, A::kOverridesOff, x, y, p.r);
+  push(out, K::kFeed, x, y, p.bottom);
+  act(out, A::kSpindleStop, x, y, p.bottom);
+  act(out, reverse, x, y, p.bottom);
+  dwell(out, q.p, x, y, p.bottom);
+  push(out, K::kFeed, x, y, clear);
+  act(out, A::kSpindleStop, x, y, clear);
+  act(out, forward, x, y, clear);
+  if (q.overrides_enabled) act(out, A::kOverridesOn, x, y, clear);
+}
+
+/// G87: back boring from the offset point I, J.
+void backBore(const CycleRequest& q,
+              const CyclePlan& p,
+              double x,
+              double y,
+              double clear,
+              std::vector<CycleStep>& out) {
+  using K = CycleStep::Kind;
+  using A = CycleAction;
+  const double ox = x + q.i;
+  const double oy = y + q.j;
+  push(out, K::kRapid, ox, oy, p.r);
+  act(out, A::kSpindleStop, ox, oy, p.r);
+  act(out, A::kSpindleOrient, ox, oy, p.r);
+  push(out, K::kRapid, ox, oy, p.bottom);
+  push(out, K::kRapid, x, y, p.bottom);
+  act(out, turning(q.spindle), x, y, p.bottom);
+  push(out, K::kFeed, x, y, p.middle);
+  push(out, K::kFeed, x, y, p.bottom);
+  act(out, A::kSpindleStop, x, y, p.bottom);
+  act(out, A::kSpindleOrient, x, y, p.bottom);
+  push(out, K::kRapid, ox, oy, p.bottom);
+  push(out, K::kRapid, ox, oy, clear);
+  push(out, K::kRapid, x, y, clear);
+  act(out, turning(q.spindle), x, y, clear);
+}
+
+/// The body of one repeat at hole x, y, from R to the clear level.
+void cycleBody(const CycleRequest& q,
+               const CyclePlan& p,
+               double x,
+               double y,
+               double clear,
+               std::vector<CycleStep>& out) {
+  using K = CycleStep::Kind;
+  const double r = p.r;
+  const double bottom = p.bottom;
+  switch (q.code) {
+    case 81:
+      push(out, K::kFeed, x, y, bottom);
+      push(out, K::kRapid, x, y, clear);
+      break;
+    case 82:
+    case 89: {
+      push(out, K::kFeed, x, y, bottom);
+      dwell(out, q.p, x, y, bottom);
+      if (q.code == 89)
+        push(out, K::kFeed, x, y, clear);  // G89 feeds all the way out (rs274)
+      else
+        push(out, K::kRapid, x, y, clear);
+      break;
+    }
+    case 85:
+      push(out, K::kFeed, x, y, bottom);
+      push(out, K::kFeed, x, y, r);
+      push(out, K::kRapid, x, y, clear);
+      break;
+    case 83:
+    case 73:
+      peck(q, p, x, y, clear, out);
+      break;
+    case 84:
+    case 74:
+      tap(q, p, x, y, clear, out);
+      break;
+    case 86:
+      push(out, K::kFeed, x, y, bottom);
+      dwell(out, q.p, x, y, bottom);
+      act(out, CycleAction::kSpindleStop, x, y, bottom);
+      push(out, K::kRapid, x, y, clear);
+      act(out, turning(q.spindle), x, y, clear);
+      break;
+    case 88:
+      push(out, K::kFeed, x, y, bottom);
+      dwell(out, q.p, x, y, bottom);
+      act(out, CycleAction::kSpindleStop, x, y, bottom);
+      act(out, CycleAction::kProgramStop, x, y, bottom);
+      push(out, K::kManual, x, y, clear);
+      act(out, turning(q.spindle), x, y, clear);
+      break;
+    case 87:
+      backBore(q, p, x, y, clear, out);
+      break;
+    default:
+      throw GcodeError("unsupported canned cycle");
+  }
+}
+
+}  // namespace
+
+std::array<double, 3> expandCycle(const CycleRequest& q, std::vector<CycleStep>& out) {
+  using K = CycleStep::Kind;
+  const CyclePlan p = planCycle(q);
+  double old_z = q.initial_level;
+  double x = p.x;
+  double y = p.y;
   double z = q.current[2];
-  if (old_z < r) {
-    push(out, K::kRapid, q.current[0], q.current[1], r);
-    old_z = r;
-    z = r;
+  if (old_z < p.r) {
+    push(out, K::kRapid, q.current[0], q.current[1], p.r);
+    old_z = p.r;
+    z = p.r;
   }
-  const double clear = q.retract_to_r ? r : old_z;
+  const double clear = q.retract_to_r ? p.r : old_z;
   for (int rep = 0; rep < q.repeats; ++rep) {
-    x += dx;
-    y += dy;
+    x += p.dx;
+    y += p.dy;
     const double level = std::max(z, clear);
     push(out, K::kRapid, x, y, level);
-    if (level != r) push(out, K::kRapid, x, y, r);
-    switch (q.code) {
-      case 81:
-        push(out, K::kFeed, x, y, bottom);
-        push(out, K::kRapid, x, y, clear);
-        break;
-      case 82:
-      case 89: {
-        push(out, K::kFeed, x, y, bottom);
-        dwell(out, q.p, x, y, bottom);
-        if (q.code == 89)
-          push(out, K::kFeed, x, y, clear);  // G89 feeds all the way out (rs274)
-        else
-          push(out, K::kRapid, x, y, clear);
-        break;
-      }
-      case 85:
-        push(out, K::kFeed, x, y, bottom);
-        push(out, K::kFeed, x, y, r);
-        push(out, K::kRapid, x, y, clear);
-        break;
-      case 83:
-      case 73: {
-        for (double depth = r - q.q; depth > bottom; depth -= q.q) {
-          push(out, K::kFeed, x, y, depth);
-          if (q.code == 83) {
-            push(out, K::kRapid, x, y, r);
-            push(out, K::kRapid, x, y, depth + kPeckClearanceMm);
-          } else {
-            push(out, K::kRapid, x, y, depth + kPeckClearanceMm);
-          }
-        }
-        push(out, K::kFeed, x, y, bottom);
-        push(out, K::kRapid, x, y, clear);
-        break;
-      }
-      case 84:
-      case 74: {
-        using A = CycleAction;
-        const A reverse = q.code == 84 ? A::kSpindleCounterClockwise : A::kSpindleClockwise;
-        const A forward = q.code == 84 ? A::kSpindleClockwise : A::kSpindleCounterClockwise;
-        act(out, A::kOverridesOff, x, y, r);
-        push(out, K::kFeed, x, y, bottom);
-        act(out, A::kSpindleStop, x, y, bottom);
-        act(out, reverse, x, y, bottom);
-        dwell(out, q.p, x, y, bottom);
-        push(out, K::kFeed, x, y, clear);
-        act(out, A::kSpindleStop, x, y, clear);
-        act(out, forward, x, y, clear);
-        if (q.overrides_enabled) act(out, A::kOverridesOn, x, y, clear);
-        break;
-      }
-      case 86:
-        push(out, K::kFeed, x, y, bottom);
-        dwell(out, q.p, x, y, bottom);
-        act(out, CycleAction::kSpindleStop, x, y, bottom);
-        push(out, K::kRapid, x, y, clear);
-        act(out, turning(q.spindle), x, y, clear);
-        break;
-      case 88:
-        push(out, K::kFeed, x, y, bottom);
-        dwell(out, q.p, x, y, bottom);
-        act(out, CycleAction::kSpindleStop, x, y, bottom);
-        act(out, CycleAction::kProgramStop, x, y, bottom);
-        push(out, K::kManual, x, y, clear);
-        act(out, turning(q.spindle), x, y, clear);
-        break;
-      case 87: {
-        using A = CycleAction;
-        const double ox = x + q.i;
-        const double oy = y + q.j;
-        push(out, K::kRapid, ox, oy, r);
-        act(out, A::kSpindleStop, ox, oy, r);
-        act(out, A::kSpindleOrient, ox, oy, r);
-        push(out, K::kRapid, ox, oy, bottom);
-        push(out, K::kRapid, x, y, bottom);
-        act(out, turning(q.spindle), x, y, bottom);
-        push(out, K::kFeed, x, y, middle);
-        push(out, K::kFeed, x, y, bottom);
-        act(out, A::kSpindleStop, x, y, bottom);
-        act(out, A::kSpindleOrient, x, y, bottom);
-        push(out, K::kRapid, ox, oy, bottom);
-        push(out, K::kRapid, ox, oy, clear);
-        push(out, K::kRapid, x, y, clear);
-        act(out, turning(q.spindle), x, y, clear);
-        break;
-      }
-      default:
-        throw GcodeError("unsupported canned cycle");
-    }
+    if (level != p.r) push(out, K::kRapid, x, y, p.r);
+    cycleBody(q, p, x, y, clear, out);
     z = clear;
   }
   return {x, y, clear};

@@ -11,7 +11,94 @@
 namespace pkm::cnc {
 
 namespace {
+
 constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+
+/// a OP b for the binary operators (kPow..kXor) and ATAN2 (a/b, degrees).
+double applyBinary(ExprOp op, double a, double b) {
+  switch (op) {
+    case ExprOp::kPow:
+      if (a < 0.0 && std::floor(b) != b)
+        throw GcodeError("attempt to raise a negative number to a non-integer power");
+      return std::pow(a, b);
+    case ExprOp::kMul:
+      return a * b;
+    case ExprOp::kDiv:
+      if (b == 0.0) throw GcodeError("attempt to divide by zero");
+      return a / b;
+    case ExprOp::kMod: {
+      if (b == 0.0) throw GcodeError("attempt to divide by zero (MOD)");
+      double r = std::fmod(a, b);
+      if (r < 0.0) r += std::abs(b);
+      return r;
+    }
+    case ExprOp::kAdd:
+      return a + b;
+    case ExprOp::kSub:
+      return a - b;
+    case ExprOp::kEq:
+      return std::abs(a - b) < kExprEqualTolerance ? 1.0 : 0.0;
+    case ExprOp::kNe:
+      return std::abs(a - b) >= kExprEqualTolerance ? 1.0 : 0.0;
+    case ExprOp::kGt:
+      return a > b ? 1.0 : 0.0;
+    case ExprOp::kGe:
+      return a >= b ? 1.0 : 0.0;
+    case ExprOp::kLt:
+      return a < b ? 1.0 : 0.0;
+    case ExprOp::kLe:
+      return a <= b ? 1.0 : 0.0;
+    case ExprOp::kAnd:
+      return (a != 0.0 && b != 0.0) ? 1.0 : 0.0;
+    case ExprOp::kOr:
+      return (a != 0.0 || b != 0.0) ? 1.0 : 0.0;
+    case ExprOp::kXor:
+      return ((a != 0.0) != (b != 0.0)) ? 1.0 : 0.0;
+    case ExprOp::kAtan2:
+      return std::atan2(a, b) * kDegPerRad;
+    default:
+      throw GcodeError("internal error: bad expression code");
+  }
+}
+
+/// OP b for negation and the one-argument functions (angles in degrees).
+double applyUnary(ExprOp op, double b) {
+  switch (op) {
+    case ExprOp::kNeg:
+      return -b;
+    case ExprOp::kAbs:
+      return std::abs(b);
+    case ExprOp::kAcos:
+      if (b < -1.0 || b > 1.0) throw GcodeError("ACOS argument out of range [-1, 1]");
+      return std::acos(b) * kDegPerRad;
+    case ExprOp::kAsin:
+      if (b < -1.0 || b > 1.0) throw GcodeError("ASIN argument out of range [-1, 1]");
+      return std::asin(b) * kDegPerRad;
+    case ExprOp::kCos:
+      return std::cos(b / kDegPerRad);
+    case ExprOp::kExp:
+      return std::exp(b);
+    case ExprOp::kFix:
+      return std::floor(b);
+    case ExprOp::kFup:
+      return std::ceil(b);
+    case ExprOp::kRound:
+      return std::round(b);
+    case ExprOp::kLn:
+      if (b <= 0.0) throw GcodeError("LN of a zero or negative number");
+      return std::log(b);
+    case ExprOp::kSin:
+      return std::sin(b / kDegPerRad);
+    case ExprOp::kSqrt:
+      if (b < 0.0) throw GcodeError("SQRT of a negative number");
+      return std::sqrt(b);
+    case ExprOp::kTan:
+      return std::tan(b / kDegPerRad);
+    default:
+      throw GcodeError("internal error: bad expression code");
+  }
+}
+
 }  // namespace
 
 double Expression::run(ParameterSource& params) const {
@@ -50,107 +137,7 @@ double Expression::run(ParameterSource& params) const {
     const bool two_args = binary || in.op == ExprOp::kAtan2;
     const double b = pop();
     const double a = two_args ? pop() : 0.0;
-    double r = 0.0;
-    switch (in.op) {
-      case ExprOp::kNeg:
-        r = -b;
-        break;
-      case ExprOp::kPow:
-        if (a < 0.0 && std::floor(b) != b)
-          throw GcodeError("attempt to raise a negative number to a non-integer power");
-        r = std::pow(a, b);
-        break;
-      case ExprOp::kMul:
-        r = a * b;
-        break;
-      case ExprOp::kDiv:
-        if (b == 0.0) throw GcodeError("attempt to divide by zero");
-        r = a / b;
-        break;
-      case ExprOp::kMod:
-        if (b == 0.0) throw GcodeError("attempt to divide by zero (MOD)");
-        r = std::fmod(a, b);
-        if (r < 0.0) r += std::abs(b);
-        break;
-      case ExprOp::kAdd:
-        r = a + b;
-        break;
-      case ExprOp::kSub:
-        r = a - b;
-        break;
-      case ExprOp::kEq:
-        r = std::abs(a - b) < kExprEqualTolerance ? 1.0 : 0.0;
-        break;
-      case ExprOp::kNe:
-        r = std::abs(a - b) >= kExprEqualTolerance ? 1.0 : 0.0;
-        break;
-      case ExprOp::kGt:
-        r = a > b ? 1.0 : 0.0;
-        break;
-      case ExprOp::kGe:
-        r = a >= b ? 1.0 : 0.0;
-        break;
-      case ExprOp::kLt:
-        r = a < b ? 1.0 : 0.0;
-        break;
-      case ExprOp::kLe:
-        r = a <= b ? 1.0 : 0.0;
-        break;
-      case ExprOp::kAnd:
-        r = (a != 0.0 && b != 0.0) ? 1.0 : 0.0;
-        break;
-      case ExprOp::kOr:
-        r = (a != 0.0 || b != 0.0) ? 1.0 : 0.0;
-        break;
-      case ExprOp::kXor:
-        r = ((a != 0.0) != (b != 0.0)) ? 1.0 : 0.0;
-        break;
-      case ExprOp::kAtan2:
-        r = std::atan2(a, b) * kDegPerRad;
-        break;
-      case ExprOp::kAbs:
-        r = std::abs(b);
-        break;
-      case ExprOp::kAcos:
-        if (b < -1.0 || b > 1.0) throw GcodeError("ACOS argument out of range [-1, 1]");
-        r = std::acos(b) * kDegPerRad;
-        break;
-      case ExprOp::kAsin:
-        if (b < -1.0 || b > 1.0) throw GcodeError("ASIN argument out of range [-1, 1]");
-        r = std::asin(b) * kDegPerRad;
-        break;
-      case ExprOp::kCos:
-        r = std::cos(b / kDegPerRad);
-        break;
-      case ExprOp::kExp:
-        r = std::exp(b);
-        break;
-      case ExprOp::kFix:
-        r = std::floor(b);
-        break;
-      case ExprOp::kFup:
-        r = std::ceil(b);
-        break;
-      case ExprOp::kRound:
-        r = std::round(b);
-        break;
-      case ExprOp::kLn:
-        if (b <= 0.0) throw GcodeError("LN of a zero or negative number");
-        r = std::log(b);
-        break;
-      case ExprOp::kSin:
-        r = std::sin(b / kDegPerRad);
-        break;
-      case ExprOp::kSqrt:
-        if (b < 0.0) throw GcodeError("SQRT of a negative number");
-        r = std::sqrt(b);
-        break;
-      case ExprOp::kTan:
-        r = std::tan(b / kDegPerRad);
-        break;
-      default:
-        throw GcodeError("internal error: bad expression code");
-    }
+    const double r = two_args ? applyBinary(in.op, a, b) : applyUnary(in.op, b);
     if (!std::isfinite(r)) throw GcodeError("expression result is not a finite number");
     stack.push_back(r);
   }

@@ -24,6 +24,175 @@ struct Frame {
   std::vector<Loop> loops;
 };
 
+/// The O-word flow of one run of a program: the call frames, each with its active loops.
+class ProgramFlow {
+ public:
+  ProgramFlow(const std::vector<Block>& blocks,
+              const InterpreterOptions& options,
+              Parameters& params,
+              ParameterSource& source)
+      : blocks_(blocks), options_(options), params_(params), source_(source) {}
+
+  /// Performs the O-word statement blocks[pc]; returns the index of the block to run next.
+  std::size_t step(std::size_t pc) {
+    const Block& b = blocks_[pc];
+    switch (b.o_kind) {
+      case OKind::kNone:
+        break;
+      case OKind::kSub:
+        return b.jump + 1;  // definitions are skipped when reached in sequence
+      case OKind::kEndSub:
+      case OKind::kReturn:
+        return returnFromSub(b);
+      case OKind::kCall:
+        return call(b, pc);
+      case OKind::kIf:
+        return branch(pc);
+      case OKind::kElseIf:  // reached after a taken branch: skip to endif
+      case OKind::kElse:
+        return b.partner + 1;
+      case OKind::kEndIf:
+        return pc + 1;
+      case OKind::kWhile:
+        return b.closes_do ? closeDo(b, pc) : whileLoop(b, pc);
+      case OKind::kEndWhile:
+        countIteration(loopOf(b.partner));
+        return b.partner;
+      case OKind::kDo:
+        frames_.back().loops.push_back(Loop{pc, 0, 0.0});
+        return pc + 1;
+      case OKind::kRepeat:
+        return repeat(b, pc);
+      case OKind::kEndRepeat:
+        return endRepeat(b, pc);
+      case OKind::kBreak:
+        leaveLoop(b.partner);
+        return blocks_[b.partner].jump + 1;
+      case OKind::kContinue:
+        return continueLoop(b);
+    }
+    return pc + 1;
+  }
+
+ private:
+  bool truth(const Block& b) { return b.o_args.at(0).evaluate(source_) != 0.0; }
+
+  void countIteration(Loop& loop) {
+    if (++loop.iterations > options_.max_loop_iterations)
+      throw GcodeError(
+          fmt::format("loop {} exceeded {} iterations (runaway loop guard, InterpreterOptions::"
+                      "max_loop_iterations)",
+                      oLabel(blocks_[loop.start].o_name),
+                      options_.max_loop_iterations));
+  }
+
+  Loop& loopOf(std::size_t start) {
+    std::vector<Loop>& loops = frames_.back().loops;
+    for (auto it = loops.rbegin(); it != loops.rend(); ++it)
+      if (it->start == start) return *it;
+    throw GcodeError("internal error: loop state missing");
+  }
+
+  void leaveLoop(std::size_t start) {
+    std::vector<Loop>& loops = frames_.back().loops;
+    while (!loops.empty()) {
+      const bool done = loops.back().start == start;
+      loops.pop_back();
+      if (done) break;
+    }
+  }
+
+  std::size_t returnFromSub(const Block& b) {
+    if (frames_.size() <= 1) throw GcodeError("return/endsub outside a subroutine call");
+    bool has_value = !b.o_args.empty();
+    const double value = has_value ? b.o_args[0].evaluate(source_) : 0.0;
+    const std::size_t pc = frames_.back().return_to;
+    frames_.pop_back();
+    params_.popCall();
+    params_.setNamed("_value", value);
+    params_.setNamed("_value_returned", has_value ? 1.0 : 0.0);
+    return pc;
+  }
+
+  std::size_t call(const Block& b, std::size_t pc) {
+    if (b.jump == kNoBlock)
+      throw GcodeError(
+          fmt::format("call to undefined subroutine {} (subroutine files are "
+                      "not searched)",
+                      oLabel(b.o_name)));
+    if (frames_.size() > options_.max_call_depth)
+      throw GcodeError(
+          fmt::format("subroutine calls nested deeper than {}", options_.max_call_depth));
+    std::vector<double> args;
+    args.reserve(b.o_args.size());
+    for (const Expression& e : b.o_args) args.push_back(e.evaluate(source_));
+    params_.pushCall(args);
+    frames_.push_back(Frame{pc + 1, {}});
+    return b.jump + 1;
+  }
+
+  /// if: the first branch whose condition holds (or else), past endif when none does.
+  std::size_t branch(std::size_t pc) {
+    std::size_t k = pc;
+    while (true) {
+      const Block& c = blocks_[k];
+      if (c.o_kind == OKind::kEndIf) return k + 1;
+      if (c.o_kind == OKind::kElse || truth(c)) return k + 1;
+      k = c.jump;
+    }
+  }
+
+  /// The while that closes a do loop.
+  std::size_t closeDo(const Block& b, std::size_t pc) {
+    Loop& loop = loopOf(b.partner);
+    if (truth(b)) {
+      countIteration(loop);
+      return b.partner + 1;
+    }
+    leaveLoop(b.partner);
+    return pc + 1;
+  }
+
+  std::size_t whileLoop(const Block& b, std::size_t pc) {
+    std::vector<Loop>& loops = frames_.back().loops;
+    if (loops.empty() || loops.back().start != pc) loops.push_back(Loop{pc, 0, 0.0});
+    if (truth(b)) return pc + 1;
+    leaveLoop(pc);
+    return b.jump + 1;
+  }
+
+  std::size_t repeat(const Block& b, std::size_t pc) {
+    const double n = std::floor(b.o_args[0].evaluate(source_));
+    if (n < 1.0) return b.jump + 1;
+    frames_.back().loops.push_back(Loop{pc, 0, n});
+    return pc + 1;
+  }
+
+  std::size_t endRepeat(const Block& b, std::size_t pc) {
+    Loop& loop = loopOf(b.partner);
+    countIteration(loop);
+    loop.remaining -= 1.0;
+    if (loop.remaining >= 1.0) return b.partner + 1;
+    leaveLoop(b.partner);
+    return pc + 1;
+  }
+
+  std::size_t continueLoop(const Block& b) {
+    const Block& open = blocks_[b.partner];
+    if (open.o_kind == OKind::kWhile) {
+      countIteration(loopOf(b.partner));
+      return b.partner;  // re-test the condition
+    }
+    return open.jump;  // do: the closing while; repeat: endrepeat
+  }
+
+  const std::vector<Block>& blocks_;
+  const InterpreterOptions& options_;
+  Parameters& params_;
+  ParameterSource& source_;
+  std::vector<Frame> frames_ = std::vector<Frame>(1, Frame{kNoBlock, {}});
+};
+
 }  // namespace
 
 Interpreter::Interpreter(InterpreterOptions options)
@@ -36,42 +205,9 @@ RunSummary Interpreter::run(const Program& program, MoveSink& sink) {
   s.summary = RunSummary{};
   s.report_blocks = sink.wantsBlocks();
   const std::vector<Block>& blocks = program.blocks();
-  std::vector<Frame> frames(1, Frame{kNoBlock, {}});
+  ProgramFlow flow(blocks, s.options, s.params, s);
   std::size_t pc = 0;
   std::size_t line = 0;
-  auto truth = [&](const Block& b) { return b.o_args.at(0).evaluate(s) != 0.0; };
-  auto countIteration = [&](Loop& loop) {
-    if (++loop.iterations > s.options.max_loop_iterations)
-      throw GcodeError(
-          fmt::format("loop {} exceeded {} iterations (runaway loop guard, InterpreterOptions::"
-                      "max_loop_iterations)",
-                      oLabel(blocks[loop.start].o_name),
-                      s.options.max_loop_iterations));
-  };
-  auto loopOf = [&](std::size_t start) -> Loop& {
-    std::vector<Loop>& loops = frames.back().loops;
-    for (auto it = loops.rbegin(); it != loops.rend(); ++it)
-      if (it->start == start) return *it;
-    throw GcodeError("internal error: loop state missing");
-  };
-  auto leaveLoop = [&](std::size_t start) {
-    std::vector<Loop>& loops = frames.back().loops;
-    while (!loops.empty()) {
-      const bool done = loops.back().start == start;
-      loops.pop_back();
-      if (done) break;
-    }
-  };
-  auto returnFromSub = [&](const Block& b) {
-    if (frames.size() <= 1) throw GcodeError("return/endsub outside a subroutine call");
-    bool has_value = !b.o_args.empty();
-    const double value = has_value ? b.o_args[0].evaluate(s) : 0.0;
-    pc = frames.back().return_to;
-    frames.pop_back();
-    s.params.popCall();
-    s.params.setNamed("_value", value);
-    s.params.setNamed("_value_returned", has_value ? 1.0 : 0.0);
-  };
   try {
     while (pc < blocks.size()) {
       const Block& b = blocks[pc];
@@ -82,138 +218,19 @@ RunSummary Interpreter::run(const Program& program, MoveSink& sink) {
         continue;
       }
       s.block_index = pc;
-      if (s.report_blocks && b.o_kind != OKind::kNone) {
+      if (b.o_kind == OKind::kNone) {
+        if (!s.execute(b, sink)) {
+          s.summary.ended_by_m2 = true;
+          return s.summary;
+        }
+        ++pc;
+        continue;
+      }
+      if (s.report_blocks) {
         s.evaluated.clear();
         sink.onBlock(b, pc, s.evaluated);
       }
-      switch (b.o_kind) {
-        case OKind::kNone:
-          if (!s.execute(b, sink)) {
-            s.summary.ended_by_m2 = true;
-            return s.summary;
-          }
-          ++pc;
-          break;
-        case OKind::kSub:
-          pc = b.jump + 1;  // definitions are skipped when reached in sequence
-          break;
-        case OKind::kEndSub:
-        case OKind::kReturn:
-          returnFromSub(b);
-          break;
-        case OKind::kCall: {
-          if (b.jump == kNoBlock)
-            throw GcodeError(
-                fmt::format("call to undefined subroutine {} (subroutine files are "
-                            "not searched)",
-                            oLabel(b.o_name)));
-          if (frames.size() > s.options.max_call_depth)
-            throw GcodeError(
-                fmt::format("subroutine calls nested deeper than {}", s.options.max_call_depth));
-          std::vector<double> args;
-          args.reserve(b.o_args.size());
-          for (const Expression& e : b.o_args) args.push_back(e.evaluate(s));
-          s.params.pushCall(args);
-          frames.push_back(Frame{pc + 1, {}});
-          pc = b.jump + 1;
-          break;
-        }
-        case OKind::kIf:
-        case OKind::kElseIf: {
-          if (b.o_kind == OKind::kElseIf) {  // reached after a taken branch: skip to endif
-            pc = b.partner + 1;
-            break;
-          }
-          std::size_t k = pc;
-          while (true) {
-            const Block& c = blocks[k];
-            if (c.o_kind == OKind::kEndIf) {
-              pc = k + 1;
-              break;
-            }
-            if (c.o_kind == OKind::kElse || truth(c)) {
-              pc = k + 1;
-              break;
-            }
-            k = c.jump;
-          }
-          break;
-        }
-        case OKind::kElse:
-          pc = b.partner + 1;
-          break;
-        case OKind::kEndIf:
-          ++pc;
-          break;
-        case OKind::kWhile: {
-          if (b.closes_do) {
-            Loop& loop = loopOf(b.partner);
-            if (truth(b)) {
-              countIteration(loop);
-              pc = b.partner + 1;
-            } else {
-              leaveLoop(b.partner);
-              ++pc;
-            }
-            break;
-          }
-          std::vector<Loop>& loops = frames.back().loops;
-          if (loops.empty() || loops.back().start != pc) loops.push_back(Loop{pc, 0, 0.0});
-          if (truth(b)) {
-            ++pc;
-          } else {
-            leaveLoop(pc);
-            pc = b.jump + 1;
-          }
-          break;
-        }
-        case OKind::kEndWhile:
-          countIteration(loopOf(b.partner));
-          pc = b.partner;
-          break;
-        case OKind::kDo:
-          frames.back().loops.push_back(Loop{pc, 0, 0.0});
-          ++pc;
-          break;
-        case OKind::kRepeat: {
-          const double n = std::floor(b.o_args[0].evaluate(s));
-          if (n < 1.0) {
-            pc = b.jump + 1;
-          } else {
-            frames.back().loops.push_back(Loop{pc, 0, n});
-            ++pc;
-          }
-          break;
-        }
-        case OKind::kEndRepeat: {
-          Loop& loop = loopOf(b.partner);
-          countIteration(loop);
-          loop.remaining -= 1.0;
-          if (loop.remaining >= 1.0) {
-            pc = b.partner + 1;
-          } else {
-            leaveLoop(b.partner);
-            ++pc;
-          }
-          break;
-        }
-        case OKind::kBreak: {
-          const Block& open = blocks[b.partner];
-          leaveLoop(b.partner);
-          pc = open.jump + 1;
-          break;
-        }
-        case OKind::kContinue: {
-          const Block& open = blocks[b.partner];
-          if (open.o_kind == OKind::kWhile) {
-            countIteration(loopOf(b.partner));
-            pc = b.partner;  // re-test the condition
-          } else {
-            pc = open.jump;  // do: the closing while; repeat: endrepeat
-          }
-          break;
-        }
-      }
+      pc = flow.step(pc);
     }
   } catch (const GcodeError& e) {
     throw IoError(locate(program.file(), line, e.what()));

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "pkm/cnc/canned_cycle.hpp"
@@ -40,6 +41,9 @@ struct BlockCodes {
   bool m_mist = false, m_flood = false, m_coolant_off = false;
 };
 
+/// The name of G code `code` (its number ×10): "G1", "G92.1".
+[[nodiscard]] std::string gName(int code);
+
 struct Interpreter::Impl : ParameterSource {
   explicit Impl(InterpreterOptions o) : options(std::move(o)) {}
 
@@ -53,7 +57,7 @@ struct Interpreter::Impl : ParameterSource {
   /// Executes one block; returns false when the program ends (M2/M30).
   bool execute(const Block& block, MoveSink& sink);
   void resolve(const Block& block, ResolvedBlock& rb, MoveSink& sink);
-  BlockCodes classify(const ResolvedBlock& rb) const;
+  BlockCodes classify(const ResolvedBlock& rb) const;  // block_codes.cpp
   void checkWords(const ResolvedBlock& rb, const BlockCodes& c) const;
   void setTlo(const ResolvedBlock& rb, int code);
   void selectSystem(int n);

@@ -14,6 +14,214 @@
 
 namespace pkm::cnc {
 
+namespace {
+
+/// Matches the O-word statements of a program's blocks: sets each opener's `jump` and each
+/// closer's `partner`, records the subs, and throws pkm::IoError "FILE:LINE: message" for a
+/// statement without its partner.
+class StructureResolver {
+ public:
+  StructureResolver(std::vector<Block>& blocks,
+                    std::unordered_map<std::string, std::size_t>& subs,
+                    const std::string& file)
+      : blocks_(blocks), subs_(subs), file_(file) {}
+
+  void run() {
+    for (std::size_t i = 0; i < blocks_.size(); ++i) statement(i);
+    if (!stack_.empty()) failUnclosed();
+  }
+
+ private:
+  struct Open {
+    std::size_t index;
+    OKind kind;
+  };
+
+  [[noreturn]] void fail(std::size_t i, const std::string& what) const {
+    throw IoError(locate(file_, blocks_[i].line, what));
+  }
+
+  void statement(std::size_t i) {
+    Block& b = blocks_[i];
+    switch (b.o_kind) {
+      case OKind::kNone:
+      case OKind::kCall:
+        break;
+      case OKind::kSub:
+        sub(i);
+        break;
+      case OKind::kEndSub:
+        blocks_[closeTop(i, OKind::kSub, "endsub")].jump = i;
+        current_sub_ = kNoBlock;
+        break;
+      case OKind::kReturn:
+        if (current_sub_ == kNoBlock)
+          fail(i, fmt::format("{} return outside a sub", oLabel(b.o_name)));
+        break;
+      case OKind::kIf:
+        stack_.push_back({i, OKind::kIf});
+        break;
+      case OKind::kElseIf:
+      case OKind::kElse:
+        elseBranch(i);
+        break;
+      case OKind::kEndIf:
+        endIf(i);
+        break;
+      case OKind::kWhile:
+        whileStatement(i);
+        break;
+      case OKind::kEndWhile:
+        closeLoop(i, OKind::kWhile, "endwhile");
+        break;
+      case OKind::kDo:
+        stack_.push_back({i, OKind::kDo});
+        break;
+      case OKind::kRepeat:
+        stack_.push_back({i, OKind::kRepeat});
+        break;
+      case OKind::kEndRepeat:
+        closeLoop(i, OKind::kRepeat, "endrepeat");
+        break;
+      case OKind::kBreak:
+      case OKind::kContinue:
+        breakOrContinue(i);
+        break;
+    }
+  }
+
+  // Innermost open loop (while/do/repeat) with label `name` inside the current sub, or none.
+  [[nodiscard]] std::size_t findLoop(const std::string& name) const {
+    for (auto it = stack_.rbegin(); it != stack_.rend(); ++it) {
+      if (it->kind == OKind::kSub) break;
+      const Block& b = blocks_[it->index];
+      if ((it->kind == OKind::kWhile || it->kind == OKind::kDo || it->kind == OKind::kRepeat) &&
+          b.o_name == name)
+        return it->index;
+    }
+    return kNoBlock;
+  }
+
+  /// Pops the open statement that block `i` closes (kind `opener`, same label); returns its index.
+  std::size_t closeTop(std::size_t i, OKind opener, const char* what) {
+    const Block& b = blocks_[i];
+    if (stack_.empty() || stack_.back().kind != opener ||
+        blocks_[stack_.back().index].o_name != b.o_name)
+      fail(i, fmt::format("{} {} without a matching open statement", oLabel(b.o_name), what));
+    const std::size_t open = stack_.back().index;
+    stack_.pop_back();
+    return open;
+  }
+
+  void sub(std::size_t i) {
+    const Block& b = blocks_[i];
+    if (!stack_.empty())
+      fail(i, fmt::format("{} sub inside another O-word block", oLabel(b.o_name)));
+    if (subs_.count(b.o_name) != 0) fail(i, fmt::format("{} sub defined twice", oLabel(b.o_name)));
+    subs_[b.o_name] = i;
+    stack_.push_back({i, OKind::kSub});
+    current_sub_ = i;
+  }
+
+  void elseBranch(std::size_t i) {
+    const Block& b = blocks_[i];
+    if (stack_.empty() || blocks_[stack_.back().index].o_name != b.o_name ||
+        (stack_.back().kind != OKind::kIf && stack_.back().kind != OKind::kElseIf))
+      fail(i,
+           fmt::format("{} {} without a matching if",
+                       oLabel(b.o_name),
+                       b.o_kind == OKind::kElse ? "else" : "elseif"));
+    blocks_[stack_.back().index].jump = i;  // previous branch jumps here when false
+    stack_.back() = {i, b.o_kind == OKind::kElse ? OKind::kElse : OKind::kElseIf};
+  }
+
+  void endIf(std::size_t i) {
+    const Block& b = blocks_[i];
+    if (stack_.empty() || blocks_[stack_.back().index].o_name != b.o_name ||
+        (stack_.back().kind != OKind::kIf && stack_.back().kind != OKind::kElseIf &&
+         stack_.back().kind != OKind::kElse))
+      fail(i, fmt::format("{} endif without a matching if", oLabel(b.o_name)));
+    const std::size_t last = stack_.back().index;
+    if (blocks_[last].o_kind != OKind::kElse) blocks_[last].jump = i;
+    stack_.pop_back();
+    // Every branch of this chain learns its endif.
+    for (std::size_t k = i; k-- > 0;) {
+      Block& c = blocks_[k];
+      if (c.o_name != b.o_name) continue;
+      if (c.o_kind == OKind::kElseIf || c.o_kind == OKind::kElse) c.partner = i;
+      if (c.o_kind == OKind::kIf) break;
+    }
+  }
+
+  /// A while: the end of an open do loop with its label, else the start of a while loop.
+  void whileStatement(std::size_t i) {
+    Block& b = blocks_[i];
+    if (!stack_.empty() && stack_.back().kind == OKind::kDo &&
+        blocks_[stack_.back().index].o_name == b.o_name) {
+      b.closes_do = true;
+      b.partner = stack_.back().index;
+      blocks_[b.partner].jump = i;
+      stack_.pop_back();
+    } else {
+      stack_.push_back({i, OKind::kWhile});
+    }
+  }
+
+  /// endwhile / endrepeat: closes the loop `opener` and links both ends.
+  void closeLoop(std::size_t i, OKind opener, const char* what) {
+    const std::size_t open = closeTop(i, opener, what);
+    blocks_[open].jump = i;
+    blocks_[i].partner = open;
+  }
+
+  void breakOrContinue(std::size_t i) {
+    Block& b = blocks_[i];
+    const std::size_t loop = findLoop(b.o_name);
+    if (loop == kNoBlock)
+      fail(i,
+           fmt::format("{} {} outside a loop labelled {}",
+                       oLabel(b.o_name),
+                       b.o_kind == OKind::kBreak ? "break" : "continue",
+                       oLabel(b.o_name)));
+    b.partner = loop;
+  }
+
+  /// Throws for the innermost statement left open at the end of the program.
+  [[noreturn]] void failUnclosed() const {
+    const Block& b = blocks_[stack_.back().index];
+    const char* closer = "endif";
+    switch (stack_.back().kind) {
+      case OKind::kSub:
+        closer = "endsub";
+        break;
+      case OKind::kWhile:
+        closer = "endwhile";
+        break;
+      case OKind::kDo:
+        closer = "while";
+        break;
+      case OKind::kRepeat:
+        closer = "endrepeat";
+        break;
+      default:
+        break;
+    }
+    throw IoError(locate(
+        file_,
+        b.line,
+        fmt::format(
+            "{} is not closed: no matching {} {}", oLabel(b.o_name), oLabel(b.o_name), closer)));
+  }
+
+  std::vector<Block>& blocks_;
+  std::unordered_map<std::string, std::size_t>& subs_;
+  const std::string& file_;
+  std::vector<Open> stack_;
+  std::size_t current_sub_ = kNoBlock;
+};
+
+}  // namespace
+
 Program Program::parse(std::string_view text, const std::string& file) {
   Program p;
   p.file_ = file;
@@ -53,161 +261,7 @@ std::size_t Program::findSub(const std::string& name) const {
 }
 
 void Program::resolve() {
-  struct Open {
-    std::size_t index;
-    OKind kind;
-  };
-  std::vector<Open> stack;
-  std::size_t current_sub = kNoBlock;
-  auto fail = [this](std::size_t i, const std::string& what) {
-    throw IoError(locate(file_, blocks_[i].line, what));
-  };
-  // Innermost open loop (while/do/repeat) with label `name` inside the current sub, or none.
-  auto findLoop = [&](const std::string& name) -> std::size_t {
-    for (auto it = stack.rbegin(); it != stack.rend(); ++it) {
-      if (it->kind == OKind::kSub) break;
-      const Block& b = blocks_[it->index];
-      if ((it->kind == OKind::kWhile || it->kind == OKind::kDo || it->kind == OKind::kRepeat) &&
-          b.o_name == name)
-        return it->index;
-    }
-    return kNoBlock;
-  };
-  auto closeTop = [&](std::size_t i, OKind opener, const char* what) -> std::size_t {
-    Block& b = blocks_[i];
-    if (stack.empty() || stack.back().kind != opener ||
-        blocks_[stack.back().index].o_name != b.o_name)
-      fail(i, fmt::format("{} {} without a matching open statement", oLabel(b.o_name), what));
-    const std::size_t open = stack.back().index;
-    stack.pop_back();
-    return open;
-  };
-  for (std::size_t i = 0; i < blocks_.size(); ++i) {
-    Block& b = blocks_[i];
-    switch (b.o_kind) {
-      case OKind::kNone:
-      case OKind::kCall:
-        break;
-      case OKind::kSub:
-        if (!stack.empty())
-          fail(i, fmt::format("{} sub inside another O-word block", oLabel(b.o_name)));
-        if (subs_.count(b.o_name) != 0)
-          fail(i, fmt::format("{} sub defined twice", oLabel(b.o_name)));
-        subs_[b.o_name] = i;
-        stack.push_back({i, OKind::kSub});
-        current_sub = i;
-        break;
-      case OKind::kEndSub: {
-        const std::size_t open = closeTop(i, OKind::kSub, "endsub");
-        blocks_[open].jump = i;
-        current_sub = kNoBlock;
-        break;
-      }
-      case OKind::kReturn:
-        if (current_sub == kNoBlock)
-          fail(i, fmt::format("{} return outside a sub", oLabel(b.o_name)));
-        break;
-      case OKind::kIf:
-        stack.push_back({i, OKind::kIf});
-        break;
-      case OKind::kElseIf:
-      case OKind::kElse: {
-        if (stack.empty() || blocks_[stack.back().index].o_name != b.o_name ||
-            (stack.back().kind != OKind::kIf && stack.back().kind != OKind::kElseIf))
-          fail(i,
-               fmt::format("{} {} without a matching if",
-                           oLabel(b.o_name),
-                           b.o_kind == OKind::kElse ? "else" : "elseif"));
-        blocks_[stack.back().index].jump = i;  // previous branch jumps here when false
-        stack.back() = {i, b.o_kind == OKind::kElse ? OKind::kElse : OKind::kElseIf};
-        break;
-      }
-      case OKind::kEndIf: {
-        if (stack.empty() || blocks_[stack.back().index].o_name != b.o_name ||
-            (stack.back().kind != OKind::kIf && stack.back().kind != OKind::kElseIf &&
-             stack.back().kind != OKind::kElse))
-          fail(i, fmt::format("{} endif without a matching if", oLabel(b.o_name)));
-        const std::size_t last = stack.back().index;
-        if (blocks_[last].o_kind != OKind::kElse) blocks_[last].jump = i;
-        stack.pop_back();
-        // Every branch of this chain learns its endif.
-        for (std::size_t k = i; k-- > 0;) {
-          Block& c = blocks_[k];
-          if (c.o_name != b.o_name) continue;
-          if (c.o_kind == OKind::kElseIf || c.o_kind == OKind::kElse) c.partner = i;
-          if (c.o_kind == OKind::kIf) break;
-        }
-        break;
-      }
-      case OKind::kWhile: {
-        if (!stack.empty() && stack.back().kind == OKind::kDo &&
-            blocks_[stack.back().index].o_name == b.o_name) {
-          b.closes_do = true;
-          b.partner = stack.back().index;
-          blocks_[b.partner].jump = i;
-          stack.pop_back();
-        } else {
-          stack.push_back({i, OKind::kWhile});
-        }
-        break;
-      }
-      case OKind::kEndWhile: {
-        const std::size_t open = closeTop(i, OKind::kWhile, "endwhile");
-        blocks_[open].jump = i;
-        b.partner = open;
-        break;
-      }
-      case OKind::kDo:
-        stack.push_back({i, OKind::kDo});
-        break;
-      case OKind::kRepeat:
-        stack.push_back({i, OKind::kRepeat});
-        break;
-      case OKind::kEndRepeat: {
-        const std::size_t open = closeTop(i, OKind::kRepeat, "endrepeat");
-        blocks_[open].jump = i;
-        b.partner = open;
-        break;
-      }
-      case OKind::kBreak:
-      case OKind::kContinue: {
-        const std::size_t loop = findLoop(b.o_name);
-        if (loop == kNoBlock)
-          fail(i,
-               fmt::format("{} {} outside a loop labelled {}",
-                           oLabel(b.o_name),
-                           b.o_kind == OKind::kBreak ? "break" : "continue",
-                           oLabel(b.o_name)));
-        b.partner = loop;
-        break;
-      }
-    }
-  }
-  if (!stack.empty()) {
-    const Block& b = blocks_[stack.back().index];
-    const char* closer = "endif";
-    switch (stack.back().kind) {
-      case OKind::kSub:
-        closer = "endsub";
-        break;
-      case OKind::kWhile:
-        closer = "endwhile";
-        break;
-      case OKind::kDo:
-        closer = "while";
-        break;
-      case OKind::kRepeat:
-        closer = "endrepeat";
-        break;
-      default:
-        break;
-    }
-    throw IoError(locate(
-        file_,
-        b.line,
-        fmt::format(
-            "{} is not closed: no matching {} {}", oLabel(b.o_name), oLabel(b.o_name), closer)));
-  }
+  StructureResolver(blocks_, subs_, file_).run();
   for (Block& b : blocks_)
     if (b.o_kind == OKind::kCall) b.jump = findSub(b.o_name);
 }

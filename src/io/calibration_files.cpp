@@ -102,62 +102,67 @@ calibration::ConstrainedMotionData readConstrainedMotionCsv(const std::string& p
   return set;
 }
 
-void addCalibrationFile(const std::string& path, CalibrationInput& input) {
-  const TextTable probe = TextTable::read(path);
-  if (probe.findColumn({"distance", "distance_mm"})) {
-    const std::size_t d = probe.column({"distance", "distance_mm"});
-    std::array<std::size_t, 6> l{};
-    for (std::size_t i = 0; i < 6; ++i) {
-      const std::string name = fmt::format("l{}", i);
-      l[i] = probe.column({name});
-    }
-    std::optional<Eigen::Vector3d> pivot;
-    if (const auto text = probe.meta("pivot mm")) {
-      const auto v = parseVectorList(*text, path, "pivot mm");
-      if (v.size() != 1) probe.failHeader("metadata 'pivot mm' is not one vector");
-      pivot = v[0];
-    }
-    if (!pivot && probe.rows() < 2)
-      probe.failHeader("a line of distances needs a first row (the zero) and at least one more");
-    kinematics::StrutVector first = kinematics::StrutVector::Zero();
-    for (std::size_t r = 0; r < probe.rows(); ++r) {
-      calibration::DistanceObservation o;
-      for (std::size_t i = 0; i < 6; ++i)
-        o.readings(static_cast<Eigen::Index>(i)) = probe.number(r, l[i]);
-      o.distance = probe.number(r, d);
-      if (pivot) {
-        o.from_point = *pivot;
-        if (!(o.distance > 0.0))
-          throw IoError(locate(path, probe.line(r), "a ball-bar length must be > 0"));
-      } else if (r == 0) {
-        first = o.readings;
-        if (o.distance != 0.0)
-          throw IoError(
-              locate(path, probe.line(r), "the first row of a line is its zero: distance 0"));
-        continue;  // the reference end of every other row
-      } else {
-        o.readings_from = first;
-        if (o.distance < 0.0) throw IoError(locate(path, probe.line(r), "a distance must be >= 0"));
-      }
-      input.data.distances.push_back(o);
-      input.distance_origin.push_back(fmt::format("{}:{}", path, probe.line(r)));
-    }
-    input.notes.push_back(fmt::format("{}: {} distances ({})",
-                                      path,
-                                      pivot ? probe.rows() : probe.rows() - 1,
-                                      pivot ? "ball bar on a pivot" : "from the first row"));
-    return;
+namespace {
+
+/// A distance file: ball-bar lengths to the `# pivot mm` metadata's pivot, else distances from the
+/// first row's TCP (whose distance must be 0).
+void addDistanceFile(const std::string& path, const TextTable& probe, CalibrationInput& input) {
+  const std::size_t d = probe.column({"distance", "distance_mm"});
+  std::array<std::size_t, 6> l{};
+  for (std::size_t i = 0; i < 6; ++i) {
+    const std::string name = fmt::format("l{}", i);
+    l[i] = probe.column({name});
   }
-  if (probe.findColumn({"g0_mm", "g0"})) {
-    int skipped = 0;
-    input.data.constrained.push_back(readConstrainedMotionCsv(path, &skipped));
-    input.notes.push_back(
-        fmt::format("{}: constrained motion, {} stations{}",
-                    path,
-                    input.data.constrained.back().stations.size(),
-                    skipped > 0 ? fmt::format(" ({} not converged, left out)", skipped) : ""));
-    return;
+  std::optional<Eigen::Vector3d> pivot;
+  if (const auto text = probe.meta("pivot mm")) {
+    const auto v = parseVectorList(*text, path, "pivot mm");
+    if (v.size() != 1) probe.failHeader("metadata 'pivot mm' is not one vector");
+    pivot = v[0];
   }
+  if (!pivot && probe.rows() < 2)
+    probe.failHeader("a line of distances needs a first row (the zero) and at least one more");
+  kinematics::StrutVector first = kinematics::StrutVector::Zero();
+  for (std::size_t r = 0; r < probe.rows(); ++r) {
+    calibration::DistanceObservation o;
+    for (std::size_t i = 0; i < 6; ++i)
+      o.readings(static_cast<Eigen::Index>(i)) = probe.number(r, l[i]);
+    o.distance = probe.number(r, d);
+    if (pivot) {
+      o.from_point = *pivot;
+      if (!(o.distance > 0.0))
+        throw IoError(locate(path, probe.line(r), "a ball-bar length must be > 0"));
+    } else if (r == 0) {
+      first = o.readings;
+      if (o.distance != 0.0)
+        throw IoError(
+            locate(path, probe.line(r), "the first row of a line is its zero: distance 0"));
+      continue;  // the reference end of every other row
+    } else {
+      o.readings_from = first;
+      if (o.distance < 0.0) throw IoError(locate(path, probe.line(r), "a distance must be >= 0"));
+    }
+    input.data.distances.push_back(o);
+    input.distance_origin.push_back(fmt::format("{}:{}", path, probe.line(r)));
+  }
+  input.notes.push_back(fmt::format("{}: {} distances ({})",
+                                    path,
+                                    pivot ? probe.rows() : probe.rows() - 1,
+                                    pivot ? "ball bar on a pivot" : "from the first row"));
+}
+
+/// A constrained-motion (dial-gauge) file.
+void addConstrainedFile(const std::string& path, CalibrationInput& input) {
+  int skipped = 0;
+  input.data.constrained.push_back(readConstrainedMotionCsv(path, &skipped));
+  input.notes.push_back(
+      fmt::format("{}: constrained motion, {} stations{}",
+                  path,
+                  input.data.constrained.back().stations.size(),
+                  skipped > 0 ? fmt::format(" ({} not converged, left out)", skipped) : ""));
+}
+
+/// A tracker pose or point file, with its `smr offset mm` and `frame` metadata.
+void addTrackerFile(const std::string& path, CalibrationInput& input) {
   const TrackerFile f = readTrackerCsv(path);
   for (const auto& [key, value] : f.metadata) {
     if (key == "smr offset mm" && !input.target_offset) {
@@ -190,6 +195,18 @@ void addCalibrationFile(const std::string& path, CalibrationInput& input) {
                                     path,
                                     f.lengths.size(),
                                     f.mode == simulation::TrackerMode::kPose ? "poses" : "points"));
+}
+
+}  // namespace
+
+void addCalibrationFile(const std::string& path, CalibrationInput& input) {
+  const TextTable probe = TextTable::read(path);
+  if (probe.findColumn({"distance", "distance_mm"}))
+    addDistanceFile(path, probe, input);
+  else if (probe.findColumn({"g0_mm", "g0"}))
+    addConstrainedFile(path, input);
+  else
+    addTrackerFile(path, input);
 }
 
 }  // namespace pkm::io

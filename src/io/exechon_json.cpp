@@ -1,5 +1,6 @@
 #include <cmath>
 
+#include "io/detail/exechon_tripod_keys.hpp"
 #include "io/detail/joint_rates_json.hpp"
 #include "io/detail/json_doc.hpp"
 #include "pkm/core/error.hpp"
@@ -16,29 +17,9 @@ using detail::JsonDoc;
 
 namespace {
 
-/// Zoppi's 12 dimensions, then leg B's base-joint offsets (written only when non-zero).
-constexpr const char* kTripodKeys[] = {
-    "dA", "dB", "dC", "l12A", "l12C", "pA", "pB", "pC", "hA", "hC", "hx", "hz", "l12B", "l23B"};
-constexpr int kZoppiKeys = 12;
-constexpr int kTripodKeyCount = 14;
-
-double* tripodField(kin::ExechonTripodGeometry& t, int i) {
-  double* fields[] = {&t.dA,
-                      &t.dB,
-                      &t.dC,
-                      &t.l12A,
-                      &t.l12C,
-                      &t.pA,
-                      &t.pB,
-                      &t.pC,
-                      &t.hA,
-                      &t.hC,
-                      &t.hx,
-                      &t.hz,
-                      &t.l12B,
-                      &t.l23B};
-  return fields[i];
-}
+using detail::kTripodKeyCount;
+using detail::kTripodKeys;
+using detail::tripodField;
 
 void readTripod(const JsonDoc& doc, const json& t, kin::ExechonTripodGeometry& g) {
   const std::string ptr = "/tripod";
@@ -131,23 +112,70 @@ void readHybrid(const JsonDoc& doc, const json& h, kin::HybridMachineModel& m) {
     if (m.pkm_min[i] > m.pkm_max[i]) doc.fail(ptr + "/pkm_min", "pkm_min is larger than pkm_max");
 }
 
-std::string rangeText(double lo, double hi, double scale) {
-  const auto bound = [scale](double v) {
-    return std::isfinite(v) ? formatNumber(v * scale) : std::string("null");
-  };
-  return fmt::format("[{}, {}]", bound(lo), bound(hi));
+/// Reads "legs": three {"length_offset", "stroke"} (A, B, C).
+void readLegs(const JsonDoc& doc, const json& root, kin::ExechonModel& model) {
+  if (!root.contains("legs")) return;
+  const json& legs = root["legs"];
+  if (!legs.is_array() || legs.size() != kin::kExechonLegs)
+    doc.fail("/legs", "expected an array of 3 legs (A, B, C)");
+  for (std::size_t i = 0; i < legs.size(); ++i) {
+    const std::string ptr = fmt::format("/legs/{}", i);
+    doc.onlyKeys(legs[i], ptr, {"length_offset", "stroke"});
+    model.legs[i].length_offset = doc.number(legs[i], ptr, "length_offset", 0.0);
+    if (legs[i].contains("stroke"))
+      std::tie(model.legs[i].min_reading, model.legs[i].max_reading) =
+          doc.range(legs[i]["stroke"], ptr + "/stroke");
+  }
 }
 
-std::string vecText(const Eigen::Vector3d& v) {
-  return fmt::format("[{}, {}, {}]", formatNumber(v.x()), formatNumber(v.y()), formatNumber(v.z()));
+/// Reads "limits": the joint-angle ranges (degrees).
+void readLimits(const JsonDoc& doc, const json& root, kin::ExechonModel& model) {
+  if (!root.contains("limits")) return;
+  const json& l = root["limits"];
+  doc.onlyKeys(l, "/limits", {"alpha_deg", "beta_deg", "c_deg", "a_deg"});
+  readRange(doc, l, "/limits", "alpha_deg", model.limits.alpha);
+  readRange(doc, l, "/limits", "beta_deg", model.limits.beta);
+  readRange(doc, l, "/limits", "c_deg", model.limits.c);
+  readRange(doc, l, "/limits", "a_deg", model.limits.a);
 }
 
-/// As vecText with null for an infinite (unbounded) element.
-std::string boundText(const Eigen::Vector3d& v) {
-  const auto bound = [](double x) {
-    return std::isfinite(x) ? formatNumber(x) : std::string("null");
-  };
-  return fmt::format("[{}, {}, {}]", bound(v.x()), bound(v.y()), bound(v.z()));
+/// Reads "world_T_zoppi": {"position", "rpy_deg"}.
+void readWorldTZoppi(const JsonDoc& doc, const json& root, kin::ExechonModel& model) {
+  if (!root.contains("world_T_zoppi")) return;
+  const json& t = root["world_T_zoppi"];
+  doc.onlyKeys(t, "/world_T_zoppi", {"position", "rpy_deg"});
+  Eigen::Vector3d p = Eigen::Vector3d::Zero(), rpy = Eigen::Vector3d::Zero();
+  if (t.contains("position")) p = doc.vec3(t["position"], "/world_T_zoppi/position");
+  if (t.contains("rpy_deg")) rpy = doc.vec3(t["rpy_deg"], "/world_T_zoppi/rpy_deg") * degToRad(1.0);
+  model.world_T_zoppi.setIdentity();
+  model.world_T_zoppi.linear() = geometry::rotationFromRpy(rpy);
+  model.world_T_zoppi.translation() = p;
+}
+
+/// Reads the required "home": {"alpha_deg", "beta_deg", "h", "c_deg", "a_deg"}.
+void readHome(const JsonDoc& doc, const json& root, kin::ExechonModel& model) {
+  const json& home = doc.required(root, "", "home");
+  doc.onlyKeys(home, "/home", {"alpha_deg", "beta_deg", "h", "c_deg", "a_deg"});
+  doc.required(home, "/home", "h");
+  model.home.e = {degToRad(doc.number(home, "/home", "alpha_deg", 0.0)),
+                  degToRad(doc.number(home, "/home", "beta_deg", 0.0)),
+                  doc.number(home, "/home", "h", 0.0)};
+  model.home.c = degToRad(doc.number(home, "/home", "c_deg", 0.0));
+  model.home.a = degToRad(doc.number(home, "/home", "a_deg", 0.0));
+}
+
+/// Reads "hybrid" (the machine's serial axes) into m.hybrid and validates it.
+void readHybridSection(const JsonDoc& doc, const json& root, ExechonMachine& m) {
+  if (!root.contains("hybrid")) return;
+  m.hybrid.emplace();
+  m.hybrid->name = m.model.name;
+  m.hybrid->unit = m.model.unit;
+  readHybrid(doc, root["hybrid"], *m.hybrid);
+  try {
+    m.hybrid->validate();
+  } catch (const InvalidArgument& e) {
+    doc.fail("/hybrid", e.what());
+  }
 }
 
 }  // namespace
@@ -183,63 +211,17 @@ ExechonMachine parseExechonJson(const std::string& text, const std::string& sour
   model.unit = detail::readSchemaAndUnits(doc, root, "pkm.machine/1");
 
   readTripod(doc, doc.required(root, "", "tripod"), model.tripod);
-  if (root.contains("legs")) {
-    const json& legs = root["legs"];
-    if (!legs.is_array() || legs.size() != kin::kExechonLegs)
-      doc.fail("/legs", "expected an array of 3 legs (A, B, C)");
-    for (std::size_t i = 0; i < legs.size(); ++i) {
-      const std::string ptr = fmt::format("/legs/{}", i);
-      doc.onlyKeys(legs[i], ptr, {"length_offset", "stroke"});
-      model.legs[i].length_offset = doc.number(legs[i], ptr, "length_offset", 0.0);
-      if (legs[i].contains("stroke"))
-        std::tie(model.legs[i].min_reading, model.legs[i].max_reading) =
-            doc.range(legs[i]["stroke"], ptr + "/stroke");
-    }
-  }
-  if (root.contains("limits")) {
-    const json& l = root["limits"];
-    doc.onlyKeys(l, "/limits", {"alpha_deg", "beta_deg", "c_deg", "a_deg"});
-    readRange(doc, l, "/limits", "alpha_deg", model.limits.alpha);
-    readRange(doc, l, "/limits", "beta_deg", model.limits.beta);
-    readRange(doc, l, "/limits", "c_deg", model.limits.c);
-    readRange(doc, l, "/limits", "a_deg", model.limits.a);
-  }
+  readLegs(doc, root, model);
+  readLimits(doc, root, model);
   if (root.contains("wrist")) readWrist(doc, root["wrist"], model.wrist);
-  if (root.contains("world_T_zoppi")) {
-    const json& t = root["world_T_zoppi"];
-    doc.onlyKeys(t, "/world_T_zoppi", {"position", "rpy_deg"});
-    Eigen::Vector3d p = Eigen::Vector3d::Zero(), rpy = Eigen::Vector3d::Zero();
-    if (t.contains("position")) p = doc.vec3(t["position"], "/world_T_zoppi/position");
-    if (t.contains("rpy_deg"))
-      rpy = doc.vec3(t["rpy_deg"], "/world_T_zoppi/rpy_deg") * degToRad(1.0);
-    model.world_T_zoppi.setIdentity();
-    model.world_T_zoppi.linear() = geometry::rotationFromRpy(rpy);
-    model.world_T_zoppi.translation() = p;
-  }
-  const json& home = doc.required(root, "", "home");
-  doc.onlyKeys(home, "/home", {"alpha_deg", "beta_deg", "h", "c_deg", "a_deg"});
-  doc.required(home, "/home", "h");
-  model.home.e = {degToRad(doc.number(home, "/home", "alpha_deg", 0.0)),
-                  degToRad(doc.number(home, "/home", "beta_deg", 0.0)),
-                  doc.number(home, "/home", "h", 0.0)};
-  model.home.c = degToRad(doc.number(home, "/home", "c_deg", 0.0));
-  model.home.a = degToRad(doc.number(home, "/home", "a_deg", 0.0));
+  readWorldTZoppi(doc, root, model);
+  readHome(doc, root, model);
   model.max_condition = doc.number(root, "", "max_condition", model.max_condition);
   if (root.contains("forward_kinematics"))
     detail::readFkOptions(doc, root["forward_kinematics"], m.fk);
   if (root.contains("joint_rates"))
     m.joint_rates = detail::readJointRates(doc, root["joint_rates"], "/joint_rates", true);
-  if (root.contains("hybrid")) {
-    m.hybrid.emplace();
-    m.hybrid->name = model.name;
-    m.hybrid->unit = model.unit;
-    readHybrid(doc, root["hybrid"], *m.hybrid);
-    try {
-      m.hybrid->validate();
-    } catch (const InvalidArgument& e) {
-      doc.fail("/hybrid", e.what());
-    }
-  }
+  readHybridSection(doc, root, m);
   try {
     model.validate();
   } catch (const InvalidArgument& e) {
@@ -250,89 +232,6 @@ ExechonMachine parseExechonJson(const std::string& text, const std::string& sour
 
 ExechonMachine readExechonJson(const std::string& path) {
   return parseExechonJson(readTextFile(path), path);
-}
-
-std::string writeExechonJson(const ExechonMachine& machine) {
-  const kin::ExechonModel& m = machine.model;
-  const double deg = radToDeg(1.0);
-  std::string out = "{\n  \"schema\": \"pkm.machine/1\",\n  \"type\": \"exechon\",\n";
-  out += fmt::format("  \"name\": {},\n", json(m.name).dump());
-  out += fmt::format("  \"description\": {},\n", json(machine.description).dump());
-  out += fmt::format("  \"units\": \"{}\",\n  \"tripod\": {{", toString(m.unit));
-  kin::ExechonTripodGeometry t = m.tripod;
-  for (int i = 0; i < kTripodKeyCount; ++i) {
-    if (i >= kZoppiKeys && *tripodField(t, i) == 0.0) continue;  // an ideal S joint
-    out += fmt::format("{}\"{}\": {}",
-                       i == 0 ? "" : (i % 6 == 0 ? ",\n             " : ", "),
-                       kTripodKeys[i],
-                       formatNumber(*tripodField(t, i)));
-  }
-  out += fmt::format(
-      ",\n             \"branch\": {{\"delta1B\": {}, \"delta2B\": {}, \"deltaA\": {}, \"deltaC\": "
-      "{}}}}},\n",
-      t.delta1B,
-      t.delta2B,
-      t.deltaA,
-      t.deltaC);
-  out += "  \"legs\": [\n";
-  for (int i = 0; i < kin::kExechonLegs; ++i) {
-    const kin::ExechonLeg& l = m.legs[static_cast<std::size_t>(i)];
-    out += fmt::format("    {{\"length_offset\": {}, \"stroke\": {}}}{}\n",
-                       formatNumber(l.length_offset),
-                       rangeText(l.min_reading, l.max_reading, 1.0),
-                       i + 1 < kin::kExechonLegs ? "," : "");
-  }
-  out += "  ],\n";
-  out += fmt::format(
-      "  \"limits\": {{\"alpha_deg\": {}, \"beta_deg\": {}, \"c_deg\": {}, \"a_deg\": {}}},\n",
-      rangeText(m.limits.alpha.min, m.limits.alpha.max, deg),
-      rangeText(m.limits.beta.min, m.limits.beta.max, deg),
-      rangeText(m.limits.c.min, m.limits.c.max, deg),
-      rangeText(m.limits.a.min, m.limits.a.max, deg));
-  const kin::ExechonWrist& w = m.wrist;
-  out += fmt::format(
-      "  \"wrist\": {{\"c_axis\": {}, \"a_axis\": {}, \"c0_deg\": {}, \"a0_deg\": {}, \"c_sign\": "
-      "{}, \"a_sign\": {}, "
-      "\"tool_length\": {}}},\n",
-      vecText(w.c_axis),
-      vecText(w.a_axis),
-      formatNumber(w.c0 * deg),
-      formatNumber(w.a0 * deg),
-      w.c_sign,
-      w.a_sign,
-      formatNumber(w.tool_length));
-  out += fmt::format("  \"world_T_zoppi\": {{\"position\": {}, \"rpy_deg\": {}}},\n",
-                     vecText(m.world_T_zoppi.translation()),
-                     vecText(geometry::rpyFromRotation(m.world_T_zoppi.linear()) * deg));
-  out += fmt::format(
-      "  \"home\": {{\"alpha_deg\": {}, \"beta_deg\": {}, \"h\": {}, \"c_deg\": {}, \"a_deg\": "
-      "{}}},\n",
-      formatNumber(m.home.e[0] * deg),
-      formatNumber(m.home.e[1] * deg),
-      formatNumber(m.home.e[2]),
-      formatNumber(m.home.c * deg),
-      formatNumber(m.home.a * deg));
-  out += fmt::format("  \"max_condition\": {},\n", formatNumber(m.max_condition));
-  out += fmt::format("  \"forward_kinematics\": {{\"tolerance\": {}, \"max_iterations\": {}}}",
-                     formatNumber(machine.fk.tolerance),
-                     machine.fk.max_iterations);
-  if (machine.joint_rates) out += ",\n  " + jointRatesJson(*machine.joint_rates, true);
-  if (machine.hybrid) {
-    const kin::HybridMachineModel& h = *machine.hybrid;
-    out += fmt::format(
-        ",\n  \"hybrid\": {{\"x2_stroke\": {}, \"y2_stroke\": {},\n             \"pkm_min\": {}, "
-        "\"pkm_max\": {},\n"
-        "             \"X2_p_P\": {}, \"P_p_tcp0\": {}, \"Y2_p_work\": {}}}",
-        rangeText(h.x2_stroke.min, h.x2_stroke.max, 1.0),
-        rangeText(h.y2_stroke.min, h.y2_stroke.max, 1.0),
-        boundText(h.pkm_min),
-        boundText(h.pkm_max),
-        vecText(h.X2_p_P),
-        vecText(h.P_p_tcp0),
-        vecText(h.Y2_p_work));
-  }
-  out += "\n}\n";
-  return out;
 }
 
 }  // namespace pkm::io

@@ -82,92 +82,107 @@ kin::PoseRpy parseHome(std::string_view label,
   return home;
 }
 
-}  // namespace
-
-HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions& options) {
-  HexapodMachine m;
-  m.source = hal_path;
-  m.model.name = fs::path(hal_path).stem().string();
-  m.description = fmt::format("Imported from LinuxCNC genhexkins configuration {}", hal_path);
-  std::array<std::array<bool, 3>, kin::kStruts> base_set{}, platform_set{};
-  const auto lines = readLines(hal_path);
-  double tool_offset = 0.0;
-  bool pkm_home = false;
-  for (std::size_t n = 0; n < lines.size(); ++n) {
-    const std::size_t line_no = n + 1;
-    std::string_view text = lines[n];
-    auto fail = [&](const std::string& what) { throw IoError(locate(hal_path, line_no, what)); };
-    if (const auto meta = splitWords(text);
-        meta.size() >= 2 && meta[0] == "#" && meta[1] == "pkm:") {
-      // "# pkm: home = x y z a b c" / "# pkm: units = mm|inch", written by writeLinuxcncSetp so
-      // that its output is loadable on its own; an INI file overrides them.
-      if (meta.size() >= 4 && meta[2] == "home" && meta[3] == "=") {
-        m.model.home = parseHome("# pkm: home", {meta.begin() + 4, meta.end()}, fail);
-        pkm_home = true;
-      } else if (meta.size() == 5 && meta[2] == "units" && meta[3] == "=") {
-        const auto unit = lengthUnitFromString(meta[4]);
-        if (!unit) fail(fmt::format("units '{}': expected mm or inch", meta[4]));
-        m.model.unit = *unit;
-      } else {
-        fail("'# pkm:' lines are 'home = x y z a b c' or 'units = mm|inch'");
-      }
-      continue;
-    }
-    if (const auto hash = text.find('#'); hash != std::string_view::npos)
-      text = text.substr(0, hash);
-    const auto words = splitWords(text);
-    if (words.empty()) continue;
-    const bool is_setp = words[0] == "setp" && words.size() >= 2 && words[1].starts_with(kPrefix);
-    if (!is_setp) {
-      m.notices.push_back(
-          locate(hal_path, line_no, fmt::format("ignored: {}", fmt::join(words, " "))));
-      continue;
-    }
-    if (words.size() != 3) fail(fmt::format("expected 'setp {} VALUE'", words[1]));
-    const std::string_view pin = words[1].substr(kPrefix.size());
-    double value = 0.0;
-    if (!parseFiniteDouble(words[2], value))
-      fail(fmt::format("'{}' is not a finite number", words[2]));
-
-    // base.N.x / platform.N.x
-    const bool is_base = pin.starts_with("base.");
-    const bool is_platform = pin.starts_with("platform.");
-    if ((is_base || is_platform)) {
-      const std::string_view rest = pin.substr(is_base ? 5 : 9);
-      if (rest.size() != 3 || rest[1] != '.' || rest[0] < '0' || rest[0] > '5' || rest[2] < 'x' ||
-          rest[2] > 'z')
-        fail(fmt::format("unknown pin genhexkins.{}", pin));
-      const auto i = static_cast<std::size_t>(rest[0] - '0');
-      const int axis = rest[2] - 'x';
-      kin::Strut& s = m.model.struts[i];
-      (is_base ? s.world_p_base : s.platform_p_joint)[axis] = value;
-      (is_base ? base_set : platform_set)[i][static_cast<std::size_t>(axis)] = true;
-    } else if (pin == "spindle-offset") {
-      m.model.spindle_offset = value;  // as in HAL, the last setp wins
-    } else if (pin == "tool-offset") {
-      tool_offset = value;
-    } else if (pin == "convergence-criterion") {
-      if (!(value > 0.0)) fail("convergence-criterion must be > 0");
-      m.fk.tolerance = value;
-    } else if (pin == "limit-iterations") {
-      if (value < 1 || value > 1e6 || value != std::floor(value))
-        fail("limit-iterations must be an integer >= 1");
-      m.fk.max_iterations = static_cast<int>(value);
-    } else if (pin == "screw-lead") {
-      if (value != 0.0)
-        fail("screw-lead != 0: the screw-twist strut correction is not supported by pkm");
-    } else if (pin.starts_with("base-n.") || pin.starts_with("platform-n.") || pin == "max-error") {
-      m.notices.push_back(
-          locate(hal_path, line_no, fmt::format("ignored: genhexkins.{} (not used by pkm)", pin)));
-    } else {
-      fail(fmt::format("unknown pin genhexkins.{}", pin));
-    }
+/// A line of a HAL file; called with a message, throws pkm::IoError "FILE:LINE: message".
+struct HalLine {
+  const std::string& path;
+  std::size_t number;  ///< 1-based
+  [[noreturn]] void operator()(const std::string& what) const {
+    throw IoError(locate(path, number, what));
   }
+};
+
+/// What the HAL lines set besides the machine.
+struct HalPins {
+  std::array<std::array<bool, 3>, kin::kStruts> base_set{}, platform_set{};
+  double tool_offset = 0.0;
+  bool pkm_home = false;  ///< a "# pkm: home" line was read
+};
+
+/// A "# pkm: home = x y z a b c" / "# pkm: units = mm|inch" line (`meta`: its words), written by
+/// writeLinuxcncSetp so that its output is loadable on its own; an INI file overrides them.
+void parsePkmComment(HexapodMachine& m,
+                     HalPins& pins,
+                     const std::vector<std::string_view>& meta,
+                     const HalLine& fail) {
+  if (meta.size() >= 4 && meta[2] == "home" && meta[3] == "=") {
+    m.model.home = parseHome("# pkm: home", {meta.begin() + 4, meta.end()}, fail);
+    pins.pkm_home = true;
+  } else if (meta.size() == 5 && meta[2] == "units" && meta[3] == "=") {
+    const auto unit = lengthUnitFromString(meta[4]);
+    if (!unit) fail(fmt::format("units '{}': expected mm or inch", meta[4]));
+    m.model.unit = *unit;
+  } else {
+    fail("'# pkm:' lines are 'home = x y z a b c' or 'units = mm|inch'");
+  }
+}
+
+/// `setp genhexkins.PIN VALUE`: base.N.x / platform.N.x joint coordinates, the offsets and the
+/// forward-kinematics settings; pins pkm does not use become notices, unknown ones errors.
+void setPin(
+    HexapodMachine& m, HalPins& pins, std::string_view pin, double value, const HalLine& fail) {
+  const bool is_base = pin.starts_with("base.");
+  const bool is_platform = pin.starts_with("platform.");
+  if ((is_base || is_platform)) {
+    const std::string_view rest = pin.substr(is_base ? 5 : 9);
+    if (rest.size() != 3 || rest[1] != '.' || rest[0] < '0' || rest[0] > '5' || rest[2] < 'x' ||
+        rest[2] > 'z')
+      fail(fmt::format("unknown pin genhexkins.{}", pin));
+    const auto i = static_cast<std::size_t>(rest[0] - '0');
+    const int axis = rest[2] - 'x';
+    kin::Strut& s = m.model.struts[i];
+    (is_base ? s.world_p_base : s.platform_p_joint)[axis] = value;
+    (is_base ? pins.base_set : pins.platform_set)[i][static_cast<std::size_t>(axis)] = true;
+  } else if (pin == "spindle-offset") {
+    m.model.spindle_offset = value;  // as in HAL, the last setp wins
+  } else if (pin == "tool-offset") {
+    pins.tool_offset = value;
+  } else if (pin == "convergence-criterion") {
+    if (!(value > 0.0)) fail("convergence-criterion must be > 0");
+    m.fk.tolerance = value;
+  } else if (pin == "limit-iterations") {
+    if (value < 1 || value > 1e6 || value != std::floor(value))
+      fail("limit-iterations must be an integer >= 1");
+    m.fk.max_iterations = static_cast<int>(value);
+  } else if (pin == "screw-lead") {
+    if (value != 0.0)
+      fail("screw-lead != 0: the screw-twist strut correction is not supported by pkm");
+  } else if (pin.starts_with("base-n.") || pin.starts_with("platform-n.") || pin == "max-error") {
+    m.notices.push_back(locate(
+        fail.path, fail.number, fmt::format("ignored: genhexkins.{} (not used by pkm)", pin)));
+  } else {
+    fail(fmt::format("unknown pin genhexkins.{}", pin));
+  }
+}
+
+/// One line of the HAL file: a "# pkm:" comment, a genhexkins `setp`, or anything else (a notice).
+void parseHalLine(HexapodMachine& m, HalPins& pins, std::string_view text, const HalLine& fail) {
+  if (const auto meta = splitWords(text); meta.size() >= 2 && meta[0] == "#" && meta[1] == "pkm:") {
+    parsePkmComment(m, pins, meta, fail);
+    return;
+  }
+  if (const auto hash = text.find('#'); hash != std::string_view::npos) text = text.substr(0, hash);
+  const auto words = splitWords(text);
+  if (words.empty()) return;
+  const bool is_setp = words[0] == "setp" && words.size() >= 2 && words[1].starts_with(kPrefix);
+  if (!is_setp) {
+    m.notices.push_back(
+        locate(fail.path, fail.number, fmt::format("ignored: {}", fmt::join(words, " "))));
+    return;
+  }
+  if (words.size() != 3) fail(fmt::format("expected 'setp {} VALUE'", words[1]));
+  double value = 0.0;
+  if (!parseFiniteDouble(words[2], value))
+    fail(fmt::format("'{}' is not a finite number", words[2]));
+  setPin(m, pins, words[1].substr(kPrefix.size()), value, fail);
+}
+
+/// Throws pkm::IoError naming `hal_path` when a joint coordinate was not set.
+void checkJointsSet(const std::string& hal_path, const HalPins& pins) {
   std::vector<std::string> missing;
   for (std::size_t i = 0; i < kin::kStruts; ++i)
     for (std::size_t a = 0; a < 3; ++a) {
-      if (!base_set[i][a]) missing.push_back(fmt::format("base.{}.{}", i, "xyz"[a]));
-      if (!platform_set[i][a]) missing.push_back(fmt::format("platform.{}.{}", i, "xyz"[a]));
+      if (!pins.base_set[i][a]) missing.push_back(fmt::format("base.{}.{}", i, "xyz"[a]));
+      if (!pins.platform_set[i][a]) missing.push_back(fmt::format("platform.{}.{}", i, "xyz"[a]));
     }
   if (!missing.empty())
     throw IoError(locate(hal_path,
@@ -175,41 +190,64 @@ HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions
                          fmt::format("genhexkins pins not set: {} (set every joint coordinate "
                                      "explicitly; pkm does not assume genhexkins' defaults)",
                                      fmt::join(missing, ", "))));
-  m.model.spindle_offset += tool_offset;  // genhexkins adds both to the z of every joint
-  m.model.linuxcnc_tool_offset = tool_offset;
+}
 
-  std::optional<std::string> ini = options.ini_path;
-  if (!ini && options.discover_ini) {
-    const fs::path dir =
-        fs::path(hal_path).parent_path().empty() ? fs::path(".") : fs::path(hal_path).parent_path();
-    const std::string hal_name = fs::path(hal_path).filename().string();
-    std::vector<std::string> found;
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(dir, ec))
-      if (entry.path().extension() == ".ini" && iniLoadsHal(entry.path().string(), hal_name))
-        found.push_back(entry.path().string());
-    if (found.size() == 1) {
-      ini = found.front();
-      m.notices.push_back(fmt::format("using INI {} (its [HAL] HALFILE loads {})", *ini, hal_name));
-    } else if (found.size() > 1) {
-      m.notices.push_back(
-          fmt::format("several INI files load {}; none used (pass --ini)", hal_name));
-    }
-  }
-  if (ini) {
-    applyLinuxcncIni(*ini, m);
-  } else if (!pkm_home) {
+/// The one INI file in the HAL file's folder that loads it (a notice in `m` says which, or that
+/// several do and none is used).
+std::optional<std::string> discoverIni(const std::string& hal_path, HexapodMachine& m) {
+  const fs::path dir =
+      fs::path(hal_path).parent_path().empty() ? fs::path(".") : fs::path(hal_path).parent_path();
+  const std::string hal_name = fs::path(hal_path).filename().string();
+  std::vector<std::string> found;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    if (entry.path().extension() == ".ini" && iniLoadsHal(entry.path().string(), hal_name))
+      found.push_back(entry.path().string());
+  if (found.size() == 1) {
     m.notices.push_back(
-        "no INI file: assuming mm and home 0 0 0 0 0 0 (pass --ini for [TRAJ] HOME and units)");
+        fmt::format("using INI {} (its [HAL] HALFILE loads {})", found.front(), hal_name));
+    return found.front();
   }
-  // Cone axes: the strut direction at home (LinuxCNC has no joint-angle limits; max_angle stays 0).
-  kin::HexapodData data(m.model);
-  kin::inverseKinematics(m.model, data, m.model.home);
+  if (found.size() > 1)
+    m.notices.push_back(fmt::format("several INI files load {}; none used (pass --ini)", hal_name));
+  return std::nullopt;
+}
+
+/// Cone axes: the strut direction at home (LinuxCNC has no joint-angle limits; max_angle stays 0).
+void setConeAxes(kin::HexapodModel& model) {
+  kin::HexapodData data(model);
+  kin::inverseKinematics(model, data, model.home);
   for (std::size_t i = 0; i < kin::kStruts; ++i) {
     if (data.unit_leg[i].norm() == 0.0) continue;
-    m.model.struts[i].base_cone.axis = data.unit_leg[i];
-    m.model.struts[i].platform_cone.axis = data.world_R_platform.transpose() * data.unit_leg[i];
+    model.struts[i].base_cone.axis = data.unit_leg[i];
+    model.struts[i].platform_cone.axis = data.world_R_platform.transpose() * data.unit_leg[i];
   }
+}
+
+}  // namespace
+
+HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions& options) {
+  HexapodMachine m;
+  m.source = hal_path;
+  m.model.name = fs::path(hal_path).stem().string();
+  m.description = fmt::format("Imported from LinuxCNC genhexkins configuration {}", hal_path);
+  HalPins pins;
+  const auto lines = readLines(hal_path);
+  for (std::size_t n = 0; n < lines.size(); ++n)
+    parseHalLine(m, pins, lines[n], HalLine{hal_path, n + 1});
+  checkJointsSet(hal_path, pins);
+  m.model.spindle_offset += pins.tool_offset;  // genhexkins adds both to the z of every joint
+  m.model.linuxcnc_tool_offset = pins.tool_offset;
+
+  std::optional<std::string> ini = options.ini_path;
+  if (!ini && options.discover_ini) ini = discoverIni(hal_path, m);
+  if (ini) {
+    applyLinuxcncIni(*ini, m);
+  } else if (!pins.pkm_home) {
+    m.notices.emplace_back(
+        "no INI file: assuming mm and home 0 0 0 0 0 0 (pass --ini for [TRAJ] HOME and units)");
+  }
+  setConeAxes(m.model);
   try {
     m.model.validate();
   } catch (const InvalidArgument& e) {
@@ -218,9 +256,10 @@ HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions
         0,
         fmt::format("{}{}",
                     e.what(),
-                    ini || pkm_home ? ""
-                                    : " (no INI file was found, so home "
-                                      "was taken as 0 0 0 0 0 0: pass --ini with [TRAJ] HOME)")));
+                    ini || pins.pkm_home ? ""
+                                         : " (no INI file was found, so home "
+                                           "was taken as 0 0 0 0 0 0: pass --ini with [TRAJ] "
+                                           "HOME)")));
   }
   return m;
 }
@@ -285,77 +324,6 @@ void applyLinuxcncIni(const std::string& ini_path, HexapodMachine& machine) {
           0,
           fmt::format("[JOINT_{}] MIN_LIMIT {} > MAX_LIMIT {}", i, s.min_reading, s.max_reading)));
   }
-}
-
-std::string writeLinuxcncSetp(const HexapodMachine& machine) {
-  const kin::HexapodModel& model = machine.model;
-  std::string out =
-      fmt::format("# genhexkins geometry written by pkm from {}\n# machine: {}, units: {}\n",
-                  machine.source,
-                  model.name,
-                  toString(model.unit));
-  const bool tcp = model.tool_offset.norm() > 0.0;
-  if (tcp)
-    out +=
-        "# The TCP offset of the pkm model is folded into the platform joints (platform = joint - "
-        "TCP).\n";
-  auto setp = [&out](const std::string& pin, double v) {
-    out += "setp genhexkins." + pin + " ";
-    appendNumber(out, v);
-    out += '\n';
-  };
-  out += "\n# Base joints positions in base (world) coordinates\n";
-  for (int i = 0; i < kin::kStruts; ++i)
-    for (int a = 0; a < 3; ++a)
-      setp(fmt::format("base.{}.{}", i, "xyz"[a]),
-           model.struts[static_cast<std::size_t>(i)].world_p_base[a]);
-  out += "\n# Platform joints positions in platform coordinates\n";
-  for (int i = 0; i < kin::kStruts; ++i) {
-    const Eigen::Vector3d p =
-        model.struts[static_cast<std::size_t>(i)].platform_p_joint - model.tool_offset;
-    for (int a = 0; a < 3; ++a) setp(fmt::format("platform.{}.{}", i, "xyz"[a]), p[a]);
-  }
-  out += "\n";
-  setp("spindle-offset", model.spindle_offset - model.linuxcnc_tool_offset);
-  if (model.linuxcnc_tool_offset != 0.0) setp("tool-offset", model.linuxcnc_tool_offset);
-  setp("convergence-criterion", machine.fk.tolerance);
-  out += fmt::format("setp genhexkins.limit-iterations {}\n", machine.fk.max_iterations);
-
-  kin::HexapodData data(model);
-  kin::inverseKinematics(model, data, model.home);
-  // Read back by readLinuxcncHal (an INI file, when found, overrides them).
-  out += fmt::format("\n# pkm: units = {}\n", toString(model.unit));
-  out += fmt::format("# pkm: home = {} {} {} {} {} {}\n",
-                     formatNumber(model.home.position.x()),
-                     formatNumber(model.home.position.y()),
-                     formatNumber(model.home.position.z()),
-                     formatNumber(radToDeg(model.home.rpy.x())),
-                     formatNumber(radToDeg(model.home.rpy.y())),
-                     formatNumber(radToDeg(model.home.rpy.z())));
-  out +=
-      "\n# INI values for this geometry (LinuxCNC joint positions are joint-centre distances):\n";
-  out += fmt::format("# [TRAJ] HOME = {} {} {} {} {} {}\n",
-                     formatNumber(model.home.position.x()),
-                     formatNumber(model.home.position.y()),
-                     formatNumber(model.home.position.z()),
-                     formatNumber(radToDeg(model.home.rpy.x())),
-                     formatNumber(radToDeg(model.home.rpy.y())),
-                     formatNumber(radToDeg(model.home.rpy.z())));
-  out +=
-      fmt::format("# [TRAJ] LINEAR_UNITS = {}\n", model.unit == LengthUnit::kInch ? "inch" : "mm");
-  for (int i = 0; i < kin::kStruts; ++i) {
-    const kin::Strut& s = model.struts[static_cast<std::size_t>(i)];
-    out += fmt::format(
-        "# [JOINT_{}] HOME = HOME_OFFSET = {}", i, formatNumber(data.joint_distance[i]));
-    if (std::isfinite(s.min_reading))
-      out += ", MIN_LIMIT = " + formatNumber(s.min_reading + s.length_offset);
-    if (std::isfinite(s.max_reading))
-      out += ", MAX_LIMIT = " + formatNumber(s.max_reading + s.length_offset);
-    if (s.length_offset != 0.0)
-      out += fmt::format(" (pkm reading + length offset {})", formatNumber(s.length_offset));
-    out += '\n';
-  }
-  return out;
 }
 
 }  // namespace pkm::io

@@ -45,6 +45,92 @@ void writeVec(std::string& out, const Eigen::Vector3d& v) {
   out += ']';
 }
 
+/// Which struts were given their joint-cone axes.
+using AxisGiven = std::array<bool, kin::kStruts>;
+
+/// Reads "home": {"x", "y", "z", "a", "b", "c"} (length unit, degrees) into `model`.
+void readHome(const detail::JsonDoc& doc, const json& root, kin::HexapodModel& model) {
+  if (!root.contains("home")) return;
+  const json& h = root["home"];
+  doc.onlyKeys(h, "/home", {"x", "y", "z", "a", "b", "c"});
+  model.home.position = {doc.number(h, "/home", "x", 0),
+                         doc.number(h, "/home", "y", 0),
+                         doc.number(h, "/home", "z", 0)};
+  model.home.rpy = {degToRad(doc.number(h, "/home", "a", 0)),
+                    degToRad(doc.number(h, "/home", "b", 0)),
+                    degToRad(doc.number(h, "/home", "c", 0))};
+}
+
+/// Reads the offsets, strut diameter, condition limit, forward-kinematics options and joint rates.
+void readSettings(const detail::JsonDoc& doc, const json& root, HexapodMachine& m) {
+  kin::HexapodModel& model = m.model;
+  if (root.contains("tool_offset"))
+    model.tool_offset = doc.vec3(root["tool_offset"], "/tool_offset");
+  model.spindle_offset = doc.number(root, "", "spindle_offset", 0.0);
+  model.linuxcnc_tool_offset = doc.number(root, "", "linuxcnc_tool_offset", 0.0);
+  model.strut_diameter = doc.number(root, "", "strut_diameter", 0.0);
+  if (model.strut_diameter < 0.0) doc.fail("/strut_diameter", "must be >= 0");
+  model.max_condition = doc.number(root, "", "max_condition", model.max_condition);
+  if (!(model.max_condition > 1.0)) doc.fail("/max_condition", "must be > 1");
+  if (root.contains("forward_kinematics"))
+    detail::readFkOptions(doc, root["forward_kinematics"], m.fk);
+  if (root.contains("joint_rates"))
+    m.joint_rates = detail::readJointRates(doc, root["joint_rates"], "/joint_rates", false);
+}
+
+/// Reads strut `i` (at `ptr`) into `model`, noting which joint-cone axes were given.
+void readStrut(const detail::JsonDoc& doc,
+               const json& s,
+               std::size_t i,
+               const std::string& ptr,
+               kin::HexapodModel& model,
+               AxisGiven& base_axis_given,
+               AxisGiven& platform_axis_given) {
+  doc.onlyKeys(
+      s, ptr, {"base", "platform", "length_offset", "stroke", "base_joint", "platform_joint"});
+  kin::Strut& strut = model.struts[i];
+  if (!s.contains("base")) doc.fail(ptr, "missing key 'base'");
+  if (!s.contains("platform")) doc.fail(ptr, "missing key 'platform'");
+  strut.world_p_base = doc.vec3(s["base"], ptr + "/base");
+  strut.platform_p_joint = doc.vec3(s["platform"], ptr + "/platform");
+  strut.length_offset = doc.number(s, ptr, "length_offset", 0.0);
+  if (s.contains("stroke")) {
+    const json& st = s["stroke"];
+    if (!st.is_array() || st.size() != 2) doc.fail(ptr + "/stroke", "expected [min, max]");
+    // null = unbounded on that side
+    if (!st[0].is_null()) strut.min_reading = doc.number(st[0], ptr + "/stroke/0");
+    if (!st[1].is_null()) strut.max_reading = doc.number(st[1], ptr + "/stroke/1");
+    if (strut.min_reading > strut.max_reading) doc.fail(ptr + "/stroke", "min is larger than max");
+  }
+  if (s.contains("base_joint"))
+    base_axis_given[i] = readCone(doc, s["base_joint"], ptr + "/base_joint", strut.base_cone);
+  if (s.contains("platform_joint"))
+    platform_axis_given[i] =
+        readCone(doc, s["platform_joint"], ptr + "/platform_joint", strut.platform_cone);
+}
+
+/// Default cone axes (the strut direction at home) where none was given, then the model's
+/// validation; its errors are located at /struts.
+void finishModel(const detail::JsonDoc& doc,
+                 kin::HexapodModel& model,
+                 const AxisGiven& base_axis_given,
+                 const AxisGiven& platform_axis_given) {
+  try {
+    kin::HexapodData data(model);
+    kin::inverseKinematics(model, data, model.home);
+    for (std::size_t i = 0; i < kin::kStruts; ++i) {
+      const Eigen::Vector3d u = data.unit_leg[i];
+      if (u.norm() == 0.0) continue;  // validate() reports the zero-length strut
+      if (!base_axis_given[i]) model.struts[i].base_cone.axis = u;
+      if (!platform_axis_given[i])
+        model.struts[i].platform_cone.axis = data.world_R_platform.transpose() * u;
+    }
+    model.validate();
+  } catch (const InvalidArgument& e) {
+    doc.fail("/struts", e.what());
+  }
+}
+
 }  // namespace
 
 std::string readTextFile(const std::string& path, std::size_t max_bytes) {
@@ -89,76 +175,23 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
   model.name = doc.string(root, "", "name", "hexapod");
   m.description = doc.string(root, "", "description", "");
   model.unit = detail::readSchemaAndUnits(doc, root, "pkm.machine/1");
-
-  if (root.contains("home")) {
-    const json& h = root["home"];
-    doc.onlyKeys(h, "/home", {"x", "y", "z", "a", "b", "c"});
-    model.home.position = {doc.number(h, "/home", "x", 0),
-                           doc.number(h, "/home", "y", 0),
-                           doc.number(h, "/home", "z", 0)};
-    model.home.rpy = {degToRad(doc.number(h, "/home", "a", 0)),
-                      degToRad(doc.number(h, "/home", "b", 0)),
-                      degToRad(doc.number(h, "/home", "c", 0))};
-  }
-  if (root.contains("tool_offset"))
-    model.tool_offset = doc.vec3(root["tool_offset"], "/tool_offset");
-  model.spindle_offset = doc.number(root, "", "spindle_offset", 0.0);
-  model.linuxcnc_tool_offset = doc.number(root, "", "linuxcnc_tool_offset", 0.0);
-  model.strut_diameter = doc.number(root, "", "strut_diameter", 0.0);
-  if (model.strut_diameter < 0.0) doc.fail("/strut_diameter", "must be >= 0");
-  model.max_condition = doc.number(root, "", "max_condition", model.max_condition);
-  if (!(model.max_condition > 1.0)) doc.fail("/max_condition", "must be > 1");
-  if (root.contains("forward_kinematics"))
-    detail::readFkOptions(doc, root["forward_kinematics"], m.fk);
-  if (root.contains("joint_rates"))
-    m.joint_rates = detail::readJointRates(doc, root["joint_rates"], "/joint_rates", false);
+  readHome(doc, root, model);
+  readSettings(doc, root, m);
 
   if (!root.contains("struts")) doc.fail("", "missing key 'struts'");
   const json& struts = root["struts"];
   if (!struts.is_array() || struts.size() != kin::kStruts)
     doc.fail("/struts", fmt::format("expected an array of {} struts", kin::kStruts));
-  std::array<bool, kin::kStruts> base_axis_given{}, platform_axis_given{};
-  for (std::size_t i = 0; i < struts.size(); ++i) {
-    const std::string ptr = fmt::format("/struts/{}", i);
-    const json& s = struts[i];
-    doc.onlyKeys(
-        s, ptr, {"base", "platform", "length_offset", "stroke", "base_joint", "platform_joint"});
-    kin::Strut& strut = model.struts[i];
-    if (!s.contains("base")) doc.fail(ptr, "missing key 'base'");
-    if (!s.contains("platform")) doc.fail(ptr, "missing key 'platform'");
-    strut.world_p_base = doc.vec3(s["base"], ptr + "/base");
-    strut.platform_p_joint = doc.vec3(s["platform"], ptr + "/platform");
-    strut.length_offset = doc.number(s, ptr, "length_offset", 0.0);
-    if (s.contains("stroke")) {
-      const json& st = s["stroke"];
-      if (!st.is_array() || st.size() != 2) doc.fail(ptr + "/stroke", "expected [min, max]");
-      // null = unbounded on that side
-      if (!st[0].is_null()) strut.min_reading = doc.number(st[0], ptr + "/stroke/0");
-      if (!st[1].is_null()) strut.max_reading = doc.number(st[1], ptr + "/stroke/1");
-      if (strut.min_reading > strut.max_reading)
-        doc.fail(ptr + "/stroke", "min is larger than max");
-    }
-    if (s.contains("base_joint"))
-      base_axis_given[i] = readCone(doc, s["base_joint"], ptr + "/base_joint", strut.base_cone);
-    if (s.contains("platform_joint"))
-      platform_axis_given[i] =
-          readCone(doc, s["platform_joint"], ptr + "/platform_joint", strut.platform_cone);
-  }
-  try {
-    // Default cone axes: the strut direction at home.
-    kin::HexapodData data(model);
-    kin::inverseKinematics(model, data, model.home);
-    for (std::size_t i = 0; i < kin::kStruts; ++i) {
-      const Eigen::Vector3d u = data.unit_leg[i];
-      if (u.norm() == 0.0) continue;  // validate() reports the zero-length strut
-      if (!base_axis_given[i]) model.struts[i].base_cone.axis = u;
-      if (!platform_axis_given[i])
-        model.struts[i].platform_cone.axis = data.world_R_platform.transpose() * u;
-    }
-    model.validate();
-  } catch (const InvalidArgument& e) {
-    doc.fail("/struts", e.what());
-  }
+  AxisGiven base_axis_given{}, platform_axis_given{};
+  for (std::size_t i = 0; i < struts.size(); ++i)
+    readStrut(doc,
+              struts[i],
+              i,
+              fmt::format("/struts/{}", i),
+              model,
+              base_axis_given,
+              platform_axis_given);
+  finishModel(doc, model, base_axis_given, platform_axis_given);
   return m;
 }
 

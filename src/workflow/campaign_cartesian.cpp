@@ -6,6 +6,8 @@
 
 #include <Eigen/LU>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 #include "campaign_compensation.hpp"
 #include "campaign_steps.hpp"
@@ -136,18 +138,12 @@ StepOutcome fromFiles(const StepContext& ctx) {
   ctx.progress(fmt::format("analyse: {} laser files", files.paths.size()));
   const Analysis ab = analyse(files.data, diagonalBox(files.data, ctx.source), ctx.source);
   (void)compensate(ctx, out, files.data, layout, ab);
-  const double nan = std::nan("");
-  out.rows.push_back({"body diagonals, max |length error|",
-                      "mm",
-                      ab.max_length_error,
-                      nan,
-                      std::nullopt,
-                      "",
-                      "as measured"});
-  out.rows.push_back(
-      {"X positioning (ISO 230-2 E)", "mm", ab.linear_x.E, nan, std::nullopt, "", "as measured"});
-  out.rows.push_back(
-      {"Y positioning (ISO 230-2 E)", "mm", ab.linear_y.E, nan, std::nullopt, "", "as measured"});
+  const std::pair<const char*, double> figures[] = {
+      {"body diagonals, max |length error|", ab.max_length_error},
+      {"X positioning (ISO 230-2 E)", ab.linear_x.E},
+      {"Y positioning (ISO 230-2 E)", ab.linear_y.E}};
+  for (const auto& [quantity, value] : figures)
+    out.rows.push_back({quantity, "mm", value, std::nan(""), std::nullopt, "", "as measured"});
   const met::BodyDiagonalSolution& sb = ab.body.solution;
   out.record.results.push_back({"squareness.xy", "estimate", sb.squareness_xy, "rad"});
   out.record.results.push_back({"squareness.xz", "estimate", sb.squareness_xz, "rad"});
@@ -166,6 +162,86 @@ StepOutcome fromFiles(const StepContext& ctx) {
   return out;
 }
 
+/// The box of the body diagonals of a scenario: |direction · travel| of "diag-ppp". Throws
+/// pkm::IoError naming `src` when there is no such measurement.
+Eigen::Vector3d scenarioBox(const io::Scenario& scenario, const std::string& src) {
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();
+  for (const sim::LineSetup& m : scenario.campaign.measurements)
+    if (m.name == "diag-ppp")
+      size = (m.line.direction * (m.cycle.last - m.cycle.first)).head<3>().cwiseAbs();
+  if (!(size.minCoeff() > 0))
+    throw IoError(fmt::format("{}: the scenario needs the body diagonal 'diag-ppp'", src));
+  return size;
+}
+
+/// The summary rows before and after compensation, and the estimated squareness for the store.
+void addRows(StepOutcome& out,
+             const LineData& before,
+             const Analysis& ab,
+             const Analysis& aa,
+             const std::string& src) {
+  const sim::LineSetup& li = before.setup("diag-ppp", src);
+  const std::string noise =
+      fmt::format("laser {:g} µm + {:g} ppm", li.noise.sigma * 1e3, li.noise.sigma_ppm);
+  const std::tuple<const char*, double, double> figures[] = {
+      {"body diagonals, max |length error|", ab.max_length_error, aa.max_length_error},
+      {"face diagonal XY (PP) error (ISO 230-2 E)", ab.face_pp.E, aa.face_pp.E},
+      {"face diagonal XY (NP) error (ISO 230-2 E)", ab.face_np.E, aa.face_np.E},
+      {"X positioning (ISO 230-2 E)", ab.linear_x.E, aa.linear_x.E},
+      {"Y positioning (ISO 230-2 E)", ab.linear_y.E, aa.linear_y.E}};
+  for (const auto& [quantity, b, a] : figures)
+    out.rows.push_back({quantity, "mm", b, a, std::nullopt, "", noise});
+  const met::BodyDiagonalSolution& sb = ab.body.solution;
+  out.record.results.push_back({"squareness.xy", "estimate", sb.squareness_xy, "rad"});
+  out.record.results.push_back({"squareness.xz", "estimate", sb.squareness_xz, "rad"});
+  out.record.results.push_back({"squareness.yz", "estimate", sb.squareness_yz, "rad"});
+}
+
+/// The squareness before and after compensation, and the injected one.
+Json squarenessTable(const Analysis& ab, const Analysis& aa, const sim::CartesianSquareness& t) {
+  const met::BodyDiagonalSolution& sb = ab.body.solution;
+  const met::BodyDiagonalSolution& sa = aa.body.solution;
+  Json st = table("Squareness (µrad): body diagonals before and after compensation, injected",
+                  {"angle", "before", "after", "truth"});
+  st["rows"].push_back(
+      {"xy", cell(sb.squareness_xy * 1e6), cell(sa.squareness_xy * 1e6), cell(t.xy * 1e6)});
+  st["rows"].push_back(
+      {"xz", cell(sb.squareness_xz * 1e6), cell(sa.squareness_xz * 1e6), cell(t.xz * 1e6)});
+  st["rows"].push_back(
+      {"yz", cell(sb.squareness_yz * 1e6), cell(sa.squareness_yz * 1e6), cell(t.yz * 1e6)});
+  return st;
+}
+
+/// The length errors of the four body diagonals, before and after.
+Json bodyPlot(const std::string& id, const Analysis& ab, const Analysis& aa) {
+  Json p = plot(
+      id + "-body", "Body diagonal length errors (seed 001 Fig. 5)", "bar", "diagonal", "ΔD (µm)");
+  p["categories"] = Json::array({"PPP", "NPP", "PNP", "NNP"});
+  for (const auto& [a, label] : {std::pair{&ab, "before"}, std::pair{&aa, "after"}}) {
+    Json ys = Json::array();
+    for (const met::DiagonalEvaluation& e : a->body.diagonals)
+      ys.push_back(cell(e.length_error * 1e3));
+    p["series"].push_back(Json{{"label", label}, {"y", ys}});
+  }
+  return p;
+}
+
+/// The deviation along the XY (PP) face diagonal, before and after.
+Json facePlot(const std::string& id,
+              const LineData& before,
+              const LineData& after,
+              const std::string& src) {
+  Json f = plot(
+      id + "-face", "Face diagonal XY (PP): deviation", "line", "position (mm)", "deviation (µm)");
+  for (const auto& [d, label] : {std::pair{&before, "before"}, std::pair{&after, "after"}}) {
+    std::vector<double> s, m;
+    meanReadings(d->runs("face-xy-pp", src), s, m);
+    for (std::size_t i = 0; i < s.size(); ++i) m[i] = (m[i] - s[i]) * 1e3;
+    addSeries(f, label, s, m);
+  }
+  return f;
+}
+
 }  // namespace
 
 StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
@@ -180,12 +256,7 @@ StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
   out.record.machine = scenario.campaign.name;
   out.record.machine_type = "cartesian";
   out.record.source = scenario.source;
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();
-  for (const sim::LineSetup& m : scenario.campaign.measurements)
-    if (m.name == "diag-ppp")
-      size = (m.line.direction * (m.cycle.last - m.cycle.first)).head<3>().cwiseAbs();
-  if (!(size.minCoeff() > 0))
-    throw IoError(fmt::format("{}: the scenario needs the body diagonal 'diag-ppp'", src));
+  const Eigen::Vector3d size = scenarioBox(scenario, src);
 
   ctx.progress("measure: body, face and shifted diagonals, positioning and straightness");
   const LineData before{sim::runCampaign(scenario.campaign, seed)};
@@ -202,40 +273,7 @@ StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
   const LineData after{sim::runCampaign(again.campaign, remeasureSeed(seed))};
   writeLineFiles(ctx, out, "measured-after", scenario, remeasureSeed(seed), after);
   const Analysis aa = analyse(after, size, src);
-
-  const sim::LineSetup& li = before.setup("diag-ppp", src);
-  const std::string noise =
-      fmt::format("laser {:g} µm + {:g} ppm", li.noise.sigma * 1e3, li.noise.sigma_ppm);
-  out.rows.push_back({"body diagonals, max |length error|",
-                      "mm",
-                      ab.max_length_error,
-                      aa.max_length_error,
-                      std::nullopt,
-                      "",
-                      noise});
-  out.rows.push_back({"face diagonal XY (PP) error (ISO 230-2 E)",
-                      "mm",
-                      ab.face_pp.E,
-                      aa.face_pp.E,
-                      std::nullopt,
-                      "",
-                      noise});
-  out.rows.push_back({"face diagonal XY (NP) error (ISO 230-2 E)",
-                      "mm",
-                      ab.face_np.E,
-                      aa.face_np.E,
-                      std::nullopt,
-                      "",
-                      noise});
-  out.rows.push_back(
-      {"X positioning (ISO 230-2 E)", "mm", ab.linear_x.E, aa.linear_x.E, std::nullopt, "", noise});
-  out.rows.push_back(
-      {"Y positioning (ISO 230-2 E)", "mm", ab.linear_y.E, aa.linear_y.E, std::nullopt, "", noise});
-  const met::BodyDiagonalSolution& sb = ab.body.solution;
-  const met::BodyDiagonalSolution& sa = aa.body.solution;
-  out.record.results.push_back({"squareness.xy", "estimate", sb.squareness_xy, "rad"});
-  out.record.results.push_back({"squareness.xz", "estimate", sb.squareness_xz, "rad"});
-  out.record.results.push_back({"squareness.yz", "estimate", sb.squareness_yz, "rad"});
+  addRows(out, before, ab, aa, src);
 
   Json sec =
       section(out.id,
@@ -249,41 +287,9 @@ StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
                "Compensation: the command correction q' = D⁻¹·q with D the axis directions of "
                "the estimated squareness (compensation/squareness.txt) and LinuxCNC COMP_FILE "
                "type 1 tables of X and Y (compensation/*.comp)."});
-  const sim::CartesianSquareness& t = vm->errors().squareness;
-  Json st = table("Squareness (µrad): body diagonals before and after compensation, injected",
-                  {"angle", "before", "after", "truth"});
-  st["rows"].push_back(
-      {"xy", cell(sb.squareness_xy * 1e6), cell(sa.squareness_xy * 1e6), cell(t.xy * 1e6)});
-  st["rows"].push_back(
-      {"xz", cell(sb.squareness_xz * 1e6), cell(sa.squareness_xz * 1e6), cell(t.xz * 1e6)});
-  st["rows"].push_back(
-      {"yz", cell(sb.squareness_yz * 1e6), cell(sa.squareness_yz * 1e6), cell(t.yz * 1e6)});
-  sec["tables"].push_back(st);
-  Json p = plot(out.id + "-body",
-                "Body diagonal length errors (seed 001 Fig. 5)",
-                "bar",
-                "diagonal",
-                "ΔD (µm)");
-  p["categories"] = Json::array({"PPP", "NPP", "PNP", "NNP"});
-  for (const auto* a : {&ab, &aa}) {
-    Json ys = Json::array();
-    for (const met::DiagonalEvaluation& e : a->body.diagonals)
-      ys.push_back(cell(e.length_error * 1e3));
-    p["series"].push_back(Json{{"label", a == &ab ? "before" : "after"}, {"y", ys}});
-  }
-  sec["plots"].push_back(p);
-  Json f = plot(out.id + "-face",
-                "Face diagonal XY (PP): deviation",
-                "line",
-                "position (mm)",
-                "deviation (µm)");
-  for (const auto* d : {&before, &after}) {
-    std::vector<double> s, m;
-    meanReadings(d->runs("face-xy-pp", src), s, m);
-    for (std::size_t i = 0; i < s.size(); ++i) m[i] = (m[i] - s[i]) * 1e3;
-    addSeries(f, d == &before ? "before" : "after", s, m);
-  }
-  sec["plots"].push_back(f);
+  sec["tables"].push_back(squarenessTable(ab, aa, vm->errors().squareness));
+  sec["plots"].push_back(bodyPlot(out.id, ab, aa));
+  sec["plots"].push_back(facePlot(out.id, before, after, src));
   out.section = std::move(sec);
   return out;
 }

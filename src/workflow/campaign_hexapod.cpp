@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "campaign_hexapod_detail.hpp"
 #include "campaign_steps.hpp"
 #include "pkm/calibration/acceptance.hpp"
 #include "pkm/calibration/hexapod_calibration.hpp"
@@ -33,13 +34,9 @@ std::vector<std::string> names(const Json& spec, const char* key, const std::str
   return out;
 }
 
-/// Target-position errors of tracker readings: world = frame · measured, nominal = command pose ·
-/// smr offset; one |error| per reading, plus the nominal x and y of the target.
-struct TcpErrors {
-  std::vector<double> x, y, error;
-  double rms = 0.0, max = 0.0;
-};
+using detail::TcpErrors;
 
+/// The TCP errors of the readings of `r`, the tracker readings moved by `world_T_tracker`.
 TcpErrors tcpErrors(const sim::TrackerResult& r,
                     const sim::VirtualMachine& vm,
                     const geometry::RigidTransform& world_T_tracker) {
@@ -112,6 +109,113 @@ geometry::RigidTransform registerTracker(const StepContext& ctx,
   return geometry::fitRigidTransform(nests, measured);
 }
 
+/// The line and tracker measurements of one pass over the scenario.
+struct Pass {
+  LineData lines;
+  std::vector<sim::TrackerResult> trackers;
+};
+
+/// Runs the scenario's laser lines and trackers with `seed` and writes their files into `folder`.
+Pass measure(const StepContext& ctx,
+             StepOutcome& out,
+             const std::string& folder,
+             const io::Scenario& scenario,
+             std::uint64_t seed) {
+  Pass p{LineData{sim::runCampaign(scenario.campaign, seed)},
+         sim::runLaserTrackers(scenario.campaign, seed)};
+  writeLineFiles(ctx, out, folder, scenario, seed, p.lines);
+  for (const sim::TrackerResult& r : p.trackers)
+    ctx.write(out,
+              fmt::format("{}/{}.csv", folder, r.setup->name),
+              io::trackerCsv(
+                  io::trackerMetadata(scenario.campaign.name, seed, *r.setup, r.readings.size()),
+                  r.setup->mode,
+                  r.readings));
+  return p;
+}
+
+/// The measured-before files named by the step's "fit", read as `pkm calibrate hexapod` does.
+io::CalibrationInput readFitFiles(const StepContext& ctx, const std::vector<std::string>& fit) {
+  ctx.progress(fmt::format("calibrate: 42 parameters from {}", fmt::join(fit, ", ")));
+  io::CalibrationInput input;
+  for (const std::string& f : fit)
+    io::addCalibrationFile((ctx.dir / "measured-before" / (f + ".csv")).string(), input);
+  return input;
+}
+
+/// The 42-parameter calibration of `input` with its observations moved into the machine frame by
+/// `world_T_tracker`; throws pkm::InvalidArgument when the residual does not explain the data.
+cal::HexapodCalibrationSummary calibrate(const StepContext& ctx,
+                                         const kinematics::HexapodModel& nominal,
+                                         const geometry::RigidTransform& world_T_tracker,
+                                         io::CalibrationInput& input) {
+  kinematics::HexapodModel model = nominal;
+  model.tool_offset += input.target_offset.value_or(Eigen::Vector3d::Zero());
+  for (cal::PoseObservation& o : input.data.poses) {
+    o.pose.position = world_T_tracker * o.pose.position;
+    o.pose.rpy =
+        geometry::rpyFromRotation(world_T_tracker.rotation * geometry::rotationFromRpy(o.pose.rpy));
+  }
+  for (cal::PointObservation& o : input.data.points) o.point = world_T_tracker * o.point;
+  cal::HexapodCalibrationSummary s = cal::calibrateHexapod(model, input.data, {});
+  if (!cal::explainsData(s.after.rms, model.characteristicLength()))
+    throw InvalidArgument(
+        fmt::format("{}: the calibration does not explain the data (residual RMS {:.4g} mm)",
+                    ctx.source,
+                    s.after.rms));
+  return s;
+}
+
+/// Writes the calibrated kinematics as a LinuxCNC genhexkins setp block and loads them into the
+/// virtual machine's controller.
+void compensate(const StepContext& ctx,
+                StepOutcome& out,
+                sim::HexapodVirtualMachine& vm,
+                const cal::HexapodCalibrationSummary& s) {
+  kinematics::HexapodModel calibrated = cal::withHexapodParameters(vm.nominal(), s.parameters);
+  calibrated.name = vm.nominal().name + "-calibrated";
+  io::HexapodMachine machine;
+  machine.model = calibrated;
+  ctx.writeCompensation(
+      out, "linuxcnc-hal", "compensation/kinematics.hal", io::writeLinuxcncSetp(machine));
+  vm.setControllerModel(calibrated);
+}
+
+/// The summary rows: held-out TCP errors, ISO 230-2 positioning of `linear`, and the residual.
+void addRows(const StepContext& ctx,
+             StepOutcome& out,
+             const sim::TrackerResult& holdout,
+             const TcpErrors& eb,
+             const TcpErrors& ea,
+             const Pass& before,
+             const Pass& after,
+             const std::string& linear,
+             const cal::HexapodCalibrationSummary& s) {
+  const std::string noise = noiseText(holdout.setup->noise);
+  out.rows.push_back({fmt::format("TCP error, {} held-out poses, max", holdout.readings.size()),
+                      "mm",
+                      eb.max,
+                      ea.max,
+                      0.05,
+                      "12 -> < 0.5 mm",
+                      noise});
+  out.rows.push_back(
+      {"TCP error, held-out poses, RMS", "mm", eb.rms, ea.rms, std::nullopt, "", noise});
+  const metrology::Iso230_2Result pb = iso230_2(before.lines.runs(linear, ctx.source));
+  const metrology::Iso230_2Result pa = iso230_2(after.lines.runs(linear, ctx.source));
+  const sim::LineSetup& ls = before.lines.setup(linear, ctx.source);
+  const double travel = ls.cycle.last - ls.cycle.first;
+  out.rows.push_back(
+      {fmt::format("{} positioning (ISO 230-2 M over {:g} mm)", linear, travel),
+       "mm",
+       pb.M,
+       pa.M,
+       std::nullopt,
+       "12 -> < 0.5 mm (540 mm along x)",
+       fmt::format("laser {:g} µm + {:g} ppm", ls.noise.sigma * 1e3, ls.noise.sigma_ppm)});
+  out.record.results.push_back({"calibration.residual_rms", "after", s.after.rms, "mm"});
+}
+
 }  // namespace
 
 StepOutcome runHexapodCalibrationStep(const StepContext& ctx) {
@@ -134,182 +238,37 @@ StepOutcome runHexapodCalibrationStep(const StepContext& ctx) {
 
   // 1. Measure on the uncompensated machine and keep the files.
   ctx.progress("measure: tracker and laser on the uncompensated machine");
-  const LineData lines_before{sim::runCampaign(scenario.campaign, seed)};
-  const std::vector<sim::TrackerResult> before = sim::runLaserTrackers(scenario.campaign, seed);
-  writeLineFiles(ctx, out, "measured-before", scenario, seed, lines_before);
-  for (const sim::TrackerResult& r : before)
-    ctx.write(out,
-              fmt::format("measured-before/{}.csv", r.setup->name),
-              io::trackerCsv(
-                  io::trackerMetadata(scenario.campaign.name, seed, *r.setup, r.readings.size()),
-                  r.setup->mode,
-                  r.readings));
+  const Pass before = measure(ctx, out, "measured-before", scenario, seed);
 
-  // 2. Calibrate from the files, as `pkm calibrate hexapod` does.
-  ctx.progress(fmt::format("calibrate: 42 parameters from {}", fmt::join(fit, ", ")));
-  io::CalibrationInput input;
-  for (const std::string& f : fit)
-    io::addCalibrationFile((ctx.dir / "measured-before" / (f + ".csv")).string(), input);
-  kinematics::HexapodModel model = vm->nominal();
-  model.tool_offset += input.target_offset.value_or(Eigen::Vector3d::Zero());
-  // The tracker is registered to the table by fiducial nests at known table positions, so the
-  // readings are in the machine frame and the base's rigid placement is identifiable too (without
-  // it the six rigid-motion directions are not, and the machine moves accurately but in a frame
-  // rotated against the table: docs/calibration.md "Frames").
+  // 2. Calibrate from the files, as `pkm calibrate hexapod` does. The tracker is registered to
+  // the table by fiducial nests at known table positions, so the readings are in the machine
+  // frame and the base's rigid placement is identifiable too (without it the six rigid-motion
+  // directions are not, and the machine moves accurately but in a frame rotated against the
+  // table: docs/calibration.md "Frames").
+  io::CalibrationInput input = readFitFiles(ctx, fit);
   const geometry::RigidTransform world_T_tracker =
-      registerTracker(ctx, out, scenario, seed, before);
-  for (cal::PoseObservation& o : input.data.poses) {
-    o.pose.position = world_T_tracker * o.pose.position;
-    o.pose.rpy =
-        geometry::rpyFromRotation(world_T_tracker.rotation * geometry::rotationFromRpy(o.pose.rpy));
-  }
-  for (cal::PointObservation& o : input.data.points) o.point = world_T_tracker * o.point;
-  const cal::HexapodCalibrationSummary s = cal::calibrateHexapod(model, input.data, {});
-  if (!cal::explainsData(s.after.rms, model.characteristicLength()))
-    throw InvalidArgument(
-        fmt::format("{}: the calibration does not explain the data (residual RMS {:.4g} mm)",
-                    ctx.source,
-                    s.after.rms));
-  kinematics::HexapodModel calibrated = cal::withHexapodParameters(vm->nominal(), s.parameters);
-  calibrated.name = vm->nominal().name + "-calibrated";
+      registerTracker(ctx, out, scenario, seed, before.trackers);
+  const cal::HexapodCalibrationSummary s = calibrate(ctx, vm->nominal(), world_T_tracker, input);
 
   // 3. Compensation: the calibrated kinematics in the controller.
-  io::HexapodMachine machine;
-  machine.model = calibrated;
-  ctx.writeCompensation(
-      out, "linuxcnc-hal", "compensation/kinematics.hal", io::writeLinuxcncSetp(machine));
-  vm->setControllerModel(calibrated);
+  compensate(ctx, out, *vm, s);
 
   // 4. Measure again.
   ctx.progress("re-measure: the same poses with the calibrated kinematics in the controller");
-  const LineData lines_after{sim::runCampaign(scenario.campaign, remeasureSeed(seed))};
-  const std::vector<sim::TrackerResult> after =
-      sim::runLaserTrackers(scenario.campaign, remeasureSeed(seed));
-  writeLineFiles(ctx, out, "measured-after", scenario, remeasureSeed(seed), lines_after);
-  for (const sim::TrackerResult& r : after)
-    ctx.write(out,
-              fmt::format("measured-after/{}.csv", r.setup->name),
-              io::trackerCsv(
-                  io::trackerMetadata(
-                      scenario.campaign.name, remeasureSeed(seed), *r.setup, r.readings.size()),
-                  r.setup->mode,
-                  r.readings));
+  const Pass after = measure(ctx, out, "measured-after", scenario, remeasureSeed(seed));
 
   // 5. Figures.
-  const sim::TrackerResult& hb = tracker(before, holdout.front(), ctx.source);
-  const sim::TrackerResult& ha = tracker(after, holdout.front(), ctx.source);
+  const sim::TrackerResult& hb = tracker(before.trackers, holdout.front(), ctx.source);
+  const sim::TrackerResult& ha = tracker(after.trackers, holdout.front(), ctx.source);
   const TcpErrors eb = tcpErrors(hb, *vm, world_T_tracker);
   const TcpErrors ea = tcpErrors(ha, *vm, world_T_tracker);
-  const std::string noise = noiseText(hb.setup->noise);
-  out.rows.push_back({fmt::format("TCP error, {} held-out poses, max", hb.readings.size()),
-                      "mm",
-                      eb.max,
-                      ea.max,
-                      0.05,
-                      "12 -> < 0.5 mm",
-                      noise});
-  out.rows.push_back(
-      {"TCP error, held-out poses, RMS", "mm", eb.rms, ea.rms, std::nullopt, "", noise});
-  const metrology::Iso230_2Result pb = iso230_2(lines_before.runs(linear, ctx.source));
-  const metrology::Iso230_2Result pa = iso230_2(lines_after.runs(linear, ctx.source));
-  const sim::LineSetup& ls = lines_before.setup(linear, ctx.source);
-  const double travel = ls.cycle.last - ls.cycle.first;
-  out.rows.push_back(
-      {fmt::format("{} positioning (ISO 230-2 M over {:g} mm)", linear, travel),
-       "mm",
-       pb.M,
-       pa.M,
-       std::nullopt,
-       "12 -> < 0.5 mm (540 mm along x)",
-       fmt::format("laser {:g} µm + {:g} ppm", ls.noise.sigma * 1e3, ls.noise.sigma_ppm)});
-  out.record.results.push_back({"calibration.residual_rms", "after", s.after.rms, "mm"});
+  addRows(ctx, out, hb, eb, ea, before, after, linear, s);
 
   // 6. Report section.
-  Json sec =
-      section(out.id,
-              out.title,
-              {fmt::format("Scenario {} (seed {}): {}",
-                           scenario.campaign.name,
-                           seed,
-                           scenario.campaign.description),
-               fmt::format("Calibration: {} pose observations, {} of {} parameter combinations "
-                           "identifiable (condition number {:.3g}), {} LM iterations; residual "
-                           "RMS {:.4g} -> {:.4g} mm. The calibrated kinematics are written as a "
-                           "LinuxCNC genhexkins setp block (compensation/kinematics.hal) and "
-                           "loaded into the virtual machine's controller; the held-out poses "
-                           "and the laser line are then measured again.",
-                           input.data.poses.size(),
-                           s.identifiability.rank,
-                           s.identifiability.parameters,
-                           s.identifiability.condition_number,
-                           s.iterations,
-                           s.before.rms,
-                           s.after.rms),
-               "The tracker is registered to the table by six fiducial nests "
-               "(measured-before/tracker-registration.csv), so its readings are in the "
-               "machine frame and all 42 parameters, the base placement included, are "
-               "identifiable. TCP error: a held-out tracker reading in the machine frame "
-               "minus the commanded target position."});
-  // TCP error maps: target positions in the xy plane, coloured by |error| (mm).
-  auto map = [&](const std::string& id,
-                 const std::string& title,
-                 const std::string& label,
-                 const TcpErrors& e) {
-    Json p = plot(out.id + id, title, "scatter", "x (mm)", "y (mm)");
-    addSeries(p, label, e.x, e.y);
-    Json v = Json::array();
-    for (double d : e.error) v.push_back(cell(d, 5));
-    p["series"][0]["value"] = std::move(v);
-    return p;
-  };
-  const Json p1 = map("-tcp-before",
-                      "TCP error map before calibration: |error| (mm) at the held-out poses",
-                      "|error| before (mm)",
-                      eb);
-  const Json p2 = map("-tcp-after",
-                      "TCP error map after calibration: |error| (mm) at the held-out poses",
-                      "|error| after (mm)",
-                      ea);
-  std::vector<double> tb, mb, ta, ma;
-  meanReadings(lines_before.runs(linear, ctx.source), tb, mb);
-  meanReadings(lines_after.runs(linear, ctx.source), ta, ma);
-  for (std::size_t i = 0; i < tb.size(); ++i) mb[i] -= tb[i];
-  for (std::size_t i = 0; i < ta.size(); ++i) ma[i] -= ta[i];
-  Json p3 = plot(out.id + "-positioning",
-                 fmt::format("Positioning error along {} (mean of runs)", linear),
-                 "line",
-                 "target (mm)",
-                 "deviation (mm)");
-  addSeries(p3, "before", tb, mb);
-  addSeries(p3, "after", ta, ma);
-  sec["plots"] = Json::array({p1, p2, p3});
-
-  Json id = table("Identifiability and uncertainty", {"quantity", "value"});
-  id["rows"].push_back({"free parameters", s.identifiability.parameters});
-  id["rows"].push_back({"identifiable combinations (rank)", s.identifiability.rank});
-  id["rows"].push_back(
-      {"condition number (scaled Jacobian)", cell(s.identifiability.condition_number)});
-  id["rows"].push_back({"residual σ (mm)", cell(s.sigma)});
-  id["rows"].push_back({"largest parameter σ (mm)", cell(s.standard_deviation.maxCoeff())});
-  id["rows"].push_back(
-      {"median parameter σ (mm)", [&] {
-         std::vector<double> v(s.standard_deviation.data(),
-                               s.standard_deviation.data() + s.standard_deviation.size());
-         std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-         return cell(v[v.size() / 2]);
-       }()});
-  const cal::HexapodParameterVector truth = cal::hexapodParameters(vm->truth());
-  const cal::HexapodParameterVector nominal = cal::hexapodParameters(vm->nominal());
-  Json par = table("Parameters: nominal, estimated, true (simulation), σ (mm)",
-                   {"parameter", "nominal", "estimate", "truth", "σ"});
-  for (int i = 0; i < static_cast<int>(nominal.size()); ++i)
-    par["rows"].push_back({cal::hexapodParameterName(i),
-                           cell(nominal[i], 7),
-                           cell(s.parameters[i], 7),
-                           cell(truth[i], 7),
-                           cell(s.standard_deviation[i], 3)});
-  sec["tables"] = Json::array({id, par});
-  out.section = std::move(sec);
+  out.section = detail::hexapodSection(
+      ctx,
+      out,
+      {scenario, seed, input.data.poses.size(), s, *vm, eb, ea, before.lines, after.lines, linear});
   return out;
 }
 

@@ -40,6 +40,100 @@ std::vector<std::string> files(const StepContext& ctx, const Json& data, const c
   return out;
 }
 
+/// The 42-parameter calibration of `input` from `machine` (the tool offset moved to the target,
+/// the measurement frame estimated when the readings are in the tracker's frame); throws
+/// pkm::InvalidArgument when the residual does not explain the data.
+cal::HexapodCalibrationSummary calibrate(const StepContext& ctx,
+                                         const io::HexapodMachine& machine,
+                                         io::CalibrationInput& input) {
+  kinematics::HexapodModel model = machine.model;
+  model.tool_offset += input.target_offset.value_or(Eigen::Vector3d::Zero());
+  if (input.tracker_frame)
+    input.data.measurement_frame = cal::initialMeasurementFrame(model, input.data);
+  cal::HexapodCalibrationSummary s = cal::calibrateHexapod(model, input.data, {});
+  if (!cal::explainsData(s.after.rms, model.characteristicLength()))
+    throw InvalidArgument(
+        fmt::format("{}: the calibration does not explain the data (residual RMS {:.4g})",
+                    ctx.source,
+                    s.after.rms));
+  return s;
+}
+
+/// Writes the calibrated kinematics as a LinuxCNC genhexkins setp block.
+void writeCalibrated(const StepContext& ctx,
+                     StepOutcome& out,
+                     const io::HexapodMachine& machine,
+                     const cal::HexapodCalibrationSummary& s) {
+  io::HexapodMachine result = machine;
+  result.model = cal::withHexapodParameters(machine.model, s.parameters);
+  result.model.name = machine.model.name + "-calibrated";
+  result.notices.clear();
+  const std::string hal = io::writeLinuxcncSetp(result);
+  ctx.writeCompensation(out, "linuxcnc-hal", "compensation/kinematics.hal", hal);
+}
+
+/// The held-out rows: the residuals of `held` predicted by the nominal and by the calibrated
+/// model (none when `held` has no observation).
+void addHeldOutRows(StepOutcome& out,
+                    const io::HexapodMachine& machine,
+                    const io::CalibrationInput& input,
+                    const io::CalibrationInput& held,
+                    const cal::HexapodCalibrationSummary& s,
+                    const std::string& unit) {
+  if (held.data.poses.empty() && held.data.points.empty() && held.data.constrained.empty()) return;
+  kinematics::HexapodModel held_model = machine.model;
+  held_model.tool_offset +=
+      held.target_offset.value_or(input.target_offset.value_or(Eigen::Vector3d::Zero()));
+  const auto frame0 = input.tracker_frame
+                          ? std::optional(cal::initialMeasurementFrame(held_model, held.data))
+                          : std::nullopt;
+  const cal::ResidualStatistics b = cal::residualStatistics(held_model, held.data, frame0);
+  kinematics::HexapodModel held_fitted = cal::withHexapodParameters(held_model, s.parameters);
+  const cal::ResidualStatistics a =
+      cal::residualStatistics(held_fitted, held.data, s.measurement_frame);
+  out.rows.push_back({"held-out residual RMS (predicted by the model)",
+                      unit,
+                      b.rms,
+                      a.rms,
+                      std::nullopt,
+                      "",
+                      "as measured"});
+  out.rows.push_back(
+      {"held-out residual max", unit, b.max, a.max, std::nullopt, "", "as measured"});
+}
+
+/// The report section: the data, the identifiability and the parameter table.
+Json filesSection(const StepOutcome& out,
+                  std::size_t fitted,
+                  std::size_t held_out,
+                  const io::HexapodMachine& machine,
+                  const cal::HexapodCalibrationSummary& s) {
+  Json sec =
+      section(out.id,
+              out.title,
+              {fmt::format("Measured data: {} fitted and {} held-out files. The calibrated "
+                           "kinematics are in compensation/kinematics.hal; 'after' is what the "
+                           "calibrated model predicts for the held-out files, not a new "
+                           "measurement: measure again after loading it (the next campaign).",
+                           fitted,
+                           held_out),
+               fmt::format("Identifiability: {} of {} combinations (condition number {:.3g}); "
+                           "{} LM iterations.",
+                           s.identifiability.rank,
+                           s.identifiability.parameters,
+                           s.identifiability.condition_number,
+                           s.iterations)});
+  Json par = table("Parameters: nominal, estimated, σ", {"parameter", "nominal", "estimate", "σ"});
+  const cal::HexapodParameterVector nominal = cal::hexapodParameters(machine.model);
+  for (int i = 0; i < static_cast<int>(nominal.size()); ++i)
+    par["rows"].push_back({cal::hexapodParameterName(i),
+                           cell(nominal[i], 7),
+                           cell(s.parameters[i], 7),
+                           cell(s.standard_deviation[i], 3)});
+  sec["tables"].push_back(par);
+  return sec;
+}
+
 }  // namespace
 
 StepOutcome runHexapodCalibrationFiles(const StepContext& ctx) {
@@ -67,24 +161,10 @@ StepOutcome runHexapodCalibrationFiles(const StepContext& ctx) {
     out.record.measurements.push_back({std::filesystem::path(f).stem().string(), "fit", f, 0});
   for (const std::string& f : holdout)
     out.record.measurements.push_back({std::filesystem::path(f).stem().string(), "holdout", f, 0});
-  kinematics::HexapodModel model = machine.model;
-  model.tool_offset += input.target_offset.value_or(Eigen::Vector3d::Zero());
-  if (input.tracker_frame)
-    input.data.measurement_frame = cal::initialMeasurementFrame(model, input.data);
-  const cal::HexapodCalibrationSummary s = cal::calibrateHexapod(model, input.data, {});
-  if (!cal::explainsData(s.after.rms, model.characteristicLength()))
-    throw InvalidArgument(
-        fmt::format("{}: the calibration does not explain the data (residual RMS {:.4g})",
-                    ctx.source,
-                    s.after.rms));
-  io::HexapodMachine result = machine;
-  result.model = cal::withHexapodParameters(machine.model, s.parameters);
-  result.model.name = machine.model.name + "-calibrated";
-  result.notices.clear();
-  const std::string hal = io::writeLinuxcncSetp(result);
-  ctx.writeCompensation(out, "linuxcnc-hal", "compensation/kinematics.hal", hal);
+  const cal::HexapodCalibrationSummary s = calibrate(ctx, machine, input);
+  writeCalibrated(ctx, out, machine, s);
 
-  const std::string unit(toString(model.unit));
+  const std::string unit(toString(machine.model.unit));
   out.rows.push_back({"residual RMS of the fitted files",
                       unit,
                       s.before.rms,
@@ -92,51 +172,8 @@ StepOutcome runHexapodCalibrationFiles(const StepContext& ctx) {
                       std::nullopt,
                       "",
                       "as measured"});
-  if (!held.data.poses.empty() || !held.data.points.empty() || !held.data.constrained.empty()) {
-    kinematics::HexapodModel held_model = machine.model;
-    held_model.tool_offset +=
-        held.target_offset.value_or(input.target_offset.value_or(Eigen::Vector3d::Zero()));
-    const auto frame0 = input.tracker_frame
-                            ? std::optional(cal::initialMeasurementFrame(held_model, held.data))
-                            : std::nullopt;
-    const cal::ResidualStatistics b = cal::residualStatistics(held_model, held.data, frame0);
-    kinematics::HexapodModel held_fitted = cal::withHexapodParameters(held_model, s.parameters);
-    const cal::ResidualStatistics a =
-        cal::residualStatistics(held_fitted, held.data, s.measurement_frame);
-    out.rows.push_back({"held-out residual RMS (predicted by the model)",
-                        unit,
-                        b.rms,
-                        a.rms,
-                        std::nullopt,
-                        "",
-                        "as measured"});
-    out.rows.push_back(
-        {"held-out residual max", unit, b.max, a.max, std::nullopt, "", "as measured"});
-  }
-  Json sec =
-      section(out.id,
-              out.title,
-              {fmt::format("Measured data: {} fitted and {} held-out files. The calibrated "
-                           "kinematics are in compensation/kinematics.hal; 'after' is what the "
-                           "calibrated model predicts for the held-out files, not a new "
-                           "measurement: measure again after loading it (the next campaign).",
-                           fit.size(),
-                           holdout.size()),
-               fmt::format("Identifiability: {} of {} combinations (condition number {:.3g}); "
-                           "{} LM iterations.",
-                           s.identifiability.rank,
-                           s.identifiability.parameters,
-                           s.identifiability.condition_number,
-                           s.iterations)});
-  Json par = table("Parameters: nominal, estimated, σ", {"parameter", "nominal", "estimate", "σ"});
-  const cal::HexapodParameterVector nominal = cal::hexapodParameters(machine.model);
-  for (int i = 0; i < static_cast<int>(nominal.size()); ++i)
-    par["rows"].push_back({cal::hexapodParameterName(i),
-                           cell(nominal[i], 7),
-                           cell(s.parameters[i], 7),
-                           cell(s.standard_deviation[i], 3)});
-  sec["tables"].push_back(par);
-  out.section = std::move(sec);
+  addHeldOutRows(out, machine, input, held, s, unit);
+  out.section = filesSection(out, fit.size(), holdout.size(), machine, s);
   return out;
 }
 

@@ -70,73 +70,92 @@ void meanProfile(const Roundness& r, std::vector<double>& angle, std::vector<dou
   }
 }
 
-}  // namespace
-
-StepOutcome runProbeOffsetStep(const StepContext& ctx) {
-  StepOutcome out;
-  out.id = ctx.spec.value("id", std::string("seed003"));
-  out.title = "Touch-probe offset and DRM compensation on the Exechon (seed 003)";
-  out.record.machine_type = "hybrid";
-  // The touches: simulated from a scenario (kept in measured/), or measured files ("data").
+/// The touches of the step: simulated from a scenario (kept in measured/), or measured files.
+struct Touches {
   sim::TouchProbeSetup setup;
-  std::vector<sim::TouchRecord> offset_records, before_records, after_records;
-  std::string description;
-  const bool simulated = !ctx.spec.contains("data");
-  if (simulated) {
-    std::uint64_t seed = 0;
-    const io::Scenario scenario = stepScenario(ctx, seed);
-    if (scenario.campaign.probes.empty())
-      throw IoError(fmt::format(
-          "{}: scenario '{}' has no touch-probe measurement", ctx.source, scenario.campaign.name));
-    out.record.machine =
-        scenario.machine_spec.empty() ? scenario.campaign.name : scenario.machine_spec;
-    out.record.source = scenario.source;
-    ctx.progress(
-        "measure: master-ring offset touches and the ring, without and with DRM compensation");
-    const std::vector<sim::TouchProbeRun> runs =
-        sim::runTouchProbes(scenario.campaign.probes, seed);
-    const sim::TouchProbeRun& run = runs.front();
-    setup = *run.setup;
-    for (const auto& [name, text] :
-         io::touchProbeFiles(scenario.campaign.name, seed, setup, run.result))
-      ctx.write(out, "measured/" + name, text);
-    offset_records = run.result.offset;
-    before_records = run.result.circle_uncompensated;
-    after_records = run.result.circle_compensated;
-    description = fmt::format(
-        "Scenario {} (seed {}): {}", scenario.campaign.name, seed, scenario.campaign.description);
-  } else {
-    ProbeFiles f = readProbeFiles(ctx);
-    out.title = "Touch-probe offset and DRM compensation from measured files";
-    out.record.machine = ctx.spec.value("machine", std::string("touch probe"));
-    out.record.source = fmt::format("{}", fmt::join(f.paths, ", "));
-    for (const std::string& p : f.paths)
-      out.record.measurements.push_back(
-          {std::filesystem::path(p).stem().string(), "touch-probe", p, 0});
-    setup = std::move(f.setup);
-    offset_records = std::move(f.offset);
-    before_records = std::move(f.before);
-    after_records = std::move(f.after);
-    description = fmt::format("Measured files: {}.", fmt::join(f.paths, ", "));
-  }
+  std::vector<sim::TouchRecord> offset, before, after;
+  std::string description;  ///< the report's first paragraph
+};
 
+/// The touches simulated from the step's scenario, their files written into measured/.
+Touches simulatedTouches(const StepContext& ctx, StepOutcome& out) {
+  std::uint64_t seed = 0;
+  const io::Scenario scenario = stepScenario(ctx, seed);
+  if (scenario.campaign.probes.empty())
+    throw IoError(fmt::format(
+        "{}: scenario '{}' has no touch-probe measurement", ctx.source, scenario.campaign.name));
+  out.record.machine =
+      scenario.machine_spec.empty() ? scenario.campaign.name : scenario.machine_spec;
+  out.record.source = scenario.source;
+  ctx.progress(
+      "measure: master-ring offset touches and the ring, without and with DRM compensation");
+  const std::vector<sim::TouchProbeRun> runs = sim::runTouchProbes(scenario.campaign.probes, seed);
+  const sim::TouchProbeRun& run = runs.front();
+  Touches t;
+  t.setup = *run.setup;
+  for (const auto& [name, text] :
+       io::touchProbeFiles(scenario.campaign.name, seed, t.setup, run.result))
+    ctx.write(out, "measured/" + name, text);
+  t.offset = run.result.offset;
+  t.before = run.result.circle_uncompensated;
+  t.after = run.result.circle_compensated;
+  t.description = fmt::format(
+      "Scenario {} (seed {}): {}", scenario.campaign.name, seed, scenario.campaign.description);
+  return t;
+}
+
+/// The touches of the step's measured files ("data").
+Touches measuredTouches(const StepContext& ctx, StepOutcome& out) {
+  ProbeFiles f = readProbeFiles(ctx);
+  out.title = "Touch-probe offset and DRM compensation from measured files";
+  out.record.machine = ctx.spec.value("machine", std::string("touch probe"));
+  out.record.source = fmt::format("{}", fmt::join(f.paths, ", "));
+  for (const std::string& p : f.paths)
+    out.record.measurements.push_back(
+        {std::filesystem::path(p).stem().string(), "touch-probe", p, 0});
+  Touches t;
+  t.setup = std::move(f.setup);
+  t.offset = std::move(f.offset);
+  t.before = std::move(f.before);
+  t.after = std::move(f.after);
+  t.description = fmt::format("Measured files: {}.", fmt::join(f.paths, ", "));
+  return t;
+}
+
+/// The stylus offset fitted to the offset touches and the ring's roundness without and with the
+/// DRM compensation.
+struct Analysis {
+  std::size_t offset_touches = 0;
+  met::ProbeOffsetFit fit;
+  double radius = 0.0;  ///< effective stylus radius
+  Roundness before, after;
+};
+
+/// Analyses `t` and writes the fitted offset as compensation/probe-offset.txt.
+Analysis analyse(const StepContext& ctx, StepOutcome& out, const Touches& t) {
   ctx.progress("analyse: stylus offset (least squares over both spindle angles), roundness");
   std::vector<met::ProbeTouch> offset_touches;
-  for (const sim::TouchRecord& r : offset_records)
-    offset_touches.push_back({sim::planeTurn(setup, r), r.position.head<2>()});
-  const met::ProbeOffsetFit fit = met::fitProbeOffset(offset_touches);
-  const double radius = met::effectiveStylusRadius(setup.ring_diameter, fit.ball_path_radius);
-  const Roundness before = roundness(setup, before_records, fit.offset, radius, false);
-  const Roundness after = roundness(setup, after_records, fit.offset, radius, true);
+  for (const sim::TouchRecord& r : t.offset)
+    offset_touches.push_back({sim::planeTurn(t.setup, r), r.position.head<2>()});
+  Analysis a;
+  a.offset_touches = offset_touches.size();
+  a.fit = met::fitProbeOffset(offset_touches);
+  a.radius = met::effectiveStylusRadius(t.setup.ring_diameter, a.fit.ball_path_radius);
+  a.before = roundness(t.setup, t.before, a.fit.offset, a.radius, false);
+  a.after = roundness(t.setup, t.after, a.fit.offset, a.radius, true);
   const std::string offset_text = fmt::format(
       "# stylus offset d (spindle axis -> ball centre at spindle 0), mm; seed 003 o_probe = -d\n"
       "offset_x = {:.6f}\noffset_y = {:.6f}\neffective_stylus_radius = {:.6f}\n",
-      fit.offset.x(),
-      fit.offset.y(),
-      radius);
+      a.fit.offset.x(),
+      a.fit.offset.y(),
+      a.radius);
   ctx.writeCompensation(out, "probe-offset", "compensation/probe-offset.txt", offset_text);
+  return a;
+}
 
-  const double sigma = setup.noise.sigma;
+/// The summary rows (the offset error only when `simulated`) and the fitted offset for the store.
+void addRows(StepOutcome& out, const Touches& t, const Analysis& a, bool simulated) {
+  const double sigma = t.setup.noise.sigma;
   // Noise-only roundness: the peak-to-valley of N normal trigger errors is about 2·Φ⁻¹(1 −
   // 1/(2N))·σ (≈ 5.3σ for 180 touches); the target allows 6σ.
   const std::optional<double> target =
@@ -144,13 +163,12 @@ StepOutcome runProbeOffsetStep(const StepContext& ctx) {
   const std::string noise =
       simulated ? fmt::format("probe σ {:g} µm (2σ {:g} µm)", sigma * 1e3, 2 * sigma * 1e3)
                 : "as measured";
-  const double reduction = 100.0 * (1.0 - after.fit.roundness / before.fit.roundness);
   out.rows.push_back({fmt::format("roundness of the {:g} mm ring, {} touches (LSC)",
-                                  setup.ring_diameter,
-                                  before.angle_deg.size()),
+                                  t.setup.ring_diameter,
+                                  a.before.angle_deg.size()),
                       "µm",
-                      before.fit.roundness * 1e3,
-                      after.fit.roundness * 1e3,
+                      a.before.fit.roundness * 1e3,
+                      a.after.fit.roundness * 1e3,
                       target,
                       "65 % lower",
                       noise});
@@ -158,31 +176,36 @@ StepOutcome runProbeOffsetStep(const StepContext& ctx) {
     out.rows.push_back({"stylus offset error |d_fit - d_true|",
                         "µm",
                         std::nan(""),
-                        (fit.offset - setup.stylus_offset).norm() * 1e3,
+                        (a.fit.offset - t.setup.stylus_offset).norm() * 1e3,
                         std::nullopt,
                         "",
                         noise});
-  out.record.results.push_back({"probe.offset_x", "estimate", fit.offset.x(), "mm"});
-  out.record.results.push_back({"probe.offset_y", "estimate", fit.offset.y(), "mm"});
+  out.record.results.push_back({"probe.offset_x", "estimate", a.fit.offset.x(), "mm"});
+  out.record.results.push_back({"probe.offset_y", "estimate", a.fit.offset.y(), "mm"});
+}
 
+/// The report section: paragraphs, the offset table (the true offset only when `simulated`) and
+/// the polar roundness plot.
+Json probeSection(const StepOutcome& out, const Touches& tc, const Analysis& a, bool simulated) {
+  const double reduction = 100.0 * (1.0 - a.after.fit.roundness / a.before.fit.roundness);
   Json sec = section(
       out.id,
       out.title,
-      {description,
+      {tc.description,
        fmt::format("The stylus offset is fitted by least squares to all {} master-ring touches "
                    "at spindle 0° and 180° (seed 003 eqs. 8-9 generalised, probe_offset.hpp); "
                    "before: the ring measured with the spindle at 0° and the offset taken as "
                    "fixed, so the DRM turns the stylus unnoticed; after: the spindle turned by "
                    "−φ_DRM at every touch (seed 003 sec. 3.3) and the offset rotated with the "
                    "tool. Roundness deviation {:.1f} % lower (seed 003: 65 %).",
-                   offset_touches.size(),
+                   a.offset_touches,
                    reduction)});
   Json t = table("Stylus offset (mm)", {"quantity", "x", "y"});
-  t["rows"].push_back({"fitted d", cell(fit.offset.x(), 6), cell(fit.offset.y(), 6)});
+  t["rows"].push_back({"fitted d", cell(a.fit.offset.x(), 6), cell(a.fit.offset.y(), 6)});
   if (simulated)
     t["rows"].push_back({"true d (simulation)",
-                         cell(setup.stylus_offset.x(), 6),
-                         cell(setup.stylus_offset.y(), 6)});
+                         cell(tc.setup.stylus_offset.x(), 6),
+                         cell(tc.setup.stylus_offset.y(), 6)});
   t["rows"].push_back({"seed 003 o_probe = -d", 0.210, 0.160});
   sec["tables"].push_back(t);
   Json p = plot(out.id + "-roundness",
@@ -190,13 +213,27 @@ StepOutcome runProbeOffsetStep(const StepContext& ctx) {
                 "polar",
                 "angle (deg)",
                 "radial deviation (µm)");
-  std::vector<double> a, d;
-  meanProfile(before, a, d);
-  addSeries(p, "before (DRM not compensated), mean of the runs", a, d);
-  meanProfile(after, a, d);
-  addSeries(p, "after (DRM compensated), mean of the runs", a, d);
+  std::vector<double> angle, deviation;
+  meanProfile(a.before, angle, deviation);
+  addSeries(p, "before (DRM not compensated), mean of the runs", angle, deviation);
+  meanProfile(a.after, angle, deviation);
+  addSeries(p, "after (DRM compensated), mean of the runs", angle, deviation);
   sec["plots"].push_back(p);
-  out.section = std::move(sec);
+  return sec;
+}
+
+}  // namespace
+
+StepOutcome runProbeOffsetStep(const StepContext& ctx) {
+  StepOutcome out;
+  out.id = ctx.spec.value("id", std::string("seed003"));
+  out.title = "Touch-probe offset and DRM compensation on the Exechon (seed 003)";
+  out.record.machine_type = "hybrid";
+  const bool simulated = !ctx.spec.contains("data");
+  const Touches touches = simulated ? simulatedTouches(ctx, out) : measuredTouches(ctx, out);
+  const Analysis a = analyse(ctx, out, touches);
+  addRows(out, touches, a, simulated);
+  out.section = probeSection(out, touches, a, simulated);
   return out;
 }
 

@@ -1,0 +1,180 @@
+// The modal-group check of one block (LinuxCNC 2.9 G-code overview, "Modal Groups"): at most
+// one code per group, the supported G and M codes, M9 not with M7/M8.
+#include <fmt/format.h>
+
+#include "interpreter_impl.hpp"
+#include "pkm/cnc/gcode_error.hpp"
+
+namespace pkm::cnc {
+
+namespace {
+
+void setOnce(int& slot, int code, const char* prefix) {
+  if (slot >= 0)
+    throw GcodeError(fmt::format("two {} codes from the same modal group: {}{} and {}{}",
+                                 prefix,
+                                 prefix,
+                                 slot,
+                                 prefix,
+                                 code));
+  slot = code;
+}
+
+void setOnceG(int& slot, int code) {
+  if (slot >= 0)
+    throw GcodeError(
+        fmt::format("two G codes from the same modal group: {} and {}", gName(slot), gName(code)));
+  slot = code;
+}
+
+/// Whether G code `g` (×10) is in the motion group (group 1, G80 included).
+bool isMotion(int g) {
+  switch (g) {
+    case 0:
+    case 10:
+    case 20:
+    case 30:
+    case 800:
+    case 810:
+    case 820:
+    case 830:
+    case 730:
+    case 740:
+    case 840:
+    case 850:
+    case 860:
+    case 870:
+    case 880:
+    case 890:
+      return true;
+    default:
+      return false;
+  }
+}
+
+/// The slot of `c` for the modal group of G code `g` (×10) other than motion; null when `g` is
+/// not supported.
+int* modalSlot(BlockCodes& c, int g) {
+  switch (g) {
+    case 40:
+    case 100:
+    case 280:
+    case 281:
+    case 300:
+    case 301:
+    case 530:
+    case 920:
+    case 921:
+    case 922:
+    case 923:
+      return &c.non_modal;
+    case 170:
+    case 180:
+    case 190:
+      return &c.plane;
+    case 900:
+    case 910:
+      return &c.distance;
+    case 901:
+    case 911:
+      return &c.ijk;
+    case 930:
+    case 940:
+      return &c.feed_mode;
+    case 200:
+    case 210:
+      return &c.units;
+    case 400:
+      return &c.cutter;
+    case 430:
+    case 431:
+    case 490:
+      return &c.tlo;
+    case 980:
+    case 990:
+      return &c.retract;
+    case 540:
+    case 550:
+    case 560:
+    case 570:
+    case 580:
+    case 590:
+    case 591:
+    case 592:
+    case 593:
+      return &c.wcs;
+    case 610:
+    case 611:
+    case 640:
+      return &c.path;
+    default:
+      return nullptr;
+  }
+}
+
+/// Adds G code `g` (×10) to `c`.
+void classifyG(BlockCodes& c, int g) {
+  if (isMotion(g)) {
+    // rs274 accepts G80 together with another motion code, which wins (checked with rs274:
+    // "G80 G0 X1" and "G0 G80 X1" both traverse).
+    if (g == 800 && c.motion >= 0) return;
+    if (c.motion == 800) c.motion = -1;
+    setOnceG(c.motion, g);
+    return;
+  }
+  if (int* slot = modalSlot(c, g)) {
+    setOnceG(*slot, g);
+    return;
+  }
+  if (g == 410 || g == 420 || g == 411 || g == 421)
+    throw GcodeError(fmt::format("{} cutter radius compensation is not supported", gName(g)));
+  throw GcodeError(fmt::format("unsupported G code {}", gName(g)));
+}
+
+/// Adds M code `m` to `c`.
+void classifyM(BlockCodes& c, int m) {
+  switch (m) {
+    case 0:
+    case 1:
+    case 2:
+    case 30:
+      setOnce(c.m_stop, m, "M");
+      break;
+    case 6:
+      setOnce(c.m_tool, m, "M");
+      break;
+    case 3:
+    case 4:
+    case 5:
+      setOnce(c.m_spindle, m, "M");
+      break;
+    case 48:
+    case 49:
+      setOnce(c.m_override, m, "M");
+      break;
+    case 7:
+      c.m_mist = true;
+      break;
+    case 8:
+      c.m_flood = true;
+      break;
+    case 9:
+      c.m_coolant_off = true;
+      break;
+    default:
+      throw GcodeError(fmt::format("unsupported M code M{}", m));
+  }
+}
+
+}  // namespace
+
+BlockCodes Interpreter::Impl::classify(const ResolvedBlock& rb) const {
+  BlockCodes c;
+  for (int k = 0; k < rb.n_g; ++k) classifyG(c, rb.g[static_cast<std::size_t>(k)]);
+  for (int k = 0; k < rb.n_m; ++k) classifyM(c, rb.m[static_cast<std::size_t>(k)]);
+  if (c.m_coolant_off && (c.m_mist || c.m_flood))
+    throw GcodeError("two M codes from the same modal group: M9 with M7/M8");
+  return c;
+}
+
+}  // namespace pkm::cnc

@@ -1,0 +1,86 @@
+// The LinuxCNC genhexkins `setp` block of a hexapod (io/linuxcnc_hal.hpp), with the "# pkm:"
+// lines readLinuxcncHal reads back and the INI values of the geometry as comments.
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "pkm/io/linuxcnc_hal.hpp"
+#include "pkm/io/number_format.hpp"
+#include "pkm/kinematics/hexapod_ik.hpp"
+
+namespace pkm::io {
+
+namespace kin = pkm::kinematics;
+
+std::string writeLinuxcncSetp(const HexapodMachine& machine) {
+  const kin::HexapodModel& model = machine.model;
+  std::string out =
+      fmt::format("# genhexkins geometry written by pkm from {}\n# machine: {}, units: {}\n",
+                  machine.source,
+                  model.name,
+                  toString(model.unit));
+  const bool tcp = model.tool_offset.norm() > 0.0;
+  if (tcp)
+    out +=
+        "# The TCP offset of the pkm model is folded into the platform joints (platform = joint - "
+        "TCP).\n";
+  auto setp = [&out](const std::string& pin, double v) {
+    out += "setp genhexkins." + pin + " ";
+    appendNumber(out, v);
+    out += '\n';
+  };
+  out += "\n# Base joints positions in base (world) coordinates\n";
+  for (int i = 0; i < kin::kStruts; ++i)
+    for (int a = 0; a < 3; ++a)
+      setp(fmt::format("base.{}.{}", i, "xyz"[a]),
+           model.struts[static_cast<std::size_t>(i)].world_p_base[a]);
+  out += "\n# Platform joints positions in platform coordinates\n";
+  for (int i = 0; i < kin::kStruts; ++i) {
+    const Eigen::Vector3d p =
+        model.struts[static_cast<std::size_t>(i)].platform_p_joint - model.tool_offset;
+    for (int a = 0; a < 3; ++a) setp(fmt::format("platform.{}.{}", i, "xyz"[a]), p[a]);
+  }
+  out += "\n";
+  setp("spindle-offset", model.spindle_offset - model.linuxcnc_tool_offset);
+  if (model.linuxcnc_tool_offset != 0.0) setp("tool-offset", model.linuxcnc_tool_offset);
+  setp("convergence-criterion", machine.fk.tolerance);
+  out += fmt::format("setp genhexkins.limit-iterations {}\n", machine.fk.max_iterations);
+
+  kin::HexapodData data(model);
+  kin::inverseKinematics(model, data, model.home);
+  // Read back by readLinuxcncHal (an INI file, when found, overrides them).
+  out += fmt::format("\n# pkm: units = {}\n", toString(model.unit));
+  out += fmt::format("# pkm: home = {} {} {} {} {} {}\n",
+                     formatNumber(model.home.position.x()),
+                     formatNumber(model.home.position.y()),
+                     formatNumber(model.home.position.z()),
+                     formatNumber(radToDeg(model.home.rpy.x())),
+                     formatNumber(radToDeg(model.home.rpy.y())),
+                     formatNumber(radToDeg(model.home.rpy.z())));
+  out +=
+      "\n# INI values for this geometry (LinuxCNC joint positions are joint-centre distances):\n";
+  out += fmt::format("# [TRAJ] HOME = {} {} {} {} {} {}\n",
+                     formatNumber(model.home.position.x()),
+                     formatNumber(model.home.position.y()),
+                     formatNumber(model.home.position.z()),
+                     formatNumber(radToDeg(model.home.rpy.x())),
+                     formatNumber(radToDeg(model.home.rpy.y())),
+                     formatNumber(radToDeg(model.home.rpy.z())));
+  out +=
+      fmt::format("# [TRAJ] LINEAR_UNITS = {}\n", model.unit == LengthUnit::kInch ? "inch" : "mm");
+  for (int i = 0; i < kin::kStruts; ++i) {
+    const kin::Strut& s = model.struts[static_cast<std::size_t>(i)];
+    out += fmt::format(
+        "# [JOINT_{}] HOME = HOME_OFFSET = {}", i, formatNumber(data.joint_distance[i]));
+    if (std::isfinite(s.min_reading))
+      out += ", MIN_LIMIT = " + formatNumber(s.min_reading + s.length_offset);
+    if (std::isfinite(s.max_reading))
+      out += ", MAX_LIMIT = " + formatNumber(s.max_reading + s.length_offset);
+    if (s.length_offset != 0.0)
+      out += fmt::format(" (pkm reading + length offset {})", formatNumber(s.length_offset));
+    out += '\n';
+  }
+  return out;
+}
+
+}  // namespace pkm::io
