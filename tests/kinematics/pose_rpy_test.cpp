@@ -20,7 +20,8 @@ TEST(PoseRpy, ToRigidTransformIsPositionAndLinuxcncRotation) {
   EXPECT_EQ(T.linear(), geometry::rotationFromRpy(pose.rpy));
   // A point of the platform frame (relative to the TCP) maps to world as R·x + p.
   const Eigen::Vector3d x(30.0, -20.0, 60.0);
-  EXPECT_EQ(T * x, Eigen::Vector3d(geometry::rotationFromRpy(pose.rpy) * x + pose.position));
+  EXPECT_LT((T * x - (geometry::rotationFromRpy(pose.rpy) * x + pose.position)).norm(),
+            kTolExact * 1e3);
 }
 
 TEST(PoseRpy, RoundTripsThroughTheTransform) {

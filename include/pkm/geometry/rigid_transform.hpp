@@ -15,8 +15,10 @@
 namespace pkm::geometry {
 
 /// A rigid transform a_T_b = [a_R_b, a_p_b; 0, 1]: a rotation matrix (`linear()`) and a translation
-/// (`translation()`); `T * x` is `linear() * x + translation()`. Eigen's default constructor leaves
-/// it uninitialised: start from RigidTransform::Identity() or one of the functions below.
+/// (`translation()`); `T * x` is `linear() * x + translation()` up to rounding (Eigen's operator*
+/// adds in another order, so spell out the latter where results must be reproducible bit for bit).
+/// Eigen's default constructor leaves it uninitialised: start from RigidTransform::Identity() or
+/// one of the functions below.
 using RigidTransform = Eigen::Isometry3d;
 
 /// A twist ξ = (v, w) ∈ ℝ⁶, the coordinates of se(3): v (first three) the translational part in
