@@ -6,6 +6,7 @@
 #include "detail/numeric_fit.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/exechon_data.hpp"
 
@@ -22,10 +23,7 @@ constexpr double kUnitTolerance = 1e-6;  // |1 − |u|| of a measured direction
 /// world_T_measurement = (exp([δω]×)·R₀, t₀ + δt).
 geometry::RigidTransform frameOf(const geometry::RigidTransform& initial,
                                  const Eigen::Ref<const Eigen::VectorXd>& delta) {
-  geometry::RigidTransform f;
-  f.rotation = geometry::so3Exp(delta.tail<3>()) * initial.rotation;
-  f.translation = initial.translation + delta.head<3>();
-  return f;
+  return geometry::perturbedTransform(initial, geometry::Twist(delta));
 }
 
 /// The residuals of observation `o` under `model`: world target − predicted (3), then the direction
@@ -42,12 +40,13 @@ bool residuals(const ExechonModel& model,
     return false;
   const Eigen::Vector3d predicted = work.world_p_tool + work.world_R_tool * data.target_offset;
   const Eigen::Vector3d world =
-      frame != nullptr ? Eigen::Vector3d(frame->rotation * o.point + frame->translation) : o.point;
+      frame != nullptr ? Eigen::Vector3d(frame->linear() * o.point + frame->translation())
+                       : o.point;
   Eigen::Map<Eigen::Vector3d> r_point(r);
   r_point = world - predicted;
   if (o.direction) {
     const Eigen::Vector3d u =
-        frame != nullptr ? Eigen::Vector3d(frame->rotation * *o.direction) : *o.direction;
+        frame != nullptr ? Eigen::Vector3d(frame->linear() * *o.direction) : *o.direction;
     Eigen::Map<Eigen::Vector3d> r_direction(r + 3);
     r_direction = options.direction_weight * (u - work.world_u_tool);
   }
@@ -125,7 +124,7 @@ std::optional<ExechonTargetJacobian> exechonTargetJacobian(const ExechonModel& m
                                                            const Eigen::Vector3d& target_offset,
                                                            const ExechonConfiguration& seed,
                                                            const kinematics::FkOptions& fk) {
-  const Eigen::Isometry3d reference = model.world_T_zoppi;
+  const geometry::RigidTransform reference = model.world_T_zoppi;
   const ExechonParameterVector theta = exechonParameters(model, reference);
   ExechonTargetJacobian J;
   for (int k = 0; k < kExechonParameters; ++k) {
@@ -188,7 +187,7 @@ ResidualStatistics exechonResidualStatistics(const ExechonModel& model,
       continue;
     }
     const Eigen::Vector3d world =
-        f ? Eigen::Vector3d(f->rotation * o.point + f->translation) : o.point;
+        f ? Eigen::Vector3d(f->linear() * o.point + f->translation()) : o.point;
     const Eigen::Vector3d r = world - *p;
     sum += r.squaredNorm();
     s.max = std::max(s.max, r.cwiseAbs().maxCoeff());
@@ -204,7 +203,7 @@ ExechonCalibrationSummary calibrateExechon(const ExechonModel& initial,
   options.validate();
   initial.validate();
   requireValid(data);
-  const Eigen::Isometry3d reference = initial.world_T_zoppi;
+  const geometry::RigidTransform reference = initial.world_T_zoppi;
   const auto seed = seeds(initial, data, options.fk);
   const auto converging = static_cast<std::size_t>(
       std::count_if(seed.begin(), seed.end(), [](const auto& s) { return s.has_value(); }));
@@ -216,7 +215,7 @@ ExechonCalibrationSummary calibrateExechon(const ExechonModel& initial,
       data.observations.size());
   const bool has_frame = data.measurement_frame.has_value();
   const geometry::RigidTransform frame0 =
-      has_frame ? *data.measurement_frame : geometry::RigidTransform{};
+      has_frame ? *data.measurement_frame : geometry::RigidTransform::Identity();
 
   detail::NumericProblem problem;
   for (int k = 0; k < kExechonParameters; ++k) problem.names.push_back(exechonParameterName(k));
@@ -234,7 +233,7 @@ ExechonCalibrationSummary calibrateExechon(const ExechonModel& initial,
     if (!seed[b]) return false;
     const ExechonModel m = withExechonParameters(
         initial, ExechonParameterVector(theta.head<kExechonParameters>()), reference);
-    geometry::RigidTransform f;
+    geometry::RigidTransform f = geometry::RigidTransform::Identity();
     if (has_frame) f = frameOf(frame0, theta.tail(6));
     return residuals(m, data, data.observations[b], *seed[b], has_frame ? &f : nullptr, options, r);
   };
@@ -249,9 +248,9 @@ ExechonCalibrationSummary calibrateExechon(const ExechonModel& initial,
       continue;
     const Eigen::Vector3d p = work.world_p_tool + work.world_R_tool * data.target_offset;
     o.point =
-        has_frame ? Eigen::Vector3d(frame0.rotation.transpose() * (p - frame0.translation)) : p;
+        has_frame ? Eigen::Vector3d(frame0.linear().transpose() * (p - frame0.translation())) : p;
     if (o.direction)
-      o.direction = has_frame ? Eigen::Vector3d(frame0.rotation.transpose() * work.world_u_tool)
+      o.direction = has_frame ? Eigen::Vector3d(frame0.linear().transpose() * work.world_u_tool)
                               : work.world_u_tool;
   }
   detail::NumericProblem structural = problem;
@@ -259,7 +258,7 @@ ExechonCalibrationSummary calibrateExechon(const ExechonModel& initial,
     if (!seed[b]) return false;
     const ExechonModel m = withExechonParameters(
         initial, ExechonParameterVector(theta.head<kExechonParameters>()), reference);
-    geometry::RigidTransform f;
+    geometry::RigidTransform f = geometry::RigidTransform::Identity();
     if (has_frame) f = frameOf(frame0, theta.tail(6));
     return residuals(
         m, consistent, consistent.observations[b], *seed[b], has_frame ? &f : nullptr, options, r);
@@ -308,8 +307,8 @@ ExechonCalibrationSummary calibrateExechon(const ExechonModel& initial,
         exechonTarget(estimated, o.joints, data.target_offset, estimated.home, options.fk);
     if (!p) continue;
     const Eigen::Vector3d world = out.measurement_frame
-                                      ? Eigen::Vector3d(out.measurement_frame->rotation * o.point +
-                                                        out.measurement_frame->translation)
+                                      ? Eigen::Vector3d(out.measurement_frame->linear() * o.point +
+                                                        out.measurement_frame->translation())
                                       : o.point;
     all.push_back({b,
                    o.source.empty() ? fmt::format("observation {}", b + 1) : o.source,

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 
 namespace pkm::calibration {
@@ -41,7 +42,7 @@ bool exechonParameterIsLength(int index) {
 }
 
 ExechonParameterVector exechonParameters(const kinematics::ExechonModel& model,
-                                         const Eigen::Isometry3d& reference_world_T_zoppi) {
+                                         const geometry::RigidTransform& reference_world_T_zoppi) {
   const kinematics::ExechonTripodGeometry& t = model.tripod;
   ExechonParameterVector p;
   p << t.dA, t.dB, t.dC, t.l12A, t.l12C, t.l12B, t.l23B, t.pA, t.pB, t.pC, t.hA, t.hC, t.hx, t.hz,
@@ -54,9 +55,10 @@ ExechonParameterVector exechonParameters(const kinematics::ExechonModel& model,
   return p;
 }
 
-kinematics::ExechonModel withExechonParameters(kinematics::ExechonModel model,
-                                               const ExechonParameterVector& p,
-                                               const Eigen::Isometry3d& reference_world_T_zoppi) {
+kinematics::ExechonModel withExechonParameters(
+    kinematics::ExechonModel model,
+    const ExechonParameterVector& p,
+    const geometry::RigidTransform& reference_world_T_zoppi) {
   PKM_CHECK(p.allFinite(), "Exechon parameters must be finite");
   kinematics::ExechonTripodGeometry& t = model.tripod;
   t.dA = p(0);
@@ -78,7 +80,7 @@ kinematics::ExechonModel withExechonParameters(kinematics::ExechonModel model,
   model.wrist.c0 = p(kExechonWristParameter);
   model.wrist.a0 = p(kExechonWristParameter + 1);
   model.wrist.tool_length = p(kExechonWristParameter + 2);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  geometry::RigidTransform T = geometry::RigidTransform::Identity();
   T.linear() =
       geometry::so3Exp(p.segment<3>(kExechonBaseParameter + 3)) * reference_world_T_zoppi.linear();
   T.translation() = reference_world_T_zoppi.translation() + p.segment<3>(kExechonBaseParameter);

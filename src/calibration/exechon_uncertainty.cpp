@@ -8,6 +8,7 @@
 
 #include "detail/noise_stream.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/exechon_data.hpp"
 
@@ -36,10 +37,10 @@ ExechonCalibrationData predicted(const ExechonModel& estimate,
       continue;
     ExechonObservation p = o;
     const Eigen::Vector3d world = work.world_p_tool + work.world_R_tool * data.target_offset;
-    p.point =
-        frame ? Eigen::Vector3d(frame->rotation.transpose() * (world - frame->translation)) : world;
+    p.point = frame ? Eigen::Vector3d(frame->linear().transpose() * (world - frame->translation()))
+                    : world;
     if (o.direction)
-      p.direction = frame ? Eigen::Vector3d(frame->rotation.transpose() * work.world_u_tool)
+      p.direction = frame ? Eigen::Vector3d(frame->linear().transpose() * work.world_u_tool)
                           : work.world_u_tool;
     out.observations.push_back(std::move(p));
   }
@@ -154,8 +155,8 @@ ExechonMonteCarloSummary monteCarloExechon(const ExechonModel& initial,
       theta.col(k) = t.parameters;
       delta.col(k).setZero();
       if (frame && t.frame) {
-        delta.col(k).head<3>() = t.frame->translation - frame->translation;
-        delta.col(k).tail<3>() = geometry::so3Log(t.frame->rotation * frame->rotation.transpose());
+        delta.col(k).head<3>() = t.frame->translation() - frame->translation();
+        delta.col(k).tail<3>() = geometry::so3Log(t.frame->linear() * frame->linear().transpose());
       }
     }
     out.mean = theta.rowwise().mean();
@@ -164,7 +165,7 @@ ExechonMonteCarloSummary monteCarloExechon(const ExechonModel& initial,
 
     // The tool point at each workspace configuration under the estimate (its FK solution seeds the
     // trials' FK) and under every trial model.
-    const Eigen::Isometry3d reference = initial.world_T_zoppi;
+    const geometry::RigidTransform reference = initial.world_T_zoppi;
     std::vector<kinematics::ExechonJoints> joints;
     std::vector<kinematics::ExechonConfiguration> seeds;
     std::vector<Eigen::Vector3d> nominal;
@@ -195,10 +196,10 @@ ExechonMonteCarloSummary monteCarloExechon(const ExechonModel& initial,
           est.push_back(nominal[c]);
           got.push_back(tw.world_p_tool);
         }
-      geometry::RigidTransform a;
+      geometry::RigidTransform a = geometry::RigidTransform::Identity();
       if (align && got.size() >= 3) a = geometry::fitRigidTransform(est, got);
       for (std::size_t i = 0; i < got.size(); ++i) {
-        const Eigen::Vector3d p = a * got[i];
+        const Eigen::Vector3d p = a.linear() * got[i] + a.translation();
         deviations.push_back((p - est[i]).norm());
         points[index[i]].push_back(p);
       }

@@ -27,7 +27,7 @@ HoldoutErrors hexapodHoldoutErrors(const kinematics::HexapodModel& model,
       return;
     }
     Eigen::Vector3d p = work.world_p_tcp;
-    if (frame) p = frame->rotation.transpose() * (p - frame->translation);
+    if (frame) p = frame->linear().transpose() * (p - frame->translation());
     const double d = (p - measured).norm();
     sum2 += d * d;
     sum += d;
@@ -61,7 +61,7 @@ HoldoutErrors targetErrors(const std::vector<Observation>& observations,
       continue;
     }
     const Eigen::Vector3d m =
-        frame ? Eigen::Vector3d(frame->rotation * o.point + frame->translation) : o.point;
+        frame ? Eigen::Vector3d(frame->linear() * o.point + frame->translation()) : o.point;
     const double d = (m - *p).norm();
     sum += d * d;
     e.max = std::max(e.max, d);

@@ -5,6 +5,7 @@
 
 #include "detail/numeric_fit.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 
 namespace pkm::calibration {
@@ -25,10 +26,7 @@ kinematics::HybridSquareness fromVector(const Eigen::Ref<const Eigen::VectorXd>&
 
 geometry::RigidTransform frameOf(const geometry::RigidTransform& initial,
                                  const Eigen::Ref<const Eigen::VectorXd>& delta) {
-  geometry::RigidTransform f;
-  f.rotation = geometry::so3Exp(delta.tail<3>()) * initial.rotation;
-  f.translation = initial.translation + delta.head<3>();
-  return f;
+  return geometry::perturbedTransform(initial, geometry::Twist(delta));
 }
 
 }  // namespace
@@ -56,7 +54,7 @@ std::optional<Eigen::Vector3d> hybridTarget(const kinematics::HybridMachineModel
                                             const TripodMotion& tripod) {
   kinematics::HybridErrorValues values = kinematics::evaluateHybridErrors(known, command);
   values.squareness = squareness;
-  Eigen::Isometry3d T = kinematics::hybridActualPose(model, values, command);
+  geometry::RigidTransform T = kinematics::hybridActualPose(model, values, command);
   if (tripod) {
     const auto E = tripod(command.pkm);
     if (!E) return std::nullopt;
@@ -83,7 +81,7 @@ HybridCalibrationSummary calibrateHybridSquareness(const kinematics::HybridMachi
   PKM_CHECK(data.target_offset.allFinite(), "calibration: the target offset is not finite");
   const bool has_frame = data.measurement_frame.has_value();
   const geometry::RigidTransform frame0 =
-      has_frame ? *data.measurement_frame : geometry::RigidTransform{};
+      has_frame ? *data.measurement_frame : geometry::RigidTransform::Identity();
 
   detail::NumericProblem problem;
   problem.names = hybridSquarenessNames();
@@ -106,7 +104,7 @@ HybridCalibrationSummary calibrateHybridSquareness(const kinematics::HybridMachi
         Eigen::Vector3d measured = o.point;
         if (has_frame) {
           const geometry::RigidTransform f = frameOf(frame0, theta.tail(6));
-          measured = f.rotation * o.point + f.translation;
+          measured = f.linear() * o.point + f.translation();
         }
         Eigen::Map<Eigen::Vector3d> out(r);
         out = measured - *p;
@@ -119,7 +117,7 @@ HybridCalibrationSummary calibrateHybridSquareness(const kinematics::HybridMachi
   HybridCalibrationData consistent = data;
   for (HybridObservation& o : consistent.observations)
     if (const auto p = hybridTarget(model, known, {}, o.command, data.target_offset, tripod))
-      o.point = frame0.rotation.transpose() * (*p - frame0.translation);
+      o.point = frame0.linear().transpose() * (*p - frame0.translation());
   detail::NumericProblem structural = problem;
   structural.residual = [&](const Eigen::VectorXd& theta, std::size_t b, double* r) {
     return evaluate(consistent, theta, b, r);

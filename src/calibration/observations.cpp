@@ -2,17 +2,16 @@
 
 #include <Eigen/Geometry>
 
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
+#include "pkm/kinematics/pose_rpy.hpp"
 
 namespace pkm::calibration::detail {
 
 geometry::RigidTransform FrameEstimate::current() const {
-  geometry::RigidTransform t;
-  t.rotation = geometry::so3Exp(delta.tail<3>()) * initial.rotation;
-  t.translation = initial.translation + delta.head<3>();
-  return t;
+  return geometry::perturbedTransform(initial, delta);
 }
 
 std::vector<ObservationRef> observations(const HexapodCalibrationData& data) {
@@ -49,10 +48,10 @@ bool evaluatePose(const kinematics::HexapodModel& model,
   }
   // The measured pose expressed in world: p_w = R_f·p_m + t_f, R_w = R_f·R_m.
   const geometry::RigidTransform f = frame->current();
-  const Eigen::Vector3d p_rel = f.rotation * obs.pose.position;
-  const Eigen::Matrix3d R_w = f.rotation * geometry::rotationFromRpy(obs.pose.rpy);
+  const Eigen::Vector3d p_rel = f.linear() * obs.pose.position;
+  const Eigen::Matrix3d R_w = f.linear() * geometry::rotationFromRpy(obs.pose.rpy);
   const kinematics::StrutVector& q =
-      kinematics::inverseKinematics(model, work, p_rel + f.translation, R_w);
+      kinematics::inverseKinematics(model, work, p_rel + f.translation(), R_w);
   Eigen::Map<kinematics::StrutVector> r_out(r);
   r_out = q - obs.readings;
   if (J_theta != nullptr) *J_theta = readingParameterJacobian(model, work);
@@ -79,10 +78,10 @@ bool evaluatePoint(const kinematics::HexapodModel& model,
                    Eigen::MatrixXd* J_theta,
                    Eigen::MatrixXd* J_frame) {
   PointObservation world = obs;
-  geometry::RigidTransform f;
+  geometry::RigidTransform f = geometry::RigidTransform::Identity();
   if (frame != nullptr) {
     f = frame->current();
-    world.point = f * obs.point;
+    world.point = f.linear() * obs.point + f.translation();
   }
   kinematics::PoseRpy seed = model.home;
   seed.position = world.point;
@@ -97,7 +96,7 @@ bool evaluatePoint(const kinematics::HexapodModel& model,
     J_frame->resize(3, 6);
     J_frame->leftCols<3>() = -Eigen::Matrix3d::Identity();
     J_frame->rightCols<3>() =
-        geometry::hat(f.rotation * obs.point) * geometry::so3LeftJacobian(frame->delta.tail<3>());
+        geometry::hat(f.linear() * obs.point) * geometry::so3LeftJacobian(frame->delta.tail<3>());
   }
   return true;
 }
@@ -194,21 +193,20 @@ HexapodCalibrationData predictedData(const kinematics::HexapodModel& model,
                                      const std::optional<geometry::RigidTransform>& frame) {
   HexapodCalibrationData out = data;
   kinematics::HexapodData work(model);
-  const geometry::RigidTransform f = frame.value_or(geometry::RigidTransform{});
-  const Eigen::Matrix3d Rt = f.rotation.transpose();
+  const geometry::RigidTransform f = frame.value_or(geometry::RigidTransform::Identity());
+  const Eigen::Matrix3d Rt = f.linear().transpose();
   for (PoseObservation& o : out.poses) {
-    kinematics::PoseRpy seed;
-    seed.position = f * o.pose.position;
-    seed.rpy = geometry::rpyFromRotation(f.rotation * geometry::rotationFromRpy(o.pose.rpy));
+    const kinematics::PoseRpy seed =
+        kinematics::poseRpyFromTransform(f * kinematics::toRigidTransform(o.pose));
     if (!kinematics::forwardKinematics(model, work, o.readings, seed).ok()) continue;
-    o.pose.position = Rt * (work.world_p_tcp - f.translation);
+    o.pose.position = Rt * (work.world_p_tcp - f.translation());
     o.pose.rpy = geometry::rpyFromRotation(Rt * work.world_R_platform);
   }
   for (PointObservation& o : out.points) {
     kinematics::PoseRpy seed = model.home;
-    seed.position = f * o.point;
+    seed.position = f.linear() * o.point + f.translation();
     if (!kinematics::forwardKinematics(model, work, o.readings, seed).ok()) continue;
-    o.point = Rt * (work.world_p_tcp - f.translation);
+    o.point = Rt * (work.world_p_tcp - f.translation());
   }
   for (DistanceObservation& o : out.distances) {
     DistanceObservation exact = o;

@@ -158,10 +158,10 @@ MonteCarloSummary monteCarloHexapod(const kinematics::HexapodModel& initial,
         commanded.push_back(pose.position);
         reached.push_back(t.world_p_tcp);
       }
-      geometry::RigidTransform align;
+      geometry::RigidTransform align = geometry::RigidTransform::Identity();
       if (frame && commanded.size() >= 3) align = geometry::fitRigidTransform(commanded, reached);
       for (std::size_t k = 0; k < commanded.size(); ++k)
-        errors.push_back((align * reached[k] - commanded[k]).norm());
+        errors.push_back((align.linear() * reached[k] + align.translation() - commanded[k]).norm());
     }
     out.tcp = tcpErrorStatistics(std::move(errors));
   }

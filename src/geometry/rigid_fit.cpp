@@ -32,10 +32,11 @@ RigidTransform fitRigidTransform(const std::vector<Eigen::Vector3d>& a,
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
   if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0) D(2, 2) = -1.0;
-  RigidTransform t;
-  t.rotation = svd.matrixV() * D * svd.matrixU().transpose();
-  t.translation = ca - t.rotation * cb;
-  return t;
+  // Assigned, not initialised: Eigen groups the triple product differently in the two forms, and
+  // this one keeps the registration's results bit for bit.
+  Eigen::Matrix3d R;
+  R = svd.matrixV() * D * svd.matrixU().transpose();
+  return makeTransform(R, ca - R * cb);
 }
 
 }  // namespace pkm::geometry

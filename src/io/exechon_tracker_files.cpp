@@ -123,8 +123,8 @@ void addHybridFile(const TextTable& t, const std::string& path, ExechonCalibrati
   const bool tracker = t.meta("frame").value_or("").rfind("tracker", 0) == 0;
   if (!input.hybrid.observations.empty() && tracker != input.hybrid.measurement_frame.has_value())
     t.failHeader("its 'frame' differs from an earlier hybrid file's");
-  if (tracker && !input.hybrid.measurement_frame)
-    input.hybrid.measurement_frame = geometry::RigidTransform{};  // a start is fitted later
+  if (tracker && !input.hybrid.measurement_frame)  // a start is fitted later
+    input.hybrid.measurement_frame = geometry::RigidTransform::Identity();
   for (std::size_t r = 0; r < t.rows(); ++r) {
     calibration::HybridObservation o;
     o.command.x2 = t.number(r, x2);

@@ -8,8 +8,10 @@
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/geometry/error_motion.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/io/number_format.hpp"
+#include "pkm/kinematics/pose_rpy.hpp"
 
 namespace pkm::io::detail {
 
@@ -67,17 +69,16 @@ std::string array(const Eigen::VectorXd& v) {
 }
 
 /// {"position": [x, y, z] mm, "rpy_deg": [r, p, y]} as world_T_tracker.
-Eigen::Isometry3d trackerFrame(const JsonDoc& doc, const json& f, const std::string& fp) {
+geometry::RigidTransform trackerFrame(const JsonDoc& doc, const json& f, const std::string& fp) {
   doc.onlyKeys(f, fp, {"position", "rpy_deg"});
   const Eigen::Vector3d p = doc.vec3(doc.required(f, fp, "position"), fp + "/position");
   Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
   if (f.contains("rpy_deg")) rpy = doc.vec3(f["rpy_deg"], fp + "/rpy_deg");
-  return geometry::makeIsometry(geometry::rotationFromRpy(Eigen::Vector3d(
-                                    degToRad(rpy[0]), degToRad(rpy[1]), degToRad(rpy[2]))),
-                                p);
+  return kinematics::toRigidTransform(
+      {p, Eigen::Vector3d(degToRad(rpy[0]), degToRad(rpy[1]), degToRad(rpy[2]))});
 }
 
-std::string placementJson(const Eigen::Isometry3d& T) {
+std::string placementJson(const geometry::RigidTransform& T) {
   const Eigen::Vector3d rpy = geometry::rpyFromRotation(T.linear());
   std::string rows;
   for (Eigen::Index r = 0; r < 4; ++r)
@@ -101,7 +102,7 @@ std::string exechonTrackerTruth(const sim::ExechonTrackerSetup& t) {
 }
 
 std::string trackerTruth(const sim::TrackerSetup& t) {
-  const Eigen::Isometry3d& T = t.world_T_tracker;
+  const geometry::RigidTransform& T = t.world_T_tracker;
   const Eigen::Vector3d rpy = geometry::rpyFromRotation(T.linear());
   std::string rows;
   for (Eigen::Index r = 0; r < 4; ++r)

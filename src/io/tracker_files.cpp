@@ -12,6 +12,7 @@
 #include "pkm/geometry/so3.hpp"
 #include "pkm/io/csv.hpp"
 #include "pkm/io/number_format.hpp"
+#include "pkm/kinematics/pose_rpy.hpp"
 
 namespace pkm::io {
 
@@ -71,16 +72,15 @@ std::string trackerCsv(const Metadata& metadata,
       appendNumber(out, r.lengths[i]);
       out += ',';
     }
-    const Eigen::Vector3d p = r.measured.translation();
+    const kinematics::PoseRpy p = kinematics::poseRpyFromTransform(r.measured);
     for (Eigen::Index k = 0; k < 3; ++k) {
       if (k > 0) out += ',';
-      appendNumber(out, p[k]);
+      appendNumber(out, p.position[k]);
     }
     if (pose) {
-      const Eigen::Vector3d rpy = geometry::rpyFromRotation(r.measured.linear());
       for (Eigen::Index k = 0; k < 3; ++k) {
         out += ',';
-        appendNumber(out, radToDeg(rpy[k]));
+        appendNumber(out, radToDeg(p.rpy[k]));
       }
     }
     out += '\n';

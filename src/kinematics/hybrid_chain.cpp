@@ -4,6 +4,7 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/error_motion.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 
 namespace pkm::kinematics {
 
@@ -11,8 +12,8 @@ namespace {
 using geometry::errorMotionHtm;
 using geometry::errorRotation;
 using geometry::errorTranslation;
-using geometry::rotationHtm;
-using geometry::translationHtm;
+using geometry::rotationTransform;
+using geometry::translationTransform;
 
 void checkCommand(const HybridCommand& c) {
   PKM_CHECK(std::isfinite(c.x2) && std::isfinite(c.y2) && c.pkm.allFinite(),
@@ -30,30 +31,34 @@ HybridChain hybridChain(const HybridMachineModel& model,
                         const HybridCommand& command) {
   checkCommand(command);
   HybridChain c;
-  c.F_T_Y2 = translationHtm(command.y2 * Eigen::Vector3d::UnitY()) * errorMotionHtm(values.y2);
-  c.Y2_T_w = translationHtm(model.Y2_p_work);
-  c.F_T_X2 = rotationHtm(squarenessRotationX2(values.squareness)) *
-             translationHtm(command.x2 * Eigen::Vector3d::UnitX()) * errorMotionHtm(values.x2);
-  c.X2_T_P = translationHtm(model.X2_p_P) * rotationHtm(squarenessRotationP(values.squareness));
-  c.P_T_t = translationHtm(model.P_p_tcp0 + command.pkm) * errorMotionHtm(values.pkm);
+  c.F_T_Y2 =
+      translationTransform(command.y2 * Eigen::Vector3d::UnitY()) * errorMotionHtm(values.y2);
+  c.Y2_T_w = translationTransform(model.Y2_p_work);
+  c.F_T_X2 = rotationTransform(squarenessRotationX2(values.squareness)) *
+             translationTransform(command.x2 * Eigen::Vector3d::UnitX()) *
+             errorMotionHtm(values.x2);
+  c.X2_T_P = translationTransform(model.X2_p_P) *
+             rotationTransform(squarenessRotationP(values.squareness));
+  c.P_T_t = translationTransform(model.P_p_tcp0 + command.pkm) * errorMotionHtm(values.pkm);
   c.w_T_t = (c.F_T_Y2 * c.Y2_T_w).inverse() * c.F_T_X2 * c.X2_T_P * c.P_T_t;
   return c;
 }
 
-Eigen::Isometry3d hybridNominalPose(const HybridMachineModel& model, const HybridCommand& command) {
+geometry::RigidTransform hybridNominalPose(const HybridMachineModel& model,
+                                           const HybridCommand& command) {
   checkCommand(command);
-  return translationHtm(hybridNominalToolPosition(model, command));
+  return translationTransform(hybridNominalToolPosition(model, command));
 }
 
-Eigen::Isometry3d hybridActualPose(const HybridMachineModel& model,
-                                   const HybridErrorValues& values,
-                                   const HybridCommand& command) {
+geometry::RigidTransform hybridActualPose(const HybridMachineModel& model,
+                                          const HybridErrorValues& values,
+                                          const HybridCommand& command) {
   return hybridChain(model, values, command).w_T_t;
 }
 
-Eigen::Isometry3d hybridActualPose(const HybridMachineModel& model,
-                                   const GeometricErrors& errors,
-                                   const HybridCommand& command) {
+geometry::RigidTransform hybridActualPose(const HybridMachineModel& model,
+                                          const GeometricErrors& errors,
+                                          const HybridCommand& command) {
   return hybridActualPose(model, evaluateHybridErrors(errors, command), command);
 }
 

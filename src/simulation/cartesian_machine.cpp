@@ -5,6 +5,7 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/error_motion.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 
 namespace pkm::simulation {
 
@@ -52,9 +53,9 @@ void CartesianMachine::reset(std::uint64_t noise_seed) {
 
 std::vector<std::string> CartesianMachine::axisNames() const { return {"x", "y", "z"}; }
 
-Eigen::Isometry3d CartesianMachine::nominalPose(const Eigen::VectorXd& command) const {
+geometry::RigidTransform CartesianMachine::nominalPose(const Eigen::VectorXd& command) const {
   checkCommand(command, 3);
-  return geometry::translationHtm(command + layout_.tool_offset);
+  return geometry::translationTransform(command + layout_.tool_offset);
 }
 
 Eigen::Vector3d CartesianMachine::axisDirection(int k) const {
@@ -68,7 +69,7 @@ Eigen::Vector3d CartesianMachine::axisDirection(int k) const {
   return {a, b, std::sqrt(1.0 - a * a - b * b)};
 }
 
-Eigen::Isometry3d CartesianMachine::moveTo(const Eigen::VectorXd& command) {
+geometry::RigidTransform CartesianMachine::moveTo(const Eigen::VectorXd& command) {
   checkCommand(command, 3);
   // Reversal and repeatability: an axis that moves gets a new offset from its command.
   for (Eigen::Index k = 0; k < 3; ++k) {
@@ -79,16 +80,16 @@ Eigen::Isometry3d CartesianMachine::moveTo(const Eigen::VectorXd& command) {
   }
   last_ = command;
   moved_ = true;
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  geometry::RigidTransform pose = geometry::RigidTransform::Identity();
   for (const char axis : layout_.order) {
     const int k = axis - 'X';
     const auto ku = static_cast<std::size_t>(k);
     const double q = command[k];
-    pose = pose * geometry::translationHtm((q + offset_[k]) * axisDirection(k));
+    pose = pose * geometry::translationTransform((q + offset_[k]) * axisDirection(k));
     if (errors_.axes[ku])
       pose = pose * geometry::errorMotionHtm(errors_.axes[ku]->evaluateMotion(q));
   }
-  return pose * geometry::translationHtm(layout_.tool_offset);
+  return pose * geometry::translationTransform(layout_.tool_offset);
 }
 
 }  // namespace pkm::simulation

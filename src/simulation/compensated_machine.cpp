@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 
 namespace pkm::simulation {
 
@@ -19,11 +20,11 @@ std::vector<std::string> CompensatedMachine::axisNames() const { return machine_
 
 std::vector<bool> CompensatedMachine::angularAxes() const { return machine_->angularAxes(); }
 
-Eigen::Isometry3d CompensatedMachine::nominalPose(const Eigen::VectorXd& command) const {
+geometry::RigidTransform CompensatedMachine::nominalPose(const Eigen::VectorXd& command) const {
   return machine_->nominalPose(command);
 }
 
-Eigen::Isometry3d CompensatedMachine::moveTo(const Eigen::VectorXd& command) {
+geometry::RigidTransform CompensatedMachine::moveTo(const Eigen::VectorXd& command) {
   checkCommand(command, static_cast<Eigen::Index>(machine_->axisNames().size()));
   const Eigen::VectorXd sent = compensation_->apply(command);
   PKM_CHECK(sent.size() == command.size() && sent.allFinite(),

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 
 namespace pkm::simulation {
 
@@ -14,7 +15,7 @@ constexpr double kStepMm = 1e-3;   // central-difference step for z, mm
 constexpr double kStepRad = 1e-6;  // and for a, b, rad
 
 /// The heights of the three tips along the normal for `pose`.
-Eigen::Vector3d heights(const DialGaugeSetup& s, const Eigen::Isometry3d& pose) {
+Eigen::Vector3d heights(const DialGaugeSetup& s, const geometry::RigidTransform& pose) {
   Eigen::Vector3d h;
   for (Eigen::Index k = 0; k < 3; ++k)
     h[k] = s.table_normal.normalized().dot(pose * s.gauge_points[static_cast<std::size_t>(k)]);

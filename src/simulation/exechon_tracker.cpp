@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/exechon_checks.hpp"
 #include "pkm/kinematics/exechon_data.hpp"
 
@@ -57,7 +58,7 @@ std::vector<ExechonTrackerReading> simulateExechonTracker(const kinematics::Exec
   actual.validate();
   const Eigen::Vector3d axis = setup.direction.normalized();
   kinematics::ExechonData nom(nominal), act(actual);
-  const Eigen::Isometry3d tracker_T_world = setup.world_T_tracker.inverse();
+  const geometry::RigidTransform tracker_T_world = setup.world_T_tracker.inverse();
   std::vector<ExechonTrackerReading> out;
   out.reserve(static_cast<std::size_t>(setup.count));
   const long budget = static_cast<long>(kDrawsPerReading) * setup.count;

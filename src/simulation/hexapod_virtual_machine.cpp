@@ -4,8 +4,10 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/error_motion.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
+#include "pkm/kinematics/pose_rpy.hpp"
 #include "pkm/simulation/noise.hpp"
 
 namespace pkm::simulation {
@@ -64,9 +66,9 @@ std::vector<std::string> HexapodVirtualMachine::axisNames() const {
   return {"x", "y", "z", "a", "b", "c"};
 }
 
-Eigen::Isometry3d HexapodVirtualMachine::nominalPose(const Eigen::VectorXd& command) const {
+geometry::RigidTransform HexapodVirtualMachine::nominalPose(const Eigen::VectorXd& command) const {
   checkCommand(command, 6);
-  return geometry::makeIsometry(geometry::rotationFromRpy(command.tail<3>()), command.head<3>());
+  return kin::toRigidTransform({command.head<3>(), command.tail<3>()});
 }
 
 void HexapodVirtualMachine::reset(std::uint64_t noise_seed) {
@@ -75,7 +77,7 @@ void HexapodVirtualMachine::reset(std::uint64_t noise_seed) {
   moved_ = false;
 }
 
-Eigen::Isometry3d HexapodVirtualMachine::moveTo(const Eigen::VectorXd& command) {
+geometry::RigidTransform HexapodVirtualMachine::moveTo(const Eigen::VectorXd& command) {
   checkCommand(command, 6);
   kin::PoseRpy pose;
   pose.position = command.head<3>();
@@ -103,7 +105,7 @@ Eigen::Isometry3d HexapodVirtualMachine::moveTo(const Eigen::VectorXd& command) 
             fmt::join(command, ", "),
             kin::toString(fk.status));
   last_pose_ = true_data_.pose;
-  return geometry::makeIsometry(true_data_.world_R_platform, true_data_.world_p_tcp);
+  return geometry::makeTransform(true_data_.world_R_platform, true_data_.world_p_tcp);
 }
 
 }  // namespace pkm::simulation

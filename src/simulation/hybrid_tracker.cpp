@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 
 namespace pkm::simulation {
 namespace {
@@ -36,7 +37,7 @@ std::vector<HybridTrackerReading> simulateHybridTracker(HybridVirtualMachine& ma
                                                         const HybridTrackerSetup& setup,
                                                         RandomStream& rng) {
   setup.validate();
-  const Eigen::Isometry3d tracker_T_work = setup.work_T_tracker.inverse();
+  const geometry::RigidTransform tracker_T_work = setup.work_T_tracker.inverse();
   std::vector<HybridTrackerReading> out;
   out.reserve(static_cast<std::size_t>(setup.count));
   const long budget = static_cast<long>(kDrawsPerReading) * setup.count;
@@ -55,7 +56,7 @@ std::vector<HybridTrackerReading> simulateHybridTracker(HybridVirtualMachine& ma
     if (!kinematics::hybridWithinLimits(machine.model(), r.command)) continue;
     Eigen::VectorXd c(5);
     c << r.command.x2, r.command.y2, r.command.pkm;
-    Eigen::Isometry3d work_T_tool;
+    geometry::RigidTransform work_T_tool;
     try {
       work_T_tool = machine.moveTo(c);
     } catch (const InvalidArgument&) {

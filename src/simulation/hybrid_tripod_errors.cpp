@@ -4,6 +4,7 @@
 #include <string>
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/exechon_data.hpp"
 #include "pkm/kinematics/exechon_wrist.hpp"
 
@@ -81,7 +82,7 @@ HybridTripod::HybridTripod(kin::ExechonModel nominal,
   PKM_CHECK(fk_.isValid(&why), "tripod forward-kinematics options: {}", why);
 }
 
-Eigen::Isometry3d HybridTripod::errorMotion(const Eigen::Vector3d& p) const {
+geometry::RigidTransform HybridTripod::errorMotion(const Eigen::Vector3d& p) const {
   PKM_CHECK(p.allFinite(), "PKM command is not finite");
   kin::ExechonToolPose target;
   target.position = p;
@@ -103,7 +104,7 @@ Eigen::Isometry3d HybridTripod::errorMotion(const Eigen::Vector3d& p) const {
             p.y(),
             p.z(),
             kin::toString(fk.status));
-  Eigen::Isometry3d e = Eigen::Isometry3d::Identity();
+  geometry::RigidTransform e = geometry::RigidTransform::Identity();
   e.linear() = act.world_R_tool * nom.world_R_tool.transpose();
   e.translation() = act.world_p_tool - nom.world_p_tool;
   return e;

@@ -1,6 +1,7 @@
 #include "pkm/simulation/hybrid_virtual_machine.hpp"
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/hybrid_chain.hpp"
 
 namespace pkm::simulation {
@@ -31,13 +32,13 @@ std::vector<std::string> HybridVirtualMachine::axisNames() const {
   return {"x2", "y2", "xp", "yp", "zp"};
 }
 
-Eigen::Isometry3d HybridVirtualMachine::nominalPose(const Eigen::VectorXd& command) const {
+geometry::RigidTransform HybridVirtualMachine::nominalPose(const Eigen::VectorXd& command) const {
   return kinematics::hybridNominalPose(model_, toCommand(command));
 }
 
-Eigen::Isometry3d HybridVirtualMachine::moveTo(const Eigen::VectorXd& command) {
+geometry::RigidTransform HybridVirtualMachine::moveTo(const Eigen::VectorXd& command) {
   const kinematics::HybridCommand c = toCommand(command);
-  const Eigen::Isometry3d pose = kinematics::hybridActualPose(model_, errors_, c);
+  const geometry::RigidTransform pose = kinematics::hybridActualPose(model_, errors_, c);
   if (!tripod_) return pose;
   return pose * tripod_->errorMotion(c.pkm);  // P_T_t = Trans(q) · E(e_P(p)) · E_tripod
 }

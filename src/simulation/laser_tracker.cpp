@@ -7,6 +7,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/geometry/error_motion.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 
 namespace pkm::simulation {
@@ -88,8 +89,8 @@ std::vector<TrackerReading> simulateLaserTracker(HexapodVirtualMachine& machine,
          sampleHexapodWorkspace(machine.nominal(), setup.random_box, setup.random_count, rng))
       commands.push_back(std::move(c));
   machine.reset(rng.bits());
-  const Eigen::Isometry3d tracker_T_world = setup.world_T_tracker.inverse();
-  const Eigen::Isometry3d tool_T_target = geometry::translationHtm(setup.smr_offset);
+  const geometry::RigidTransform tracker_T_world = setup.world_T_tracker.inverse();
+  const geometry::RigidTransform tool_T_target = geometry::translationTransform(setup.smr_offset);
   std::vector<TrackerReading> out;
   out.reserve(commands.size());
   for (const Eigen::VectorXd& c : commands) {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 
 namespace pkm::simulation {
@@ -16,7 +17,7 @@ class LineInstrument {
  public:
   LineInstrument(const LineSetup& setup,
                  const Eigen::Vector3d& beam,
-                 const Eigen::Isometry3d& datum)
+                 const geometry::RigidTransform& datum)
       : setup_(setup), beam_(beam), datum_(datum) {
     lateral_ = setup.lateral.normalized();
     if (setup.quantity == LineQuantity::kStraightness) {
@@ -29,7 +30,7 @@ class LineInstrument {
   }
 
   /// The true (noise-free) reading at the actual pose.
-  [[nodiscard]] double truth(const Eigen::Isometry3d& pose, double datum_target) const {
+  [[nodiscard]] double truth(const geometry::RigidTransform& pose, double datum_target) const {
     const Eigen::Vector3d d = pose * setup_.reflector_offset - datum_ * setup_.reflector_offset;
     switch (setup_.quantity) {
       case LineQuantity::kLinear:
@@ -45,7 +46,7 @@ class LineInstrument {
  private:
   const LineSetup& setup_;
   Eigen::Vector3d beam_;
-  Eigen::Isometry3d datum_;
+  geometry::RigidTransform datum_;
   Eigen::Vector3d lateral_;
 };
 

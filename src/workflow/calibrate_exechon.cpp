@@ -9,6 +9,7 @@
 #include "calibration_common.hpp"
 #include "pkm/calibration/acceptance.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/io/atomic_file.hpp"
 #include "pkm/io/geometric_errors.hpp"
 #include "pkm/io/machine_loader.hpp"
@@ -82,7 +83,7 @@ kinematics::GeometricErrors fitSquareness(const ExechonCalibrationRequest& r,
   if (!diff.isZero()) tripod.emplace(machine.model, diff, machine.fk);
   cal::TripodMotion motion;
   if (tripod)
-    motion = [&tripod](const Eigen::Vector3d& p) -> std::optional<Eigen::Isometry3d> {
+    motion = [&tripod](const Eigen::Vector3d& p) -> std::optional<geometry::RigidTransform> {
       try {
         return tripod->errorMotion(p);
       } catch (const InvalidArgument&) {

@@ -17,6 +17,7 @@
 #include "pkm/io/hexapod_machine.hpp"
 #include "pkm/io/linuxcnc_hal.hpp"
 #include "pkm/io/tracker_files.hpp"
+#include "pkm/kinematics/pose_rpy.hpp"
 #include "pkm/simulation/hexapod_virtual_machine.hpp"
 #include "pkm/simulation/random.hpp"
 
@@ -45,7 +46,8 @@ TcpErrors tcpErrors(const sim::TrackerResult& r,
   for (const sim::TrackerReading& reading : r.readings) {
     const Eigen::Vector3d nominal = vm.nominalPose(reading.command) * r.setup->smr_offset;
     const Eigen::Vector3d measured =
-        world_T_tracker * Eigen::Vector3d(reading.measured.translation());
+        world_T_tracker.linear() * Eigen::Vector3d(reading.measured.translation()) +
+        world_T_tracker.translation();
     const double d = (measured - nominal).norm();
     e.x.push_back(nominal.x());
     e.y.push_back(nominal.y());
@@ -152,11 +154,11 @@ cal::HexapodCalibrationSummary calibrate(const StepContext& ctx,
   kinematics::HexapodModel model = nominal;
   model.tool_offset += input.target_offset.value_or(Eigen::Vector3d::Zero());
   for (cal::PoseObservation& o : input.data.poses) {
-    o.pose.position = world_T_tracker * o.pose.position;
-    o.pose.rpy =
-        geometry::rpyFromRotation(world_T_tracker.rotation * geometry::rotationFromRpy(o.pose.rpy));
+    o.pose =
+        kinematics::poseRpyFromTransform(world_T_tracker * kinematics::toRigidTransform(o.pose));
   }
-  for (cal::PointObservation& o : input.data.points) o.point = world_T_tracker * o.point;
+  for (cal::PointObservation& o : input.data.points)
+    o.point = world_T_tracker.linear() * o.point + world_T_tracker.translation();
   cal::HexapodCalibrationSummary s = cal::calibrateHexapod(model, input.data, {});
   if (!cal::explainsData(s.after.rms, model.characteristicLength()))
     throw InvalidArgument(

@@ -140,7 +140,7 @@ TEST(ExechonCalibration, NoisyTrackerFrameDataMeetsTheHeldOutTarget) {
     const auto p = exechonTarget(est, r.joints, hold.smr_offset, est.home);
     ASSERT_TRUE(p.has_value());
     const Eigen::Vector3d measured_in_world =
-        sum.measurement_frame->rotation * r.truth + sum.measurement_frame->translation;
+        sum.measurement_frame->linear() * r.truth + sum.measurement_frame->translation();
     worst = std::max(worst, (*p - measured_in_world).norm());
   }
   EXPECT_LT(worst, kHeldOutFactor * kNoise * std::sqrt(3.0));

@@ -185,10 +185,14 @@ TEST(ExechonMonteCarlo, RefusesBadOptions) {
   bad.direction_sigma = std::nan("");
   EXPECT_THROW((void)run(bad), InvalidArgument);
   // A frame without a measurement frame in the data.
-  EXPECT_THROW(
-      (void)monteCarloExechon(
-          p.initial, p.data, p.estimate, geometry::RigidTransform{}, p.workspace, p.options, mc),
-      InvalidArgument);
+  EXPECT_THROW((void)monteCarloExechon(p.initial,
+                                       p.data,
+                                       p.estimate,
+                                       geometry::RigidTransform::Identity(),
+                                       p.workspace,
+                                       p.options,
+                                       mc),
+               InvalidArgument);
   ExechonCalibrationOptions calibration = p.options;
   calibration.max_iterations = 0;
   EXPECT_THROW((void)monteCarloExechon(

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
@@ -133,19 +134,19 @@ TEST(HexapodCalibration, EstimatesTheTrackerFrameAndNamesTheBaseFrameFreedom) {
   // Poses measured in a tracker frame far from the machine and rotated by 150° about z.
   const HexapodModel nominal = test::millingModel();
   const HexapodModel truth = trueMachine(test::kSeed + 13);
-  geometry::RigidTransform world_T_tracker;
-  world_T_tracker.rotation = geometry::rotationFromRpy(Eigen::Vector3d(2e-4, -1e-4, 2.618));
-  world_T_tracker.translation = Eigen::Vector3d(1500, -900, 350);
-  const Eigen::Matrix3d tracker_R_world = world_T_tracker.rotation.transpose();
+  const geometry::RigidTransform world_T_tracker =
+      geometry::makeTransform(geometry::rotationFromRpy(Eigen::Vector3d(2e-4, -1e-4, 2.618)),
+                              Eigen::Vector3d(1500, -900, 350));
+  const Eigen::Matrix3d tracker_R_world = world_T_tracker.linear().transpose();
   HexapodCalibrationData data;
   for (PoseObservation o : measurePoses(truth, 150, test::kSeed + 14, 0.0, 0.0)) {
-    o.pose.position = tracker_R_world * (o.pose.position - world_T_tracker.translation);
+    o.pose.position = tracker_R_world * (o.pose.position - world_T_tracker.translation());
     o.pose.rpy = geometry::rpyFromRotation(tracker_R_world * geometry::rotationFromRpy(o.pose.rpy));
     data.poses.push_back(o);
   }
   data.measurement_frame = initialMeasurementFrame(nominal, data);
   // The rigid fit through the nominal model already lands within a few mm / mrad.
-  EXPECT_LT((data.measurement_frame->translation - world_T_tracker.translation).norm(), 10.0);
+  EXPECT_LT((data.measurement_frame->translation() - world_T_tracker.translation()).norm(), 10.0);
   const HexapodCalibrationSummary s = calibrateHexapod(nominal, data);
   EXPECT_TRUE(s.converged) << s.termination;
   EXPECT_EQ(s.identifiability.parameters, kHexapodParameters + 6);
@@ -159,9 +160,9 @@ TEST(HexapodCalibration, EstimatesTheTrackerFrameAndNamesTheBaseFrameFreedom) {
   for (const PoseObservation& o : measurePoses(truth, 20, test::kSeed + 15, 0.0, 0.0)) {
     ASSERT_TRUE(kinematics::forwardKinematics(calibrated, work, o.readings, o.pose).ok());
     const Eigen::Vector3d in_tracker =
-        tracker_R_world * (o.pose.position - world_T_tracker.translation);
-    EXPECT_LT((s.measurement_frame->rotation.transpose() *
-                   (work.world_p_tcp - s.measurement_frame->translation) -
+        tracker_R_world * (o.pose.position - world_T_tracker.translation());
+    EXPECT_LT((s.measurement_frame->linear().transpose() *
+                   (work.world_p_tcp - s.measurement_frame->translation()) -
                in_tracker)
                   .norm(),
               1e-6);
@@ -261,8 +262,7 @@ TEST(HexapodCalibration, IdentifiesPerStrutBacklashFromBidirectionalData) {
   for (const auto& r : readings) {
     PoseObservation o;
     o.readings = r.lengths;
-    o.pose.position = r.measured.translation();
-    o.pose.rpy = geometry::rpyFromRotation(r.measured.linear());
+    o.pose = kinematics::poseRpyFromTransform(r.measured);
     data.poses.push_back(o);
     q.push_back(r.lengths);
   }

@@ -8,6 +8,7 @@
 #include <limits>
 #include <random>
 
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_data.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
@@ -52,11 +53,11 @@ TEST(HexapodHoldoutErrors, ExactDataGiveZeroAndADisplacementGivesItself) {
 TEST(HexapodHoldoutErrors, MeasurementsInAnotherFrameAreMappedByTheFrame) {
   const kinematics::HexapodModel model = test::millingModel();
   HexapodCalibrationData held = exactPoints(model);
-  geometry::RigidTransform world_T_tracker;
-  world_T_tracker.rotation = geometry::rotationFromRpy(Eigen::Vector3d(0.1, -0.2, 2.5));
-  world_T_tracker.translation = Eigen::Vector3d(1500.0, -80.0, 20.0);
+  const geometry::RigidTransform world_T_tracker =
+      geometry::makeTransform(geometry::rotationFromRpy(Eigen::Vector3d(0.1, -0.2, 2.5)),
+                              Eigen::Vector3d(1500.0, -80.0, 20.0));
   for (PointObservation& o : held.points)
-    o.point = world_T_tracker.rotation.transpose() * (o.point - world_T_tracker.translation);
+    o.point = world_T_tracker.linear().transpose() * (o.point - world_T_tracker.translation());
   EXPECT_LT(hexapodHoldoutErrors(model, world_T_tracker, held).max, kTolRoundTrip);
   EXPECT_GT(hexapodHoldoutErrors(model, std::nullopt, held).max, 100.0);
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/simulation/hybrid_tracker.hpp"
 #include "support/tolerances.hpp"
@@ -48,10 +49,10 @@ struct Bench {
       d.observations.push_back(o);
     }
     if (tracker_frame) {
-      geometry::RigidTransform f;  // a rough start: the placement to about a degree and 10 mm
-      f.rotation = Eigen::AngleAxisd(-2.02, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      f.translation = Eigen::Vector3d(1490, 2510, 305);
-      d.measurement_frame = f;
+      // A rough start: the placement to about a degree and 10 mm.
+      d.measurement_frame = geometry::makeTransform(
+          Eigen::AngleAxisd(-2.02, Eigen::Vector3d::UnitZ()).toRotationMatrix(),
+          Eigen::Vector3d(1490, 2510, 305));
     }
     return d;
   }
@@ -93,7 +94,7 @@ TEST(HybridCalibration, NoisyTrackerFrameDataStillSeparatesSquarenessFromPlaceme
 TEST(HybridCalibration, AnUnmovedX2CannotSeparateSzX2FromSzP) {
   Bench s;
   HybridCalibrationData d = s.data(40, 0.0, true);
-  const Eigen::Isometry3d tracker_T_work = s.tracker(1, 0.0).work_T_tracker.inverse();
+  const geometry::RigidTransform tracker_T_work = s.tracker(1, 0.0).work_T_tracker.inverse();
   for (auto& o : d.observations) {
     o.command.x2 = 1000.0;  // X2 never moves; re-measure exactly at the changed command
     Eigen::VectorXd c(5);

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "support/sample_models.hpp"
@@ -15,8 +16,9 @@ namespace {
 constexpr double kStep = 1e-6;  ///< central-difference step (mm, rad)
 
 HexapodCalibrationData trackerData(const kinematics::HexapodModel& model, FrameEstimate& frame) {
-  frame.initial.rotation = geometry::rotationFromRpy(Eigen::Vector3d(0.01, -0.02, 2.6));
-  frame.initial.translation = Eigen::Vector3d(1500, -900, 350);
+  frame.initial =
+      geometry::makeTransform(geometry::rotationFromRpy(Eigen::Vector3d(0.01, -0.02, 2.6)),
+                              Eigen::Vector3d(1500, -900, 350));
   frame.delta << 0.3, -0.2, 0.1, 1e-3, -2e-3, 5e-4;
   const geometry::RigidTransform f = frame.current();
   std::mt19937 rng(test::kSeed);
@@ -27,9 +29,9 @@ HexapodCalibrationData trackerData(const kinematics::HexapodModel& model, FrameE
     PoseObservation o;
     o.readings = kinematics::inverseKinematics(model, work, pose);
     o.readings(1) += 0.05;  // not an exact fit: residuals ≠ 0
-    o.pose.position = f.rotation.transpose() * (pose.position - f.translation);
+    o.pose.position = f.linear().transpose() * (pose.position - f.translation());
     o.pose.rpy =
-        geometry::rpyFromRotation(f.rotation.transpose() * geometry::rotationFromRpy(pose.rpy));
+        geometry::rpyFromRotation(f.linear().transpose() * geometry::rotationFromRpy(pose.rpy));
     data.poses.push_back(o);
     data.points.push_back({o.readings, o.pose.position + Eigen::Vector3d(0.01, 0, 0)});
   }

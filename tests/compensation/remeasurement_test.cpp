@@ -13,6 +13,7 @@
 #include "pkm/compensation/axis_table.hpp"
 #include "pkm/compensation/linuxcnc_comp.hpp"
 #include "pkm/compensation/siemens_comp.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/metrology/iso230_2.hpp"
 #include "pkm/simulation/cartesian_machine.hpp"
 #include "pkm/simulation/line_measurement.hpp"
@@ -62,10 +63,11 @@ class ControlledAxis final : public sim::VirtualMachine {
   ControlledAxis(sim::VirtualMachine& drive, std::function<double(double, int)> law)
       : drive_(drive), law_(std::move(law)) {}
   [[nodiscard]] std::vector<std::string> axisNames() const override { return drive_.axisNames(); }
-  [[nodiscard]] Eigen::Isometry3d nominalPose(const Eigen::VectorXd& command) const override {
+  [[nodiscard]] pkm::geometry::RigidTransform nominalPose(
+      const Eigen::VectorXd& command) const override {
     return drive_.nominalPose(command);
   }
-  Eigen::Isometry3d moveTo(const Eigen::VectorXd& command) override {
+  pkm::geometry::RigidTransform moveTo(const Eigen::VectorXd& command) override {
     const double x = command[0];
     if (moved_ && x != last_) direction_ = x > last_ ? 1 : -1;
     last_ = x;

@@ -4,6 +4,7 @@
 
 #include <random>
 
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "support/tolerances.hpp"
 
@@ -37,7 +38,7 @@ TEST(ErrorMotion, ExactHtmIsExpRotationThenTranslation) {
   std::mt19937 rng(test::kSeed);
   for (int k = 0; k < 50; ++k) {
     const ErrorMotion e = randomMotion(rng, 0.1, 0.5);
-    const Eigen::Isometry3d E = errorMotionHtm(e);
+    const geometry::RigidTransform E = errorMotionHtm(e);
     EXPECT_LT((E.linear() - so3Exp(errorRotation(e))).norm(), kTolExact);
     EXPECT_LT((E.translation() - errorTranslation(e)).norm(), kTolExact);
     EXPECT_LT((E.linear() * E.linear().transpose() - Eigen::Matrix3d::Identity()).norm(),
@@ -84,16 +85,6 @@ TEST(ErrorMotion, ExactAndFirstOrderAgreeToSecondOrder) {
     const double ratio = remainder(e) / remainder(0.5 * e);
     EXPECT_NEAR(ratio, 4.0, 4.0 * kTolSecondOrderRatio);
   }
-}
-
-TEST(ErrorMotion, HtmHelpers) {
-  const Eigen::Vector3d p(1.0, -2.0, 3.0), w(0.1, 0.2, -0.3);
-  EXPECT_LT((translationHtm(p).matrix().topRightCorner<3, 1>() - p).norm(), kTolExact);
-  EXPECT_TRUE(translationHtm(p).linear().isIdentity(0.0));
-  EXPECT_LT((rotationHtm(w).linear() - so3Exp(w)).norm(), kTolExact);
-  EXPECT_TRUE(rotationHtm(w).translation().isZero(0.0));
-  const Eigen::Isometry3d T = makeIsometry(so3Exp(w), p);
-  EXPECT_LT((T.matrix() - (translationHtm(p) * rotationHtm(w)).matrix()).norm(), kTolExact);
 }
 
 }  // namespace

@@ -74,8 +74,8 @@ TEST(HexapodCalibrationJson, OptionalSectionsAppearWhenPresent) {
   HexapodCalibrationReport r = minimalReport();
   r.holdout = HexapodCalibrationReport::Holdout{};
   r.holdout->after.rms = 0.004;
-  r.fit.measurement_frame = geometry::RigidTransform{};
-  r.fit.measurement_frame->translation = {1500, 0, 0};
+  r.fit.measurement_frame = geometry::RigidTransform::Identity();
+  r.fit.measurement_frame->translation() = Eigen::Vector3d(1500, 0, 0);
   r.fit.backlash = kinematics::StrutVector::Constant(0.01);
   r.worst.push_back({"a.csv:14", 0.02});
   r.monte_carlo = HexapodCalibrationReport::MonteCarlo{};

@@ -15,6 +15,7 @@
 #include "kinematics/exechon_sample_models.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/exechon_ik.hpp"
 #include "support/tolerances.hpp"
 
@@ -224,7 +225,7 @@ TEST(ExechonMachineJson, ReadsZoppiFile) {
   EXPECT_EQ(m.model.limits.alpha.min, -kInf);
   EXPECT_EQ(m.model.limits.a.max, kInf);
   EXPECT_EQ(m.model.wrist.tool_length, 0.0);
-  EXPECT_TRUE(m.model.world_T_zoppi.isApprox(Eigen::Isometry3d::Identity(), 0.0));
+  EXPECT_TRUE(m.model.world_T_zoppi.isApprox(pkm::geometry::RigidTransform::Identity(), 0.0));
   EXPECT_EQ(m.fk.tolerance, 1e-9);
   EXPECT_EQ(m.fk.max_iterations, 120);
   // The home is the paper's solution for S = (20, 700, 1020).
@@ -336,7 +337,7 @@ TEST(ExechonMachineJson, RoundTripOfEveryField) {
   m.model.wrist.c_sign = -1;
   m.model.wrist.a_sign = -1;
   m.model.wrist.tool_length = 123.456;
-  m.model.world_T_zoppi = Eigen::Isometry3d::Identity();
+  m.model.world_T_zoppi = pkm::geometry::RigidTransform::Identity();
   m.model.world_T_zoppi.linear() =
       Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
   m.model.world_T_zoppi.translation() = Eigen::Vector3d(0.1, -1e5, 3.0 / 7.0);

@@ -9,6 +9,7 @@
 #include "pkm/core/units.hpp"
 #include "pkm/geometry/error_motion.hpp"
 #include "pkm/geometry/so3.hpp"
+#include "pkm/kinematics/pose_rpy.hpp"
 #include "support/tolerances.hpp"
 
 namespace {
@@ -29,8 +30,8 @@ std::vector<sim::TrackerReading> readings() {
     for (Eigen::Index i = 0; i < 6; ++i)
       r.lengths[i] = 250.0 + 0.1234567891 * (j + 1) * static_cast<double>(i + 1);
     const Eigen::Vector3d rpy(0.01 * j, -0.02 * j, 2.6 - 0.05 * j);  // rad
-    r.measured = geo::makeIsometry(geo::rotationFromRpy(rpy),
-                                   Eigen::Vector3d(-1234.5678901 + j, 567.123456789, -150.0 / 7.0));
+    r.measured = pkm::kinematics::toRigidTransform(
+        {Eigen::Vector3d(-1234.5678901 + j, 567.123456789, -150.0 / 7.0), rpy});
     r.truth = r.measured;
     out.push_back(r);
   }

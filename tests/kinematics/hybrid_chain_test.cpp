@@ -7,6 +7,7 @@
 #include <random>
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "support/hybrid_samples.hpp"
 #include "support/tolerances.hpp"
@@ -48,7 +49,7 @@ TEST(HybridChain, ZeroErrorsGiveTheNominalPoseExactly) {
   for (const HybridMachineModel& m : {test::mxt700sLikeModel(), test::offsetModel()}) {
     for (int k = 0; k < 100; ++k) {
       const HybridCommand c = test::randomCommand(rng, m);
-      const Eigen::Isometry3d actual = hybridActualPose(m, HybridErrorValues{}, c);
+      const geometry::RigidTransform actual = hybridActualPose(m, HybridErrorValues{}, c);
       EXPECT_LT(hybridVolumetricError(m, HybridErrorValues{}, c).norm(), kTolExact);
       EXPECT_LT(hybridVolumetricErrorLinear(m, HybridErrorValues{}, c).norm(), kTolExact);
       EXPECT_LT((actual.matrix() - hybridNominalPose(m, c).matrix()).norm(), kTolExact);
@@ -63,7 +64,7 @@ TEST(HybridChain, LocalTransformsComposeAsEquation3) {
   const HybridCommand c = test::randomCommand(rng, m);
   const HybridErrorValues v = evaluateHybridErrors(test::randomErrors(rng, m), c);
   const HybridChain ch = hybridChain(m, v, c);
-  const Eigen::Isometry3d composed =
+  const geometry::RigidTransform composed =
       (ch.F_T_Y2 * ch.Y2_T_w).inverse() * ch.F_T_X2 * ch.X2_T_P * ch.P_T_t;
   EXPECT_LT((ch.w_T_t.matrix() - composed.matrix()).norm(), kTolExact);
   // Nominal pieces: the table at y2·ŷ, the carriage at x2·x̂ (rotated by szX2), P at X2_p_P.

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "support/sample_models.hpp"
@@ -28,7 +29,8 @@ Eigen::VectorXd command(double x, double y, double z, double a, double b, double
 }
 
 /// The strut readings of the true model at `pose`.
-kin::StrutVector trueReadings(const sim::HexapodVirtualMachine& m, const Eigen::Isometry3d& pose) {
+kin::StrutVector trueReadings(const sim::HexapodVirtualMachine& m,
+                              const pkm::geometry::RigidTransform& pose) {
   kin::HexapodData data(m.truth());
   return kin::inverseKinematics(m.truth(), data, pose.translation(), pose.linear());
 }
@@ -36,7 +38,7 @@ kin::StrutVector trueReadings(const sim::HexapodVirtualMachine& m, const Eigen::
 TEST(HexapodVirtualMachine, NoErrorsReachesTheCommand) {
   sim::HexapodVirtualMachine m(pkm::test::millingModel(), {});
   const Eigen::VectorXd c = command(10, -5, 210, 0.03, -0.02, 0.05);
-  const Eigen::Isometry3d actual = m.moveTo(c);
+  const pkm::geometry::RigidTransform actual = m.moveTo(c);
   EXPECT_NEAR((actual.matrix() - m.nominalPose(c).matrix()).norm(), 0.0, kTolRoundTrip);
   EXPECT_EQ(m.axisNames().size(), 6U);
 }
@@ -47,8 +49,8 @@ TEST(HexapodVirtualMachine, LengthOffsetGivesTheFirstOrderPoseError) {
     e.length_offset[strut] = kOffset;
     sim::HexapodVirtualMachine m(pkm::test::millingModel(), e);
     const Eigen::VectorXd c = command(5, 8, 195, 0.02, 0.01, -0.03);
-    const Eigen::Isometry3d actual = m.moveTo(c);
-    const Eigen::Isometry3d nominal = m.nominalPose(c);
+    const pkm::geometry::RigidTransform actual = m.moveTo(c);
+    const pkm::geometry::RigidTransform nominal = m.nominalPose(c);
     kin::HexapodData data(m.nominal());
     (void)kin::inverseKinematics(m.nominal(), data, nominal.translation(), nominal.linear());
     const kin::Matrix6d& J = kin::computeStrutJacobian(m.nominal(), data);
@@ -72,7 +74,7 @@ TEST(HexapodVirtualMachine, BacklashMakesTheApproachDirectionMatter) {
   sim::HexapodVirtualMachine m(pkm::test::millingModel(), {}, act);
   m.reset(1);
   const Eigen::VectorXd target = command(0, 0, 200, 0, 0, 0);
-  Eigen::Isometry3d from[2];
+  pkm::geometry::RigidTransform from[2];
   for (int side = 0; side < 2; ++side) {
     (void)m.moveTo(command(0, 0, side == 0 ? 190 : 210, 0, 0, 0));
     const kin::StrutVector before = m.commandedReadings();
@@ -94,7 +96,7 @@ TEST(HexapodVirtualMachine, RepeatabilityHasTheSpecifiedSpread) {
   m.reset(pkm::test::kSeed);
   std::vector<double> dev;
   for (int k = 0; k < 300; ++k) {
-    const Eigen::Isometry3d pose = m.moveTo(command(0.1 * (k % 7), 0, 200, 0, 0, 0));
+    const pkm::geometry::RigidTransform pose = m.moveTo(command(0.1 * (k % 7), 0, 200, 0, 0, 0));
     const kin::StrutVector d = trueReadings(m, pose) - m.commandedReadings();
     for (int i = 0; i < kin::kStruts; ++i) dev.push_back(d[i]);
   }
@@ -103,7 +105,7 @@ TEST(HexapodVirtualMachine, RepeatabilityHasTheSpecifiedSpread) {
               pkm::test::sigmaRatioTolerance(dev.size()));
   // The same seed repeats the same noise.
   m.reset(pkm::test::kSeed);
-  const Eigen::Isometry3d a = m.moveTo(command(0, 0, 200, 0, 0, 0));
+  const pkm::geometry::RigidTransform a = m.moveTo(command(0, 0, 200, 0, 0, 0));
   m.reset(pkm::test::kSeed);
   EXPECT_TRUE(a.matrix() == m.moveTo(command(0, 0, 200, 0, 0, 0)).matrix());
 }
@@ -138,7 +140,7 @@ TEST(HexapodVirtualMachine, TheTrueModelInTheControllerRemovesTheAssemblyErrors)
   EXPECT_GT((m.moveTo(c).translation() - m.nominalPose(c).translation()).norm(), 0.1);
   m.setControllerModel(m.truth());  // a perfect calibration loaded into the controller
   EXPECT_EQ(m.controller().name, m.truth().name);
-  const Eigen::Isometry3d actual = m.moveTo(c);
+  const pkm::geometry::RigidTransform actual = m.moveTo(c);
   EXPECT_NEAR((actual.matrix() - m.nominalPose(c).matrix()).norm(), 0.0, kTolRoundTrip);
   kin::HexapodModel inch = m.truth();
   inch.unit = pkm::LengthUnit::kInch;

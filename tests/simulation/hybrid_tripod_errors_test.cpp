@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/io/exechon_machine.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/kinematics/exechon_data.hpp"
@@ -40,13 +41,15 @@ std::vector<Eigen::Vector3d> commands() {
   return {{0, 0, 0}, {250, -200, 280}, {-280, 260, -90}, {100, 290, 150}, {-300, -300, 300}};
 }
 
-double rotationAngle(const Eigen::Isometry3d& e) { return Eigen::AngleAxisd(e.rotation()).angle(); }
+double rotationAngle(const pkm::geometry::RigidTransform& e) {
+  return Eigen::AngleAxisd(e.rotation()).angle();
+}
 
 TEST(HybridTripod, ZeroErrorsGiveNoErrorMotion) {
   const pkm::io::ExechonMachine m = machine();
   const HybridTripod tripod(m.model, {}, m.fk);
   for (const Eigen::Vector3d& p : commands()) {
-    const Eigen::Isometry3d e = tripod.errorMotion(p);
+    const pkm::geometry::RigidTransform e = tripod.errorMotion(p);
     EXPECT_LT(e.translation().norm(), kTolFk) << p.transpose();
     EXPECT_LT(rotationAngle(e), kTolFk) << p.transpose();
   }
@@ -59,7 +62,7 @@ TEST(HybridTripod, ToolLengthErrorMovesTheTcpAlongTheTool) {
   errors.tool_length = 0.05;
   const HybridTripod tripod(m.model, errors, m.fk);
   for (const Eigen::Vector3d& p : commands()) {
-    const Eigen::Isometry3d e = tripod.errorMotion(p);
+    const pkm::geometry::RigidTransform e = tripod.errorMotion(p);
     EXPECT_NEAR((e.translation() - Eigen::Vector3d(0, 0, -errors.tool_length)).norm(), 0.0, kTolFk);
     EXPECT_LT(rotationAngle(e), kTolFk);
   }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/io/exechon_machine.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/kinematics/hybrid_chain.hpp"
@@ -99,8 +100,8 @@ TEST(HybridVirtualMachine, TripodErrorComposesAtThePkmStage) {
   HybridVirtualMachine without(*f.machine.hybrid, f.errors);
   ASSERT_TRUE(with.tripod().has_value());
   for (const Eigen::VectorXd& c : tripodCommands()) {
-    const Eigen::Isometry3d e = with.tripod()->errorMotion(c.tail<3>());
-    const Eigen::Isometry3d expected = without.moveTo(c) * e;
+    const pkm::geometry::RigidTransform e = with.tripod()->errorMotion(c.tail<3>());
+    const pkm::geometry::RigidTransform expected = without.moveTo(c) * e;
     EXPECT_NEAR((with.moveTo(c).matrix() - expected.matrix()).norm(), 0.0, pkm::test::kTolExact);
     EXPECT_GT(e.translation().norm(), 0.0);
   }

@@ -11,9 +11,11 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/error_motion.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
+#include "pkm/kinematics/pose_rpy.hpp"
 #include "support/sample_models.hpp"
 #include "support/statistics.hpp"
 #include "support/tolerances.hpp"
@@ -51,8 +53,8 @@ sim::TrackerSetup setup(sim::TrackerMode mode) {
   s.random_box.lo << -150, -150, 150, -0.15, -0.15, -0.3;
   s.random_box.hi << 150, 150, 280, 0.15, 0.15, 0.3;
   s.smr_offset = {30, -20, 60};
-  s.world_T_tracker =
-      geo::makeIsometry(geo::rotationFromRpy({2e-4, -1e-4, 2.6}), Eigen::Vector3d(1500, -900, 350));
+  s.world_T_tracker = geo::makeTransform(geo::rotationFromRpy({2e-4, -1e-4, 2.6}),
+                                         Eigen::Vector3d(1500, -900, 350));
   return s;
 }
 
@@ -80,10 +82,10 @@ TEST(LaserTracker, ZeroNoiseGivesTheTruePoseOfTheTrueModel) {
     EXPECT_TRUE(kin::inverseKinematics(m.nominal(), nominal, pose) == r.lengths);
     // Independently: the true model's FK at those readings, seen from the tracker.
     ASSERT_TRUE(kin::forwardKinematics(m.truth(), truth, r.lengths, pose).ok());
-    const Eigen::Isometry3d world_T_target =
-        geo::makeIsometry(truth.world_R_platform, truth.world_p_tcp) *
-        geo::translationHtm(s.smr_offset);
-    const Eigen::Isometry3d expected = s.world_T_tracker.inverse() * world_T_target;
+    const geo::RigidTransform world_T_target =
+        geo::makeTransform(truth.world_R_platform, truth.world_p_tcp) *
+        geo::translationTransform(s.smr_offset);
+    const geo::RigidTransform expected = s.world_T_tracker.inverse() * world_T_target;
     EXPECT_NEAR(
         (r.measured.matrix() - expected.matrix()).cwiseAbs().maxCoeff(), 0.0, kTolRoundTrip);
   }
@@ -92,10 +94,10 @@ TEST(LaserTracker, ZeroNoiseGivesTheTruePoseOfTheTrueModel) {
 TEST(LaserTracker, WithoutErrorsTheTrackerSeesTheCommandedPose) {
   const sim::TrackerSetup s = setup(sim::TrackerMode::kPose);
   for (const sim::TrackerReading& r : run(s, {}, pkm::test::kSeed)) {
-    const Eigen::Isometry3d world_T_target =
-        s.world_T_tracker * r.measured * geo::translationHtm(-s.smr_offset);
-    const Eigen::Isometry3d commanded =
-        geo::makeIsometry(geo::rotationFromRpy(r.command.tail<3>()), r.command.head<3>());
+    const geo::RigidTransform world_T_target =
+        s.world_T_tracker * r.measured * geo::translationTransform(-s.smr_offset);
+    const geo::RigidTransform commanded =
+        kin::toRigidTransform({r.command.head<3>(), r.command.tail<3>()});
     EXPECT_NEAR(
         (world_T_target.matrix() - commanded.matrix()).cwiseAbs().maxCoeff(), 0.0, kTolRoundTrip);
   }

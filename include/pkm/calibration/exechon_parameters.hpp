@@ -7,10 +7,10 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <array>
 #include <string>
 
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/exechon_model.hpp"
 
 namespace pkm::calibration {
@@ -50,7 +50,7 @@ inline constexpr int kExechonBaseParameter = 20;
 /// The parameters of `model`, the base placement relative to `reference_world_T_zoppi` (a rigid
 /// transform; usually the initial model's world_T_zoppi, giving zeros).
 [[nodiscard]] ExechonParameterVector exechonParameters(
-    const kinematics::ExechonModel& model, const Eigen::Isometry3d& reference_world_T_zoppi);
+    const kinematics::ExechonModel& model, const geometry::RigidTransform& reference_world_T_zoppi);
 
 /// `model` with its 26 parameters replaced (base placement relative to the reference; branch
 /// signs, limits, wrist axes and signs, home kept). Throws pkm::InvalidArgument when a parameter is
@@ -58,7 +58,7 @@ inline constexpr int kExechonBaseParameter = 20;
 [[nodiscard]] kinematics::ExechonModel withExechonParameters(
     kinematics::ExechonModel model,
     const ExechonParameterVector& parameters,
-    const Eigen::Isometry3d& reference_world_T_zoppi);
+    const geometry::RigidTransform& reference_world_T_zoppi);
 
 /// Which parameters an identification may change (true = free).
 using ExechonParameterMask = std::array<bool, kExechonParameters>;

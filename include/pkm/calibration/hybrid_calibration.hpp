@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "pkm/calibration/exechon_calibration.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/hybrid_chain.hpp"
 #include "pkm/kinematics/hybrid_errors.hpp"
 #include "pkm/kinematics/hybrid_model.hpp"
@@ -21,7 +22,7 @@ namespace pkm::calibration {
 
 /// The PKM's error motion E_tripod(p) at a PKM command p (P frame), or nullopt where it cannot be
 /// evaluated; an empty function means none.
-using TripodMotion = std::function<std::optional<Eigen::Isometry3d>(const Eigen::Vector3d&)>;
+using TripodMotion = std::function<std::optional<geometry::RigidTransform>(const Eigen::Vector3d&)>;
 
 /// One measurement: the five commanded axes and the measured target.
 struct HybridObservation {

@@ -1,11 +1,12 @@
 /// @file
 /// @brief Small-angle error motions of a rigid body (six components) as homogeneous transforms
-/// (HTMs), exact and to first order, and a few HTM helpers. Used for the position-dependent
-/// geometric errors (PDGE) of linear axes and of a PKM's working volume.
+/// (HTMs), exact and to first order. Used for the position-dependent geometric errors (PDGE) of
+/// linear axes and of a PKM's working volume.
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>
+
+#include "pkm/geometry/rigid_transform.hpp"
 
 namespace pkm::geometry {
 
@@ -29,7 +30,7 @@ enum ErrorComponent : int { kDx = 0, kDy = 1, kDz = 2, kEx = 3, kEy = 4, kEz = 5
 /// Rx·Ry·Rz because it does not depend on an axis order and matches the project's perturbation
 /// convention (docs/conventions.md, "Perturbations"); to first order both are I + [ε]×.
 /// Use as nominal_T_actual: actual pose = nominal pose · E (the error acts in the moving frame).
-[[nodiscard]] Eigen::Isometry3d errorMotionHtm(const ErrorMotion& e);
+[[nodiscard]] RigidTransform errorMotionHtm(const ErrorMotion& e);
 
 /// The first-order (linearised) HTM of an error motion: [I + [ε]×, δ; 0, 1]. Not a rigid transform
 /// (its 3×3 block is not orthonormal); it agrees with errorMotionHtm up to O(|ε|²).
@@ -39,14 +40,5 @@ enum ErrorComponent : int { kDx = 0, kDy = 1, kDz = 2, kEx = 3, kEy = 4, kEz = 5
 /// length unit): δ + ε × point. Equals errorMotionHtm(e)·point − point up to O(|ε|²·|point|).
 [[nodiscard]] Eigen::Vector3d firstOrderDisplacement(const ErrorMotion& e,
                                                      const Eigen::Vector3d& point);
-
-/// The HTM [R, p; 0, 1]. Precondition (asserted, not checked): R is a rotation matrix.
-[[nodiscard]] Eigen::Isometry3d makeIsometry(const Eigen::Matrix3d& R, const Eigen::Vector3d& p);
-
-/// The pure translation HTM [I, p; 0, 1].
-[[nodiscard]] Eigen::Isometry3d translationHtm(const Eigen::Vector3d& p);
-
-/// The pure rotation HTM [exp([w]×), 0; 0, 1] for a rotation vector w (radians).
-[[nodiscard]] Eigen::Isometry3d rotationHtm(const Eigen::Vector3d& w);
 
 }  // namespace pkm::geometry

@@ -6,17 +6,9 @@
 #include <Eigen/Core>
 #include <vector>
 
-namespace pkm::geometry {
+#include "pkm/geometry/rigid_transform.hpp"
 
-/// A rigid transform a_T_b: x_a = rotation·x_b + translation.
-struct RigidTransform {
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
-  /// Applies the transform to a point.
-  [[nodiscard]] Eigen::Vector3d operator*(const Eigen::Vector3d& x) const {
-    return rotation * x + translation;
-  }
-};
+namespace pkm::geometry {
 
 /// The rigid transform a_T_b minimising Σ|a_k − a_T_b·b_k|² (SVD of the cross-covariance with the
 /// reflection guard, so the result is a proper rotation). Throws pkm::InvalidArgument when the

@@ -4,9 +4,9 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <array>
 
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/exechon_model.hpp"
 
 namespace pkm::kinematics {
@@ -44,9 +44,9 @@ struct ExechonData {
   Eigen::Vector3d zoppi_p_S = Eigen::Vector3d::Zero();  ///< wrist point, Zoppi frame
   Eigen::Vector3d world_p_S = Eigen::Vector3d::Zero();  ///< wrist point, world frame
   /// Platform frame (P, kA2, kB5, eh) in the Zoppi frame: the inverse of Zoppi's eq. (6) He.
-  Eigen::Isometry3d zoppi_T_platform = Eigen::Isometry3d::Identity();
-  Eigen::Isometry3d world_T_platform =
-      Eigen::Isometry3d::Identity();  ///< world_T_zoppi · zoppi_T_platform
+  geometry::RigidTransform zoppi_T_platform = geometry::RigidTransform::Identity();
+  geometry::RigidTransform world_T_platform =
+      geometry::RigidTransform::Identity();  ///< world_T_zoppi · zoppi_T_platform
   /// Base joint centres P1A, P1B, P1C, Zoppi frame (constant).
   std::array<Eigen::Vector3d, kExechonLegs> zoppi_p_base{};
   /// Where each strut length is measured from: P2A, P1B, P2C (P2L = P1L shifted by δL·l12L), Zoppi

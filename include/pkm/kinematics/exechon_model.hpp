@@ -17,12 +17,12 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <array>
 #include <limits>
 #include <string>
 
 #include "pkm/core/units.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 
 namespace pkm::kinematics {
 
@@ -131,7 +131,7 @@ struct ExechonModel {
   ExechonLimits limits;
   ExechonWrist wrist;
   /// Pose of Zoppi's base frame in the machine's world frame (identity: world = Zoppi frame).
-  Eigen::Isometry3d world_T_zoppi = Eigen::Isometry3d::Identity();
+  geometry::RigidTransform world_T_zoppi = geometry::RigidTransform::Identity();
   ExechonHome home;
   /// Largest allowed condition number of dq/dS (unit-free; see exechon_ik.hpp).
   double max_condition = 1e3;

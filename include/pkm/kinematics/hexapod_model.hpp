@@ -9,18 +9,12 @@
 #include <string>
 
 #include "pkm/core/units.hpp"
+#include "pkm/kinematics/pose_rpy.hpp"
 
 namespace pkm::kinematics {
 
 /// Number of struts (legs) of a hexapod.
 inline constexpr int kStruts = 6;
-
-/// A platform pose: position of the tool centre point (TCP) in world and roll-pitch-yaw angles
-/// (a, b, c) in radians with world_R_platform = Rz(c)·Ry(b)·Rx(a) (LinuxCNC genhexkins convention).
-struct PoseRpy {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< TCP in world, model length unit
-  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();       ///< (a, b, c), radians
-};
 
 /// Strut readings (joint positions) of the six struts, model length unit.
 using StrutVector = Eigen::Matrix<double, kStruts, 1>;

@@ -17,8 +17,8 @@
 /// - P  the PKM's base (kinematic) frame, fixed to the X2 carriage.
 /// - t  the tool frame at the TCP (orientation: that of P; the PKM's wrist is not modelled).
 ///
-/// Local HTMs, actual (nominal: every error zero). Trans(v) = translationHtm, Rot(ω) = exp([ω]×),
-/// E(e) = errorMotionHtm(e) (pkm/geometry/error_motion.hpp):
+/// Local HTMs, actual (nominal: every error zero). Trans(v) = translationTransform, Rot(ω) =
+/// exp([ω]×), E(e) = errorMotionHtm(e) (pkm/geometry/error_motion.hpp):
 ///   F_T_Y2 = Trans(y2·ŷ) · E(e_Y2(y2))
 ///   Y2_T_w = Trans(Y2_p_work)
 ///   F_T_X2 = Rot(ω_X2) · Trans(x2·x̂) · E(e_X2(x2)),   ω_X2 = (0, 0, −szX2)
@@ -43,8 +43,8 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/hybrid_errors.hpp"
 #include "pkm/kinematics/hybrid_model.hpp"
 
@@ -53,12 +53,18 @@ namespace pkm::kinematics {
 /// The local HTMs of the chain at one command, and their composition (see the file comment).
 /// Each X_T_Y maps coordinates in frame Y to coordinates in frame X.
 struct HybridChain {
-  Eigen::Isometry3d F_T_Y2 = Eigen::Isometry3d::Identity();  ///< Y2 table frame in F
-  Eigen::Isometry3d Y2_T_w = Eigen::Isometry3d::Identity();  ///< work frame in the table frame
-  Eigen::Isometry3d F_T_X2 = Eigen::Isometry3d::Identity();  ///< X2 carriage frame in F
-  Eigen::Isometry3d X2_T_P = Eigen::Isometry3d::Identity();  ///< PKM base frame in the X2 frame
-  Eigen::Isometry3d P_T_t = Eigen::Isometry3d::Identity();   ///< tool frame in the PKM base frame
-  Eigen::Isometry3d w_T_t = Eigen::Isometry3d::Identity();   ///< tool in the work frame (eq. 3)
+  /// Y2 table frame in F.
+  geometry::RigidTransform F_T_Y2 = geometry::RigidTransform::Identity();
+  /// Work frame in the table frame.
+  geometry::RigidTransform Y2_T_w = geometry::RigidTransform::Identity();
+  /// X2 carriage frame in F.
+  geometry::RigidTransform F_T_X2 = geometry::RigidTransform::Identity();
+  /// PKM base frame in the X2 frame.
+  geometry::RigidTransform X2_T_P = geometry::RigidTransform::Identity();
+  /// Tool frame in the PKM base frame.
+  geometry::RigidTransform P_T_t = geometry::RigidTransform::Identity();
+  /// Tool in the work frame (eq. 3).
+  geometry::RigidTransform w_T_t = geometry::RigidTransform::Identity();
 };
 
 /// The chain at `command` with the errors `values` (exact HTMs; pass HybridErrorValues{} for the
@@ -69,18 +75,18 @@ struct HybridChain {
 
 /// The nominal work_T_tool: translation hybridNominalToolPosition(model, command), identity
 /// rotation. Throws pkm::InvalidArgument for a non-finite command.
-[[nodiscard]] Eigen::Isometry3d hybridNominalPose(const HybridMachineModel& model,
-                                                  const HybridCommand& command);
+[[nodiscard]] geometry::RigidTransform hybridNominalPose(const HybridMachineModel& model,
+                                                         const HybridCommand& command);
 
 /// The actual work_T_tool with the errors `values`: hybridChain(...).w_T_t.
-[[nodiscard]] Eigen::Isometry3d hybridActualPose(const HybridMachineModel& model,
-                                                 const HybridErrorValues& values,
-                                                 const HybridCommand& command);
+[[nodiscard]] geometry::RigidTransform hybridActualPose(const HybridMachineModel& model,
+                                                        const HybridErrorValues& values,
+                                                        const HybridCommand& command);
 
 /// As above with the errors evaluated at the command (evaluateHybridErrors).
-[[nodiscard]] Eigen::Isometry3d hybridActualPose(const HybridMachineModel& model,
-                                                 const GeometricErrors& errors,
-                                                 const HybridCommand& command);
+[[nodiscard]] geometry::RigidTransform hybridActualPose(const HybridMachineModel& model,
+                                                        const GeometricErrors& errors,
+                                                        const HybridCommand& command);
 
 /// The volumetric error Δp = p − p̄ (seed 000 eq. 3): actual minus nominal tool position, in the
 /// work frame, model length unit; exact (no small-angle approximation).

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "pkm/geometry/error_table.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/simulation/random.hpp"
 #include "pkm/simulation/virtual_machine.hpp"
 
@@ -82,10 +83,10 @@ class CartesianMachine final : public VirtualMachine {
                    CartesianActuation actuation = {});
   [[nodiscard]] std::vector<std::string> axisNames() const override;
   /// Trans((x, y, z) + tool_offset).
-  [[nodiscard]] Eigen::Isometry3d nominalPose(const Eigen::VectorXd& command) const override;
+  [[nodiscard]] geometry::RigidTransform nominalPose(const Eigen::VectorXd& command) const override;
   /// The composition in the class comment. Throws pkm::InvalidArgument for a bad command or when a
   /// table with the `kThrow` policy does not cover it.
-  Eigen::Isometry3d moveTo(const Eigen::VectorXd& command) override;
+  geometry::RigidTransform moveTo(const Eigen::VectorXd& command) override;
   /// The layout.
   [[nodiscard]] const CartesianLayout& layout() const { return layout_; }
   /// The injected errors (the truth).

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/simulation/virtual_machine.hpp"
 
 namespace pkm::simulation {
@@ -39,10 +40,10 @@ class CompensatedMachine final : public VirtualMachine {
                      std::shared_ptr<CommandCompensation> compensation);
   [[nodiscard]] std::vector<std::string> axisNames() const override;
   [[nodiscard]] std::vector<bool> angularAxes() const override;
-  [[nodiscard]] Eigen::Isometry3d nominalPose(const Eigen::VectorXd& command) const override;
+  [[nodiscard]] geometry::RigidTransform nominalPose(const Eigen::VectorXd& command) const override;
   /// Throws as the inner machine, and pkm::InvalidArgument when the compensation changes the
   /// command's size or makes it non-finite.
-  Eigen::Isometry3d moveTo(const Eigen::VectorXd& command) override;
+  geometry::RigidTransform moveTo(const Eigen::VectorXd& command) override;
   /// Resets the compensation and the inner machine.
   void reset(std::uint64_t noise_seed) override;
 

@@ -6,10 +6,10 @@
 /// "Exechon tracker files").
 #pragma once
 
-#include <Eigen/Geometry>
 #include <string>
 #include <vector>
 
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/exechon_model.hpp"
 #include "pkm/kinematics/exechon_wrist.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
@@ -33,7 +33,7 @@ struct ExechonTrackerSetup {
   /// SMR centre in the tool frame (platform_R_tool axes, origin at the tool point), mm.
   Eigen::Vector3d smr_offset = Eigen::Vector3d::Zero();
   /// The tracker's placement world_T_tracker (rigid; part of the truth).
-  Eigen::Isometry3d world_T_tracker = Eigen::Isometry3d::Identity();
+  geometry::RigidTransform world_T_tracker = geometry::RigidTransform::Identity();
   TrackerNoise noise;  ///< the instrument noise
   /// Throws pkm::InvalidArgument for an empty name, count < 1, a non-finite or inverted box, a zero
   /// direction, a tilt outside [0, π/2], a non-finite offset, invalid noise or a placement that is

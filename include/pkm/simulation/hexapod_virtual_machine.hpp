@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/hexapod_data.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_model.hpp"
@@ -68,10 +69,10 @@ class HexapodVirtualMachine final : public VirtualMachine {
   /// The actuation (the truth).
   [[nodiscard]] const StrutActuation& actuation() const { return actuation_; }
   /// The commanded pose.
-  [[nodiscard]] Eigen::Isometry3d nominalPose(const Eigen::VectorXd& command) const override;
+  [[nodiscard]] geometry::RigidTransform nominalPose(const Eigen::VectorXd& command) const override;
   /// Commands the struts and returns the true pose. Throws pkm::InvalidArgument when the true
   /// machine's forward kinematics does not converge (the command is far outside the workspace).
-  Eigen::Isometry3d moveTo(const Eigen::VectorXd& command) override;
+  geometry::RigidTransform moveTo(const Eigen::VectorXd& command) override;
   /// Forgets the approach directions and seeds the repeatability noise.
   void reset(std::uint64_t noise_seed) override;
   /// The strut readings commanded by the last moveTo (nominal IK, quantised), mm.

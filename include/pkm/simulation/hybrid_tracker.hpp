@@ -5,10 +5,10 @@
 /// files").
 #pragma once
 
-#include <Eigen/Geometry>
 #include <string>
 #include <vector>
 
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/simulation/hybrid_virtual_machine.hpp"
 #include "pkm/simulation/laser_tracker.hpp"
 #include "pkm/simulation/random.hpp"
@@ -26,7 +26,7 @@ struct HybridTrackerSetup {
   /// SMR centre in the tool frame t (P's axes at the TCP), mm.
   Eigen::Vector3d smr_offset = Eigen::Vector3d::Zero();
   /// The tracker's placement in the work frame, work_T_tracker (rigid; part of the truth).
-  Eigen::Isometry3d work_T_tracker = Eigen::Isometry3d::Identity();
+  geometry::RigidTransform work_T_tracker = geometry::RigidTransform::Identity();
   TrackerNoise noise;
   /// Throws pkm::InvalidArgument for an empty name, count < 1, an inverted or non-finite range,
   /// a non-finite offset, invalid noise or a placement that is not rigid.

@@ -17,8 +17,8 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/exechon_model.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 
@@ -73,7 +73,7 @@ class HybridTripod {
   /// in the model's branch with the wrist nearest home; the true FK is seeded with the nominal
   /// solution. Throws pkm::InvalidArgument for a non-finite p, or when the nominal IK or the true
   /// FK fails there (p outside the PKM's reach).
-  [[nodiscard]] Eigen::Isometry3d errorMotion(const Eigen::Vector3d& p) const;
+  [[nodiscard]] geometry::RigidTransform errorMotion(const Eigen::Vector3d& p) const;
   /// The controller's (nominal) model.
   [[nodiscard]] const kinematics::ExechonModel& nominal() const { return nominal_; }
   /// The true (perturbed) model.

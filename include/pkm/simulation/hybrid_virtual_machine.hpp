@@ -6,6 +6,7 @@
 
 #include <optional>
 
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/hybrid_errors.hpp"
 #include "pkm/kinematics/hybrid_model.hpp"
 #include "pkm/simulation/hybrid_tripod_errors.hpp"
@@ -29,10 +30,10 @@ class HybridVirtualMachine final : public VirtualMachine {
   /// {"x2", "y2", "xp", "yp", "zp"}.
   [[nodiscard]] std::vector<std::string> axisNames() const override;
   /// hybridNominalPose.
-  [[nodiscard]] Eigen::Isometry3d nominalPose(const Eigen::VectorXd& command) const override;
+  [[nodiscard]] geometry::RigidTransform nominalPose(const Eigen::VectorXd& command) const override;
   /// hybridActualPose with the errors evaluated at the command, times the tripod's error motion
   /// when there is one (which throws pkm::InvalidArgument where the PKM cannot reach the command).
-  Eigen::Isometry3d moveTo(const Eigen::VectorXd& command) override;
+  geometry::RigidTransform moveTo(const Eigen::VectorXd& command) override;
   /// The model.
   [[nodiscard]] const kinematics::HybridMachineModel& model() const { return model_; }
   /// The injected errors (the truth).

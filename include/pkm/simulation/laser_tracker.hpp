@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/simulation/hexapod_virtual_machine.hpp"
 #include "pkm/simulation/hexapod_workspace.hpp"
 #include "pkm/simulation/random.hpp"
@@ -82,7 +83,7 @@ struct TrackerSetup {
   Eigen::Vector3d smr_offset = Eigen::Vector3d::Zero();
   /// The tracker's placement: its frame in the machine's world frame (rigid). Part of the truth;
   /// the readings are in the tracker frame.
-  Eigen::Isometry3d world_T_tracker = Eigen::Isometry3d::Identity();
+  geometry::RigidTransform world_T_tracker = geometry::RigidTransform::Identity();
   TrackerNoise noise;  ///< the instrument noise
   /// Throws pkm::InvalidArgument for an empty name, no poses at all, a command that is not six
   /// finite values, an invalid box or noise, a non-finite offset, or a placement that is not rigid.
@@ -95,9 +96,9 @@ struct TrackerReading {
   /// The strut readings the controller commanded for it (nominal IK, encoder counts), mm.
   kinematics::StrutVector lengths = kinematics::StrutVector::Zero();
   /// The measured tracker_T_target; in point mode only its translation is measured (rotation I).
-  Eigen::Isometry3d measured = Eigen::Isometry3d::Identity();
+  geometry::RigidTransform measured = geometry::RigidTransform::Identity();
   /// The true tracker_T_target = world_T_tracker⁻¹ · world_T_tool · Trans(smr_offset).
-  Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+  geometry::RigidTransform truth = geometry::RigidTransform::Identity();
 };
 
 /// Runs the measurement: draws the random commands (when random_count > 0), then resets the

@@ -5,10 +5,11 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "pkm/geometry/rigid_transform.hpp"
 
 namespace pkm::simulation {
 
@@ -28,10 +29,11 @@ class VirtualMachine {
   }
   /// The nominal work_T_tool at `command` (no errors). Throws pkm::InvalidArgument when the
   /// command has the wrong size or is not finite.
-  [[nodiscard]] virtual Eigen::Isometry3d nominalPose(const Eigen::VectorXd& command) const = 0;
+  [[nodiscard]] virtual geometry::RigidTransform nominalPose(
+      const Eigen::VectorXd& command) const = 0;
   /// Moves to `command` and returns the actual work_T_tool there (with every injected error).
   /// Throws as nominalPose.
-  virtual Eigen::Isometry3d moveTo(const Eigen::VectorXd& command) = 0;
+  virtual geometry::RigidTransform moveTo(const Eigen::VectorXd& command) = 0;
   /// Forgets the motion history (the machine is as just switched on) and seeds the machine's own
   /// random effects (repeatability) with `noise_seed`. The default does nothing.
   virtual void reset(std::uint64_t noise_seed) { (void)noise_seed; }

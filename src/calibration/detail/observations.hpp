@@ -14,7 +14,7 @@ namespace pkm::calibration::detail {
 /// The measurement frame world_T_measurement = (exp([δω]x)·R₀, t₀ + δt) with δ = (δt, δω) the
 /// estimated correction of the initial frame (R₀, t₀).
 struct FrameEstimate {
-  geometry::RigidTransform initial;
+  geometry::RigidTransform initial = geometry::RigidTransform::Identity();
   Eigen::Matrix<double, 6, 1> delta = Eigen::Matrix<double, 6, 1>::Zero();
   [[nodiscard]] geometry::RigidTransform current() const;
 };

@@ -32,8 +32,8 @@ inline ordered_json tcpJson(const calibration::TcpErrorStatistics& s) {
 
 /// A rigid transform as {"position": [x, y, z], "rpy_deg": [r, p, y]} (machine-file style).
 inline ordered_json frameJson(const geometry::RigidTransform& f) {
-  const Eigen::Vector3d rpy = geometry::rpyFromRotation(f.rotation);
-  return {{"position", {f.translation.x(), f.translation.y(), f.translation.z()}},
+  const Eigen::Vector3d rpy = geometry::rpyFromRotation(f.linear());
+  return {{"position", {f.translation().x(), f.translation().y(), f.translation().z()}},
           {"rpy_deg", {radToDeg(rpy.x()), radToDeg(rpy.y()), radToDeg(rpy.z())}}};
 }
 
