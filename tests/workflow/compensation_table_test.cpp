@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "pkm/core/error.hpp"
+#include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -19,19 +20,9 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("pkm_workflow_comp_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
+fs::path scratch(const std::string& name) { return test::scratchPath("workflow_comp", name); }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::slurp;
 
 /// Targets 0, 64, 128; deviations ↑ 2⁻⁷, 2⁻⁸, −2⁻⁹ and ↓ 0, −2⁻⁸, −2⁻⁷, two identical runs.
 io::NamedText positioning() {

@@ -14,6 +14,7 @@
 #include "pkm/cnc/joint_path.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/machine_loader.hpp"
+#include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -22,12 +23,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::slurp;
 
 class GcodeCompensateWorkflow : public ::testing::Test {
  protected:

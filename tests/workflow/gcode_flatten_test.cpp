@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "pkm/core/error.hpp"
+#include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -19,12 +20,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::slurp;
 
 GcodeFlattenRequest request(std::string text) {
   GcodeFlattenRequest r;

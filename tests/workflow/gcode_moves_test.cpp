@@ -13,6 +13,7 @@
 
 #include "pkm/cnc/move.hpp"
 #include "pkm/core/error.hpp"
+#include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -21,18 +22,10 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::slurp;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("pkm_workflow_gcode_moves_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  return test::scratchPath("workflow_gcode_moves", name);
 }
 
 GcodeMovesRequest request(std::string text) {

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "pkm/core/error.hpp"
+#include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -19,19 +20,9 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("pkm_workflow_plan_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
+fs::path scratch(const std::string& name) { return test::scratchPath("workflow_plan", name); }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::slurp;
 
 PlanPosesRequest hexapodRequest() {
   PlanPosesRequest r;

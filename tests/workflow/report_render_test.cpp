@@ -11,6 +11,7 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/named_text.hpp"
+#include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -18,12 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("pkm_workflow_report_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
+fs::path scratch(const std::string& name) { return test::scratchPath("workflow_report", name); }
 
 TEST(ReportRenderWorkflow, WritesTheHtmlOnce) {
   ReportRenderRequest q;

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "pkm/core/error.hpp"
+#include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -18,12 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::slurp;
 
 TEST(SimulateWorkflow, TheSameSeedGivesTheSameFilesAndAnotherSeedOtherReadings) {
   const SimulateResult a = simulateScenario("seed003-probe-offset", std::nullopt);
