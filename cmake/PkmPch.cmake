@@ -1,4 +1,4 @@
-# Build speed: precompiled headers for the heavy third-party headers, and ccache when it is
+# Build speed: precompiled headers for the heavy third-party headers, ccache and lld when they are
 # installed (never required).
 #
 # Each flavour of target (module libraries, test programs, the CLI) gets one precompiled header,
@@ -19,6 +19,16 @@ if(PKM_CCACHE)
     set(CMAKE_CXX_COMPILER_LAUNCHER
         ${CMAKE_COMMAND} -E env "CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime"
         ${PKM_CCACHE_PROGRAM})
+  endif()
+endif()
+
+# lld links the ~170 test programs several times faster than GNU ld (both compilers accept
+# -fuse-ld=lld); GNU ld is used when lld is not installed.
+option(PKM_LLD "Link with lld when it is installed" ON)
+if(PKM_LLD)
+  find_program(PKM_LLD_PROGRAM ld.lld)
+  if(PKM_LLD_PROGRAM)
+    add_link_options(-fuse-ld=lld)
   endif()
 endif()
 

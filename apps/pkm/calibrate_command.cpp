@@ -17,6 +17,7 @@ namespace {
 
 struct CalibrateArgs {
   workflow::HexapodCalibrationRequest request;
+  std::vector<std::string> data, holdout;  ///< --data, --holdout paths (read into the request)
   std::vector<double> target_offset;
   bool json = false;
 };
@@ -96,6 +97,8 @@ void runCalibrate(CalibrateArgs args) {
     args.request.target_offset =
         Eigen::Vector3d(args.target_offset[0], args.target_offset[1], args.target_offset[2]);
   }
+  args.request.data = io::readNamedTexts(args.data);
+  args.request.holdout = io::readNamedTexts(args.holdout);
   CliRunControl run;
   const workflow::HexapodCalibrationResult result =
       workflow::calibrateHexapod(args.request, run.control());
@@ -120,11 +123,10 @@ void addCalibrateCommand(CLI::App& app) {
       "hexapod", "calibrate a hexapod from laser-tracker pose/point files and dial-gauge files");
   addMachineOptions(*hex, args->request.machine, args->request.ini);
   hex->add_option(
-         "--data", args->request.data, "calibration files (tracker pose/point, constrained motion)")
+         "--data", args->data, "calibration files (tracker pose/point, constrained motion)")
       ->required()
       ->check(CLI::ExistingFile);
-  hex->add_option(
-         "--holdout", args->request.holdout, "tracker files kept out of the fit, for validation")
+  hex->add_option("--holdout", args->holdout, "tracker files kept out of the fit, for validation")
       ->check(CLI::ExistingFile);
   hex->add_option("--out",
                   args->request.out,

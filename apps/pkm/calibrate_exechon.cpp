@@ -18,6 +18,7 @@ namespace {
 
 struct ExechonArgs {
   workflow::ExechonCalibrationRequest request;
+  std::vector<std::string> data, holdout;  ///< --data, --holdout paths (read into the request)
   std::vector<double> target_offset;
   bool json = false;
 };
@@ -126,6 +127,8 @@ void runExechon(ExechonArgs args) {
     args.request.target_offset =
         Eigen::Vector3d(args.target_offset[0], args.target_offset[1], args.target_offset[2]);
   }
+  args.request.data = io::readNamedTexts(args.data);
+  args.request.holdout = io::readNamedTexts(args.holdout);
   CliRunControl run;
   const workflow::ExechonCalibrationResult r =
       workflow::calibrateExechon(args.request, run.control());
@@ -150,13 +153,12 @@ void addCalibrateExechon(CLI::App& calibrate) {
   ex->add_option("--machine", args->request.machine, "Exechon machine file or built-in name")
       ->capture_default_str();
   ex->add_option("--data",
-                 args->request.data,
+                 args->data,
                  "Exechon tracker files (q0,q1,q2,c,a,x,y,z[,i,j,k]) and hybrid tracker files "
                  "(x2,y2,xp,yp,zp,x,y,z)")
       ->required()
       ->check(CLI::ExistingFile);
-  ex->add_option(
-        "--holdout", args->request.holdout, "tracker files kept out of the fit, for validation")
+  ex->add_option("--holdout", args->holdout, "tracker files kept out of the fit, for validation")
       ->check(CLI::ExistingFile);
   ex->add_option(
         "--out", args->request.out, "calibrated machine file CAL.json (also CAL.summary.json)")

@@ -57,8 +57,8 @@ bool calibrateHexapod(const fs::path& out) {
 
   wf::HexapodCalibrationRequest request;
   request.machine = "hexapod-default";
-  request.data = {(sim.out / "tracker-pose.csv").string()};
-  request.holdout = {(sim.out / "tracker-holdout.csv").string()};
+  request.data = {pkm::io::readNamedText((sim.out / "tracker-pose.csv").string())};
+  request.holdout = {pkm::io::readNamedText((sim.out / "tracker-holdout.csv").string())};
   request.out = (out / "cal.json").string();
   request.force = true;
   const wf::HexapodCalibrationResult r = wf::calibrateHexapod(request);

@@ -426,7 +426,7 @@ ProgramCompensation rewriteFlat(std::string_view text,
       r.text.append(line);
       if (has_nl) r.text.push_back('\n');
     } else {
-      const auto [first, last] = it->second;
+      const std::size_t first = it->second.first, last = it->second.second;
       const PathPoint& p0 = points[first];
       const bool cycle = motions_of_line[line_no] > 1;
       // The previous commanded position: the interpreter's start-up position before the first.

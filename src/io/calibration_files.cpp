@@ -43,8 +43,9 @@ std::vector<Eigen::Vector3d> parseVectorList(const std::string& text,
   return out;
 }
 
-calibration::ConstrainedMotionData readConstrainedMotionCsv(const std::string& path, int* skipped) {
-  const TextTable t = TextTable::read(path);
+calibration::ConstrainedMotionData readConstrainedMotionCsv(const NamedText& input, int* skipped) {
+  const std::string& path = input.name;
+  const TextTable t = TextTable::parse(input.text, path);
   calibration::ConstrainedMotionData set;
   const auto points = t.meta("gauge points mm");
   if (!points)
@@ -102,6 +103,10 @@ calibration::ConstrainedMotionData readConstrainedMotionCsv(const std::string& p
   return set;
 }
 
+calibration::ConstrainedMotionData readConstrainedMotionCsv(const std::string& path, int* skipped) {
+  return readConstrainedMotionCsv(readNamedText(path), skipped);
+}
+
 namespace {
 
 /// A distance file: ball-bar lengths to the `# pivot mm` metadata's pivot, else distances from the
@@ -151,9 +156,10 @@ void addDistanceFile(const std::string& path, const TextTable& probe, Calibratio
 }
 
 /// A constrained-motion (dial-gauge) file.
-void addConstrainedFile(const std::string& path, CalibrationInput& input) {
+void addConstrainedFile(const NamedText& file, CalibrationInput& input) {
+  const std::string& path = file.name;
   int skipped = 0;
-  input.data.constrained.push_back(readConstrainedMotionCsv(path, &skipped));
+  input.data.constrained.push_back(readConstrainedMotionCsv(file, &skipped));
   input.notes.push_back(
       fmt::format("{}: constrained motion, {} stations{}",
                   path,
@@ -162,8 +168,9 @@ void addConstrainedFile(const std::string& path, CalibrationInput& input) {
 }
 
 /// A tracker pose or point file, with its `smr offset mm` and `frame` metadata.
-void addTrackerFile(const std::string& path, CalibrationInput& input) {
-  const TrackerFile f = readTrackerCsv(path);
+void addTrackerFile(const NamedText& file, CalibrationInput& input) {
+  const std::string& path = file.name;
+  const TrackerFile f = parseTrackerCsv(file.text, path);
   for (const auto& [key, value] : f.metadata) {
     if (key == "smr offset mm" && !input.target_offset) {
       const auto v = parseVectorList(value, path, key);
@@ -199,14 +206,18 @@ void addTrackerFile(const std::string& path, CalibrationInput& input) {
 
 }  // namespace
 
-void addCalibrationFile(const std::string& path, CalibrationInput& input) {
-  const TextTable probe = TextTable::read(path);
+void addCalibrationFile(const NamedText& file, CalibrationInput& input) {
+  const TextTable probe = TextTable::parse(file.text, file.name);
   if (probe.findColumn({"distance", "distance_mm"}))
-    addDistanceFile(path, probe, input);
+    addDistanceFile(file.name, probe, input);
   else if (probe.findColumn({"g0_mm", "g0"}))
-    addConstrainedFile(path, input);
+    addConstrainedFile(file, input);
   else
-    addTrackerFile(path, input);
+    addTrackerFile(file, input);
+}
+
+void addCalibrationFile(const std::string& path, CalibrationInput& input) {
+  addCalibrationFile(readNamedText(path), input);
 }
 
 }  // namespace pkm::io

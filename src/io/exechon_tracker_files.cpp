@@ -140,7 +140,12 @@ void addHybridFile(const TextTable& t, const std::string& path, ExechonCalibrati
 }  // namespace
 
 void addExechonCalibrationFile(const std::string& path, ExechonCalibrationInput& input) {
-  const TextTable t = TextTable::read(path);
+  addExechonCalibrationFile(readNamedText(path), input);
+}
+
+void addExechonCalibrationFile(const NamedText& file, ExechonCalibrationInput& input) {
+  const std::string& path = file.name;
+  const TextTable t = TextTable::parse(file.text, path);
   if (t.findColumn({"x2"})) {
     addHybridFile(t, path, input);
     return;

@@ -123,8 +123,8 @@ void readInput(const ExechonCalibrationRequest& r,
                io::ExechonCalibrationInput& input,
                io::ExechonCalibrationInput& held,
                const RunControl& control) {
-  for (const std::string& f : r.data) io::addExechonCalibrationFile(f, input);
-  for (const std::string& f : r.holdout) io::addExechonCalibrationFile(f, held);
+  for (const io::NamedText& f : r.data) io::addExechonCalibrationFile(f, input);
+  for (const io::NamedText& f : r.holdout) io::addExechonCalibrationFile(f, held);
   control.note(input.notes);
 }
 
@@ -195,7 +195,7 @@ ExechonCalibrationResult calibrateExechon(const ExechonCalibrationRequest& r,
                       {machine.model.name,
                        machine.hybrid ? "hybrid" : "exechon",
                        "calibrate exechon",
-                       r.data,
+                       detail::inputNames(r.data),
                        result.summary_json,
                        std::string(toString(machine.model.unit)),
                        comps});

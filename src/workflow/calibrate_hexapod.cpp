@@ -175,8 +175,8 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   for (const std::string& p : {paths.machine, paths.hal, paths.summary})
     io::checkOverwrite(p, overwrite);
   io::CalibrationInput input, held;
-  for (const std::string& f : r.data) io::addCalibrationFile(f, input);
-  for (const std::string& f : r.holdout) io::addCalibrationFile(f, held);
+  for (const io::NamedText& f : r.data) io::addCalibrationFile(f, input);
+  for (const io::NamedText& f : r.holdout) io::addCalibrationFile(f, held);
   control.note(input.notes);
 
   // The target (SMR or 6-DOF probe) is the TCP of the fitted model: tool offset += target offset.
@@ -234,7 +234,7 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
                       {machine.model.name,
                        "hexapod",
                        "calibrate hexapod",
-                       r.data,
+                       detail::inputNames(r.data),
                        result.summary_json,
                        std::string(toString(model.unit)),
                        {{"linuxcnc-hal", paths.hal}, {"machine-json", paths.machine}}});

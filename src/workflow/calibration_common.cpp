@@ -5,7 +5,14 @@
 
 namespace pkm::workflow::detail {
 
-void checkCalibrationRequest(const std::vector<std::string>& data,
+std::vector<std::string> inputNames(const std::vector<io::NamedText>& inputs) {
+  std::vector<std::string> names;
+  names.reserve(inputs.size());
+  for (const io::NamedText& in : inputs) names.push_back(in.name);
+  return names;
+}
+
+void checkCalibrationRequest(const std::vector<io::NamedText>& data,
                              const std::string& data_what,
                              const std::string& out,
                              const std::string& frame,

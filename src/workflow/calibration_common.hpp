@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/io/named_text.hpp"
 #include "pkm/workflow/progress.hpp"
 
 namespace pkm::workflow::detail {
@@ -16,12 +17,15 @@ namespace pkm::workflow::detail {
 /// Throws pkm::InvalidArgument naming the option: no --data files (`data_what` says which files
 /// are wanted), no --out, a --frame other than auto/world/tracker, a --loss other than
 /// none/huber/cauchy, or a --monte-carlo count other than 0 or 2 … 100000.
-void checkCalibrationRequest(const std::vector<std::string>& data,
+void checkCalibrationRequest(const std::vector<io::NamedText>& data,
                              const std::string& data_what,
                              const std::string& out,
                              const std::string& frame,
                              const std::string& loss,
                              int monte_carlo);
+
+/// The names of `inputs`, in order (the files a calibration record lists).
+[[nodiscard]] std::vector<std::string> inputNames(const std::vector<io::NamedText>& inputs);
 
 /// The progress callback of a Monte Carlo (done, total) as "Monte Carlo N/M" events of `control`.
 [[nodiscard]] std::function<void(int, int)> monteCarloProgress(const RunControl& control);

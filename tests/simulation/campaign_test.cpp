@@ -63,7 +63,8 @@ TEST(Campaign, AddingAMeasurementDoesNotChangeAnother) {
 }
 
 TEST(Campaign, ValidateRejectsBadCampaigns) {
-  EXPECT_THROW(sim::runCampaign(campaign({setup("x", 0), setup("x", 1)}), 1), pkm::InvalidArgument);
+  EXPECT_THROW((void)sim::runCampaign(campaign({setup("x", 0), setup("x", 1)}), 1),
+               pkm::InvalidArgument);
   sim::Campaign no_machine = campaign({});
   no_machine.machine.reset();
   EXPECT_THROW(no_machine.validate(), pkm::InvalidArgument);

@@ -38,7 +38,9 @@ class CalibrateExechonWorkflow : public ::testing::Test {
     (void)runSimulate(o);
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
-  static std::string sim(const std::string& name) { return (dir_ / "sim" / name).string(); }
+  static io::NamedText sim(const std::string& name) {
+    return io::readNamedText((dir_ / "sim" / name).string());
+  }
   static fs::path dir_;
 };
 fs::path CalibrateExechonWorkflow::dir_;

@@ -45,8 +45,8 @@ class CalibrateHexapodWorkflow : public ::testing::Test {
   static HexapodCalibrationRequest request(const std::string& out) {
     HexapodCalibrationRequest r;
     r.machine = "hexapod-default";
-    r.data = {(dir_ / "sim/tracker-pose.csv").string()};
-    r.holdout = {(dir_ / "sim/tracker-holdout.csv").string()};
+    r.data = {io::readNamedText((dir_ / "sim/tracker-pose.csv").string())};
+    r.holdout = {io::readNamedText((dir_ / "sim/tracker-holdout.csv").string())};
     r.out = (dir_ / out).string();
     return r;
   }
@@ -117,9 +117,8 @@ TEST_F(CalibrateHexapodWorkflow, DataTheModelCannotExplainWritesNothing) {
     }
     bad << out << '\n';
   }
-  io::writeFileAtomic(dir_ / "um.csv", bad.str(), io::Overwrite::kAllow);
   HexapodCalibrationRequest r = request("um-cal.json");
-  r.data = {(dir_ / "um.csv").string()};
+  r.data = {{"um.csv", bad.str()}};  // an upload: text in memory, never on disk
   r.holdout.clear();
   try {
     (void)calibrateHexapod(r);
@@ -129,6 +128,18 @@ TEST_F(CalibrateHexapodWorkflow, DataTheModelCannotExplainWritesNothing) {
   }
   for (const char* f : {"um-cal.json", "um-cal.hal", "um-cal.summary.json"})
     EXPECT_FALSE(fs::exists(dir_ / f)) << f;
+}
+
+TEST_F(CalibrateHexapodWorkflow, AnUploadsErrorsNameTheUploadAndItsLine) {
+  HexapodCalibrationRequest r = request("upload-cal.json");
+  r.data = {{"upload.csv", "# frame: world\nl0,l1,l2,l3,l4,l5,x,y,z\n1,2,3,4,5,6,7,8,nine\n"}};
+  try {
+    (void)calibrateHexapod(r);
+    FAIL() << "accepted a field that is not a number";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("upload.csv:3:"));
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "upload-cal.json"));
 }
 
 TEST_F(CalibrateHexapodWorkflow, RequestsAreChecked) {

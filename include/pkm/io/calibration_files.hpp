@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pkm/calibration/hexapod_calibration.hpp"
+#include "pkm/io/named_text.hpp"
 #include "pkm/io/text_table.hpp"
 
 namespace pkm::io {
@@ -26,7 +27,10 @@ namespace pkm::io {
 /// as the reference and the rows with converged = 1 as stations (rows that did not converge are
 /// left out and counted in *skipped). Angles in the file are degrees. Throws pkm::IoError
 /// "FILE:LINE: message" for a missing column or metadata key, a bad number, no station 0 or a
-/// second one.
+/// second one (NAME is the input's name).
+[[nodiscard]] calibration::ConstrainedMotionData readConstrainedMotionCsv(const NamedText& input,
+                                                                          int* skipped = nullptr);
+/// readConstrainedMotionCsv of the file at `path` (io::readNamedText). Throws as it.
 [[nodiscard]] calibration::ConstrainedMotionData readConstrainedMotionCsv(const std::string& path,
                                                                           int* skipped = nullptr);
 
@@ -43,10 +47,14 @@ struct CalibrationInput {
   std::vector<std::string> distance_origin;  ///< "FILE:LINE" of each distance observation
 };
 
-/// Adds the file at `path` to `input`: a distance file (header l0..l5, distance: with metadata
+/// Adds `file` (a file read whole or an upload; messages and origins use its name) to `input`:
+/// a distance file (header l0..l5, distance: with metadata
 /// `# pivot mm: (x, y, z)` ball-bar lengths to that pivot, else distances from the first row's TCP,
 /// whose distance must be 0), a constrained-motion file (header with g0_mm) or a tracker pose or
-/// point file (header with l0..l5, x, y, z and optionally a, b, c). Throws pkm::IoError.
+/// point file (header with l0..l5, x, y, z and optionally a, b, c). Throws pkm::IoError
+/// "NAME:LINE: message".
+void addCalibrationFile(const NamedText& file, CalibrationInput& input);
+/// addCalibrationFile of the file at `path` (io::readNamedText). Throws pkm::IoError.
 void addCalibrationFile(const std::string& path, CalibrationInput& input);
 
 }  // namespace pkm::io

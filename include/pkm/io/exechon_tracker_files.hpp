@@ -13,6 +13,7 @@
 
 #include "pkm/calibration/exechon_calibration.hpp"
 #include "pkm/calibration/hybrid_calibration.hpp"
+#include "pkm/io/named_text.hpp"
 #include "pkm/io/text_table.hpp"
 #include "pkm/simulation/exechon_tracker.hpp"
 #include "pkm/simulation/hybrid_tracker.hpp"
@@ -57,9 +58,12 @@ struct ExechonCalibrationInput {
   std::vector<std::string> notes;
 };
 
-/// Adds the Exechon or hybrid tracker file at `path` to `input` (a header with x2 makes it a hybrid
-/// file). Throws pkm::IoError "FILE:LINE: message" for a missing column, a bad number, a direction
-/// that is not a unit vector, or two files whose `smr offset mm` or `frame` metadata disagree.
+/// Adds the Exechon or hybrid tracker file `file` (read whole or an upload; messages and sources
+/// use its name) to `input` (a header with x2 makes it a hybrid file). Throws pkm::IoError
+/// "NAME:LINE: message" for a missing column, a bad number, a direction that is not a unit
+/// vector, or two files whose `smr offset mm` or `frame` metadata disagree.
+void addExechonCalibrationFile(const NamedText& file, ExechonCalibrationInput& input);
+/// addExechonCalibrationFile of the file at `path` (io::readNamedText). Throws pkm::IoError.
 void addExechonCalibrationFile(const std::string& path, ExechonCalibrationInput& input);
 
 }  // namespace pkm::io

@@ -14,6 +14,7 @@
 
 #include "pkm/io/exechon_calibration_report.hpp"
 #include "pkm/io/exechon_machine.hpp"
+#include "pkm/io/named_text.hpp"
 #include "pkm/workflow/progress.hpp"
 
 namespace pkm::workflow {
@@ -21,10 +22,11 @@ namespace pkm::workflow {
 /// An Exechon calibration request.
 struct ExechonCalibrationRequest {
   std::string machine = "mxt700s-like";  ///< Exechon machine file or built-in name
-  std::vector<std::string> data;         ///< Exechon and hybrid tracker files (required)
-  std::vector<std::string> holdout;      ///< tracker files kept out of the fit
-  std::string out;             ///< CAL.json; CAL.summary.json (and CAL.errors.json) beside
-  std::string frame = "auto";  ///< tracker readings: "auto", "world", "tracker"
+  /// Exechon and hybrid tracker files, read whole or uploaded (required).
+  std::vector<io::NamedText> data;
+  std::vector<io::NamedText> holdout;  ///< tracker files kept out of the fit
+  std::string out;                     ///< CAL.json; CAL.summary.json (and CAL.errors.json) beside
+  std::string frame = "auto";          ///< tracker readings: "auto", "world", "tracker"
   /// The tracker target in the tool frame; default the files' `smr offset mm`.
   std::optional<Eigen::Vector3d> target_offset;
   std::vector<std::string> fix;  ///< parameters held at their initial value (e.g. "tripod.hx")

@@ -12,17 +12,19 @@
 
 #include "pkm/io/calibration_report.hpp"
 #include "pkm/io/hexapod_machine.hpp"
+#include "pkm/io/named_text.hpp"
 #include "pkm/workflow/progress.hpp"
 
 namespace pkm::workflow {
 
 /// A hexapod calibration request.
 struct HexapodCalibrationRequest {
-  std::string machine = "default";   ///< machine file, LinuxCNC .hal, or built-in name
-  std::string ini;                   ///< the LinuxCNC INI of a .hal machine ("" : found from it)
-  std::vector<std::string> data;     ///< calibration files (required)
-  std::vector<std::string> holdout;  ///< tracker files kept out of the fit
-  std::string out;                   ///< CAL.json; CAL.hal and CAL.summary.json beside it
+  std::string machine = "default";  ///< machine file, LinuxCNC .hal, or built-in name
+  std::string ini;                  ///< the LinuxCNC INI of a .hal machine ("" : found from it)
+  /// Calibration files, read whole or uploaded (required; io::addCalibrationFile).
+  std::vector<io::NamedText> data;
+  std::vector<io::NamedText> holdout;  ///< tracker files kept out of the fit
+  std::string out;                     ///< CAL.json; CAL.hal and CAL.summary.json beside it
   std::string frame = "auto";  ///< tracker readings: "auto" (files' metadata), "world", "tracker"
   /// The tracker target in the tool frame; default the files' `smr offset mm`.
   std::optional<Eigen::Vector3d> target_offset;
