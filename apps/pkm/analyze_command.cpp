@@ -38,6 +38,28 @@ void AnalyzeIo::add(CLI::App& cmd, std::size_t min_files, std::size_t max_files)
   cmd.add_flag("--json", json, "print one JSON object instead of a table");
 }
 
+void PositioningColumnArgs::add(CLI::App& cmd) {
+  cmd.add_option("--columns",
+                 columns,
+                 "assign columns the header does not name: ROLE=COLUMN,... with roles target, "
+                 "run, direction, measured, error (e.g. error=Dev)");
+  cmd.add_option("--unit",
+                 unit,
+                 "unit of target/measured columns whose header states none: mm "
+                 "(default), um, in, m")
+      ->check(CLI::IsMember({"mm", "um", "µm", "nm", "m", "in"}));
+  cmd.add_option("--error-unit",
+                 error_unit,
+                 "unit of an error/deviation column whose header states none: um, mm, in")
+      ->check(CLI::IsMember({"mm", "um", "µm", "nm", "m", "in"}));
+}
+
+io::PositioningColumns PositioningColumnArgs::parsed() const {
+  return {columns.empty() ? io::ColumnAssignments{} : io::parseColumnAssignments(columns),
+          unit,
+          error_unit};
+}
+
 void printText(const std::string& text) {
   std::fwrite(text.data(), 1, text.size(), stdout);
   std::fflush(stdout);

@@ -12,6 +12,7 @@
 
 #include "pkm/io/analysis_report.hpp"
 #include "pkm/io/analysis_text.hpp"
+#include "pkm/io/positioning_files.hpp"
 
 namespace pkm::cli {
 
@@ -31,6 +32,15 @@ struct AnalyzeIo {
   /// Adds `--data FILE...` (required; `min_files` to `max_files` files, each must exist; 0 for
   /// max_files means no limit) and `--json` to `cmd`.
   void add(CLI::App& cmd, std::size_t min_files = 1, std::size_t max_files = 0);
+};
+
+/// The options that say how to read a positioning export whose header does not say everything:
+/// `--columns ROLE=COLUMN,...`, `--unit U`, `--error-unit U` (io::PositioningColumns).
+struct PositioningColumnArgs {
+  std::string columns, unit, error_unit;
+  void add(CLI::App& cmd);
+  /// The parsed options. Throws pkm::InvalidArgument for a bad --columns item.
+  [[nodiscard]] io::PositioningColumns parsed() const;
 };
 
 /// Writes `text` to stdout as it is.

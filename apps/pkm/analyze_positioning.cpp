@@ -25,20 +25,32 @@ namespace {
 
 struct Iso230_2State {
   AnalyzeIo io;
+  PositioningColumnArgs columns;
   double coverage = 2.0;
+  bool strict = false;
 };
 
 void addIso230_2(CLI::App& analyze) {
   auto st = std::make_shared<Iso230_2State>();
   CLI::App* cmd = analyze.add_subcommand(
       "iso230-2",
-      "ISO 230-2 positioning accuracy and repeatability; header target,direction,run,measured "
-      "(or pkm simulate measurement files)");
+      "ISO 230-2 positioning accuracy and repeatability; columns target, run, direction and "
+      "measured or error, recognised by name with their units (docs/formats.md, \"Instrument "
+      "exports\"), Renishaw .rtl files, or pkm simulate measurement files");
   st->io.add(*cmd);
+  st->columns.add(*cmd);
   cmd->add_option("--coverage", st->coverage, "coverage factor k (ISO 230-2:2014: 2)")
       ->check(CLI::PositiveNumber);
+  cmd->add_flag("--strict",
+                st->strict,
+                "refuse data that miss the ISO 230-2 test conditions or look implausible");
   cmd->callback([st] {
-    printReport(st->io, workflow::analyzeIso230_2({io::readNamedTexts(st->io.data), st->coverage}));
+    workflow::Iso230_2Request request;
+    request.data = io::readNamedTexts(st->io.data);
+    request.columns = st->columns.parsed();
+    request.coverage = st->coverage;
+    request.strict = st->strict;
+    printReport(st->io, workflow::analyzeIso230_2(request));
   });
 }
 

@@ -148,6 +148,10 @@ void addCalibrateCommand(CLI::App& app) {
       ->check(CLI::IsMember({"none", "huber", "cauchy"}));
   hex->add_option("--loss-scale", args->request.loss_scale, "robust loss scale, machine unit");
   hex->add_flag("--force", args->request.force, "overwrite existing output files");
+  hex->add_flag(
+      "--allow-large-changes",
+      args->request.allow_large_changes,
+      "write a result whose parameters moved implausibly far (docs/calibration.md, Guards)");
   hex->add_flag("--json", args->json, "print the summary as JSON");
   hex->add_option("--monte-carlo",
                   args->request.monte_carlo,

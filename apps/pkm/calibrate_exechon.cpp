@@ -199,6 +199,10 @@ void addCalibrateExechon(CLI::App& calibrate) {
   ex->add_option(
       "--threads", args->request.threads, "Monte Carlo worker threads (default: all cores)");
   ex->add_flag("--force", args->request.force, "overwrite existing output files");
+  ex->add_flag(
+      "--allow-large-changes",
+      args->request.allow_large_changes,
+      "write a result whose parameters moved implausibly far (docs/calibration.md, Guards)");
   ex->add_flag("--json", args->json, "print the summary as JSON");
   ex->callback([args] { runExechon(*args); });
 }

@@ -97,7 +97,7 @@ void addCampaign(CLI::App& app) {
   run->add_flag("--no-db", a->no_db, "do not store the results");
   run->add_flag("--force", a->options.force, "write into a non-empty output directory");
   run->callback([a] {
-    if (!runCampaign(*a)) throw ExitCode{1};
+    if (!runCampaign(*a)) throw ExitCode{kExitCheckFailed};
   });
   CLI::App* list = group->add_subcommand("list", "list the built-in campaigns");
   list->callback([] {

@@ -83,4 +83,9 @@ void addMachinesCommand(CLI::App& app) {
   });
 }
 
+void setFooter(CLI::App& app, const std::string& footer) {
+  app.footer(footer);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) setFooter(*sub, footer);
+}
+
 }  // namespace pkm::cli

@@ -13,8 +13,16 @@
 
 namespace pkm::cli {
 
-/// Exit code for usage and input errors.
+/// Exit codes (docs/formats.md, "Exit codes"): the job ran and a check failed or a target was
+/// missed; a usage or input error; an internal error (a bug: please report it).
+inline constexpr int kExitCheckFailed = 1;
 inline constexpr int kExitUsage = 2;
+inline constexpr int kExitInternal = 3;
+
+/// The exit-code scheme, as `--help` states it.
+inline constexpr const char* kExitCodesHelp =
+    "Exit codes: 0 success; 1 the job ran and a check failed or a target was missed; 2 usage or "
+    "input error; 3 internal error.";
 
 /// Thrown by a command that has printed its result and must end the program with `code` (e.g. 1
 /// for a missed campaign target); main() returns the code.
@@ -108,5 +116,8 @@ struct CommandRegistration {
 };
 /// Adds every registered command group to `app` (called once by main()).
 void addRegisteredCommands(CLI::App& app);
+
+/// Sets `footer` on `app` and every subcommand below it (each `--help` ends with it).
+void setFooter(CLI::App& app, const std::string& footer);
 
 }  // namespace pkm::cli

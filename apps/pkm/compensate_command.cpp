@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "analyze_common.hpp"
 #include "cli_common.hpp"
 #include "pkm/io/compensation_table_report.hpp"
 #include "pkm/workflow/compensation_table.hpp"
@@ -15,11 +16,13 @@ namespace {
 struct TableState {
   workflow::CompensationTableRequest request;
   std::vector<std::string> data;
+  PositioningColumnArgs columns;
   bool json = false;
 };
 
 void runTable(TableState& st) {
   st.request.data = io::readNamedTexts(st.data);
+  st.request.columns = st.columns.parsed();
   CliRunControl run;
   const workflow::CompensationTableResult r =
       workflow::writeCompensationTable(st.request, run.control());
@@ -53,6 +56,7 @@ void addCompensateCommand(CLI::App& app) {
                   st->request.line,
                   "straightness: reference line removed first: endpoint (default), lsq or raw")
       ->check(CLI::IsMember({"endpoint", "lsq", "raw"}));
+  st->columns.add(*cmd);
   cmd->add_option("--out,-o", st->request.out, "output file")->required();
   cmd->add_flag("--force", st->request.force, "overwrite an existing output file");
   cmd->add_option("--max-points",

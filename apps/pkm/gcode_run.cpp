@@ -14,7 +14,6 @@ namespace pkm::cli {
 namespace {
 
 /// Exit code when a check is violated.
-constexpr int kExitViolation = 1;
 
 /// A rate option and whether the user gave it (else the machine file's value applies).
 struct RateOption {
@@ -46,7 +45,7 @@ void runGcode(RunArgs& a) {
   Output out;
   out.text() = io::gcodeRunText(r.report);
   out.flush();
-  if (!r.ok()) throw ExitCode{kExitViolation};
+  if (!r.ok()) throw ExitCode{kExitCheckFailed};
 }
 
 void addRateOptions(CLI::App& r, RunArgs& a) {

@@ -1,5 +1,5 @@
-// pkm: command-line interface of the pkm toolkit. Exit codes: 0 success, 2 usage or input error,
-// 1 unexpected internal error.
+// pkm: command-line interface of the pkm toolkit. Exit codes (docs/formats.md): 0 success, 1 a
+// check failed or a target was missed, 2 usage or input error, 3 internal error.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   pkm::cli::addMachinesCommand(app);
   pkm::cli::addDemoCommand(app);
   pkm::cli::addRegisteredCommands(app);
+  pkm::cli::setFooter(app, pkm::cli::kExitCodesHelp);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::fflush(stdout);
     fmt::print(stderr, "pkm: internal error: {}\n", e.what());
-    return 1;
+    return pkm::cli::kExitInternal;
   }
   return 0;
 }

@@ -11,6 +11,9 @@
 #include "pkm/kinematics/exechon_data.hpp"
 
 namespace pkm::calibration {
+
+/// A fit whose residual RMS exceeds this fraction of the machine size explains nothing.
+constexpr double kImplausibleResidualFraction = 0.02;
 namespace {
 
 using kinematics::ExechonConfiguration;
@@ -321,19 +324,13 @@ ExechonCalibrationSummary calibrateExechon(const ExechonModel& initial,
   out.worst = std::move(all);
 
   const double size = initial.characteristicLength();
-  for (int k = 0; k < kExechonParameters; ++k) {
-    const double change = std::fabs(out.parameters(k) - out.initial(k));
-    const bool length = exechonParameterIsLength(k);
-    const double limit = options.max_plausible_change * (length ? size : 1.0);
-    if (change > limit)
-      out.warnings.push_back(fmt::format(
-          "{} changed by {:.4g} {} (more than {:.4g}): check the units of the data and the machine",
-          exechonParameterName(k),
-          change,
-          length ? toString(initial.unit) : "rad",
-          limit));
-  }
-  if (out.after.rms > options.max_plausible_change * size)
+  std::vector<ParameterValues> values;
+  for (int k = 0; k < kExechonParameters; ++k)
+    values.push_back(
+        {exechonParameterName(k), out.initial(k), out.parameters(k), exechonParameterIsLength(k)});
+  out.large_changes =
+      implausibleChanges(values, size, toString(initial.unit), options.max_plausible_change);
+  if (out.after.rms > kImplausibleResidualFraction * size)
     out.warnings.push_back(fmt::format(
         "the fit leaves a residual RMS of {:.4g} {}: the model does not explain the data; check "
         "the units, the frame and outliers",

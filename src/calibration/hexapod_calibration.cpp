@@ -508,6 +508,11 @@ HexapodCalibrationSummary calibrateHexapod(const HexapodModel& initial,
     out.frame_standard_deviation = cov.diagonal().segment(n_free, 6).cwiseMax(0.0).cwiseSqrt();
   if (has_backlash)
     out.backlash_standard_deviation = cov.diagonal().tail<6>().cwiseMax(0.0).cwiseSqrt();
+  std::vector<ParameterValues> values;
+  for (int k = 0; k < kHexapodParameters; ++k)
+    values.push_back({hexapodParameterName(k), out.initial(k), out.parameters(k), true});
+  out.large_changes =
+      implausibleChanges(values, initial.characteristicLength(), toString(initial.unit));
   return out;
 }
 

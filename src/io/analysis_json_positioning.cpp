@@ -53,6 +53,9 @@ std::string analysisJson(const Iso230_2Report& report) {
   Json targets = Json::array();
   for (const auto& t : r.targets) targets.push_back(targetJson(t));
   j["targets"] = std::move(targets);
+  j["iso230_2_conditions"] =
+      Json{{"met", report.nonconformities.empty()}, {"nonconformities", report.nonconformities}};
+  if (!report.warnings.empty()) j["warnings"] = report.warnings;
   return dump(j);
 }
 
@@ -64,6 +67,8 @@ std::string analysisJson(const StraightnessReport& report) {
          {"intercept", r.line.intercept},
          {"straightness", r.straightness},
          {"points", position.size()}};
+  if (report.raw)
+    j["raw"] = Json{{"points", report.raw->points}, {"straightness", report.raw->straightness}};
   if (!r.contact_points.empty()) {
     Json contacts = Json::array();
     for (std::size_t k : r.contact_points) {

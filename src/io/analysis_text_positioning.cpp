@@ -47,6 +47,9 @@ std::string analysisText(const Iso230_2Report& report) {
                                                             {"A_down", r.A_down},
                                                             {"A", r.A}};
   for (const auto& [name, v] : summary) out += fmt::format("{}\t{}\n", name, num(v));
+  if (report.nonconformities.empty()) out += "conditions\tISO 230-2 test conditions met\n";
+  for (const std::string& n : report.nonconformities) out += fmt::format("nonconforming\t{}\n", n);
+  for (const std::string& w : report.warnings) out += fmt::format("warning\t{}\n", w);
   return out;
 }
 
@@ -62,6 +65,10 @@ std::string analysisText(const StraightnessReport& report) {
   for (std::size_t k : r.contact_points) {
     out += fmt::format("contact\t{}\t{}\n", num(report.position[k]), num(r.residuals[k]));
   }
+  if (report.raw)
+    out += fmt::format("raw_points\t{}\nraw_straightness\t{}\n",
+                       report.raw->points,
+                       num(report.raw->straightness));
   return out;
 }
 

@@ -171,6 +171,7 @@ void addConstrainedFile(const NamedText& file, CalibrationInput& input) {
 void addTrackerFile(const NamedText& file, CalibrationInput& input) {
   const std::string& path = file.name;
   const TrackerFile f = parseTrackerCsv(file.text, path);
+  bool frame_stated = false;
   for (const auto& [key, value] : f.metadata) {
     if (key == "smr offset mm" && !input.target_offset) {
       const auto v = parseVectorList(value, path, key);
@@ -178,8 +179,10 @@ void addTrackerFile(const NamedText& file, CalibrationInput& input) {
         throw IoError(locate(path, 0, "metadata 'smr offset mm' is not one vector"));
       input.target_offset = v[0];
     }
+    if (key == "frame") frame_stated = true;
     if (key == "frame" && value.rfind("tracker", 0) == 0) input.tracker_frame = true;
   }
+  if (!frame_stated) input.frameless.push_back(path);
   // Each file is one sequence of moves: the approach directions follow from its row order (the
   // first row's is unknown).
   const std::vector<kinematics::StrutVector> approach =

@@ -121,6 +121,7 @@ void addHybridFile(const TextTable& t, const std::string& path, ExechonCalibrati
     input.hybrid_target_offset = v[0];
   }
   const bool tracker = t.meta("frame").value_or("").rfind("tracker", 0) == 0;
+  if (!t.meta("frame")) input.frameless.push_back(path);
   if (!input.hybrid.observations.empty() && tracker != input.hybrid.measurement_frame.has_value())
     t.failHeader("its 'frame' differs from an earlier hybrid file's");
   if (tracker && !input.hybrid.measurement_frame)  // a start is fitted later
@@ -168,6 +169,8 @@ void addExechonCalibrationFile(const NamedText& file, ExechonCalibrationInput& i
     if (!input.data.observations.empty() && tracker != input.tracker_frame)
       t.failHeader("its 'frame' differs from an earlier file's");
     input.tracker_frame = tracker;
+  } else {
+    input.frameless.push_back(path);
   }
   for (std::size_t r = 0; r < t.rows(); ++r) {
     calibration::ExechonObservation o;

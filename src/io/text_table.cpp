@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -134,9 +135,18 @@ long long TextTable::integer(std::size_t row, std::size_t col) const {
 
 int TextTable::direction(std::size_t row, std::size_t col) const {
   const std::string_view d = text(row, col);
-  if (d == "+" || d == "+1" || d == "1") return 1;
-  if (d == "-" || d == "-1") return -1;
-  fail(row, fmt::format("column '{}': direction '{}' is not + or -", header_[col], d));
+  std::string lower(d);
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* plus : {"+", "+1", "1", "forward", "fwd", "f", "up", "positive", "pos"})
+    if (lower == plus) return 1;
+  for (const char* minus :
+       {"-", "-1", "reverse", "rev", "r", "backward", "down", "negative", "neg"})
+    if (lower == minus) return -1;
+  fail(row,
+       fmt::format("column '{}': direction '{}' is not one of +, -, Forward, Reverse, F, R, Up, "
+                   "Down, 1, -1",
+                   header_[col],
+                   d));
 }
 
 void TextTable::fail(std::size_t row, const std::string& what) const {

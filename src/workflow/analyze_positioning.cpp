@@ -3,11 +3,13 @@
 #include "pkm/workflow/analyze_positioning.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/positioning_files.hpp"
+#include "pkm/metrology/iso230_2_conformity.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -27,18 +29,33 @@ void Iso230_2Request::validate() const {
 io::Iso230_2Report analyzeIso230_2(const Iso230_2Request& request) {
   request.validate();
   const std::vector<metrology::PositioningSample> samples =
-      io::readPositioningSamples(request.data);
-  return {metrology::evaluateIso230_2(samples, {.coverage_factor = request.coverage}),
-          request.coverage};
+      io::readPositioningSamples(request.data, request.columns);
+  io::Iso230_2Report report{
+      metrology::evaluateIso230_2(samples, {.coverage_factor = request.coverage}),
+      request.coverage,
+      metrology::iso230_2Nonconformities(samples),
+      metrology::implausibleDeviations(samples)};
+  if (request.strict && !(report.nonconformities.empty() && report.warnings.empty())) {
+    std::vector<std::string> all = report.nonconformities;
+    all.insert(all.end(), report.warnings.begin(), report.warnings.end());
+    throw InvalidArgument(fmt::format("--strict: {}", fmt::join(all, "; ")));
+  }
+  return report;
 }
 
 void StraightnessRequest::validate() const { requireData(data, "data"); }
 
 io::StraightnessReport analyzeStraightness(const StraightnessRequest& request) {
   request.validate();
-  io::Profile p = io::readStraightness(request.data);
+  const io::Profile points = io::readStraightnessPoints(request.data);
+  io::Profile p = io::perTargetMean(points);
   io::StraightnessReport report;
   report.reference = request.reference;
+  if (points.position.size() > p.position.size())
+    report.raw = io::StraightnessReport::Raw{
+        points.position.size(),
+        metrology::evaluateStraightness(points.position, points.value, request.reference)
+            .straightness};
   report.result = metrology::evaluateStraightness(p.position, p.value, request.reference);
   report.position = std::move(p.position);
   report.deviation = std::move(p.value);

@@ -125,6 +125,9 @@ void readInput(const ExechonCalibrationRequest& r,
                const RunControl& control) {
   for (const io::NamedText& f : r.data) io::addExechonCalibrationFile(f, input);
   for (const io::NamedText& f : r.holdout) io::addExechonCalibrationFile(f, held);
+  std::vector<std::string> frameless = input.frameless;
+  frameless.insert(frameless.end(), held.frameless.begin(), held.frameless.end());
+  detail::refuseUnstatedFrame(r.frame, frameless);
   control.note(input.notes);
 }
 

@@ -121,12 +121,18 @@ io::ExechonTripodReport::MonteCarlo monteCarlo(const ExechonCalibrationRequest& 
 }
 
 /// Throws when the fit is implausible or does not explain the data.
-void accept(const cal::ExechonCalibrationSummary& s, const kinematics::ExechonModel& model) {
+void accept(const cal::ExechonCalibrationSummary& s,
+            const kinematics::ExechonModel& model,
+            const ExechonCalibrationRequest& r,
+            const RunControl& control) {
   if (!s.warnings.empty())
     throw InvalidArgument(
         fmt::format("calibration result is implausible; nothing was written:\n  {}",
                     fmt::join(s.warnings, "\n  ")));
-  if (cal::explainsData(s.after.rms, model.characteristicLength())) return;
+  if (cal::explainsData(s.after.rms, model.characteristicLength())) {
+    detail::refuseLargeChanges(s.large_changes, r.allow_large_changes, control);
+    return;
+  }
   throw InvalidArgument(fmt::format(
       "calibration does not explain the data: residual RMS {:.4g} (max {:.4g}) after {} "
       "iterations ({}); check the units (legs {}, wrist angles in degrees), the --frame option "
@@ -166,7 +172,7 @@ io::ExechonTripodReport fitTripod(const ExechonCalibrationRequest& r,
   io::ExechonTripodReport report;
   report.fit = cal::calibrateExechon(machine.model, input.data, options);
   const cal::ExechonCalibrationSummary& s = report.fit;
-  accept(s, machine.model);
+  accept(s, machine.model, r, control);
   calibrated.model =
       cal::withExechonParameters(machine.model, s.parameters, machine.model.world_T_zoppi);
   calibrated.model.name = machine.model.name + "-calibrated";

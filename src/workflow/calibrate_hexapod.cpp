@@ -177,6 +177,9 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   io::CalibrationInput input, held;
   for (const io::NamedText& f : r.data) io::addCalibrationFile(f, input);
   for (const io::NamedText& f : r.holdout) io::addCalibrationFile(f, held);
+  std::vector<std::string> frameless = input.frameless;
+  frameless.insert(frameless.end(), held.frameless.begin(), held.frameless.end());
+  detail::refuseUnstatedFrame(r.frame, frameless);
   control.note(input.notes);
 
   // The target (SMR or 6-DOF probe) is the TCP of the fitted model: tool offset += target offset.
@@ -205,6 +208,7 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
         s.iterations,
         s.termination,
         toString(model.unit)));
+  detail::refuseLargeChanges(s.large_changes, r.allow_large_changes, control);
 
   result.calibrated = machine;
   result.calibrated.model = cal::withHexapodParameters(machine.model, s.parameters);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/calibration/acceptance.hpp"
 #include "pkm/io/named_text.hpp"
 #include "pkm/workflow/progress.hpp"
 
@@ -26,6 +27,18 @@ void checkCalibrationRequest(const std::vector<io::NamedText>& data,
 
 /// The names of `inputs`, in order (the files a calibration record lists).
 [[nodiscard]] std::vector<std::string> inputNames(const std::vector<io::NamedText>& inputs);
+
+/// With --frame auto, tracker files must state their frame: throws pkm::InvalidArgument naming
+/// the first of `frameless` (files without `frame` metadata) and the --frame values to give.
+void refuseUnstatedFrame(const std::string& frame, const std::vector<std::string>& frameless);
+
+/// The plausibility rule on parameter changes (calibration::implausibleChanges): without `allow`
+/// (--allow-large-changes) throws pkm::InvalidArgument listing the largest changes by name, their
+/// likely causes and the option; with it, notes them through `control`. Nothing when `changes` is
+/// empty.
+void refuseLargeChanges(const std::vector<calibration::ParameterChange>& changes,
+                        bool allow,
+                        const RunControl& control);
 
 /// The progress callback of a Monte Carlo (done, total) as "Monte Carlo N/M" events of `control`.
 [[nodiscard]] std::function<void(int, int)> monteCarloProgress(const RunControl& control);

@@ -16,6 +16,7 @@
 #include "pkm/io/atomic_file.hpp"
 #include "pkm/io/positioning_files.hpp"
 #include "pkm/metrology/iso230_2.hpp"
+#include "pkm/metrology/iso230_2_conformity.hpp"
 #include "pkm/metrology/straightness.hpp"
 
 namespace pkm::workflow {
@@ -59,8 +60,10 @@ Built buildAxisTable(const CompensationTableRequest& request,
                      comp::TableFormat format,
                      std::size_t max_points,
                      const RunControl& control) {
-  const metrology::Iso230_2Result iso =
-      metrology::evaluateIso230_2(io::readPositioningSamples(request.data));
+  const std::vector<metrology::PositioningSample> samples =
+      io::readPositioningSamples(request.data, request.columns);
+  const metrology::Iso230_2Result iso = metrology::evaluateIso230_2(samples);
+  control.note(metrology::implausibleDeviations(samples));
   const comp::FormatTraits tr = comp::traits(format);
   const comp::AxisErrorTable raw = comp::tableFromIso230_2(iso, request.axis);
   const comp::AxisErrorTable t = comp::fitToTarget(raw, tr, max_points);

@@ -1,6 +1,8 @@
 // The CLI contract of `pkm analyze iso230-2 | straightness | parallelism | squareness`: the input
 // formats (plain CSV and `pkm simulate` measurement files), the JSON keys, exit code 2 with
 // FILE:LINE on bad input, and recovery of seed 000's injected squareness from simulated files.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -195,6 +197,113 @@ TEST_F(AnalyzePositioningCli, RecoversSeed000FromSimulatedFiles) {
   EXPECT_NEAR(v["sxP"].get<double>(), -14.74 * kMrad, kTolFirstOrder);
   EXPECT_NEAR(v["dalpha"].get<double>(), v["sxP"].get<double>(), kTolJson);
   EXPECT_NEAR(v["parallelism"].get<double>(), v["dalpha"].get<double>() * 300.0, 1e-9);
+}
+
+// --- real instrument exports (regressions of a first try with real data) -----------------
+
+/// A laser's export of the standard test cycle (5 runs each way, 6 targets over 500 mm).
+std::string laserExport() {
+  std::string t = "Target (mm),Run,Direction,Error (µm)\n";
+  const double targets[] = {0.0, 97.3, 201.6, 298.0, 402.8, 500.0};
+  for (int run = 1; run <= 5; ++run)
+    for (const char* dir : {"Forward", "Reverse"})
+      for (double target : targets)
+        t += fmt::format("{},{},{},{}\n", target, run, dir, 1.0 + 0.01 * target + run * 0.1);
+  return t;
+}
+
+TEST_F(AnalyzePositioningCli, AnInstrumentExportIsReadWithoutConversion) {
+  const CliRun r =
+      pkm({"analyze", "iso230-2", "--data", write("laser.csv", laserExport()), "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  // Deviations 1 + 0.01 t + 0.1 run µm, the same both ways: mean 1.3 µm at 0, 6.3 µm at 500 mm.
+  EXPECT_NEAR(j["E"].get<double>(), 0.005, 1e-12);
+  EXPECT_TRUE(j["iso230_2_conditions"]["met"].get<bool>());
+  EXPECT_FALSE(j.contains("warnings"));
+}
+
+TEST_F(AnalyzePositioningCli, MissingColumnsAreListedOnceWithTheColumnsFound) {
+  const std::string f = write("odd.csv",
+                              "Pos (mm),Pass,Way,Err (um)\n0,1,F,1\n0,2,F,2\n9,1,F,3\n9,2,F,4\n"
+                              "9,1,R,1\n9,2,R,2\n0,1,R,3\n0,2,R,4\n");
+  const CliRun r = pkm({"analyze", "iso230-2", "--data", f});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.err, HasSubstr("odd.csv:1: missing columns: target ("));
+  EXPECT_THAT(r.err, HasSubstr("found 'Pos (mm)', 'Pass', 'Way', 'Err (um)'"));
+  const CliRun ok = pkm({"analyze",
+                         "iso230-2",
+                         "--data",
+                         f,
+                         "--columns",
+                         "target=Pos,run=Pass,direction=Way,error=Err"});
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_THAT(ok.out, HasSubstr("nonconforming\t2 runs in the + direction"));
+}
+
+TEST_F(AnalyzePositioningCli, DeviationsInTheMeasuredColumnAreFlagged) {
+  // Errors in µm put in the measured column: E = 990 without a word before.
+  std::string t = "target,direction,run,measured\n";
+  for (int run = 1; run <= 5; ++run)
+    for (const char* dir : {"+", "-"})
+      for (int target : {0, 200, 400, 600, 800, 1000})
+        t += fmt::format("{},{},{},{}\n", target, dir, run, 2 + run);
+  const std::string f = write("um.csv", t);
+  const CliRun r = pkm({"analyze", "iso230-2", "--data", f});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("warning\tdeviations up to"));
+  EXPECT_THAT(r.out, HasSubstr("µm read as mm"));
+  const CliRun strict = pkm({"analyze", "iso230-2", "--data", f, "--strict"});
+  EXPECT_EQ(strict.code, 2);
+  EXPECT_THAT(strict.err, HasSubstr("--strict: deviations up to"));
+}
+
+TEST_F(AnalyzePositioningCli, ANonConformingDataSetIsEvaluatedAndFlagged) {
+  // Three runs instead of five, and one of them incomplete.
+  const std::string f = write("two.csv",
+                              "target,direction,run,measured\n"
+                              "0,+,1,0.001\n0,+,2,0.002\n0,+,3,0.001\n"
+                              "5,+,1,5.001\n5,+,2,5.002\n5,+,3,5.001\n"
+                              "0,-,1,0.003\n0,-,2,0.002\n0,-,3,0.003\n5,-,1,5.003\n5,-,2,5.002\n");
+  const CliRun r = pkm({"analyze", "iso230-2", "--data", f, "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Json j = Json::parse(r.out);
+  EXPECT_FALSE(j["iso230_2_conditions"]["met"].get<bool>());
+  const std::string all = j["iso230_2_conditions"]["nonconformities"].dump();
+  EXPECT_THAT(all, HasSubstr("3 runs in the + direction"));
+  EXPECT_THAT(all, HasSubstr("run counts in the - direction differ between targets"));
+  const CliRun table = pkm({"analyze", "iso230-2", "--data", f});
+  EXPECT_THAT(table.out, HasSubstr("nonconforming\t3 runs in the + direction"));
+  EXPECT_EQ(pkm({"analyze", "iso230-2", "--data", f, "--strict"}).code, 2);
+}
+
+TEST_F(AnalyzePositioningCli, OneStraightnessAnswerWhateverTheHeader) {
+  // Two runs per position: the per-target mean, whether the columns are named as a plain table
+  // or as a simulator file, with the raw scatter beside it.
+  std::string plain = "position,deviation\n", sim = "target_mm,direction,run,reading_mm\n";
+  const double dev[2][5] = {{0, 0.002, 0.001, 0.004, 0}, {0, 0.0035, -0.001, 0.003, 0.001}};
+  for (int run = 0; run < 2; ++run)
+    for (int k = 0; k < 5; ++k) {
+      plain += fmt::format("{},{}\n", 100 * k, dev[run][k]);
+      sim += fmt::format("{},+,{},{}\n", 100 * k, run + 1, dev[run][k]);
+    }
+  const CliRun a = pkm({"analyze", "straightness", "--data", write("plain.csv", plain), "--json"});
+  const CliRun b = pkm({"analyze", "straightness", "--data", write("sim.csv", sim), "--json"});
+  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(b.code, 0) << b.err;
+  const Json ja = Json::parse(a.out), jb = Json::parse(b.out);
+  EXPECT_EQ(ja["straightness"], jb["straightness"]);
+  EXPECT_EQ(ja["points"], 5);
+  EXPECT_EQ(ja["raw"]["points"], 10);
+  EXPECT_GT(ja["raw"]["straightness"].get<double>(), ja["straightness"].get<double>());
+}
+
+TEST_F(AnalyzePositioningCli, HelpStatesTheExitCodes) {
+  const CliRun r = pkm({"analyze", "iso230-2", "--help"});
+  EXPECT_EQ(r.code, 0);
+  EXPECT_THAT(r.out, HasSubstr("Exit codes: 0 success; 1 the job ran and a check failed"));
+  EXPECT_THAT(r.out, HasSubstr("--columns"));
+  EXPECT_THAT(r.out, HasSubstr("--error-unit"));
 }
 
 }  // namespace

@@ -178,15 +178,21 @@ TEST_F(CalibrateCli, MonteCarloGivesTheWorkspaceTcpUncertainty) {
 }
 
 TEST_F(CalibrateCli, DialGaugeCalibrationNamesWhatItCannotSee) {
-  const CliRun r = pkm({"calibrate",
-                        "hexapod",
-                        "--machine",
-                        "hexapod-default",
-                        "--data",
-                        path("sim/constrained-motion.csv"),
-                        "--out",
-                        path("gauge.json"),
-                        "--json"});
+  // Without prior information the fit wanders along the directions the gauges see only weakly
+  // (platform joints moved by ~80 mm): refused, naming the remedy.
+  std::vector<std::string> args{"calibrate",
+                                "hexapod",
+                                "--machine",
+                                "hexapod-default",
+                                "--data",
+                                path("sim/constrained-motion.csv"),
+                                "--out",
+                                path("gauge.json"),
+                                "--json"};
+  expectUsageError(pkm(args), "add --prior-sigma and --measurement-sigma");
+  EXPECT_FALSE(std::filesystem::exists(path("gauge.json")));
+  for (const char* a : {"--prior-sigma", "20", "--measurement-sigma", "0.002"}) args.push_back(a);
+  const CliRun r = pkm(args);
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_LT(j["identifiability"]["rank"].get<int>(), 42);
@@ -220,12 +226,24 @@ TEST_F(CalibrateCli, RefusesToOverwriteAndRejectsBadData) {
                                 "l0,l1,l2,l3,l4,l5,x,y,z,a,b,c\n"
                                 "250,250,250,250,250,250,0,0,200,0,0,0\n"
                                 "260,250,250,250,250,250,0,0,210,0,0,0\n");
+  // A tracker export without a '# frame:' line and without --frame: refused, naming the option.
   expectUsageError(pkm({"calibrate",
                         "hexapod",
                         "--machine",
                         "hexapod-default",
                         "--data",
                         few,
+                        "--out",
+                        path("few.json")}),
+                   "few.csv: the tracker readings do not state their frame");
+  expectUsageError(pkm({"calibrate",
+                        "hexapod",
+                        "--machine",
+                        "hexapod-default",
+                        "--data",
+                        few,
+                        "--frame",
+                        "world",
                         "--out",
                         path("few.json")}),
                    "too few observations");

@@ -227,7 +227,10 @@ TEST_F(CalibrateExechonCli, RefusesBadDataAndOverwrites) {
                                 "q0,q1,q2,c,a,x,y,z\n"
                                 "300,300,300,0,-20,1,2,3\n"
                                 "310,300,300,0,-20,1,2,3\n");
-  expectUsageError(calibrate({"--data", few, "--out", path("few.json")}), "too few observations");
+  expectUsageError(calibrate({"--data", few, "--out", path("few.json")}),
+                   "few.csv: the tracker readings do not state their frame");
+  expectUsageError(calibrate({"--data", few, "--frame", "world", "--out", path("few.json")}),
+                   "too few observations");
   EXPECT_FALSE(std::filesystem::exists(path("bad.json")));
   EXPECT_FALSE(std::filesystem::exists(path("few.json")));
 }

@@ -52,12 +52,19 @@ TEST(TextTable, IntegersAndDirections) {
   const TextTable t = TextTable::parse("run,d\n3,1\n2.5,x\n", "r.csv");
   EXPECT_EQ(t.integer(0, 0), 3);
   EXPECT_EQ(t.direction(0, 1), 1);
+  const TextTable labels =
+      TextTable::parse("d\nForward\nREVERSE\nf\nr\nUp\ndown\n+1\n-1\n", "labels.csv");
+  const int expected[] = {1, -1, 1, -1, 1, -1, 1, -1};
+  for (std::size_t r = 0; r < labels.rows(); ++r) EXPECT_EQ(labels.direction(r, 0), expected[r]);
   EXPECT_THROW((void)t.integer(1, 0), IoError);
   try {
     (void)t.direction(1, 1);
     FAIL();
   } catch (const IoError& e) {
-    EXPECT_STREQ(e.what(), "r.csv:3: column 'd': direction 'x' is not + or -");
+    EXPECT_STREQ(
+        e.what(),
+        "r.csv:3: column 'd': direction 'x' is not one of +, -, Forward, Reverse, F, R, Up, "
+        "Down, 1, -1");
   }
 }
 

@@ -50,6 +50,14 @@ class CalibrateHexapodWorkflow : public ::testing::Test {
     r.out = (dir_ / out).string();
     return r;
   }
+  /// A simulated tracker file without its '# frame:' line, as a tracker's own export comes.
+  static io::NamedText withoutFrameLine(const std::string& name) {
+    std::istringstream in(io::readFileText(dir_ / "sim" / name));
+    std::string text;
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("# frame:", 0) != 0) text += line + '\n';
+    return {name, text};
+  }
   static fs::path dir_;
 };
 fs::path CalibrateHexapodWorkflow::dir_;
@@ -140,6 +148,52 @@ TEST_F(CalibrateHexapodWorkflow, AnUploadsErrorsNameTheUploadAndItsLine) {
     EXPECT_THAT(e.what(), HasSubstr("upload.csv:3:"));
   }
   EXPECT_FALSE(fs::exists(dir_ / "upload-cal.json"));
+}
+
+TEST_F(CalibrateHexapodWorkflow, TrackerFilesThatDoNotStateTheirFrameNeedTheFrameOption) {
+  HexapodCalibrationRequest r = request("noframe.json");
+  r.data = {withoutFrameLine("tracker-pose.csv")};
+  r.holdout = {withoutFrameLine("tracker-holdout.csv")};
+  try {
+    (void)calibrateHexapod(r);
+    FAIL() << "took readings of an unstated frame as the machine's";
+  } catch (const InvalidArgument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("tracker-pose.csv: the tracker readings do not state their"));
+    EXPECT_THAT(e.what(), HasSubstr("(and 1 more files)"));
+    EXPECT_THAT(e.what(), HasSubstr("--frame tracker"));
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "noframe.json"));
+  r.frame = "tracker";
+  const HexapodCalibrationResult stated = calibrateHexapod(r);
+  ASSERT_TRUE(stated.report.holdout.has_value());
+  EXPECT_LT(stated.report.holdout->after.rms, kHeldOutRmsLimit);
+  EXPECT_TRUE(stated.report.fit.large_changes.empty());
+}
+
+TEST_F(CalibrateHexapodWorkflow, ATrackerFrameTakenAsTheMachinesIsRefusedByName) {
+  // Readings in the tracker's frame given as the machine's: the fit absorbs the tracker's
+  // placement into the joint positions, explains the data, and would move the machine.
+  HexapodCalibrationRequest r = request("asworld.json");
+  r.frame = "world";
+  try {
+    (void)calibrateHexapod(r);
+    FAIL() << "wrote a geometry that absorbed the tracker's placement";
+  } catch (const InvalidArgument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("implausibly far from the machine file"));
+    EXPECT_THAT(e.what(), HasSubstr("Largest changes:\n  base1.x: -570.634 → "));
+    EXPECT_THAT(e.what(), HasSubstr("--frame tracker"));
+    EXPECT_THAT(e.what(), HasSubstr("--allow-large-changes"));
+  }
+  for (const char* f : {"asworld.json", "asworld.hal", "asworld.summary.json"})
+    EXPECT_FALSE(fs::exists(dir_ / f)) << f;
+  r.allow_large_changes = true;
+  std::vector<std::string> notices;
+  RunControl control;
+  control.notice = [&](const std::string& n) { notices.push_back(n); };
+  const HexapodCalibrationResult allowed = calibrateHexapod(r, control);
+  EXPECT_FALSE(allowed.report.fit.large_changes.empty());
+  EXPECT_TRUE(fs::exists(dir_ / "asworld.hal"));
+  EXPECT_THAT(notices, ::testing::Contains(HasSubstr("--allow-large-changes")));
 }
 
 TEST_F(CalibrateHexapodWorkflow, RequestsAreChecked) {

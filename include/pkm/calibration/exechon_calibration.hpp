@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/calibration/acceptance.hpp"
 #include "pkm/calibration/exechon_parameters.hpp"
 #include "pkm/calibration/hexapod_calibration.hpp"
 #include "pkm/calibration/identifiability.hpp"
@@ -53,8 +54,8 @@ struct ExechonCalibrationOptions {
   IdentifiabilityOptions identifiability;
   kinematics::FkOptions fk;  ///< the tripod FK inside each residual
   int worst_count = 5;       ///< how many worst observations the summary lists, ≥ 0
-  /// Plausibility limit of a parameter change, relative (see ExechonCalibrationSummary::warnings).
-  double max_plausible_change = 0.02;
+  /// Plausibility limit of a parameter change, relative (calibration::implausibleChanges).
+  double max_plausible_change = kPlausibleChangeFraction;
   /// Throws pkm::InvalidArgument naming the field when a setting is unusable.
   void validate() const;
 };
@@ -83,10 +84,13 @@ struct ExechonCalibrationSummary {
   std::optional<geometry::RigidTransform> measurement_frame;  ///< the estimate, when estimated
   Eigen::Matrix<double, 6, 1> frame_standard_deviation = Eigen::Matrix<double, 6, 1>::Zero();
   std::vector<WorstObservation> worst;  ///< largest residuals after the fit, largest first
-  /// Plausibility findings: a length parameter that moved by more than
-  /// ExechonCalibrationOptions::max_plausible_change × the machine's characteristic length, an
-  /// angle by more than that many radians, or a fit whose residual RMS exceeds that fraction of
-  /// the machine size — the signature of a unit mistake or wrong machine file. Empty when none.
+  /// The parameters that moved by more than ExechonCalibrationOptions::max_plausible_change ×
+  /// the machine's characteristic length (lengths) or kPlausibleAngleChange (angles), largest first
+  /// (calibration::implausibleChanges): the signature of a unit mistake, a wrong frame or a wrong
+  /// machine file. Empty when none.
+  std::vector<ParameterChange> large_changes;
+  /// A fit whose residual RMS exceeds 2 % of the machine size: the model does not explain the
+  /// data. Empty when none.
   std::vector<std::string> warnings;
 };
 

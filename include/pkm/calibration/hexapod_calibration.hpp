@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/calibration/acceptance.hpp"
 #include "pkm/calibration/constrained_motion.hpp"
 #include "pkm/calibration/distance_measurements.hpp"
 #include "pkm/calibration/hexapod_measurements.hpp"
@@ -108,6 +109,10 @@ struct HexapodCalibrationSummary {
   /// The estimated per-strut backlash (length unit) with estimate_backlash, and its σ.
   std::optional<kinematics::StrutVector> backlash;
   kinematics::StrutVector backlash_standard_deviation = kinematics::StrutVector::Zero();
+  /// The parameters that moved by more than kPlausibleChangeFraction × the machine's
+  /// characteristic length, largest first (calibration::implausibleChanges): the signature of a
+  /// unit mistake, a tracker frame taken as the world or a wrong machine file. Empty when none.
+  std::vector<ParameterChange> large_changes;
 };
 
 /// Names of the six backlash unknowns in identifiability reports: backlash0 … backlash5.

@@ -32,6 +32,10 @@ namespace pkm::io {
 struct Iso230_2Report {
   metrology::Iso230_2Result result;
   double coverage = 2.0;  ///< the coverage factor k used
+  /// The ISO 230-2 test conditions the data do not meet (metrology::iso230_2Nonconformities);
+  /// empty when they conform.
+  std::vector<std::string> nonconformities;
+  std::vector<std::string> warnings;  ///< plausibility (metrology::implausibleDeviations)
 };
 
 /// Straightness about a reference line (ISO 230-1:2012 §3.4.8).
@@ -40,6 +44,13 @@ struct StraightnessReport {
   std::vector<double> position;   ///< the points' positions, input order (length unit)
   std::vector<double> deviation;  ///< their deviations (length unit)
   metrology::StraightnessResult result;
+  /// The readings before the per-target mean, when a target was read more than once: their
+  /// number and the straightness of all of them about the same kind of line (the raw scatter).
+  struct Raw {
+    std::size_t points = 0;
+    double straightness = 0.0;
+  };
+  std::optional<Raw> raw;
 };
 
 /// The plane of a parallelism measurement (seed 000 §3.1).

@@ -41,6 +41,8 @@ struct CalibrationInput {
   std::optional<Eigen::Vector3d> target_offset;
   /// True when a tracker file's `frame` metadata says the readings are in the tracker's frame.
   bool tracker_frame = false;
+  /// The tracker files without `frame` metadata (their readings' frame is not stated).
+  std::vector<std::string> frameless;
   std::vector<std::string> notes;            ///< what was read, for the user
   std::vector<std::string> pose_origin;      ///< "FILE:LINE" of each pose observation
   std::vector<std::string> point_origin;     ///< "FILE:LINE" of each point observation

@@ -55,6 +55,8 @@ struct ExechonCalibrationInput {
   std::optional<Eigen::Vector3d> hybrid_target_offset;
   std::optional<Eigen::Vector3d> target_offset;  ///< `smr offset mm` metadata (first seen)
   bool tracker_frame = false;  ///< a file's `frame` metadata starts with "tracker"
+  /// The files without `frame` metadata (their readings' frame is not stated).
+  std::vector<std::string> frameless;
   std::vector<std::string> notes;
 };
 

@@ -55,8 +55,9 @@ class TextTable {
   [[nodiscard]] double number(std::size_t row, std::size_t col) const;
   /// The field as an integer (a number without fraction, |n| < 2^53); throws pkm::IoError.
   [[nodiscard]] long long integer(std::size_t row, std::size_t col) const;
-  /// The field as an approach direction: +1 for "+", "+1", "1"; −1 for "-", "-1"; throws
-  /// pkm::IoError otherwise.
+  /// The field as an approach direction, case-insensitively: +1 for "+", "+1", "1", "Forward",
+  /// "Fwd", "F", "Up", "Positive", "Pos"; −1 for "-", "-1", "Reverse", "Rev", "R", "Backward",
+  /// "Down", "Negative", "Neg"; throws pkm::IoError otherwise.
   [[nodiscard]] int direction(std::size_t row, std::size_t col) const;
   /// The 1-based file line of data row `row`.
   [[nodiscard]] std::size_t line(std::size_t row) const { return lines_[row]; }

@@ -13,21 +13,28 @@
 
 #include "pkm/io/analysis_report.hpp"
 #include "pkm/io/named_text.hpp"
+#include "pkm/io/positioning_files.hpp"
 
 namespace pkm::workflow {
 
 /// ISO 230-2:2014 positioning of one axis.
 struct Iso230_2Request {
-  /// `target,direction,run,measured` tables or simulator linear files, concatenated (required).
+  /// Positioning exports, canonical tables or simulator linear files, concatenated (required;
+  /// io::readPositioningSamples).
   std::vector<io::NamedText> data;
-  double coverage = 2.0;  ///< coverage factor k (ISO 230-2:2014: 2), > 0
+  io::PositioningColumns columns;  ///< column assignments and units the headers do not give
+  double coverage = 2.0;           ///< coverage factor k (ISO 230-2:2014: 2), > 0
+  /// Refuse (pkm::InvalidArgument) data that miss the ISO 230-2 test conditions or look
+  /// implausible, instead of flagging them in the report.
+  bool strict = false;
   /// Throws pkm::IoError without data, pkm::InvalidArgument for a coverage factor not > 0.
   void validate() const;
 };
 
-/// Validates, reads the samples (io::readPositioningSamples) and evaluates ISO 230-2. Throws as
-/// validate(), pkm::IoError "NAME:LINE: message" for a bad input, pkm::InvalidArgument when the
-/// data do not allow the statistics (metrology::evaluateIso230_2).
+/// Validates, reads the samples (io::readPositioningSamples), evaluates ISO 230-2 and checks the
+/// test conditions and plausibility (metrology/iso230_2_conformity.hpp). Throws as validate(),
+/// pkm::IoError "NAME:LINE: message" for a bad input, pkm::InvalidArgument when the data do not
+/// allow the statistics (metrology::evaluateIso230_2) or, with `strict`, do not conform.
 [[nodiscard]] io::Iso230_2Report analyzeIso230_2(const Iso230_2Request& request);
 
 /// Straightness about a reference line (ISO 230-1:2012 §3.4.8).

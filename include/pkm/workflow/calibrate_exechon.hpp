@@ -32,9 +32,12 @@ struct ExechonCalibrationRequest {
   std::vector<std::string> fix;  ///< parameters held at their initial value (e.g. "tripod.hx")
   std::string loss = "none";     ///< robust loss: "none", "huber", "cauchy"
   double loss_scale = 0.0;       ///< robust loss scale, machine unit
-  std::string errors;   ///< hybrid: the known geometric errors (PDGE) under the squareness fit
-  bool force = false;   ///< replace existing output files
-  int monte_carlo = 0;  ///< Monte Carlo trials of the tripod fit (0: none)
+  std::string errors;  ///< hybrid: the known geometric errors (PDGE) under the squareness fit
+  bool force = false;  ///< replace existing output files
+  /// Write a result whose parameters moved implausibly far from the machine file
+  /// (calibration::kPlausibleChangeFraction); refused without it.
+  bool allow_large_changes = false;
+  int monte_carlo = 0;                  ///< Monte Carlo trials of the tripod fit (0: none)
   double sigma_position = 0.0;          ///< Monte Carlo point noise (0: the fitted σ)
   double sigma_orientation_urad = 0.0;  ///< Monte Carlo tool-direction noise, µrad
   int threads = 0;                      ///< Monte Carlo worker threads (0: all cores)

@@ -28,10 +28,13 @@ struct HexapodCalibrationRequest {
   std::string frame = "auto";  ///< tracker readings: "auto" (files' metadata), "world", "tracker"
   /// The tracker target in the tool frame; default the files' `smr offset mm`.
   std::optional<Eigen::Vector3d> target_offset;
-  std::vector<std::string> fix;         ///< parameters held at their initial value (e.g. "offset0")
-  std::string loss = "none";            ///< robust loss: "none", "huber", "cauchy"
-  double loss_scale = 0.0;              ///< robust loss scale, machine unit
-  bool force = false;                   ///< replace existing output files
+  std::vector<std::string> fix;  ///< parameters held at their initial value (e.g. "offset0")
+  std::string loss = "none";     ///< robust loss: "none", "huber", "cauchy"
+  double loss_scale = 0.0;       ///< robust loss scale, machine unit
+  bool force = false;            ///< replace existing output files
+  /// Write a result whose parameters moved implausibly far from the machine file
+  /// (calibration::kPlausibleChangeFraction); refused without it.
+  bool allow_large_changes = false;
   bool backlash = false;                ///< also estimate a per-strut backlash
   double prior_sigma = 0.0;             ///< Tikhonov prior σ_θ, machine unit (0: none)
   double measurement_sigma = 0.0;       ///< residual σ for the prior and covariance (0: estimated)

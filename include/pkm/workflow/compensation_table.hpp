@@ -12,6 +12,7 @@
 
 #include "pkm/io/compensation_table_report.hpp"
 #include "pkm/io/named_text.hpp"
+#include "pkm/io/positioning_files.hpp"
 #include "pkm/workflow/progress.hpp"
 
 namespace pkm::workflow {
@@ -22,6 +23,7 @@ struct CompensationTableRequest {
   /// linear files for an axis table; `position,deviation` or simulator straightness files for a
   /// straightness (cross-axis) table. Lengths in mm.
   std::vector<io::NamedText> data;
+  io::PositioningColumns columns;  ///< axis tables: column assignments and units of the exports
   std::string format;       ///< linuxcnc0, linuxcnc1, siemens-eec, siemens-cec or isg (required)
   std::string axis;         ///< axis tables: the axis as the controller knows it (X, X1, AX1, ...)
   std::string input_axis;   ///< straightness tables: the base axis (argument)
