@@ -3,7 +3,7 @@ BUILD      ?= build
 ASAN_BUILD ?= build-asan
 BENCH_BUILD ?= build-bench
 JOBS       ?= $(shell nproc)
-# The compiler. Clang (installed by scripts/setup.sh) builds pkm in about half of GCC 12's time on
+# The compiler. Clang (installed by scripts/setup.sh) builds pkm in about a third less time than GCC 12 on
 # the same machine (docs/architecture.md, "Build time"); `make PKM_CXX=g++ test` uses GCC.
 PKM_CXX    ?= clang++
 CMAKE_FLAGS ?=

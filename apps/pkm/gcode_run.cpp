@@ -78,7 +78,12 @@ void addGcodeRunCommand(CLI::App& gcode) {
       "interpolate PROGRAM, convert it to the joints of a hexapod or an Exechon, estimate the "
       "cycle time and check every limit (exit 1 on a violation)");
   r->add_option("program", a->program, "G-code file (.ngc)")->required();
-  r->add_option("--machine", q.machine, "hexapod or Exechon machine: JSON file or built-in name");
+  addMachineOptions(*r, q.machine, q.ini);
+  r->add_option("--strut-diameter",
+                q.strut_diameter,
+                "hexapod: strut diameter for the interference check, machine unit (default: the "
+                "machine file's; a LinuxCNC configuration has none)")
+      ->check(CLI::PositiveNumber);
   r->add_option("--orientation",
                 q.orientation,
                 "Exechon: A/C words are the tool vector's angles in the world frame (vector, "

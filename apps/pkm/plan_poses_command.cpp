@@ -37,7 +37,11 @@ void addPlanPosesCommand(CLI::App& app) {
                   "Exechon: the tracker target in the tool frame x,y,z (default 0,0,0)")
       ->delimiter(',')
       ->expected(3);
-  cmd->add_option("--feed", a->feed, "G-code feed rate, machine units per minute");
+  cmd->add_option("--feed",
+                  a->feed,
+                  "G-code feed rate, machine units per minute (default: 1000, or less so that no "
+                  "joint exceeds its velocity limit)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--gcode", a->gcode, "also write the plan as a G-code program");
   cmd->add_flag("--force", a->force, "overwrite an existing G-code file");
   cmd->callback([a] {

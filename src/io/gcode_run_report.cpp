@@ -32,6 +32,7 @@ Json checksJson(const std::vector<GcodeCheckSummary>& checks) {
   for (const GcodeCheckSummary& c : checks) {
     Json j;
     j["enabled"] = c.enabled;
+    if (!c.enabled && !c.off_reason.empty()) j["off_reason"] = c.off_reason;
     j["violations"] = c.violations;
     j["unit"] = c.unit;
     if (c.enabled && std::isfinite(c.worst.margin)) j["worst"] = eventJson(c.worst);
@@ -97,7 +98,9 @@ void appendTable(const GcodeRunReport& r, std::string& s) {
   for (const GcodeCheckSummary& c : r.checks) {
     const char* status = !c.enabled ? "n/a" : c.violations > 0 ? "VIOLATED" : "ok";
     if (!c.enabled) {
-      s += fmt::format("{:<19} {:<9}\n", c.name, status);
+      s += c.off_reason.empty()
+               ? fmt::format("{:<19} {:<9}\n", c.name, status)
+               : fmt::format("{:<19} {:<9} {}\n", c.name, status, c.off_reason);
       continue;
     }
     s += fmt::format("{:<19} {:<9} {:>10} {:>14} {:>7}  {}\n",

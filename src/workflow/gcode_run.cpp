@@ -118,7 +118,8 @@ io::GcodeRunReport runReport(const GcodeRunRequest& request,
                         st.violations,
                         unitOf(c, run.len, run.exechon),
                         eventOf(c, st.worst, run),
-                        eventOf(c, st.first, run)});
+                        eventOf(c, st.first, run),
+                        st.enabled ? std::string() : run.off_reason[k]});
   }
   return r;
 }
@@ -132,8 +133,13 @@ void GcodeRunRequest::validate() const {
   PKM_CHECK(tolerance > 0.0 && std::isfinite(tolerance), "--tolerance must be > 0");
   refuseOverwrite(out, force);
   refuseOverwrite(report, force);
-  if (io::machineTypeOf(machine) != "exechon" && orientation != "vector")
+  const bool exechon = io::machineTypeOf(machine) == "exechon";
+  if (!exechon && orientation != "vector")
     throw InvalidArgument("--orientation applies to Exechon machines only");
+  if (exechon && (strut_diameter || !ini.empty()))
+    throw InvalidArgument("--strut-diameter and --ini apply to hexapods only");
+  PKM_CHECK(!strut_diameter || (*strut_diameter > 0.0 && std::isfinite(*strut_diameter)),
+            "--strut-diameter must be > 0");
   interpreter.validate();
 }
 

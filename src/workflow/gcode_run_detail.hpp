@@ -2,6 +2,7 @@
 // joint space on one machine, whatever its type.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -33,6 +34,8 @@ struct JointRun {
   cnc::MotionLimits limits;  ///< in effect: request, else the machine file, else defaults
   double wrist_velocity = 0.0, wrist_acceleration = 0.0;  ///< deg/s, deg/s² (Exechon)
   std::vector<std::string> from_file;  ///< the limits taken from the machine file
+  /// Why each disabled check is off, by check index ("" for the others).
+  std::array<std::string, cnc::kPathChecks> off_reason;
 };
 
 /// Converts, times and checks `program` on the request's hexapod.

@@ -88,6 +88,20 @@ void convert(Converter& converter,
   }
 }
 
+/// Why a hexapod's interference and joint-angle checks are off, and how to turn them on.
+void hexapodOffReasons(const kinematics::HexapodModel& model, JointRun& run) {
+  const auto at = [&run](cnc::PathCheck c) -> std::string& {
+    return run.off_reason[static_cast<std::size_t>(c)];
+  };
+  if (!(model.strut_diameter > 0.0))
+    at(cnc::PathCheck::kInterference) =
+        "(the machine has no strut diameter; a LinuxCNC configuration states none: give "
+        "--strut-diameter D, or \"strut_diameter\" in a machine file)";
+  at(cnc::PathCheck::kJointAngle) =
+      "(the machine has no joint cone limits; a LinuxCNC configuration states none: give each "
+      "strut's base_joint and platform_joint \"max_angle_deg\" in a machine file)";
+}
+
 }  // namespace
 
 void runHexapod(const GcodeRunRequest& request,
@@ -95,9 +109,13 @@ void runHexapod(const GcodeRunRequest& request,
                 const RunControl& control,
                 const GcodeProgress& progress,
                 JointRun& run) {
-  const io::HexapodMachine machine = io::loadHexapodMachine(request.machine);
+  io::HalReadOptions hal;
+  if (!request.ini.empty()) hal.ini_path = request.ini;
+  const io::HexapodMachine machine = io::loadHexapodMachine(request.machine, hal);
   control.note(machine.notices);
   auto model = std::make_shared<kinematics::HexapodModel>(machine.model);
+  if (request.strut_diameter) model->strut_diameter = *request.strut_diameter;
+  hexapodOffReasons(*model, run);
   run.machine_name = model->name;
   run.len = std::string(toString(model->unit));
   effectiveLimits(request, machine.joint_rates, false, run);

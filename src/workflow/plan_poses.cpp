@@ -3,12 +3,16 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "pkm/calibration/pose_planning.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/io/atomic_file.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/simulation/hexapod_workspace.hpp"
+#include "pkm/workflow/gcode_run.hpp"
 #include "plan_poses_detail.hpp"
 
 namespace pkm::workflow {
@@ -44,6 +48,60 @@ void checkProgram(const PlanPosesRequest& request) {
                        request.force ? io::Overwrite::kAllow : io::Overwrite::kRefuse);
 }
 
+namespace {
+
+/// The fraction of a joint's velocity limit a lowered feed aims at.
+constexpr double kFeedMargin = 0.9;
+
+/// `wanted` rounded down to two significant digits.
+double roundDownFeed(double wanted) {
+  const double step = std::pow(10.0, std::floor(std::log10(wanted)) - 1.0);
+  return std::max(step, std::floor(wanted / step) * step);
+}
+
+/// The fastest joint speed of the plan's program at `feed` against its limit: value / limit of
+/// `gcode run`'s joint_velocity check (0 when it evaluated nothing).
+double jointSpeedRatio(const PlanPosesRequest& request, io::PosePlanReport report, double feed) {
+  report.feed = feed;
+  GcodeRunRequest run;
+  run.program = {"plan-poses program", io::posePlanGcode(report)};
+  run.machine = request.machine;
+  run.ini = request.ini;
+  if (report.kind == "exechon") run.orientation = "axes";
+  const GcodeRunResult r = runGcode(run);
+  for (const io::GcodeCheckSummary& c : r.report.checks)
+    if (c.name == "joint_velocity" && c.enabled && std::isfinite(c.worst.margin) &&
+        c.worst.limit > 0.0)
+      return c.worst.value / c.worst.limit;
+  return 0.0;
+}
+
+double programFeed(const PlanPosesRequest& request,
+                   const io::PosePlanReport& report,
+                   const RunControl& control) {
+  if (request.feed) {
+    const double ratio = jointSpeedRatio(request, report, *request.feed);
+    if (ratio > 1.0)
+      control.note({fmt::format("--feed {:g}: a joint would move at {:.3g} times its velocity "
+                                "limit (the program's `gcode run` would fail its joint_velocity "
+                                "check); F{:g} keeps every joint within it",
+                                *request.feed,
+                                ratio,
+                                roundDownFeed(*request.feed * kFeedMargin / ratio))});
+    return *request.feed;
+  }
+  double feed = kDefaultFeed;
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    const double ratio = jointSpeedRatio(request, report, feed);
+    if (ratio <= 1.0) return feed;
+    // Joint speeds scale with the feed: two significant digits, rounded down, with a margin.
+    feed = roundDownFeed(feed * kFeedMargin / ratio);
+  }
+  return feed;
+}
+
+}  // namespace
+
 void finishPlan(const PlanPosesRequest& request,
                 const PlanStages& stages,
                 PlanPosesResult& result) {
@@ -52,6 +110,7 @@ void finishPlan(const PlanPosesRequest& request,
   if (stages.control().notice) stages.control().notice(result.summary);
   if (request.gcode.empty()) return;
   stages.enter(3, "program", fmt::format("writing {}", request.gcode));
+  result.report.feed = programFeed(request, result.report, stages.control());
   result.gcode = io::posePlanGcode(result.report);
   io::writeFileAtomic(
       request.gcode, result.gcode, request.force ? io::Overwrite::kAllow : io::Overwrite::kRefuse);
@@ -114,7 +173,7 @@ PlanPosesResult planHexapodPoses(const PlanPosesRequest& request,
   r.index = options.index;
   r.candidates = pool.size();
   r.parameters = cal::kHexapodParameters;
-  r.feed = request.feed;
+  r.feed = request.feed.value_or(detail::kDefaultFeed);
   r.home = model.home;
   for (int k : r.plan.chosen) r.poses.push_back(pool[static_cast<std::size_t>(k)]);
   detail::finishPlan(request, stages, result);

@@ -8,6 +8,10 @@
 
 namespace pkm::workflow::detail {
 
+/// The G-code feed of a plan's program without --feed, machine unit per minute, before it is
+/// lowered for the joints' velocity limits.
+inline constexpr double kDefaultFeed = 1000.0;
+
 /// The stages of a plan: reports stage `index` of 3 and checks for cancellation.
 class PlanStages {
  public:
@@ -25,7 +29,8 @@ class PlanStages {
 void checkProgram(const PlanPosesRequest& request);
 
 /// Fills the result's CSV and summary from its report, sends the summary as a notice, then
-/// writes the program when the request asks for one.
+/// writes the program when the request asks for one, with a feed within the joints' velocity
+/// limits (or the requested one, with a notice when it exceeds them).
 void finishPlan(const PlanPosesRequest& request, const PlanStages& stages, PlanPosesResult& result);
 
 /// The Exechon planner (tracker points).

@@ -95,7 +95,7 @@ PlanPosesResult planExechonPoses(const PlanPosesRequest& request, const PlanStag
   r.index = options.index;
   r.candidates = pool.size();
   r.parameters = cal::kExechonParameters;
-  r.feed = request.feed;
+  r.feed = request.feed.value_or(detail::kDefaultFeed);
   kin::ExechonData data(model);
   r.moves.push_back(moveTo(model, data, model.home));
   for (int k : r.plan.chosen) {

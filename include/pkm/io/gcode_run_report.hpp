@@ -32,6 +32,8 @@ struct GcodeCheckSummary {
   std::string unit;            ///< the unit of its values, for every joint
   GcodeCheckEvent worst;       ///< the smallest margin (margin +infinity when none)
   GcodeCheckEvent first;       ///< the first violation (valid when violations > 0)
+  /// Why a disabled check is off and how to turn it on ("" when enabled or unknown).
+  std::string off_reason = {};
 };
 
 /// What `pkm gcode run` found.

@@ -19,7 +19,12 @@ namespace pkm::workflow {
 /// when it has one, else the default named.
 struct GcodeRunRequest {
   io::NamedText program;            ///< the program; its name prefixes every message (NAME:LINE:)
-  std::string machine = "default";  ///< hexapod or Exechon: machine file or built-in name
+  /// Hexapod or Exechon: machine file, LinuxCNC `.hal` (hexapod) or built-in name.
+  std::string machine = "default";
+  std::string ini;  ///< the LinuxCNC INI of a .hal machine ("" : found from it)
+  /// Hexapod: the strut diameter for the interference check, machine unit (default: the machine
+  /// file's; a LinuxCNC configuration has none, so the check is off without it). > 0.
+  std::optional<double> strut_diameter;
   double tolerance = 0.01;          ///< chordal tolerance, mm (> 0)
   std::string out;                  ///< joint CSV file ("" : none; docs/gcode.md)
   std::string report;               ///< the report's JSON file ("" : none; io::gcodeRunJson)

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,7 +31,10 @@ struct PlanPosesRequest {
   /// Degrees: hexapod, the half-range of a, b, c about home; Exechon, the largest tilt of the tool
   /// from its home direction (≤ 90).
   double tilt_deg = 10.0;
-  double feed = 1000.0;  ///< G-code feed rate, machine unit per minute
+  /// G-code feed rate, machine unit per minute. Default: 1000, lowered (to two significant
+  /// digits) until no joint of the program exceeds its velocity limit (checked as `gcode run`
+  /// checks it). A feed given here is kept, with a notice when a joint would exceed its limit.
+  std::optional<double> feed;
   /// Exechon only: the tracker target in the tool frame, x, y, z (empty: 0, 0, 0).
   std::vector<double> target_offset;
   std::string gcode;   ///< the G-code program to write ("": none)
