@@ -98,9 +98,8 @@ void appendTable(const GcodeRunReport& r, std::string& s) {
   for (const GcodeCheckSummary& c : r.checks) {
     const char* status = !c.enabled ? "n/a" : c.violations > 0 ? "VIOLATED" : "ok";
     if (!c.enabled) {
-      s += c.off_reason.empty()
-               ? fmt::format("{:<19} {:<9}\n", c.name, status)
-               : fmt::format("{:<19} {:<9} {}\n", c.name, status, c.off_reason);
+      s += c.off_reason.empty() ? fmt::format("{:<19} {:<9}\n", c.name, status)
+                                : fmt::format("{:<19} {:<9} {}\n", c.name, status, c.off_reason);
       continue;
     }
     s += fmt::format("{:<19} {:<9} {:>10} {:>14} {:>7}  {}\n",

@@ -82,12 +82,13 @@ double programFeed(const PlanPosesRequest& request,
   if (request.feed) {
     const double ratio = jointSpeedRatio(request, report, *request.feed);
     if (ratio > 1.0)
-      control.note({fmt::format("--feed {:g}: a joint would move at {:.3g} times its velocity "
-                                "limit (the program's `gcode run` would fail its joint_velocity "
-                                "check); F{:g} keeps every joint within it",
-                                *request.feed,
-                                ratio,
-                                roundDownFeed(*request.feed * kFeedMargin / ratio))});
+      control.note(
+          {fmt::format("--feed {:g}: a joint would move at {:.3g} times its velocity "
+                       "limit (the program's `gcode run` would fail its joint_velocity "
+                       "check); F{:g} keeps every joint within it",
+                       *request.feed,
+                       ratio,
+                       roundDownFeed(*request.feed * kFeedMargin / ratio))});
     return *request.feed;
   }
   double feed = kDefaultFeed;

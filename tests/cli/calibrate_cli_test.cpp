@@ -320,8 +320,13 @@ TEST_F(CliTest, PlanPosesWritesAPlanAndAProgram) {
 TEST_F(CliTest, PlanPosesFeedsRespectTheJointVelocityLimits) {
   // LinuxCNC's sim hexapod (inches, 20 in/s per joint): F1000 under G20 drives a strut at 1.2
   // times its limit, so the program gets a lower feed, and `gcode run` of it passes.
-  const CliRun plan = pkm({"plan-poses", "--machine", "hexapod-linuxcnc-sim", "--count", "10",
-                           "--gcode", path("plan.ngc")});
+  const CliRun plan = pkm({"plan-poses",
+                           "--machine",
+                           "hexapod-linuxcnc-sim",
+                           "--count",
+                           "10",
+                           "--gcode",
+                           path("plan.ngc")});
   ASSERT_EQ(plan.code, 0) << plan.err;
   const std::string program = slurp(path("plan.ngc"));
   EXPECT_THAT(program, HasSubstr("G20 G90"));
@@ -329,8 +334,15 @@ TEST_F(CliTest, PlanPosesFeedsRespectTheJointVelocityLimits) {
   const CliRun run = pkm({"gcode", "run", "--machine", "hexapod-linuxcnc-sim", path("plan.ngc")});
   EXPECT_EQ(run.code, 0) << run.out << run.err;
   // A feed given explicitly is kept, with a notice naming a feed that fits.
-  const CliRun fast = pkm({"plan-poses", "--machine", "hexapod-linuxcnc-sim", "--count", "10",
-                           "--feed", "1000", "--gcode", path("fast.ngc")});
+  const CliRun fast = pkm({"plan-poses",
+                           "--machine",
+                           "hexapod-linuxcnc-sim",
+                           "--count",
+                           "10",
+                           "--feed",
+                           "1000",
+                           "--gcode",
+                           path("fast.ngc")});
   ASSERT_EQ(fast.code, 0) << fast.err;
   EXPECT_THAT(fast.err, HasSubstr("--feed 1000: a joint would move at"));
   EXPECT_THAT(slurp(path("fast.ngc")), HasSubstr("F1000.0"));

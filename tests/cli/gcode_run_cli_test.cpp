@@ -9,9 +9,9 @@ namespace {
 
 using pkm::test::CliRun;
 using pkm::test::CliTest;
-using ::testing::HasSubstr;
 using pkm::test::splitFields;
 using pkm::test::splitLines;
+using ::testing::HasSubstr;
 
 constexpr int kExitViolation = 1;
 
@@ -205,20 +205,30 @@ TEST_F(GcodeRunCli, AChecksOffSaysWhyAndTheOptionTurnsItOn) {
   // A LinuxCNC hexapod configuration states no strut diameter and no joint cones.
   const std::string prog = write("p.ngc", "G20 G0 X0 Y0 Z20\nG1 X1 F20\nM2\n");
   const std::string report = path("r.json");
-  const CliRun off = pkm(
-      {"gcode", "run", "--machine", "hexapod-linuxcnc-sim", "--report", report, prog});
+  const CliRun off =
+      pkm({"gcode", "run", "--machine", "hexapod-linuxcnc-sim", "--report", report, prog});
   ASSERT_EQ(off.code, 0) << off.err;
-  EXPECT_THAT(off.out, HasSubstr("interference        n/a       (the machine has no strut "
-                                 "diameter; a LinuxCNC configuration states none: give "
-                                 "--strut-diameter D"));
+  EXPECT_THAT(off.out,
+              HasSubstr("interference        n/a       (the machine has no strut "
+                        "diameter; a LinuxCNC configuration states none: give "
+                        "--strut-diameter D"));
   EXPECT_THAT(off.out, HasSubstr("joint_angle         n/a       (the machine has no joint cone"));
   EXPECT_THAT(slurp(report), HasSubstr("\"off_reason\": \"(the machine has no strut diameter"));
-  const CliRun on = pkm({"gcode", "run", "--machine", "hexapod-linuxcnc-sim", "--strut-diameter",
-                         "1", "--report", report, "--force", prog});
+  const CliRun on = pkm({"gcode",
+                         "run",
+                         "--machine",
+                         "hexapod-linuxcnc-sim",
+                         "--strut-diameter",
+                         "1",
+                         "--report",
+                         report,
+                         "--force",
+                         prog});
   ASSERT_EQ(on.code, 0) << on.err;
   EXPECT_THAT(on.out, HasSubstr("interference        ok"));
-  expectUsageError(pkm({"gcode", "run", "--machine", "mxt700s-like", "--strut-diameter", "1", prog}),
-                   "apply to hexapods only");
+  expectUsageError(
+      pkm({"gcode", "run", "--machine", "mxt700s-like", "--strut-diameter", "1", prog}),
+      "apply to hexapods only");
 }
 
 TEST_F(GcodeRunCli, RefusesToOverwrite) {

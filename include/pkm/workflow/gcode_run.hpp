@@ -18,17 +18,17 @@ namespace pkm::workflow {
 /// A `gcode run` request. A rate limit left unset is the machine file's `joint_rates` value
 /// when it has one, else the default named.
 struct GcodeRunRequest {
-  io::NamedText program;            ///< the program; its name prefixes every message (NAME:LINE:)
+  io::NamedText program;  ///< the program; its name prefixes every message (NAME:LINE:)
   /// Hexapod or Exechon: machine file, LinuxCNC `.hal` (hexapod) or built-in name.
   std::string machine = "default";
   std::string ini;  ///< the LinuxCNC INI of a .hal machine ("" : found from it)
   /// Hexapod: the strut diameter for the interference check, machine unit (default: the machine
   /// file's; a LinuxCNC configuration has none, so the check is off without it). > 0.
   std::optional<double> strut_diameter;
-  double tolerance = 0.01;          ///< chordal tolerance, mm (> 0)
-  std::string out;                  ///< joint CSV file ("" : none; docs/gcode.md)
-  std::string report;               ///< the report's JSON file ("" : none; io::gcodeRunJson)
-  bool force = false;               ///< replace existing `out` and `report` files
+  double tolerance = 0.01;  ///< chordal tolerance, mm (> 0)
+  std::string out;          ///< joint CSV file ("" : none; docs/gcode.md)
+  std::string report;       ///< the report's JSON file ("" : none; io::gcodeRunJson)
+  bool force = false;       ///< replace existing `out` and `report` files
   std::optional<double> max_joint_velocity;      ///< strut/leg speed, machine unit/s (200)
   std::optional<double> max_joint_acceleration;  ///< machine unit/s² (2000)
   std::optional<double> max_wrist_velocity;      ///< Exechon wrist C/A speed, deg/s (180)
