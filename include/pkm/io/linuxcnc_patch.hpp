@@ -1,0 +1,56 @@
+/// @file
+/// @brief A calibrated hexapod written into an existing LinuxCNC configuration in place
+/// (docs/linuxcnc.md, "pkm linuxcnc install"): the values of the genhexkins `setp` lines of its
+/// kinematics HAL file and the [JOINT_n] HOME, HOME_OFFSET, MIN_LIMIT and MAX_LIMIT of its INI,
+/// every other byte of both files kept. Text in, text out: the workflow reads, shows the
+/// differences, backs up and writes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pkm/io/hexapod_machine.hpp"
+#include "pkm/io/named_text.hpp"
+
+namespace pkm::io {
+
+/// One value a patch changes.
+struct PatchedValue {
+  std::size_t line = 0;  ///< 1-based line in the file
+  std::string key;       ///< e.g. "genhexkins.base.0.y", "[JOINT_2] HOME_OFFSET"
+  std::string before, after;
+};
+
+/// A file's text before and after a patch.
+struct TextPatch {
+  std::string name;  ///< the input's name
+  std::string before, after;
+  std::vector<PatchedValue> changes;  ///< the values that differ, in file order
+};
+
+/// The files an INI's [HAL] section loads (HALFILE, POSTGUI_HALFILE), as written ("LIB:..."
+/// entries included), in order.
+[[nodiscard]] std::vector<std::string> iniHalFiles(const NamedText& ini);
+
+/// The genhexkins pins of `machine` as LinuxCNC needs them (io::writeLinuxcncSetp's values:
+/// platform joints relative to the TCP, the spindle offset): ("base.0.x", value), ….
+[[nodiscard]] std::vector<std::pair<std::string, double>> genhexkinsPins(
+    const HexapodMachine& machine);
+
+/// `hal` with the value of every `setp genhexkins.PIN VALUE` line whose pin genhexkinsPins gives
+/// replaced (the rest of each line, and every other line, byte for byte). Throws pkm::IoError
+/// "NAME: no 'setp genhexkins.base.3.y' line" when a base or platform joint coordinate is not
+/// set in the file.
+[[nodiscard]] TextPatch patchKinematicsHal(const NamedText& hal, const HexapodMachine& machine);
+
+/// `ini` with [JOINT_0..5] HOME and HOME_OFFSET set to the calibrated joint distances at home,
+/// and MIN_LIMIT / MAX_LIMIT to the struts' strokes plus their length offsets (the values
+/// io::writeLinuxcncSetp lists), where those keys exist; every other byte kept. Throws
+/// pkm::IoError "NAME: ..." when the INI's [TRAJ] LINEAR_UNITS differs from the machine's unit or
+/// a [JOINT_n] section of the six is missing.
+[[nodiscard]] TextPatch patchHexapodIni(const NamedText& ini, const HexapodMachine& machine);
+
+/// A unified diff (3 lines of context) of a patch, "--- NAME" / "+++ NAME"; "" when unchanged.
+[[nodiscard]] std::string unifiedDiff(const TextPatch& patch);
+
+}  // namespace pkm::io

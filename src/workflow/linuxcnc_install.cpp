@@ -1,0 +1,71 @@
+// `pkm linuxcnc install` as a workflow (workflow/linuxcnc_install.hpp).
+#include "pkm/workflow/linuxcnc_install.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+
+#include "pkm/core/error.hpp"
+#include "pkm/io/atomic_file.hpp"
+#include "pkm/io/machine_loader.hpp"
+#include "pkm/io/named_text.hpp"
+
+namespace pkm::workflow {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The HAL file of the INI that sets genhexkins pins.
+io::NamedText kinematicsHal(const io::NamedText& ini) {
+  const fs::path dir = fs::path(ini.name).parent_path();
+  for (const std::string& entry : io::iniHalFiles(ini)) {
+    if (entry.starts_with("LIB:")) continue;
+    const fs::path p = fs::path(entry).is_absolute() ? fs::path(entry) : dir / entry;
+    if (!fs::is_regular_file(p)) continue;
+    io::NamedText hal = io::readNamedText(p.string());
+    if (hal.text.find("genhexkins.") != std::string::npos) return hal;
+  }
+  throw IoError(fmt::format(
+      "{}: none of the files its [HAL] HALFILE lines load sets genhexkins pins", ini.name));
+}
+
+/// FILE.pkm-backup, or FILE.pkm-backup.N for the first N that does not exist.
+std::string backupPath(const std::string& file) {
+  std::string p = file + ".pkm-backup";
+  for (int n = 1; fs::exists(p); ++n) p = fmt::format("{}.pkm-backup.{}", file, n);
+  return p;
+}
+
+}  // namespace
+
+void LinuxcncInstallRequest::validate() const {
+  if (calibration.empty())
+    throw InvalidArgument("--calibration: give the calibrated machine file CAL.json");
+  if (ini.empty()) throw InvalidArgument("--ini: give the LinuxCNC configuration's INI file");
+}
+
+LinuxcncInstallResult installIntoLinuxcnc(const LinuxcncInstallRequest& request) {
+  request.validate();
+  if (io::machineTypeOf(request.calibration) != "hexapod")
+    throw InvalidArgument(
+        fmt::format("{}: not a hexapod: LinuxCNC has hexapod kinematics (genhexkins) only",
+                    request.calibration));
+  const io::HexapodMachine machine = io::loadHexapodMachine(request.calibration);
+  const io::NamedText ini = io::readNamedText(request.ini);
+  const io::NamedText hal = kinematicsHal(ini);
+  LinuxcncInstallResult result;
+  result.patches = {io::patchKinematicsHal(hal, machine), io::patchHexapodIni(ini, machine)};
+  for (const io::TextPatch& p : result.patches) result.diff += io::unifiedDiff(p);
+  if (!request.force || result.diff.empty()) return result;
+  for (const io::TextPatch& p : result.patches) {
+    if (p.before == p.after) continue;
+    const std::string backup = backupPath(p.name);
+    io::writeFileAtomic(backup, p.before, io::Overwrite::kRefuse);
+    result.backups.push_back(backup);
+    io::writeFileAtomic(p.name, p.after, io::Overwrite::kAllow);
+  }
+  result.written = true;
+  return result;
+}
+
+}  // namespace pkm::workflow
