@@ -55,7 +55,9 @@ void addGcodeCompensateCommand(CLI::App& gcode) {
                 q.orientation,
                 "Exechon: A/C as the tool vector of a virtual C/A head ('vector', the default) or "
                 "as the wrist readings ('axes'), as in gcode run");
-  c->add_option("--tolerance", q.tolerance, "chordal tolerance in mm (default 0.01)");
+  c->add_option("--tolerance",
+                q.tolerance,
+                "chordal tolerance in the machine's length unit (default 0.01 mm)");
   addInterpreterOptions(*c, q.interpreter, false);
   c->add_option("--out", q.out, "write the program to FILE instead of standard output");
   c->add_flag("--force", q.force, "overwrite an existing --out file");

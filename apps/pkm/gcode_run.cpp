@@ -88,7 +88,9 @@ void addGcodeRunCommand(CLI::App& gcode) {
                 q.orientation,
                 "Exechon: A/C words are the tool vector's angles in the world frame (vector, "
                 "default) or the wrist axes' readings (axes)");
-  r->add_option("--tolerance", q.tolerance, "chordal tolerance in mm (default 0.01)");
+  r->add_option("--tolerance",
+                q.tolerance,
+                "chordal tolerance in the machine's length unit (default 0.01 mm)");
   addInterpreterOptions(*r, q.interpreter);
   r->add_option("--out", q.out, "write the joint CSV to FILE (docs/gcode.md)");
   r->add_option("--report", q.report, "write the check report as JSON to FILE");

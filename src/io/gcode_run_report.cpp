@@ -55,10 +55,14 @@ void appendSettings(const GcodeRunReport& r, std::string& s) {
                      r.orientation,
                      r.orientation == "vector" ? "the tool vector's angles in the world frame"
                                                : "the wrist axes' readings");
+  // Lengths in the machine's unit (the report's JSON keeps mm, as its keys say).
+  const double per_mm = r.units == "inch" ? 1.0 / 25.4 : 1.0;
   s += fmt::format(
-      "interpolation: tolerance {} mm, max step {:.4g} mm, max rotary step {:.4g} deg\n",
-      r.tolerance_mm,
-      r.max_step_mm,
+      "interpolation: tolerance {} {}, max step {:.4g} {}, max rotary step {:.4g} deg\n",
+      fmt::format("{:.4g}", r.tolerance_mm * per_mm),
+      r.units,
+      r.max_step_mm * per_mm,
+      r.units,
       r.max_angle_step_deg);
   s += fmt::format("limits: joint velocity {} {}/s, joint acceleration {} {}/s^2, ",
                    r.max_joint_velocity,
@@ -71,8 +75,9 @@ void appendSettings(const GcodeRunReport& r, std::string& s) {
                      r.max_wrist_acceleration_deg_per_s2);
   const std::vector<std::string>& from = r.limits_from_machine_file;
   s +=
-      fmt::format("rapid {} mm/min{}\n",
-                  r.rapid_rate_mm_per_min,
+      fmt::format("rapid {} {}/min{}\n",
+                  fmt::format("{:.6g}", r.rapid_rate_mm_per_min * per_mm),
+                  r.units,
                   from.empty() ? std::string()
                                : fmt::format(" ({} from the machine file)", fmt::join(from, ", ")));
   s += fmt::format(
@@ -113,6 +118,10 @@ void appendTable(const GcodeRunReport& r, std::string& s) {
 }
 
 void appendViolations(const GcodeRunReport& r, std::string& s) {
+  // Positions in the machine's unit: mm exactly as computed, inches to 6 significant digits.
+  const auto position = [&r](double mm) {
+    return r.units == "inch" ? fmt::format("{:.6g}", mm / 25.4) : formatNumber(mm);
+  };
   for (const GcodeCheckSummary& c : r.checks) {
     if (c.violations == 0) continue;
     const GcodeCheckEvent& e = c.first;
@@ -122,9 +131,9 @@ void appendViolations(const GcodeRunReport& r, std::string& s) {
         r.program,
         e.line,
         c.name,
-        formatNumber(e.position[0]),
-        formatNumber(e.position[1]),
-        formatNumber(e.position[2]),
+        position(e.position[0]),
+        position(e.position[1]),
+        position(e.position[2]),
         formatNumber(e.position[3]),
         formatNumber(e.position[4]),
         formatNumber(e.position[5]),

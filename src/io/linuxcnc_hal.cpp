@@ -286,7 +286,15 @@ void applyLinuxcncIni(const std::string& ini_path, HexapodMachine& machine) {
     if (key_words.size() != 1) continue;
     const std::string_view key = key_words[0];
     const auto values = splitWords(text.substr(eq + 1));
-    if (section == "[TRAJ]" && key == "HOME") {
+    if (section == "[RS274NGC]" && key == "RS274NGC_STARTUP_CODE") {
+      std::string_view code = text.substr(eq + 1);
+      while (!code.empty() && std::isspace(static_cast<unsigned char>(code.front())))
+        code.remove_prefix(1);
+      while (!code.empty() && std::isspace(static_cast<unsigned char>(code.back())))
+        code.remove_suffix(1);
+      machine.startup_code = std::string(code);
+      machine.startup_code_source = fmt::format("{}:{}", ini_path, line_no);
+    } else if (section == "[TRAJ]" && key == "HOME") {
       machine.model.home = parseHome("[TRAJ] HOME", values, fail);
     } else if (section == "[TRAJ]" && key == "LINEAR_UNITS") {
       const std::string u = values.empty() ? "" : std::string(values[0]);

@@ -54,19 +54,30 @@ Machine nominalFor(const GcodeCompensateRequest& request,
 /// interpolation settings (mm) and the largest correction.
 std::string predistortionNote(const std::string& what,
                               const cnc::ProgramCompensation& r,
-                              double tolerance,
-                              double max_step) {
+                              double tolerance_mm,
+                              double max_step_mm,
+                              LengthUnit unit) {
+  const double per = 1.0 / millimetresPer(unit);  // the note speaks the machine's unit
+  const std::string u(toString(unit));
   return fmt::format(
       "{}: {} motion lines rewritten, {} lines added (segments, dwells), {} G92/G10 L20 lines "
-      "shifted (tolerance {} mm, max step {:.4g} mm), largest correction {:.4g} mm{}",
+      "shifted (tolerance {:.4g} {}, max step {:.4g} {}), largest correction {:.4g} {}{}",
       what,
       r.motion_lines,
       r.added_lines,
       r.offset_lines,
-      tolerance,
-      max_step,
-      r.max_correction,
+      tolerance_mm * per,
+      u,
+      max_step_mm * per,
+      u,
+      r.max_correction * per,
+      u,
       detail::flattenedNote(r));
+}
+
+/// The request's tolerance in mm for a machine in `unit`.
+double toleranceMm(const GcodeCompensateRequest& request, LengthUnit unit) {
+  return request.tolerance ? *request.tolerance * millimetresPer(unit) : kDefaultToleranceMm;
 }
 
 GcodeCompensateResult compensateExechon(const GcodeCompensateRequest& request) {
@@ -79,7 +90,8 @@ GcodeCompensateResult compensateExechon(const GcodeCompensateRequest& request) {
   cnc::ExechonProgramCompensationOptions options;
   const std::string orientation = request.orientation.value_or("vector");
   options.orientation = cnc::parseExechonOrientation(orientation);
-  options.interpolation = cnc::exechonInterpolation(cal.model, request.tolerance);
+  const double tolerance_mm = toleranceMm(request, cal.model.unit);
+  options.interpolation = cnc::exechonInterpolation(cal.model, tolerance_mm);
   options.fk = nominal.fk;
   options.interpreter = request.interpreter.options();
   GcodeCompensateResult result;
@@ -92,8 +104,9 @@ GcodeCompensateResult compensateExechon(const GcodeCompensateRequest& request) {
                                     cal.model.name,
                                     orientation),
                         result.compensation,
-                        request.tolerance,
-                        options.interpolation.max_step);
+                        tolerance_mm,
+                        options.interpolation.max_step,
+                        cal.model.unit);
   return result;
 }
 
@@ -108,7 +121,8 @@ GcodeCompensateResult compensateHexapod(const GcodeCompensateRequest& request) {
   if (nominal.model.unit != cal.model.unit)
     throw InvalidArgument("the nominal and calibrated machines use different length units");
   cnc::ProgramCompensationOptions options;
-  options.interpolation = cnc::jointSpaceInterpolation(cal.model, request.tolerance);
+  const double tolerance_mm = toleranceMm(request, cal.model.unit);
+  options.interpolation = cnc::jointSpaceInterpolation(cal.model, tolerance_mm);
   options.predistortion.fk = nominal.fk;
   options.interpreter = request.interpreter.options();
   GcodeCompensateResult result;
@@ -118,15 +132,17 @@ GcodeCompensateResult compensateHexapod(const GcodeCompensateRequest& request) {
   result.note = predistortionNote(
       fmt::format("nominal {} -> calibrated {}", nominal.model.name, cal.model.name),
       result.compensation,
-      request.tolerance,
-      options.interpolation.max_step);
+      tolerance_mm,
+      options.interpolation.max_step,
+      cal.model.unit);
   return result;
 }
 
 }  // namespace
 
 void GcodeCompensateRequest::validate() const {
-  PKM_CHECK(tolerance > 0.0 && std::isfinite(tolerance), "--tolerance must be > 0");
+  PKM_CHECK(!tolerance || (*tolerance > 0.0 && std::isfinite(*tolerance)),
+            "--tolerance must be > 0");
   if (!out.empty()) io::checkOverwrite(out, force ? io::Overwrite::kAllow : io::Overwrite::kRefuse);
   if (hybrid_frame.empty() == machine.empty())
     throw InvalidArgument(

@@ -75,7 +75,7 @@ void writeCompensated(const GcodeCompensateRequest& request, const GcodeCompensa
 GcodeCompensateResult compensateHybridGcode(const GcodeCompensateRequest& request) {
   const compensation::HybridSquarenessCompensation c = readBaseFrame(request.hybrid_frame);
   cnc::InterpolationOptions options;
-  options.tolerance = request.tolerance;
+  options.tolerance = request.tolerance.value_or(kDefaultToleranceMm);
   const double x2 = *request.x2;
   const bool in_controller = !request.frame_not_in_controller;
   GcodeCompensateResult result;

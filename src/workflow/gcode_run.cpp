@@ -67,9 +67,20 @@ void refuseOverwrite(const std::string& path, bool force) {
 /// The program's motions and dwells. Throws pkm::IoError "NAME:LINE: message" for a program the
 /// interpreter rejects, pkm::InvalidArgument for one without motion.
 cnc::MoveCollector interpret(const GcodeRunRequest& request,
+                             const io::HexapodMachine* machine,
                              const detail::GcodeProgress& progress,
                              std::size_t& lines) {
   cnc::Interpreter interpreter(request.interpreter.options());
+  if (machine != nullptr && !machine->startup_code.empty()) {
+    // What the controller runs before every program (e.g. G20): the program's modes start there.
+    const cnc::Program startup = cnc::Program::parse(
+        machine->startup_code, machine->startup_code_source + " RS274NGC_STARTUP_CODE");
+    cnc::MoveCollector none;
+    (void)interpreter.run(startup, none);
+    if (!none.moves.empty())
+      throw IoError(fmt::format("{}: RS274NGC_STARTUP_CODE moves the machine",
+                                machine->startup_code_source));
+  }
   const cnc::Program program = cnc::Program::parse(request.program.text, request.program.name);
   lines = program.lineCount();
   cnc::MoveCollector moves;
@@ -98,7 +109,7 @@ io::GcodeRunReport runReport(const GcodeRunRequest& request,
   r.lines = lines;
   r.motions = motions;
   r.points = run.points.size();
-  r.tolerance_mm = request.tolerance;
+  r.tolerance_mm = run.tolerance_mm;
   r.max_step_mm = run.interpolation.max_step;
   r.max_angle_step_deg = run.interpolation.max_angle_step;
   r.max_joint_velocity = run.limits.max_joint_velocity;
@@ -130,7 +141,8 @@ void GcodeRunRequest::validate() const {
   cnc::MotionLimits{
       max_joint_velocity.value_or(200.0), max_joint_acceleration.value_or(2000.0), rapid_rate}
       .validate();
-  PKM_CHECK(tolerance > 0.0 && std::isfinite(tolerance), "--tolerance must be > 0");
+  PKM_CHECK(!tolerance || (*tolerance > 0.0 && std::isfinite(*tolerance)),
+            "--tolerance must be > 0");
   refuseOverwrite(out, force);
   refuseOverwrite(report, force);
   const bool exechon = io::machineTypeOf(machine) == "exechon";
@@ -147,13 +159,24 @@ GcodeRunResult runGcode(const GcodeRunRequest& request, const RunControl& contro
   request.validate();
   const bool exechon = io::machineTypeOf(request.machine) == "exechon";
   const detail::GcodeProgress progress(control);
+  std::optional<io::HexapodMachine> hexapod;
+  if (!exechon) {
+    io::HalReadOptions hal;
+    if (!request.ini.empty()) hal.ini_path = request.ini;
+    hexapod = io::loadHexapodMachine(request.machine, hal);
+    control.note(hexapod->notices);
+    if (!hexapod->startup_code.empty())
+      control.note({fmt::format("{}: RS274NGC_STARTUP_CODE \"{}\" runs before the program",
+                                hexapod->startup_code_source,
+                                hexapod->startup_code)});
+  }
   std::size_t lines = 0;
-  const cnc::MoveCollector moves = interpret(request, progress, lines);
+  const cnc::MoveCollector moves = interpret(request, hexapod ? &*hexapod : nullptr, progress, lines);
   detail::JointRun run;
   if (exechon)
     detail::runExechon(request, moves, control, progress, run);
   else
-    detail::runHexapod(request, moves, control, progress, run);
+    detail::runHexapod(request, *hexapod, moves, control, progress, run);
   GcodeRunResult result;
   result.report = detail::runReport(request, lines, moves.moves.size(), run);
   if (!request.out.empty()) detail::writeJointCsv(request.out, run);

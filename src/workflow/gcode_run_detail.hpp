@@ -12,6 +12,7 @@
 #include "pkm/cnc/joint_checks.hpp"
 #include "pkm/cnc/move.hpp"
 #include "pkm/cnc/path_interpolation.hpp"
+#include "pkm/io/hexapod_machine.hpp"
 #include "pkm/workflow/gcode_run.hpp"
 
 namespace pkm::workflow::detail {
@@ -34,12 +35,17 @@ struct JointRun {
   cnc::MotionLimits limits;  ///< in effect: request, else the machine file, else defaults
   double wrist_velocity = 0.0, wrist_acceleration = 0.0;  ///< deg/s, deg/s² (Exechon)
   std::vector<std::string> from_file;  ///< the limits taken from the machine file
+  double tolerance_mm = kDefaultToleranceMm;  ///< the chordal tolerance in effect
   /// Why each disabled check is off, by check index ("" for the others).
   std::array<std::string, cnc::kPathChecks> off_reason;
 };
 
+/// The request's tolerance in mm for a machine in `unit` (kDefaultToleranceMm without one).
+[[nodiscard]] double toleranceMm(const GcodeRunRequest& request, LengthUnit unit);
+
 /// Converts, times and checks `program` on the request's hexapod.
 void runHexapod(const GcodeRunRequest& request,
+                const io::HexapodMachine& machine,
                 const cnc::MoveCollector& program,
                 const RunControl& control,
                 const GcodeProgress& progress,

@@ -104,22 +104,25 @@ void hexapodOffReasons(const kinematics::HexapodModel& model, JointRun& run) {
 
 }  // namespace
 
+double toleranceMm(const GcodeRunRequest& request, LengthUnit unit) {
+  return request.tolerance ? *request.tolerance * millimetresPer(unit) : kDefaultToleranceMm;
+}
+
 void runHexapod(const GcodeRunRequest& request,
+                const io::HexapodMachine& machine,
                 const cnc::MoveCollector& program,
                 const RunControl& control,
                 const GcodeProgress& progress,
                 JointRun& run) {
-  io::HalReadOptions hal;
-  if (!request.ini.empty()) hal.ini_path = request.ini;
-  const io::HexapodMachine machine = io::loadHexapodMachine(request.machine, hal);
-  control.note(machine.notices);
+  (void)control;
   auto model = std::make_shared<kinematics::HexapodModel>(machine.model);
   if (request.strut_diameter) model->strut_diameter = *request.strut_diameter;
   hexapodOffReasons(*model, run);
   run.machine_name = model->name;
   run.len = std::string(toString(model->unit));
   effectiveLimits(request, machine.joint_rates, false, run);
-  run.interpolation = cnc::jointSpaceInterpolation(*model, request.tolerance);
+  run.tolerance_mm = toleranceMm(request, model->unit);
+  run.interpolation = cnc::jointSpaceInterpolation(*model, run.tolerance_mm);
   run.points = interpolate(program.moves, run.interpolation, progress);
   cnc::HexapodJointConverter conv(*model);
   auto q = std::make_shared<std::vector<kinematics::StrutVector>>();
@@ -154,7 +157,8 @@ void runExechon(const GcodeRunRequest& request,
   effectiveLimits(request, machine.joint_rates, true, run);
   const cnc::JointRateLimits limits =
       cnc::exechonRateLimits(run.limits, run.wrist_velocity, run.wrist_acceleration);
-  run.interpolation = cnc::exechonInterpolation(*model, request.tolerance);
+  run.tolerance_mm = toleranceMm(request, model->unit);
+  run.interpolation = cnc::exechonInterpolation(*model, run.tolerance_mm);
   run.points = interpolate(program.moves, run.interpolation, progress);
   cnc::ExechonJointConverter conv(*model, orientation);
   auto samples = std::make_shared<std::vector<cnc::ExechonPathSample>>();

@@ -231,6 +231,26 @@ TEST_F(GcodeRunCli, AChecksOffSaysWhyAndTheOptionTurnsItOn) {
       "apply to hexapods only");
 }
 
+TEST_F(GcodeRunCli, AnInchConfigurationIsCheckedInInchesWithItsStartupCode) {
+  // LinuxCNC's hexapod-sim: LINEAR_UNITS inch and RS274NGC_STARTUP_CODE = G20 ...; a program
+  // without G20 runs in inches there, and the report speaks inches.
+  const std::filesystem::path sample =
+      std::filesystem::path(PKM_SOURCE_DIR) /
+      ".cache/linuxcnc/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis/vismach/hexapod-sim";
+  if (!std::filesystem::is_directory(sample))
+    GTEST_SKIP() << sample << " not found (run scripts/fetch-linuxcnc.sh)";
+  const std::string prog = write("far.ngc", "G0 X-5 Y3 Z22\nG1 X-5.5 F10\nG1 X2000\nM2\n");
+  const CliRun r = pkm({"gcode", "run", "--machine", (sample / "kinematics.hal").string(), "--ini",
+                        (sample / "hexapod.ini").string(), "--tolerance", "0.001", prog});
+  EXPECT_EQ(r.code, kExitViolation) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("RS274NGC_STARTUP_CODE \"G20"));
+  EXPECT_THAT(r.out, HasSubstr("interpolation: tolerance 0.001 inch, max step "));
+  EXPECT_THAT(r.out, HasSubstr("rapid 393.701 inch/min"));
+  // X2000 inches leaves the 1000-inch stroke (2000 mm would not): reported in inches.
+  EXPECT_THAT(r.out, HasSubstr("far.ngc:3: stroke violated first at X977."));
+  EXPECT_THAT(r.out, HasSubstr(" Y3 Z22 A0 B0 C0: strut 0 value 1000."));
+}
+
 TEST_F(GcodeRunCli, RefusesToOverwrite) {
   const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 X10 F600\n");
   write("q.csv", "keep");

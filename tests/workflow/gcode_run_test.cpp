@@ -85,7 +85,7 @@ TEST(GcodeRunWorkflow, ErrorsNameTheUploadAndItsLine) {
 
 TEST(GcodeRunWorkflow, RejectsBadRequests) {
   GcodeRunRequest q = request("G0 X0 Y0 Z200\n");
-  q.tolerance = 0.0;
+  q.tolerance = 0.0;  // not > 0
   EXPECT_THROW(q.validate(), InvalidArgument);
   q = request("G0 X0 Y0 Z200\n");
   q.max_joint_acceleration = -1.0;

@@ -21,6 +21,10 @@ struct HexapodMachine {
   std::string description;                   ///< free text from the file
   std::string source;                        ///< file path, or "builtin:NAME"
   std::vector<std::string> notices;  ///< things the reader ignored or assumed, for the user to see
+  /// G-code the controller runs before every program: a LinuxCNC INI's [RS274NGC]
+  /// RS274NGC_STARTUP_CODE (e.g. "G20 G17 G40 G90"); "" when none. Not written to machine JSON.
+  std::string startup_code;
+  std::string startup_code_source;  ///< "INI:LINE" of the startup code, for messages
 };
 
 /// Parses a hexapod machine JSON text. `source` names it in messages. Cone axes left out of the

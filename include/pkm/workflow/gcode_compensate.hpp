@@ -23,7 +23,9 @@ struct GcodeCompensateRequest {
   /// The controller's nominal machine ("" : the built-in machine the calibrated machine's name
   /// refers to, its name without "-calibrated").
   std::string nominal;
-  double tolerance = 0.01;  ///< chordal tolerance of the interpolation, mm (> 0)
+  /// Chordal tolerance of the interpolation in the machine's length unit (> 0; hybrid: mm);
+  /// default 0.01 mm.
+  std::optional<double> tolerance;
   std::string out;          ///< the file to write ("" : none, the caller shows the text)
   bool force = false;       ///< replace an existing `out`
   std::string

@@ -12,6 +12,9 @@
 
 namespace pkm::workflow {
 
+/// The chordal tolerance of `gcode run` and `gcode compensate` without --tolerance, mm.
+inline constexpr double kDefaultToleranceMm = 0.01;
+
 /// Motions (or interpolated points) between two progress reports of a G-code job; each report is
 /// also a cancellation check (RunControl).
 inline constexpr std::size_t kGcodeProgressInterval = 10'000;

@@ -25,7 +25,8 @@ struct GcodeRunRequest {
   /// Hexapod: the strut diameter for the interference check, machine unit (default: the machine
   /// file's; a LinuxCNC configuration has none, so the check is off without it). > 0.
   std::optional<double> strut_diameter;
-  double tolerance = 0.01;  ///< chordal tolerance, mm (> 0)
+  /// Chordal tolerance in the machine's length unit (> 0); default kDefaultTolerance mm.
+  std::optional<double> tolerance;
   std::string out;          ///< joint CSV file ("" : none; docs/gcode.md)
   std::string report;       ///< the report's JSON file ("" : none; io::gcodeRunJson)
   bool force = false;       ///< replace existing `out` and `report` files
