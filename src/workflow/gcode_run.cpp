@@ -78,8 +78,8 @@ cnc::MoveCollector interpret(const GcodeRunRequest& request,
     cnc::MoveCollector none;
     (void)interpreter.run(startup, none);
     if (!none.moves.empty())
-      throw IoError(fmt::format("{}: RS274NGC_STARTUP_CODE moves the machine",
-                                machine->startup_code_source));
+      throw IoError(
+          fmt::format("{}: RS274NGC_STARTUP_CODE moves the machine", machine->startup_code_source));
   }
   const cnc::Program program = cnc::Program::parse(request.program.text, request.program.name);
   lines = program.lineCount();
@@ -171,7 +171,8 @@ GcodeRunResult runGcode(const GcodeRunRequest& request, const RunControl& contro
                                 hexapod->startup_code)});
   }
   std::size_t lines = 0;
-  const cnc::MoveCollector moves = interpret(request, hexapod ? &*hexapod : nullptr, progress, lines);
+  const cnc::MoveCollector moves =
+      interpret(request, hexapod ? &*hexapod : nullptr, progress, lines);
   detail::JointRun run;
   if (exechon)
     detail::runExechon(request, moves, control, progress, run);

@@ -34,7 +34,7 @@ struct JointRun {
   std::function<void(std::string&, std::size_t)> csv_row;  ///< appends point i's row
   cnc::MotionLimits limits;  ///< in effect: request, else the machine file, else defaults
   double wrist_velocity = 0.0, wrist_acceleration = 0.0;  ///< deg/s, deg/s² (Exechon)
-  std::vector<std::string> from_file;  ///< the limits taken from the machine file
+  std::vector<std::string> from_file;         ///< the limits taken from the machine file
   double tolerance_mm = kDefaultToleranceMm;  ///< the chordal tolerance in effect
   /// Why each disabled check is off, by check index ("" for the others).
   std::array<std::string, cnc::kPathChecks> off_reason;

@@ -240,8 +240,15 @@ TEST_F(GcodeRunCli, AnInchConfigurationIsCheckedInInchesWithItsStartupCode) {
   if (!std::filesystem::is_directory(sample))
     GTEST_SKIP() << sample << " not found (run scripts/fetch-linuxcnc.sh)";
   const std::string prog = write("far.ngc", "G0 X-5 Y3 Z22\nG1 X-5.5 F10\nG1 X2000\nM2\n");
-  const CliRun r = pkm({"gcode", "run", "--machine", (sample / "kinematics.hal").string(), "--ini",
-                        (sample / "hexapod.ini").string(), "--tolerance", "0.001", prog});
+  const CliRun r = pkm({"gcode",
+                        "run",
+                        "--machine",
+                        (sample / "kinematics.hal").string(),
+                        "--ini",
+                        (sample / "hexapod.ini").string(),
+                        "--tolerance",
+                        "0.001",
+                        prog});
   EXPECT_EQ(r.code, kExitViolation) << r.err;
   EXPECT_THAT(r.err, HasSubstr("RS274NGC_STARTUP_CODE \"G20"));
   EXPECT_THAT(r.out, HasSubstr("interpolation: tolerance 0.001 inch, max step "));

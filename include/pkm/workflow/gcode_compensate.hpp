@@ -26,8 +26,8 @@ struct GcodeCompensateRequest {
   /// Chordal tolerance of the interpolation in the machine's length unit (> 0; hybrid: mm);
   /// default 0.01 mm.
   std::optional<double> tolerance;
-  std::string out;          ///< the file to write ("" : none, the caller shows the text)
-  bool force = false;       ///< replace an existing `out`
+  std::string out;     ///< the file to write ("" : none, the caller shows the text)
+  bool force = false;  ///< replace an existing `out`
   std::string
       hybrid_frame;  ///< hybrid machine: pkm-base-frame.txt of a campaign (docs/campaign.md)
   std::optional<double> x2;  ///< hybrid machine: the X2 position the program runs at, mm

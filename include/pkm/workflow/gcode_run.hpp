@@ -27,9 +27,9 @@ struct GcodeRunRequest {
   std::optional<double> strut_diameter;
   /// Chordal tolerance in the machine's length unit (> 0); default kDefaultTolerance mm.
   std::optional<double> tolerance;
-  std::string out;          ///< joint CSV file ("" : none; docs/gcode.md)
-  std::string report;       ///< the report's JSON file ("" : none; io::gcodeRunJson)
-  bool force = false;       ///< replace existing `out` and `report` files
+  std::string out;     ///< joint CSV file ("" : none; docs/gcode.md)
+  std::string report;  ///< the report's JSON file ("" : none; io::gcodeRunJson)
+  bool force = false;  ///< replace existing `out` and `report` files
   std::optional<double> max_joint_velocity;      ///< strut/leg speed, machine unit/s (200)
   std::optional<double> max_joint_acceleration;  ///< machine unit/s² (2000)
   std::optional<double> max_wrist_velocity;      ///< Exechon wrist C/A speed, deg/s (180)
