@@ -23,6 +23,14 @@ std::string_view trim(std::string_view s) {
 }
 }  // namespace
 
+std::string_view trimBlanks(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
+    s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
+  return s;
+}
+
 bool parseFiniteDouble(std::string_view text, double& value) {
   text = trim(text);
   if (!text.empty() && text.front() == '+') {

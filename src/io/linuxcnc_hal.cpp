@@ -10,6 +10,7 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/csv.hpp"
+#include "pkm/io/linuxcnc_patch.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 
@@ -44,24 +45,10 @@ std::vector<std::string> readLines(const std::string& path) {
   return lines;
 }
 
-/// The HALFILE entries of an INI's [HAL] section.
+/// Whether the INI at `ini` loads `hal_name` through one of its [HAL] HALFILE entries.
 bool iniLoadsHal(const std::string& ini, const std::string& hal_name) {
-  std::string section;
-  for (const std::string& raw : readLines(ini)) {
-    const auto words = splitWords(raw);
-    if (words.empty() || words[0].front() == '#' || words[0].front() == ';') continue;
-    if (words[0].front() == '[') {
-      section = std::string(words[0].substr(0, words[0].find(']') + 1));
-      continue;
-    }
-    const auto eq = raw.find('=');
-    if (section != "[HAL]" || eq == std::string::npos) continue;
-    const auto key = splitWords(std::string_view(raw).substr(0, eq));
-    const auto value = splitWords(std::string_view(raw).substr(eq + 1));
-    if (key.size() == 1 && (key[0] == "HALFILE" || key[0] == "POSTGUI_HALFILE") && !value.empty() &&
-        fs::path(std::string(value[0])).filename() == hal_name)
-      return true;
-  }
+  for (const std::string& entry : iniHalFiles(readNamedText(ini)))
+    if (fs::path(entry).filename() == hal_name) return true;
   return false;
 }
 

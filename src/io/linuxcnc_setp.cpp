@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "pkm/io/linuxcnc_hal.hpp"
+#include "pkm/io/linuxcnc_patch.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 
@@ -29,19 +30,14 @@ std::string writeLinuxcncSetp(const HexapodMachine& machine) {
     appendNumber(out, v);
     out += '\n';
   };
-  out += "\n# Base joints positions in base (world) coordinates\n";
-  for (int i = 0; i < kin::kStruts; ++i)
-    for (int a = 0; a < 3; ++a)
-      setp(fmt::format("base.{}.{}", i, "xyz"[a]),
-           model.struts[static_cast<std::size_t>(i)].world_p_base[a]);
-  out += "\n# Platform joints positions in platform coordinates\n";
-  for (int i = 0; i < kin::kStruts; ++i) {
-    const Eigen::Vector3d p =
-        model.struts[static_cast<std::size_t>(i)].platform_p_joint - model.tool_offset;
-    for (int a = 0; a < 3; ++a) setp(fmt::format("platform.{}.{}", i, "xyz"[a]), p[a]);
+  // genhexkinsPins: 18 base coordinates, 18 platform coordinates, then spindle-offset.
+  const std::vector<std::pair<std::string, double>> pins = genhexkinsPins(machine);
+  for (std::size_t k = 0; k < pins.size(); ++k) {
+    if (k == 0) out += "\n# Base joints positions in base (world) coordinates\n";
+    if (k == 3 * kin::kStruts) out += "\n# Platform joints positions in platform coordinates\n";
+    if (k == 6 * kin::kStruts) out += "\n";
+    setp(pins[k].first, pins[k].second);
   }
-  out += "\n";
-  setp("spindle-offset", model.spindle_offset - model.linuxcnc_tool_offset);
   if (model.linuxcnc_tool_offset != 0.0) setp("tool-offset", model.linuxcnc_tool_offset);
   setp("convergence-criterion", machine.fk.tolerance);
   out += fmt::format("setp genhexkins.limit-iterations {}\n", machine.fk.max_iterations);

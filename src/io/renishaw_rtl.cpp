@@ -18,14 +18,6 @@ namespace {
 
 constexpr double kMillimetresPerMicrometre = 1e-3;
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
-    s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-
 /// The lines of `text` (without line ends), 1-based numbering by index + 1.
 std::vector<std::string_view> splitLines(std::string_view text) {
   std::vector<std::string_view> lines;
@@ -33,7 +25,7 @@ std::vector<std::string_view> splitLines(std::string_view text) {
   while (pos <= text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string_view::npos) end = text.size();
-    lines.push_back(trim(text.substr(pos, end - pos)));
+    lines.push_back(trimBlanks(text.substr(pos, end - pos)));
     pos = end + 1;
   }
   return lines;
@@ -71,7 +63,7 @@ std::optional<std::string_view> keyValue(std::string_view line, std::string_view
   for (const char c : key)
     if (c != ' ') want += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (k != want) return std::nullopt;
-  return trim(line.substr(colon + 1));
+  return trimBlanks(line.substr(colon + 1));
 }
 
 struct Reading {

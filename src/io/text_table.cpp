@@ -15,18 +15,6 @@
 #include "pkm/io/named_text.hpp"
 
 namespace pkm::io {
-namespace {
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
-    s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-
-}  // namespace
-
 TextTable TextTable::read(const std::string& path) {
   NamedText in = readNamedText(path);
   return parse(std::move(in.text), in.name);
@@ -43,23 +31,24 @@ TextTable TextTable::parse(std::string text, const std::string& source) {
   while (pos < all.size()) {
     std::size_t end = all.find('\n', pos);
     if (end == std::string_view::npos) end = all.size();
-    std::string_view line = trim(all.substr(pos, end - pos));
+    std::string_view line = trimBlanks(all.substr(pos, end - pos));
     pos = end + 1;
     ++line_no;
-    if (line_no == 1 && line.starts_with("\xEF\xBB\xBF")) line = trim(line.substr(3));
+    if (line_no == 1 && line.starts_with("\xEF\xBB\xBF")) line = trimBlanks(line.substr(3));
     if (line.empty()) continue;
     if (line.front() == '#') {
-      const std::string_view body = trim(line.substr(1));
+      const std::string_view body = trimBlanks(line.substr(1));
       const std::size_t colon = body.find(':');
       if (!header && colon != std::string_view::npos)
-        t.metadata_.emplace_back(trim(body.substr(0, colon)), trim(body.substr(colon + 1)));
+        t.metadata_.emplace_back(trimBlanks(body.substr(0, colon)),
+                                 trimBlanks(body.substr(colon + 1)));
       continue;
     }
     const std::size_t first_field = t.fields_.size();
     std::size_t start = 0;
     while (true) {
       const std::size_t comma = line.find(',', start);
-      const std::string_view field = trim(line.substr(start, comma - start));
+      const std::string_view field = trimBlanks(line.substr(start, comma - start));
       t.fields_.push_back({static_cast<std::size_t>(field.data() - all.data()), field.size()});
       if (comma == std::string_view::npos) break;
       start = comma + 1;

@@ -80,4 +80,7 @@ class CsvReader {
 /// Returns false for anything else, including "nan" and "inf".
 [[nodiscard]] bool parseFiniteDouble(std::string_view text, double& value);
 
+/// `s` without leading and trailing spaces, tabs and carriage returns.
+[[nodiscard]] std::string_view trimBlanks(std::string_view s);
+
 }  // namespace pkm::io
