@@ -143,10 +143,23 @@ TextPatch patchKinematicsHal(const NamedText& hal, const HexapodMachine& machine
   return patch;
 }
 
-TextPatch patchHexapodIni(const NamedText& ini, const HexapodMachine& machine) {
+std::array<LinuxcncJointValues, 6> linuxcncJointValues(const HexapodMachine& machine) {
   const kin::HexapodModel& m = machine.model;
   kin::HexapodData data(m);
   kin::inverseKinematics(m, data, m.home);
+  std::array<LinuxcncJointValues, 6> out;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const kin::Strut& s = m.struts[i];
+    out[i].home = data.joint_distance[static_cast<Eigen::Index>(i)];
+    if (std::isfinite(s.min_reading)) out[i].min_limit = s.min_reading + s.length_offset;
+    if (std::isfinite(s.max_reading)) out[i].max_limit = s.max_reading + s.length_offset;
+  }
+  return out;
+}
+
+TextPatch patchHexapodIni(const NamedText& ini, const HexapodMachine& machine) {
+  const kin::HexapodModel& m = machine.model;
+  const std::array<LinuxcncJointValues, 6> joints = linuxcncJointValues(machine);
   TextPatch patch{ini.name, ini.text, ini.text, {}};
   std::ptrdiff_t shift = 0;
   std::string section;
@@ -184,12 +197,10 @@ TextPatch patchHexapodIni(const NamedText& ini, const HexapodMachine& machine) {
       continue;
     const auto i = static_cast<std::size_t>(section[7] - '0');
     joint_seen[i] = true;
-    const kin::Strut& s = m.struts[i];
     std::optional<double> value;
-    if (key == "HOME" || key == "HOME_OFFSET")
-      value = data.joint_distance[static_cast<Eigen::Index>(i)];
-    if (key == "MIN_LIMIT" && std::isfinite(s.min_reading)) value = s.min_reading + s.length_offset;
-    if (key == "MAX_LIMIT" && std::isfinite(s.max_reading)) value = s.max_reading + s.length_offset;
+    if (key == "HOME" || key == "HOME_OFFSET") value = joints[i].home;
+    if (key == "MIN_LIMIT") value = joints[i].min_limit;
+    if (key == "MAX_LIMIT") value = joints[i].max_limit;
     if (value) replaceValue(patch, shift, a, b, *value, n + 1, section + " " + key);
   }
   for (std::size_t i = 0; i < joint_seen.size(); ++i)

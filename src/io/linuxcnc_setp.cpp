@@ -7,7 +7,6 @@
 #include "pkm/io/linuxcnc_hal.hpp"
 #include "pkm/io/linuxcnc_patch.hpp"
 #include "pkm/io/number_format.hpp"
-#include "pkm/kinematics/hexapod_ik.hpp"
 
 namespace pkm::io {
 
@@ -42,38 +41,29 @@ std::string writeLinuxcncSetp(const HexapodMachine& machine) {
   setp("convergence-criterion", machine.fk.tolerance);
   out += fmt::format("setp genhexkins.limit-iterations {}\n", machine.fk.max_iterations);
 
-  kin::HexapodData data(model);
-  kin::inverseKinematics(model, data, model.home);
+  const std::string home = fmt::format("{} {} {} {} {} {}",
+                                       formatNumber(model.home.position.x()),
+                                       formatNumber(model.home.position.y()),
+                                       formatNumber(model.home.position.z()),
+                                       formatNumber(radToDeg(model.home.rpy.x())),
+                                       formatNumber(radToDeg(model.home.rpy.y())),
+                                       formatNumber(radToDeg(model.home.rpy.z())));
   // Read back by readLinuxcncHal (an INI file, when found, overrides them).
   out += fmt::format("\n# pkm: units = {}\n", toString(model.unit));
-  out += fmt::format("# pkm: home = {} {} {} {} {} {}\n",
-                     formatNumber(model.home.position.x()),
-                     formatNumber(model.home.position.y()),
-                     formatNumber(model.home.position.z()),
-                     formatNumber(radToDeg(model.home.rpy.x())),
-                     formatNumber(radToDeg(model.home.rpy.y())),
-                     formatNumber(radToDeg(model.home.rpy.z())));
+  out += fmt::format("# pkm: home = {}\n", home);
   out +=
       "\n# INI values for this geometry (LinuxCNC joint positions are joint-centre distances):\n";
-  out += fmt::format("# [TRAJ] HOME = {} {} {} {} {} {}\n",
-                     formatNumber(model.home.position.x()),
-                     formatNumber(model.home.position.y()),
-                     formatNumber(model.home.position.z()),
-                     formatNumber(radToDeg(model.home.rpy.x())),
-                     formatNumber(radToDeg(model.home.rpy.y())),
-                     formatNumber(radToDeg(model.home.rpy.z())));
+  out += fmt::format("# [TRAJ] HOME = {}\n", home);
   out +=
       fmt::format("# [TRAJ] LINEAR_UNITS = {}\n", model.unit == LengthUnit::kInch ? "inch" : "mm");
-  for (int i = 0; i < kin::kStruts; ++i) {
-    const kin::Strut& s = model.struts[static_cast<std::size_t>(i)];
-    out += fmt::format(
-        "# [JOINT_{}] HOME = HOME_OFFSET = {}", i, formatNumber(data.joint_distance[i]));
-    if (std::isfinite(s.min_reading))
-      out += ", MIN_LIMIT = " + formatNumber(s.min_reading + s.length_offset);
-    if (std::isfinite(s.max_reading))
-      out += ", MAX_LIMIT = " + formatNumber(s.max_reading + s.length_offset);
-    if (s.length_offset != 0.0)
-      out += fmt::format(" (pkm reading + length offset {})", formatNumber(s.length_offset));
+  const std::array<LinuxcncJointValues, 6> joints = linuxcncJointValues(machine);
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    out += fmt::format("# [JOINT_{}] HOME = HOME_OFFSET = {}", i, formatNumber(joints[i].home));
+    if (joints[i].min_limit) out += ", MIN_LIMIT = " + formatNumber(*joints[i].min_limit);
+    if (joints[i].max_limit) out += ", MAX_LIMIT = " + formatNumber(*joints[i].max_limit);
+    const double offset = model.struts[i].length_offset;
+    if (offset != 0.0)
+      out += fmt::format(" (pkm reading + length offset {})", formatNumber(offset));
     out += '\n';
   }
   return out;

@@ -177,7 +177,7 @@ GcodeRunResult runGcode(const GcodeRunRequest& request, const RunControl& contro
   if (exechon)
     detail::runExechon(request, moves, control, progress, run);
   else
-    detail::runHexapod(request, *hexapod, moves, control, progress, run);
+    detail::runHexapod(request, *hexapod, moves, progress, run);
   GcodeRunResult result;
   result.report = detail::runReport(request, lines, moves.moves.size(), run);
   if (!request.out.empty()) detail::writeJointCsv(request.out, run);

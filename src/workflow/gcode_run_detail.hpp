@@ -47,7 +47,6 @@ struct JointRun {
 void runHexapod(const GcodeRunRequest& request,
                 const io::HexapodMachine& machine,
                 const cnc::MoveCollector& program,
-                const RunControl& control,
                 const GcodeProgress& progress,
                 JointRun& run);
 

@@ -111,10 +111,8 @@ double toleranceMm(const GcodeRunRequest& request, LengthUnit unit) {
 void runHexapod(const GcodeRunRequest& request,
                 const io::HexapodMachine& machine,
                 const cnc::MoveCollector& program,
-                const RunControl& control,
                 const GcodeProgress& progress,
                 JointRun& run) {
-  (void)control;
   auto model = std::make_shared<kinematics::HexapodModel>(machine.model);
   if (request.strut_diameter) model->strut_diameter = *request.strut_diameter;
   hexapodOffReasons(*model, run);

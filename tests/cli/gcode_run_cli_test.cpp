@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/cli_fixture.hpp"
+#include "support/linuxcnc_sample.hpp"
 
 namespace {
 
@@ -234,9 +235,7 @@ TEST_F(GcodeRunCli, AChecksOffSaysWhyAndTheOptionTurnsItOn) {
 TEST_F(GcodeRunCli, AnInchConfigurationIsCheckedInInchesWithItsStartupCode) {
   // LinuxCNC's hexapod-sim: LINEAR_UNITS inch and RS274NGC_STARTUP_CODE = G20 ...; a program
   // without G20 runs in inches there, and the report speaks inches.
-  const std::filesystem::path sample =
-      std::filesystem::path(PKM_SOURCE_DIR) /
-      ".cache/linuxcnc/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis/vismach/hexapod-sim";
+  const std::filesystem::path sample = pkm::test::linuxcncHexapodSim();
   if (!std::filesystem::is_directory(sample))
     GTEST_SKIP() << sample << " not found (run scripts/fetch-linuxcnc.sh)";
   const std::string prog = write("far.ngc", "G0 X-5 Y3 Z22\nG1 X-5.5 F10\nG1 X2000\nM2\n");

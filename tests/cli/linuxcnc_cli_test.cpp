@@ -4,6 +4,7 @@
 #include <string>
 
 #include "support/cli_fixture.hpp"
+#include "support/linuxcnc_sample.hpp"
 
 namespace pkm::test {
 namespace {
@@ -12,9 +13,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
 TEST_F(CliTest, LinuxcncInstallShowsThenPatches) {
-  const fs::path sample =
-      fs::path(PKM_SOURCE_DIR) /
-      ".cache/linuxcnc/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis/vismach/hexapod-sim";
+  const fs::path sample = pkm::test::linuxcncHexapodSim();
   if (!fs::is_directory(sample))
     GTEST_SKIP() << sample << " not found (run scripts/fetch-linuxcnc.sh)";
   fs::copy(sample, path("cfg"), fs::copy_options::recursive);

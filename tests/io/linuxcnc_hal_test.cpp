@@ -15,6 +15,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/io/hexapod_machine.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
+#include "support/linuxcnc_sample.hpp"
 #include "support/sample_models.hpp"
 #include "support/tolerances.hpp"
 
@@ -636,9 +637,7 @@ TEST_F(LinuxcncHalTest, JointRatesAreTheSmallestOfTheJoints) {
 // The genuine LinuxCNC sample configuration (scripts/fetch-linuxcnc.sh unpacks it into .cache/)
 
 TEST(LinuxcncGenuineConfig, HexapodSimKinematicsHal) {
-  const fs::path dir =
-      fs::path(PKM_SOURCE_DIR) /
-      ".cache/linuxcnc/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis/vismach/hexapod-sim";
+  const fs::path dir = pkm::test::linuxcncHexapodSim();
   if (!fs::is_directory(dir)) GTEST_SKIP() << dir << " not found (run scripts/fetch-linuxcnc.sh)";
   const std::string hal = (dir / "kinematics.hal").string();
   const HexapodMachine m = readLinuxcncHal(hal);

@@ -13,6 +13,7 @@
 #include "pkm/io/hexapod_machine.hpp"
 #include "pkm/io/linuxcnc_hal.hpp"
 #include "pkm/io/machine_loader.hpp"
+#include "support/linuxcnc_sample.hpp"
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
@@ -22,9 +23,7 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
 TEST(LinuxcncInstall, PatchesTheSampleConfigurationInPlace) {
-  const fs::path sample =
-      fs::path(PKM_SOURCE_DIR) /
-      ".cache/linuxcnc/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis/vismach/hexapod-sim";
+  const fs::path sample = pkm::test::linuxcncHexapodSim();
   if (!fs::is_directory(sample))
     GTEST_SKIP() << sample << " not found (run scripts/fetch-linuxcnc.sh)";
   const fs::path dir = test::scratchPath("linuxcnc_install", "config");

@@ -6,6 +6,8 @@
 /// differences, backs up and writes.
 #pragma once
 
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,15 +39,25 @@ struct TextPatch {
 [[nodiscard]] std::vector<std::pair<std::string, double>> genhexkinsPins(
     const HexapodMachine& machine);
 
+/// A joint's INI values for LinuxCNC, whose joint position is the joint-centre distance: HOME =
+/// HOME_OFFSET = the distance at the home pose; the limits = the strut's stroke plus its length
+/// offset (none when the stroke is unbounded).
+struct LinuxcncJointValues {
+  double home = 0.0;
+  std::optional<double> min_limit, max_limit;
+};
+
+/// The six joints' INI values of `machine` (machine length unit).
+[[nodiscard]] std::array<LinuxcncJointValues, 6> linuxcncJointValues(const HexapodMachine& machine);
+
 /// `hal` with the value of every `setp genhexkins.PIN VALUE` line whose pin genhexkinsPins gives
 /// replaced (the rest of each line, and every other line, byte for byte). Throws pkm::IoError
 /// "NAME: no 'setp genhexkins.base.3.y' line" when a base or platform joint coordinate is not
 /// set in the file.
 [[nodiscard]] TextPatch patchKinematicsHal(const NamedText& hal, const HexapodMachine& machine);
 
-/// `ini` with [JOINT_0..5] HOME and HOME_OFFSET set to the calibrated joint distances at home,
-/// and MIN_LIMIT / MAX_LIMIT to the struts' strokes plus their length offsets (the values
-/// io::writeLinuxcncSetp lists), where those keys exist; every other byte kept. Throws
+/// `ini` with [JOINT_0..5] HOME, HOME_OFFSET, MIN_LIMIT and MAX_LIMIT set to linuxcncJointValues,
+/// where those keys exist; every other byte kept. Throws
 /// pkm::IoError "NAME: ..." when the INI's [TRAJ] LINEAR_UNITS differs from the machine's unit or
 /// a [JOINT_n] section of the six is missing.
 [[nodiscard]] TextPatch patchHexapodIni(const NamedText& ini, const HexapodMachine& machine);
