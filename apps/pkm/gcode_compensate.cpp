@@ -50,7 +50,11 @@ void addGcodeCompensateCommand(CLI::App& gcode) {
   c->add_option("--nominal",
                 q.nominal,
                 "the controller's nominal machine (default: the built-in one the calibrated "
-                "machine's name refers to)");
+                "machine's name refers to); a LinuxCNC .hal file finds its INI beside it");
+  c->add_option("--ini",
+                q.ini,
+                "hexapod: the LinuxCNC INI the program runs under (its RS274NGC_STARTUP_CODE, "
+                "e.g. G20, runs before the program; its LINEAR_UNITS must be the machine's)");
   c->add_option("--orientation",
                 q.orientation,
                 "Exechon: A/C as the tool vector of a virtual C/A head ('vector', the default) or "

@@ -196,7 +196,19 @@ class ProgramFlow {
 }  // namespace
 
 Interpreter::Interpreter(InterpreterOptions options)
-    : impl_(std::make_unique<Impl>(std::move(options))) {}
+    : impl_(std::make_unique<Impl>(std::move(options))) {
+  const InterpreterOptions& o = impl_->options;
+  if (o.startup_code.empty()) return;
+  const std::string where = o.startup_source.empty() ? "" : o.startup_source + ": ";
+  MoveCollector none;
+  try {
+    (void)run(Program::parse(o.startup_code, "RS274NGC_STARTUP_CODE"), none);
+  } catch (const IoError& e) {
+    throw IoError(where + e.what());
+  }
+  if (!none.moves.empty() || !none.dwells.empty())
+    throw IoError(where + "RS274NGC_STARTUP_CODE moves the machine; it may set modes only");
+}
 Interpreter::~Interpreter() = default;
 const MachineState& Interpreter::state() const { return impl_->st; }
 

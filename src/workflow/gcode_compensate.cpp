@@ -14,6 +14,7 @@
 #include "pkm/cnc/joint_path.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/atomic_file.hpp"
+#include "pkm/io/linuxcnc_hal.hpp"
 #include "pkm/io/machine_loader.hpp"
 
 namespace pkm::workflow {
@@ -110,13 +111,38 @@ GcodeCompensateResult compensateExechon(const GcodeCompensateRequest& request) {
   return result;
 }
 
+/// The interpreter settings of a hexapod program: the request's, with the start-up code of the
+/// LinuxCNC configuration (request.ini, else a `.hal` nominal machine's INI). Throws
+/// pkm::InvalidArgument when the INI's LINEAR_UNITS differ from the calibrated machine's.
+GcodeInterpreterSettings hexapodSettings(const GcodeCompensateRequest& request,
+                                         const io::HexapodMachine& cal,
+                                         const io::HexapodMachine& nominal) {
+  GcodeInterpreterSettings settings = request.interpreter;
+  if (request.ini.empty()) {
+    takeStartupCode(nominal, settings);
+    return settings;
+  }
+  io::HexapodMachine under_ini = cal;  // what the INI says, applied to a copy
+  io::applyLinuxcncIni(request.ini, under_ini);
+  if (under_ini.model.unit != cal.model.unit)
+    throw InvalidArgument(fmt::format("{}: [TRAJ] LINEAR_UNITS is {} but {} is in {}",
+                                      request.ini,
+                                      toString(under_ini.model.unit),
+                                      request.machine,
+                                      toString(cal.model.unit)));
+  takeStartupCode(under_ini, settings);
+  return settings;
+}
+
 GcodeCompensateResult compensateHexapod(const GcodeCompensateRequest& request) {
   const io::HexapodMachine cal = io::loadHexapodMachine(request.machine);
+  io::HalReadOptions hal;
+  if (!request.ini.empty()) hal.ini_path = request.ini;
   const io::HexapodMachine nominal = nominalFor(
       request,
       cal,
       "hexapod",
-      [](const std::string& spec) { return io::loadHexapodMachine(spec); },
+      [&hal](const std::string& spec) { return io::loadHexapodMachine(spec, hal); },
       &io::builtinMachine);
   if (nominal.model.unit != cal.model.unit)
     throw InvalidArgument("the nominal and calibrated machines use different length units");
@@ -124,13 +150,21 @@ GcodeCompensateResult compensateHexapod(const GcodeCompensateRequest& request) {
   const double tolerance_mm = toleranceMm(request, cal.model.unit);
   options.interpolation = cnc::jointSpaceInterpolation(cal.model, tolerance_mm);
   options.predistortion.fk = nominal.fk;
-  options.interpreter = request.interpreter.options();
+  const GcodeInterpreterSettings settings = hexapodSettings(request, cal, nominal);
+  options.interpreter = settings.options();
   GcodeCompensateResult result;
   result.compensation = cnc::compensateProgram(
       request.program.text, request.program.name, nominal.model, cal.model, options);
   detail::writeCompensated(request, result);
   result.note = predistortionNote(
-      fmt::format("nominal {} -> calibrated {}", nominal.model.name, cal.model.name),
+      fmt::format("nominal {} -> calibrated {}{}",
+                  nominal.model.name,
+                  cal.model.name,
+                  settings.startup_code.empty()
+                      ? std::string()
+                      : fmt::format(" (after RS274NGC_STARTUP_CODE \"{}\" of {})",
+                                    settings.startup_code,
+                                    settings.startup_source)),
       result.compensation,
       tolerance_mm,
       options.interpolation.max_step,
@@ -149,11 +183,16 @@ void GcodeCompensateRequest::validate() const {
         "give either --machine CAL.json (hexapod or Exechon) or --hybrid-frame FILE --x2 POS");
   if (!hybrid_frame.empty()) {
     if (!x2) throw InvalidArgument("--hybrid-frame needs --x2 POS (the X2 position, mm)");
+    if (!ini.empty()) throw InvalidArgument("--ini applies to hexapod machines only");
     return;
   }
-  if (orientation && io::machineTypeOf(machine) != "exechon")
+  const bool exechon = io::machineTypeOf(machine) == "exechon";
+  if (orientation && !exechon)
     throw InvalidArgument(
         fmt::format("--orientation is for Exechon machines; {} is a hexapod", machine));
+  if (!ini.empty() && exechon)
+    throw InvalidArgument(
+        fmt::format("--ini applies to hexapod machines only; {} is an Exechon", machine));
 }
 
 GcodeCompensateResult compensateGcode(const GcodeCompensateRequest& request) {

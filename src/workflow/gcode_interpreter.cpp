@@ -22,7 +22,15 @@ cnc::InterpreterOptions GcodeInterpreterSettings::options() const {
     o.tools = cnc::ToolTable::load(tool_table, tool_units == "inch" ? cnc::kMmPerInch : 1.0);
   o.block_delete = block_delete;
   o.max_loop_iterations = max_iterations;
+  o.startup_code = startup_code;
+  o.startup_source = startup_source;
   return o;
+}
+
+void takeStartupCode(const io::HexapodMachine& machine, GcodeInterpreterSettings& settings) {
+  if (machine.startup_code.empty()) return;
+  settings.startup_code = machine.startup_code;
+  settings.startup_source = machine.startup_code_source;
 }
 
 namespace detail {

@@ -70,17 +70,9 @@ cnc::MoveCollector interpret(const GcodeRunRequest& request,
                              const io::HexapodMachine* machine,
                              const detail::GcodeProgress& progress,
                              std::size_t& lines) {
-  cnc::Interpreter interpreter(request.interpreter.options());
-  if (machine != nullptr && !machine->startup_code.empty()) {
-    // What the controller runs before every program (e.g. G20): the program's modes start there.
-    const cnc::Program startup = cnc::Program::parse(
-        machine->startup_code, machine->startup_code_source + " RS274NGC_STARTUP_CODE");
-    cnc::MoveCollector none;
-    (void)interpreter.run(startup, none);
-    if (!none.moves.empty())
-      throw IoError(
-          fmt::format("{}: RS274NGC_STARTUP_CODE moves the machine", machine->startup_code_source));
-  }
+  GcodeInterpreterSettings settings = request.interpreter;
+  if (machine != nullptr) takeStartupCode(*machine, settings);
+  cnc::Interpreter interpreter(settings.options());
   const cnc::Program program = cnc::Program::parse(request.program.text, request.program.name);
   lines = program.lineCount();
   cnc::MoveCollector moves;

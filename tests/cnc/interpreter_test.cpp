@@ -63,6 +63,21 @@ TEST(Interpreter, InchAndFeedUnits) {
   EXPECT_NEAR(m[1].feed, 254.0, kTolRoundTrip);  // switching units does not rescale F
 }
 
+TEST(Interpreter, StartupCodeSetsTheModesTheProgramStartsIn) {
+  InterpreterOptions o;
+  o.startup_code = "G20 G91";
+  o.startup_source = "m.ini:7";
+  const auto m = run("G1 X1 F10\nG1 X1\nM2\n", o);
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_NEAR(m[0].end[0], 25.4, kTolRoundTrip);
+  EXPECT_NEAR(m[1].end[0], 50.8, kTolRoundTrip);  // incremental from the start-up code
+  o.startup_code = "G0 X1";
+  EXPECT_EQ(errorOf("G0 X0\n", o), "m.ini:7: RS274NGC_STARTUP_CODE moves the machine; it may set "
+                                    "modes only");
+  o.startup_code = "G20 G999";
+  EXPECT_THAT(errorOf("G0 X0\n", o), HasSubstr("m.ini:7: RS274NGC_STARTUP_CODE:1: "));
+}
+
 TEST(Interpreter, IncrementalDistance) {
   const auto m = run("G91 G0 X1 Y1\nX1\nG90 X0\nM2\n");
   expectEnd(m[1], 2, 1, 0);

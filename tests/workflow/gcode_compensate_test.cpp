@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include "pkm/cnc/joint_path.hpp"
@@ -117,6 +118,47 @@ TEST_F(GcodeCompensateWorkflow, RejectsBadRequests) {
   q = request("G0 X0 Y0 Z200\n");
   q.machine = "hexapod-default";  // its nominal cannot be told from its name
   EXPECT_THROW((void)compensateGcode(q), InvalidArgument);
+}
+
+TEST_F(GcodeCompensateWorkflow, TheIniStartupCodeRunsBeforeTheProgram) {
+  // An INI whose RS274NGC_STARTUP_CODE is G20: the program's numbers are inches, exactly as if
+  // the program began with G20 itself.
+  const std::string ini = write("machine.ini",
+                                "[RS274NGC]\nRS274NGC_STARTUP_CODE = G20 G17 G90\n"
+                                "[TRAJ]\nLINEAR_UNITS = mm\n");
+  const std::string body = "G0 X1 Y0.5 Z8\nG1 X2 F10\nM2\n";
+  GcodeCompensateRequest q = request(body);
+  q.ini = ini;
+  const GcodeCompensateResult with_ini = compensateGcode(q);
+  const GcodeCompensateResult with_g20 = compensateGcode(request("G20\n" + body));
+  // The same words; the inserted lines' comments name source lines one further down.
+  const std::string renumbered =
+      std::regex_replace(with_g20.compensation.text, std::regex("line 3 segment"), "line 2 segment");
+  EXPECT_EQ("G20\n" + with_ini.compensation.text, renumbered);
+  EXPECT_GT(with_ini.compensation.max_correction, 0.0);
+  EXPECT_THAT(with_ini.note, HasSubstr("RS274NGC_STARTUP_CODE \"G20 G17 G90\" of " + ini + ":2"));
+  // Without the INI the same numbers are millimetres: a different program.
+  EXPECT_NE(compensateGcode(request(body)).compensation.text, with_ini.compensation.text);
+}
+
+TEST_F(GcodeCompensateWorkflow, TheIniMustAgreeWithTheMachine) {
+  GcodeCompensateRequest q = request("G0 X0 Y0 Z200\n");
+  q.ini = write("inch.ini", "[TRAJ]\nLINEAR_UNITS = inch\n");
+  try {
+    (void)compensateGcode(q);
+    FAIL() << "accepted an inch INI for a millimetre machine";
+  } catch (const InvalidArgument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("LINEAR_UNITS is inch"));
+  }
+  q.ini = write("moves.ini", "[RS274NGC]\nRS274NGC_STARTUP_CODE = G0 X1\n");
+  try {
+    (void)compensateGcode(q);
+    FAIL() << "accepted start-up code that moves";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("moves.ini:2: RS274NGC_STARTUP_CODE moves the machine"));
+  }
+  q.ini = write("bad.ini", "[RS274NGC]\nRS274NGC_STARTUP_CODE = G20 Q\n");
+  EXPECT_THROW((void)compensateGcode(q), IoError);
 }
 
 TEST_F(GcodeCompensateWorkflow, WritesTheFileAndRefusesToOverwriteIt) {

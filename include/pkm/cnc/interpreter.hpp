@@ -27,6 +27,12 @@ struct InterpreterOptions {
   std::uint64_t max_loop_iterations = 10'000'000;
   /// Deepest subroutine nesting.
   std::size_t max_call_depth = 64;
+  /// Blocks the controller runs before every program, e.g. "G20 G17 G40" (LinuxCNC's INI
+  /// [RS274NGC] RS274NGC_STARTUP_CODE): the program's modes start where they leave them. ""
+  /// : none. Run by the Interpreter's constructor; a motion in them is an error.
+  std::string startup_code;
+  /// Where startup_code comes from, prefixed to its messages ("hexapod.ini:12"; "" : nothing).
+  std::string startup_source;
 };
 
 /// What a run did.
@@ -38,9 +44,11 @@ struct RunSummary {
 
 /// Executes programs. One interpreter keeps its state (offsets, modes) from run to run, as a
 /// controller does; construct a new one for a fresh start (G54, G17, G21, G90, G94, G99, no
-/// offsets, machine at 0).
+/// offsets, machine at 0, then the options' startup_code).
 class Interpreter {
  public:
+  /// Throws pkm::IoError "SOURCE: RS274NGC_STARTUP_CODE...: message" for start-up code the
+  /// interpreter rejects or that moves the machine.
   explicit Interpreter(InterpreterOptions options = {});
   ~Interpreter();
   Interpreter(const Interpreter&) = delete;

@@ -23,6 +23,10 @@ struct GcodeCompensateRequest {
   /// The controller's nominal machine ("" : the built-in machine the calibrated machine's name
   /// refers to, its name without "-calibrated").
   std::string nominal;
+  /// Hexapod: the LinuxCNC INI the program runs under ("" : the one a `.hal` nominal machine
+  /// finds beside it, if any). Its RS274NGC_STARTUP_CODE runs before the program (so a G20 there
+  /// makes the program's numbers inches), and its [TRAJ] LINEAR_UNITS must be the machine's.
+  std::string ini;
   /// Chordal tolerance of the interpolation in the machine's length unit (> 0; hybrid: mm);
   /// default 0.01 mm.
   std::optional<double> tolerance;
@@ -37,7 +41,8 @@ struct GcodeCompensateRequest {
   std::optional<std::string> orientation;
   GcodeInterpreterSettings interpreter;  ///< the tool table (G43 H)
   /// Throws pkm::InvalidArgument for a tolerance that is not > 0, neither or both of `machine`
-  /// and `hybrid_frame`, a hybrid frame without `x2`, or an orientation for a hexapod;
+  /// and `hybrid_frame`, a hybrid frame without `x2`, an orientation for a hexapod or an INI for
+  /// an Exechon or hybrid machine;
   /// pkm::IoError "OUT exists; pass --force to overwrite it" when `out` exists and `force` is not
   /// set.
   void validate() const;
@@ -54,7 +59,8 @@ struct GcodeCompensateResult {
 /// Reads the machines (or the base frame), compensates the program and, when `out` is set,
 /// writes it through io::AtomicFile. Throws pkm::IoError for unreadable machine or frame files
 /// (FILE:LINE) and programs the compensation rejects (NAME:LINE: message), pkm::InvalidArgument
-/// for a nominal machine that cannot be told or does not match, and as validate().
+/// for a nominal machine that cannot be told or does not match, an INI whose LINEAR_UNITS differ
+/// from the machine's, and as validate().
 [[nodiscard]] GcodeCompensateResult compensateGcode(const GcodeCompensateRequest& request);
 
 }  // namespace pkm::workflow

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "pkm/cnc/interpreter.hpp"
+#include "pkm/io/hexapod_machine.hpp"
 
 namespace pkm::workflow {
 
@@ -26,6 +27,10 @@ struct GcodeInterpreterSettings {
   bool block_delete = false;      ///< skip lines starting with '/'
   /// Iterations one loop may make before the program is rejected as runaway (> 0).
   std::uint64_t max_iterations = 10'000'000;
+  /// What the controller runs before the program (a LinuxCNC INI's RS274NGC_STARTUP_CODE, e.g.
+  /// "G20"; "" : none); the jobs with a LinuxCNC machine set it from the INI.
+  std::string startup_code;
+  std::string startup_source;  ///< where startup_code comes from ("INI:LINE"), for messages
   /// Throws pkm::InvalidArgument for a unit other than mm or inch (naming --tool-units) or a
   /// zero iteration cap (naming --max-iterations).
   void validate() const;
@@ -33,5 +38,9 @@ struct GcodeInterpreterSettings {
   /// validate(), and pkm::IoError "FILE:LINE: message" for an unreadable or malformed table.
   [[nodiscard]] cnc::InterpreterOptions options() const;
 };
+
+/// Sets `settings`' start-up code to `machine`'s (its INI's RS274NGC_STARTUP_CODE), if it has
+/// one, as LinuxCNC runs it before every program.
+void takeStartupCode(const io::HexapodMachine& machine, GcodeInterpreterSettings& settings);
 
 }  // namespace pkm::workflow
