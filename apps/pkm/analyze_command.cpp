@@ -52,6 +52,13 @@ void PositioningColumnArgs::add(CLI::App& cmd) {
                  error_unit,
                  "unit of an error/deviation column whose header states none: um, mm, in")
       ->check(CLI::IsMember({"mm", "um", "µm", "nm", "m", "in"}));
+  cmd.add_option("--machine",
+                 machine,
+                 "the machine the axis belongs to (JSON, LinuxCNC .hal or built-in name): its "
+                 "length unit; files stating none on an inch machine are flagged");
+  cmd.add_option("--ini",
+                 ini,
+                 "the machine's LinuxCNC INI: its [TRAJ] LINEAR_UNITS is the machine's unit");
 }
 
 io::PositioningColumns PositioningColumnArgs::parsed() const {

@@ -38,6 +38,7 @@ struct AnalyzeIo {
 /// `--columns ROLE=COLUMN,...`, `--unit U`, `--error-unit U` (io::PositioningColumns).
 struct PositioningColumnArgs {
   std::string columns, unit, error_unit;
+  std::string machine, ini;  ///< --machine / --ini: the machine's length unit
   void add(CLI::App& cmd);
   /// The parsed options. Throws pkm::InvalidArgument for a bad --columns item.
   [[nodiscard]] io::PositioningColumns parsed() const;

@@ -48,6 +48,8 @@ void addIso230_2(CLI::App& analyze) {
     workflow::Iso230_2Request request;
     request.data = io::readNamedTexts(st->io.data);
     request.columns = st->columns.parsed();
+    request.machine = st->columns.machine;
+    request.ini = st->columns.ini;
     request.coverage = st->coverage;
     request.strict = st->strict;
     printReport(st->io, workflow::analyzeIso230_2(request));

@@ -23,6 +23,8 @@ struct TableState {
 void runTable(TableState& st) {
   st.request.data = io::readNamedTexts(st.data);
   st.request.columns = st.columns.parsed();
+  st.request.machine = st.columns.machine;
+  st.request.ini = st.columns.ini;
   CliRunControl run;
   const workflow::CompensationTableResult r =
       workflow::writeCompensationTable(st.request, run.control());

@@ -13,12 +13,15 @@ std::string compensationTableText(const CompensationTableSummary& s) {
                               s.format,
                               s.axis,
                               s.input_axis ? fmt::format(" over {}", *s.input_axis) : "");
-  t += fmt::format("rows\t{}\nrange\t{:.6g}\t{:.6g}\nmax_correction\t{:.6g} mm\n",
+  t += fmt::format("rows\t{}\nrange\t{:.6g}\t{:.6g} {}\nmax_correction\t{:.6g} {}\n",
                    s.rows,
                    s.first,
                    s.last,
-                   s.max_correction);
-  if (s.iso && std::isfinite(s.iso->E)) t += fmt::format("measured E\t{:.6g} mm\n", s.iso->E);
+                   s.unit,
+                   s.max_correction,
+                   s.unit);
+  if (s.iso && std::isfinite(s.iso->E))
+    t += fmt::format("measured E\t{:.6g} {}\n", s.iso->E, s.unit);
   t += fmt::format("wrote\t{}\n", s.out);
   return t;
 }
@@ -29,6 +32,7 @@ std::string compensationTableJson(const CompensationTableSummary& s) {
                            {"axis", s.axis},
                            {"rows", s.rows},
                            {"input_rows", s.input_rows},
+                           {"unit", s.unit},
                            {"first", s.first},
                            {"last", s.last},
                            {"max_correction", s.max_correction}};

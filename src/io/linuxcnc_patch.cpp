@@ -52,6 +52,34 @@ std::optional<std::pair<std::size_t, std::size_t>> word(const std::string& t,
   return std::pair{pos, b};
 }
 
+/// Calls fn(section, key, value, line) for each `KEY = VALUE` line of `ini` ("[SECTION]" with
+/// its brackets; key without blanks; value trimmed; line 1-based); comments and blank lines skipped.
+template <class Fn>
+void forEachIniEntry(const NamedText& ini, Fn fn) {
+  std::string_view section;
+  const std::string_view text(ini.text);
+  const std::vector<Line> all = lines(ini.text);
+  for (std::size_t n = 0; n < all.size(); ++n) {
+    const auto first = word(ini.text, all[n].begin, all[n].end);
+    if (!first) continue;
+    const char c = text[first->first];
+    if (c == '#' || c == ';') continue;
+    if (c == '[') {
+      section = text.substr(first->first, first->second - first->first);
+      continue;
+    }
+    const std::string_view raw = text.substr(all[n].begin, all[n].end - all[n].begin);
+    const std::size_t eq = raw.find('=');
+    if (eq == std::string_view::npos) continue;
+    std::string key(raw.substr(0, eq));
+    std::erase_if(key, [](char ch) { return blank(ch); });
+    std::size_t a = all[n].begin + eq + 1, b = all[n].end;
+    while (a < b && blank(text[a])) ++a;
+    while (b > a && blank(text[b - 1])) --b;
+    fn(section, std::string_view(key), text.substr(a, b - a), n + 1);
+  }
+}
+
 /// Replaces the value text [a, b) of `patch.after` (offsets into `patch.before`, shifted by
 /// `shift`) with `value` when the number differs; records the change.
 void replaceValue(TextPatch& patch,
@@ -75,26 +103,29 @@ void replaceValue(TextPatch& patch,
 
 std::vector<std::string> iniHalFiles(const NamedText& ini) {
   std::vector<std::string> out;
-  std::string section;
-  for (const Line& l : lines(ini.text)) {
-    const std::string_view raw = std::string_view(ini.text).substr(l.begin, l.end - l.begin);
-    const auto first = word(ini.text, l.begin, l.end);
-    if (!first) continue;
-    const char c = ini.text[first->first];
-    if (c == '#' || c == ';') continue;
-    if (c == '[') {
-      section = ini.text.substr(first->first, first->second - first->first);
-      continue;
-    }
-    const std::size_t eq = raw.find('=');
-    if (section != "[HAL]" || eq == std::string_view::npos) continue;
-    std::string key(raw.substr(0, eq));
-    std::erase_if(key, [](char ch) { return blank(ch); });
-    if (key != "HALFILE" && key != "POSTGUI_HALFILE") continue;
-    const auto value = word(ini.text, l.begin + eq + 1, l.end);
-    if (value) out.push_back(ini.text.substr(value->first, value->second - value->first));
-  }
+  forEachIniEntry(ini, [&](std::string_view section, std::string_view key, std::string_view value, std::size_t) {
+    if (section == "[HAL]" && (key == "HALFILE" || key == "POSTGUI_HALFILE") && !value.empty())
+      out.emplace_back(value.substr(0, value.find_first_of(" \t")));
+  });
   return out;
+}
+
+std::optional<LengthUnit> iniLinearUnits(const NamedText& ini) {
+  std::optional<LengthUnit> unit;
+  forEachIniEntry(ini, [&](std::string_view section, std::string_view key, std::string_view value, std::size_t line) {
+    if (section != "[TRAJ]" || key != "LINEAR_UNITS") return;
+    if (value == "mm" || value == "metric")
+      unit = LengthUnit::kMillimetre;
+    else if (value == "inch" || value == "in" || value == "imperial")
+      unit = LengthUnit::kInch;
+    else
+      throw IoError(locate(ini.name,
+                           line,
+                           fmt::format("[TRAJ] LINEAR_UNITS '{}' not understood (mm, metric, inch, "
+                                       "in, imperial)",
+                                       value)));
+  });
+  return unit;
 }
 
 std::vector<std::pair<std::string, double>> genhexkinsPins(const HexapodMachine& machine) {

@@ -98,8 +98,8 @@ const std::vector<ColumnRole>& positioningRoles() {
   return roles;
 }
 
-/// The samples of one table, in mm.
-void readPositioningTable(
+/// The samples of one table, in mm; true when its target unit was assumed (mm).
+bool readPositioningTable(
     const TextTable& t,
     const PositioningColumns& how,
     std::vector<metrology::PositioningSample>& samples,
@@ -108,6 +108,7 @@ void readPositioningTable(
   c.require({{"target"}, {"run"}, {"direction"}, {"measured", "error"}});
   const std::size_t ct = c.at("target"), cd = c.at("direction"), cr = c.at("run");
   const double target_scale = columnScale(t, c, "target", how.unit, "--unit", false);
+  const bool assumed = how.unit.empty() && c.unit("target").empty();
   const bool measured = c.find("measured").has_value();
   const std::size_t cm = measured ? c.at("measured") : c.at("error");
   const double value_scale = measured
@@ -132,12 +133,14 @@ void readPositioningTable(
     samples.push_back(
         {target, direction, static_cast<int>(run), measured ? value : target + value});
   }
+  return assumed;
 }
 
 }  // namespace
 
 std::vector<metrology::PositioningSample> readPositioningSamples(std::span<const NamedText> inputs,
-                                                                 const PositioningColumns& how) {
+                                                                 const PositioningColumns& how,
+                                                                 std::vector<std::string>* unstated) {
   std::vector<metrology::PositioningSample> samples;
   std::map<std::tuple<double, int, long long>, std::pair<std::string, std::size_t>> seen;
   for (const NamedText& in : inputs) {
@@ -145,7 +148,8 @@ std::vector<metrology::PositioningSample> readPositioningSamples(std::span<const
       for (const metrology::PositioningSample& s : readRenishawRtl(in)) samples.push_back(s);
       continue;
     }
-    readPositioningTable(TextTable::parse(in.text, in.name), how, samples, seen);
+    if (readPositioningTable(TextTable::parse(in.text, in.name), how, samples, seen) && unstated)
+      unstated->push_back(in.name);
   }
   return samples;
 }

@@ -10,6 +10,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/io/positioning_files.hpp"
 #include "pkm/metrology/iso230_2_conformity.hpp"
+#include "pkm/workflow/machine_unit.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -28,13 +29,16 @@ void Iso230_2Request::validate() const {
 
 io::Iso230_2Report analyzeIso230_2(const Iso230_2Request& request) {
   request.validate();
+  const std::optional<MachineUnit> unit = machineUnit(request.machine, request.ini);
+  std::vector<std::string> unstated;
   const std::vector<metrology::PositioningSample> samples =
-      io::readPositioningSamples(request.data, request.columns);
+      io::readPositioningSamples(request.data, request.columns, &unstated);
   io::Iso230_2Report report{
       metrology::evaluateIso230_2(samples, {.coverage_factor = request.coverage}),
       request.coverage,
       metrology::iso230_2Nonconformities(samples),
       metrology::implausibleDeviations(samples)};
+  for (std::string& w : unitMismatchWarnings(unstated, unit)) report.warnings.push_back(std::move(w));
   if (request.strict && !(report.nonconformities.empty() && report.warnings.empty())) {
     std::vector<std::string> all = report.nonconformities;
     all.insert(all.end(), report.warnings.begin(), report.warnings.end());

@@ -18,6 +18,7 @@
 #include "pkm/metrology/iso230_2.hpp"
 #include "pkm/metrology/iso230_2_conformity.hpp"
 #include "pkm/metrology/straightness.hpp"
+#include "pkm/workflow/machine_unit.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -55,17 +56,33 @@ std::string axisTableText(const comp::AxisErrorTable& t,
   return {};
 }
 
-/// The positioning table of the data, fitted to the format.
+/// The name of the table's unit ("mm" without a machine).
+std::string unitName(const std::optional<MachineUnit>& unit) {
+  return std::string(toString(unit ? unit->unit : LengthUnit::kMillimetre));
+}
+
+/// `table` (mm) in the machine's unit: every length divided by `per` (mm per machine unit).
+comp::AxisErrorTable inUnit(comp::AxisErrorTable table, double per) {
+  for (auto* column : {&table.nominal, &table.error_up, &table.error_down})
+    for (double& v : *column) v /= per;
+  return table;
+}
+
+/// The positioning table of the data, fitted to the format, in the machine's unit.
 Built buildAxisTable(const CompensationTableRequest& request,
                      comp::TableFormat format,
                      std::size_t max_points,
+                     const std::optional<MachineUnit>& unit,
                      const RunControl& control) {
+  std::vector<std::string> unstated;
   const std::vector<metrology::PositioningSample> samples =
-      io::readPositioningSamples(request.data, request.columns);
+      io::readPositioningSamples(request.data, request.columns, &unstated);
   const metrology::Iso230_2Result iso = metrology::evaluateIso230_2(samples);
   control.note(metrology::implausibleDeviations(samples));
+  control.note(unitMismatchWarnings(unstated, unit));
+  const double per = unit ? millimetresPer(unit->unit) : 1.0;
   const comp::FormatTraits tr = comp::traits(format);
-  const comp::AxisErrorTable raw = comp::tableFromIso230_2(iso, request.axis);
+  const comp::AxisErrorTable raw = inUnit(comp::tableFromIso230_2(iso, request.axis), per);
   const comp::AxisErrorTable t = comp::fitToTarget(raw, tr, max_points);
   if (t.nominal != raw.nominal) noteResampled(control, raw.size(), t.size(), tr.even_spacing);
   if (!iso.bidirectional && control.notice)
@@ -73,7 +90,7 @@ Built buildAxisTable(const CompensationTableRequest& request,
         "unidirectional data: the one direction's mean deviations are used for both directions");
   Built b;
   io::CompensationTableSummary& s = b.summary;
-  s.iso = io::CompensationTableSummary::Iso{iso.E, iso.B, iso.M};
+  s.iso = io::CompensationTableSummary::Iso{iso.E / per, iso.B / per, iso.M / per};
   s.input_rows = raw.size();
   s.rows = t.size();
   s.first = t.nominal.front();
@@ -89,18 +106,24 @@ Built buildAxisTable(const CompensationTableRequest& request,
   if (!tr.bidirectional && iso.bidirectional && control.notice)
     control.notice(fmt::format(
         "{} has one table per axis: wrote the mean of both directions; the reversal (B = {:.6g} "
-        "mm) is left to the control's backlash compensation",
+        "{}) is left to the control's backlash compensation",
         request.format,
-        iso.B));
+        iso.B / per,
+        unitName(unit)));
   return b;
 }
 
-/// The straightness table of the data (line removed as request.line), fitted to the format.
+/// The straightness table of the data (line removed as request.line), fitted to the format, in
+/// the machine's unit.
 Built buildCrossTable(const CompensationTableRequest& request,
                       comp::TableFormat format,
                       std::size_t max_points,
+                      const std::optional<MachineUnit>& unit,
                       const RunControl& control) {
-  const io::Profile p = io::readStraightness(request.data);
+  io::Profile p = io::readStraightness(request.data);
+  const double per = unit ? millimetresPer(unit->unit) : 1.0;
+  for (auto* column : {&p.position, &p.value})
+    for (double& v : *column) v /= per;
   comp::CrossAxisTable raw =
       comp::crossTableFromPoints(request.input_axis, request.output_axis, p.position, p.value);
   if (request.line != "raw") {
@@ -159,13 +182,15 @@ CompensationTableResult writeCompensationTable(const CompensationTableRequest& r
   const comp::TableFormat format = comp::parseTableFormat(request.format);
   const std::size_t max_points =
       request.max_points.value_or(comp::traits(format).default_max_points);
-  Built b = request.crossAxis() ? buildCrossTable(request, format, max_points, control)
-                                : buildAxisTable(request, format, max_points, control);
+  const std::optional<MachineUnit> unit = machineUnit(request.machine, request.ini);
+  Built b = request.crossAxis() ? buildCrossTable(request, format, max_points, unit, control)
+                                : buildAxisTable(request, format, max_points, unit, control);
   std::error_code ec;
   if (!request.force && std::filesystem::exists(request.out, ec))
     throw IoError(fmt::format("{}: exists; refusing to overwrite (use --force)", request.out));
   io::writeFileAtomic(request.out, b.text, io::Overwrite::kAllow);
   b.summary.format = request.format;
+  b.summary.unit = unitName(unit);
   b.summary.out = request.out;
   return {std::move(b.summary), std::move(b.text)};
 }

@@ -15,6 +15,7 @@ namespace {
 
 using Json = nlohmann::json;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 constexpr double kTolJson = 1e-12;  ///< JSON numbers are printed at full precision
 constexpr double kMrad = 1e-3;
@@ -256,6 +257,25 @@ TEST_F(AnalyzePositioningCli, DeviationsInTheMeasuredColumnAreFlagged) {
   const CliRun strict = pkm({"analyze", "iso230-2", "--data", f, "--strict"});
   EXPECT_EQ(strict.code, 2);
   EXPECT_THAT(strict.err, HasSubstr("--strict: deviations up to"));
+}
+
+TEST_F(AnalyzePositioningCli, AFileWithoutUnitsOnAnInchMachineIsFlagged) {
+  std::string t = "target,direction,run,measured\n";
+  for (int run = 1; run <= 5; ++run)
+    for (const char* dir : {"+", "-"})
+      for (int target : {0, 2, 4, 6, 8, 10})
+        t += fmt::format("{},{},{},{}\n", target, dir, run, target + 0.0001 * run);
+  const std::string f = write("noinch.csv", t);
+  const CliRun r = pkm({"analyze", "iso230-2", "--data", f, "--machine", "hexapod-linuxcnc-sim"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("warning\t" + f + ": its header states no length unit"));
+  EXPECT_EQ(
+      pkm({"analyze", "iso230-2", "--data", f, "--machine", "hexapod-linuxcnc-sim", "--strict"})
+          .code,
+      2);
+  const CliRun inch = pkm(
+      {"analyze", "iso230-2", "--data", f, "--machine", "hexapod-linuxcnc-sim", "--unit", "in"});
+  EXPECT_THAT(inch.out, Not(HasSubstr("warning")));
 }
 
 TEST_F(AnalyzePositioningCli, ANonConformingDataSetIsEvaluatedAndFlagged) {

@@ -59,7 +59,7 @@ TEST_F(CompensateCli, Linuxcnc1ExactFileAndSummary) {
             "64 -0.00390625 0.00390625\n"
             "128 0.001953125 0.0078125\n");
   EXPECT_THAT(r.out, HasSubstr("rows\t3\n"));
-  EXPECT_THAT(r.out, HasSubstr("range\t0\t128\n"));
+  EXPECT_THAT(r.out, HasSubstr("range\t0\t128 mm\n"));
   EXPECT_THAT(r.out, HasSubstr("max_correction\t0.0078125 mm\n"));
   // The file loads as LinuxCNC would and corrects the command by −error.
   const auto f = compensation::readLinuxcncComp(path("x.comp"), 1);

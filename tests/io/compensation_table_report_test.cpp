@@ -24,13 +24,13 @@ CompensationTableSummary axisTable() {
 
 TEST(CompensationTableReport, Text) {
   EXPECT_EQ(compensationTableText(axisTable()),
-            "compensation table (linuxcnc1, axis X)\nrows\t3\nrange\t0\t128\n"
+            "compensation table (linuxcnc1, axis X)\nrows\t3\nrange\t0\t128 mm\n"
             "max_correction\t0.0078125 mm\nmeasured E\t0.01 mm\nwrote\tx.comp\n");
   CompensationTableSummary s = axisTable();
   s.iso.reset();
   s.input_axis = std::string(1, 'Y');
   EXPECT_EQ(compensationTableText(s),
-            "compensation table (linuxcnc1, axis X over Y)\nrows\t3\nrange\t0\t128\n"
+            "compensation table (linuxcnc1, axis X over Y)\nrows\t3\nrange\t0\t128 mm\n"
             "max_correction\t0.0078125 mm\nwrote\tx.comp\n");
   s = axisTable();
   s.iso->E = NAN;  // no E line

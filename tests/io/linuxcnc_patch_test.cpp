@@ -65,6 +65,18 @@ TEST(LinuxcncPatch, HalValuesChangeAndEveryOtherByteStays) {
   EXPECT_THROW((void)patchKinematicsHal({"short.hal", missing}, cal), IoError);
 }
 
+TEST(LinuxcncPatch, IniLinearUnits) {
+  EXPECT_EQ(iniLinearUnits({"m.ini", iniOf("inch")}), LengthUnit::kInch);
+  EXPECT_EQ(iniLinearUnits({"m.ini", "[TRAJ]\nLINEAR_UNITS = metric\n"}), LengthUnit::kMillimetre);
+  EXPECT_EQ(iniLinearUnits({"m.ini", "[AXIS_X]\nLINEAR_UNITS = inch\n"}), std::nullopt);
+  try {
+    (void)iniLinearUnits({"m.ini", "# c\n[TRAJ]\nLINEAR_UNITS = furlong\n"});
+    FAIL() << "accepted furlongs";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("m.ini:3: [TRAJ] LINEAR_UNITS 'furlong' not understood"));
+  }
+}
+
 TEST(LinuxcncPatch, IniHomeAndLimitsFromTheCalibratedGeometry) {
   HexapodMachine cal = loadHexapodMachine("hexapod-linuxcnc-sim");
   cal.model.struts[2].length_offset = 0.0021;

@@ -30,6 +30,31 @@ TEST(AnalyzePositioningWorkflow, Iso230_2MeansAndReversalOfTwoRunsEachWay) {
   EXPECT_EQ(rep.coverage, 2.0);
 }
 
+TEST(AnalyzePositioningWorkflow, FilesWithoutAUnitOnAnInchMachineAreFlagged) {
+  // Five runs each way at five targets (conforming), the header stating no unit.
+  std::string text = "target,direction,run,measured\n";
+  for (int run = 1; run <= 5; ++run)
+    for (int t = 0; t <= 4; ++t)
+      for (const char* d : {"+", "-"})
+        text += fmt::format("{},{},{},{}\n", t * 2, d, run, t * 2 + 0.0001 * run);
+  Iso230_2Request r;
+  r.data = {{"laser.csv", text}};
+  r.machine = "hexapod-linuxcnc-sim";  // an inch machine
+  io::Iso230_2Report rep = analyzeIso230_2(r);
+  ASSERT_EQ(rep.warnings.size(), 1u);
+  EXPECT_THAT(rep.warnings[0], HasSubstr("laser.csv: its header states no length unit"));
+  EXPECT_THAT(rep.warnings[0], HasSubstr("inches read as mm? Give --unit inch"));
+  r.strict = true;
+  EXPECT_THROW((void)analyzeIso230_2(r), InvalidArgument);
+  r.columns.unit = "in";  // stated: converted, no warning
+  rep = analyzeIso230_2(r);
+  EXPECT_TRUE(rep.warnings.empty());
+  EXPECT_NEAR(rep.result.targets[1].target, 2 * 25.4, 1e-9);
+  r.columns.unit.clear();
+  r.machine = "hexapod-default";  // a millimetre machine: mm is right
+  EXPECT_TRUE(analyzeIso230_2(r).warnings.empty());
+}
+
 TEST(AnalyzePositioningWorkflow, AnUploadsErrorNamesTheUploadAndLine) {
   Iso230_2Request r;
   r.data = {{"my upload", "target,direction,run,measured\n0,+,0,0.1\n"}};

@@ -46,6 +46,34 @@ CompensationTableRequest request(const std::string& out) {
   return r;
 }
 
+TEST(CompensationTableWorkflow, TheTableIsInTheMachinesUnit) {
+  // An INI with LINEAR_UNITS inch: the same table, every length divided by 25.4.
+  const fs::path ini = scratch("inch.ini");
+  std::ofstream(ini) << "[TRAJ]\nLINEAR_UNITS = inch\n";
+  CompensationTableRequest q = request("inch.comp");
+  q.ini = ini.string();
+  std::vector<std::string> notes;
+  RunControl control;
+  control.notice = [&](const std::string& n) { notes.push_back(n); };
+  const CompensationTableResult r = writeCompensationTable(q, control);
+  EXPECT_EQ(r.text,
+            fmt::format("0 {} 0\n{} {} {}\n{} {} {}\n",
+                        -0.0078125 / 25.4,
+                        64 / 25.4,
+                        -0.00390625 / 25.4,
+                        0.00390625 / 25.4,
+                        128 / 25.4,
+                        0.001953125 / 25.4,
+                        0.0078125 / 25.4));
+  EXPECT_EQ(r.summary.unit, "inch");
+  EXPECT_EQ(r.summary.last, 128 / 25.4);
+  EXPECT_EQ(r.summary.max_correction, 0.0078125 / 25.4);
+  // pos.csv states no unit: read as mm, flagged on an inch machine.
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_THAT(notes[0], HasSubstr("pos.csv: its header states no length unit"));
+  EXPECT_EQ(writeCompensationTable(request("mm.comp")).summary.unit, "mm");
+}
+
 TEST(CompensationTableWorkflow, ALinuxcncTableHoldsTheNegatedMeanDeviations) {
   const CompensationTableResult r = writeCompensationTable(request("x.comp"));
   const std::string expected =

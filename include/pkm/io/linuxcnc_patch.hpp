@@ -34,6 +34,10 @@ struct TextPatch {
 /// entries included), in order.
 [[nodiscard]] std::vector<std::string> iniHalFiles(const NamedText& ini);
 
+/// The INI's [TRAJ] LINEAR_UNITS (mm/metric, inch/in/imperial); nullopt when it has none. Throws
+/// pkm::IoError "NAME:LINE: ..." for another value.
+[[nodiscard]] std::optional<LengthUnit> iniLinearUnits(const NamedText& ini);
+
 /// The genhexkins pins of `machine` as LinuxCNC needs them (io::writeLinuxcncSetp's values:
 /// platform joints relative to the TCP, the spindle offset): ("base.0.x", value), ….
 [[nodiscard]] std::vector<std::pair<std::string, double>> genhexkinsPins(

@@ -62,8 +62,12 @@ struct PositioningColumns {
 /// or the one `how` gives; or a Renishaw LaserXL `.rtl` text file (io::isRenishawRtl). Throws
 /// pkm::IoError "NAME:LINE: message" for missing columns (listing the names accepted and the
 /// columns found), an unstated error unit, a bad field, a run < 1 or a repeated (target,
-/// direction, run) ("... (first at NAME:LINE)").
+/// direction, run) ("... (first at NAME:LINE)"). When `unstated` is given, the names of the
+/// inputs whose target positions were read as mm for want of a unit (none in the header, no
+/// how.unit) are appended to it.
 [[nodiscard]] std::vector<metrology::PositioningSample> readPositioningSamples(
-    std::span<const NamedText> inputs, const PositioningColumns& how = {});
+    std::span<const NamedText> inputs,
+    const PositioningColumns& how = {},
+    std::vector<std::string>* unstated = nullptr);
 
 }  // namespace pkm::io

@@ -24,6 +24,11 @@ struct Iso230_2Request {
   std::vector<io::NamedText> data;
   io::PositioningColumns columns;  ///< column assignments and units the headers do not give
   double coverage = 2.0;           ///< coverage factor k (ISO 230-2:2014: 2), > 0
+  /// The machine the axis belongs to (a machine file, `.hal` or built-in name; "" : none) or its
+  /// LinuxCNC INI ([TRAJ] LINEAR_UNITS): files without a stated unit on an inch machine are
+  /// flagged (workflow::unitMismatchWarnings).
+  std::string machine;
+  std::string ini;  ///< see `machine`
   /// Refuse (pkm::InvalidArgument) data that miss the ISO 230-2 test conditions or look
   /// implausible, instead of flagging them in the report.
   bool strict = false;

@@ -24,6 +24,11 @@ struct CompensationTableRequest {
   /// straightness (cross-axis) table. Lengths in mm.
   std::vector<io::NamedText> data;
   io::PositioningColumns columns;  ///< axis tables: column assignments and units of the exports
+  /// The machine the table is for (a machine file, `.hal` or built-in name; "" : none) or its
+  /// LinuxCNC INI ([TRAJ] LINEAR_UNITS): the table is written in the machine's length unit (mm
+  /// without either), and positioning files stating no unit on an inch machine are flagged.
+  std::string machine;
+  std::string ini;  ///< see `machine`
   std::string format;       ///< linuxcnc0, linuxcnc1, siemens-eec, siemens-cec or isg (required)
   std::string axis;         ///< axis tables: the axis as the controller knows it (X, X1, AX1, ...)
   std::string input_axis;   ///< straightness tables: the base axis (argument)
