@@ -46,8 +46,9 @@ TEST(MachineUnit, WarnsOnlyForUnstatedUnitsOnAnInchMachine) {
   EXPECT_TRUE(unitMismatchWarnings(unstated, MachineUnit{LengthUnit::kMillimetre, "m"}).empty());
   const auto w = unitMismatchWarnings(unstated, MachineUnit{LengthUnit::kInch, "sim.ini"});
   ASSERT_EQ(w.size(), 2u);
-  EXPECT_THAT(w[1], HasSubstr("b.csv: its header states no length unit, so its positions were "
-                              "read as mm, but the machine is in inch (sim.ini)"));
+  EXPECT_THAT(w[1],
+              HasSubstr("b.csv: its header states no length unit, so its positions were "
+                        "read as mm, but the machine is in inch (sim.ini)"));
 }
 
 }  // namespace
