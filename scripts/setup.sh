@@ -11,6 +11,7 @@ packages=(
   clang-format bc
   libboost-python1.74.0 libsqlite3-dev
   chromium
+  linuxcnc-uspace linuxcnc-uspace-dev
 )
 
 missing=()
@@ -27,7 +28,15 @@ if [ ! -d "$report_dir/node_modules" ] || [ "$report_dir/package-lock.json" -nt 
   (cd "$report_dir" && npm ci --no-audit --no-fund >/dev/null && touch node_modules)
 fi
 
-[ ${#missing[@]} -eq 0 ] && exit 0
+# LinuxCNC's rtapi_app refuses to run as root: the tests that start LinuxCNC run it as this
+# unprivileged user (with a home folder, where LinuxCNC keeps its logs) when they run as root.
+ensure_linuxcnc_user() {
+  if [ "$(id -u)" -eq 0 ] && ! id pkm-linuxcnc >/dev/null 2>&1; then
+    useradd --system --create-home --shell /usr/sbin/nologin pkm-linuxcnc
+  fi
+}
+
+if [ ${#missing[@]} -eq 0 ]; then ensure_linuxcnc_user; exit 0; fi
 
 echo "setup: installing missing packages: ${missing[*]}"
 sudo_cmd=()
@@ -39,4 +48,5 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 "${sudo_cmd[@]}" apt-get update -qq
 "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+ensure_linuxcnc_user
 echo "setup: done"
