@@ -56,9 +56,8 @@ void PositioningColumnArgs::add(CLI::App& cmd) {
                  machine,
                  "the machine the axis belongs to (JSON, LinuxCNC .hal or built-in name): its "
                  "length unit; files stating none on an inch machine are flagged");
-  cmd.add_option("--ini",
-                 ini,
-                 "the machine's LinuxCNC INI: its [TRAJ] LINEAR_UNITS is the machine's unit");
+  cmd.add_option(
+      "--ini", ini, "the machine's LinuxCNC INI: its [TRAJ] LINEAR_UNITS is the machine's unit");
 }
 
 io::PositioningColumns PositioningColumnArgs::parsed() const {

@@ -53,7 +53,8 @@ std::optional<std::pair<std::size_t, std::size_t>> word(const std::string& t,
 }
 
 /// Calls fn(section, key, value, line) for each `KEY = VALUE` line of `ini` ("[SECTION]" with
-/// its brackets; key without blanks; value trimmed; line 1-based); comments and blank lines skipped.
+/// its brackets; key without blanks; value trimmed; line 1-based); comments and blank lines
+/// skipped.
 template <class Fn>
 void forEachIniEntry(const NamedText& ini, Fn fn) {
   std::string_view section;
@@ -103,28 +104,35 @@ void replaceValue(TextPatch& patch,
 
 std::vector<std::string> iniHalFiles(const NamedText& ini) {
   std::vector<std::string> out;
-  forEachIniEntry(ini, [&](std::string_view section, std::string_view key, std::string_view value, std::size_t) {
-    if (section == "[HAL]" && (key == "HALFILE" || key == "POSTGUI_HALFILE") && !value.empty())
-      out.emplace_back(value.substr(0, value.find_first_of(" \t")));
-  });
+  forEachIniEntry(
+      ini,
+      [&](std::string_view section, std::string_view key, std::string_view value, std::size_t) {
+        if (section == "[HAL]" && (key == "HALFILE" || key == "POSTGUI_HALFILE") && !value.empty())
+          out.emplace_back(value.substr(0, value.find_first_of(" \t")));
+      });
   return out;
 }
 
 std::optional<LengthUnit> iniLinearUnits(const NamedText& ini) {
   std::optional<LengthUnit> unit;
-  forEachIniEntry(ini, [&](std::string_view section, std::string_view key, std::string_view value, std::size_t line) {
-    if (section != "[TRAJ]" || key != "LINEAR_UNITS") return;
-    if (value == "mm" || value == "metric")
-      unit = LengthUnit::kMillimetre;
-    else if (value == "inch" || value == "in" || value == "imperial")
-      unit = LengthUnit::kInch;
-    else
-      throw IoError(locate(ini.name,
-                           line,
-                           fmt::format("[TRAJ] LINEAR_UNITS '{}' not understood (mm, metric, inch, "
-                                       "in, imperial)",
-                                       value)));
-  });
+  forEachIniEntry(ini,
+                  [&](std::string_view section,
+                      std::string_view key,
+                      std::string_view value,
+                      std::size_t line) {
+                    if (section != "[TRAJ]" || key != "LINEAR_UNITS") return;
+                    if (value == "mm" || value == "metric")
+                      unit = LengthUnit::kMillimetre;
+                    else if (value == "inch" || value == "in" || value == "imperial")
+                      unit = LengthUnit::kInch;
+                    else
+                      throw IoError(locate(
+                          ini.name,
+                          line,
+                          fmt::format("[TRAJ] LINEAR_UNITS '{}' not understood (mm, metric, inch, "
+                                      "in, imperial)",
+                                      value)));
+                  });
   return unit;
 }
 

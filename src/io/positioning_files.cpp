@@ -138,9 +138,10 @@ bool readPositioningTable(
 
 }  // namespace
 
-std::vector<metrology::PositioningSample> readPositioningSamples(std::span<const NamedText> inputs,
-                                                                 const PositioningColumns& how,
-                                                                 std::vector<std::string>* unstated) {
+std::vector<metrology::PositioningSample> readPositioningSamples(
+    std::span<const NamedText> inputs,
+    const PositioningColumns& how,
+    std::vector<std::string>* unstated) {
   std::vector<metrology::PositioningSample> samples;
   std::map<std::tuple<double, int, long long>, std::pair<std::string, std::size_t>> seen;
   for (const NamedText& in : inputs) {

@@ -38,7 +38,8 @@ io::Iso230_2Report analyzeIso230_2(const Iso230_2Request& request) {
       request.coverage,
       metrology::iso230_2Nonconformities(samples),
       metrology::implausibleDeviations(samples)};
-  for (std::string& w : unitMismatchWarnings(unstated, unit)) report.warnings.push_back(std::move(w));
+  for (std::string& w : unitMismatchWarnings(unstated, unit))
+    report.warnings.push_back(std::move(w));
   if (request.strict && !(report.nonconformities.empty() && report.warnings.empty())) {
     std::vector<std::string> all = report.nonconformities;
     all.insert(all.end(), report.warnings.begin(), report.warnings.end());

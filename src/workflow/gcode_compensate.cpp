@@ -156,19 +156,19 @@ GcodeCompensateResult compensateHexapod(const GcodeCompensateRequest& request) {
   result.compensation = cnc::compensateProgram(
       request.program.text, request.program.name, nominal.model, cal.model, options);
   detail::writeCompensated(request, result);
-  result.note = predistortionNote(
-      fmt::format("nominal {} -> calibrated {}{}",
-                  nominal.model.name,
-                  cal.model.name,
-                  settings.startup_code.empty()
-                      ? std::string()
-                      : fmt::format(" (after RS274NGC_STARTUP_CODE \"{}\" of {})",
-                                    settings.startup_code,
-                                    settings.startup_source)),
-      result.compensation,
-      tolerance_mm,
-      options.interpolation.max_step,
-      cal.model.unit);
+  result.note =
+      predistortionNote(fmt::format("nominal {} -> calibrated {}{}",
+                                    nominal.model.name,
+                                    cal.model.name,
+                                    settings.startup_code.empty()
+                                        ? std::string()
+                                        : fmt::format(" (after RS274NGC_STARTUP_CODE \"{}\" of {})",
+                                                      settings.startup_code,
+                                                      settings.startup_source)),
+                        result.compensation,
+                        tolerance_mm,
+                        options.interpolation.max_step,
+                        cal.model.unit);
   return result;
 }
 

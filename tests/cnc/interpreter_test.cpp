@@ -72,8 +72,9 @@ TEST(Interpreter, StartupCodeSetsTheModesTheProgramStartsIn) {
   EXPECT_NEAR(m[0].end[0], 25.4, kTolRoundTrip);
   EXPECT_NEAR(m[1].end[0], 50.8, kTolRoundTrip);  // incremental from the start-up code
   o.startup_code = "G0 X1";
-  EXPECT_EQ(errorOf("G0 X0\n", o), "m.ini:7: RS274NGC_STARTUP_CODE moves the machine; it may set "
-                                    "modes only");
+  EXPECT_EQ(errorOf("G0 X0\n", o),
+            "m.ini:7: RS274NGC_STARTUP_CODE moves the machine; it may set "
+            "modes only");
   o.startup_code = "G20 G999";
   EXPECT_THAT(errorOf("G0 X0\n", o), HasSubstr("m.ini:7: RS274NGC_STARTUP_CODE:1: "));
 }

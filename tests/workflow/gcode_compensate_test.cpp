@@ -3,6 +3,7 @@
 // upload, bad requests refused, no overwrite without force.
 #include "pkm/workflow/gcode_compensate.hpp"
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -132,13 +133,36 @@ TEST_F(GcodeCompensateWorkflow, TheIniStartupCodeRunsBeforeTheProgram) {
   const GcodeCompensateResult with_ini = compensateGcode(q);
   const GcodeCompensateResult with_g20 = compensateGcode(request("G20\n" + body));
   // The same words; the inserted lines' comments name source lines one further down.
-  const std::string renumbered =
-      std::regex_replace(with_g20.compensation.text, std::regex("line 3 segment"), "line 2 segment");
+  const std::string renumbered = std::regex_replace(
+      with_g20.compensation.text, std::regex("line 3 segment"), "line 2 segment");
   EXPECT_EQ("G20\n" + with_ini.compensation.text, renumbered);
   EXPECT_GT(with_ini.compensation.max_correction, 0.0);
   EXPECT_THAT(with_ini.note, HasSubstr("RS274NGC_STARTUP_CODE \"G20 G17 G90\" of " + ini + ":2"));
   // Without the INI the same numbers are millimetres: a different program.
   EXPECT_NE(compensateGcode(request(body)).compensation.text, with_ini.compensation.text);
+}
+
+TEST_F(GcodeCompensateWorkflow, AnInchMachinesNoteSpeaksInches) {
+  // LinuxCNC's sim hexapod (inch) calibrated with one base joint moved 0.05 in: tolerance, step
+  // and largest correction in inches, the correction the mm figure / 25.4.
+  std::string j = slurp(std::string(PKM_SOURCE_DIR) + "/data/machines/hexapod-linuxcnc-sim.json");
+  const std::string name = "\"name\": \"hexapod-linuxcnc-sim\"";
+  ASSERT_NE(j.find(name), std::string::npos);
+  j.replace(j.find(name), name.size(), "\"name\": \"hexapod-linuxcnc-sim-calibrated\"");
+  const std::string base = "\"base\": [-22.95, 13.25, 0]";
+  ASSERT_NE(j.find(base), std::string::npos);
+  j.replace(j.find(base), base.size(), "\"base\": [-22.95, 13.3, 0]");
+  GcodeCompensateRequest q;
+  q.program = {"inch.ngc", "G20 G0 X1 Y1 Z21\nG1 X2 F10\nM2\n"};
+  q.machine = write("sim-cal.json", j);
+  q.tolerance = 0.001;
+  const GcodeCompensateResult r = compensateGcode(q);
+  EXPECT_THAT(r.note, HasSubstr("(tolerance 0.001 inch, max step "));
+  EXPECT_THAT(r.note,
+              HasSubstr(fmt::format("largest correction {:.4g} inch",
+                                    r.compensation.max_correction / 25.4)));
+  EXPECT_GT(r.compensation.max_correction / 25.4, 1e-4);
+  EXPECT_LT(r.compensation.max_correction / 25.4, 0.2);
 }
 
 TEST_F(GcodeCompensateWorkflow, TheIniMustAgreeWithTheMachine) {

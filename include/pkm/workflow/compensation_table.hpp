@@ -28,7 +28,7 @@ struct CompensationTableRequest {
   /// LinuxCNC INI ([TRAJ] LINEAR_UNITS): the table is written in the machine's length unit (mm
   /// without either), and positioning files stating no unit on an inch machine are flagged.
   std::string machine;
-  std::string ini;  ///< see `machine`
+  std::string ini;          ///< see `machine`
   std::string format;       ///< linuxcnc0, linuxcnc1, siemens-eec, siemens-cec or isg (required)
   std::string axis;         ///< axis tables: the axis as the controller knows it (X, X1, AX1, ...)
   std::string input_axis;   ///< straightness tables: the base axis (argument)
