@@ -96,12 +96,14 @@ std::string exechonJointName(int joint) {
 PathCheckReport checkExechonPath(const kin::ExechonModel& model,
                                  const std::vector<PathPoint>& points,
                                  const std::vector<ExechonPathSample>& samples,
-                                 const JointRateLimits& limits) {
+                                 const JointRateLimits& limits,
+                                 std::size_t keep_violations) {
   limits.validate();
   PKM_CHECK(
       points.size() == samples.size(), "{} points but {} samples", points.size(), samples.size());
   PathCheckReport r;
   r.points = points.size();
+  for (CheckStat& st : r.stats) st.keep = keep_violations;
   stat(r, PathCheck::kReach).enabled = true;
   kin::ExechonData data(model);
   std::vector<kin::StrutVector> q(points.size());

@@ -26,8 +26,10 @@ void recordCheck(CheckStat& s,
   const bool violated = !(margin >= 0.0);
   if (violated) ++s.violations;
   const bool worse = !(s.worst_rank <= rank);
-  if (!worse && !(violated && s.violations == 1)) return;
+  const bool kept = violated && s.events.size() < s.keep;
+  if (!worse && !(violated && s.violations == 1) && !kept) return;
   CheckEvent e{p.line, p.pos, std::move(item), value, limit, margin};
+  if (kept) s.events.push_back(e);
   if (violated && s.violations == 1) s.first = e;
   if (worse) {
     s.worst = std::move(e);
@@ -137,11 +139,13 @@ bool PathCheckReport::ok() const {
 PathCheckReport checkPath(const kinematics::HexapodModel& model,
                           const std::vector<PathPoint>& points,
                           const std::vector<kinematics::StrutVector>& q,
-                          const MotionLimits& limits) {
+                          const MotionLimits& limits,
+                          std::size_t keep_violations) {
   limits.validate();
   PKM_CHECK(points.size() == q.size(), "{} points but {} joint vectors", points.size(), q.size());
   PathCheckReport r;
   r.points = points.size();
+  for (CheckStat& st : r.stats) st.keep = keep_violations;
   r.stats[static_cast<std::size_t>(PathCheck::kReach)].enabled = true;  // closed-form IK
   kinematics::HexapodData data(model);
   for (const auto& p : points) {

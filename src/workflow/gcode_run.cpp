@@ -172,6 +172,12 @@ GcodeRunResult runGcode(const GcodeRunRequest& request, const RunControl& contro
     detail::runHexapod(request, *hexapod, moves, progress, run);
   GcodeRunResult result;
   result.report = detail::runReport(request, lines, moves.moves.size(), run);
+  result.path = detail::runPath(run, request.path_points);
+  for (std::size_t k = 0; k < cnc::kPathChecks; ++k) {
+    const auto c = static_cast<cnc::PathCheck>(k);
+    for (const cnc::CheckEvent& e : run.report.stats[k].events)
+      result.violations.push_back({std::string(cnc::toString(c)), eventOf(c, e, run)});
+  }
   if (!request.out.empty()) detail::writeJointCsv(request.out, run);
   if (!request.report.empty())
     io::writeFileAtomic(request.report, io::gcodeRunJson(result.report), io::Overwrite::kAllow);

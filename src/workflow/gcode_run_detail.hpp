@@ -38,7 +38,14 @@ struct JointRun {
   double tolerance_mm = kDefaultToleranceMm;  ///< the chordal tolerance in effect
   /// Why each disabled check is off, by check index ("" for the others).
   std::array<std::string, cnc::kPathChecks> off_reason;
+  std::vector<std::string> joint_names;  ///< GcodeRunPath::joints
+  std::vector<std::string> joint_units;  ///< GcodeRunPath::joint_units
+  /// The joint values at point i (the first joint_names.size() entries are used).
+  std::function<kinematics::StrutVector(std::size_t)> joints_at;
 };
+
+/// The path of `run` for a front end, at most `max_points` points (GcodeRunRequest::path_points).
+[[nodiscard]] GcodeRunPath runPath(const JointRun& run, std::size_t max_points);
 
 /// The request's tolerance in mm for a machine in `unit` (kDefaultToleranceMm without one).
 [[nodiscard]] double toleranceMm(const GcodeRunRequest& request, LengthUnit unit);

@@ -127,7 +127,12 @@ void runHexapod(const GcodeRunRequest& request,
   convert(conv, run.points, progress, *q);
   run.time = cnc::estimateCycleTime(
       run.points, *q, run.limits, cnc::dwellsOnPath(run.points, program.dwells));
-  run.report = cnc::checkPath(*model, run.points, *q, run.limits);
+  run.report = cnc::checkPath(*model, run.points, *q, run.limits, request.max_violations);
+  for (int i = 0; i < kinematics::kStruts; ++i) {
+    run.joint_names.push_back(fmt::format("strut {}", i));
+    run.joint_units.push_back(run.len);
+  }
+  run.joints_at = [q](std::size_t i) { return (*q)[i]; };
   run.csv_header = cnc::kJointCsvHeader;
   run.csv_row = [&run, q](std::string& out, std::size_t i) {
     cnc::appendJointCsv(out, run.points[i], run.time.t[i], (*q)[i]);
@@ -165,7 +170,12 @@ void runExechon(const GcodeRunRequest& request,
   for (std::size_t i = 0; i < q.size(); ++i) q[i] = (*samples)[i].joints;
   run.time =
       cnc::estimateCycleTime(run.points, q, limits, cnc::dwellsOnPath(run.points, program.dwells));
-  run.report = cnc::checkExechonPath(*model, run.points, *samples, limits);
+  run.report = cnc::checkExechonPath(*model, run.points, *samples, limits, request.max_violations);
+  for (int i = 0; i < 5; ++i) {
+    run.joint_names.push_back(cnc::exechonJointName(i));
+    run.joint_units.push_back(i < 3 ? run.len : "deg");
+  }
+  run.joints_at = [samples](std::size_t i) { return (*samples)[i].joints; };
   run.csv_header = cnc::kExechonJointCsvHeader;
   run.csv_row = [&run, samples](std::string& out, std::size_t i) {
     cnc::appendExechonJointCsv(out, run.points[i], run.time.t[i], (*samples)[i]);

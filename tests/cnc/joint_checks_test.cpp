@@ -28,7 +28,8 @@ constexpr double kTol = 0.01;  // mm
 /// Interpolates `text` for `model` and runs every check.
 PathCheckReport check(const kin::HexapodModel& model,
                       const std::string& text,
-                      const MotionLimits& lim = {}) {
+                      const MotionLimits& lim = {},
+                      std::size_t keep = 0) {
   const Program p = Program::parse(text, "t.ngc");
   MoveCollector moves;
   Interpreter interp;
@@ -40,7 +41,7 @@ PathCheckReport check(const kin::HexapodModel& model,
   HexapodJointConverter conv(model);
   std::vector<kin::StrutVector> q;
   conv.solveAll(pts, q);
-  return checkPath(model, pts, q, lim);
+  return checkPath(model, pts, q, lim, keep);
 }
 
 // Home (0, 0, 200) twice, then to a pose P on line 3 (G-code axes, mm and degrees).
@@ -78,6 +79,21 @@ TEST(CheckPath, StrokeExceededAtLine3) {
   EXPECT_EQ(s.worst.line, 3u);
   EXPECT_EQ(s.worst.pos[2], -300.0);  // the deepest point
   EXPECT_FALSE(r.ok());
+}
+
+TEST(CheckPath, KeepsTheFirstViolationsWhenAsked) {
+  const char* const program = "G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\nG1 Z200\n";
+  const CheckStat& none = check(pkm::test::millingModel(), program)[PathCheck::kStroke];
+  EXPECT_TRUE(none.events.empty());
+  const PathCheckReport all = check(pkm::test::millingModel(), program, {}, 1'000'000);
+  const CheckStat& s = all[PathCheck::kStroke];
+  ASSERT_EQ(s.events.size(), s.violations);  // every one, in path order
+  EXPECT_EQ(s.events.front().pos, s.first.pos);
+  for (const CheckEvent& e : s.events) EXPECT_LT(e.margin, 0.0);
+  const PathCheckReport three = check(pkm::test::millingModel(), program, {}, 3);
+  ASSERT_EQ(three[PathCheck::kStroke].events.size(), 3u);
+  EXPECT_EQ(three[PathCheck::kStroke].events[2].pos, s.events[2].pos);
+  EXPECT_EQ(three[PathCheck::kStroke].worst.pos, s.worst.pos);  // the rest unchanged
 }
 
 TEST(CheckPath, InterferenceAtLine3) {

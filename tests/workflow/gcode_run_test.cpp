@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -65,6 +66,41 @@ TEST(GcodeRunWorkflow, AStrokeViolationIsFoundAtItsLine) {
   EXPECT_GT(stroke.violations, 0u);
   EXPECT_EQ(stroke.first.line, 3u);
   EXPECT_LT(stroke.first.margin, 0.0);
+}
+
+TEST(GcodeRunWorkflow, ThePathAndEveryViolationForAFrontEnd) {
+  GcodeRunRequest q = request("G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\nG1 X50 Z200\nM2\n");
+  const GcodeRunResult full = runGcode(q);
+  EXPECT_TRUE(full.path.t.empty());  // not asked for
+  EXPECT_TRUE(full.violations.empty());
+  q.path_points = 1'000'000;
+  q.max_violations = 1'000'000;
+  const GcodeRunResult all = runGcode(q);
+  ASSERT_EQ(all.path.total_points, all.report.points);
+  ASSERT_EQ(all.path.t.size(), all.report.points);  // nothing decimated
+  EXPECT_EQ(all.path.joints.size(), 6u);
+  EXPECT_EQ(all.path.joint_units[0], "mm");
+  EXPECT_EQ(all.path.q[0].size(), 6u);
+  EXPECT_EQ(all.path.t.back(), all.report.cycle_time_s);  // no final dwell here
+  std::size_t violated = 0;
+  for (const io::GcodeCheckSummary& c : all.report.checks) violated += c.violations;
+  ASSERT_EQ(all.violations.size(), violated);
+  EXPECT_EQ(all.violations.front().check, "stroke");
+  EXPECT_EQ(all.violations.front().event.line, check(all.report, "stroke").first.line);
+  EXPECT_EQ(all.violations.front().event.unit, "mm");
+  // Decimated to 20 points: the ends and each check's worst point stay, times increase.
+  q.path_points = 20;
+  q.max_violations = 2;
+  const GcodeRunResult few = runGcode(q);
+  EXPECT_LE(few.path.index.size(), 20u + 2 * all.report.checks.size());
+  EXPECT_LT(few.path.index.size(), all.path.index.size());
+  EXPECT_EQ(few.path.index.front(), 0u);
+  EXPECT_EQ(few.path.index.back(), all.report.points - 1);
+  EXPECT_TRUE(std::is_sorted(few.path.t.begin(), few.path.t.end()));
+  const auto& worst = check(few.report, "stroke").worst.position;
+  EXPECT_NE(std::find(few.path.pose.begin(), few.path.pose.end(), worst), few.path.pose.end());
+  EXPECT_EQ(few.report.checks[0].violations, all.report.checks[0].violations);  // exact checks
+  EXPECT_LE(few.violations.size(), 2 * all.report.checks.size());
 }
 
 TEST(GcodeRunWorkflow, ErrorsNameTheUploadAndItsLine) {

@@ -29,10 +29,12 @@ namespace pkm::cnc {
 /// Runs every check along points[0..n) with the converter's samples. Reach: a violation at each
 /// point the tool IK could not solve (item: the solver's status word, margin −1). The other pose
 /// checks are evaluated at the solved points only; joint_angle reports the nearest of alpha, beta,
-/// wrist C and wrist A (rad). Throws pkm::InvalidArgument on size mismatch or invalid limits.
+/// wrist C and wrist A (rad). `keep_violations`: violations each check keeps in its
+/// CheckStat::events (0: none). Throws pkm::InvalidArgument on size mismatch or invalid limits.
 [[nodiscard]] PathCheckReport checkExechonPath(const kinematics::ExechonModel& model,
                                                const std::vector<PathPoint>& points,
                                                const std::vector<ExechonPathSample>& samples,
-                                               const JointRateLimits& limits);
+                                               const JointRateLimits& limits,
+                                               std::size_t keep_violations = 0);
 
 }  // namespace pkm::cnc

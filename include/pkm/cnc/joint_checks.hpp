@@ -57,6 +57,10 @@ struct CheckStat {
   /// What `worst` was chosen by: the margin, or for per-joint rates the margin relative to the
   /// joint's own limit (joints of different units compare fairly).
   double worst_rank = std::numeric_limits<double>::infinity();
+  /// How many violations to keep in `events` (0: none; a front end listing every violation sets
+  /// it, bounding the memory a long program can take).
+  std::size_t keep = 0;
+  std::vector<CheckEvent> events;  ///< the first `keep` violations, in path order
 };
 
 /// All checks of one path.
@@ -71,8 +75,9 @@ struct PathCheckReport {
 };
 
 /// Records one evaluation of a check at `p`: counts a violation (margin < 0 or NaN), keeps the
-/// first violation, and keeps the evaluation as the worst when `rank` (default: the margin) is the
-/// smallest so far. A margin of +infinity means the limit is disabled and records nothing.
+/// first violation (and the first stat.keep in stat.events), and keeps the evaluation as the worst
+/// when `rank` (default: the margin) is the smallest so far. A margin of +infinity means the limit
+/// is disabled and records nothing.
 void recordCheck(CheckStat& stat,
                  const PathPoint& p,
                  std::string item,
@@ -101,9 +106,11 @@ void checkJointRates(const std::vector<PathPoint>& points,
 /// distance between a strut's joint centres, limit 0. Reach: enabled and never violated (the
 /// hexapod's inverse kinematics is closed-form and always defined). Throws pkm::InvalidArgument on
 /// size mismatch.
+/// `keep_violations`: violations each check keeps in its CheckStat::events (0: none).
 [[nodiscard]] PathCheckReport checkPath(const kinematics::HexapodModel& model,
                                         const std::vector<PathPoint>& points,
                                         const std::vector<kinematics::StrutVector>& q,
-                                        const MotionLimits& limits);
+                                        const MotionLimits& limits,
+                                        std::size_t keep_violations = 0);
 
 }  // namespace pkm::cnc

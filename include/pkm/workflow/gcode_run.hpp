@@ -5,6 +5,7 @@
 /// machine (strokes, joint angles, interference, conditioning, joint rates).
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -39,15 +40,43 @@ struct GcodeRunRequest {
   /// axes' readings ("axes").
   std::string orientation = "vector";
   GcodeInterpreterSettings interpreter;  ///< tool table, block delete, loop guard
+  /// Most points of the returned path (GcodeRunResult::path; 0: no path). A longer path is
+  /// decimated evenly, keeping the first and last points and every point where a check's worst
+  /// value occurs; the checks themselves always see every point.
+  std::size_t path_points = 0;
+  /// Most violations returned per check (GcodeRunResult::violations; 0: none).
+  std::size_t max_violations = 0;
   /// Throws pkm::InvalidArgument for a limit or tolerance that is not > 0 or an orientation for a
   /// hexapod, pkm::IoError "PATH exists; pass --force to overwrite it" for an existing `out` or
   /// `report` without `force`, and as GcodeInterpreterSettings::validate.
   void validate() const;
 };
 
+/// The interpolated path of a run, for drawing and animating it (possibly decimated).
+struct GcodeRunPath {
+  std::vector<std::string> joints;          ///< joint names: "strut 0".. or "leg A".., "wrist C"..
+  std::vector<std::string> joint_units;     ///< each joint's unit: the machine's length unit, "deg"
+  std::size_t total_points = 0;             ///< points of the full path
+  std::vector<std::size_t> index;           ///< each kept point's index in the full path
+  std::vector<double> t;                    ///< arrival time at each kept point, s
+  std::vector<std::size_t> line;            ///< its program line
+  std::vector<std::array<double, 6>> pose;  ///< X Y Z A B C, mm and degrees (as the report)
+  std::vector<std::vector<double>> q;       ///< its joint values, in joint_units
+};
+
+/// One violated point of one check.
+struct GcodeRunViolation {
+  std::string check;          ///< the check's word (docs/gcode.md), e.g. "stroke"
+  io::GcodeCheckEvent event;  ///< line, position, item, value, limit, margin (< 0), unit
+};
+
 /// What a `gcode run` found.
 struct GcodeRunResult {
   io::GcodeRunReport report;  ///< every figure (io::gcodeRunText, io::gcodeRunJson)
+  GcodeRunPath path;          ///< request.path_points > 0: the path
+  /// request.max_violations > 0: the first max_violations violations of each check, by check
+  /// then path order (report.checks[k].violations counts them all).
+  std::vector<GcodeRunViolation> violations;
   /// False when a check is violated (the CLI then exits with code 1).
   [[nodiscard]] bool ok() const { return report.ok; }
 };
