@@ -91,6 +91,8 @@ class ExechonPosePath {
   /// without a hybrid section.
   ExechonPoseStep solve(const kinematics::ExechonToolPose& tool,
                         const std::optional<std::array<double, 2>>& x2y2 = std::nullopt);
+  /// The mechanism at the last solve (joint centres, wrist point; valid when it was solved).
+  [[nodiscard]] const kinematics::ExechonData& data() const { return data_; }
 
  private:
   const io::ExechonMachine& machine_;

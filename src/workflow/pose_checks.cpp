@@ -1,0 +1,142 @@
+// Poses checked one by one for a front end that draws the machine (workflow/pose_checks.hpp).
+#include "pkm/workflow/pose_checks.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "pkm/core/error.hpp"
+#include "pkm/core/units.hpp"
+#include "pkm/io/machine_loader.hpp"
+#include "pkm/kinematics/hexapod_checks.hpp"
+#include "pkm/kinematics/hexapod_ik.hpp"
+#include "pkm/kinematics/pose_rpy.hpp"
+#include "pkm/workflow/kinematics_path.hpp"
+
+namespace pkm::workflow {
+namespace {
+
+namespace kin = pkm::kinematics;
+
+WorldPoint point(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+/// A margin in degrees (an angle in rad; +infinity stays).
+double degrees(double rad) { return std::isinf(rad) ? rad : radToDeg(rad); }
+
+/// "KIND ITEM value V limit L" with angles in degrees.
+std::string describe(const kin::LimitViolation& v) {
+  const bool angle = v.kind == kin::LimitKind::kJointAngle;
+  return fmt::format("{} {} value {:.6g} limit {:.6g}",
+                     kin::toString(v.kind),
+                     v.item,
+                     angle ? radToDeg(v.value) : v.value,
+                     angle ? radToDeg(v.limit) : v.limit);
+}
+
+PoseCheckRow hexapodRow(const kin::HexapodModel& m,
+                        kin::HexapodData& data,
+                        const std::array<double, 6>& p) {
+  kin::PoseRpy pose;
+  pose.position = {p[0], p[1], p[2]};
+  pose.rpy = Eigen::Vector3d(degToRad(p[3]), degToRad(p[4]), degToRad(p[5]));
+  const kin::HexapodCheckResult c = kin::checkPose(m, data, pose);
+  PoseCheckRow row;
+  row.status = std::string(c.status());
+  for (int i = 0; i < kin::kStruts; ++i) {
+    row.joints.push_back(c.readings[i]);
+    row.stroke_margin.push_back(c.stroke_margin[i]);
+    row.angle_margin.push_back(
+        degrees(std::min(c.base_angle_margin[i], c.platform_angle_margin[i])));
+    row.base_points.push_back(point(m.effectiveBase(i)));
+    row.moving_points.push_back(
+        point(pose.position + data.world_r_joint[static_cast<std::size_t>(i)]));
+  }
+  if (c.closest_pair[0] >= 0) {
+    row.clearance = c.interference_margin;
+    row.closest_pair = {c.closest_pair[0], c.closest_pair[1]};
+  }
+  row.condition_number = c.condition_number;
+  row.condition_margin = c.condition_margin;
+  for (const kin::LimitViolation& v : c.violations) row.violations.push_back(describe(v));
+  const Eigen::Matrix3d R = kin::toRigidTransform(pose).linear();
+  row.tool_point = point(pose.position);
+  row.tool_direction = point(R.col(2));
+  return row;
+}
+
+PoseCheckRow exechonRow(const io::ExechonMachine& machine,
+                        ExechonPosePath& path,
+                        const std::array<double, 6>& p) {
+  kin::ExechonToolPose tool;
+  tool.position = {p[0], p[1], p[2]};
+  tool.direction = Eigen::Vector3d(p[3], p[4], p[5]).normalized();
+  const ExechonPoseStep step = path.solve(tool);
+  const kin::ExechonCheckResult& c = step.check;
+  PoseCheckRow row;
+  row.status = std::string(step.status);
+  if (!step.solved) return row;
+  for (int i = 0; i < 3; ++i) {
+    row.joints.push_back(step.joints.readings[i]);
+    row.stroke_margin.push_back(c.stroke_margin[i]);
+  }
+  row.joints.push_back(radToDeg(step.joints.c));
+  row.joints.push_back(radToDeg(step.joints.a));
+  row.angle_margin = {
+      degrees(c.alpha_margin), degrees(c.beta_margin), degrees(c.c_margin), degrees(c.a_margin)};
+  row.condition_number = c.condition_number;
+  row.condition_margin = c.condition_margin;
+  for (const kin::LimitViolation& v : c.violations) row.violations.push_back(describe(v));
+  const kin::ExechonData& d = path.data();
+  const geometry::RigidTransform& world_T_zoppi = machine.model.world_T_zoppi;
+  for (std::size_t i = 0; i < 3; ++i) {
+    row.base_points.push_back(point(world_T_zoppi * d.zoppi_p_base[i]));
+    row.moving_points.push_back(point(world_T_zoppi * d.zoppi_p_platform_joint[i]));
+  }
+  row.wrist_points.push_back(point(d.world_p_S));
+  row.tool_point = point(tool.position);
+  row.tool_direction = point(tool.direction);
+  return row;
+}
+
+}  // namespace
+
+void PoseCheckRequest::validate() const {
+  PKM_CHECK(!poses.empty(), "no poses to check");
+  PKM_CHECK(poses.size() <= kMaxPoseChecks,
+            "{} poses: at most {} per request",
+            poses.size(),
+            kMaxPoseChecks);
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    for (double v : poses[i])
+      PKM_CHECK(std::isfinite(v), "pose {}: a value is not a finite number", i);
+}
+
+PoseCheckResult checkPoses(const PoseCheckRequest& request) {
+  request.validate();
+  PoseCheckResult r;
+  if (io::machineTypeOf(request.machine) == "exechon") {
+    const io::ExechonMachine machine = io::loadExechonMachine(request.machine);
+    r.machine = machine.model.name;
+    r.machine_type = "exechon";
+    r.units = std::string(toString(machine.model.unit));
+    r.joint_names = {"leg A", "leg B", "leg C", "wrist C", "wrist A"};
+    ExechonPosePath path(machine);
+    for (const auto& p : request.poses) {
+      PKM_CHECK(Eigen::Vector3d(p[3], p[4], p[5]).norm() > 0.0, "a tool direction is zero");
+      r.rows.push_back(exechonRow(machine, path, p));
+    }
+    return r;
+  }
+  io::HalReadOptions hal;
+  if (!request.ini.empty()) hal.ini_path = request.ini;
+  const io::HexapodMachine machine = io::loadHexapodMachine(request.machine, hal);
+  r.machine = machine.model.name;
+  r.machine_type = "hexapod";
+  r.units = std::string(toString(machine.model.unit));
+  for (int i = 0; i < kin::kStruts; ++i) r.joint_names.push_back(fmt::format("strut {}", i));
+  kin::HexapodData data(machine.model);
+  for (const auto& p : request.poses) r.rows.push_back(hexapodRow(machine.model, data, p));
+  return r;
+}
+
+}  // namespace pkm::workflow
