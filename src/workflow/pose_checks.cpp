@@ -9,6 +9,7 @@
 #include "pkm/core/units.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/kinematics/hexapod_checks.hpp"
+#include "pkm/kinematics/exechon_wrist.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "pkm/kinematics/pose_rpy.hpp"
 #include "pkm/workflow/kinematics_path.hpp"
@@ -109,6 +110,26 @@ void PoseCheckRequest::validate() const {
   for (std::size_t i = 0; i < poses.size(); ++i)
     for (double v : poses[i])
       PKM_CHECK(std::isfinite(v), "pose {}: a value is not a finite number", i);
+}
+
+std::array<double, 6> homePose(const std::string& machine, const std::string& ini) {
+  if (io::machineTypeOf(machine) == "exechon") {
+    const io::ExechonMachine m = io::loadExechonMachine(machine);
+    kin::ExechonData data(m.model);
+    kin::evaluateConfiguration(m.model, data, m.model.home);
+    const Eigen::Vector3d& p = data.world_p_tool;
+    const Eigen::Vector3d& u = data.world_u_tool;
+    return {p.x(), p.y(), p.z(), u.x(), u.y(), u.z()};
+  }
+  io::HalReadOptions hal;
+  if (!ini.empty()) hal.ini_path = ini;
+  const kin::PoseRpy h = io::loadHexapodMachine(machine, hal).model.home;
+  return {h.position.x(),
+          h.position.y(),
+          h.position.z(),
+          radToDeg(h.rpy.x()),
+          radToDeg(h.rpy.y()),
+          radToDeg(h.rpy.z())};
 }
 
 PoseCheckResult checkPoses(const PoseCheckRequest& request) {

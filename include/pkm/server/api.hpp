@@ -1,0 +1,90 @@
+/// @file
+/// @brief The JSON API of `pkm serve` (docs/web.md), independent of the HTTP transport: every
+/// request is checked (Host, Origin, size), routed and answered by a workflow function; the HTTP
+/// adapter (http_server.hpp) only moves bytes. Thread-safe: one Api serves concurrent requests.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "pkm/workflow/progress.hpp"
+
+namespace pkm::server {
+
+/// Where a server listens and what it allows.
+struct ServerOptions {
+  std::string host = "127.0.0.1";    ///< the address to bind (another host only when asked)
+  int port = 8787;                   ///< 0: any free port
+  std::size_t max_body = 32u << 20;  ///< largest request body, bytes (413 above)
+  std::size_t max_jobs = 2;          ///< long jobs at once (runs, compensations, campaigns); 503 above
+  std::size_t max_uploads = 32;      ///< machines one server holds (the oldest is dropped)
+  /// Throws pkm::InvalidArgument for a port outside 0..65535 or a zero limit.
+  void validate() const;
+};
+
+/// A request as the transport received it.
+struct Request {
+  std::string method;  ///< "GET", "POST", ...
+  std::string path;    ///< without the query string
+  std::string body;
+  std::string host;    ///< the Host header ("" when absent)
+  std::string origin;  ///< the Origin header ("" when absent)
+};
+
+/// A complete answer.
+struct Response {
+  int status = 200;
+  std::string content_type = "application/json";
+  std::string body;
+};
+
+/// A campaign admitted by Api::startCampaign, run by Api::runCampaign.
+struct CampaignJob {
+  std::string campaign;  ///< built-in campaign name
+  int id = 0;            ///< its number: GET /api/campaign/ID/report.html
+  workflow::CancellationToken cancel;
+  std::shared_ptr<void> slot;  ///< the job slot it holds, released with the job
+};
+
+/// The API. Uploaded machines and campaign reports live in a folder of the server's own (removed
+/// when the Api is destroyed); a request never names a file system path.
+class Api {
+ public:
+  /// Throws as ServerOptions::validate and pkm::IoError when its folder cannot be made.
+  explicit Api(ServerOptions options);
+  ~Api();
+  Api(const Api&) = delete;
+  Api& operator=(const Api&) = delete;
+
+  /// The port the transport bound (for the Host and Origin checks when options.port was 0).
+  void setPort(int port);
+
+  /// Answers every route but the campaign stream (docs/web.md): 200 with JSON, 400 for malformed
+  /// JSON or a bad field, 403 for a foreign Host or Origin, 404 for an unknown path, 405 for a
+  /// wrong method, 413 for a body above max_body, 422 {"error", "name", "line"} for a program or
+  /// file with an error, 503 when max_jobs long jobs run already. Never throws.
+  [[nodiscard]] Response handle(const Request& request);
+
+  /// POST /api/campaign: checks the request and takes a job slot. Returns status 200 with `job`
+  /// set up, or the error response (as handle()). A job that was admitted must be run.
+  [[nodiscard]] Response startCampaign(const Request& request, CampaignJob& job);
+  /// Runs an admitted campaign, passing each server-sent event (`event: NAME\ndata: JSON\n\n`) to
+  /// `write`; `write` returning false (the client left) cancels the campaign. Never throws.
+  void runCampaign(CampaignJob& job, const std::function<bool(const std::string&)>& write);
+
+  /// The embedded front-end asset at `path` ("/" is "/index.html"), if there is one.
+  [[nodiscard]] static const Response* asset(const std::string& path);
+
+  struct State;  ///< the implementation's (src/server/api_state.hpp)
+
+ private:
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace pkm::server

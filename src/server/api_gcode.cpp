@@ -1,0 +1,95 @@
+// POST /api/gcode/run and POST /api/gcode/compensate (docs/web.md): workflow::runGcode and
+// workflow::compensateGcode on a program sent as text.
+#include <fmt/format.h>
+
+#include "api_state.hpp"
+#include "pkm/io/gcode_run_report.hpp"
+#include "pkm/workflow/gcode_compensate.hpp"
+#include "pkm/workflow/gcode_run.hpp"
+
+namespace pkm::server::detail {
+namespace {
+
+/// Default and largest number of path points a run returns.
+constexpr std::size_t kDefaultPathPoints = 20'000;
+constexpr std::size_t kMaxPathPoints = 1'000'000;
+/// Default and largest number of violations listed per check.
+constexpr std::size_t kDefaultViolations = 10'000;
+constexpr std::size_t kMaxViolations = 1'000'000;
+
+Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+io::NamedText program(const Json& body) {
+  return {safeName(stringField(body, "name", "program.ngc")), requiredString(body, "program")};
+}
+
+Json pathJson(const workflow::GcodeRunPath& p) {
+  Json pose = Json::array(), q = Json::array();
+  for (const auto& x : p.pose) pose.push_back(x);
+  for (const auto& x : p.q) q.push_back(x);
+  return {{"joints", p.joints},   {"joint_units", p.joint_units},
+          {"total_points", p.total_points}, {"index", p.index},
+          {"t", p.t},             {"line", p.line},
+          {"pose", pose},         {"q", q}};
+}
+
+Json violationsJson(const std::vector<workflow::GcodeRunViolation>& v) {
+  Json a = Json::array();
+  for (const workflow::GcodeRunViolation& x : v)
+    a.push_back({{"check", x.check},
+                 {"line", x.event.line},
+                 {"position", x.event.position},
+                 {"item", x.event.item},
+                 {"value", number(x.event.value)},
+                 {"limit", number(x.event.limit)},
+                 {"margin", number(x.event.margin)},
+                 {"unit", x.event.unit}});
+  return a;
+}
+
+}  // namespace
+
+Response runGcode(Api::State& s, const Request& r) {
+  const Json body = parseObject(r);
+  workflow::GcodeRunRequest q;
+  q.program = program(body);
+  const MachineSpec m = s.resolveMachine(requiredString(body, "machine"));
+  q.machine = m.spec;
+  q.ini = m.ini;
+  q.tolerance = numberField(body, "tolerance");
+  q.strut_diameter = numberField(body, "strut_diameter");
+  q.orientation = stringField(body, "orientation", "vector");
+  q.path_points = countField(body, "max_points", kMaxPathPoints).value_or(kDefaultPathPoints);
+  q.max_violations =
+      countField(body, "max_violations", kMaxViolations).value_or(kDefaultViolations);
+  const JobSlot slot(s);
+  const workflow::GcodeRunResult result = workflow::runGcode(q);
+  Json j = Json::parse(io::gcodeRunJson(result.report));
+  j["path"] = pathJson(result.path);
+  j["violations"] = violationsJson(result.violations);
+  return json(j);
+}
+
+Response compensateGcode(Api::State& s, const Request& r) {
+  const Json body = parseObject(r);
+  workflow::GcodeCompensateRequest q;
+  q.program = program(body);
+  const MachineSpec m = s.resolveMachine(requiredString(body, "machine"));
+  q.machine = m.spec;
+  q.ini = m.ini;
+  const std::string nominal = stringField(body, "nominal", "");
+  if (!nominal.empty()) q.nominal = s.resolveMachine(nominal).spec;
+  q.tolerance = numberField(body, "tolerance");
+  if (body.contains("orientation")) q.orientation = stringField(body, "orientation", "vector");
+  const JobSlot slot(s);
+  const workflow::GcodeCompensateResult result = workflow::compensateGcode(q);
+  const cnc::ProgramCompensation& c = result.compensation;
+  return json({{"text", c.text},
+               {"note", s.clean(result.note)},
+               {"motion_lines", c.motion_lines},
+               {"added_lines", c.added_lines},
+               {"offset_lines", c.offset_lines},
+               {"max_correction_mm", c.max_correction}});
+}
+
+}  // namespace pkm::server::detail

@@ -1,0 +1,115 @@
+// The shared state and helpers of the API's route files (pkm/server/api.hpp): the server's own
+// folder, the uploaded machines, the job slots, JSON field readers and error responses.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pkm/server/api.hpp"
+#include "pkm/workflow/pose_checks.hpp"
+
+namespace pkm::server::detail {
+
+using Json = nlohmann::ordered_json;
+
+/// An answer other than 200, thrown by the routes.
+class HttpError : public std::runtime_error {
+ public:
+  HttpError(int status, const std::string& message) : std::runtime_error(message), status(status) {}
+  int status;
+};
+
+/// A machine the client uploaded, kept in the server's folder.
+struct Upload {
+  std::string name;            ///< the name requests use ("upload-3-kinematics")
+  std::filesystem::path path;  ///< the machine file (.json or .hal)
+  std::filesystem::path ini;   ///< its INI ("" : none)
+  std::string type;            ///< "hexapod" or "exechon"
+};
+
+/// A machine as a workflow takes it: a built-in name or an uploaded file, and its INI.
+struct MachineSpec {
+  std::string spec;
+  std::string ini;
+};
+
+}  // namespace pkm::server::detail
+
+namespace pkm::server {
+
+struct Api::State {
+  ServerOptions options;
+  std::atomic<int> port{0};
+  std::filesystem::path dir;  ///< the server's own folder (uploads, campaign outputs)
+  std::mutex mutex;           ///< guards uploads, campaigns and the counters
+  std::vector<detail::Upload> uploads;  ///< oldest first
+  std::map<int, std::filesystem::path> campaign_reports;
+  int next_upload = 1;
+  int next_campaign = 1;
+  std::atomic<std::size_t> jobs{0};
+
+  /// A built-in machine name or an uploaded machine's name as a workflow spec. Throws HttpError
+  /// 400 for anything else (a request never names a path).
+  detail::MachineSpec resolveMachine(const std::string& name);
+  /// `message` with the server's folder removed from the paths it names.
+  [[nodiscard]] std::string clean(std::string message) const;
+};
+
+}  // namespace pkm::server
+
+namespace pkm::server::detail {
+
+/// A long job's slot, released on destruction. Throws HttpError 503 when max_jobs run already.
+class JobSlot {
+ public:
+  explicit JobSlot(Api::State& state);
+  ~JobSlot();
+  JobSlot(const JobSlot&) = delete;
+  JobSlot& operator=(const JobSlot&) = delete;
+
+ private:
+  Api::State& state_;
+};
+
+/// The request body as a JSON object. Throws HttpError 400 for malformed JSON or another type.
+[[nodiscard]] Json parseObject(const Request& request);
+/// Field `key` of `j` as a string: the default when absent, HttpError 400 for another type.
+[[nodiscard]] std::string stringField(const Json& j, const char* key, const std::string& fallback);
+/// A required string field. Throws HttpError 400 when absent or not a string.
+[[nodiscard]] std::string requiredString(const Json& j, const char* key);
+/// An optional finite number. Throws HttpError 400 for another type or a non-finite value.
+[[nodiscard]] std::optional<double> numberField(const Json& j, const char* key);
+/// An optional count in [0, max]. Throws HttpError 400 otherwise.
+[[nodiscard]] std::optional<std::size_t> countField(const Json& j, const char* key, std::size_t max);
+/// A name an upload or program may carry: letters, digits, '.', '-', '_' (others become '_'),
+/// at most 64 characters, never empty ("upload").
+[[nodiscard]] std::string safeName(const std::string& name);
+/// A JSON response.
+[[nodiscard]] Response json(const Json& j, int status = 200);
+/// An error response {"error": message} (with "name" and "line" when the message starts with
+/// "NAME:LINE:").
+[[nodiscard]] Response error(int status, const std::string& message);
+
+/// A checked pose as JSON (docs/web.md, POST /api/ik).
+[[nodiscard]] Json poseRowJson(const workflow::PoseCheckRow& row);
+
+// The routes (one file each).
+[[nodiscard]] Response listMachines(Api::State& s);
+[[nodiscard]] Response getMachine(Api::State& s, const std::string& name);
+[[nodiscard]] Response uploadMachine(Api::State& s, const Request& r);
+[[nodiscard]] Response checkPoses(Api::State& s, const Request& r);
+[[nodiscard]] Response runGcode(Api::State& s, const Request& r);
+[[nodiscard]] Response compensateGcode(Api::State& s, const Request& r);
+[[nodiscard]] Response listCampaigns();
+/// Checks a campaign request ({"campaign": NAME}) and sets `job` up with a job slot and a number.
+void prepareCampaign(Api::State& s, const Request& r, CampaignJob& job);
+[[nodiscard]] Response campaignReport(Api::State& s, const std::string& id);
+
+}  // namespace pkm::server::detail

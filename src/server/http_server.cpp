@@ -1,0 +1,87 @@
+// The HTTP transport of `pkm serve` (pkm/server/http_server.hpp), on cpp-httplib.
+#include "pkm/server/http_server.hpp"
+
+#include <fmt/format.h>
+#include <httplib.h>
+
+#include "pkm/core/error.hpp"
+
+namespace pkm::server {
+namespace {
+
+Request requestOf(const httplib::Request& req) {
+  return {req.method, req.path, req.body, req.get_header_value("Host"),
+          req.get_header_value("Origin")};
+}
+
+void answer(const Response& r, httplib::Response& res) {
+  res.status = r.status;
+  res.set_content(r.body, r.content_type.c_str());
+  res.set_header("X-Content-Type-Options", "nosniff");
+  res.set_header("Cache-Control", "no-store");
+}
+
+}  // namespace
+
+struct HttpServer::Impl {
+  explicit Impl(ServerOptions o) : options(o), api(std::move(o)) {}
+  ServerOptions options;
+  Api api;
+  httplib::Server http;
+};
+
+HttpServer::HttpServer(ServerOptions options) : impl_(std::make_unique<Impl>(std::move(options))) {
+  httplib::Server& http = impl_->http;
+  Api& api = impl_->api;
+  http.set_payload_max_length(impl_->options.max_body);
+  http.set_pre_routing_handler([&api](const httplib::Request& req, httplib::Response& res) {
+    if (req.path != "/api/campaign" || req.method != "POST") {
+      answer(api.handle(requestOf(req)), res);
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    auto job = std::make_shared<CampaignJob>();
+    const Response admitted = api.startCampaign(requestOf(req), *job);
+    if (admitted.status != 200) {
+      answer(admitted, res);
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    res.set_header("Cache-Control", "no-store");
+    res.set_chunked_content_provider(
+        "text/event-stream",
+        [&api, job](std::size_t, httplib::DataSink& sink) {
+          api.runCampaign(*job, [&sink](const std::string& chunk) {
+            return sink.is_writable() && sink.write(chunk.data(), chunk.size());
+          });
+          sink.done();
+          return true;
+        },
+        [job](bool) { job->cancel.cancel(); });
+    return httplib::Server::HandlerResponse::Handled;
+  });
+}
+
+HttpServer::~HttpServer() { stop(); }
+
+int HttpServer::bind() {
+  const ServerOptions& o = impl_->options;
+  int port = o.port;
+  if (port == 0) {
+    port = impl_->http.bind_to_any_port(o.host);
+  } else if (!impl_->http.bind_to_port(o.host, port)) {
+    port = -1;
+  }
+  if (port < 0)
+    throw IoError(fmt::format("cannot listen on {}:{} (in use, or not an address of this machine)",
+                              o.host,
+                              o.port));
+  impl_->api.setPort(port);
+  return port;
+}
+
+void HttpServer::listen() { impl_->http.listen_after_bind(); }
+
+void HttpServer::stop() { impl_->http.stop(); }
+
+Api& HttpServer::api() { return impl_->api; }
+
+}  // namespace pkm::server
