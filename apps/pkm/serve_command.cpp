@@ -68,8 +68,10 @@ void addServe(CLI::App& app) {
       "serve",
       "the web application: the machine in 3-D, programs by G-code or blocks checked in a "
       "simulator, campaigns (docs/web.md); serves until Ctrl-C");
-  cmd->add_option("--host", a->options.host, "address to listen on (default 127.0.0.1: this "
-                                             "machine only)");
+  cmd->add_option("--host",
+                  a->options.host,
+                  "address to listen on (default 127.0.0.1: this "
+                  "machine only)");
   cmd->add_option("--port", a->options.port, "port (default 8787; 0: any free port)")
       ->check(CLI::Range(0, 65535));
   cmd->add_flag("--open", a->open, "open the page in the desktop's browser");

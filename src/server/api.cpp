@@ -16,8 +16,8 @@ namespace {
 /// The Host values a request may carry: the loopback names and the bound address, with the port.
 bool allowedHost(const std::string& host, const Api::State& s) {
   const std::string port = std::to_string(s.port.load());
-  for (const std::string& h : {std::string("127.0.0.1"), std::string("localhost"),
-                               std::string("[::1]"), s.options.host})
+  for (const std::string& h :
+       {std::string("127.0.0.1"), std::string("localhost"), std::string("[::1]"), s.options.host})
     if (host == h + ":" + port) return true;
   return false;
 }
@@ -35,13 +35,15 @@ std::optional<Response> admit(const Request& r, const Api::State& s) {
   const bool reads = r.method == "GET" || r.method == "HEAD";
   if (!reads && !r.origin.empty() &&
       !(r.origin.starts_with("http://") && allowedHost(r.origin.substr(7), s)))
-    return detail::error(403, fmt::format("Origin '{}' refused: cross-origin requests may not "
-                                          "change anything",
-                                          r.origin));
+    return detail::error(403,
+                         fmt::format("Origin '{}' refused: cross-origin requests may not "
+                                     "change anything",
+                                     r.origin));
   if (r.body.size() > s.options.max_body)
-    return detail::error(413, fmt::format("request body of {} bytes is above the limit of {}",
-                                          r.body.size(),
-                                          s.options.max_body));
+    return detail::error(413,
+                         fmt::format("request body of {} bytes is above the limit of {}",
+                                     r.body.size(),
+                                     s.options.max_body));
   return std::nullopt;
 }
 
@@ -90,8 +92,9 @@ Response route(const Request& r, Api::State& s) {
     return detail::campaignReport(s, m[1].str());
   }
   if (p == "/api/campaign")
-    throw detail::HttpError(400, "POST /api/campaign answers with server-sent events: call it "
-                                 "through the HTTP server");
+    throw detail::HttpError(400,
+                            "POST /api/campaign answers with server-sent events: call it "
+                            "through the HTTP server");
   if (!p.starts_with("/api/") && (r.method == "GET" || r.method == "HEAD"))
     if (const Response* a = Api::asset(p)) return *a;
   throw detail::HttpError(404, fmt::format("{} {}: no such route (docs/web.md)", r.method, p));

@@ -49,11 +49,12 @@ void Api::runCampaign(CampaignJob& job, const std::function<bool(const std::stri
   workflow::RunControl control;
   control.cancel = &job.cancel;
   control.progress = [&](const workflow::ProgressEvent& e) {
-    send(event("progress", {{"stage", e.stage},
-                            {"index", e.index},
-                            {"count", e.count},
-                            {"elapsed", e.elapsed},
-                            {"message", e.message}}));
+    send(event("progress",
+               {{"stage", e.stage},
+                {"index", e.index},
+                {"count", e.count},
+                {"elapsed", e.elapsed},
+                {"message", e.message}}));
   };
   control.notice = [&](const std::string& n) { send(event("notice", {{"message", s.clean(n)}})); };
   try {
@@ -65,11 +66,12 @@ void Api::runCampaign(CampaignJob& job, const std::function<bool(const std::stri
       const std::lock_guard lock(s.mutex);
       s.campaign_reports[job.id] = r.report;
     }
-    send(event("result", {{"id", job.id},
-                          {"campaign", r.name},
-                          {"report", fmt::format("/api/campaign/{}/report.html", job.id)},
-                          {"all_pass", r.all_pass},
-                          {"steps", stepsJson(r)}}));
+    send(event("result",
+               {{"id", job.id},
+                {"campaign", r.name},
+                {"report", fmt::format("/api/campaign/{}/report.html", job.id)},
+                {"all_pass", r.all_pass},
+                {"steps", stepsJson(r)}}));
   } catch (const workflow::Cancelled&) {
     send(event("cancelled", {{"id", job.id}}));
   } catch (const std::exception& e) {
@@ -86,8 +88,7 @@ Response listCampaigns() {
   Json list = Json::array();
   for (const std::string& name : workflow::builtinCampaignNames()) {
     const workflow::CampaignInfo info = workflow::describeCampaign(name);
-    list.push_back(
-        {{"name", info.name}, {"steps", info.steps}, {"description", info.description}});
+    list.push_back({{"name", info.name}, {"steps", info.steps}, {"description", info.description}});
   }
   return json(list);
 }
@@ -97,8 +98,8 @@ void prepareCampaign(Api::State& s, const Request& r, CampaignJob& job) {
   job.campaign = stringField(body, "campaign", "default");
   const std::vector<std::string> names = workflow::builtinCampaignNames();
   if (std::find(names.begin(), names.end(), job.campaign) == names.end())
-    throw HttpError(400, fmt::format("unknown campaign '{}': GET /api/campaigns lists them",
-                                     job.campaign));
+    throw HttpError(
+        400, fmt::format("unknown campaign '{}': GET /api/campaigns lists them", job.campaign));
   job.slot = std::make_shared<JobSlot>(s);
   const std::lock_guard lock(s.mutex);
   job.id = s.next_campaign++;

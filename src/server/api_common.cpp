@@ -82,9 +82,8 @@ std::optional<std::size_t> countField(const Json& j, const char* key, std::size_
 
 std::string safeName(const std::string& name) {
   std::string out;
-  for (char c : name.substr(name.find_last_of("/\\") == std::string::npos
-                                ? 0
-                                : name.find_last_of("/\\") + 1)) {
+  for (char c : name.substr(
+           name.find_last_of("/\\") == std::string::npos ? 0 : name.find_last_of("/\\") + 1)) {
     if (out.size() >= 64) break;
     const bool ok = std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_';
     out += ok ? c : '_';

@@ -23,14 +23,26 @@ io::NamedText program(const Json& body) {
   return {safeName(stringField(body, "name", "program.ngc")), requiredString(body, "program")};
 }
 
+/// The tool table a request sends as text ("tool_table", "tool_units").
+workflow::GcodeInterpreterSettings interpreter(const Json& body) {
+  workflow::GcodeInterpreterSettings settings;
+  settings.tool_table_text = stringField(body, "tool_table", "");
+  settings.tool_units = stringField(body, "tool_units", "mm");
+  return settings;
+}
+
 Json pathJson(const workflow::GcodeRunPath& p) {
   Json pose = Json::array(), q = Json::array();
   for (const auto& x : p.pose) pose.push_back(x);
   for (const auto& x : p.q) q.push_back(x);
-  return {{"joints", p.joints},   {"joint_units", p.joint_units},
-          {"total_points", p.total_points}, {"index", p.index},
-          {"t", p.t},             {"line", p.line},
-          {"pose", pose},         {"q", q}};
+  return {{"joints", p.joints},
+          {"joint_units", p.joint_units},
+          {"total_points", p.total_points},
+          {"index", p.index},
+          {"t", p.t},
+          {"line", p.line},
+          {"pose", pose},
+          {"q", q}};
 }
 
 Json violationsJson(const std::vector<workflow::GcodeRunViolation>& v) {
@@ -62,6 +74,7 @@ Response runGcode(Api::State& s, const Request& r) {
   q.path_points = countField(body, "max_points", kMaxPathPoints).value_or(kDefaultPathPoints);
   q.max_violations =
       countField(body, "max_violations", kMaxViolations).value_or(kDefaultViolations);
+  q.interpreter = interpreter(body);
   const JobSlot slot(s);
   const workflow::GcodeRunResult result = workflow::runGcode(q);
   Json j = Json::parse(io::gcodeRunJson(result.report));
@@ -81,6 +94,7 @@ Response compensateGcode(Api::State& s, const Request& r) {
   if (!nominal.empty()) q.nominal = s.resolveMachine(nominal).spec;
   q.tolerance = numberField(body, "tolerance");
   if (body.contains("orientation")) q.orientation = stringField(body, "orientation", "vector");
+  q.interpreter = interpreter(body);
   const JobSlot slot(s);
   const workflow::GcodeCompensateResult result = workflow::compensateGcode(q);
   const cnc::ProgramCompensation& c = result.compensation;

@@ -10,8 +10,9 @@ Response checkPoses(Api::State& s, const Request& r) {
   const Json body = parseObject(r);
   const MachineSpec m = s.resolveMachine(requiredString(body, "machine"));
   if (!body.contains("poses") || !body["poses"].is_array())
-    throw HttpError(400, "\"poses\" must be an array of [x, y, z, a, b, c] (hexapod) or "
-                         "[x, y, z, i, j, k] (Exechon: tool point and direction)");
+    throw HttpError(400,
+                    "\"poses\" must be an array of [x, y, z, a, b, c] (hexapod) or "
+                    "[x, y, z, i, j, k] (Exechon: tool point and direction)");
   workflow::PoseCheckRequest q;
   q.machine = m.spec;
   q.ini = m.ini;

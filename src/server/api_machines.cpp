@@ -76,8 +76,7 @@ Json poseRowJson(const workflow::PoseCheckRow& row) {
          {"base_points", points(row.base_points)},
          {"moving_points", points(row.moving_points)},
          {"tool_point", {row.tool_point[0], row.tool_point[1], row.tool_point[2]}},
-         {"tool_direction",
-          {row.tool_direction[0], row.tool_direction[1], row.tool_direction[2]}},
+         {"tool_direction", {row.tool_direction[0], row.tool_direction[1], row.tool_direction[2]}},
          {"wrist_points", points(row.wrist_points)}};
   return j;
 }
@@ -86,15 +85,16 @@ Response listMachines(Api::State& s) {
   Json list = Json::array();
   for (const char* type : {"hexapod", "exechon"})
     for (const std::string& name : io::builtinMachineNames(type))
-      list.push_back({{"name", name}, {"type", type}, {"units", load({name, ""}).units},
-                      {"uploaded", false}});
+      list.push_back(
+          {{"name", name}, {"type", type}, {"units", load({name, ""}).units}, {"uploaded", false}});
   std::vector<Upload> uploads;
   {
     const std::lock_guard lock(s.mutex);
     uploads = s.uploads;
   }
   for (const Upload& u : uploads)
-    list.push_back({{"name", u.name}, {"type", u.type},
+    list.push_back({{"name", u.name},
+                    {"type", u.type},
                     {"units", load({u.path.string(), u.ini.string()}).units},
                     {"uploaded", true}});
   return json(list);
@@ -124,9 +124,10 @@ Response uploadMachine(Api::State& s, const Request& r) {
   const std::string ini_text = stringField(body, "ini", "");
   const bool hal = filename.ends_with(".hal");
   if (!hal && !filename.ends_with(".json"))
-    throw HttpError(400, fmt::format("\"filename\" '{}' must end in .json (a pkm machine file) or "
-                                     ".hal (a LinuxCNC configuration)",
-                                     filename));
+    throw HttpError(400,
+                    fmt::format("\"filename\" '{}' must end in .json (a pkm machine file) or "
+                                ".hal (a LinuxCNC configuration)",
+                                filename));
   if (!ini_text.empty() && !hal) throw HttpError(400, "\"ini\" goes with a .hal machine only");
   int n = 0;
   {
@@ -170,7 +171,10 @@ Response uploadMachine(Api::State& s, const Request& r) {
   }
   Json notices = Json::array();
   for (const std::string& note : l.notices) notices.push_back(s.clean(note));
-  return json({{"name", u.name}, {"type", u.type}, {"units", l.units}, {"machine", l.name},
+  return json({{"name", u.name},
+               {"type", u.type},
+               {"units", l.units},
+               {"machine", l.name},
                {"notices", notices}});
 }
 

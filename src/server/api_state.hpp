@@ -2,11 +2,10 @@
 // folder, the uploaded machines, the job slots, JSON field readers and error responses.
 #pragma once
 
-#include <nlohmann/json.hpp>
-
 #include <atomic>
 #include <filesystem>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -47,8 +46,8 @@ namespace pkm::server {
 struct Api::State {
   ServerOptions options;
   std::atomic<int> port{0};
-  std::filesystem::path dir;  ///< the server's own folder (uploads, campaign outputs)
-  std::mutex mutex;           ///< guards uploads, campaigns and the counters
+  std::filesystem::path dir;            ///< the server's own folder (uploads, campaign outputs)
+  std::mutex mutex;                     ///< guards uploads, campaigns and the counters
   std::vector<detail::Upload> uploads;  ///< oldest first
   std::map<int, std::filesystem::path> campaign_reports;
   int next_upload = 1;
@@ -87,7 +86,9 @@ class JobSlot {
 /// An optional finite number. Throws HttpError 400 for another type or a non-finite value.
 [[nodiscard]] std::optional<double> numberField(const Json& j, const char* key);
 /// An optional count in [0, max]. Throws HttpError 400 otherwise.
-[[nodiscard]] std::optional<std::size_t> countField(const Json& j, const char* key, std::size_t max);
+[[nodiscard]] std::optional<std::size_t> countField(const Json& j,
+                                                    const char* key,
+                                                    std::size_t max);
 /// A name an upload or program may carry: letters, digits, '.', '-', '_' (others become '_'),
 /// at most 64 characters, never empty ("upload").
 [[nodiscard]] std::string safeName(const std::string& name);

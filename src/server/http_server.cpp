@@ -10,8 +10,8 @@ namespace pkm::server {
 namespace {
 
 Request requestOf(const httplib::Request& req) {
-  return {req.method, req.path, req.body, req.get_header_value("Host"),
-          req.get_header_value("Origin")};
+  return {
+      req.method, req.path, req.body, req.get_header_value("Host"), req.get_header_value("Origin")};
 }
 
 void answer(const Response& r, httplib::Response& res) {
@@ -34,17 +34,21 @@ HttpServer::HttpServer(ServerOptions options) : impl_(std::make_unique<Impl>(std
   httplib::Server& http = impl_->http;
   Api& api = impl_->api;
   http.set_payload_max_length(impl_->options.max_body);
-  http.set_pre_routing_handler([&api](const httplib::Request& req, httplib::Response& res) {
-    if (req.path != "/api/campaign" || req.method != "POST") {
-      answer(api.handle(requestOf(req)), res);
-      return httplib::Server::HandlerResponse::Handled;
-    }
+  // Every method and path goes to the Api (it answers 404/405 itself); handlers, not a
+  // pre-routing hook, so that the body has been read (and limited to max_body: 413).
+  auto handle = [&api](const httplib::Request& req, httplib::Response& res) {
+    answer(api.handle(requestOf(req)), res);
+  };
+  http.Get(".*", handle);
+  http.Put(".*", handle);
+  http.Delete(".*", handle);
+  http.Patch(".*", handle);
+  http.Options(".*", handle);
+  http.Post(".*", [&api, handle](const httplib::Request& req, httplib::Response& res) {
+    if (req.path != "/api/campaign") return handle(req, res);
     auto job = std::make_shared<CampaignJob>();
     const Response admitted = api.startCampaign(requestOf(req), *job);
-    if (admitted.status != 200) {
-      answer(admitted, res);
-      return httplib::Server::HandlerResponse::Handled;
-    }
+    if (admitted.status != 200) return answer(admitted, res);
     res.set_header("Cache-Control", "no-store");
     res.set_chunked_content_provider(
         "text/event-stream",
@@ -56,7 +60,6 @@ HttpServer::HttpServer(ServerOptions options) : impl_(std::make_unique<Impl>(std
           return true;
         },
         [job](bool) { job->cancel.cancel(); });
-    return httplib::Server::HandlerResponse::Handled;
   });
 }
 
@@ -71,9 +74,8 @@ int HttpServer::bind() {
     port = -1;
   }
   if (port < 0)
-    throw IoError(fmt::format("cannot listen on {}:{} (in use, or not an address of this machine)",
-                              o.host,
-                              o.port));
+    throw IoError(fmt::format(
+        "cannot listen on {}:{} (in use, or not an address of this machine)", o.host, o.port));
   impl_->api.setPort(port);
   return port;
 }

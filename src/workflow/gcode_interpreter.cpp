@@ -18,8 +18,11 @@ void GcodeInterpreterSettings::validate() const {
 cnc::InterpreterOptions GcodeInterpreterSettings::options() const {
   validate();
   cnc::InterpreterOptions o;
+  const double scale = tool_units == "inch" ? cnc::kMmPerInch : 1.0;
   if (!tool_table.empty())
-    o.tools = cnc::ToolTable::load(tool_table, tool_units == "inch" ? cnc::kMmPerInch : 1.0);
+    o.tools = cnc::ToolTable::load(tool_table, scale);
+  else if (!tool_table_text.empty())
+    o.tools = cnc::ToolTable::parse(tool_table_text, scale, tool_table_name);
   o.block_delete = block_delete;
   o.max_loop_iterations = max_iterations;
   o.startup_code = startup_code;

@@ -22,8 +22,8 @@ struct ServerOptions {
   std::string host = "127.0.0.1";    ///< the address to bind (another host only when asked)
   int port = 8787;                   ///< 0: any free port
   std::size_t max_body = 32u << 20;  ///< largest request body, bytes (413 above)
-  std::size_t max_jobs = 2;          ///< long jobs at once (runs, compensations, campaigns); 503 above
-  std::size_t max_uploads = 32;      ///< machines one server holds (the oldest is dropped)
+  std::size_t max_jobs = 2;      ///< long jobs at once (runs, compensations, campaigns); 503 above
+  std::size_t max_uploads = 32;  ///< machines one server holds (the oldest is dropped)
   /// Throws pkm::InvalidArgument for a port outside 0..65535 or a zero limit.
   void validate() const;
 };

@@ -22,7 +22,11 @@ inline constexpr std::size_t kGcodeProgressInterval = 10'000;
 
 /// How a G-code program is interpreted (LinuxCNC 2.9 semantics).
 struct GcodeInterpreterSettings {
-  std::string tool_table;         ///< LinuxCNC tool table (.tbl) for G43 and M6 ("" : none)
+  std::string tool_table;  ///< LinuxCNC tool table (.tbl) for G43 and M6 ("" : none)
+  /// A tool table's text instead of a file (an upload; used when tool_table is ""), and the name
+  /// its messages give it.
+  std::string tool_table_text;
+  std::string tool_table_name = "tools.tbl";
   std::string tool_units = "mm";  ///< the tool table's length unit: "mm" or "inch"
   bool block_delete = false;      ///< skip lines starting with '/'
   /// Iterations one loop may make before the program is rejected as runaway (> 0).

@@ -62,7 +62,8 @@ struct PoseCheckResult {
 /// The machine's home as a pose checkPoses takes: a hexapod's home pose (x, y, z, a, b, c), an
 /// Exechon's tool point and direction at its home configuration. Throws pkm::IoError for an
 /// unreadable machine.
-[[nodiscard]] std::array<double, 6> homePose(const std::string& machine, const std::string& ini = "");
+[[nodiscard]] std::array<double, 6> homePose(const std::string& machine,
+                                             const std::string& ini = "");
 
 /// Solves and checks every pose: hexapod IK (kinematics::checkPose), Exechon tool IK by continuity
 /// from the previous pose (workflow::ExechonPosePath). Throws as validate() and pkm::IoError for an

@@ -1,0 +1,189 @@
+// server::Api in process: the routes' answers, the error statuses (400, 403, 404, 405, 413, 422,
+// 503) and the security rules (Host, Origin, no paths from requests), without a socket.
+#include "pkm/server/api.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace pkm::server {
+namespace {
+
+using ::testing::HasSubstr;
+using Json = nlohmann::json;
+
+constexpr int kPort = 8787;
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class ApiTest : public ::testing::Test {
+ protected:
+  ApiTest() : api_(options()) {}
+  static ServerOptions options() {
+    ServerOptions o;
+    o.port = kPort;
+    o.max_body = 1 << 20;
+    return o;
+  }
+  Response get(const std::string& path, const std::string& host = "127.0.0.1:8787") {
+    return api_.handle({"GET", path, "", host, ""});
+  }
+  Response post(const std::string& path, const std::string& body, const std::string& origin = "") {
+    return api_.handle({"POST", path, body, "localhost:8787", origin});
+  }
+  static Json body(const Response& r) { return Json::parse(r.body); }
+  Api api_;
+};
+
+TEST_F(ApiTest, ListsTheBuiltInMachines) {
+  const Response r = get("/api/machines");
+  ASSERT_EQ(r.status, 200) << r.body;
+  const Json j = body(r);
+  ASSERT_GE(j.size(), 4u);
+  EXPECT_EQ(j[0]["name"], "hexapod-default");
+  EXPECT_EQ(j[0]["type"], "hexapod");
+  EXPECT_EQ(j[0]["units"], "mm");
+  bool exechon = false;
+  for (const Json& m : j) exechon = exechon || m["type"] == "exechon";
+  EXPECT_TRUE(exechon);
+}
+
+TEST_F(ApiTest, AMachineWithItsDrawingAtHome) {
+  const Json j = body(get("/api/machines/hexapod-linuxcnc-sim"));
+  EXPECT_EQ(j["units"], "inch");
+  EXPECT_EQ(j["machine"]["name"], "hexapod-linuxcnc-sim");  // the describe --json document
+  EXPECT_EQ(j["drawing"]["status"], "ok");
+  EXPECT_EQ(j["drawing"]["base_points"].size(), 6u);
+  EXPECT_EQ(j["home"][2], 20.0);
+  const Json e = body(get("/api/machines/mxt700s-like"));
+  EXPECT_EQ(e["type"], "exechon");
+  EXPECT_EQ(e["joints"].size(), 5u);
+  EXPECT_EQ(e["drawing"]["wrist_points"].size(), 1u);
+}
+
+TEST_F(ApiTest, RequestsNeverNameAPath) {
+  const Response r = get("/api/machines/..%2f..%2fetc%2fpasswd");
+  EXPECT_EQ(r.status, 400);
+  EXPECT_THAT(body(r)["error"].get<std::string>(), HasSubstr("unknown machine"));
+  const Response ik =
+      post("/api/ik", R"({"machine": "/etc/passwd", "poses": [[0, 0, 200, 0, 0, 0]]})");
+  EXPECT_EQ(ik.status, 400);
+  EXPECT_EQ(get("/../../etc/passwd").status, 404);
+  EXPECT_EQ(get("/api/nothing").status, 404);
+}
+
+TEST_F(ApiTest, ForeignHostsAndOriginsAreRefused) {
+  EXPECT_EQ(get("/api/machines", "evil.example:8787").status, 403);  // DNS rebinding
+  EXPECT_EQ(get("/api/machines", "127.0.0.1:9999").status, 403);
+  EXPECT_EQ(get("/api/machines", "").status, 403);
+  EXPECT_EQ(get("/api/machines", "localhost:8787").status, 200);
+  const std::string ik = R"({"machine": "hexapod-default", "poses": [[0, 0, 200, 0, 0, 0]]})";
+  EXPECT_EQ(post("/api/ik", ik, "http://evil.example").status, 403);
+  EXPECT_EQ(post("/api/ik", ik, "null").status, 403);
+  EXPECT_EQ(post("/api/ik", ik, "http://localhost:8787").status, 200);
+  EXPECT_EQ(post("/api/ik", ik).status, 200);  // no Origin: not a browser page
+}
+
+TEST_F(ApiTest, StatusCodesForBadRequests) {
+  EXPECT_EQ(post("/api/ik", "{not json").status, 400);
+  EXPECT_EQ(post("/api/ik", "[1, 2]").status, 400);
+  EXPECT_EQ(post("/api/ik", R"({"machine": "hexapod-default", "poses": [[0, 0]]})").status, 400);
+  EXPECT_EQ(post("/api/ik", R"({"poses": []})").status, 400);
+  EXPECT_EQ(get("/api/ik").status, 405);
+  EXPECT_EQ(post("/api/ik", std::string(2 << 20, ' ')).status, 413);
+  const Response bad = post("/api/gcode/run", R"({"machine": "hexapod-default", "name": "p.ngc",
+      "program": "G0 X0 Y0 Z200\nG1 X1 Q\n"})");
+  EXPECT_EQ(bad.status, 422);
+  EXPECT_EQ(body(bad)["name"], "p.ngc");
+  EXPECT_EQ(body(bad)["line"], 2);
+  EXPECT_EQ(post("/api/gcode/run", R"({"machine": "hexapod-default", "program": "G0 X1",
+      "max_points": -1})")
+                .status,
+            400);
+}
+
+TEST_F(ApiTest, PosesCheckedWithMargins) {
+  const Response r = post("/api/ik", R"({"machine": "hexapod-default",
+      "poses": [[0, 0, 200, 0, 0, 0], [0, 0, -300, 0, 0, 0]]})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  const Json j = body(r);
+  EXPECT_EQ(j["joints"].size(), 6u);
+  EXPECT_EQ(j["rows"][0]["status"], "ok");
+  EXPECT_EQ(j["rows"][0]["joints"].size(), 6u);
+  EXPECT_GT(j["rows"][0]["clearance"].get<double>(), 0.0);
+  EXPECT_EQ(j["rows"][1]["status"], "stroke");
+}
+
+TEST_F(ApiTest, UploadedMachinesAreHeldAndNamedInErrors) {
+  Json up{{"filename", "my-hexapod.json"},
+          {"text", slurp(std::string(PKM_SOURCE_DIR) + "/data/machines/hexapod-default.json")}};
+  const Response r = post("/api/machines", up.dump());
+  ASSERT_EQ(r.status, 200) << r.body;
+  const std::string name = body(r)["name"];
+  EXPECT_EQ(name, "upload-1-my-hexapod");
+  EXPECT_EQ(get("/api/machines/" + name).status, 200);
+  const Json list = body(get("/api/machines"));
+  EXPECT_EQ(list.back()["name"], name);
+  EXPECT_EQ(list.back()["uploaded"], true);
+  // A broken LinuxCNC file: 422 naming the upload (not the server's folder) and the line.
+  const Json hal{{"filename", "../../kinematics.hal"},
+                 {"text", "loadrt genhexkins\nsetp genhexkins.base.0.x oops\n"}};
+  const Response bad = post("/api/machines", hal.dump());
+  ASSERT_EQ(bad.status, 422) << bad.body;
+  EXPECT_EQ(body(bad)["name"], "kinematics.hal");
+  EXPECT_EQ(body(bad)["line"], 2);
+  EXPECT_EQ(post("/api/machines", R"({"filename": "m.txt", "text": "x"})").status, 400);
+}
+
+TEST_F(ApiTest, AProgramRunsWithPathAndViolations) {
+  const Response r = post("/api/gcode/run", R"({"machine": "hexapod-default", "name": "v.ngc",
+      "program": "G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\nM2\n", "max_points": 50})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  const Json j = body(r);
+  EXPECT_EQ(j["program"], "v.ngc");
+  EXPECT_FALSE(j["ok"].get<bool>());
+  EXPECT_LE(j["path"]["t"].size(), 50u + 16u);
+  EXPECT_EQ(j["path"]["q"][0].size(), 6u);
+  ASSERT_GT(j["violations"].size(), 0u);
+  EXPECT_EQ(j["violations"][0]["check"], "stroke");
+  EXPECT_EQ(j["violations"][0]["line"], 3);
+}
+
+TEST_F(ApiTest, CompensateReturnsTheProgram) {
+  const Response r = post("/api/gcode/compensate", R"({"machine": "hexapod-default",
+      "nominal": "hexapod-default", "program": "G0 X0 Y0 Z200\nG1 X10 F600\n"})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_THAT(body(r)["text"].get<std::string>(), HasSubstr("G1 X"));
+  EXPECT_EQ(body(r)["max_correction_mm"], 0.0);  // the same machine: nothing to correct
+}
+
+TEST_F(ApiTest, TheFrontEndIsEmbedded) {
+  const Response page = get("/");
+  EXPECT_EQ(page.status, 200);
+  EXPECT_THAT(page.content_type, HasSubstr("text/html"));
+  EXPECT_THAT(page.body, HasSubstr("/app.js"));
+  EXPECT_EQ(get("/app.js").status, 200);
+  EXPECT_EQ(get("/app.css").status, 200);
+}
+
+TEST_F(ApiTest, CampaignsAreListedAndTheirStreamNeedsTheTransport) {
+  const Json j = body(get("/api/campaigns"));
+  EXPECT_EQ(j[0]["name"], "default");
+  CampaignJob job;
+  EXPECT_EQ(api_.startCampaign(
+                    {"POST", "/api/campaign", R"({"campaign": "nope"})", "localhost:8787", ""}, job)
+                .status,
+            400);
+  EXPECT_EQ(get("/api/campaign/7/report.html").status, 404);
+}
+
+}  // namespace
+}  // namespace pkm::server
