@@ -12,6 +12,7 @@ packages=(
   libboost-python1.74.0 libsqlite3-dev
   chromium
   linuxcnc-uspace linuxcnc-uspace-dev
+  libcpp-httplib-dev
 )
 
 missing=()
@@ -20,13 +21,16 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
-# The HTML report's npm assets (uPlot, playwright-core; docs/report.md), when node_modules is
-# missing or older than package-lock.json.
-report_dir="$(cd "$(dirname "$0")/.." && pwd)/web/report"
-if [ ! -d "$report_dir/node_modules" ] || [ "$report_dir/package-lock.json" -nt "$report_dir/node_modules" ]; then
-  echo "setup: npm ci in web/report"
-  (cd "$report_dir" && npm ci --no-audit --no-fund >/dev/null && touch node_modules)
-fi
+# The npm packages of the HTML report (uPlot, playwright-core; docs/report.md) and of the web
+# application (esbuild, three.js, Blockly, CodeMirror, uPlot; docs/web.md), from their lock files,
+# when node_modules is missing or older than package-lock.json.
+root="$(cd "$(dirname "$0")/.." && pwd)"
+for dir in "$root/web/report" "$root/web/app"; do
+  if [ ! -d "$dir/node_modules" ] || [ "$dir/package-lock.json" -nt "$dir/node_modules" ]; then
+    echo "setup: npm ci in ${dir#$root/}"
+    (cd "$dir" && npm ci --no-audit --no-fund >/dev/null && touch node_modules)
+  fi
+done
 
 # LinuxCNC's rtapi_app refuses to run as root: the tests that start LinuxCNC run it as this
 # unprivileged user (with a home folder, where LinuxCNC keeps its logs) when they run as root.
