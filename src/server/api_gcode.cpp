@@ -16,6 +16,8 @@ constexpr std::size_t kMaxPathPoints = 1'000'000;
 /// Default and largest number of violations listed per check.
 constexpr std::size_t kDefaultViolations = 10'000;
 constexpr std::size_t kMaxViolations = 1'000'000;
+/// Largest number of animation frames (machine drawings) a run returns.
+constexpr std::size_t kMaxFrames = 10'000;
 
 Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
@@ -75,11 +77,15 @@ Response runGcode(Api::State& s, const Request& r) {
   q.max_violations =
       countField(body, "max_violations", kMaxViolations).value_or(kDefaultViolations);
   q.interpreter = interpreter(body);
+  q.frames = countField(body, "frames", kMaxFrames).value_or(0);
   const JobSlot slot(s);
   const workflow::GcodeRunResult result = workflow::runGcode(q);
   Json j = Json::parse(io::gcodeRunJson(result.report));
   j["path"] = pathJson(result.path);
   j["violations"] = violationsJson(result.violations);
+  Json rows = Json::array();
+  for (const workflow::PoseCheckRow& row : result.frames) rows.push_back(poseRowJson(row));
+  j["frames"] = {{"t", result.frame_t}, {"index", result.frame_index}, {"rows", rows}};
   return json(j);
 }
 

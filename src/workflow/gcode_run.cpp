@@ -173,6 +173,7 @@ GcodeRunResult runGcode(const GcodeRunRequest& request, const RunControl& contro
   GcodeRunResult result;
   result.report = detail::runReport(request, lines, moves.moves.size(), run);
   result.path = detail::runPath(run, request.path_points);
+  detail::runFrames(run, request.frames, result);
   for (std::size_t k = 0; k < cnc::kPathChecks; ++k) {
     const auto c = static_cast<cnc::PathCheck>(k);
     for (const cnc::CheckEvent& e : run.report.stats[k].events)

@@ -42,7 +42,12 @@ struct JointRun {
   std::vector<std::string> joint_units;  ///< GcodeRunPath::joint_units
   /// The joint values at point i (the first joint_names.size() entries are used).
   std::function<kinematics::StrutVector(std::size_t)> joints_at;
+  /// The machine drawn at point i (workflow::PoseCheckRow).
+  std::function<PoseCheckRow(std::size_t)> frame_at;
 };
+
+/// `count` frames of `run` evenly spaced in time into `result`.
+void runFrames(const JointRun& run, std::size_t count, GcodeRunResult& result);
 
 /// The path of `run` for a front end, at most `max_points` points (GcodeRunRequest::path_points).
 [[nodiscard]] GcodeRunPath runPath(const JointRun& run, std::size_t max_points);

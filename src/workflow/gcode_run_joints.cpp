@@ -14,6 +14,8 @@
 #include "pkm/io/atomic_file.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/number_format.hpp"
+#include "pkm/kinematics/exechon_wrist.hpp"
+#include "pose_rows.hpp"
 
 namespace pkm::workflow::detail {
 
@@ -133,6 +135,10 @@ void runHexapod(const GcodeRunRequest& request,
     run.joint_units.push_back(run.len);
   }
   run.joints_at = [q](std::size_t i) { return (*q)[i]; };
+  run.frame_at = [&run, model](std::size_t i) {
+    kinematics::HexapodData data(*model);
+    return hexapodPoseRow(*model, data, cnc::poseFromAxes(run.points[i].pos, model->unit));
+  };
   run.csv_header = cnc::kJointCsvHeader;
   run.csv_row = [&run, q](std::string& out, std::size_t i) {
     cnc::appendJointCsv(out, run.points[i], run.time.t[i], (*q)[i]);
@@ -176,6 +182,17 @@ void runExechon(const GcodeRunRequest& request,
     run.joint_units.push_back(i < 3 ? run.len : "deg");
   }
   run.joints_at = [samples](std::size_t i) { return (*samples)[i].joints; };
+  run.frame_at = [model, samples](std::size_t i) {
+    const cnc::ExechonPathSample& sample = (*samples)[i];
+    if (!sample.ok()) {
+      PoseCheckRow row;
+      row.status = std::string(kinematics::toString(sample.status));
+      return row;
+    }
+    kinematics::ExechonData data(*model);
+    kinematics::evaluateConfiguration(*model, data, sample.config);
+    return exechonDataRow(*model, data, kinematics::checkConfiguration(*model, data));
+  };
   run.csv_header = cnc::kExechonJointCsvHeader;
   run.csv_row = [&run, samples](std::string& out, std::size_t i) {
     cnc::appendExechonJointCsv(out, run.points[i], run.time.t[i], (*samples)[i]);

@@ -50,4 +50,20 @@ GcodeRunPath runPath(const JointRun& run, std::size_t max_points) {
   return path;
 }
 
+void runFrames(const JointRun& run, std::size_t count, GcodeRunResult& result) {
+  const std::size_t n = run.points.size();
+  if (count == 0 || n == 0) return;
+  const double total = run.time.t.back();
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const double t =
+        count == 1 ? 0.0 : total * static_cast<double>(k) / static_cast<double>(count - 1);
+    while (i + 1 < n && run.time.t[i + 1] <= t) ++i;
+    if (!result.frame_index.empty() && result.frame_index.back() == i) continue;
+    result.frame_t.push_back(run.time.t[i]);
+    result.frame_index.push_back(i);
+    result.frames.push_back(run.frame_at(i));
+  }
+}
+
 }  // namespace pkm::workflow::detail

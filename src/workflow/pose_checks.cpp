@@ -13,6 +13,7 @@
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "pkm/kinematics/pose_rpy.hpp"
 #include "pkm/workflow/kinematics_path.hpp"
+#include "pose_rows.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -40,6 +41,31 @@ PoseCheckRow hexapodRow(const kin::HexapodModel& m,
   kin::PoseRpy pose;
   pose.position = {p[0], p[1], p[2]};
   pose.rpy = Eigen::Vector3d(degToRad(p[3]), degToRad(p[4]), degToRad(p[5]));
+  return detail::hexapodPoseRow(m, data, pose);
+}
+
+PoseCheckRow exechonRow(const io::ExechonMachine& machine,
+                        ExechonPosePath& path,
+                        const std::array<double, 6>& p) {
+  kin::ExechonToolPose tool;
+  tool.position = {p[0], p[1], p[2]};
+  tool.direction = Eigen::Vector3d(p[3], p[4], p[5]).normalized();
+  const ExechonPoseStep step = path.solve(tool);
+  if (!step.solved) {
+    PoseCheckRow row;
+    row.status = std::string(step.status);
+    return row;
+  }
+  return detail::exechonDataRow(machine.model, path.data(), step.check);
+}
+
+}  // namespace
+
+namespace detail {
+
+PoseCheckRow hexapodPoseRow(const kin::HexapodModel& m,
+                            kin::HexapodData& data,
+                            const kin::PoseRpy& pose) {
   const kin::HexapodCheckResult c = kin::checkPose(m, data, pose);
   PoseCheckRow row;
   row.status = std::string(c.status());
@@ -65,41 +91,35 @@ PoseCheckRow hexapodRow(const kin::HexapodModel& m,
   return row;
 }
 
-PoseCheckRow exechonRow(const io::ExechonMachine& machine,
-                        ExechonPosePath& path,
-                        const std::array<double, 6>& p) {
-  kin::ExechonToolPose tool;
-  tool.position = {p[0], p[1], p[2]};
-  tool.direction = Eigen::Vector3d(p[3], p[4], p[5]).normalized();
-  const ExechonPoseStep step = path.solve(tool);
-  const kin::ExechonCheckResult& c = step.check;
+PoseCheckRow exechonDataRow(const kin::ExechonModel& model,
+                            const kin::ExechonData& d,
+                            const kin::ExechonCheckResult& c) {
   PoseCheckRow row;
-  row.status = std::string(step.status);
-  if (!step.solved) return row;
+  row.status = std::string(c.status());
   for (int i = 0; i < 3; ++i) {
-    row.joints.push_back(step.joints.readings[i]);
+    row.joints.push_back(d.readings[i]);
     row.stroke_margin.push_back(c.stroke_margin[i]);
   }
-  row.joints.push_back(radToDeg(step.joints.c));
-  row.joints.push_back(radToDeg(step.joints.a));
+  row.joints.push_back(radToDeg(d.c));
+  row.joints.push_back(radToDeg(d.a));
   row.angle_margin = {
       degrees(c.alpha_margin), degrees(c.beta_margin), degrees(c.c_margin), degrees(c.a_margin)};
   row.condition_number = c.condition_number;
   row.condition_margin = c.condition_margin;
   for (const kin::LimitViolation& v : c.violations) row.violations.push_back(describe(v));
-  const kin::ExechonData& d = path.data();
-  const geometry::RigidTransform& world_T_zoppi = machine.model.world_T_zoppi;
   for (std::size_t i = 0; i < 3; ++i) {
-    row.base_points.push_back(point(world_T_zoppi * d.zoppi_p_base[i]));
-    row.moving_points.push_back(point(world_T_zoppi * d.zoppi_p_platform_joint[i]));
+    row.base_points.push_back(point(model.world_T_zoppi * d.zoppi_p_base[i]));
+    row.moving_points.push_back(point(model.world_T_zoppi * d.zoppi_p_platform_joint[i]));
   }
   row.wrist_points.push_back(point(d.world_p_S));
-  row.tool_point = point(tool.position);
-  row.tool_direction = point(tool.direction);
+  row.tool_point = point(d.world_p_tool);
+  row.tool_direction = point(d.world_u_tool);
   return row;
 }
 
-}  // namespace
+}  // namespace detail
+
+namespace {}  // namespace
 
 void PoseCheckRequest::validate() const {
   PKM_CHECK(!poses.empty(), "no poses to check");

@@ -103,6 +103,24 @@ TEST(GcodeRunWorkflow, ThePathAndEveryViolationForAFrontEnd) {
   EXPECT_LE(few.violations.size(), 2 * all.report.checks.size());
 }
 
+TEST(GcodeRunWorkflow, FramesDrawTheMachineAlongThePath) {
+  GcodeRunRequest q = request("G0 X0 Y0 Z200\nG1 X30 F600\nG2 X0 Y30 I-30 J0\nM2\n");
+  q.frames = 25;
+  const GcodeRunResult r = runGcode(q);
+  ASSERT_GE(r.frames.size(), 20u);
+  ASSERT_LE(r.frames.size(), 25u);
+  EXPECT_EQ(r.frame_t.front(), 0.0);
+  EXPECT_TRUE(std::is_sorted(r.frame_t.begin(), r.frame_t.end()));
+  EXPECT_EQ(r.frames[0].status, "ok");
+  EXPECT_EQ(r.frames[0].moving_points.size(), 6u);
+  EXPECT_NEAR(r.frames.back().tool_point[1], 30.0, 1e-6);  // the arc's end
+  GcodeRunRequest e = request("G0 X0 Y0 Z0\nG1 X5 F300\nM2\n", "mxt700s-like");
+  e.frames = 3;
+  const GcodeRunResult er = runGcode(e);
+  ASSERT_FALSE(er.frames.empty());
+  EXPECT_EQ(er.frames[0].wrist_points.size(), er.frames[0].status == "ok" ? 1u : 0u);
+}
+
 TEST(GcodeRunWorkflow, ErrorsNameTheUploadAndItsLine) {
   try {
     (void)runGcode(request("G0 X0\nG1 X1 Q\n"));

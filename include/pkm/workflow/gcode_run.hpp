@@ -12,6 +12,7 @@
 #include "pkm/io/gcode_run_report.hpp"
 #include "pkm/io/named_text.hpp"
 #include "pkm/workflow/gcode_interpreter.hpp"
+#include "pkm/workflow/pose_checks.hpp"
 #include "pkm/workflow/progress.hpp"
 
 namespace pkm::workflow {
@@ -46,6 +47,9 @@ struct GcodeRunRequest {
   std::size_t path_points = 0;
   /// Most violations returned per check (GcodeRunResult::violations; 0: none).
   std::size_t max_violations = 0;
+  /// Drawings of the machine along the path for an animation (GcodeRunResult::frames), evenly
+  /// spaced in time (0: none).
+  std::size_t frames = 0;
   /// Throws pkm::InvalidArgument for a limit or tolerance that is not > 0 or an orientation for a
   /// hexapod, pkm::IoError "PATH exists; pass --force to overwrite it" for an existing `out` or
   /// `report` without `force`, and as GcodeInterpreterSettings::validate.
@@ -77,6 +81,11 @@ struct GcodeRunResult {
   /// request.max_violations > 0: the first max_violations violations of each check, by check
   /// then path order (report.checks[k].violations counts them all).
   std::vector<GcodeRunViolation> violations;
+  /// request.frames > 0: the machine drawn (joint centres, tool, margins) at evenly spaced times
+  /// of the path: frame k at time frame_t[k], path point frame_index[k].
+  std::vector<double> frame_t;
+  std::vector<std::size_t> frame_index;
+  std::vector<PoseCheckRow> frames;
   /// False when a check is violated (the CLI then exits with code 1).
   [[nodiscard]] bool ok() const { return report.ok; }
 };
