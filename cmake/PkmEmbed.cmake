@@ -1,11 +1,16 @@
 # cmake -DOUT=file.cpp -DFILES="a.json|b.json" -DFUNC=name -P PkmEmbed.cmake
-# Writes a C++ source defining pkm::io::detail::FUNC(): {file stem, contents} pairs.
+# Writes a C++ source defining pkm::io::detail::FUNC(): {file stem, contents} pairs (with
+# -DKEEP_EXT=1: {file name, contents}).
 string(REPLACE "|" ";" FILES "${FILES}")
 set(arrays "")
 set(entries "")
 set(index 0)
 foreach(f IN LISTS FILES)
-  get_filename_component(stem "${f}" NAME_WE)
+  if(KEEP_EXT)
+    get_filename_component(stem "${f}" NAME)
+  else()
+    get_filename_component(stem "${f}" NAME_WE)
+  endif()
   file(READ "${f}" content HEX)
   string(REGEX REPLACE "([0-9a-f][0-9a-f])" "'\\\\x\\1'," content "${content}")
   string(APPEND arrays "const char k${FUNC}${index}[] = {${content} '\\0'};\n")

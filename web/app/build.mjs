@@ -3,7 +3,7 @@
 // outside the pkm binary at run time.
 // Usage: node build.mjs --out DIR
 import { build } from "esbuild";
-import { copyFileSync, mkdirSync } from "node:fs";
+import { copyFileSync, mkdirSync, readdirSync } from "node:fs";
 import { dirname, join } from "node:path";
 import { fileURLToPath } from "node:url";
 
@@ -27,3 +27,7 @@ await build({
   logLevel: "warning",
 });
 copyFileSync(join(here, "src/index.html"), join(out, "index.html"));
+// Blockly's icons and cursors, served from /media/ (the workspace's `media` option).
+const media = join(here, "node_modules/blockly/media");
+mkdirSync(join(out, "media"), { recursive: true });
+for (const f of readdirSync(media)) if (!f.endsWith(".mp3")) copyFileSync(join(media, f), join(out, "media", f));

@@ -1,11 +1,93 @@
-// The pkm serve web application (docs/web.md): one page, four views, on the JSON API only.
+// The pkm serve web application (docs/web.md): one page, four views (Machine, Program, Blocks,
+// Campaign), on the JSON API only. window.pkmApp is the page's state, for the browser tests.
 import "./style.css";
+import { get, post } from "./api.js";
+import { MachineScene } from "./scene.js";
+import { MachineView } from "./machine_view.js";
+import { ProgramView } from "./program_view.js";
+import { BlocksView } from "./blocks_view.js";
+import { CampaignView } from "./campaign_view.js";
 
 const $ = (s) => document.querySelector(s);
-for (const b of document.querySelectorAll("#views button"))
-  b.addEventListener("click", () => {
-    for (const o of document.querySelectorAll("#views button")) o.classList.toggle("active", o === b);
-    for (const v of document.querySelectorAll(".view"))
-      v.classList.toggle("active", v.id === "view-" + b.dataset.view);
-  });
-$("#status").textContent = "";
+
+class App {
+  constructor() {
+    this.scenes = {};
+    this.machine = null;
+    this.views = {
+      machine: new MachineView($("#view-machine"), this),
+      program: new ProgramView($("#view-program"), this),
+      blocks: new BlocksView($("#view-blocks"), this),
+      campaign: new CampaignView($("#view-campaign"), this),
+    };
+    for (const b of document.querySelectorAll("#views button")) b.addEventListener("click", () => this.showView(b.dataset.view));
+    $("#machine").addEventListener("change", () => this.selectMachine($("#machine").value));
+    $("#compare").addEventListener("change", () => this.selectMachine($("#machine").value));
+    $("#upload").addEventListener("change", (e) => this.upload(e.target.files[0]));
+  }
+
+  /** The 3-D scene in the element with id `id` (made on first use). */
+  scene(id) {
+    if (!this.scenes[id]) this.scenes[id] = new MachineScene(document.getElementById(id));
+    return this.scenes[id];
+  }
+
+  showView(name) {
+    for (const o of document.querySelectorAll("#views button")) o.classList.toggle("active", o.dataset.view === name);
+    for (const v of document.querySelectorAll(".view")) v.classList.toggle("active", v.id === "view-" + name);
+    for (const s of Object.values(this.scenes)) s.resize();
+    if (name === "blocks") this.views.blocks.resize();
+    this.view = name;
+  }
+
+  error(e) {
+    $("#status").textContent = e.message || String(e);
+    console.warn(e);
+  }
+
+  download(name, text) {
+    const a = document.createElement("a");
+    a.href = URL.createObjectURL(new Blob([text], { type: "text/plain" }));
+    a.download = name;
+    a.click();
+    setTimeout(() => URL.revokeObjectURL(a.href), 1000);
+  }
+
+  async loadMachines(select) {
+    const list = await get("/api/machines");
+    const options = list.map((m) => `<option value="${m.name}">${m.name} (${m.type}, ${m.units})</option>`).join("");
+    $("#machine").innerHTML = options;
+    $("#compare").innerHTML = `<option value="">(none)</option>` + options;
+    if (select) $("#machine").value = select;
+    await this.selectMachine($("#machine").value);
+  }
+
+  async selectMachine(name) {
+    $("#status").textContent = "";
+    try {
+      this.machine = await get(`/api/machines/${encodeURIComponent(name)}`);
+      const other = $("#compare").value;
+      const compare = other && other !== name ? await get(`/api/machines/${encodeURIComponent(other)}`) : null;
+      if (compare && compare.type !== this.machine.type) throw new Error(`${other} is not a ${this.machine.type}`);
+      this.views.machine.show(this.machine, compare);
+      document.body.dataset.machine = name;
+    } catch (e) {
+      this.error(e);
+    }
+  }
+
+  async upload(file) {
+    if (!file) return;
+    try {
+      const r = await post("/api/machines", { filename: file.name, text: await file.text() });
+      await this.loadMachines(r.name);
+      if (r.notices.length) $("#status").textContent = r.notices.join("; ");
+    } catch (e) {
+      this.error(e);
+    }
+  }
+}
+
+const app = new App();
+window.pkmApp = app;
+app.ready = Promise.all([app.loadMachines(), app.views.campaign.load()]);

@@ -106,7 +106,7 @@ export class MachineScene {
       const a = new THREE.Vector3(...row.base_points[i]);
       const b = new THREE.Vector3(...row.moving_points[i]);
       placeCylinder(g.struts[i], a, b, radius);
-      const pair = row.closest_pair.includes(i) && row.clearance !== null && row.clearance < radius * 4;
+      const pair = row.closest_pair.includes(i) && row.clearance !== null && row.clearance < radius * 2;
       g.struts[i].material.color = pair ? new THREE.Color(0x7b2cbf) : marginColour(row.stroke_margin[i], scale * 0.05);
       const am = type === "hexapod" ? row.angle_margin[i] : null;
       for (const [k, p] of [[0, a], [1, b]]) {

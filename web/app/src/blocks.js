@@ -1,0 +1,245 @@
+// Seed 004's command icons as Blockly blocks, and the G-code they generate: moves (rapid, feed,
+// arcs, platform orientation), modes, feed and spindle, dwell, loops and conditions (O-words),
+// subroutines, and composite machining commands (sphere, circular pocket, drilling pattern, face
+// mill). generate() returns the program and, for each of its lines, the block that wrote it.
+import * as Blockly from "blockly/core";
+
+const num = (name, value) => ({ type: "field_number", name, value });
+const n = (b, name) => Number(b.getFieldValue(name));
+const f = (v) => {
+  const s = Number(v).toFixed(4).replace(/\.?0+$/, "");
+  return s === "-0" ? "0" : s;
+};
+
+const MOVE = 210, MODE = 160, FLOW = 120, COMPOSITE = 20;
+
+/** The block definitions (JSON), registered once. */
+const definitions = [
+  { type: "pkm_rapid", message0: "rapid to X %1 Y %2 Z %3", args0: [num("X", 0), num("Y", 0), num("Z", 200)], colour: MOVE },
+  { type: "pkm_line", message0: "feed to X %1 Y %2 Z %3", args0: [num("X", 0), num("Y", 0), num("Z", 200)], colour: MOVE },
+  {
+    type: "pkm_arc",
+    message0: "arc %1 to X %2 Y %3 centre offset I %4 J %5",
+    args0: [{ type: "field_dropdown", name: "DIR", options: [["clockwise", "G2"], ["counter-clockwise", "G3"]] }, num("X", 0), num("Y", 0), num("I", 10), num("J", 0)],
+    colour: MOVE,
+  },
+  { type: "pkm_orient", message0: "orient platform A %1 B %2 C %3 (deg)", args0: [num("A", 0), num("B", 0), num("C", 0)], colour: MOVE },
+  {
+    type: "pkm_mode",
+    message0: "%1 coordinates",
+    args0: [{ type: "field_dropdown", name: "MODE", options: [["absolute", "G90"], ["relative", "G91"]] }],
+    colour: MODE,
+  },
+  { type: "pkm_feed", message0: "feed rate %1 per min", args0: [num("F", 600)], colour: MODE },
+  {
+    type: "pkm_spindle",
+    message0: "spindle %1 at %2 rpm",
+    args0: [{ type: "field_dropdown", name: "DIR", options: [["on (cw)", "M3"], ["on (ccw)", "M4"], ["off", "M5"]] }, num("S", 8000)],
+    colour: MODE,
+  },
+  { type: "pkm_dwell", message0: "dwell %1 s", args0: [num("P", 0.5)], colour: MODE },
+  { type: "pkm_set", message0: "set #<%1> = %2", args0: [{ type: "field_input", name: "VAR", text: "i" }, num("VALUE", 0)], colour: FLOW },
+  { type: "pkm_add", message0: "add %2 to #<%1>", args0: [{ type: "field_input", name: "VAR", text: "i" }, num("VALUE", 1)], colour: FLOW },
+  { type: "pkm_repeat", message0: "repeat %1 times", args0: [num("N", 3)], message1: "%1", args1: [{ type: "input_statement", name: "DO" }], colour: FLOW },
+  {
+    type: "pkm_while",
+    message0: "while #<%1> %2 %3",
+    args0: [{ type: "field_input", name: "VAR", text: "i" }, { type: "field_dropdown", name: "OP", options: [["<", "LT"], ["≤", "LE"], [">", "GT"], ["≥", "GE"], ["=", "EQ"], ["≠", "NE"]] }, num("VALUE", 3)],
+    message1: "%1",
+    args1: [{ type: "input_statement", name: "DO" }],
+    colour: FLOW,
+  },
+  {
+    type: "pkm_if",
+    message0: "if #<%1> %2 %3",
+    args0: [{ type: "field_input", name: "VAR", text: "i" }, { type: "field_dropdown", name: "OP", options: [["<", "LT"], ["≤", "LE"], [">", "GT"], ["≥", "GE"], ["=", "EQ"], ["≠", "NE"]] }, num("VALUE", 0)],
+    message1: "%1",
+    args1: [{ type: "input_statement", name: "DO" }],
+    colour: FLOW,
+  },
+  { type: "pkm_sub", message0: "subroutine %1", args0: [{ type: "field_input", name: "NAME", text: "part" }], message1: "%1", args1: [{ type: "input_statement", name: "DO" }], colour: FLOW, previousStatement: null, nextStatement: null },
+  { type: "pkm_call", message0: "call %1", args0: [{ type: "field_input", name: "NAME", text: "part" }], colour: FLOW },
+  {
+    type: "pkm_sphere",
+    message0: "sphere: radius %1 centre X %2 Y %3 Z %4 ball tool radius %5 levels %6",
+    args0: [num("R", 20), num("X", 0), num("Y", 0), num("Z", 180), num("TR", 3), num("LEVELS", 6)],
+    colour: COMPOSITE,
+  },
+  {
+    type: "pkm_pocket",
+    message0: "circular pocket: centre X %1 Y %2 radius %3 top Z %4 depth %5 step-over %6 step-down %7",
+    args0: [num("X", 0), num("Y", 0), num("R", 15), num("Z", 200), num("D", 4), num("S", 4), num("DZ", 2)],
+    colour: COMPOSITE,
+  },
+  {
+    type: "pkm_drill",
+    message0: "drilling: %1 holes on a circle X %2 Y %3 radius %4 top Z %5 depth %6",
+    args0: [num("N", 6), num("X", 0), num("Y", 0), num("R", 30), num("Z", 200), num("D", 8)],
+    colour: COMPOSITE,
+  },
+  {
+    type: "pkm_face",
+    message0: "face mill: X %1 to %2 Y %3 to %4 at Z %5 step %6",
+    args0: [num("X0", -30), num("X1", 30), num("Y0", -30), num("Y1", 30), num("Z", 195), num("S", 10)],
+    colour: COMPOSITE,
+  },
+];
+
+let registered = false;
+export function registerBlocks() {
+  if (registered) return;
+  registered = true;
+  Blockly.common.defineBlocksWithJsonArray(
+    definitions.map((d) => ({ previousStatement: null, nextStatement: null, ...d })),
+  );
+}
+
+export const toolbox = {
+  kind: "categoryToolbox",
+  contents: [
+    { kind: "category", name: "Moves", colour: MOVE, contents: ["pkm_rapid", "pkm_line", "pkm_arc", "pkm_orient"].map((type) => ({ kind: "block", type })) },
+    { kind: "category", name: "Settings", colour: MODE, contents: ["pkm_mode", "pkm_feed", "pkm_spindle", "pkm_dwell"].map((type) => ({ kind: "block", type })) },
+    { kind: "category", name: "Flow", colour: FLOW, contents: ["pkm_set", "pkm_add", "pkm_repeat", "pkm_while", "pkm_if", "pkm_sub", "pkm_call"].map((type) => ({ kind: "block", type })) },
+    { kind: "category", name: "Machining", colour: COMPOSITE, contents: ["pkm_sphere", "pkm_pocket", "pkm_drill", "pkm_face"].map((type) => ({ kind: "block", type })) },
+  ],
+};
+
+/** The composite commands' G-code (lines), each a sequence of plain moves. */
+const composites = {
+  // Seed 004's sphere machining with a ball-end tool: the tool centre runs on a sphere of radius
+  // R + r, as full circles from the equator up to the pole, finishing with the pole point.
+  pkm_sphere(b) {
+    const R = n(b, "R") + n(b, "TR"), cx = n(b, "X"), cy = n(b, "Y"), cz = n(b, "Z");
+    const levels = Math.max(1, Math.round(n(b, "LEVELS")));
+    const out = [`G0 X${f(cx + R)} Y${f(cy)} Z${f(cz + R * 0.5)}`];
+    for (let k = 0; k < levels; ++k) {
+      const phi = ((Math.PI / 2) * k) / levels;
+      const rho = R * Math.cos(phi), z = cz + R * Math.sin(phi);
+      out.push(`G1 X${f(cx + rho)} Y${f(cy)} Z${f(z)}`);
+      out.push(`G3 X${f(cx + rho)} Y${f(cy)} I${f(-rho)} J0`);
+    }
+    out.push(`G1 X${f(cx)} Y${f(cy)} Z${f(cz + R)}`);
+    return out;
+  },
+  pkm_pocket(b) {
+    const cx = n(b, "X"), cy = n(b, "Y"), R = n(b, "R"), top = n(b, "Z");
+    const depth = n(b, "D"), so = Math.max(n(b, "S"), 0.01), dz = Math.max(n(b, "DZ"), 0.01);
+    const out = [`G0 X${f(cx)} Y${f(cy)} Z${f(top + 2)}`];
+    for (let z = top - dz, last = false; !last; z -= dz) {
+      if (z <= top - depth) (z = top - depth), (last = true);
+      out.push(`G1 X${f(cx)} Y${f(cy)} Z${f(z)}`);
+      for (let r = Math.min(so, R); r <= R + 1e-9; r = r >= R ? R + 1 : Math.min(r + so, R)) {
+        out.push(`G1 X${f(cx + r)} Y${f(cy)}`);
+        out.push(`G3 X${f(cx + r)} Y${f(cy)} I${f(-r)} J0`);
+      }
+    }
+    out.push(`G0 Z${f(top + 2)}`);
+    return out;
+  },
+  pkm_drill(b) {
+    const count = Math.max(1, Math.round(n(b, "N"))), cx = n(b, "X"), cy = n(b, "Y"), R = n(b, "R");
+    const top = n(b, "Z"), depth = n(b, "D");
+    const out = [];
+    for (let k = 0; k < count; ++k) {
+      const a = (2 * Math.PI * k) / count;
+      const x = cx + R * Math.cos(a), y = cy + R * Math.sin(a);
+      out.push(`G0 X${f(x)} Y${f(y)} Z${f(top + 2)}`);
+      out.push(`G1 Z${f(top - depth)}`);
+      out.push(`G0 Z${f(top + 2)}`);
+    }
+    return out;
+  },
+  pkm_face(b) {
+    const x0 = n(b, "X0"), x1 = n(b, "X1"), y0 = n(b, "Y0"), y1 = n(b, "Y1"), z = n(b, "Z");
+    const step = Math.max(n(b, "S"), 0.01);
+    const out = [`G0 X${f(x0)} Y${f(y0)} Z${f(z + 2)}`, `G1 Z${f(z)}`];
+    let forward = true;
+    for (let y = y0; y <= y1 + 1e-9; y += step) {
+      out.push(`G1 Y${f(Math.min(y, y1))}`);
+      out.push(`G1 X${f(forward ? x1 : x0)}`);
+      forward = !forward;
+    }
+    out.push(`G0 Z${f(z + 2)}`);
+    return out;
+  },
+};
+
+/** The words of a simple block, or null. */
+function simple(b) {
+  switch (b.type) {
+    case "pkm_rapid":
+      return `G0 X${f(n(b, "X"))} Y${f(n(b, "Y"))} Z${f(n(b, "Z"))}`;
+    case "pkm_line":
+      return `G1 X${f(n(b, "X"))} Y${f(n(b, "Y"))} Z${f(n(b, "Z"))}`;
+    case "pkm_arc":
+      return `${b.getFieldValue("DIR")} X${f(n(b, "X"))} Y${f(n(b, "Y"))} I${f(n(b, "I"))} J${f(n(b, "J"))}`;
+    case "pkm_orient":
+      return `G1 A${f(n(b, "A"))} B${f(n(b, "B"))} C${f(n(b, "C"))}`;
+    case "pkm_mode":
+      return b.getFieldValue("MODE");
+    case "pkm_feed":
+      return `F${f(n(b, "F"))}`;
+    case "pkm_spindle":
+      return b.getFieldValue("DIR") === "M5" ? "M5" : `${b.getFieldValue("DIR")} S${f(n(b, "S"))}`;
+    case "pkm_dwell":
+      return `G4 P${f(n(b, "P"))}`;
+    case "pkm_set":
+      return `#<${name(b, "VAR")}> = ${f(n(b, "VALUE"))}`;
+    case "pkm_add":
+      return `#<${name(b, "VAR")}> = [#<${name(b, "VAR")}> + ${f(n(b, "VALUE"))}]`;
+    case "pkm_call":
+      return `o<${name(b, "NAME")}> call`;
+    default:
+      return null;
+  }
+}
+
+/** A name field as an O-word or parameter name (letters, digits, _). */
+function name(b, field) {
+  return String(b.getFieldValue(field)).replace(/[^A-Za-z0-9_]/g, "_").toLowerCase() || "x";
+}
+
+/**
+ * The program of workspace `ws`: subroutines first, then every other top stack in order (top to
+ * bottom), between a preamble and M2. Returns { text, blocks }: blocks[i] is the id of the block
+ * that wrote line i + 1 (null for the preamble and the end).
+ */
+export function generate(ws) {
+  const lines = [];
+  const blocks = [];
+  const emit = (text, id) => {
+    lines.push(text);
+    blocks.push(id);
+  };
+  let label = 100;
+  const walk = (b) => {
+    for (; b; b = b.getNextBlock()) {
+      if (b.isEnabled && !b.isEnabled()) continue;
+      const s = simple(b);
+      if (s !== null) emit(s, b.id);
+      else if (composites[b.type]) for (const l of composites[b.type](b)) emit(l, b.id);
+      else if (b.type === "pkm_repeat" || b.type === "pkm_while" || b.type === "pkm_if") {
+        const o = `o${label++}`;
+        const [open, close] =
+          b.type === "pkm_repeat"
+            ? [`${o} repeat [${f(Math.max(0, Math.round(n(b, "N"))))}]`, `${o} endrepeat`]
+            : b.type === "pkm_while"
+              ? [`${o} while [#<${name(b, "VAR")}> ${b.getFieldValue("OP")} ${f(n(b, "VALUE"))}]`, `${o} endwhile`]
+              : [`${o} if [#<${name(b, "VAR")}> ${b.getFieldValue("OP")} ${f(n(b, "VALUE"))}]`, `${o} endif`];
+        emit(open, b.id);
+        walk(b.getInputTargetBlock("DO"));
+        emit(close, b.id);
+      }
+    }
+  };
+  const tops = ws.getTopBlocks(true);
+  for (const b of tops.filter((t) => t.type === "pkm_sub")) {
+    emit(`o<${name(b, "NAME")}> sub`, b.id);
+    walk(b.getInputTargetBlock("DO"));
+    emit(`o<${name(b, "NAME")}> endsub`, b.id);
+  }
+  emit("G21 G90 G17 F600 (pkm blocks)", null);
+  for (const b of tops.filter((t) => t.type !== "pkm_sub")) walk(b);
+  emit("M2", null);
+  return { text: lines.join("\n") + "\n", blocks };
+}

@@ -1,0 +1,125 @@
+// The Blocks view (seed 004's graphic programming): a Blockly workspace of command icons connected
+// into a program, its G-code beside it, Run in the simulator, violations marked on the blocks
+// that wrote them; programs save to and load from a file (Blockly JSON) and export as .ngc.
+import * as Blockly from "blockly/core";
+import * as En from "blockly/msg/en";
+import { registerBlocks, toolbox, generate } from "./blocks.js";
+import { Simulator } from "./program_view.js";
+
+Blockly.setLocale(En);
+
+/** A first program: approach, a sphere, retract. */
+const STARTER = {
+  blocks: {
+    languageVersion: 0,
+    blocks: [
+      {
+        type: "pkm_feed", x: 20, y: 20, fields: { F: 600 },
+        next: { block: { type: "pkm_rapid", fields: { X: 0, Y: 0, Z: 230 },
+          next: { block: { type: "pkm_sphere", fields: { R: 20, X: 0, Y: 0, Z: 180, TR: 3, LEVELS: 5 },
+            next: { block: { type: "pkm_rapid", fields: { X: 0, Y: 0, Z: 230 } } } } } } },
+      },
+    ],
+  },
+};
+
+export class BlocksView {
+  constructor(root, app) {
+    this.app = app;
+    registerBlocks();
+    root.innerHTML = `
+      <div class="blocks-pane">
+        <div class="toolbar">
+          <button id="blocks-run">Run</button>
+          <button id="blocks-save">save program</button>
+          <label>load <input id="blocks-load" type="file" accept=".json"></label>
+          <button id="blocks-export">export .ngc</button>
+        </div>
+        <div id="blockly"></div>
+      </div>
+      <div class="code-pane"><pre id="blocks-code"></pre><div id="blocks-error" class="error"></div></div>
+      <div class="canvas" id="blocks-canvas"></div>
+      <div class="side wide" id="blocks-results"></div>`;
+    this.workspace = Blockly.inject(root.querySelector("#blockly"), {
+      toolbox,
+      media: "/media/",
+      sounds: false,
+      trashcan: false,
+      zoom: { controls: false, wheel: true, startScale: 0.8 },
+      move: { scrollbars: true, drag: true, wheel: false },
+      renderer: "thrasos",
+    });
+    Blockly.serialization.workspaces.load(STARTER, this.workspace);
+    this.workspace.addChangeListener((e) => {
+      if (!e.isUiEvent) this.refresh();
+    });
+    this.sim = new Simulator(root.querySelector("#blocks-results"), app, "blocks-canvas", {
+      onLine: (line) => this.selectLine(line),
+    });
+    root.querySelector("#blocks-run").addEventListener("click", () => this.run());
+    root.querySelector("#blocks-export").addEventListener("click", () => app.download("blocks.ngc", this.code().text));
+    root.querySelector("#blocks-save").addEventListener("click", () =>
+      app.download("program.blocks.json", JSON.stringify(Blockly.serialization.workspaces.save(this.workspace), null, 1)),
+    );
+    root.querySelector("#blocks-load").addEventListener("change", async (e) => {
+      if (!e.target.files[0]) return;
+      try {
+        this.load(JSON.parse(await e.target.files[0].text()));
+      } catch (err) {
+        app.error(err);
+      }
+    });
+    this.refresh();
+  }
+
+  /** Replaces the workspace with a saved program (Blockly JSON). */
+  load(state) {
+    this.workspace.clear();
+    Blockly.serialization.workspaces.load(state, this.workspace);
+    this.refresh();
+  }
+
+  code() {
+    return generate(this.workspace);
+  }
+
+  refresh() {
+    document.querySelector("#blocks-code").textContent = this.code()
+      .text.split("\n")
+      .map((l, i) => (l ? `${String(i + 1).padStart(3)}  ${l}` : ""))
+      .join("\n");
+  }
+
+  /** Selects the block that wrote program line `line`. */
+  selectLine(line) {
+    const id = this.generated?.blocks[line - 1];
+    const block = id && this.workspace.getBlockById(id);
+    if (block) block.select();
+  }
+
+  resize() {
+    Blockly.svgResize(this.workspace);
+  }
+
+  async run() {
+    const err = document.querySelector("#blocks-error");
+    err.textContent = "";
+    for (const b of this.workspace.getAllBlocks(false)) b.setWarningText(null);
+    this.generated = this.code();
+    try {
+      const r = await this.sim.run(this.generated.text, "blocks.ngc");
+      const marked = new Map();
+      for (const v of r.violations) {
+        const id = this.generated.blocks[v.line - 1];
+        if (id && !marked.has(id)) marked.set(id, `${v.check} violated (${v.item}) at line ${v.line}`);
+      }
+      for (const [id, text] of marked) this.workspace.getBlockById(id)?.setWarningText(text);
+      return r;
+    } catch (e) {
+      err.textContent = e.message;
+      const id = e.line && this.generated.blocks[e.line - 1];
+      if (id) this.workspace.getBlockById(id)?.setWarningText(e.message);
+      return null;
+    }
+  }
+}

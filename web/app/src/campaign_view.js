@@ -1,0 +1,54 @@
+// The Campaign view: a built-in campaign run on the server with live progress (server-sent
+// events), then its report.
+import { get, streamCampaign } from "./api.js";
+
+export class CampaignView {
+  constructor(root, app) {
+    this.app = app;
+    root.innerHTML = `
+      <div class="side">
+        <h3>Campaign</h3>
+        <select id="campaign-name"></select>
+        <button id="campaign-run">Run</button>
+        <progress id="campaign-progress" max="1" value="0"></progress>
+        <ol id="campaign-log"></ol>
+      </div>
+      <iframe id="campaign-report" title="campaign report"></iframe>`;
+    root.querySelector("#campaign-run").addEventListener("click", () => this.run());
+  }
+
+  async load() {
+    const list = await get("/api/campaigns");
+    document.querySelector("#campaign-name").innerHTML = list
+      .map((c) => `<option value="${c.name}" title="${c.description.replace(/"/g, "&quot;")}">${c.name} (${c.steps} steps)</option>`)
+      .join("");
+  }
+
+  async run() {
+    const log = document.querySelector("#campaign-log");
+    const bar = document.querySelector("#campaign-progress");
+    log.innerHTML = "";
+    bar.value = 0;
+    const line = (text, cls = "") => {
+      const li = document.createElement("li");
+      li.textContent = text;
+      li.className = cls;
+      log.appendChild(li);
+    };
+    try {
+      await streamCampaign(document.querySelector("#campaign-name").value, (name, data) => {
+        if (name === "progress") {
+          if (data.count) bar.value = data.index / data.count;
+          line(`${data.elapsed.toFixed(1)} s  ${data.message}`);
+        } else if (name === "notice") line(data.message, "note");
+        else if (name === "result") {
+          bar.value = 1;
+          line(data.all_pass ? "every target met" : "some targets missed", data.all_pass ? "ok" : "bad");
+          document.querySelector("#campaign-report").src = data.report;
+        } else if (name === "error") line(data.error, "bad");
+      });
+    } catch (e) {
+      this.app.error(e);
+    }
+  }
+}

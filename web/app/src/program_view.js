@@ -1,0 +1,255 @@
+// The Program view: a G-code editor (CodeMirror 6) with Run: the path drawn in 3-D, the machine
+// animated along it (play, pause, speed, scrub), joint positions and velocities against time
+// (uPlot) with their limits, every violation listed; a click on one selects its line and jumps to
+// its moment. Errors show at their line.
+import { EditorView, basicSetup } from "codemirror";
+import { EditorSelection, StateEffect, StateField } from "@codemirror/state";
+import { Decoration } from "@codemirror/view";
+import uPlot from "uplot";
+import "uplot/dist/uPlot.min.css";
+import { gcodeLanguage } from "./gcode_mode.js";
+import { post } from "./api.js";
+
+const markLine = StateEffect.define();
+const lineMarks = StateField.define({
+  create: () => Decoration.none,
+  update(marks, tr) {
+    marks = marks.map(tr.changes);
+    for (const e of tr.effects) if (e.is(markLine)) marks = e.value;
+    return marks;
+  },
+  provide: (f) => EditorView.decorations.from(f),
+});
+const badLine = Decoration.line({ class: "cm-bad-line" });
+
+export const EXAMPLE = `(a square and a circle at z 200)
+G21 G90 G17
+G0 X0 Y0 Z200
+G1 X40 F600
+G1 Y40
+G1 X0
+G1 Y0
+G2 X0 Y0 I20 J20
+M2
+`;
+
+/** The simulator of one program on one machine; also used by the Blocks view. */
+export class Simulator {
+  constructor(root, app, canvasId, { onLine } = {}) {
+    this.app = app;
+    this.canvasId = canvasId;
+    this.onLine = onLine;
+    root.innerHTML = `
+      <div class="controls">
+        <button class="play">▶ play</button>
+        <select class="speed"><option>0.25</option><option>0.5</option><option selected>1</option><option>2</option><option>5</option><option>20</option></select>×
+        <input class="scrub" type="range" min="0" max="1" step="any" value="0">
+        <span class="clock">0.00 s</span>
+      </div>
+      <div class="summary"></div>
+      <div class="plots"></div>
+      <ol class="violations"></ol>`;
+    this.root = root;
+    this.playing = false;
+    root.querySelector(".play").addEventListener("click", () => this.toggle());
+    root.querySelector(".scrub").addEventListener("input", (e) => this.seek(Number(e.target.value)));
+  }
+
+  /** Runs `program` on the selected machine and shows the result. */
+  async run(program, name, extra = {}) {
+    const m = this.app.machine;
+    const r = await post("/api/gcode/run", {
+      machine: m.name,
+      program,
+      name,
+      max_points: 20000,
+      frames: 1500,
+      ...extra,
+    });
+    this.result = r;
+    this.show(r, m);
+    return r;
+  }
+
+  show(r, m) {
+    const scene = this.app.scene(this.canvasId);
+    scene.clear(0);
+    if (r.frames.rows.length) scene.frame(r.frames.rows[0]);
+    const toUnit = m.units === "inch" ? 1 / 25.4 : 1; // the path's positions are in mm
+    scene.showPath(r.path.pose.map((p) => [p[0] * toUnit, p[1] * toUnit, p[2] * toUnit]));
+    this.scale = scene.size;
+    const checks = Object.entries(r.checks)
+      .map(([name, c]) => ({ name, ...c }))
+      .map((c) => `<span class="${!c.enabled ? "off" : c.violations ? "bad" : "ok"}" title="${c.off_reason || ""}">${c.name} ${!c.enabled ? "n/a" : c.violations ? c.violations + " violations" : "ok"}</span>`)
+      .join(" ");
+    this.root.querySelector(".summary").innerHTML =
+      `<b class="${r.ok ? "ok" : "bad"}">${r.ok ? "every check passed" : "violations"}</b> ${r.points} points, cycle ${r.cycle_time_s.toFixed(2)} s<br>${checks}`;
+    const list = this.root.querySelector(".violations");
+    list.innerHTML = "";
+    for (const v of r.violations.slice(0, 500)) {
+      const li = document.createElement("li");
+      li.textContent = `line ${v.line}: ${v.check} ${v.item} ${Number(v.value).toPrecision(5)} (limit ${Number(v.limit).toPrecision(5)} ${v.unit})`;
+      li.dataset.line = v.line;
+      li.addEventListener("click", () => this.jumpTo(v.line));
+      list.appendChild(li);
+    }
+    this.plot(r, m);
+    this.root.querySelector(".scrub").max = r.frames.t.at(-1) || 1;
+    this.seek(0);
+  }
+
+  /** Selects `line` (through onLine) and moves the animation to the first moment on it. */
+  jumpTo(line) {
+    if (this.onLine) this.onLine(line);
+    const r = this.result;
+    const k = r.path.line.findIndex((l) => l === line);
+    if (k >= 0) this.seek(r.path.t[k]);
+  }
+
+  plot(r, m) {
+    const box = this.root.querySelector(".plots");
+    box.innerHTML = "";
+    const t = r.path.t;
+    const joints = r.path.joints;
+    const width = Math.max(300, box.clientWidth || 500);
+    const series = [{ label: "t s" }];
+    const data = [t];
+    joints.forEach((name, j) => {
+      series.push({ label: name, stroke: `hsl(${(j * 57) % 360} 70% 45%)` });
+      data.push(r.path.q.map((q) => q[j]));
+    });
+    const strokes = (m.machine.struts || []).map((s) => s.stroke).filter(Boolean);
+    if (strokes.length && m.type === "hexapod") {
+      const lo = Math.max(...strokes.map((s) => s[0])), hi = Math.min(...strokes.map((s) => s[1]));
+      if (Number.isFinite(lo)) series.push({ label: "stroke min", stroke: "#d7263d", dash: [6, 4] }), data.push(t.map(() => lo));
+      if (Number.isFinite(hi)) series.push({ label: "stroke max", stroke: "#d7263d", dash: [6, 4] }), data.push(t.map(() => hi));
+    }
+    this.cursorPlots = [new uPlot({ title: `joints (${m.units}, deg)`, width, height: 200, series, scales: { x: { time: false } } }, data, box)];
+    // Joint speeds between path points, against the limit.
+    const vs = [t.slice(1)];
+    const vseries = [{ label: "t s" }];
+    joints.forEach((name, j) => {
+      vseries.push({ label: name, stroke: `hsl(${(j * 57) % 360} 70% 45%)` });
+      vs.push(t.slice(1).map((_, k) => {
+        const dt = t[k + 1] - t[k];
+        return dt > 0 ? Math.abs(r.path.q[k + 1][j] - r.path.q[k][j]) / dt : null;
+      }));
+    });
+    vseries.push({ label: "limit", stroke: "#d7263d", dash: [6, 4] });
+    vs.push(vs[0].map(() => r.max_joint_velocity));
+    this.cursorPlots.push(new uPlot({ title: `joint speed (${m.units}/s)`, width, height: 160, series: vseries, scales: { x: { time: false } } }, vs, box));
+  }
+
+  /** Shows the machine at time `time` (s). */
+  seek(time) {
+    const r = this.result;
+    if (!r || !r.frames.rows.length) return;
+    this.time = time;
+    const ft = r.frames.t;
+    let k = 0;
+    while (k + 1 < ft.length && ft[k + 1] <= time) ++k;
+    const row = r.frames.rows[k];
+    if (row.base_points.length)
+      this.app.scene(this.canvasId).draw(0, row, { scale: this.scale, diameter: this.app.machine.machine.strut_diameter || 0, type: this.app.machine.type });
+    this.root.querySelector(".scrub").value = time;
+    this.root.querySelector(".clock").textContent = `${time.toFixed(2)} s  line ${r.path.line[r.frames.index[k]] ?? ""}`;
+  }
+
+  toggle() {
+    this.playing = !this.playing;
+    this.root.querySelector(".play").textContent = this.playing ? "❚❚ pause" : "▶ play";
+    if (!this.playing || !this.result) return;
+    let last = performance.now();
+    const end = this.result.frames.t.at(-1) || 0;
+    if (this.time >= end) this.time = 0;
+    const step = (now) => {
+      if (!this.playing) return;
+      const speed = Number(this.root.querySelector(".speed").value);
+      const t = Math.min(end, this.time + ((now - last) / 1000) * speed);
+      last = now;
+      this.seek(t);
+      if (t >= end) return this.toggle();
+      requestAnimationFrame(step);
+    };
+    requestAnimationFrame(step);
+  }
+}
+
+export class ProgramView {
+  constructor(root, app) {
+    this.app = app;
+    root.innerHTML = `
+      <div class="editor-pane">
+        <div class="toolbar">
+          <button id="run">Run</button>
+          <label>tolerance <input id="tolerance" type="number" step="any" placeholder="default"></label>
+          <label>tool table <input id="tool-table" type="file" accept=".tbl"></label>
+          <label>open <input id="open-ngc" type="file" accept=".ngc,.nc,.txt"></label>
+          <button id="save-ngc">save .ngc</button>
+        </div>
+        <div id="editor"></div>
+        <div id="program-error" class="error"></div>
+      </div>
+      <div class="canvas" id="program-canvas"></div>
+      <div class="side wide" id="program-results"></div>`;
+    this.editor = new EditorView({
+      doc: EXAMPLE,
+      extensions: [basicSetup, gcodeLanguage, lineMarks],
+      parent: root.querySelector("#editor"),
+    });
+    this.sim = new Simulator(root.querySelector("#program-results"), app, "program-canvas", {
+      onLine: (line) => this.selectLine(line),
+    });
+    this.toolTable = "";
+    root.querySelector("#run").addEventListener("click", () => this.run());
+    root.querySelector("#tool-table").addEventListener("change", async (e) => {
+      this.toolTable = e.target.files[0] ? await e.target.files[0].text() : "";
+    });
+    root.querySelector("#open-ngc").addEventListener("change", async (e) => {
+      if (e.target.files[0]) this.setProgram(await e.target.files[0].text());
+    });
+    root.querySelector("#save-ngc").addEventListener("click", () => this.app.download("program.ngc", this.program()));
+  }
+
+  program() {
+    return this.editor.state.doc.toString();
+  }
+
+  setProgram(text) {
+    this.editor.dispatch({ changes: { from: 0, to: this.editor.state.doc.length, insert: text } });
+  }
+
+  selectLine(n) {
+    const doc = this.editor.state.doc;
+    if (n < 1 || n > doc.lines) return;
+    const line = doc.line(n);
+    this.editor.dispatch({ selection: EditorSelection.single(line.from, line.to), scrollIntoView: true });
+    this.editor.focus();
+  }
+
+  markError(n) {
+    const doc = this.editor.state.doc;
+    const marks = n >= 1 && n <= doc.lines ? Decoration.set([badLine.range(doc.line(n).from)]) : Decoration.none;
+    this.editor.dispatch({ effects: markLine.of(marks) });
+  }
+
+  async run() {
+    const err = document.querySelector("#program-error");
+    err.textContent = "";
+    this.markError(0);
+    const tol = document.querySelector("#tolerance").value;
+    try {
+      const extra = {};
+      if (tol) extra.tolerance = Number(tol);
+      if (this.toolTable) extra.tool_table = this.toolTable;
+      return await this.sim.run(this.program(), "program.ngc", extra);
+    } catch (e) {
+      err.textContent = e.message;
+      if (e.line) {
+        this.markError(e.line);
+        this.selectLine(e.line);
+      }
+      return null;
+    }
+  }
+}
