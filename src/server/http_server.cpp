@@ -34,6 +34,11 @@ HttpServer::HttpServer(ServerOptions options) : impl_(std::make_unique<Impl>(std
   httplib::Server& http = impl_->http;
   Api& api = impl_->api;
   http.set_payload_max_length(impl_->options.max_body);
+  // A browser keeps its connections open and reuses them; with httplib's defaults (5 requests, 5
+  // s) the server closes them under it, and a POST sent on a closing connection is aborted and
+  // retried by the browser. Keep them for longer.
+  http.set_keep_alive_max_count(1000);
+  http.set_keep_alive_timeout(60);
   // Every method and path goes to the Api (it answers 404/405 itself); handlers, not a
   // pre-routing hook, so that the body has been read (and limited to max_body: 413).
   auto handle = [&api](const httplib::Request& req, httplib::Response& res) {

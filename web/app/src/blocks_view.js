@@ -105,6 +105,7 @@ export class BlocksView {
     const err = document.querySelector("#blocks-error");
     err.textContent = "";
     for (const b of this.workspace.getAllBlocks(false)) b.setWarningText(null);
+    this.marked = new Map(); // block id -> the warning set on it
     this.generated = this.code();
     try {
       const r = await this.sim.run(this.generated.text, "blocks.ngc");
@@ -114,6 +115,7 @@ export class BlocksView {
         if (id && !marked.has(id)) marked.set(id, `${v.check} violated (${v.item}) at line ${v.line}`);
       }
       for (const [id, text] of marked) this.workspace.getBlockById(id)?.setWarningText(text);
+      this.marked = marked;
       return r;
     } catch (e) {
       err.textContent = e.message;

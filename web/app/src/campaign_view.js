@@ -29,6 +29,8 @@ export class CampaignView {
     const bar = document.querySelector("#campaign-progress");
     log.innerHTML = "";
     bar.value = 0;
+    this.finished = false;
+    let report = null; // shown once the event stream has ended
     const line = (text, cls = "") => {
       const li = document.createElement("li");
       li.textContent = text;
@@ -44,11 +46,13 @@ export class CampaignView {
         else if (name === "result") {
           bar.value = 1;
           line(data.all_pass ? "every target met" : "some targets missed", data.all_pass ? "ok" : "bad");
-          document.querySelector("#campaign-report").src = data.report;
+          report = data.report;
         } else if (name === "error") line(data.error, "bad");
       });
     } catch (e) {
       this.app.error(e);
     }
+    if (report) document.querySelector("#campaign-report").src = report;
+    this.finished = true; // the event stream has ended
   }
 }

@@ -106,13 +106,16 @@ export class MachineView {
     document.querySelector("#cond-value").textContent = `${fmt(c, 1)} (margin ${fmt(row.condition_margin, 1)})`;
     document.querySelector("#pose-pair").textContent =
       row.closest_pair[0] >= 0 ? `${row.closest_pair[0]}-${row.closest_pair[1]}: clearance ${fmt(row.clearance)} ${result.units}` : "-";
-    const angles = result.type === "hexapod" ? result.joints : ["alpha", "beta", "wrist C", "wrist A"];
+    const hexapod = result.type === "hexapod";
     const rows = result.joints.map(
       (n, i) =>
-        `<tr><td>${n}</td><td>${fmt(row.joints[i])}</td><td class="${row.stroke_margin[i] < 0 ? "bad" : ""}">${fmt(row.stroke_margin[i])}</td><td>${fmt(result.type === "hexapod" ? row.angle_margin[i] : row.angle_margin[i] ?? null, 2)}</td></tr>`,
+        `<tr><td>${n}</td><td>${fmt(row.joints[i])}</td><td class="${row.stroke_margin[i] < 0 ? "bad" : ""}">${fmt(row.stroke_margin[i])}</td>${hexapod ? `<td>${fmt(row.angle_margin[i], 2)}</td>` : ""}</tr>`,
     );
+    const angles = hexapod
+      ? ""
+      : `<tr><td colspan="3">angle margins °: ${["alpha", "beta", "wrist C", "wrist A"].map((n, k) => `${n} ${fmt(row.angle_margin[k], 1)}`).join(", ")}</td></tr>`;
     document.querySelector("#pose-table").innerHTML =
-      `<tr><th>joint</th><th>value</th><th>stroke margin</th><th>${result.type === "hexapod" ? "angle margin °" : angles.join(", ") + " margin °"}</th></tr>` + rows.join("");
+      `<tr><th>joint</th><th>value</th><th>stroke margin</th>${hexapod ? "<th>cone margin °</th>" : ""}</tr>` + rows.join("") + angles;
     document.querySelector("#pose-violations").textContent = row.violations.join("\n");
   }
 }

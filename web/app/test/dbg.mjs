@@ -1,0 +1,18 @@
+import { chromium } from "playwright-core";
+import { spawn } from "node:child_process";
+const pkm = spawn(process.argv[2], ["serve", "--port", "0"]);
+const url = await new Promise((ok) => pkm.stdout.on("data", (d) => { const m = /serving (\S+)/.exec(String(d)); if (m) ok(m[1]); }));
+const browser = await chromium.launch({ executablePath: "/usr/bin/chromium", args: ["--no-sandbox", "--disable-gpu", "--disable-background-networking"] });
+const page = await browser.newPage();
+const t0 = Date.now();
+page.on("requestfailed", (r) => console.log(Date.now() - t0, "failed", r.url(), r.failure()?.errorText));
+page.on("requestfinished", (r) => r.url().includes("campaign") && console.log(Date.now() - t0, "finished", r.url()));
+await page.goto(url);
+await page.evaluate(() => window.pkmApp.ready);
+await page.click("button[data-view=campaign]");
+await page.click("#campaign-run");
+await page.waitForFunction(() => window.pkmApp.views.campaign.finished, null, { timeout: 120000 });
+console.log(Date.now() - t0, "finished flag", await page.evaluate(() => document.querySelector("#campaign-log").textContent.slice(-80)));
+await page.waitForTimeout(2000);
+await browser.close();
+pkm.kill("SIGINT");
