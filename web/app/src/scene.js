@@ -42,13 +42,19 @@ export class MachineScene {
     this.path = null;
     this.marker = null;
     new ResizeObserver(() => this.resize()).observe(container);
+    this.controls.addEventListener("change", () => this.invalidate());
     this.resize();
-    const loop = () => {
-      this.controls.update();
+  }
+
+  /** Renders at the next animation frame (once, however often it is called before). */
+  invalidate() {
+    if (this.queued) return;
+    this.queued = true;
+    requestAnimationFrame(() => {
+      this.queued = false;
+      if (this.container.clientWidth === 0) return; // hidden view: drawn when shown
       this.renderer.render(this.scene, this.camera);
-      requestAnimationFrame(loop);
-    };
-    loop();
+    });
   }
 
   resize() {
@@ -57,6 +63,7 @@ export class MachineScene {
     this.renderer.setSize(w, h);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    this.invalidate();
   }
 
   /** Frames the camera on the points of a drawing. */
@@ -72,6 +79,8 @@ export class MachineScene {
     this.camera.far = size * 100;
     this.camera.updateProjectionMatrix();
     this.controls.target.copy(centre);
+    this.controls.update();
+    this.invalidate();
   }
 
   /**
@@ -116,6 +125,7 @@ export class MachineScene {
         j.material.color = marginColour(am, 10);
       }
     }
+    this.invalidate();
     if (!solved) return;
     const polygon = (pts, colour) => {
       const shape = new THREE.BufferGeometry().setFromPoints([...pts, pts[0]].map((p) => new THREE.Vector3(...p)));
@@ -148,6 +158,7 @@ export class MachineScene {
   clear(from) {
     for (let i = from; i < this.groups.length; ++i) if (this.groups[i]) this.scene.remove(this.groups[i].root);
     this.groups.length = Math.min(this.groups.length, from);
+    this.invalidate();
   }
 
   /** The work table: a square under the machine at height z. */
@@ -158,6 +169,7 @@ export class MachineScene {
     grid.position.z = z;
     this.tableMesh = grid;
     this.scene.add(grid);
+    this.invalidate();
   }
 
   /** A programmed path (points in the machine unit) and a marker for the animation. */
@@ -166,5 +178,6 @@ export class MachineScene {
     const geometry = new THREE.BufferGeometry().setFromPoints(points.map((p) => new THREE.Vector3(...p)));
     this.path = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: 0x0ea5e9 }));
     this.scene.add(this.path);
+    this.invalidate();
   }
 }
