@@ -138,6 +138,25 @@ export class Simulator {
     vseries.push({ label: "limit", stroke: "#d7263d", dash: [6, 4] });
     vs.push(vs[0].map(() => r.max_joint_velocity));
     this.cursorPlots.push(new uPlot({ title: `joint speed (${m.units}/s)`, width, height: 160, series: vseries, scales: { x: { time: false } } }, vs, box));
+    // The checks' margins at the frames (the server's checks of the drawn moments): the smallest
+    // stroke margin, the leg-to-leg clearance and the condition margin; below zero is a violation.
+    const rows = r.frames.rows;
+    const least = (a) => (a && a.length ? Math.min(...a.filter((v) => v !== null)) : null);
+    const ms = [r.frames.t, rows.map((w) => least(w.stroke_margin)), rows.map((w) => w.clearance), rows.map((w) => w.condition_margin), r.frames.t.map(() => 0)];
+    this.cursorPlots.push(
+      new uPlot(
+        {
+          title: `margins (${m.units}; condition: ratio)`,
+          width,
+          height: 160,
+          series: [{ label: "t s" }, { label: "stroke", stroke: "#2563eb" }, { label: "clearance", stroke: "#7b2cbf" }, { label: "condition", stroke: "#059669", scale: "c" }, { label: "limit", stroke: "#d7263d", dash: [6, 4] }],
+          scales: { x: { time: false } },
+          axes: [{}, {}, { scale: "c", side: 1, grid: { show: false } }],
+        },
+        ms,
+        box,
+      ),
+    );
   }
 
   /** Shows the machine at time `time` (s). */
