@@ -12,6 +12,9 @@ namespace {
 
 using detail::Json;
 
+/// Campaign outputs a server keeps (each a folder of files and its report).
+constexpr std::size_t kMaxCampaigns = 8;
+
 Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
 std::string event(const char* name, const Json& data) {
@@ -57,14 +60,21 @@ void Api::runCampaign(CampaignJob& job, const std::function<bool(const std::stri
                 {"message", e.message}}));
   };
   control.notice = [&](const std::string& n) { send(event("notice", {{"message", s.clean(n)}})); };
+  const std::filesystem::path out = s.dir / fmt::format("campaign-{}", job.id);
+  std::error_code ec;
   try {
     workflow::CampaignOptions o;
     o.campaign = job.campaign;
-    o.out = s.dir / fmt::format("campaign-{}", job.id);
+    o.out = out;
     const workflow::CampaignResult r = workflow::runCampaign(o, control);
     {
+      // The newest kMaxCampaigns outputs are kept (their reports stay served); older ones go.
       const std::lock_guard lock(s.mutex);
       s.campaign_reports[job.id] = r.report;
+      while (s.campaign_reports.size() > kMaxCampaigns) {
+        std::filesystem::remove_all(s.campaign_reports.begin()->second.parent_path(), ec);
+        s.campaign_reports.erase(s.campaign_reports.begin());
+      }
     }
     send(event("result",
                {{"id", job.id},
@@ -73,8 +83,10 @@ void Api::runCampaign(CampaignJob& job, const std::function<bool(const std::stri
                 {"all_pass", r.all_pass},
                 {"steps", stepsJson(r)}}));
   } catch (const workflow::Cancelled&) {
+    std::filesystem::remove_all(out, ec);
     send(event("cancelled", {{"id", job.id}}));
   } catch (const std::exception& e) {
+    std::filesystem::remove_all(out, ec);
     send(event("error", {{"error", s.clean(e.what())}}));
   }
   job.slot.reset();
