@@ -83,8 +83,8 @@ TEST(CheckPath, StrokeExceededAtLine3) {
 
 TEST(CheckPath, KeepsTheFirstViolationsWhenAsked) {
   const char* const program = "G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\nG1 Z200\n";
-  const CheckStat& none = check(pkm::test::millingModel(), program)[PathCheck::kStroke];
-  EXPECT_TRUE(none.events.empty());
+  const PathCheckReport none = check(pkm::test::millingModel(), program);
+  EXPECT_TRUE(none[PathCheck::kStroke].events.empty());
   const PathCheckReport all = check(pkm::test::millingModel(), program, {}, 1'000'000);
   const CheckStat& s = all[PathCheck::kStroke];
   ASSERT_EQ(s.events.size(), s.violations);  // every one, in path order
