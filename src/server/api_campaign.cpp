@@ -15,8 +15,6 @@ using detail::Json;
 /// Campaign outputs a server keeps (each a folder of files and its report).
 constexpr std::size_t kMaxCampaigns = 8;
 
-Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
-
 std::string event(const char* name, const Json& data) {
   return fmt::format("event: {}\ndata: {}\n\n", name, data.dump());
 }
@@ -28,8 +26,8 @@ Json stepsJson(const workflow::CampaignResult& r) {
     for (const workflow::CampaignRow& row : st.rows)
       rows.push_back({{"quantity", row.quantity},
                       {"unit", row.unit},
-                      {"before", number(row.before)},
-                      {"after", number(row.after)},
+                      {"before", finiteOrNull(row.before)},
+                      {"after", finiteOrNull(row.after)},
                       {"target", row.target ? Json(*row.target) : Json(nullptr)},
                       {"paper", row.paper},
                       {"pass", row.pass()}});

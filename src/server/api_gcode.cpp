@@ -19,8 +19,6 @@ constexpr std::size_t kMaxViolations = 1'000'000;
 /// Largest number of animation frames (machine drawings) a run returns.
 constexpr std::size_t kMaxFrames = 10'000;
 
-Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
-
 io::NamedText program(const Json& body) {
   return {safeName(stringField(body, "name", "program.ngc")), requiredString(body, "program")};
 }
@@ -54,9 +52,9 @@ Json violationsJson(const std::vector<workflow::GcodeRunViolation>& v) {
                  {"line", x.event.line},
                  {"position", x.event.position},
                  {"item", x.event.item},
-                 {"value", number(x.event.value)},
-                 {"limit", number(x.event.limit)},
-                 {"margin", number(x.event.margin)},
+                 {"value", finiteOrNull(x.event.value)},
+                 {"limit", finiteOrNull(x.event.limit)},
+                 {"margin", finiteOrNull(x.event.margin)},
                  {"unit", x.event.unit}});
   return a;
 }

@@ -12,12 +12,9 @@
 namespace pkm::server::detail {
 namespace {
 
-/// +infinity (a disabled limit) and NaN (not evaluated) as JSON null.
-Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
-
 Json numbers(const std::vector<double>& v) {
   Json a = Json::array();
-  for (double x : v) a.push_back(number(x));
+  for (double x : v) a.push_back(finiteOrNull(x));
   return a;
 }
 
@@ -68,10 +65,10 @@ Json poseRowJson(const workflow::PoseCheckRow& row) {
          {"joints", numbers(row.joints)},
          {"stroke_margin", numbers(row.stroke_margin)},
          {"angle_margin", numbers(row.angle_margin)},
-         {"clearance", number(row.clearance)},
+         {"clearance", finiteOrNull(row.clearance)},
          {"closest_pair", {row.closest_pair[0], row.closest_pair[1]}},
-         {"condition_number", number(row.condition_number)},
-         {"condition_margin", number(row.condition_margin)},
+         {"condition_number", finiteOrNull(row.condition_number)},
+         {"condition_margin", finiteOrNull(row.condition_margin)},
          {"violations", row.violations},
          {"base_points", points(row.base_points)},
          {"moving_points", points(row.moving_points)},

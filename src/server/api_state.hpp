@@ -3,6 +3,7 @@
 #pragma once
 
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -92,6 +93,10 @@ class JobSlot {
 /// A name an upload or program may carry: letters, digits, '.', '-', '_' (others become '_'),
 /// at most 64 characters, never empty ("upload").
 [[nodiscard]] std::string safeName(const std::string& name);
+/// `v` as JSON, with +infinity (a disabled limit) and NaN (not evaluated) as null.
+[[nodiscard]] inline Json finiteOrNull(double v) {
+  return std::isfinite(v) ? Json(v) : Json(nullptr);
+}
 /// A JSON response.
 [[nodiscard]] Response json(const Json& j, int status = 200);
 /// An error response {"error": message} (with "name" and "line" when the message starts with
