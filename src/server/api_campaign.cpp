@@ -11,6 +11,7 @@ namespace pkm::server {
 namespace {
 
 using detail::Json;
+using detail::finiteOrNull;
 
 /// Campaign outputs a server keeps (each a folder of files and its report).
 constexpr std::size_t kMaxCampaigns = 8;
