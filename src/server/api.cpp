@@ -81,6 +81,12 @@ Response route(const Request& r, Api::State& s) {
     requireMethod(r, "POST");
     return detail::compensateGcode(s, r);
   }
+  static const std::regex cancel(R"(^/api/jobs/([A-Za-z0-9._-]{1,64})/cancel$)");
+  std::smatch job;
+  if (std::regex_match(p, job, cancel)) {
+    requireMethod(r, "POST");
+    return detail::cancelJob(s, job[1].str());
+  }
   if (p == "/api/campaigns") {
     requireMethod(r, "GET");
     return detail::listCampaigns();
@@ -106,6 +112,8 @@ Response failure(const Api::State& s) {
     throw;
   } catch (const detail::HttpError& e) {
     return detail::error(e.status, s.clean(e.what()));
+  } catch (const workflow::Cancelled&) {
+    return detail::error(409, "cancelled: POST /api/jobs/NAME/cancel stopped it");
   } catch (const IoError& e) {
     return detail::error(422, s.clean(e.what()));
   } catch (const InvalidArgument& e) {

@@ -10,8 +10,8 @@
 namespace pkm::server {
 namespace {
 
-using detail::Json;
 using detail::finiteOrNull;
+using detail::Json;
 
 /// Campaign outputs a server keeps (each a folder of files and its report).
 constexpr std::size_t kMaxCampaigns = 8;
@@ -59,7 +59,12 @@ void Api::runCampaign(CampaignJob& job, const std::function<bool(const std::stri
                 {"message", e.message}}));
   };
   control.notice = [&](const std::string& n) { send(event("notice", {{"message", s.clean(n)}})); };
-  const std::filesystem::path out = s.dir / fmt::format("campaign-{}", job.id);
+  const std::string name = fmt::format("campaign-{}", job.id);
+  const std::filesystem::path out = s.dir / name;
+  {
+    const std::lock_guard lock(s.mutex);  // also cancellable by POST /api/jobs/campaign-ID/cancel
+    s.running[name] = &job.cancel;
+  }
   std::error_code ec;
   try {
     workflow::CampaignOptions o;
@@ -87,6 +92,10 @@ void Api::runCampaign(CampaignJob& job, const std::function<bool(const std::stri
   } catch (const std::exception& e) {
     std::filesystem::remove_all(out, ec);
     send(event("error", {{"error", s.clean(e.what())}}));
+  }
+  {
+    const std::lock_guard lock(s.mutex);
+    s.running.erase(name);
   }
   job.slot.reset();
 }

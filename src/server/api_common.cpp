@@ -47,6 +47,36 @@ JobSlot::JobSlot(Api::State& state) : state_(state) {
 
 JobSlot::~JobSlot() { state_.jobs.fetch_sub(1); }
 
+NamedJob::NamedJob(Api::State& state, const std::string& name) : state_(state), name_(name) {
+  if (name_.empty()) return;
+  if (name_.size() > 64 || safeName(name_) != name_)
+    throw HttpError(400, "\"job\" must be a plain name (letters, digits, '.', '-', '_')");
+  const std::lock_guard lock(state_.mutex);
+  if (!state_.running.emplace(name_, &token_).second)
+    throw HttpError(409, fmt::format("a job named '{}' is running already", name_));
+}
+
+NamedJob::~NamedJob() {
+  if (name_.empty()) return;
+  const std::lock_guard lock(state_.mutex);
+  state_.running.erase(name_);
+}
+
+workflow::RunControl NamedJob::control() const {
+  workflow::RunControl c;
+  c.cancel = &token_;
+  return c;
+}
+
+Response cancelJob(Api::State& s, const std::string& name) {
+  const std::lock_guard lock(s.mutex);
+  const auto it = s.running.find(name);
+  if (it == s.running.end())
+    throw HttpError(404, fmt::format("no job named '{}' is running", name));
+  it->second->cancel();
+  return json({{"job", name}, {"cancelled", true}});
+}
+
 Json parseObject(const Request& request) {
   Json j = Json::parse(request.body, nullptr, false);
   if (j.is_discarded()) throw HttpError(400, "the request body is not valid JSON");

@@ -77,7 +77,8 @@ Response runGcode(Api::State& s, const Request& r) {
   q.interpreter = interpreter(body);
   q.frames = countField(body, "frames", kMaxFrames).value_or(0);
   const JobSlot slot(s);
-  const workflow::GcodeRunResult result = workflow::runGcode(q);
+  const NamedJob job(s, stringField(body, "job", ""));
+  const workflow::GcodeRunResult result = workflow::runGcode(q, job.control());
   Json j = Json::parse(io::gcodeRunJson(result.report));
   j["path"] = pathJson(result.path);
   j["violations"] = violationsJson(result.violations);

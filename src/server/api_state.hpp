@@ -51,6 +51,8 @@ struct Api::State {
   std::mutex mutex;                     ///< guards uploads, campaigns and the counters
   std::vector<detail::Upload> uploads;  ///< oldest first
   std::map<int, std::filesystem::path> campaign_reports;
+  /// The running jobs that a client named ("job" field), by name: POST /api/jobs/NAME/cancel.
+  std::map<std::string, workflow::CancellationToken*> running;
   int next_upload = 1;
   int next_campaign = 1;
   std::atomic<std::size_t> jobs{0};
@@ -77,6 +79,27 @@ class JobSlot {
  private:
   Api::State& state_;
 };
+
+/// A job registered under the name a request gave it ("job"; none: not cancellable by name) for
+/// as long as it runs. Throws HttpError 409 when a job of that name runs already, 400 for a name
+/// that is not a short plain word.
+class NamedJob {
+ public:
+  NamedJob(Api::State& state, const std::string& name);
+  ~NamedJob();
+  NamedJob(const NamedJob&) = delete;
+  NamedJob& operator=(const NamedJob&) = delete;
+  /// The job's control: its cancellation token.
+  [[nodiscard]] workflow::RunControl control() const;
+
+ private:
+  Api::State& state_;
+  std::string name_;
+  workflow::CancellationToken token_;
+};
+
+/// POST /api/jobs/NAME/cancel: cancels a running named job. Throws HttpError 404 when none runs.
+[[nodiscard]] Response cancelJob(Api::State& s, const std::string& name);
 
 /// The request body as a JSON object. Throws HttpError 400 for malformed JSON or another type.
 [[nodiscard]] Json parseObject(const Request& request);

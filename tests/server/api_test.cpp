@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 namespace pkm::server {
 namespace {
@@ -155,6 +156,28 @@ TEST_F(ApiTest, AProgramRunsWithPathAndViolations) {
   ASSERT_GT(j["violations"].size(), 0u);
   EXPECT_EQ(j["violations"][0]["check"], "stroke");
   EXPECT_EQ(j["violations"][0]["line"], 3);
+}
+
+TEST_F(ApiTest, ANamedRunIsCancelled) {
+  std::string program = "G0 X0 Y0 Z200\nF600\n";
+  for (int i = 0; i < 100'000; ++i) program += i % 2 ? "G1 X10\n" : "G1 X-10\n";
+  const std::string body =
+      Json{{"machine", "hexapod-default"}, {"program", program}, {"job", "long-run"}}.dump();
+  Response run;
+  std::thread t([&] { run = post("/api/gcode/run", body); });
+  int cancel = 0;
+  for (int k = 0; k < 2000 && cancel != 200; ++k) {
+    cancel = post("/api/jobs/long-run/cancel", "").status;  // 404 until the run has started
+    if (cancel != 200) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  t.join();
+  EXPECT_EQ(cancel, 200);
+  EXPECT_EQ(run.status, 409) << run.body.substr(0, 200);
+  EXPECT_EQ(post("/api/jobs/long-run/cancel", "").status, 404);  // no longer running
+  EXPECT_EQ(post("/api/gcode/run", R"({"machine": "hexapod-default", "program": "G0 X0",
+      "job": "../x"})")
+                .status,
+            400);
 }
 
 TEST_F(ApiTest, CompensateReturnsTheProgram) {

@@ -41,6 +41,7 @@ export class Simulator {
     this.onLine = onLine;
     root.innerHTML = `
       <div class="controls">
+        <button class="stop" disabled title="stop the running check">■ stop</button>
         <button class="play">▶ play</button>
         <select class="speed"><option>0.25</option><option>0.5</option><option selected>1</option><option>2</option><option>5</option><option>20</option></select>×
         <input class="scrub" type="range" min="0" max="1" step="any" value="0">
@@ -52,20 +53,34 @@ export class Simulator {
     this.root = root;
     this.playing = false;
     root.querySelector(".play").addEventListener("click", () => this.toggle());
+    root.querySelector(".stop").addEventListener("click", () => {
+      if (this.job) post(`/api/jobs/${this.job}/cancel`, {}).catch(() => {});
+    });
     root.querySelector(".scrub").addEventListener("input", (e) => this.seek(Number(e.target.value)));
   }
 
   /** Runs `program` on the selected machine and shows the result. */
   async run(program, name, extra = {}) {
     const m = this.app.machine;
-    const r = await post("/api/gcode/run", {
-      machine: m.name,
-      program,
-      name,
-      max_points: 20000,
-      frames: 1500,
-      ...extra,
-    });
+    // A name for the run, so that the stop button can cancel it on the server.
+    this.job = `run-${Date.now()}-${Math.floor(Math.random() * 1e6)}`;
+    const stop = this.root.querySelector(".stop");
+    stop.disabled = false;
+    let r;
+    try {
+      r = await post("/api/gcode/run", {
+        machine: m.name,
+        program,
+        name,
+        max_points: 20000,
+        frames: 1500,
+        job: this.job,
+        ...extra,
+      });
+    } finally {
+      stop.disabled = true;
+      this.job = null;
+    }
     this.result = r;
     this.show(r, m);
     return r;
