@@ -74,7 +74,8 @@ Json poseRowJson(const workflow::PoseCheckRow& row) {
          {"moving_points", points(row.moving_points)},
          {"tool_point", {row.tool_point[0], row.tool_point[1], row.tool_point[2]}},
          {"tool_direction", {row.tool_direction[0], row.tool_direction[1], row.tool_direction[2]}},
-         {"wrist_points", points(row.wrist_points)}};
+         {"wrist_points", points(row.wrist_points)},
+         {"carriage", row.carriage}};
   return j;
 }
 

@@ -56,7 +56,9 @@ PoseCheckRow exechonRow(const io::ExechonMachine& machine,
     row.status = std::string(step.status);
     return row;
   }
-  return detail::exechonDataRow(machine.model, path.data(), step.check);
+  PoseCheckRow row = detail::exechonDataRow(machine.model, path.data(), step.check);
+  if (machine.hybrid) row.carriage = {step.command.x2, step.command.y2};
+  return row;
 }
 
 }  // namespace

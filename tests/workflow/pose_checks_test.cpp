@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "pkm/core/error.hpp"
+#include "pkm/io/exechon_machine.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/kinematics/exechon_wrist.hpp"
 

@@ -92,7 +92,7 @@ export class MachineView {
   }
 
   style(m) {
-    return { scale: this.scale, diameter: m.machine.strut_diameter || 0, type: m.type };
+    return { scale: this.scale, diameter: m.machine.strut_diameter || 0, type: m.type, hybrid: m.machine.hybrid };
   }
 
   render(result) {

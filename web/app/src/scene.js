@@ -87,7 +87,7 @@ export class MachineScene {
    * Draws machine `index` (0: the machine, 1: the comparison, drawn translucent) from a row of
    * POST /api/ik. `scale` is the machine's size (for margin colours), `diameter` the strut's.
    */
-  draw(index, row, { scale, diameter, type }) {
+  draw(index, row, { scale, diameter, type, hybrid }) {
     let g = this.groups[index];
     if (!g) {
       g = this.groups[index] = { root: new THREE.Group(), struts: [], joints: [], extra: [] };
@@ -141,6 +141,7 @@ export class MachineScene {
     placeCylinder(tool, tip, tip.clone().addScaledVector(dir, scale * 0.12), radius * 0.6);
     g.root.add(tool);
     g.extra.push(tool);
+    if (row.carriage && row.carriage.length === 2 && hybrid) this.drawCarriage(g, row, hybrid, scale, translucent);
     for (const w of row.wrist_points || []) {
       const s = new THREE.Mesh(ball, new THREE.MeshStandardMaterial({ color: 0xf59e0b }));
       s.position.set(...w);
@@ -152,6 +153,38 @@ export class MachineScene {
       g.root.add(axis);
       g.extra.push(axis);
     }
+  }
+
+  /**
+   * A hybrid machine's serial axes, in the PKM's frame P (which X2 carries): the X2 rail over its
+   * stroke (it moves by −x2 relative to P), the carriage holding the PKM's base, and the Y2 work
+   * table under the tool, shifted by y2 along y.
+   */
+  drawCarriage(g, row, hybrid, scale, translucent) {
+    const [x2, y2] = row.carriage;
+    const box = (size, centre, colour) => {
+      const m = new THREE.Mesh(new THREE.BoxGeometry(...size), new THREE.MeshStandardMaterial({ color: colour, transparent: true, opacity: translucent ? 0.2 : 0.55 }));
+      m.position.set(...centre);
+      g.root.add(m);
+      g.extra.push(m);
+    };
+    const zs = row.base_points.map((p) => p[2]);
+    const xs = row.base_points.map((p) => p[0]);
+    const ys = row.base_points.map((p) => p[1]);
+    const top = Math.max(...zs) + scale * 0.04;
+    const [x0, x1] = hybrid.x2_stroke;
+    const width = Math.max(...ys) - Math.min(...ys) + scale * 0.1;
+    const yc = (Math.max(...ys) + Math.min(...ys)) / 2;
+    // The rail: the whole X2 stroke plus the carriage's length, fixed in the world.
+    const length = Math.max(...xs) - Math.min(...xs) + scale * 0.1;
+    box([x1 - x0 + length, width * 0.3, scale * 0.03], [(x0 + x1) / 2 - x2, yc, top + scale * 0.05], 0x64748b);
+    box([length, width, scale * 0.04], [(Math.max(...xs) + Math.min(...xs)) / 2, yc, top], 0xf59e0b);
+    // The Y2 table, below the tool.
+    const [y0, y1] = hybrid.y2_stroke;
+    const tz = Math.min(row.tool_point[2], ...row.moving_points.map((p) => p[2])) - scale * 0.08;
+    const pkmSize = Math.max(hybrid.pkm_max[0] - hybrid.pkm_min[0], scale * 0.3);
+    box([pkmSize, pkmSize, scale * 0.03], [row.tool_point[0], y2 + (y1 + y0) / 2 * 0 + row.tool_point[1], tz], 0x0ea5e9);
+    box([pkmSize * 0.2, y1 - y0 + pkmSize, scale * 0.015], [row.tool_point[0], row.tool_point[1] + y2 - (y0 + y1) / 2, tz - scale * 0.03], 0x64748b);
   }
 
   /** Removes comparison drawings from `index` on. */

@@ -187,6 +187,8 @@ try {
   await page.waitForTimeout(500);
   expect((await page.textContent("#pose-status")) === "ok", "machine view: the Exechon at home is ok");
   expect((await drawn("machine-canvas")) > MIN_DRAWN_PIXELS, "machine view: the Exechon is drawn");
+  expect((await page.evaluate(() => window.pkmApp.machine.drawing.carriage.length)) === 2,
+    "machine view: the hybrid machine's X2/Y2 carriage is drawn from its split");
   await page.screenshot({ path: join(outDir, "exechon.png") });
   await page.click("button[data-view=program]");
   const exechon = await page.evaluate(async (text) => {
