@@ -1,4 +1,4 @@
-// `pkm serve` as a user runs it: --port 0 prints the real port, the example programs' POST
+// `pkm serve` as a user runs it: --port 0 prints the real port, every example program's POST
 // /api/gcode/run answers equal `pkm gcode run --report` of the same files (every key but the
 // program's name), and Ctrl-C (SIGINT) stops it cleanly with exit code 0.
 #include <httplib.h>
@@ -77,7 +77,9 @@ TEST_F(CliTest, ServeAnswersAsTheCliAndStopsOnCtrlC) {
   };
   for (const Case& c : {Case{"sphere.ngc", "hexapod-default", true},
                         Case{"hexapod_contour.ngc", "hexapod-default", false},
-                        Case{"exechon_contour.ngc", "mxt700s-like", false}}) {
+                        Case{"exechon_contour.ngc", "mxt700s-like", false},
+                        Case{"drilling.ngc", "hexapod-default", true},
+                        Case{"pocket_loops.ngc", "hexapod-default", true}}) {
     std::vector<std::string> args{"gcode",
                                   "run",
                                   ex + c.program,

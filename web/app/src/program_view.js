@@ -152,7 +152,7 @@ export class Simulator {
     });
     vseries.push({ label: "limit", stroke: "#d7263d", dash: [6, 4] });
     vs.push(vs[0].map(() => r.max_joint_velocity));
-    this.cursorPlots.push(new uPlot({ title: `joint speed (${m.units}/s)`, width, height: 160, series: vseries, scales: { x: { time: false } } }, vs, box));
+    this.cursorPlots.push(new uPlot({ title: `joint speed (${m.units}/s${m.type === "exechon" ? "; wrist deg/s" : ""})`, width, height: 160, series: vseries, scales: { x: { time: false } } }, vs, box));
     // The checks' margins at the frames (the server's checks of the drawn moments): the smallest
     // stroke margin, the leg-to-leg clearance and the condition margin; below zero is a violation.
     const rows = r.frames.rows;

@@ -179,6 +179,19 @@ try {
   expect(!blocks.sphereWarned, "blocks view: the sphere block is not marked");
   expect((await drawn("blocks-canvas")) > MIN_DRAWN_PIXELS, "blocks view: the simulator draws the machine");
   await page.screenshot({ path: join(outDir, "blocks.png") });
+  // The violation fixed (the last move ends above the part) and the program exported as .ngc.
+  const fixed = await page.evaluate(async () => {
+    const v = window.pkmApp.views.blocks;
+    const last = v.workspace.getTopBlocks(true)[0].getDescendants(true).at(-1);
+    last.setFieldValue(230, "Z");
+    const r = await v.run();
+    return r && r.ok;
+  });
+  expect(fixed === true, "blocks view: with the move fixed every check passes");
+  const [download] = await Promise.all([page.waitForEvent("download"), page.click("#blocks-export")]);
+  const exported = readFileSync(await download.path(), "utf8");
+  expect(download.suggestedFilename() === "blocks.ngc" && exported.endsWith("G1 X0 Y0 Z230\nM2\n"),
+    "blocks view: the program exports as .ngc");
 
   // The Exechon: drawn at home, and its example program runs.
   await page.click("button[data-view=machine]");
@@ -201,6 +214,19 @@ try {
   const cliExechon = cliReport([join(ex, "exechon_contour.ngc"), "--machine", "mxt700s-like"]);
   expect(exechon && JSON.stringify(exechon.checks) === JSON.stringify(cliExechon.checks),
     "program view: exechon_contour.ngc's check results equal the CLI's");
+  // Blocks on the Exechon: a small sphere near its home tool point.
+  await page.click("button[data-view=blocks]");
+  const exechonBlocks = await page.evaluate(async () => {
+    const v = window.pkmApp.views.blocks;
+    const [x, y, z] = window.pkmApp.machine.home;
+    v.load({ blocks: { languageVersion: 0, blocks: [{ type: "pkm_rapid", x: 10, y: 10, fields: { X: x, Y: y, Z: z + 30 },
+      next: { block: { type: "pkm_sphere", fields: { R: 8, X: x, Y: y, Z: z, TR: 2, LEVELS: 3 } } } }] } });
+    const r = await v.run();
+    return r && { ok: r.ok, type: r.machine_type, frames: r.frames.rows.length };
+  });
+  expect(exechonBlocks && exechonBlocks.type === "exechon" && exechonBlocks.ok && exechonBlocks.frames > 10,
+    `blocks view: a sphere from blocks runs on the Exechon (${JSON.stringify(exechonBlocks)})`);
+  await page.screenshot({ path: join(outDir, "blocks-exechon.png") });
 
   // Campaign view.
   await page.click("button[data-view=campaign]");
