@@ -45,7 +45,7 @@ std::vector<Eigen::Vector3d> parseVectorList(const std::string& text,
 
 calibration::ConstrainedMotionData readConstrainedMotionCsv(const NamedText& input, int* skipped) {
   const std::string& path = input.name;
-  const TextTable t = TextTable::parse(input.text, path);
+  const TextTable t = TextTable::parseData(input.text, path);
   calibration::ConstrainedMotionData set;
   const auto points = t.meta("gauge points mm");
   if (!points)
@@ -210,7 +210,7 @@ void addTrackerFile(const NamedText& file, CalibrationInput& input) {
 }  // namespace
 
 void addCalibrationFile(const NamedText& file, CalibrationInput& input) {
-  const TextTable probe = TextTable::parse(file.text, file.name);
+  const TextTable probe = TextTable::parseData(file.text, file.name);
   if (probe.findColumn({"distance", "distance_mm"}))
     addDistanceFile(file.name, probe, input);
   else if (probe.findColumn({"g0_mm", "g0"}))

@@ -146,7 +146,7 @@ void addExechonCalibrationFile(const std::string& path, ExechonCalibrationInput&
 
 void addExechonCalibrationFile(const NamedText& file, ExechonCalibrationInput& input) {
   const std::string& path = file.name;
-  const TextTable t = TextTable::parse(file.text, path);
+  const TextTable t = TextTable::parseData(file.text, path);
   if (t.findColumn({"x2"})) {
     addHybridFile(t, path, input);
     return;

@@ -40,7 +40,7 @@ Profile readStraightnessPoints(std::span<const NamedText> inputs) {
       {"deviation", {"deviation", "error", "straightness", "straightness deviation"}}};
   Profile p;
   for (const NamedText& in : inputs) {
-    const TextTable t = TextTable::parse(in.text, in.name);
+    const TextTable t = TextTable::parseData(in.text, in.name);
     if (isMeasurementFile(t)) {
       const std::size_t ct = t.column({"target_mm"}), cr = t.column({"reading_mm"});
       const std::optional<std::size_t> cs = t.findColumn({"sub_step"});
@@ -149,7 +149,7 @@ std::vector<metrology::PositioningSample> readPositioningSamples(
       for (const metrology::PositioningSample& s : readRenishawRtl(in)) samples.push_back(s);
       continue;
     }
-    if (readPositioningTable(TextTable::parse(in.text, in.name), how, samples, seen) && unstated)
+    if (readPositioningTable(TextTable::parseData(in.text, in.name), how, samples, seen) && unstated)
       unstated->push_back(in.name);
   }
   return samples;

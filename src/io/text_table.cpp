@@ -20,6 +20,12 @@ TextTable TextTable::read(const std::string& path) {
   return parse(std::move(in.text), in.name);
 }
 
+TextTable TextTable::parseData(std::string text, const std::string& source) {
+  TextTable t = parse(std::move(text), source);
+  if (t.rows() == 0) throw IoError(fmt::format("{}: no data rows (only a header)", source));
+  return t;
+}
+
 TextTable TextTable::parse(std::string text, const std::string& source) {
   TextTable t;
   t.source_ = source;

@@ -114,7 +114,7 @@ io::CircleReport analyzeCircle(const CircleRequest& request) {
   io::CircleReport report;
   std::vector<Point2> p;
   for (const io::NamedText& in : request.data) {
-    const io::TextTable t = io::TextTable::parse(in.text, in.name);
+    const io::TextTable t = io::TextTable::parseData(in.text, in.name);
     const std::size_t cx = t.column({"x", "x_mm"});
     const std::size_t cy = t.column({"y", "y_mm"});
     for (std::size_t r = 0; r < t.rows(); ++r) {
@@ -140,7 +140,7 @@ io::CircularReport analyzeCircular(const CircularRequest& request) {
   std::vector<Point2> cw, ccw;
   std::vector<io::TextTable> tables;
   for (const io::NamedText& in : request.data)
-    tables.push_back(io::TextTable::parse(in.text, in.name));
+    tables.push_back(io::TextTable::parseData(in.text, in.name));
   const bool labelled = tables.front().findColumn({"direction"}).has_value();
   if (!labelled && tables.size() != 2)
     throw IoError(
@@ -174,7 +174,7 @@ io::ProbeOffsetReport analyzeProbeOffset(const ProbeOffsetRequest& request) {
   std::vector<metrology::ProbeTouch> touches;
   std::vector<Labelled> labelled;
   for (const io::NamedText& in : request.data)
-    readTouches(io::TextTable::parse(in.text, in.name),
+    readTouches(io::TextTable::parseData(in.text, in.name),
                 request.tool_plus_z ? 1.0 : -1.0,
                 touches,
                 labelled);

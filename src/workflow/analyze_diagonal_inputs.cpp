@@ -149,7 +149,7 @@ std::vector<metrology::BodyDiagonalSample> readBodySamples(const std::vector<io:
   std::vector<metrology::BodyDiagonalSample> samples;
   bool runs_given = true;
   for (const io::NamedText& in : data) {
-    const io::TextTable t = io::TextTable::parse(in.text, in.name);
+    const io::TextTable t = io::TextTable::parseData(in.text, in.name);
     if (isLineFile(t)) {
       const LineFile f = readLineFile(t);
       const BodyDiagonal d = identifyDiagonal(t, f, size);
@@ -171,7 +171,7 @@ std::vector<metrology::StepDiagonalPass> readStepPasses(const std::vector<io::Na
                                                         const Eigen::Vector3d& size) {
   std::vector<metrology::StepDiagonalPass> passes;
   for (const io::NamedText& in : data) {
-    const io::TextTable t = io::TextTable::parse(in.text, in.name);
+    const io::TextTable t = io::TextTable::parseData(in.text, in.name);
     const StepRows s = readStepRows(t, size);
     for (std::size_t r = 0; r < s.target.size(); ++r) {
       if (s.sub[r] < 1 || s.sub[r] > 3)

@@ -51,7 +51,7 @@ std::vector<metrology::ShiftedDiagonalMeasurement> readShiftedMeasurements(
     const std::vector<io::NamedText>& data, const Eigen::Vector3d& size) {
   std::vector<metrology::ShiftedDiagonalMeasurement> ms;
   for (const io::NamedText& in : data) {
-    const io::TextTable t = io::TextTable::parse(in.text, in.name);
+    const io::TextTable t = io::TextTable::parseData(in.text, in.name);
     if (isLineFile(t)) {
       ms.push_back(shiftedLine(t, size));
       continue;
@@ -82,7 +82,7 @@ namespace {
 /// straightness file's reading is the deviation itself) against the model along the line.
 io::DiagonalComparison compareLine(const io::NamedText& in,
                                    const metrology::PlaneErrorModel& model) {
-  const io::TextTable t = io::TextTable::parse(in.text, in.name);
+  const io::TextTable t = io::TextTable::parseData(in.text, in.name);
   const detail::LineFile f = detail::readLineFile(t);
   if (std::abs(f.direction.z()) > detail::kDirectionTolerance)
     t.failHeader("--compare: the line must lie in the XY plane");

@@ -69,7 +69,7 @@ io::Profile pdgeProfile(const io::TextTable& t) {
 }
 
 metrology::PdgeTerm readPdge(const PdgeInput& in) {
-  const io::TextTable t = io::TextTable::parse(in.table.text, in.table.name);
+  const io::TextTable t = io::TextTable::parseData(in.table.text, in.table.name);
   io::Profile p;
   if (io::isMeasurementFile(t)) {
     p = pdgeProfile(t);
@@ -161,7 +161,7 @@ std::vector<metrology::FaceDiagonal> readDiagonals(const SquarenessRequest& requ
   std::vector<std::string> sim_order;
   std::size_t plain = 0;
   for (const io::NamedText& in : request.data) {
-    io::TextTable t = io::TextTable::parse(in.text, in.name);
+    io::TextTable t = io::TextTable::parseData(in.text, in.name);
     if (io::isMeasurementFile(t)) {
       const std::string key = t.meta("measurement").value_or(in.name);
       if (!sim.count(key)) sim_order.push_back(key);

@@ -29,7 +29,7 @@ struct Plan {
 };
 
 Plan readPlan(const io::NamedText& plan) {
-  const io::TextTable t = io::TextTable::parse(plan.text, plan.name);
+  const io::TextTable t = io::TextTable::parseData(plan.text, plan.name);
   const std::size_t cp = t.column({"pose"});
   constexpr std::array<std::string_view, 6> kAxes{"x", "y", "z", "a", "b", "c"};
   std::array<std::size_t, 6> c{};

@@ -242,6 +242,32 @@ TEST_F(AnalyzePositioningCli, MissingColumnsAreListedOnceWithTheColumnsFound) {
   EXPECT_THAT(ok.out, HasSubstr("nonconforming\t2 runs in the + direction"));
 }
 
+TEST_F(AnalyzePositioningCli, AHeaderWithoutRowsIsAnErrorNamingTheFile) {
+  const std::string pos = write("pos.csv", "target,direction,run,measured\n");
+  const std::string line = write("line.csv", "position,deviation\n");
+  const std::string xy = write("xy.csv", "x,y\n");
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"analyze", "iso230-2", "--data", pos},
+        {"analyze", "straightness", "--data", line},
+        {"analyze", "parallelism", "--reference", line, "--axis", line},
+        {"analyze", "squareness", "--data", line},
+        {"analyze", "circle", "--data", xy},
+        {"compensate",
+         "table",
+         "--data",
+         pos,
+         "--format",
+         "linuxcnc1",
+         "--axis",
+         "X",
+         "--out",
+         path("x.comp")}}) {
+    const CliRun r = pkm(args);
+    EXPECT_EQ(r.code, 2) << args[1];
+    EXPECT_THAT(r.err, HasSubstr(": no data rows (only a header)")) << args[1] << ": " << r.err;
+  }
+}
+
 TEST_F(AnalyzePositioningCli, DeviationsInTheMeasuredColumnAreFlagged) {
   // Errors in µm put in the measured column: E = 990 without a word before.
   std::string t = "target,direction,run,measured\n";

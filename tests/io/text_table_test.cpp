@@ -40,6 +40,17 @@ TEST(TextTable, ReadsMetadataHeaderAndRows) {
   EXPECT_EQ(t.line(1), 7u);
 }
 
+TEST(TextTable, DataTablesNeedRows) {
+  EXPECT_EQ(TextTable::parse("# k: v\nx,y\n", "h.csv").rows(), 0u);  // a table may be empty
+  try {
+    (void)TextTable::parseData("# k: v\nx,y\n", "h.csv");
+    FAIL() << "accepted a header without rows";
+  } catch (const IoError& e) {
+    EXPECT_STREQ(e.what(), "h.csv: no data rows (only a header)");
+  }
+  EXPECT_EQ(TextTable::parseData("x,y\n1,2\n", "d.csv").rows(), 1u);
+}
+
 TEST(TextTable, SurvivesBeingMoved) {
   TextTable a = TextTable::parse("x\n1\n", "short.csv");
   std::vector<TextTable> tables;

@@ -29,6 +29,9 @@ class TextTable {
   [[nodiscard]] static TextTable read(const std::string& path);
   /// Parses `text`; `source` names it in messages. Throws as read().
   [[nodiscard]] static TextTable parse(std::string text, const std::string& source);
+  /// Parses a table of measured data, which must have rows: as parse(), and throws pkm::IoError
+  /// "SOURCE: no data rows (only a header)" for a table without any.
+  [[nodiscard]] static TextTable parseData(std::string text, const std::string& source);
 
   /// The name used in messages (the path).
   [[nodiscard]] const std::string& source() const { return source_; }
