@@ -295,7 +295,10 @@ void Interpreter::Impl::doMotion(const ResolvedBlock& rb, const BlockCodes& c, M
   switch (motion) {
     case 0:
     case 10:
-      if (axis) straight(rb, motion == 0, c.non_modal == 530, sink);
+      // A G0/G1 word without axis words moves to where the machine is, as rs274 does
+      // (STRAIGHT_TRAVERSE / STRAIGHT_FEED to the current position); a modal G1 does not.
+      if (axis || (c.motion >= 0 && !axis_user0))
+        straight(rb, motion == 0, c.non_modal == 530, sink);
       break;
     case 20:
     case 30:

@@ -79,6 +79,23 @@ TEST(Interpreter, StartupCodeSetsTheModesTheProgramStartsIn) {
   EXPECT_THAT(errorOf("G0 X0\n", o), HasSubstr("m.ini:7: RS274NGC_STARTUP_CODE:1: "));
 }
 
+TEST(Interpreter, AMotionWordWithoutAxesMovesNowhereAsRs274Does) {
+  // rs274: `G1 F150` gives SET_FEED_RATE(150) and STRAIGHT_FEED to the current position; `G0`
+  // alone a STRAIGHT_TRAVERSE there; a block with F only (modal G1) no motion.
+  const auto m = run("G21 G90\nG0 X1 Y2 Z3\nG1 F150\nF300\nG0\nG1\nX5\nM2\n");
+  ASSERT_EQ(m.size(), 5u);
+  EXPECT_EQ(m[1].line, 3u);
+  EXPECT_EQ(m[1].kind, MoveKind::kLinear);
+  EXPECT_EQ(m[1].feed, 150.0);
+  expectEnd(m[1], 1, 2, 3);
+  EXPECT_EQ(m[2].line, 5u);
+  EXPECT_EQ(m[2].kind, MoveKind::kRapid);
+  EXPECT_EQ(m[3].line, 6u);
+  EXPECT_EQ(m[3].feed, 300.0);
+  expectEnd(m[4], 5, 2, 3);
+  EXPECT_THAT(errorOf("G1\n"), HasSubstr("zero feed rate"));  // as rs274: G1 needs a feed
+}
+
 TEST(Interpreter, IncrementalDistance) {
   const auto m = run("G91 G0 X1 Y1\nX1\nG90 X0\nM2\n");
   expectEnd(m[1], 2, 1, 0);

@@ -56,6 +56,16 @@ TEST(ArcSweep, DirectionsAndTurns) {
   EXPECT_NEAR(arcSweep(pi / 2, 0, 3), 1.5 * pi + 4 * pi, kTolExact);
 }
 
+TEST(PathInterpolator, MovesThatGoNowhereAddNoPoint) {
+  InterpolationOptions o;
+  o.tolerance = kTol;
+  const auto with = interpolate("G0 X0 Y0 Z200\nG1 F150\nG1 X10\nG1 F200\nG0\nM2\n", o);
+  const auto without = interpolate("G0 X0 Y0 Z200\nF150\nG1 X10\nM2\n", o);
+  ASSERT_EQ(with.size(), without.size());
+  ASSERT_EQ(with.size(), 2u);  // the first point, then X10
+  for (std::size_t i = 1; i < with.size(); ++i) EXPECT_NE(with[i].pos, with[i - 1].pos);
+}
+
 TEST(PathInterpolator, ArcPointsOnCircleWithExactEnd) {
   InterpolationOptions o;
   o.tolerance = kTol;

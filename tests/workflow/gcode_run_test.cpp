@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -119,6 +120,17 @@ TEST(GcodeRunWorkflow, FramesDrawTheMachineAlongThePath) {
   const GcodeRunResult er = runGcode(e);
   ASSERT_FALSE(er.frames.empty());
   EXPECT_EQ(er.frames[0].wrist_points.size(), er.frames[0].status == "ok" ? 1u : 0u);
+}
+
+TEST(GcodeRunWorkflow, MovesThatGoNowhereAreHarmless) {
+  const GcodeRunResult a =
+      runGcode(request("G0 X0 Y0 Z200\nG1 F150\nG1 X10\nG1 F600\nG4 P1\nG1\nM2\n"));
+  const GcodeRunResult b = runGcode(request("G0 X0 Y0 Z200\nF150\nG1 X10\nF600\nG4 P1\nM2\n"));
+  EXPECT_EQ(a.report.motions, b.report.motions + 3);  // the three zero-length moves
+  EXPECT_EQ(a.report.points, b.report.points);
+  EXPECT_TRUE(std::isfinite(a.report.cycle_time_s));
+  EXPECT_DOUBLE_EQ(a.report.cycle_time_s, b.report.cycle_time_s);
+  EXPECT_TRUE(a.ok());
 }
 
 TEST(GcodeRunWorkflow, ErrorsNameTheUploadAndItsLine) {

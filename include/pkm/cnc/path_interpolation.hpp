@@ -56,7 +56,8 @@ class PathInterpolator {
   explicit PathInterpolator(const InterpolationOptions& options, const Axes& start = {});
 
   /// Appends the points of `move` (its end included, its start, the previous end, not) to `out`,
-  /// tagged with `index` and the move's line. Lines: n = ceil(max(|ΔXYZ|/max_step,
+  /// tagged with `index` and the move's line; a line that goes nowhere adds none (unless `out` is
+  /// empty: the path's first point). Lines: n = ceil(max(|ΔXYZ|/max_step,
   /// max|ΔABC|/max_angle_step)) equal steps. Arcs (LinuxCNC G17/G18/G19 planes, the plane axes
   /// (X,Y), (Z,X), (Y,Z)): the angle is split into n equal steps, n the largest of arcSteps, the
   /// helix length / max_step and the rotary change / max_angle_step; the radius goes linearly
