@@ -78,9 +78,9 @@ void PathInterpolator::append(const Move& move, std::uint32_t index, std::vector
   const std::size_t n_rot = stepsFor(rot, options_.max_angle_step);
   if (move.kind != MoveKind::kArc) {
     const double len = std::hypot(e[0] - s[0], e[1] - s[1], e[2] - s[2]);
-    // A move that goes nowhere (e.g. `G1 F150`) adds no point: no zero-length segment in the
-    // path, none in the joint rates or the time model. The path's first point is always kept.
-    if (len == 0.0 && rot == 0.0 && !out.empty()) return;
+    // A move that goes nowhere (e.g. `G1 F150`) may add no point: no zero-length segment in a
+    // joint path, none in the joint rates or the time model. The path's first point is kept.
+    if (options_.skip_still_moves && len == 0.0 && rot == 0.0 && !out.empty()) return;
     const std::size_t n = std::max(stepsFor(len, options_.max_step), n_rot);
     for (std::size_t i = 1; i <= n; ++i) {
       const double u = static_cast<double>(i) / static_cast<double>(n);

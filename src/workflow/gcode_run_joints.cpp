@@ -66,7 +66,9 @@ std::vector<cnc::PathPoint> interpolate(const std::vector<cnc::Move>& moves,
                                         const GcodeProgress& progress) {
   // The first motion positions the machine at its end point (the interpreter's start-up
   // position 0 is not a machine position).
-  cnc::PathInterpolator interp(options, moves.front().end);
+  cnc::InterpolationOptions o = options;
+  o.skip_still_moves = true;  // no zero-length segment in the joint path
+  cnc::PathInterpolator interp(o, moves.front().end);
   std::vector<cnc::PathPoint> points;
   progress.report("interpolating", "motions", 2, kRunStages, 0, moves.size());
   for (std::size_t m = 0; m < moves.size(); ++m) {

@@ -59,7 +59,10 @@ TEST(ArcSweep, DirectionsAndTurns) {
 TEST(PathInterpolator, MovesThatGoNowhereAddNoPoint) {
   InterpolationOptions o;
   o.tolerance = kTol;
-  const auto with = interpolate("G0 X0 Y0 Z200\nG1 F150\nG1 X10\nG1 F200\nG0\nM2\n", o);
+  const char* const still = "G0 X0 Y0 Z200\nG1 F150\nG1 X10\nG1 F200\nG0\nM2\n";
+  EXPECT_EQ(interpolate(still, o).size(), 5u);  // by default one point per motion
+  o.skip_still_moves = true;
+  const auto with = interpolate(still, o);
   const auto without = interpolate("G0 X0 Y0 Z200\nF150\nG1 X10\nM2\n", o);
   ASSERT_EQ(with.size(), without.size());
   ASSERT_EQ(with.size(), 2u);  // the first point, then X10

@@ -107,6 +107,29 @@ TEST(CompensateProgram, KeepsLineStructure) {
   EXPECT_EQ(lines[lines.size() - 2], "M2");
 }
 
+TEST(CompensateProgram, AMotionThatGoesNowhereKeepsThePreviousCommand) {
+  // `G1 F150` moves to where the machine is (rs274): its line gets the previous point's command
+  // and the lines after it keep theirs.
+  const kin::HexapodModel nominal = pkm::test::millingModel();
+  const kin::HexapodModel cal = calibrated(nominal);
+  ProgramCompensationOptions o;
+  o.interpolation = jointSpaceInterpolation(cal, kTol);
+  const ProgramCompensation r =
+      compensateProgram("G0 X0 Y0 Z200\nG1 F150\nG1 X10\nG1 F200\nM2\n", "p.ngc", nominal, cal, o);
+  std::vector<std::string> axes;  // each line's "X.. Y.. Z.. A.. B.. C.." words
+  for (std::size_t s = 0, e; s < r.text.size(); s = e + 1) {
+    e = r.text.find('\n', s);
+    const std::string line = r.text.substr(s, e - s);
+    const std::size_t x = line.find('X'), c = line.find(' ', line.find('C'));
+    axes.push_back(x == std::string::npos ? line : line.substr(x, c - x));
+  }
+  ASSERT_GE(axes.size(), 4u);
+  EXPECT_EQ(axes[1], axes[0]);                // G1 F150: where the G0 left the machine
+  EXPECT_EQ(axes.end()[-2], axes.end()[-3]);  // G1 F200: where the last segment of X10 ended
+  EXPECT_NE(axes[2], axes[1]);
+  EXPECT_EQ(r.text.back(), '\n');
+}
+
 TEST(CompensateProgram, IdentityForEqualModels) {
   const kin::HexapodModel nominal = pkm::test::millingModel();
   const ProgramCompensation r = compensateProgram(kProgram, "p.ngc", nominal, nominal);

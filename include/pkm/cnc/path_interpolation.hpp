@@ -36,6 +36,10 @@ struct InterpolationOptions {
   double max_step = std::numeric_limits<double>::infinity();
   /// Largest change of any of A/B/C over one sub-segment (degrees); +inf for no limit. > 0.
   double max_angle_step = std::numeric_limits<double>::infinity();
+  /// A line that goes nowhere (`G1 F150`) adds no point (true: joint paths, no zero-length
+  /// segment) or one point where the machine is (false: the program rewriting of
+  /// compensateProgram, which writes words for every motion line).
+  bool skip_still_moves = false;
 };
 
 /// Number of equal angular steps so that the sagitta of each chord of an arc of radius `radius`
@@ -56,8 +60,8 @@ class PathInterpolator {
   explicit PathInterpolator(const InterpolationOptions& options, const Axes& start = {});
 
   /// Appends the points of `move` (its end included, its start, the previous end, not) to `out`,
-  /// tagged with `index` and the move's line; a line that goes nowhere adds none (unless `out` is
-  /// empty: the path's first point). Lines: n = ceil(max(|ΔXYZ|/max_step,
+  /// tagged with `index` and the move's line; with options.skip_still_moves a line that goes
+  /// nowhere adds none (unless `out` is empty: the path's first point). Lines: n = ceil(max(|ΔXYZ|/max_step,
   /// max|ΔABC|/max_angle_step)) equal steps. Arcs (LinuxCNC G17/G18/G19 planes, the plane axes
   /// (X,Y), (Z,X), (Y,Z)): the angle is split into n equal steps, n the largest of arcSteps, the
   /// helix length / max_step and the rotary change / max_angle_step; the radius goes linearly
