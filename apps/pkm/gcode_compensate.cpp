@@ -59,6 +59,9 @@ void addGcodeCompensateCommand(CLI::App& gcode) {
                 q.orientation,
                 "Exechon: A/C as the tool vector of a virtual C/A head ('vector', the default) or "
                 "as the wrist readings ('axes'), as in gcode run");
+  c->add_option("--max-points",
+                q.max_points,
+                "most interpolated points the program may need (default 10000000)");
   c->add_option("--tolerance",
                 q.tolerance,
                 "chordal tolerance in the machine's length unit (default 0.01 mm)");

@@ -88,6 +88,10 @@ void addGcodeRunCommand(CLI::App& gcode) {
                 q.orientation,
                 "Exechon: A/C words are the tool vector's angles in the world frame (vector, "
                 "default) or the wrist axes' readings (axes)");
+  r->add_option("--max-points",
+                q.max_points,
+                "most interpolated points the program may need (default 10000000); more is "
+                "refused at the line that crosses it");
   r->add_option("--tolerance",
                 q.tolerance,
                 "chordal tolerance in the machine's length unit (default 0.01 mm)");

@@ -28,9 +28,17 @@ std::array<std::size_t, 3> planeAxes(Plane p) {
   return {0, 1, 2};
 }
 
+/// ceil(x) as a count, at least 1; saturated far below the largest size_t (a count that large is
+/// refused by the point limit anyway), so that no conversion overflows.
+std::size_t saturatedCount(double x) {
+  constexpr double kCap = 1e18;
+  if (!(x < kCap)) return static_cast<std::size_t>(kCap);
+  return std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(x)));
+}
+
 std::size_t stepsFor(double length, double max_step) {
   if (!std::isfinite(max_step) || length <= 0.0) return 1;
-  return std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(length / max_step)));
+  return saturatedCount(length / max_step);
 }
 
 }  // namespace
@@ -43,7 +51,7 @@ std::size_t arcSteps(double radius, double sweep, double tolerance) {
       radius <= 0.0
           ? std::numbers::pi
           : std::min(std::numbers::pi, 2.0 * std::acos(std::max(-1.0, 1.0 - tolerance / radius)));
-  return std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(a / dmax)));
+  return saturatedCount(a / dmax);
 }
 
 double arcSweep(double a0, double a1, int turns) {
@@ -65,7 +73,19 @@ PathInterpolator::PathInterpolator(const InterpolationOptions& options, const Ax
   PKM_CHECK(options.max_angle_step > 0.0, "interpolation max_angle_step must be > 0");
 }
 
+PathTooLong::PathTooLong(std::size_t needed_points, std::size_t limit_points)
+    : InvalidArgument(fmt::format("the path would need at least {} interpolated points, more than "
+                                  "the limit of {}",
+                                  needed_points,
+                                  limit_points)),
+      needed(needed_points),
+      limit(limit_points) {}
+
 void PathInterpolator::append(const Move& move, std::uint32_t index, std::vector<PathPoint>& out) {
+  const auto room = [&](std::size_t n) {
+    if (n > options_.max_points || out.size() > options_.max_points - n)
+      throw PathTooLong(out.size() + n, options_.max_points);  // n is at most 1e18
+  };
   const Axes s = pos_;
   const Axes& e = move.end;
   PathPoint p;
@@ -82,6 +102,7 @@ void PathInterpolator::append(const Move& move, std::uint32_t index, std::vector
     // joint path, none in the joint rates or the time model. The path's first point is kept.
     if (options_.skip_still_moves && len == 0.0 && rot == 0.0 && !out.empty()) return;
     const std::size_t n = std::max(stepsFor(len, options_.max_step), n_rot);
+    room(n);
     for (std::size_t i = 1; i <= n; ++i) {
       const double u = static_cast<double>(i) / static_cast<double>(n);
       for (std::size_t k = 0; k < 6; ++k) p.pos[k] = i == n ? e[k] : s[k] + u * (e[k] - s[k]);
@@ -99,6 +120,7 @@ void PathInterpolator::append(const Move& move, std::uint32_t index, std::vector
     const std::size_t n = std::max({arcSteps(std::max(r0, r1), sweep, options_.tolerance),
                                     stepsFor(helix, options_.max_step),
                                     n_rot});
+    room(n);
     for (std::size_t i = 1; i <= n; ++i) {
       if (i == n) {
         p.pos = e;

@@ -361,7 +361,11 @@ ProgramCompensation rewriteFlat(std::string_view text,
     if (it != span.end() && it->second.second != points.size())
       fail(file, mv.line, "gcode compensate needs the motions of a line to be consecutive");
     const std::size_t first = it == span.end() ? points.size() : it->second.first;
-    interp.append(mv, static_cast<std::uint32_t>(m), points);
+    try {
+      interp.append(mv, static_cast<std::uint32_t>(m), points);
+    } catch (const PathTooLong& e) {
+      fail(file, mv.line, fmt::format("{}: raise it with --max-points N", e.what()));
+    }
     span[mv.line] = {first, points.size()};
     ++motions_of_line[mv.line];
   }

@@ -93,6 +93,7 @@ GcodeCompensateResult compensateExechon(const GcodeCompensateRequest& request) {
   options.orientation = cnc::parseExechonOrientation(orientation);
   const double tolerance_mm = toleranceMm(request, cal.model.unit);
   options.interpolation = cnc::exechonInterpolation(cal.model, tolerance_mm);
+  options.interpolation.max_points = request.max_points;
   options.fk = nominal.fk;
   options.interpreter = request.interpreter.options();
   GcodeCompensateResult result;
@@ -149,6 +150,7 @@ GcodeCompensateResult compensateHexapod(const GcodeCompensateRequest& request) {
   cnc::ProgramCompensationOptions options;
   const double tolerance_mm = toleranceMm(request, cal.model.unit);
   options.interpolation = cnc::jointSpaceInterpolation(cal.model, tolerance_mm);
+  options.interpolation.max_points = request.max_points;
   options.predistortion.fk = nominal.fk;
   const GcodeInterpreterSettings settings = hexapodSettings(request, cal, nominal);
   options.interpreter = settings.options();
@@ -177,6 +179,7 @@ GcodeCompensateResult compensateHexapod(const GcodeCompensateRequest& request) {
 void GcodeCompensateRequest::validate() const {
   PKM_CHECK(!tolerance || (*tolerance > 0.0 && std::isfinite(*tolerance)),
             "--tolerance must be > 0");
+  PKM_CHECK(max_points > 0, "--max-points must be > 0");
   if (!out.empty()) io::checkOverwrite(out, force ? io::Overwrite::kAllow : io::Overwrite::kRefuse);
   if (hybrid_frame.empty() == machine.empty())
     throw InvalidArgument(

@@ -135,6 +135,7 @@ void GcodeRunRequest::validate() const {
       .validate();
   PKM_CHECK(!tolerance || (*tolerance > 0.0 && std::isfinite(*tolerance)),
             "--tolerance must be > 0");
+  PKM_CHECK(max_points > 0, "--max-points must be > 0");
   refuseOverwrite(out, force);
   refuseOverwrite(report, force);
   const bool exechon = io::machineTypeOf(machine) == "exechon";

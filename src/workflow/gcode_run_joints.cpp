@@ -61,18 +61,28 @@ void effectiveLimits(const GcodeRunRequest& r,
 }
 
 /// The interpreted program's motions cut into points for joint-space conversion.
-std::vector<cnc::PathPoint> interpolate(const std::vector<cnc::Move>& moves,
+std::vector<cnc::PathPoint> interpolate(const GcodeRunRequest& request,
+                                        const std::vector<cnc::Move>& moves,
                                         const cnc::InterpolationOptions& options,
                                         const GcodeProgress& progress) {
   // The first motion positions the machine at its end point (the interpreter's start-up
   // position 0 is not a machine position).
   cnc::InterpolationOptions o = options;
   o.skip_still_moves = true;  // no zero-length segment in the joint path
+  o.max_points = request.max_points;
   cnc::PathInterpolator interp(o, moves.front().end);
   std::vector<cnc::PathPoint> points;
   progress.report("interpolating", "motions", 2, kRunStages, 0, moves.size());
   for (std::size_t m = 0; m < moves.size(); ++m) {
-    interp.append(moves[m], static_cast<std::uint32_t>(m), points);
+    try {
+      interp.append(moves[m], static_cast<std::uint32_t>(m), points);
+    } catch (const cnc::PathTooLong& e) {
+      throw IoError(locate(request.program.name,
+                           moves[m].line,
+                           fmt::format("{}: raise it with --max-points N (each point takes about "
+                                       "150 bytes)",
+                                       e.what())));
+    }
     progress.every("interpolating", "motions", 2, kRunStages, m + 1, moves.size());
   }
   return points;
@@ -125,7 +135,7 @@ void runHexapod(const GcodeRunRequest& request,
   effectiveLimits(request, machine.joint_rates, false, run);
   run.tolerance_mm = toleranceMm(request, model->unit);
   run.interpolation = cnc::jointSpaceInterpolation(*model, run.tolerance_mm);
-  run.points = interpolate(program.moves, run.interpolation, progress);
+  run.points = interpolate(request, program.moves, run.interpolation, progress);
   cnc::HexapodJointConverter conv(*model);
   auto q = std::make_shared<std::vector<kinematics::StrutVector>>();
   convert(conv, run.points, progress, *q);
@@ -170,7 +180,7 @@ void runExechon(const GcodeRunRequest& request,
       cnc::exechonRateLimits(run.limits, run.wrist_velocity, run.wrist_acceleration);
   run.tolerance_mm = toleranceMm(request, model->unit);
   run.interpolation = cnc::exechonInterpolation(*model, run.tolerance_mm);
-  run.points = interpolate(program.moves, run.interpolation, progress);
+  run.points = interpolate(request, program.moves, run.interpolation, progress);
   cnc::ExechonJointConverter conv(*model, orientation);
   auto samples = std::make_shared<std::vector<cnc::ExechonPathSample>>();
   convert(conv, run.points, progress, *samples);

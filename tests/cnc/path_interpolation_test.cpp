@@ -69,6 +69,29 @@ TEST(PathInterpolator, MovesThatGoNowhereAddNoPoint) {
   for (std::size_t i = 1; i < with.size(); ++i) EXPECT_NE(with[i].pos, with[i - 1].pos);
 }
 
+TEST(PathInterpolator, APathAboveTheLimitIsRefusedBeforeItsPointsAreMade) {
+  InterpolationOptions o;
+  o.tolerance = kTol;
+  o.max_points = 1000;
+  const Program p = Program::parse("G0 X10 Y0 Z200\nG2 X10 Y0 I-10 J0 P100000000 F600\n", "h.ngc");
+  MoveCollector moves;
+  Interpreter interp;
+  (void)interp.run(p, moves);
+  PathInterpolator cut(o, moves.moves.front().end);
+  std::vector<PathPoint> pts;
+  cut.append(moves.moves[0], 0, pts);
+  try {
+    cut.append(moves.moves[1], 1, pts);
+    FAIL() << "made a path of a hundred million turns";
+  } catch (const PathTooLong& e) {
+    EXPECT_GT(e.needed, 1'000'000'000u);  // about 70 points per turn at 0.01 mm on r = 10 mm
+    EXPECT_EQ(e.limit, 1000u);
+  }
+  EXPECT_EQ(pts.size(), 1u);  // nothing added
+  // Lengths far beyond any count saturate instead of overflowing.
+  EXPECT_EQ(arcSteps(1.0, 1e300, kTol), static_cast<std::size_t>(1e18));
+}
+
 TEST(PathInterpolator, ArcPointsOnCircleWithExactEnd) {
   InterpolationOptions o;
   o.tolerance = kTol;

@@ -104,6 +104,17 @@ TEST_F(GcodeCompensateWorkflow, ErrorsNameTheUploadAndItsLine) {
   }
 }
 
+TEST_F(GcodeCompensateWorkflow, AProgramNeedingTooManyPointsIsRefusedAtItsLine) {
+  GcodeCompensateRequest q = request("G0 X10 Y0 Z200\nG2 X10 Y0 I-10 J0 P100000000 F600\nM2\n");
+  try {
+    (void)compensateGcode(q);
+    FAIL() << "accepted a hundred million turns";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), StartsWith("upload.ngc:2: the path would need at least "));
+    EXPECT_THAT(e.what(), HasSubstr("--max-points"));
+  }
+}
+
 TEST_F(GcodeCompensateWorkflow, RejectsBadRequests) {
   GcodeCompensateRequest q = request("G0 X0 Y0 Z200\n");
   q.tolerance = -1.0;

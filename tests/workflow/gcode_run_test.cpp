@@ -122,6 +122,21 @@ TEST(GcodeRunWorkflow, FramesDrawTheMachineAlongThePath) {
   EXPECT_EQ(er.frames[0].wrist_points.size(), er.frames[0].status == "ok" ? 1u : 0u);
 }
 
+TEST(GcodeRunWorkflow, AProgramNeedingTooManyPointsIsRefusedAtItsLine) {
+  // A legal helix of a hundred million turns: refused at once (bounded memory), naming the line,
+  // the points it needs and the option that raises the limit.
+  GcodeRunRequest q = request("G0 X10 Y0 Z200\nG2 X10 Y0 I-10 J0 P100000000 F600\nM2\n");
+  try {
+    (void)runGcode(q);
+    FAIL() << "accepted a hundred million turns";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), StartsWith("upload.ngc:2: the path would need at least "));
+    EXPECT_THAT(e.what(), HasSubstr("more than the limit of 10000000: raise it with --max-points"));
+  }
+  q.max_points = 0;
+  EXPECT_THROW((void)runGcode(q), InvalidArgument);
+}
+
 TEST(GcodeRunWorkflow, MovesThatGoNowhereAreHarmless) {
   const GcodeRunResult a =
       runGcode(request("G0 X0 Y0 Z200\nG1 F150\nG1 X10\nG1 F600\nG4 P1\nG1\nM2\n"));

@@ -11,8 +11,21 @@
 #include <vector>
 
 #include "pkm/cnc/move.hpp"
+#include "pkm/core/error.hpp"
 
 namespace pkm::cnc {
+
+/// The default InterpolationOptions::max_points.
+inline constexpr std::size_t kDefaultMaxPathPoints = 10'000'000;
+
+/// Thrown by PathInterpolator::append when a path would exceed InterpolationOptions::max_points;
+/// the caller names the program and line.
+class PathTooLong : public InvalidArgument {
+ public:
+  PathTooLong(std::size_t needed, std::size_t limit);
+  std::size_t needed;  ///< the points the path would have with this motion (at least)
+  std::size_t limit;   ///< InterpolationOptions::max_points
+};
 
 /// A position in machine coordinates: X, Y, Z (mm), A, B, C (degrees).
 using Axes = std::array<double, 6>;
@@ -40,6 +53,11 @@ struct InterpolationOptions {
   /// segment) or one point where the machine is (false: the program rewriting of
   /// compensateProgram, which writes words for every motion line).
   bool skip_still_moves = false;
+  /// The most points a path may have (> 0): a program that would need more (a helix of a
+  /// hundred million turns, a 0.1 µm step over metres) is refused before its points are made,
+  /// so that memory stays bounded. The default is far above any machining program (a 100,000-
+  /// line program needs a few hundred thousand): 10 million points, about 1.5 GB of joint path.
+  std::size_t max_points = kDefaultMaxPathPoints;
 };
 
 /// Number of equal angular steps so that the sagitta of each chord of an arc of radius `radius`
@@ -61,12 +79,13 @@ class PathInterpolator {
 
   /// Appends the points of `move` (its end included, its start, the previous end, not) to `out`,
   /// tagged with `index` and the move's line; with options.skip_still_moves a line that goes
-  /// nowhere adds none (unless `out` is empty: the path's first point). Lines: n = ceil(max(|ΔXYZ|/max_step,
-  /// max|ΔABC|/max_angle_step)) equal steps. Arcs (LinuxCNC G17/G18/G19 planes, the plane axes
-  /// (X,Y), (Z,X), (Y,Z)): the angle is split into n equal steps, n the largest of arcSteps, the
-  /// helix length / max_step and the rotary change / max_angle_step; the radius goes linearly
-  /// from the start radius to the end radius (LinuxCNC's spiral for slightly unequal radii), the
-  /// normal axis and A/B/C linearly in the angle.
+  /// nowhere adds none (unless `out` is empty: the path's first point). Throws PathTooLong, before
+  /// adding any, when out.size() plus the move's points would exceed options.max_points. Lines: n =
+  /// ceil(max(|ΔXYZ|/max_step, max|ΔABC|/max_angle_step)) equal steps. Arcs (LinuxCNC G17/G18/G19
+  /// planes, the plane axes (X,Y), (Z,X), (Y,Z)): the angle is split into n equal steps, n the
+  /// largest of arcSteps, the helix length / max_step and the rotary change / max_angle_step; the
+  /// radius goes linearly from the start radius to the end radius (LinuxCNC's spiral for slightly
+  /// unequal radii), the normal axis and A/B/C linearly in the angle.
   void append(const Move& move, std::uint32_t index, std::vector<PathPoint>& out);
 
   /// The current position (the end of the last motion).

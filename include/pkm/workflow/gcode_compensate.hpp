@@ -30,6 +30,8 @@ struct GcodeCompensateRequest {
   /// Chordal tolerance of the interpolation in the machine's length unit (> 0; hybrid: mm);
   /// default 0.01 mm.
   std::optional<double> tolerance;
+  /// The most interpolated points the program may need (> 0; cnc::InterpolationOptions).
+  std::size_t max_points = cnc::kDefaultMaxPathPoints;
   std::string out;     ///< the file to write ("" : none, the caller shows the text)
   bool force = false;  ///< replace an existing `out`
   std::string

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "pkm/cnc/path_interpolation.hpp"
 #include "pkm/io/gcode_run_report.hpp"
 #include "pkm/io/named_text.hpp"
 #include "pkm/workflow/gcode_interpreter.hpp"
@@ -41,6 +42,9 @@ struct GcodeRunRequest {
   /// axes' readings ("axes").
   std::string orientation = "vector";
   GcodeInterpreterSettings interpreter;  ///< tool table, block delete, loop guard
+  /// The most interpolated points the program may need (cnc::InterpolationOptions::max_points):
+  /// more is refused at the motion that crosses it, before the points are made. > 0.
+  std::size_t max_points = cnc::kDefaultMaxPathPoints;
   /// Most points of the returned path (GcodeRunResult::path; 0: no path). A longer path is
   /// decimated evenly, keeping the first and last points and every point where a check's worst
   /// value occurs; the checks themselves always see every point.
