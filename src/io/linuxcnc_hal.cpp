@@ -23,18 +23,6 @@ namespace {
 
 constexpr std::string_view kPrefix = "genhexkins.";
 
-std::vector<std::string_view> splitWords(std::string_view line) {
-  std::vector<std::string_view> words;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    if (i > start) words.push_back(line.substr(start, i - start));
-  }
-  return words;
-}
-
 std::vector<std::string> readLines(const std::string& path) {
   std::vector<std::string> lines;
   std::istringstream in(readTextFile(path, 16u << 20));

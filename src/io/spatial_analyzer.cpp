@@ -25,14 +25,7 @@ std::vector<std::string_view> fieldsOf(std::string_view line) {
     }
     return out;
   }
-  std::size_t pos = 0;
-  while (pos < line.size()) {
-    while (pos < line.size() && std::isspace(static_cast<unsigned char>(line[pos]))) ++pos;
-    const std::size_t start = pos;
-    while (pos < line.size() && !std::isspace(static_cast<unsigned char>(line[pos]))) ++pos;
-    if (pos > start) out.push_back(line.substr(start, pos - start));
-  }
-  return out;
+  return splitWords(line);
 }
 
 bool isAxisName(std::string_view field, char axis) {

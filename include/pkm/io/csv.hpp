@@ -83,4 +83,7 @@ class CsvReader {
 /// `s` without leading and trailing spaces, tabs and carriage returns.
 [[nodiscard]] std::string_view trimBlanks(std::string_view s);
 
+/// The whitespace-separated words of `line` (views into it), in order.
+[[nodiscard]] std::vector<std::string_view> splitWords(std::string_view line);
+
 }  // namespace pkm::io
