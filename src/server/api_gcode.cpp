@@ -31,6 +31,18 @@ workflow::GcodeInterpreterSettings interpreter(const Json& body) {
   return settings;
 }
 
+/// The fields a run and a compensation share: the program, the machine (and its INI), the
+/// tolerance and the tool table.
+template <class GcodeRequest>
+void readCommon(Api::State& s, const Json& body, GcodeRequest& q) {
+  q.program = program(body);
+  const MachineSpec m = s.resolveMachine(requiredString(body, "machine"));
+  q.machine = m.spec;
+  q.ini = m.ini;
+  q.tolerance = numberField(body, "tolerance");
+  q.interpreter = interpreter(body);
+}
+
 Json pathJson(const workflow::GcodeRunPath& p) {
   Json pose = Json::array(), q = Json::array();
   for (const auto& x : p.pose) pose.push_back(x);
@@ -64,17 +76,12 @@ Json violationsJson(const std::vector<workflow::GcodeRunViolation>& v) {
 Response runGcode(Api::State& s, const Request& r) {
   const Json body = parseObject(r);
   workflow::GcodeRunRequest q;
-  q.program = program(body);
-  const MachineSpec m = s.resolveMachine(requiredString(body, "machine"));
-  q.machine = m.spec;
-  q.ini = m.ini;
-  q.tolerance = numberField(body, "tolerance");
+  readCommon(s, body, q);
   q.strut_diameter = numberField(body, "strut_diameter");
   q.orientation = stringField(body, "orientation", "vector");
   q.path_points = countField(body, "max_points", kMaxPathPoints).value_or(kDefaultPathPoints);
   q.max_violations =
       countField(body, "max_violations", kMaxViolations).value_or(kDefaultViolations);
-  q.interpreter = interpreter(body);
   q.frames = countField(body, "frames", kMaxFrames).value_or(0);
   const JobSlot slot(s);
   const NamedJob job(s, stringField(body, "job", ""));
@@ -91,15 +98,10 @@ Response runGcode(Api::State& s, const Request& r) {
 Response compensateGcode(Api::State& s, const Request& r) {
   const Json body = parseObject(r);
   workflow::GcodeCompensateRequest q;
-  q.program = program(body);
-  const MachineSpec m = s.resolveMachine(requiredString(body, "machine"));
-  q.machine = m.spec;
-  q.ini = m.ini;
+  readCommon(s, body, q);
   const std::string nominal = stringField(body, "nominal", "");
   if (!nominal.empty()) q.nominal = s.resolveMachine(nominal).spec;
-  q.tolerance = numberField(body, "tolerance");
   if (body.contains("orientation")) q.orientation = stringField(body, "orientation", "vector");
-  q.interpreter = interpreter(body);
   const JobSlot slot(s);
   const workflow::GcodeCompensateResult result = workflow::compensateGcode(q);
   const cnc::ProgramCompensation& c = result.compensation;
