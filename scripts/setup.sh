@@ -13,6 +13,7 @@ packages=(
   chromium
   linuxcnc-uspace linuxcnc-uspace-dev
   libcpp-httplib-dev
+  python3-numpy python3-scipy
 )
 
 missing=()

@@ -63,6 +63,8 @@ std::string analysisJson(const CircleReport& report) {
                    {"mzc_contacts", std::move(contacts)},
                    {"mzc_certified", mzc.certified},
                    {"rms", lsc.rms},
+                   {"iterations", lsc.iterations},
+                   {"converged", lsc.converged},
                    {"points", report.sources.size()}});
 }
 

@@ -26,6 +26,8 @@ std::string analysisText(const CircleReport& report) {
                      num9(lsc.circle.radius),
                      num9(2.0 * lsc.circle.radius));
   out += fmt::format(
+      "LSC iterations\t{}\nLSC converged\t{}\n", lsc.iterations, lsc.converged ? "yes" : "no");
+  out += fmt::format(
       "roundness LSC\t{}\nroundness MZC\t{}\n", num9(lsc.roundness), num9(mzc.roundness));
   out += fmt::format("MZC centre\t{}\t{}\nMZC radii\t{}\t{}\nMZC certified\t{}\n",
                      num9(mzc.center.x()),

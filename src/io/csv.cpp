@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "io/detail/decimal.hpp"
 #include "pkm/core/error.hpp"
 
 namespace pkm::io {
@@ -51,6 +52,7 @@ bool parseFiniteDouble(std::string_view text, double& value) {
     if (!text.empty() && text.front() == '-') return false;  // "+-1"
   }
   if (text.empty()) return false;
+  if (detail::parseSimpleDecimal(text.data(), text.data() + text.size(), value)) return true;
   const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   return ec == std::errc() && ptr == text.data() + text.size() && std::isfinite(value);
 }

@@ -2,14 +2,33 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "pkm/core/error.hpp"
+#include "pkm/core/parallel.hpp"
 #include "pkm/metrology/checks.hpp"
 
 namespace pkm::metrology {
 namespace {
+
+/// Σ_k f(p_k) for a function returning an N-vector: summed per chunk (pkm/core/parallel.hpp, on
+/// the machine's cores), the chunks' sums added in order, so the result is the same everywhere.
+template <int N, typename F>
+Eigen::Matrix<double, N, 1> sumOver(std::span<const Point2> points, F&& f) {
+  using Vec = Eigen::Matrix<double, N, 1>;
+  std::array<Vec, kParallelChunks> part;
+  forEachChunk(points.size(), kParallelChunks, [&](std::size_t c, std::size_t b, std::size_t e) {
+    Vec sum = Vec::Zero();
+    for (std::size_t k = b; k < e; ++k) sum += f(points[k]);
+    part[c] = sum;
+  });
+  Vec total = Vec::Zero();
+  for (const Vec& v : part) total += v;
+  return total;
+}
 
 /// Centroid and RMS distance from it: the shift and scale under which the fits are conditioned
 /// (large coordinates are known to make circle regressions unstable).
@@ -19,28 +38,31 @@ struct Frame {
 };
 
 Frame conditioningFrame(std::span<const Point2> points) {
-  Point2 sum = Point2::Zero();
-  for (const Point2& p : points) sum += p;
+  const auto n = static_cast<double>(points.size());
   Frame frame;
-  frame.origin = sum / static_cast<double>(points.size());
-  double sq = 0.0;
-  for (const Point2& p : points) sq += (p - frame.origin).squaredNorm();
-  frame.scale = std::sqrt(sq / static_cast<double>(points.size()));
+  frame.origin = sumOver<2>(points, [](const Point2& p) { return p; }) / n;
+  const double sq = sumOver<1>(points, [&](const Point2& p) {
+    return Eigen::Matrix<double, 1, 1>((p - frame.origin).squaredNorm());
+  })(0);
+  frame.scale = std::sqrt(sq / n);
   PKM_CHECK(frame.scale > 0.0 && std::isfinite(frame.scale), "circle fit: the points all coincide");
   return frame;
 }
 
 /// Kåsa on the conditioned points: returns centre and radius in conditioned units.
 Circle kasaConditioned(std::span<const Point2> points, const Frame& frame) {
-  Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
-  for (const Point2& p : points) {
-    const Point2 u = (p - frame.origin) / frame.scale;
-    const Eigen::Vector3d row(u.x(), u.y(), 1.0);
+  const double inv_scale = 1.0 / frame.scale;
+  // Σ of u², uv, v², u, v, z·u, z·v, z over u = conditioned point, z = |u|².
+  const Eigen::Matrix<double, 8, 1> s = sumOver<8>(points, [&](const Point2& p) {
+    const Point2 u = (p - frame.origin) * inv_scale;
     const double z = u.squaredNorm();
-    normal.noalias() += row * row.transpose();
-    rhs += row * z;
-  }
+    Eigen::Matrix<double, 8, 1> t;
+    t << u.x() * u.x(), u.x() * u.y(), u.y() * u.y(), u.x(), u.y(), z * u.x(), z * u.y(), z;
+    return t;
+  });
+  Eigen::Matrix3d normal;
+  normal << s(0), s(1), s(3), s(1), s(2), s(4), s(3), s(4), static_cast<double>(points.size());
+  const Eigen::Vector3d rhs(s(5), s(6), s(7));
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(normal, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const Eigen::Vector3d sv = svd.singularValues();
   constexpr double kMinConditionReciprocal = 1e-13;  // collinear points make [u v 1] rank 2
@@ -54,7 +76,8 @@ Circle kasaConditioned(std::span<const Point2> points, const Frame& frame) {
   return c;
 }
 
-/// One pass: cost Σe², JᵀJ and Jᵀe of e_k = |u_k − c| − R for params (cx, cy, R).
+/// One pass: cost Σe², JᵀJ and Jᵀe of e_k = |u_k − c| − R for params (cx, cy, R), with the
+/// Jacobian row (−cos φ_k, −sin φ_k, −1) accumulated as its distinct sums.
 struct Linearisation {
   double cost = 0.0;
   Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
@@ -64,22 +87,27 @@ struct Linearisation {
 Linearisation linearise(std::span<const Point2> points,
                         const Frame& frame,
                         const Eigen::Vector3d& params) {
-  Linearisation lin;
-  for (const Point2& p : points) {
-    const Point2 u = (p - frame.origin) / frame.scale;
-    const double dx = u.x() - params(0);
-    const double dy = u.y() - params(1);
+  const double inv_scale = 1.0 / frame.scale;
+  const double ox = frame.origin.x() + frame.scale * params(0);
+  const double oy = frame.origin.y() + frame.scale * params(1);
+  const double radius = params(2);
+  // Σ of e², c², cs, s², c, s, ce, se, e with (c, s) the unit direction from the centre.
+  const Eigen::Matrix<double, 9, 1> t = sumOver<9>(points, [&](const Point2& p) {
+    const double dx = (p.x() - ox) * inv_scale;
+    const double dy = (p.y() - oy) * inv_scale;
     const double d = std::sqrt(dx * dx + dy * dy);
-    const double e = d - params(2);
-    Eigen::Vector3d j(0.0, 0.0, -1.0);
-    if (d > 0.0) {
-      j(0) = -dx / d;
-      j(1) = -dy / d;
-    }
-    lin.cost += e * e;
-    lin.jtj.noalias() += j * j.transpose();
-    lin.jte += j * e;
-  }
+    const double e = d - radius;
+    const double inv_d = d > 0.0 ? 1.0 / d : 0.0;
+    const double c = dx * inv_d;
+    const double s = dy * inv_d;
+    Eigen::Matrix<double, 9, 1> v;
+    v << e * e, c * c, c * s, s * s, c, s, c * e, s * e, e;
+    return v;
+  });
+  Linearisation lin;
+  lin.cost = t(0);
+  lin.jtj << t(1), t(2), t(4), t(2), t(3), t(5), t(4), t(5), static_cast<double>(points.size());
+  lin.jte << -t(6), -t(7), -t(8);
   return lin;
 }
 
@@ -105,15 +133,28 @@ Circle fitCircleKasa(std::span<const Point2> points) {
   return c;
 }
 
+bool CircleFitOptions::isValid(std::string* why) const {
+  const char* reason =
+      max_iterations < 1                                ? "max_iterations must be >= 1"
+      : !(step_tolerance > 0.0 && step_tolerance < 1.0) ? "step_tolerance must be in (0, 1)"
+      : !(cost_tolerance > 0.0 && cost_tolerance < 1.0) ? "cost_tolerance must be in (0, 1)"
+                                                        : nullptr;
+  if (reason != nullptr && why != nullptr) *why = reason;
+  return reason == nullptr;
+}
+
 CircleFit fitCircle(std::span<const Point2> points, const CircleFitOptions& options) {
-  PKM_CHECK(options.max_iterations >= 1, "circle fit: max_iterations must be >= 1");
-  PKM_CHECK(options.step_tolerance > 0.0, "circle fit: step_tolerance must be > 0");
+  std::string why;
+  PKM_CHECK(options.isValid(&why), "circle fit: {}", why);
   requirePoints(points, 3, "circle fit");
   const Frame frame = conditioningFrame(points);
   const Circle start = kasaConditioned(points, frame);
   Eigen::Vector3d params(start.center.x(), start.center.y(), start.radius);
 
-  // Levenberg-Marquardt (Marquardt's diagonal scaling) on the orthogonal distances.
+  // Levenberg-Marquardt (Marquardt's diagonal scaling) on the orthogonal distances. A sum of N
+  // squares carries a relative rounding error up to N·ε: a trial whose cost differs from the
+  // current one by less than that cannot be told apart from it, so the fit is at its minimum.
+  const double floor = static_cast<double>(points.size()) * std::numeric_limits<double>::epsilon();
   CircleFit fit;
   Linearisation lin = linearise(points, frame, params);
   double lambda = 1e-3;
@@ -123,38 +164,53 @@ CircleFit fitCircle(std::span<const Point2> points, const CircleFitOptions& opti
     Eigen::Matrix3d a = lin.jtj;
     a.diagonal() *= 1.0 + lambda;
     const Eigen::Vector3d step = a.ldlt().solve(-lin.jte);
+    if (!step.allFinite()) break;
     // A step shrunk by heavy damping is no sign of convergence: count it only for lambda <= 1.
     const bool small =
         lambda <= 1.0 && step.norm() <= options.step_tolerance * std::max(1.0, params(2));
     const Eigen::Vector3d trial = params + step;
-    Linearisation next = linearise(points, frame, trial);
-    if (next.cost <= lin.cost) {
+    const Linearisation next = linearise(points, frame, trial);
+    const double change = next.cost - lin.cost;
+    if (change <= 0.0) {
       params = trial;
       lin = next;
       lambda = std::max(lambda * 0.1, 1e-12);
     } else {
       lambda *= 10.0;
     }
-    if (small || lambda > kLambdaMax) {
-      fit.converged = small;
+    const bool flat = change <= 0.0 && -change <= options.cost_tolerance * lin.cost;
+    if (small || flat || std::abs(change) <= floor * lin.cost) {
+      fit.converged = true;
       break;
     }
+    if (lambda > kLambdaMax) break;
   }
   PKM_CHECK(params(2) > 0.0 && std::isfinite(params(2)), "circle fit: degenerate points");
 
   fit.circle.center = frame.origin + frame.scale * Point2(params(0), params(1));
   fit.circle.radius = frame.scale * std::abs(params(2));
   fit.residuals.resize(points.size());
+  std::array<std::array<double, 3>, kParallelChunks> part{};  // min, max, Σe² per chunk
+  forEachChunk(points.size(), kParallelChunks, [&](std::size_t c, std::size_t b, std::size_t end) {
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = -lo;
+    double sq = 0.0;
+    for (std::size_t k = b; k < end; ++k) {
+      const double e = (points[k] - fit.circle.center).norm() - fit.circle.radius;
+      fit.residuals[k] = e;
+      lo = std::min(lo, e);
+      hi = std::max(hi, e);
+      sq += e * e;
+    }
+    part[c] = {lo, hi, sq};
+  });
   double lo = std::numeric_limits<double>::infinity();
   double hi = -lo;
   double sq = 0.0;
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    const Point2 u = (points[k] - frame.origin) / frame.scale;
-    const double e = frame.scale * ((u - Point2(params(0), params(1))).norm() - params(2));
-    fit.residuals[k] = e;
-    lo = std::min(lo, e);
-    hi = std::max(hi, e);
-    sq += e * e;
+  for (const auto& [l, h, q] : part) {
+    lo = std::min(lo, l);
+    hi = std::max(hi, h);
+    sq += q;
   }
   fit.roundness = hi - lo;
   fit.rms = std::sqrt(sq / static_cast<double>(points.size()));

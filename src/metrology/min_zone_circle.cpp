@@ -98,6 +98,33 @@ void sortCyclic(std::span<const Point2> points, const Point2& c, std::array<std:
       ref.begin() + 1, ref.end(), [&](std::size_t a, std::size_t b) { return rel(a) < rel(b); });
 }
 
+/// The points whose distance from `c` lies in the outer or inner tenth of the radial range about
+/// c, or all points when that leaves too few.
+std::vector<std::size_t> zoneCandidates(std::span<const Point2> points, const Point2& c) {
+  constexpr double kEdgeFraction = 0.1;
+  double lo2 = std::numeric_limits<double>::infinity();
+  double hi2 = 0.0;
+  for (const Point2& p : points) {
+    const double r2 = (p - c).squaredNorm();
+    lo2 = std::min(lo2, r2);
+    hi2 = std::max(hi2, r2);
+  }
+  const double lo = std::sqrt(lo2), hi = std::sqrt(hi2);
+  const double band = kEdgeFraction * (hi - lo);
+  const double outer2 = (hi - band) * (hi - band);
+  const double inner2 = (lo + band) * (lo + band);
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const double r2 = (points[k] - c).squaredNorm();
+    if (r2 >= outer2 || r2 <= inner2) out.push_back(k);
+  }
+  if (out.size() < 8) {
+    out.resize(points.size());
+    std::iota(out.begin(), out.end(), std::size_t{0});
+  }
+  return out;
+}
+
 }  // namespace
 
 std::optional<Point2> bisectorIntersection(const Point2& a,
@@ -165,11 +192,18 @@ MinZoneCircle fitMinimumZoneCircle(std::span<const Point2> points, const MinZone
 
   std::array<std::size_t, 4> ref = initialReference(points, c);
   sortCyclic(points, c, ref);
+  // The exchanges run on candidates, the points near the outer and inner edges of the zone about
+  // the start centre; a pass over all points then confirms the result or adds the points that lie
+  // outside it, and the exchanges go on. The answer is that of the exchange over all points, at a
+  // few passes over them instead of one per exchange.
+  std::vector<std::size_t> candidates = zoneCandidates(points, c);
   MinZoneCircle zone;
   double h = 0.0;
   double rho = 0.0;
   bool done = false;
-  for (int it = 0; it <= options.max_exchanges; ++it) {
+  int it = 0;
+  int rounds = 0;
+  while (!done && it <= options.max_exchanges) {
     const std::optional<Point2> next =
         bisectorIntersection(points[ref[0]], points[ref[2]], points[ref[1]], points[ref[3]]);
     PKM_CHECK(next.has_value(), "minimum-zone circle: degenerate points (no zone centre)");
@@ -180,7 +214,7 @@ MinZoneCircle fitMinimumZoneCircle(std::span<const Point2> points, const MinZone
     rho = 0.5 * (ra + rb);
     std::size_t worst = ref[0];
     double worst_e = 0.0;
-    for (std::size_t k = 0; k < points.size(); ++k) {
+    for (const std::size_t k : candidates) {
       const double e = (points[k] - c).norm() - rho;
       if (std::abs(e) > std::abs(worst_e)) {
         worst_e = e;
@@ -190,9 +224,34 @@ MinZoneCircle fitMinimumZoneCircle(std::span<const Point2> points, const MinZone
     zone.exchanges = it;
     if (std::abs(worst_e) <= std::abs(h) + tol ||
         std::find(ref.begin(), ref.end(), worst) != ref.end()) {
-      done = true;
-      break;
+      // Optimal on the candidates: check every point.
+      const std::size_t before = candidates.size();
+      if (before == points.size()) {
+        done = true;
+        break;
+      }
+      // |r − rho| > |h| + tol, compared as squares (no square root per point).
+      const double out_r = rho + std::abs(h) + tol;
+      const double in_r = std::max(rho - std::abs(h) - tol, 0.0);
+      const double out2 = out_r * out_r, in2 = in_r * in_r;
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        const double r2 = (points[k] - c).squaredNorm();
+        if (r2 > out2 || r2 < in2) candidates.push_back(k);
+      }
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+      if (candidates.size() == before) {
+        done = true;
+        break;
+      }
+      constexpr int kMaxRounds = 8;  // then all points: the plain exchange
+      if (++rounds == kMaxRounds) {
+        candidates.resize(points.size());
+        std::iota(candidates.begin(), candidates.end(), std::size_t{0});
+      }
+      continue;  // the same reference, now against the added points
     }
+    ++it;
     // Single-point exchange (Remez): the new point replaces the neighbour of its own sign, so the
     // reference keeps alternating.
     const int sign_a = h >= 0.0 ? 1 : -1;
@@ -219,13 +278,14 @@ MinZoneCircle fitMinimumZoneCircle(std::span<const Point2> points, const MinZone
     // exchange rule guarantees it for near-circular data.
   }
   zone.center = c;
-  double lo = std::numeric_limits<double>::infinity();
-  double hi = 0.0;
+  double lo2 = std::numeric_limits<double>::infinity();
+  double hi2 = 0.0;
   for (const Point2& p : points) {
-    const double r = (p - c).norm();
-    lo = std::min(lo, r);
-    hi = std::max(hi, r);
+    const double r2 = (p - c).squaredNorm();
+    lo2 = std::min(lo2, r2);
+    hi2 = std::max(hi2, r2);
   }
+  const double lo = std::sqrt(lo2), hi = std::sqrt(hi2);
   zone.inner_radius = lo;
   zone.outer_radius = hi;
   zone.roundness = hi - lo;

@@ -78,5 +78,24 @@ TEST(AnalysisReportTest, ProbeOffsetReportsOProbeAsMinusTheOffset) {
   EXPECT_STREQ(centreName(metrology::CircularCentre::kMinimumZone), "mzc");
 }
 
+TEST(PointSourcesTest, EachPointKnowsItsInputAndLine) {
+  PointSources s;
+  s.beginInput("a.csv");
+  s.addLine(2);
+  s.addLine(5);
+  s.beginInput("empty.csv");  // an input without points
+  s.beginInput("b.csv");
+  s.addLine(3);
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_EQ(s[0].name, "a.csv");
+  EXPECT_EQ(s[0].line, 2u);
+  EXPECT_EQ(s[1].name, "a.csv");
+  EXPECT_EQ(s[1].line, 5u);
+  EXPECT_EQ(s[2].name, "b.csv");
+  EXPECT_EQ(s[2].line, 3u);
+}
+
+TEST(PointSourcesTest, StartsEmpty) { EXPECT_EQ(PointSources().size(), 0u); }
+
 }  // namespace
 }  // namespace pkm::io

@@ -52,7 +52,9 @@ TEST(AnalysisTextTest, ComparisonLinesComeBeforeTheShiftedTable) {
 
 TEST(AnalysisTextTest, CircleContactsNameTheirSource) {
   CircleReport r;
-  r.sources = {{"ring.csv", 2}, {"ring.csv", 3}};
+  r.sources.beginInput("ring.csv");
+  r.sources.addLine(2);
+  r.sources.addLine(3);
   r.mzc.contacts[0] = {1, true, metrology::Point2(1.0, 2.0)};
   const std::string t = analysisText(r);
   EXPECT_EQ(t.rfind("circle (2 points)\n", 0), 0u);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -101,6 +102,81 @@ TEST(TextTable, ErrorsNameFileAndLine) {
 
 TEST(TextTable, MissingFileIsAnIoError) {
   EXPECT_THROW((void)TextTable::read("/nonexistent/dir/file.csv"), IoError);
+}
+
+/// A table large enough to be read in parallel chunks: rows "k,k*0.5,label" with a blank line
+/// every 1000 rows and a comment every 777, and the line of each row.
+std::string largeTable(std::size_t rows, std::vector<std::size_t>& lines) {
+  std::string text = "# unit: mm\nx,y,name\n";
+  std::size_t line = 2;
+  for (std::size_t k = 0; k < rows; ++k) {
+    if (k % 1000 == 999) {
+      text += "\n";
+      ++line;
+    }
+    if (k % 777 == 5) {
+      text += "# comment, with, commas\n";
+      ++line;
+    }
+    text += std::to_string(k) + ", " + std::to_string(static_cast<double>(k) * 0.5) + " ,r\r\n";
+    lines.push_back(++line);
+  }
+  return text;
+}
+
+TEST(TextTable, LargeFileReadInChunksKeepsEveryRowAndLine) {
+  std::vector<std::size_t> lines;
+  const std::size_t n = 200000;  // several MB: more than one chunk
+  const TextTable t = TextTable::parse(largeTable(n, lines), "big.csv");
+  ASSERT_EQ(t.rows(), n);
+  ASSERT_EQ(t.meta("unit"), "mm");
+  const std::array<std::size_t, 2> cols{1, 0};
+  std::array<double, 2> v{};
+  for (std::size_t r = 0; r < n; r += 997) {
+    ASSERT_EQ(t.line(r), lines[r]) << r;
+    t.numbers(r, cols, v);
+    ASSERT_EQ(v[1], static_cast<double>(r));
+    ASSERT_EQ(v[0], static_cast<double>(r) * 0.5);
+    ASSERT_EQ(t.number(r, 0), static_cast<double>(r));
+    ASSERT_EQ(t.text(r, 2), "r");
+  }
+  EXPECT_EQ(t.line(n - 1), lines.back());
+}
+
+TEST(TextTable, LargeFileNamesTheFirstBadRowsLine) {
+  std::vector<std::size_t> lines;
+  std::string text = largeTable(200000, lines);
+  // Break two rows, in different chunks: the earlier one is reported.
+  for (const std::size_t row : {std::size_t{150000}, std::size_t{120000}}) {
+    const std::string row_text = std::to_string(row) + ", ";
+    const std::size_t at = text.find("\n" + row_text) + 1;
+    text.insert(at + row_text.size(), "9,");
+  }
+  try {
+    (void)TextTable::parse(text, "big.csv");
+    FAIL();
+  } catch (const IoError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "big.csv:" + std::to_string(lines[120000]) + ": expected 3 fields, found 4");
+  }
+}
+
+TEST(TextTable, NumbersReadsColumnsInAnyOrderAndFallsBackForSigns) {
+  const TextTable t = TextTable::parse("a,b,c\n +1.5 , x ,2e3\n-0.25,y,+7\n", "n.csv");
+  const std::array<std::size_t, 3> cols{2, 0, 2};
+  std::array<double, 3> v{};
+  t.numbers(0, cols, v);
+  EXPECT_EQ(v, (std::array<double, 3>{2000.0, 1.5, 2000.0}));
+  t.numbers(1, cols, v);
+  EXPECT_EQ(v, (std::array<double, 3>{7.0, -0.25, 7.0}));
+  const std::array<std::size_t, 1> bad{1};
+  std::array<double, 1> w{};
+  try {
+    t.numbers(1, bad, w);
+    FAIL();
+  } catch (const IoError& e) {
+    EXPECT_STREQ(e.what(), "n.csv:3: column 'b': 'y' is not a finite number");
+  }
 }
 
 }  // namespace

@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "pkm/core/error.hpp"
@@ -39,6 +41,73 @@ TEST(CircleFit, RecoversAnExactCircleFarFromTheOrigin) {
   EXPECT_LT(fit.roundness, kTolFit);
   const Circle kasa = fitCircleKasa(pts);
   EXPECT_NEAR(kasa.radius, 20.0005, kTolFit);
+}
+
+/// The fit's own optimality: Σe_k and Σe_k·u_k (u_k the unit vector from the centre), mm.
+double stationarity(const std::vector<Point2>& pts, const CircleFit& fit) {
+  double se = 0.0;
+  Point2 sn = Point2::Zero();
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    se += fit.residuals[k];
+    sn += fit.residuals[k] * (pts[k] - fit.circle.center).normalized();
+  }
+  return std::max(std::abs(se), sn.norm());
+}
+
+TEST(CircleFit, ConvergesInAFewIterationsOnALargeNoisyCircle) {
+  // A measured-like ring: 50 mm, 3- and 5-lobe form of 10 µm, 1 µm noise, 200 000 points (read
+  // in parallel chunks). The old step criterion (1e-12 × R) was below the rounding floor of such
+  // sums and ran all 100 iterations.
+  constexpr int kMaxIterations = 6;
+  constexpr double kTolNoisyStationary = 1e-9;  ///< (Σe, Σe·u) / N: the shift they imply, mm
+  std::mt19937 rng(kSeed);
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * std::numbers::pi);
+  std::normal_distribution<double> noise(0.0, 0.001);
+  std::vector<Point2> pts;
+  for (int k = 0; k < 200000; ++k) {
+    const double t = angle(rng);
+    const double r = 50.0 + 0.005 * std::cos(3 * t + 0.4) + 0.002 * std::sin(5 * t) + noise(rng);
+    pts.emplace_back(Point2(312.3, -4.56) + r * Point2(std::cos(t), std::sin(t)));
+  }
+  const CircleFit fit = fitCircle(pts);
+  EXPECT_TRUE(fit.converged);
+  EXPECT_LE(fit.iterations, kMaxIterations);
+  EXPECT_LT(stationarity(pts, fit) / static_cast<double>(pts.size()), kTolNoisyStationary);
+  EXPECT_NEAR(fit.circle.radius, 50.0, 1e-4);
+  // Tighter criteria do not move the answer (it is the minimum, not an early stop).
+  CircleFitOptions strict;
+  strict.step_tolerance = 1e-15;
+  strict.cost_tolerance = 1e-15;
+  const CircleFit tight = fitCircle(pts, strict);
+  EXPECT_NEAR(tight.circle.radius, fit.circle.radius, 1e-6 * fit.circle.radius);
+  EXPECT_NEAR((tight.circle.center - fit.circle.center).norm(), 0.0, 1e-6 * fit.circle.radius);
+}
+
+TEST(CircleFit, ConvergesOnNoisyShortArcs) {
+  constexpr int kMaxIterations = 20;
+  std::mt19937 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 0.002);
+  for (const double span : {0.3, 1.0, 3.0}) {
+    auto pts = circlePoints(Point2(-7.0, 40.0), 25.0, 400, 0.2, span);
+    for (Point2& p : pts) p += Point2(noise(rng), noise(rng));
+    const CircleFit fit = fitCircle(pts);
+    EXPECT_TRUE(fit.converged) << span;
+    EXPECT_LE(fit.iterations, kMaxIterations) << span;
+    EXPECT_LT(stationarity(pts, fit), 1e-9) << span;
+  }
+}
+
+TEST(CircleFit, InvalidOptionsAreRejected) {
+  const auto pts = circlePoints(Point2(0, 0), 1.0, 8, 0.0, 6.0);
+  CircleFitOptions o;
+  o.cost_tolerance = 0.0;
+  EXPECT_THROW((void)fitCircle(pts, o), InvalidArgument);
+  EXPECT_FALSE(o.isValid());
+  o = {};
+  o.max_iterations = 0;
+  std::string why;
+  EXPECT_FALSE(o.isValid(&why));
+  EXPECT_NE(why.find("max_iterations"), std::string::npos);
 }
 
 TEST(CircleFit, ShortArcBeatsKasaBias) {

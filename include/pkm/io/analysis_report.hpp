@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/io/line_numbers.hpp"
 #include "pkm/metrology/body_diagonals.hpp"
 #include "pkm/metrology/circle_fit.hpp"
 #include "pkm/metrology/circular_test.hpp"
@@ -107,11 +108,32 @@ struct PointSource {
   std::size_t line = 0;
 };
 
+/// Where each point of a list was read, stored compactly (a name per input, a line per point):
+/// a million-point file must not cost a string per point.
+class PointSources {
+ public:
+  /// Starts the points of input `name`: the following addLine calls belong to it.
+  void beginInput(std::string name);
+  /// Appends a point read at 1-based `line` of the current input. Precondition: beginInput called.
+  void addLine(std::size_t line);
+  /// Appends points read at `lines` of the current input. Precondition: beginInput called.
+  void addLines(const LineNumbers& lines);
+  /// Number of points.
+  [[nodiscard]] std::size_t size() const { return lines_.size(); }
+  /// Input name and line of point `i`. Precondition: i < size().
+  [[nodiscard]] PointSource operator[](std::size_t i) const;
+
+ private:
+  std::vector<std::string> names_;
+  std::vector<std::size_t> first_;  ///< index of the first point of each input
+  LineNumbers lines_;
+};
+
 /// Least-squares and minimum-zone circles and roundness (ISO 12181-1).
 struct CircleReport {
   metrology::CircleFit lsc;
   metrology::MinZoneCircle mzc;
-  std::vector<PointSource> sources;  ///< per point, in input order (the contacts' origins)
+  PointSources sources;  ///< per point, in input order (the contacts' origins)
 };
 
 /// ISO 230-4:2005 circular test.

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace pkm::metrology {
@@ -28,10 +29,18 @@ struct Circle {
 [[nodiscard]] Circle fitCircleKasa(std::span<const Point2> points);
 
 /// Options of the geometric least-squares fit (Levenberg-Marquardt on orthogonal distances).
+/// The fit stops at the first of three reachable criteria (as MINPACK's lmder, which scipy's
+/// least_squares(method="lm") runs): a small step, a small relative decrease of the cost, or a
+/// cost that no step can lower any more because it is at the rounding floor of its sum.
 struct CircleFitOptions {
   int max_iterations = 100;  ///< LM iterations, >= 1
-  /// Stop when the step (centre and radius) is below step_tolerance × the radius.
-  double step_tolerance = 1e-12;
+  /// Converged when an undamped step (centre and radius) is below step_tolerance × the radius.
+  double step_tolerance = 1e-10;
+  /// Converged when an accepted step lowers Σe² by less than cost_tolerance × Σe².
+  double cost_tolerance = 1e-12;
+
+  /// True when every field is usable; otherwise false with the reason in *why (if given).
+  [[nodiscard]] bool isValid(std::string* why = nullptr) const;
 };
 
 /// Result of the least-squares circle (LSC).
@@ -41,11 +50,12 @@ struct CircleFit {
   double roundness = 0.0;         ///< max e_k − min e_k (roundness about the LSC centre, RONt)
   double rms = 0.0;               ///< sqrt(Σ e_k² / N)
   int iterations = 0;             ///< LM iterations done
-  bool converged = false;         ///< the step criterion was met within max_iterations
+  bool converged = false;         ///< a convergence criterion was met within max_iterations
 };
 
 /// Geometric least-squares circle: minimises Σ(|p_k − c| − R)² (orthogonal distances, ISO 4291 /
-/// ISO 12181 LSC) by Levenberg-Marquardt from the Kåsa start. Throws pkm::InvalidArgument
+/// ISO 12181 LSC) by Levenberg-Marquardt from the Kåsa start (a few iterations on a full circle,
+/// noisy or not; `converged` false only when max_iterations ran out). Throws pkm::InvalidArgument
 /// like fitCircleKasa or when the options are invalid.
 [[nodiscard]] CircleFit fitCircle(std::span<const Point2> points,
                                   const CircleFitOptions& options = {});

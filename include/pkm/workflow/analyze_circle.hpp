@@ -24,7 +24,7 @@ struct CircleRequest {
 /// Least-squares circle (metrology::fitCircle) and minimum-zone circle started from its centre
 /// (metrology::fitMinimumZoneCircle). Throws as validate(), pkm::IoError for a bad input,
 /// pkm::InvalidArgument for too few or degenerate points.
-[[nodiscard]] io::CircleReport analyzeCircle(const CircleRequest& request);
+[[nodiscard]] io::CircleReport analyzeCircle(CircleRequest request);
 
 /// ISO 230-4:2005 circular test.
 struct CircularRequest {

@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# Whole-process comparison of `pkm analyze circle` with scipy on 1 000 000 noisy points of a
+# measured-like ring (50 mm radius, 3- and 5-lobe form of 10 µm, 1 µm noise, 6 decimals as a CMM
+# writes them). The reference is what a user would otherwise run: np.loadtxt and
+# scipy.optimize.least_squares (method "lm", analytic Jacobian), in Debian's /usr/bin/python3.
+# Both run as whole processes in alternating pairs; the medians and their ratio are printed, and
+# the least-squares centres and radii are compared (they must agree within 1e-6 of the radius).
+# pkm also computes the minimum-zone circle and roundness, which the reference does not.
+# Usage: benchmarks/circle_vs_scipy_whole_process.sh [path/to/pkm] [points] [pairs]
+set -euo pipefail
+pkm=${1:-build/bin/pkm}
+points=${2:-1000000}
+pairs=${3:-7}
+python=/usr/bin/python3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+if ! "$python" -c 'import numpy' 2>/dev/null; then
+  echo "circle vs scipy: skipped (Debian's python3-numpy is not installed; scripts/setup.sh installs it)"
+  exit 0
+fi
+"$python" - "$work/ring.csv" "$points" <<'PY'
+import sys
+import numpy as np
+rng = np.random.default_rng(20261126)
+n = int(sys.argv[2])
+t = rng.uniform(0.0, 2.0 * np.pi, n)
+r = 50.0 + 0.005 * np.cos(3 * t + 0.4) + 0.002 * np.sin(5 * t) + rng.normal(0.0, 0.001, n)
+with open(sys.argv[1], "w") as f:
+    f.write("x,y\n")
+    np.savetxt(f, np.c_[12.3 + r * np.cos(t), -4.56 + r * np.sin(t)], fmt="%.6f", delimiter=",")
+PY
+cat > "$work/reference.py" <<'PY'
+import sys
+import numpy as np
+from scipy.optimize import least_squares
+xy = np.loadtxt(sys.argv[1], delimiter=",", skiprows=1)
+x, y = xy[:, 0], xy[:, 1]
+def residual(p):
+    return np.hypot(x - p[0], y - p[1]) - p[2]
+def jacobian(p):
+    d = np.hypot(x - p[0], y - p[1])
+    return np.column_stack(((p[0] - x) / d, (p[1] - y) / d, -np.ones_like(d)))
+start = [x.mean(), y.mean(), np.hypot(x - x.mean(), y - y.mean()).mean()]
+fit = least_squares(residual, start, jac=jacobian, method="lm")
+print(f"{fit.x[0]:.12f} {fit.x[1]:.12f} {fit.x[2]:.12f} {fit.nfev}")
+PY
+have_scipy=1
+"$python" -c 'import scipy.optimize' 2>/dev/null || have_scipy=0
+
+now() { date +%s.%N; }
+pkm_times=()
+ref_times=()
+for ((i = 0; i < pairs; i++)); do
+  s=$(now); "$pkm" analyze circle --data "$work/ring.csv" --json > "$work/pkm.json"; e=$(now)
+  pkm_times+=("$(echo "$e - $s" | bc -l)")
+  if [ "$have_scipy" = 1 ]; then
+    s=$(now); "$python" "$work/reference.py" "$work/ring.csv" > "$work/ref.txt"; e=$(now)
+    ref_times+=("$(echo "$e - $s" | bc -l)")
+  fi
+done
+median() { printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+pkm_med=$(median "${pkm_times[@]}")
+read -r cx cy radius iterations converged < <("$python" -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+print(repr(d["center"][0]), repr(d["center"][1]), repr(d["radius"]), d["iterations"], d["converged"])' "$work/pkm.json")
+printf 'pkm analyze circle, whole process: %d points, median of %d runs %.3f s (LSC %d iterations, converged %s)\n' \
+  "$points" "$pairs" "$pkm_med" "$iterations" "$converged"
+if [ "$have_scipy" = 0 ]; then
+  echo "  reference skipped: scipy is not installed (Debian's python3-scipy; scripts/setup.sh installs it)"
+  exit 0
+fi
+ref_med=$(median "${ref_times[@]}")
+read -r rx ry rr nfev < "$work/ref.txt"
+"$python" - "$cx" "$cy" "$radius" "$rx" "$ry" "$rr" <<'PY'
+import sys
+cx, cy, r, rx, ry, rr = map(float, sys.argv[1:])
+d = max(abs(cx - rx), abs(cy - ry), abs(r - rr))
+print(f"  pkm vs scipy: max |difference| of centre and radius {d:.3g} mm = {d / rr:.3g} of the radius",
+      "(agree)" if d <= 1e-6 * rr else "(DISAGREE: more than 1e-6 of the radius)")
+if d > 1e-6 * rr:
+    sys.exit(1)
+PY
+printf '  scipy (np.loadtxt + least_squares lm, %s evaluations): median %.3f s -> pkm is %.1fx faster\n' \
+  "$nfev" "$ref_med" "$(echo "$ref_med / $pkm_med" | bc -l)"
