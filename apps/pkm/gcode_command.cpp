@@ -7,6 +7,7 @@
 
 #include "cli_common.hpp"
 #include "gcode_options.hpp"
+#include "pkm/cnc/program_file.hpp"
 #include "pkm/workflow/gcode_moves.hpp"
 
 namespace pkm::cli {
@@ -23,8 +24,10 @@ struct MovesArgs {
 };
 
 void runMoves(MovesArgs& a) {
-  a.request.validate();  // option errors before the program is read
-  a.request.program = readProgram(a.program);
+  a.request.validate();                    // option errors before the program is read
+  const cnc::ProgramFile file(a.program);  // mapped, not copied
+  a.request.program.name = a.program;
+  a.request.program_text = file.text();
   CliRunControl control;
   const workflow::GcodeMovesResult r =
       workflow::runGcodeMoves(a.request, control.control(), [](std::string_view text) {

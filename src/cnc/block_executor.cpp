@@ -30,7 +30,6 @@ std::string gName(int code) {
 }
 
 void Interpreter::Impl::resolve(const Block& block, ResolvedBlock& rb, MoveSink& sink) {
-  rb = ResolvedBlock{};
   rb.line = block.line;
   if (report_blocks) evaluated.clear();
   for (const Word& w : block.words) {
@@ -55,7 +54,7 @@ void Interpreter::Impl::resolve(const Block& block, ResolvedBlock& rb, MoveSink&
     }
     const auto i = static_cast<std::size_t>(w.letter - 'a');
     rb.value[i] = v;
-    rb.has[i] = true;
+    rb.has |= letterBit(w.letter);
   }
   if (report_blocks) sink.onBlock(block, block_index, evaluated);
   // Parameter settings take effect after every value on the line has been read.

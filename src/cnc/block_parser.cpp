@@ -4,10 +4,12 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <cstdint>
 #include <string>
 
 #include "pkm/cnc/block.hpp"
 #include "pkm/cnc/gcode_error.hpp"
+#include "plain_number.hpp"
 
 namespace pkm::cnc {
 
@@ -18,11 +20,42 @@ constexpr std::size_t kMaxLineLength = 256;  // LinuxCNC LINELEN
 bool isAlpha(char c) { return c >= 'a' && c <= 'z'; }
 bool isDigit(char c) { return c >= '0' && c <= '9'; }
 
-/// Lower-cases and removes blanks and comments. Returns false when the line is only '%'.
-void normalize(std::string_view text, std::string& out) {
-  out.clear();
+/// What normalize does with a character: keep it, lower-case it, drop it (blanks), or look
+/// closer (comments, ';', ')', characters outside printable ASCII).
+enum class CharClass : std::uint8_t { kKeep, kUpper, kBlank, kSpecial };
+
+constexpr std::array<CharClass, 256> kCharClass = [] {
+  std::array<CharClass, 256> t{};
+  for (std::size_t c = 0; c < 256; ++c) {
+    if (c < 32 || c > 126 || c == '(' || c == ')' || c == ';')
+      t[c] = CharClass::kSpecial;
+    else if (c >= 'A' && c <= 'Z')
+      t[c] = CharClass::kUpper;
+    else
+      t[c] = CharClass::kKeep;
+  }
+  t[' '] = t['\t'] = t['\r'] = CharClass::kBlank;
+  return t;
+}();
+
+/// Lower-cases and removes blanks and comments; writes the result to `out` (room for
+/// text.size() characters) and returns it.
+std::string_view normalize(std::string_view text, char* out) {
+  char* o = out;
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
+    switch (kCharClass[static_cast<unsigned char>(c)]) {
+      case CharClass::kKeep:
+        *o++ = c;
+        continue;
+      case CharClass::kUpper:
+        *o++ = static_cast<char>(c - 'A' + 'a');
+        continue;
+      case CharClass::kBlank:
+        continue;
+      case CharClass::kSpecial:
+        break;
+    }
     if (c == '(') {
       const std::size_t close = text.find(')', i + 1);
       if (close == std::string_view::npos) throw GcodeError("comment not closed: missing ')'");
@@ -32,12 +65,10 @@ void normalize(std::string_view text, std::string& out) {
       continue;
     }
     if (c == ';') break;
-    if (c == ' ' || c == '\t' || c == '\r') continue;
     if (c == ')') throw GcodeError("')' without '('");
-    const auto u = static_cast<unsigned char>(c);
-    if (u < 32 || u > 126) throw GcodeError(fmt::format("bad character (code {}) in line", u));
-    out.push_back(c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c);
+    throw GcodeError(fmt::format("bad character (code {}) in line", static_cast<unsigned char>(c)));
   }
+  return {out, static_cast<std::size_t>(o - out)};
 }
 
 OKind keyword(std::string_view k) {
@@ -107,6 +138,47 @@ void parseOWord(std::string_view s, std::size_t pos, Block& block) {
   }
 }
 
+bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+/// Parses the common line "[N digits] word word ..." without normalizing it first: words are a
+/// letter (either case) directly followed by a plain number (detail::scanPlainNumber), with
+/// blanks only between words. Returns false, leaving `block` to be cleared, on anything else
+/// (comments, '/', '%', O-words, parameters, expressions, a blank inside a number, an unknown or
+/// repeated letter, ...): the general path then reads the line and reports any error, so both
+/// paths give the same block for every line this one accepts.
+bool parseSimpleLine(std::string_view text, Block& block) {
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  block.words.reserve(6);
+  while (p < end && isBlank(*p)) ++p;
+  if (p < end && (*p == 'n' || *p == 'N')) {
+    const char* const start = ++p;
+    while (p < end && isDigit(*p)) ++p;
+    if (p == start || (p < end && !isBlank(*p) && !isAlpha(static_cast<char>(*p | 0x20))))
+      return false;
+  }
+  std::uint32_t seen = 0;  // letters other than g and m already read, bit (letter - 'a')
+  while (true) {
+    while (p < end && isBlank(*p)) ++p;
+    if (p == end) return true;
+    const char c = static_cast<char>(*p | 0x20);  // lower case for letters
+    if (!isAlpha(c) || c == 'n' || c == 'o' || c == 'e') return false;
+    const std::uint32_t bit = std::uint32_t{1} << (c - 'a');
+    if (c != 'g' && c != 'm') {
+      if ((seen & bit) != 0) return false;
+      seen |= bit;
+    }
+    ++p;
+    double v = 0.0;
+    if (p == end) return false;
+    const char* const after = detail::scanPlainNumber(p, end, v);
+    if (after == nullptr) return false;
+    p = after;
+    if (p < end && !isBlank(*p) && !isAlpha(static_cast<char>(*p | 0x20))) return false;
+    block.words.push_back(Word{c, Expression(v)});
+  }
+}
+
 }  // namespace
 
 std::string oLabel(const std::string& name) {
@@ -114,14 +186,26 @@ std::string oLabel(const std::string& name) {
   return numeric ? "o" + name : "o<" + name + ">";
 }
 
+void Block::clear() {
+  block_delete = false;
+  words.clear();
+  assignments.clear();
+  o_kind = OKind::kNone;
+  o_name.clear();
+  o_args.clear();
+  jump = kNoBlock;
+  partner = kNoBlock;
+  closes_do = false;
+}
+
 LineMark parseLine(std::string_view text, Block& block) {
-  const std::size_t line = block.line;
-  block = Block{};
-  block.line = line;
+  block.clear();  // `line` is left to the caller
   if (text.size() > kMaxLineLength)
     throw GcodeError(fmt::format("line longer than {} characters", kMaxLineLength));
-  thread_local std::string s;
-  normalize(text, s);
+  if (parseSimpleLine(text, block)) return LineMark::kNormal;
+  block.clear();
+  std::array<char, kMaxLineLength> buffer;
+  const std::string_view s = normalize(text, buffer.data());
   if (s == "%") return LineMark::kPercent;
   std::size_t pos = 0;
   if (pos < s.size() && s[pos] == '/') {
@@ -147,9 +231,9 @@ LineMark parseLine(std::string_view text, Block& block) {
       ++pos;
       if (pos < s.size() && s[pos] == '<') {
         const std::size_t close = s.find('>', pos);
-        if (close == std::string::npos) throw GcodeError("named parameter not terminated");
+        if (close == std::string_view::npos) throw GcodeError("named parameter not terminated");
         a.named = true;
-        a.name = s.substr(pos + 1, close - pos - 1);
+        a.name = std::string(s.substr(pos + 1, close - pos - 1));
         if (a.name.empty()) throw GcodeError("empty parameter name");
         pos = close + 1;
       } else {

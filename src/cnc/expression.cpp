@@ -14,6 +14,7 @@
 #include <cstdint>
 
 #include "pkm/cnc/gcode_error.hpp"
+#include "plain_number.hpp"
 
 namespace pkm::cnc {
 
@@ -234,54 +235,14 @@ class ExprCompiler {
   ExprOp found_ = ExprOp::kAdd;
 };
 
-namespace {
-
-/// Clinger's fast path for a plain decimal "ddd.ddd" (no sign, no exponent): with at most 15
-/// digits the digits form an integer m < 2^53 and the fraction has k <= 15 digits, so m and 10^k
-/// are exact doubles and m / 10^k, one IEEE division, is the correctly rounded value, the same
-/// as std::from_chars gives. Returns false (nothing parsed) otherwise.
-bool fastDecimal(std::string_view s, double& v) {
-  static constexpr double kPow10[16] = {
-      1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
-  std::uint64_t m = 0;
-  int digits = 0, frac = -1;
-  for (const char c : s) {
-    if (c == '.') {
-      frac = 0;
-      continue;
-    }
-    m = m * 10 + static_cast<std::uint64_t>(c - '0');
-    if (++digits > 15) return false;
-    if (frac >= 0) ++frac;
-  }
-  v = static_cast<double>(m) / kPow10[frac < 0 ? 0 : frac];
-  return true;
-}
-
-}  // namespace
-
 Expression Expression::parseReal(std::string_view text, std::size_t& pos) {
   // Fast path for a plain number (the common word value): no code, no allocation.
-  std::size_t p = pos;
-  if (p < text.size() && (text[p] == '-' || text[p] == '+')) ++p;
-  const std::size_t digits = p;
-  bool dot = false;
-  while (p < text.size() && ((text[p] >= '0' && text[p] <= '9') || (text[p] == '.' && !dot))) {
-    if (text[p] == '.') dot = true;
-    ++p;
-  }
-  if (p > digits && !(p == digits + 1 && text[digits] == '.')) {
-    double v = 0.0;
-    if (fastDecimal(text.substr(digits, p - digits), v)) {
-      const bool negative = text[pos] == '-';
-      pos = p;
-      return Expression(negative ? -v : v);
-    }
-    const auto r = std::from_chars(text.data() + digits, text.data() + p, v);
-    if (r.ec == std::errc() && r.ptr == text.data() + p && std::isfinite(v)) {
-      const bool negative = text[pos] == '-';
-      pos = p;
-      return Expression(negative ? -v : v);
+  double v = 0.0;
+  if (pos < text.size()) {
+    const char* end = detail::scanPlainNumber(text.data() + pos, text.data() + text.size(), v);
+    if (end != nullptr) {
+      pos = static_cast<std::size_t>(end - text.data());
+      return Expression(v);
     }
   }
   ExprCompiler c(text);

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -14,20 +15,27 @@
 
 namespace pkm::cnc {
 
-/// The words of one block after evaluation. Letters a..z index `value`/`has`.
+/// The bit of letter `c` (a..z) in ResolvedBlock::has.
+constexpr std::uint32_t letterBit(char c) { return std::uint32_t{1} << (c - 'a'); }
+
+/// The words of one block after evaluation. Letters a..z index `value` and the bits of `has`;
+/// `value` is only meaningful (and only written) where `has` says so.
 struct ResolvedBlock {
   std::size_t line = 0;
-  std::array<double, 26> value{};
-  std::array<bool, 26> has{};
-  std::array<int, 8> g{};  // G codes x10
+  std::array<double, 26> value;  // not initialised: see hasWord and word
+  std::uint32_t has = 0;         // bit letterBit(c): the block has word c
+  std::array<int, 8> g;          // G codes x10, the first n_g
   int n_g = 0;
-  std::array<int, 8> m{};
+  std::array<int, 8> m;  // M codes, the first n_m
   int n_m = 0;
-  [[nodiscard]] bool hasWord(char c) const { return has[static_cast<std::size_t>(c - 'a')]; }
-  [[nodiscard]] double word(char c) const { return value[static_cast<std::size_t>(c - 'a')]; }
+  [[nodiscard]] bool hasWord(char c) const { return (has & letterBit(c)) != 0; }
+  /// The value of word `c`; 0 when the block has none.
+  [[nodiscard]] double word(char c) const {
+    return hasWord(c) ? value[static_cast<std::size_t>(c - 'a')] : 0.0;
+  }
   [[nodiscard]] bool hasAxis() const {
-    return hasWord('x') || hasWord('y') || hasWord('z') || hasWord('a') || hasWord('b') ||
-           hasWord('c');
+    return (has & (letterBit('x') | letterBit('y') | letterBit('z') | letterBit('a') |
+                   letterBit('b') | letterBit('c'))) != 0;
   }
 };
 
@@ -56,6 +64,8 @@ struct Interpreter::Impl : ParameterSource {
   // block_executor.cpp
   /// Executes one block; returns false when the program ends (M2/M30).
   bool execute(const Block& block, MoveSink& sink);
+  /// Evaluates the words of `block` into `rb` (freshly constructed) and performs its parameter
+  /// settings.
   void resolve(const Block& block, ResolvedBlock& rb, MoveSink& sink);
   BlockCodes classify(const ResolvedBlock& rb) const;  // block_codes.cpp
   void checkWords(const ResolvedBlock& rb, const BlockCodes& c) const;

@@ -1,7 +1,10 @@
 #include "pkm/cnc/move.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
+#include <cstring>
+#include <string_view>
 
 #include "csv_field.hpp"
 
@@ -33,33 +36,46 @@ const char* toString(Plane plane) {
 
 namespace {
 
-void appendField(std::string& out, double value) {
-  out.push_back(',');
-  if (std::isnan(value)) return;
+char* writeField(char* out, double value) {
+  *out++ = ',';
+  if (std::isnan(value)) return out;
   if (value == 0.0) {  // also drops the sign of -0
-    out.push_back('0');
-    return;
+    *out++ = '0';
+    return out;
   }
-  detail::appendShortest(out, value);
+  return detail::writeShortest(out, value);
+}
+
+constexpr std::array<std::string_view, 3> kKindText{"rapid", "linear", "arc"};  // toString
+constexpr std::array<std::string_view, 3> kPlaneText{"XY", "XZ", "YZ"};         // toString
+
+char* writeText(char* out, std::string_view text) {
+  std::memcpy(out, text.data(), text.size());
+  return out + text.size();
 }
 
 }  // namespace
 
+// Room: line 20 digits, kind 6, ten number fields of at most 1 + kMaxShortest, turns 11, plane 2,
+// four separators and the newline: 20 + 6 + 10 * 33 + 11 + 2 + 5 = 374 < kMaxMoveCsvRow.
+char* writeMoveCsv(char* out, const Move& move) {
+  out = std::to_chars(out, out + 24, move.line).ptr;
+  *out++ = ',';
+  out = writeText(out, kKindText[static_cast<std::size_t>(move.kind)]);
+  for (double v : move.end) out = writeField(out, v);
+  for (double v : move.centre) out = writeField(out, v);
+  *out++ = ',';
+  out = std::to_chars(out, out + 12, move.turns).ptr;
+  *out++ = ',';
+  out = writeText(out, kPlaneText[static_cast<std::size_t>(move.plane)]);
+  out = writeField(out, move.feed);
+  *out++ = '\n';
+  return out;
+}
+
 void appendMoveCsv(std::string& out, const Move& move) {
-  char buf[32];
-  auto result = std::to_chars(buf, buf + sizeof buf, move.line);
-  out.append(buf, result.ptr);
-  out.push_back(',');
-  out.append(toString(move.kind));
-  for (double v : move.end) appendField(out, v);
-  for (double v : move.centre) appendField(out, v);
-  out.push_back(',');
-  result = std::to_chars(buf, buf + sizeof buf, move.turns);
-  out.append(buf, result.ptr);
-  out.push_back(',');
-  out.append(toString(move.plane));
-  appendField(out, move.feed);
-  out.push_back('\n');
+  char buf[kMaxMoveCsvRow];
+  out.append(buf, writeMoveCsv(buf, move));
 }
 
 }  // namespace pkm::cnc

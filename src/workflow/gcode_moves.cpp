@@ -3,7 +3,10 @@
 
 #include <fmt/format.h>
 
+#include <cstring>
+#include <memory>
 #include <optional>
+#include <string_view>
 #include <utility>
 
 #include "gcode_progress.hpp"
@@ -16,27 +19,30 @@ namespace pkm::workflow {
 
 namespace {
 
-/// Collects CSV rows and hands them on in blocks of about 1 MiB.
+/// Formats CSV rows into one buffer and hands them on in blocks of about 1 MiB.
 class CsvSink final : public cnc::MoveSink {
  public:
-  explicit CsvSink(TextOutput write) : write_(std::move(write)) {
-    buffer_.reserve(kFlush + 4096);
-    buffer_ += cnc::kMoveCsvHeader;
-    buffer_ += '\n';
+  explicit CsvSink(TextOutput write)
+      : write_(std::move(write)), buffer_(new char[kFlush + cnc::kMaxMoveCsvRow]) {
+    const std::string_view header = cnc::kMoveCsvHeader;
+    std::memcpy(buffer_.get(), header.data(), header.size());
+    used_ = header.size();
+    buffer_[used_++] = '\n';
   }
   void onMove(const cnc::Move& m) override {
-    cnc::appendMoveCsv(buffer_, m);
-    if (buffer_.size() > kFlush) flush();
+    used_ = static_cast<std::size_t>(cnc::writeMoveCsv(buffer_.get() + used_, m) - buffer_.get());
+    if (used_ > kFlush) flush();
   }
   void flush() {
-    if (!buffer_.empty()) write_(buffer_);
-    buffer_.clear();
+    if (used_ > 0) write_(std::string_view(buffer_.get(), used_));
+    used_ = 0;
   }
 
  private:
   static constexpr std::size_t kFlush = 1 << 20;
   TextOutput write_;
-  std::string buffer_;
+  std::unique_ptr<char[]> buffer_;  // kFlush + one row
+  std::size_t used_ = 0;
 };
 
 }  // namespace
@@ -53,11 +59,12 @@ GcodeMovesResult runGcodeMoves(const GcodeMovesRequest& request,
   cnc::Interpreter interpreter(request.interpreter.options());
   // A program without O-words is run while it is read (constant memory); one with O-words is
   // parsed whole first, so that its jumps resolve.
-  const io::NamedText& source = request.program;
+  const std::string& name = request.program.name;
+  const std::string_view text =
+      request.program_text.empty() ? std::string_view(request.program.text) : request.program_text;
   std::optional<cnc::Program> program;
-  if (cnc::LineReader::mayHaveOWords(source.text))
-    program = cnc::Program::parse(source.text, source.name);
-  cnc::LineReader reader(source.text, source.name);
+  if (cnc::LineReader::mayHaveOWords(text)) program = cnc::Program::parse(text, name);
+  cnc::LineReader reader(text, name);
   GcodeMovesResult result;
   std::optional<io::AtomicFile> file;  // an error leaves no partial file
   if (!request.out.empty()) file.emplace(request.out, io::Overwrite::kAllow);

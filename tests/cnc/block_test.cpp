@@ -3,6 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
 #include "pkm/cnc/gcode_error.hpp"
 
 namespace pkm::cnc {
@@ -64,6 +69,71 @@ TEST(Block, OWords) {
   EXPECT_EQ(parse("o1 do").o_kind, OKind::kDo);
   EXPECT_EQ(parse("o1 repeat [3]").o_kind, OKind::kRepeat);
   EXPECT_EQ(parse("o1 return [3]").o_kind, OKind::kReturn);
+}
+
+/// What parseLine makes of `text`: the words (letter=value), assignments, O-word and marks, or
+/// "error: message".
+std::string describe(const std::string& text) {
+  NoParams p;
+  Block b;
+  std::string out;
+  try {
+    if (parseLine(text, b) == LineMark::kPercent) out += "% ";
+  } catch (const GcodeError& e) {
+    return std::string("error: ") + e.what();
+  }
+  if (b.block_delete) out += "/ ";
+  for (const Word& w : b.words) {
+    if (!w.value.isConstant()) {  // an expression: the same either way, its value aside
+      out += std::string(1, w.letter) + "=expression ";
+      continue;
+    }
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%c=%.17g ", w.letter, w.value.evaluate(p));
+    out += buf;
+  }
+  out += "assignments=" + std::to_string(b.assignments.size());
+  out += " o=" + std::to_string(static_cast<int>(b.o_kind)) + b.o_name;
+  return out;
+}
+
+// parseLine reads the common "N.. G1 X.. Y.." line without normalizing it first; anything else
+// goes the general way. A leading "()" (an empty comment) forces the general way, so random
+// lines built from the characters that matter must read the same with and without it, errors
+// included.
+TEST(Block, FastAndGeneralReadingAgree) {
+  static const std::vector<std::string> kTokens{
+      "G", "g",  "X",  "x",  "Y",   "Z",     "F", "M",     "N",
+      "n", "O",  "E",  "e",  "I",   "T",     "1", "23",    "0.5",
+      ".", "-",  "+",  "5.", ".25", "1.2.3", "7", "00012", "12345678901234567890",
+      " ", "  ", "\t", "\r", "(c)", ";",     "#", "[",     "]",
+      "/", "%",  "@",  "*",  "\x01"};
+  std::mt19937_64 rng(42);
+  std::uniform_int_distribution<std::size_t> pick(0, kTokens.size() - 1), count(0, 12);
+  for (int k = 0; k < 200000; ++k) {
+    std::string line;
+    for (std::size_t n = count(rng); n > 0; --n) line += kTokens[pick(rng)];
+    ASSERT_EQ(describe(line), describe("()" + line)) << "line '" << line << "'";
+  }
+  // Typical CAM lines, and lines close to them that the fast path must hand on.
+  for (const char* line : {"N10 G1 X90.013 Y-1.5 Z-0.948 F1500",
+                           "n20g1x1y2",
+                           "X1 Y2\r",
+                           "G1 X1 2",
+                           "G1 X1 .5",
+                           "G1 X 1",
+                           "N 10 G1 X1",
+                           "N10.5 G1 X1",
+                           "G1 X1 X2",
+                           "G1 G0 M3 M8 X1",
+                           "G1 X-",
+                           "G1 X1E5",
+                           "G1 X1 (move)",
+                           "   ",
+                           ""}) {
+    EXPECT_EQ(describe(line), describe(std::string("()") + line)) << line;
+  }
+  EXPECT_EQ(describe("N10 G1 X1 2 Y.5"), "g=1 x=12 y=0.5 assignments=0 o=0");
 }
 
 TEST(Block, MalformedLinesThrow) {

@@ -3,8 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "support/tolerances.hpp"
@@ -36,6 +38,24 @@ TEST(Move, CsvRowOfAnArc) {
   EXPECT_STREQ(kMoveCsvHeader, "line,kind,x,y,z,a,b,c,cx,cy,cz,turns,plane,feed");
   EXPECT_STREQ(toString(MoveKind::kLinear), "linear");
   EXPECT_STREQ(toString(Plane::kYZ), "YZ");
+}
+
+TEST(Move, WriteMoveCsvWritesTheRowOfAppendMoveCsvWithinItsBound) {
+  Move m;
+  m.line = std::numeric_limits<std::size_t>::max();
+  m.kind = MoveKind::kLinear;
+  m.end = {-std::numeric_limits<double>::max(), -1.2345678901234567e-300, 1e300, -0.1, 1.5, 1e-7};
+  m.centre = {-2.2250738585072014e-308, -1.7976931348623157e308, -4.9e-324};
+  m.turns = std::numeric_limits<int>::min();
+  m.plane = Plane::kYZ;
+  m.feed = -1.2345678901234567e-123;
+  std::string appended;
+  appendMoveCsv(appended, m);
+  std::array<char, kMaxMoveCsvRow + 1> buf{};
+  const char* end = writeMoveCsv(buf.data(), m);
+  EXPECT_EQ(std::string(buf.data(), static_cast<std::size_t>(end - buf.data())), appended);
+  EXPECT_LT(appended.size(), kMaxMoveCsvRow);
+  EXPECT_EQ(appended.back(), '\n');
 }
 
 /// The x field of a rapid to (v, 0, 0).

@@ -46,6 +46,22 @@ TEST(GcodeMovesWorkflow, OneRowPerMotion) {
   EXPECT_THAT(runGcodeMoves(request("G0 X1\n")).note, HasSubstr("(no M2/M30 at the end)"));
 }
 
+TEST(GcodeMovesWorkflow, ProgramTextHeldElsewhereIsReadInsteadOfTheRequestsText) {
+  const std::string text = "G0 X0\nG1 X1 F100\nG33 X1\n";
+  GcodeMovesRequest r = request("G0 X5\nM2\n");
+  r.program_text = std::string_view(text).substr(0, text.find("G33"));  // the first two lines
+  const GcodeMovesResult ok = runGcodeMoves(r);
+  EXPECT_EQ(ok.moves, 2u);
+  EXPECT_EQ(ok.lines, 2u);
+  r.program_text = text;
+  try {
+    (void)runGcodeMoves(r);
+    FAIL() << "accepted G33";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), StartsWith("upload.ngc:3:"));
+  }
+}
+
 TEST(GcodeMovesWorkflow, TheOutputCallbackGetsTheCsv) {
   std::string seen;
   const GcodeMovesResult r =

@@ -69,6 +69,9 @@ struct Block {
   std::size_t partner = kNoBlock;
   /// True for the `while` that closes a `do` loop.
   bool closes_do = false;
+  /// Resets every field to its default, keeping the storage of the vectors and of `o_name` (a
+  /// reader reuses one Block for every line). Keep it in step with the fields above.
+  void clear();
   /// True when the line holds nothing to execute.
   [[nodiscard]] bool empty() const {
     return words.empty() && assignments.empty() && o_kind == OKind::kNone;

@@ -119,8 +119,15 @@ class MoveCollector final : public MoveSink {
 /// Header of the moves CSV: `line,kind,x,y,z,a,b,c,cx,cy,cz,turns,plane,feed`.
 inline constexpr const char* kMoveCsvHeader = "line,kind,x,y,z,a,b,c,cx,cy,cz,turns,plane,feed";
 
-/// Appends one CSV row (with the newline) for `move`: numbers in shortest round-trip form,
-/// NaN fields (unused centre coordinates, the feed of a rapid) left empty.
+/// The most characters one CSV row of writeMoveCsv can take (newline included).
+inline constexpr std::size_t kMaxMoveCsvRow = 512;
+
+/// Writes one CSV row (with the newline) for `move` at `out`, which must have room for
+/// kMaxMoveCsvRow characters, and returns the end: numbers in shortest round-trip form, NaN
+/// fields (unused centre coordinates, the feed of a rapid) left empty.
+char* writeMoveCsv(char* out, const Move& move);
+
+/// Appends the row of writeMoveCsv to `out`.
 void appendMoveCsv(std::string& out, const Move& move);
 
 }  // namespace pkm::cnc

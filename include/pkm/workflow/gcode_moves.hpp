@@ -18,8 +18,12 @@ namespace pkm::workflow {
 /// A `gcode moves` request.
 struct GcodeMovesRequest {
   io::NamedText program;  ///< the program; its name prefixes every message (NAME:LINE: ...)
-  std::string out;        ///< the CSV file ("" : the rows go to the caller)
-  bool force = false;     ///< replace an existing `out`
+  /// The program's text when the caller holds it elsewhere for the whole call (a file mapped
+  /// into memory, cnc::ProgramFile); empty: `program.text` is read. Messages still use
+  /// `program.name`.
+  std::string_view program_text;
+  std::string out;     ///< the CSV file ("" : the rows go to the caller)
+  bool force = false;  ///< replace an existing `out`
   GcodeInterpreterSettings interpreter;
   /// Throws as GcodeInterpreterSettings::validate, and pkm::IoError "OUT exists; pass --force to
   /// overwrite it" when `out` exists and `force` is not set.
