@@ -107,10 +107,11 @@ std::string formatFkRows(const std::vector<FkRow>& rows) {
 
 void runFk(const MachineOption& machine_opt,
            const std::string& lengths,
-           const std::string& seed_text) {
+           const std::string& seed_text,
+           bool from_seed) {
   const io::HexapodMachine machine = machine_opt.load();
   workflow::HexapodFkPath path(
-      machine, seed_text.empty() ? std::nullopt : std::optional(parseSeed(seed_text)));
+      machine, seed_text.empty() ? std::nullopt : std::optional(parseSeed(seed_text)), from_seed);
   io::CsvReader reader(lengths, kLengthColumns);
   Output out;
   out.text() += "x,y,z,a,b,c,iterations,status\n";
@@ -171,6 +172,7 @@ void addHexapodCommands(CLI::App& app) {
     MachineOption machine;
     std::string poses, lengths, seed;
     bool json = false;
+    bool from_seed = false;
   };
   auto st = std::make_shared<State>();
 
@@ -192,7 +194,10 @@ void addHexapodCommands(CLI::App& app) {
       "--seed",
       st->seed,
       "first row's seed pose x,y,z,a,b,c (default: home); later rows use the previous solution");
-  fk->callback([st] { runFk(st->machine, st->lengths, st->seed); });
+  fk->add_flag("--from-seed",
+               st->from_seed,
+               "solve every row on its own from the seed (rows that are not a path)");
+  fk->callback([st] { runFk(st->machine, st->lengths, st->seed, st->from_seed); });
 
   CLI::App* check = hex->add_subcommand(
       "check", "per pose: stroke, joint angles, leg interference, conditioning");

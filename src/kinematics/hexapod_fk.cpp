@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "kinematics/detail/hexapod_legs.hpp"
@@ -12,6 +13,10 @@
 #include "pkm/kinematics/hexapod_ik.hpp"
 
 namespace pkm::kinematics {
+namespace {
+/// Strut tolerance of the intermediate stages of a continuation, × the characteristic length.
+constexpr double kStageTolerance = 1e-6;
+}  // namespace
 
 std::string_view toString(FkStatus status) {
   switch (status) {
@@ -23,6 +28,8 @@ std::string_view toString(FkStatus status) {
       return "singular";
     case FkStatus::kInvalidInput:
       return "invalid_input";
+    case FkStatus::kOtherBranch:
+      return "other_branch";
   }
   return "unknown";
 }
@@ -41,6 +48,12 @@ bool FkOptions::isValid(std::string* why) const {
   if (!(singular_pivot_ratio > 0.0 && singular_pivot_ratio < 1.0))
     return fail(
         fmt::format("singular_pivot_ratio must be in (0, 1) (got {})", singular_pivot_ratio));
+  if (!(continuation_step > 0.0))
+    return fail(fmt::format("continuation_step must be > 0 (got {})", continuation_step));
+  if (!(max_step_translation > 0.0) || !(max_step_rotation > 0.0))
+    return fail(fmt::format("max_step_translation and max_step_rotation must be > 0 (got {}, {})",
+                            max_step_translation,
+                            max_step_rotation));
   return true;
 }
 
@@ -63,10 +76,15 @@ FkSummary forwardKinematics(const HexapodModel& model,
     Eigen::Matrix3d R;
   };
   Pose x{seed.position, geometry::rotationFromRpy(seed.rpy)};
-  const double inv_length = 1.0 / model.characteristicLength();
+  const double length = model.characteristicLength();
+  const double inv_length = 1.0 / length;
+  const double max_translation = options.max_step_translation * length;
+  int seed_sign = 0;  // sign of det J at a solve's first linearisation, and at its latest
+  int last_sign = 0;
+  StrutVector target = readings;  // the readings the current stage solves for
   auto evaluate = [&](const Pose& at, StrutVector& r) {
     detail::computeLegs(model, data, at.p, at.R);
-    r = data.readings - readings;
+    r = data.readings - target;
     const double n2 = r.squaredNorm();
     return std::isfinite(n2) ? n2 : INFINITY;
   };
@@ -74,14 +92,61 @@ FkSummary forwardKinematics(const HexapodModel& model,
     // The angular columns × 1/L make the pivot test unit-free; δθ is scaled back after.
     Matrix6d J = computeStrutJacobian(model, data);
     J.rightCols<3>() *= inv_length;
-    const double ratio = detail::solve6(J, delta);
+    const double ratio = detail::solve6(J, delta, &last_sign);
+    if (seed_sign == 0) seed_sign = last_sign;
     delta.tail<3>() *= inv_length;
+    // Trust region: a step longer than the options allow is shortened along its direction.
+    const double shrink = std::max({1.0,
+                                    delta.head<3>().norm() / max_translation,
+                                    delta.tail<3>().norm() / options.max_step_rotation});
+    if (std::isfinite(shrink)) delta /= shrink;
     return ratio;
   };
   auto retract = [](const Pose& at, const StrutVector& delta, double step) {
     return Pose{at.p - step * delta.head<3>(), geometry::so3Exp(-step * delta.tail<3>()) * at.R};
   };
-  summary = detail::dampedNewton<kStruts>(options, x, evaluate, solve, retract);
+  // A far seed (a cold start): continuation along the straight line of strut readings from the
+  // seed's to the target's, in stages of at most options.continuation_step characteristic
+  // lengths, each solved from the previous stage's pose. The answer is then the pose the machine
+  // reaches from the seed as its struts move, not whichever root a long Newton step lands near;
+  // a determinant sign change between stages means a singularity was crossed (kOtherBranch).
+  detail::computeLegs(model, data, x.p, x.R);
+  const StrutVector start = data.readings;
+  const double gap = (readings - start).cwiseAbs().maxCoeff();
+  const double stage_length = options.continuation_step * length;
+  constexpr int kMaxStages = 1000;
+  const int stages =
+      std::isfinite(gap) && gap > stage_length
+          ? static_cast<int>(std::min<double>(std::ceil(gap / stage_length), kMaxStages))
+          : 1;
+  FkOptions intermediate = options;
+  intermediate.tolerance = std::max(options.tolerance, kStageTolerance * length);
+  FkSummary total;
+  int previous_sign = 0;
+  for (int k = 1; k <= stages; ++k) {
+    target =
+        k == stages ? readings : StrutVector(start + (readings - start) * (double(k) / stages));
+    seed_sign = last_sign = 0;
+    summary = detail::dampedNewton<kStruts>(
+        k == stages ? options : intermediate, x, evaluate, solve, retract);
+    total.iterations += summary.iterations;
+    total.backtracks += summary.backtracks;
+    if (!summary.ok()) break;
+    if (seed_sign == 0) continue;  // converged without a linearisation
+    if ((previous_sign != 0 && seed_sign != previous_sign) || last_sign != seed_sign) {
+      summary.status = FkStatus::kOtherBranch;
+      break;
+    }
+    previous_sign = last_sign;
+  }
+  summary.iterations = total.iterations;
+  summary.backtracks = total.backtracks;
+  if (!summary.ok() && stages > 1) {  // the residual against the readings, not a stage's target
+    target = readings;
+    StrutVector r;
+    evaluate(x, r);
+    summary.max_residual = r.cwiseAbs().maxCoeff();
+  }
   data.pose.position = x.p;
   data.pose.rpy = geometry::rpyFromRotation(x.R, seed.rpy);
   return summary;

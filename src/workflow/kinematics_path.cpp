@@ -10,14 +10,41 @@ namespace pkm::workflow {
 namespace kin = pkm::kinematics;
 
 HexapodFkPath::HexapodFkPath(const io::HexapodMachine& machine,
-                             const std::optional<kin::PoseRpy>& seed)
-    : machine_(machine), data_(machine.model), seed_(seed.value_or(machine.model.home)) {}
+                             const std::optional<kin::PoseRpy>& seed,
+                             bool from_seed)
+    : machine_(machine),
+      data_(machine.model),
+      seed_(seed.value_or(machine.model.home)),
+      from_seed_(from_seed) {}
 
 FkStep HexapodFkPath::solve(const kin::StrutVector& readings) {
+  // The servo loop's seed: the last pose moved on by the last step (a path sampled at a steady
+  // rate changes little from step to step), unless that step was long.
+  kin::PoseRpy start = seed_;
+  if (previous_) {
+    const Eigen::Vector3d dp = seed_.position - previous_->position;
+    const Eigen::Vector3d da = seed_.rpy - previous_->rpy;
+    constexpr double kMaxPredictedTranslation = 0.05;  // × characteristic length
+    constexpr double kMaxPredictedRotation = 0.05;     // rad
+    if (dp.norm() <= kMaxPredictedTranslation * machine_.model.characteristicLength() &&
+        da.norm() <= kMaxPredictedRotation) {
+      start.position += dp;
+      start.rpy += da;
+    }
+  }
   FkStep step;
-  step.summary = kin::forwardKinematics(machine_.model, data_, readings, seed_, machine_.fk);
+  step.summary = kin::forwardKinematics(machine_.model, data_, readings, start, machine_.fk);
   step.pose = data_.pose;
-  seed_ = step.summary.ok() ? data_.pose : machine_.model.home;  // home again after a failure
+  if (from_seed_) return step;
+  if (step.summary.ok()) {
+    if (solved_) previous_ = seed_;  // the seed was a solution too: the last step is known
+    seed_ = data_.pose;
+    solved_ = true;
+  } else {
+    previous_.reset();
+    solved_ = false;
+    seed_ = machine_.model.home;  // home again after a failure
+  }
   return step;
 }
 

@@ -108,4 +108,39 @@ TEST(NumberFormat, NonFinite) {
   EXPECT_EQ(formatNumber(-std::numeric_limits<double>::infinity()), "-inf");
 }
 
+TEST(NumberFormat, SameTextAsStdToCharsOnAMillionDoubles) {
+  // appendNumber's own layout of Dragonbox digits against libstdc++'s std::to_chars: random bit
+  // patterns (every exponent), measurement-like values, integers and short decimals.
+  std::mt19937_64 rng(20261126);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_int_distribution<int> e(-30, 30);
+  auto expect = [](double v) {
+    if (v == 0.0 || !std::isfinite(v)) return;
+    char buf[64];
+    const std::string ref(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+    ASSERT_EQ(formatNumber(v), ref) << std::hexfloat << v;
+  };
+  for (int i = 0; i < 250000; ++i) {  // a million values
+    expect(std::bit_cast<double>(rng()));
+    expect(u(rng) * std::pow(10.0, e(rng)));
+    expect(std::round(u(rng) * 1e6) / 1e3);
+    expect(static_cast<double>(static_cast<long long>(rng() >> (rng() % 64))));
+  }
+  for (const double v : {1e22,
+                         1e23,
+                         123456.0,
+                         1234567.0,
+                         1e16,
+                         1.5e15,
+                         0.0001,
+                         0.00012,
+                         1e-5,
+                         5e-324,
+                         1.7976931348623157e308,
+                         100.0,
+                         1e21,
+                         12e20})
+    expect(v);
+}
+
 }  // namespace

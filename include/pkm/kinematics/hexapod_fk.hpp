@@ -16,9 +16,13 @@ enum class FkStatus {
   kNoConvergence,  ///< iteration cap reached or no step reduced the residual
   kSingular,       ///< the strut Jacobian is (numerically) singular at an iterate
   kInvalidInput,   ///< non-finite reading or seed
+  /// Converged, but to a pose of another assembly mode than the seed's: the strut Jacobian's
+  /// determinant changed sign on the way (a singularity was crossed). A true pose from a far
+  /// seed, or a wrong one: never reported as kOk. (Hexapod FK only.)
+  kOtherBranch,
 };
 
-/// "ok", "no_convergence", "singular", "invalid_input".
+/// "ok", "no_convergence", "singular", "invalid_input", "other_branch".
 [[nodiscard]] std::string_view toString(FkStatus status);
 
 /// Options of forwardKinematics.
@@ -32,6 +36,17 @@ struct FkOptions {
   int max_backtracks = 12;
   /// A pivot of the LU factorisation smaller than this fraction of the largest one means singular.
   double singular_pivot_ratio = 1e-12;
+  /// Trust region of one Newton step (hexapod FK): at most this many characteristic lengths of
+  /// translation (HexapodModel::characteristicLength) and this many radians of rotation; a longer
+  /// step is shortened, keeping its direction. Far seeds take more, shorter steps and stay in
+  /// their own assembly mode instead of jumping to another.
+  double max_step_translation = 0.5;
+  double max_step_rotation = 0.25;  ///< rad
+  /// A seed whose strut readings differ from the target's by more than this many characteristic
+  /// lengths is a cold start: it is solved by continuation, in stages of at most this change of
+  /// the readings, each stage seeded by the previous one (iterations and max_iterations count
+  /// per stage; `iterations` reports their sum).
+  double continuation_step = 0.3;
 
   /// True when every field is usable; otherwise false with the reason in *why (if given).
   [[nodiscard]] bool isValid(std::string* why = nullptr) const;
@@ -51,7 +66,10 @@ struct FkSummary {
 /// exp(−[δθ]×)·R (a true SO(3) update, unlike genhexkins' additive angle update), LU with partial
 /// pivoting, and step halving when the full step does not reduce |r|. Once every residual is within
 /// the tolerance, one more step is taken unless the residual is already below 1e-3·tolerance (so
-/// the pose, not only the struts, is accurate to the tolerance; it is counted in iterations). On
+/// the pose, not only the struts, is accurate to the tolerance; it is counted in iterations). Steps
+/// are limited to the options' trust region; a far seed is solved by continuation along the
+/// readings (FkOptions::continuation_step); a solution whose strut Jacobian determinant has another
+/// sign than at the seed is kOtherBranch (see FkStatus). On
 /// success data.pose holds the pose, with angles chosen nearest to the seed's (continuous along a
 /// path); data's leg quantities match it. On failure data.pose holds the last iterate and must not
 /// be used as a result. Throws pkm::InvalidArgument if `options` is invalid.

@@ -32,13 +32,16 @@ struct FkStep {
 };
 
 /// Hexapod FK along a path of strut readings as a servo loop solves it
-/// (kinematics::forwardKinematics with the machine's FkOptions): each solve is seeded by the
-/// previous solution, the first by `seed` (default home), and the one after a failure by home.
+/// (kinematics::forwardKinematics with the machine's FkOptions): each solve starts from the
+/// previous solutions (the last one, moved on by the last step: a linear prediction), the first
+/// from `seed` (default home), and the one after a failure from home. With `from_seed`, every row
+/// is solved on its own from the seed, as for poses that do not form a path.
 class HexapodFkPath {
  public:
   /// `machine` must outlive the path.
   explicit HexapodFkPath(const io::HexapodMachine& machine,
-                         const std::optional<kinematics::PoseRpy>& seed = std::nullopt);
+                         const std::optional<kinematics::PoseRpy>& seed = std::nullopt,
+                         bool from_seed = false);
   /// Solves the next row.
   FkStep solve(const kinematics::StrutVector& readings);
 
@@ -46,6 +49,9 @@ class HexapodFkPath {
   const io::HexapodMachine& machine_;
   kinematics::HexapodData data_;
   kinematics::PoseRpy seed_;
+  bool from_seed_ = false;
+  bool solved_ = false;                          ///< seed_ is the last row's solution
+  std::optional<kinematics::PoseRpy> previous_;  ///< the one before, when both were ok
 };
 
 /// Exechon tool FK along a path of joint readings (kinematics::toolForwardKinematics), seeded as

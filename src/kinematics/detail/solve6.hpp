@@ -12,9 +12,14 @@
 namespace pkm::kinematics::detail {
 
 /// Solves A·x = b in place (A is destroyed, b becomes x). Returns min|pivot| / max|pivot|, 0 when a
-/// pivot is exactly zero (then b is left partially eliminated and must not be used).
-inline double solve6(Eigen::Matrix<double, 6, 6>& A, Eigen::Matrix<double, 6, 1>& b) {
+/// pivot is exactly zero (then b is left partially eliminated and must not be used). With
+/// `det_sign`, sets it to the sign of det(A) (+1 or −1; 0 when singular).
+inline double solve6(Eigen::Matrix<double, 6, 6>& A,
+                     Eigen::Matrix<double, 6, 1>& b,
+                     int* det_sign = nullptr) {
   double min_pivot = INFINITY, max_pivot = 0.0;
+  int sign = 1;
+  if (det_sign != nullptr) *det_sign = 0;
   for (int k = 0; k < 6; ++k) {
     int p = k;
     double best = std::abs(A(k, k));
@@ -29,7 +34,9 @@ inline double solve6(Eigen::Matrix<double, 6, 6>& A, Eigen::Matrix<double, 6, 1>
     if (p != k) {
       A.row(p).swap(A.row(k));
       std::swap(b[p], b[k]);
+      sign = -sign;
     }
+    if (A(k, k) < 0.0) sign = -sign;
     min_pivot = std::min(min_pivot, best);
     max_pivot = std::max(max_pivot, best);
     const double inv = 1.0 / A(k, k);
@@ -44,6 +51,7 @@ inline double solve6(Eigen::Matrix<double, 6, 6>& A, Eigen::Matrix<double, 6, 1>
     for (int j = k + 1; j < 6; ++j) s -= A(k, j) * b[j];
     b[k] = s / A(k, k);
   }
+  if (det_sign != nullptr) *det_sign = sign;
   return min_pivot / max_pivot;
 }
 
