@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 #include "pkm/core/error.hpp"
@@ -98,10 +99,8 @@ void sortCyclic(std::span<const Point2> points, const Point2& c, std::array<std:
       ref.begin() + 1, ref.end(), [&](std::size_t a, std::size_t b) { return rel(a) < rel(b); });
 }
 
-/// The points whose distance from `c` lies in the outer or inner tenth of the radial range about
-/// c, or all points when that leaves too few.
-std::vector<std::size_t> zoneCandidates(std::span<const Point2> points, const Point2& c) {
-  constexpr double kEdgeFraction = 0.1;
+/// The smallest and largest distance of the points from c.
+std::pair<double, double> radialRange(std::span<const Point2> points, const Point2& c) {
   double lo2 = std::numeric_limits<double>::infinity();
   double hi2 = 0.0;
   for (const Point2& p : points) {
@@ -109,7 +108,14 @@ std::vector<std::size_t> zoneCandidates(std::span<const Point2> points, const Po
     lo2 = std::min(lo2, r2);
     hi2 = std::max(hi2, r2);
   }
-  const double lo = std::sqrt(lo2), hi = std::sqrt(hi2);
+  return {std::sqrt(lo2), std::sqrt(hi2)};
+}
+
+/// The points whose distance from `c` lies in the outer or inner tenth of the radial range about
+/// c, or all points when that leaves too few.
+std::vector<std::size_t> zoneCandidates(std::span<const Point2> points, const Point2& c) {
+  constexpr double kEdgeFraction = 0.1;
+  const auto [lo, hi] = radialRange(points, c);
   const double band = kEdgeFraction * (hi - lo);
   const double outer2 = (hi - band) * (hi - band);
   const double inner2 = (lo + band) * (lo + band);
@@ -278,14 +284,7 @@ MinZoneCircle fitMinimumZoneCircle(std::span<const Point2> points, const MinZone
     // exchange rule guarantees it for near-circular data.
   }
   zone.center = c;
-  double lo2 = std::numeric_limits<double>::infinity();
-  double hi2 = 0.0;
-  for (const Point2& p : points) {
-    const double r2 = (p - c).squaredNorm();
-    lo2 = std::min(lo2, r2);
-    hi2 = std::max(hi2, r2);
-  }
-  const double lo = std::sqrt(lo2), hi = std::sqrt(hi2);
+  const auto [lo, hi] = radialRange(points, c);
   zone.inner_radius = lo;
   zone.outer_radius = hi;
   zone.roundness = hi - lo;
