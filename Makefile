@@ -10,7 +10,7 @@ CMAKE_FLAGS ?=
 # CI builds treat warnings as errors.
 WERROR := $(if $(CI),-DPKM_WARNINGS_AS_ERRORS=ON,)
 
-.PHONY: all setup build build-asan demo test test-release test-asan bench format clean
+.PHONY: all setup build build-asan demo test test-release test-asan bench fuzz format clean
 
 all: build
 
@@ -48,6 +48,14 @@ bench: setup
 	@cmake --build $(BENCH_BUILD) -j $(JOBS)
 	@for b in $(BENCH_BUILD)/bin/bench_*; do echo "== $$b"; $$b || exit 1; done
 	@for s in benchmarks/*_whole_process.sh; do bash $$s $(BENCH_BUILD)/bin/pkm || exit 1; done
+
+# The fuzz harnesses (docs/fuzzing.md): built with clang++-14, libFuzzer, ASan and UBSan in
+# build-fuzz/, each run for FUZZ_SECONDS on its corpus (fuzz/corpus/<name>), one after the other;
+# FUZZ_TARGETS picks some (e.g. FUZZ_TARGETS="csv tool_table"). `make test` replays the corpora.
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS ?=
+fuzz: setup
+	@bash fuzz/run.sh $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 format:
 	@bash scripts/format.sh

@@ -13,6 +13,24 @@
 
 namespace pkm::cnc {
 
+namespace {
+
+/// `v` (in the table's unit) in mm; throws pkm::IoError "FILE:LINE: ..." when the product
+/// overflows (a finite value near the largest double read as inch).
+double toMm(double v,
+            double mm_per_unit,
+            char letter,
+            std::string_view num,
+            const std::string& file,
+            std::size_t line) {
+  const double mm = v * mm_per_unit;
+  if (!std::isfinite(mm))
+    throw IoError(locate(file, line, fmt::format("{}{} is too large", letter, num)));
+  return mm;
+}
+
+}  // namespace
+
 const ToolEntry* ToolTable::find(int t) const {
   const auto it = tools.find(t);
   return it == tools.end() ? nullptr : &it->second;
@@ -61,7 +79,8 @@ ToolTable ToolTable::parse(std::string_view text, double mm_per_unit, const std:
         case 'X':
         case 'Y':
         case 'Z':
-          e.offset[static_cast<std::size_t>(letter - 'X')] = v * mm_per_unit;
+          e.offset[static_cast<std::size_t>(letter - 'X')] =
+              toMm(v, mm_per_unit, letter, num, file, line);
           break;
         case 'A':
         case 'B':
@@ -69,7 +88,7 @@ ToolTable ToolTable::parse(std::string_view text, double mm_per_unit, const std:
           e.offset[static_cast<std::size_t>(3 + letter - 'A')] = v;
           break;
         case 'D':
-          e.diameter = v * mm_per_unit;
+          e.diameter = toMm(v, mm_per_unit, letter, num, file, line);
           break;
         case 'U':
         case 'V':

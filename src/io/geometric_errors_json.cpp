@@ -23,6 +23,9 @@ using detail::numbers;
 using detail::policy;
 using detail::readColumns;
 constexpr const auto& kColumns = detail::kErrorColumns;
+/// The most nodes a PKM error grid may have (docs/formats.md, "Geometric errors"): 100³, far more
+/// than a measured volumetric map; 48 MB of values.
+constexpr std::size_t kMaxGridNodes = 1'000'000;
 
 geo::ErrorGrid3d readGrid(const JsonDoc& doc, const json& obj, const std::string& ptr) {
   doc.onlyKeys(
@@ -32,6 +35,11 @@ geo::ErrorGrid3d readGrid(const JsonDoc& doc, const json& obj, const std::string
   std::size_t n = 1;
   for (std::size_t a = 0; a < 3; ++a) {
     axes[a] = numbers(doc, doc.required(obj, ptr, names[a]), ptr + "/" + names[a]);
+    // The values are allocated for every node, given or not: a few thousand bytes of axes must
+    // not ask for gigabytes.
+    if (axes[a].size() > kMaxGridNodes / n)
+      doc.fail(ptr + "/" + names[a],
+               fmt::format("the grid has more than {} nodes (nx·ny·nz)", kMaxGridNodes));
     n *= axes[a].size();
   }
   const Eigen::MatrixXd values = readColumns(doc, obj, ptr, n);

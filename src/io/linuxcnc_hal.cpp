@@ -23,9 +23,13 @@ namespace {
 
 constexpr std::string_view kPrefix = "genhexkins.";
 
-std::vector<std::string> readLines(const std::string& path) {
+/// The HAL and INI files pkm reads are small; a larger file is refused.
+constexpr std::size_t kMaxConfigBytes = 16u << 20;
+
+/// The lines of `text`, without their '\n' and a trailing '\r'.
+std::vector<std::string> splitLines(const std::string& text) {
   std::vector<std::string> lines;
-  std::istringstream in(readTextFile(path, 16u << 20));
+  std::istringstream in(text);
   for (std::string line; std::getline(in, line);) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     lines.push_back(std::move(line));
@@ -199,49 +203,73 @@ void setConeAxes(kin::HexapodModel& model) {
   }
 }
 
-}  // namespace
-
-HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions& options) {
+/// The machine the lines of `hal` set (its name is the source); `pins` gets what they set besides.
+HexapodMachine halMachine(const NamedText& hal, HalPins& pins) {
   HexapodMachine m;
-  m.source = hal_path;
-  m.model.name = fs::path(hal_path).stem().string();
-  m.description = fmt::format("Imported from LinuxCNC genhexkins configuration {}", hal_path);
-  HalPins pins;
-  const auto lines = readLines(hal_path);
+  m.source = hal.name;
+  m.model.name = fs::path(hal.name).stem().string();
+  m.description = fmt::format("Imported from LinuxCNC genhexkins configuration {}", hal.name);
+  const auto lines = splitLines(hal.text);
   for (std::size_t n = 0; n < lines.size(); ++n)
-    parseHalLine(m, pins, lines[n], HalLine{hal_path, n + 1});
-  checkJointsSet(hal_path, pins);
+    parseHalLine(m, pins, lines[n], HalLine{hal.name, n + 1});
+  checkJointsSet(hal.name, pins);
   m.model.spindle_offset += pins.tool_offset;  // genhexkins adds both to the z of every joint
   m.model.linuxcnc_tool_offset = pins.tool_offset;
+  return m;
+}
 
-  std::optional<std::string> ini = options.ini_path;
-  if (!ini && options.discover_ini) ini = discoverIni(hal_path, m);
-  if (ini) {
-    applyLinuxcncIni(*ini, m);
-  } else if (!pins.pkm_home) {
+/// After the INI (`have_ini`): the cone axes, and the machine checked.
+void finishHalMachine(HexapodMachine& m,
+                      const std::string& hal_name,
+                      const HalPins& pins,
+                      bool have_ini) {
+  if (!have_ini && !pins.pkm_home)
     m.notices.emplace_back(
         "no INI file: assuming mm and home 0 0 0 0 0 0 (pass --ini for [TRAJ] HOME and units)");
-  }
   setConeAxes(m.model);
   try {
     m.model.validate();
   } catch (const InvalidArgument& e) {
     throw IoError(locate(
-        hal_path,
+        hal_name,
         0,
         fmt::format("{}{}",
                     e.what(),
-                    ini || pins.pkm_home ? ""
-                                         : " (no INI file was found, so home "
-                                           "was taken as 0 0 0 0 0 0: pass --ini with [TRAJ] "
-                                           "HOME)")));
+                    have_ini || pins.pkm_home ? ""
+                                              : " (no INI file was found, so home "
+                                                "was taken as 0 0 0 0 0 0: pass --ini with [TRAJ] "
+                                                "HOME)")));
   }
+}
+
+}  // namespace
+
+HexapodMachine readLinuxcncHal(const std::string& hal_path, const HalReadOptions& options) {
+  HalPins pins;
+  HexapodMachine m = halMachine({hal_path, readTextFile(hal_path, kMaxConfigBytes)}, pins);
+  std::optional<std::string> ini = options.ini_path;
+  if (!ini && options.discover_ini) ini = discoverIni(hal_path, m);
+  if (ini) applyLinuxcncIni(*ini, m);
+  finishHalMachine(m, hal_path, pins, ini.has_value());
+  return m;
+}
+
+HexapodMachine parseLinuxcncHal(const NamedText& hal, const std::optional<NamedText>& ini) {
+  HalPins pins;
+  HexapodMachine m = halMachine(hal, pins);
+  if (ini) applyLinuxcncIni(*ini, m);
+  finishHalMachine(m, hal.name, pins, ini.has_value());
   return m;
 }
 
 void applyLinuxcncIni(const std::string& ini_path, HexapodMachine& machine) {
+  applyLinuxcncIni(NamedText{ini_path, readTextFile(ini_path, kMaxConfigBytes)}, machine);
+}
+
+void applyLinuxcncIni(const NamedText& ini, HexapodMachine& machine) {
+  const std::string& ini_path = ini.name;
   std::string section;
-  const auto lines = readLines(ini_path);
+  const auto lines = splitLines(ini.text);
   for (std::size_t n = 0; n < lines.size(); ++n) {
     const std::size_t line_no = n + 1;
     auto fail = [&](const std::string& what) { throw IoError(locate(ini_path, line_no, what)); };

@@ -19,6 +19,8 @@ namespace sim = pkm::simulation;
 namespace {
 
 constexpr double kUradPerRad = 1e6;
+/// The largest run number a measurement file may give (an int; no instrument numbers more).
+constexpr int kMaxRun = 1'000'000'000;
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -138,9 +140,9 @@ LineRunFile parseLineRunCsv(const std::string& text, const std::string& source) 
     double run = 0.0;
     if (!parseFiniteDouble(field(0), r.target))
       fail(fmt::format("target_mm '{}' is not a number", field(0)));
-    if (!parseFiniteDouble(field(1), run) || run < 1 ||
-        run != static_cast<double>(static_cast<int>(run)))
-      fail(fmt::format("run '{}' is not a positive integer", field(1)));
+    // Range first: converting a double beyond int's range to int is undefined behaviour.
+    if (!parseFiniteDouble(field(1), run) || run < 1 || run > kMaxRun || run != std::floor(run))
+      fail(fmt::format("run '{}' is not an integer from 1 to {}", field(1), kMaxRun));
     const std::string_view d = field(2);
     if (d == "+" || d == "+1" || d == "1")
       r.direction = 1;

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cctype>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <set>
@@ -66,6 +67,10 @@ std::optional<std::string_view> keyValue(std::string_view line, std::string_view
   return trimBlanks(line.substr(colon + 1));
 }
 
+/// Whether `v` is an integer within int's range (converting any other double to int is undefined
+/// behaviour).
+bool isIndex(double v) { return v == std::floor(v) && std::abs(v) <= 1e9; }
+
 struct Reading {
   int run = 0;
   int target = 0;  ///< 1-based index into the targets
@@ -84,6 +89,11 @@ std::vector<double> readTargets(const std::vector<std::string_view>& lines,
       if (isSection(lines[j]) || lines[j].find(':') != std::string_view::npos) break;
       for (const double v : numbers(lines[j], locate(name, j + 1, "Targets"))) targets.push_back(v);
     }
+    // Two indices at one position would give two readings of one (target, direction, run).
+    std::set<double> seen;
+    for (const double t : targets)
+      if (!seen.insert(t).second)
+        throw IoError(locate(name, k + 1, fmt::format("Targets: {} is listed twice", t)));
     return targets;
   }
   throw IoError(locate(name, 0, "an .rtl file without 'Targets :' (TARGET DATA::)"));
@@ -100,7 +110,7 @@ std::vector<Reading> readDeviations(const std::vector<std::string_view>& lines,
   for (++k; k < lines.size() && !lines[k].empty() && !isSection(lines[k]); ++k) {
     const std::string where = locate(name, k + 1, "deviation row");
     const std::vector<double> v = numbers(lines[k], where);
-    if (v.size() != 3 || v[0] != static_cast<int>(v[0]) || v[1] != static_cast<int>(v[1]))
+    if (v.size() != 3 || !isIndex(v[0]) || !isIndex(v[1]))
       throw IoError(where + ": expected 'run target-index deviation'");
     out.push_back({static_cast<int>(v[0]), static_cast<int>(v[1]), v[2], k + 1});
   }

@@ -48,15 +48,23 @@ std::pair<std::string, std::string> loadText(const std::string& spec) {
                             fmt::join(builtinCampaignNames(), ", ")));
 }
 
+/// The string at `key` of object `j` ("" when absent); throws pkm::IoError "WHERE: \"KEY\" must
+/// be a string" for another type.
+std::string stringKey(const Json& j, const char* key, const std::string& where) {
+  if (!j.contains(key)) return {};
+  if (!j[key].is_string()) throw IoError(fmt::format("{}: \"{}\" must be a string", where, key));
+  return j[key].get<std::string>();
+}
+
 /// Checks one step's id (unique, lower case) and kind.
 void checkStep(const Json& s, const std::string& where, std::map<std::string, int>& ids) {
   static const std::regex id_re("[a-z0-9][a-z0-9-]*");
   if (!s.is_object()) throw IoError(where + ": a step must be an object");
-  const std::string id = s.value("id", std::string());
+  const std::string id = stringKey(s, "id", where);
   if (!std::regex_match(id, id_re))
     throw IoError(where + ": \"id\" must be lower-case letters, digits and '-'");
   if (ids[id]++) throw IoError(fmt::format("{}: id '{}' is used twice", where, id));
-  const std::string kind = s.value("kind", std::string());
+  const std::string kind = stringKey(s, "kind", where);
   if (!stepKinds().count(kind)) {
     std::vector<std::string> known;
     for (const auto& [name, run] : stepKinds()) known.push_back(name);
@@ -74,10 +82,16 @@ Json parseCampaign(const std::string& text, const std::string& source) {
     const std::size_t at = std::min<std::size_t>(e.byte, text.size());
     const long line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
     throw IoError(fmt::format("{}:{}: invalid JSON ({})", source, line, e.what()));
+  } catch (const nlohmann::json::out_of_range& e) {
+    // A number beyond a double's range ("1e999"): nlohmann gives no position.
+    throw IoError(fmt::format("{}: invalid JSON ({})", source, e.what()));
   }
-  if (!j.is_object() || j.value("schema", std::string()) != "pkm.campaign/1")
+  if (!j.is_object() || !j.contains("schema") || j["schema"] != "pkm.campaign/1")
     throw IoError(
         fmt::format("{}: not a campaign (\"schema\": \"pkm.campaign/1\" expected)", source));
+  // Read with defaults later (json::value), so a wrong type must be refused here.
+  (void)stringKey(j, "name", source);
+  (void)stringKey(j, "description", source);
   if (!j.contains("steps") || !j["steps"].is_array() || j["steps"].empty())
     throw IoError(fmt::format("{}: \"steps\" must be a non-empty array", source));
   std::map<std::string, int> ids;
@@ -121,7 +135,13 @@ campaign::StepOutcome runStep(const Json& step,
     control.checkCancelled();
     control.report({id, k + 1, n, std::chrono::duration<double>(Clock::now() - t0).count(), what});
   };
-  campaign::StepOutcome outcome = stepKinds().at(step["kind"].get<std::string>())(ctx);
+  campaign::StepOutcome outcome;
+  try {
+    outcome = stepKinds().at(step["kind"].get<std::string>())(ctx);
+  } catch (const nlohmann::json::exception& e) {
+    // A step's keys are read by its runner; one of the wrong type is the campaign file's error.
+    throw IoError(fmt::format("{}: {}", ctx.source, e.what()));
+  }
   outcome.id = id;
   // Every summary row goes into the result store (before and after, where measured).
   for (const campaign::SummaryRow& r : outcome.rows)

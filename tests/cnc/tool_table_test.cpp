@@ -39,5 +39,20 @@ TEST(ToolTable, ErrorsNameTheLine) {
   EXPECT_THROW((void)ToolTable::load("/nonexistent.tbl", 1.0), IoError);
 }
 
+// Found by fuzz_tool_table (fuzz/corpus/tool_table/regression-infinite-offset.tbl): 1e308 is a
+// finite number, but 1e308 inch is not a finite length in mm.
+TEST(ToolTable, OffsetBeyondADoubleInMmIsRefused) {
+  EXPECT_NO_THROW((void)ToolTable::parse("T1 Z1e308 D1e308\n", 1.0, "t.tbl"));
+  for (const char* text : {"T1 P1 Z1e308\n", "T1 D-1e308\n"}) {
+    try {
+      (void)ToolTable::parse(text, 25.4, "t.tbl");
+      FAIL() << text;
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find("t.tbl:1:"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("is too large"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace pkm::cnc

@@ -308,6 +308,27 @@ TEST(GeometricErrorsJsonErrors, GridValueCountIsNotNxNyNz) {
               StartsWith(at(14, "/pkm/dz") + "expected 8 values, found 4"));
 }
 
+// A grid's values are allocated for every node: a few kilobytes of node coordinates must not ask
+// for gigabytes (found by fuzzing: 3 × 600 nodes in 5 kB allocated 10 GB).
+TEST(GeometricErrorsJsonErrors, GridOfMoreThanAMillionNodesIsRefused) {
+  const auto grid = [](int nx, int ny, int nz) {
+    const auto axis = [](int n) {
+      std::string a = "[0";
+      for (int i = 1; i < n; ++i) a += ", " + std::to_string(i);
+      return a + "]";
+    };
+    return R"({"type": "hybrid_geometric_errors", "pkm": {"x": )" + axis(nx) +
+           ",\n\"y\": " + axis(ny) + ",\n\"z\": " + axis(nz) + "}}";
+  };
+  EXPECT_THAT(errorOf(grid(600, 600, 600)),
+              HasSubstr(":3: /pkm/z: the grid has more than 1000000 nodes (nx·ny·nz)"));
+  EXPECT_THAT(errorOf(grid(100, 100, 101)), HasSubstr("/pkm/z: the grid has more than"));
+  EXPECT_THAT(errorOf(grid(1000001, 1, 1)), HasSubstr("/pkm/x: the grid has more than"));
+  const kin::GeometricErrors e = parseGeometricErrorsJson(grid(100, 100, 100), kSource);
+  ASSERT_TRUE(e.pkm.has_value());
+  EXPECT_EQ(e.pkm->values().rows(), 1'000'000);
+}
+
 TEST(GeometricErrorsJsonErrors, PositionsNotIncreasing) {
   const std::string msg = errorOf(text({{7, "         \"positions\": [0, 200, 100],"}}));
   EXPECT_THAT(msg, StartsWith(at(7, "/x2/positions")));

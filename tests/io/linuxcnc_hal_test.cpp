@@ -235,6 +235,40 @@ TEST_F(LinuxcncHalTest, ExplicitIniPath) {
   EXPECT_FALSE(anyContains(m.notices, "no INI"));
 }
 
+TEST_F(LinuxcncHalTest, FromMemoryAsFromFiles) {
+  // parseLinuxcncHal reads texts held in memory (an upload, a fuzz input) as readLinuxcncHal reads
+  // the files; messages use the names given.
+  const std::string hal = writeHal(simHalLines());
+  HalReadOptions opt;
+  opt.ini_path = writeIni(simIniLines());
+  const HexapodMachine from_files = readLinuxcncHal(hal, opt);
+  const HexapodMachine m = pkm::io::parseLinuxcncHal(
+      {hal, join(simHalLines())}, pkm::io::NamedText{"up.ini", join(simIniLines())});
+  EXPECT_EQ(m.source, hal);
+  EXPECT_EQ(m.model.name, "kinematics");
+  EXPECT_EQ(m.model.unit, from_files.model.unit);
+  EXPECT_EQ(m.model.home.position, from_files.model.home.position);
+  EXPECT_EQ(m.notices, from_files.notices);
+  for (std::size_t i = 0; i < kin::kStruts; ++i) {
+    EXPECT_EQ(m.model.struts[i].world_p_base, from_files.model.struts[i].world_p_base) << i;
+    EXPECT_EQ(m.model.struts[i].platform_p_joint, from_files.model.struts[i].platform_p_joint);
+    EXPECT_EQ(m.model.struts[i].min_reading, -1000.0);
+    EXPECT_EQ(m.model.struts[i].base_cone.axis, from_files.model.struts[i].base_cone.axis);
+  }
+  // No INI is looked for next to an upload.
+  const HexapodMachine bare = pkm::io::parseLinuxcncHal({"up.hal", join(simHalLines(-20.0))});
+  EXPECT_TRUE(anyContains(bare.notices, "no INI file")) << ::testing::PrintToString(bare.notices);
+  std::vector<std::string> bad_ini = simIniLines();
+  bad_ini[10] = "LINEAR_UNITS = furlong";
+  try {
+    (void)pkm::io::parseLinuxcncHal({"up.hal", join(simHalLines())},
+                                    pkm::io::NamedText{"up.ini", join(bad_ini)});
+    FAIL() << "accepted furlongs";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), StartsWith("up.ini:11: [TRAJ] LINEAR_UNITS 'furlong'"));
+  }
+}
+
 TEST_F(LinuxcncHalTest, WithoutIniAssumesMillimetresAndZeroHome) {
   // Platform joints 20 below the platform origin: at home 0 0 0 the legs are those of the sim at z
   // 20, mirrored in the base plane.

@@ -112,6 +112,12 @@ TEST(MeasurementFiles, MalformedFilesGiveFileAndLine) {
               HasSubstr("m.csv:3: direction 'up' is not + or -"));
   EXPECT_THAT(message("target_mm,run,direction,reading_mm\n1,0,+,2\n"),
               HasSubstr("m.csv:2: run '0'"));
+  // A run beyond int's range is refused before any conversion (found by fuzz_line_run: the
+  // conversion was undefined behaviour).
+  EXPECT_THAT(message("target_mm,run,direction,reading_mm\n1,1,+,2\n1,6.7e72,+,2\n"),
+              HasSubstr("m.csv:3: run '6.7e72' is not an integer from 1 to 1000000000"));
+  EXPECT_THAT(message("target_mm,run,direction,reading_mm\n1,2147483648,+,2\n"),
+              HasSubstr("m.csv:2: run '2147483648'"));
   EXPECT_THAT(message("target_mm,run,direction,reading_mm\n1,1,+\n"),
               HasSubstr("m.csv:2: expected 4 fields"));
   EXPECT_THAT(message("target_mm,run,direction,reading_mm\nx,1,+,2\n"),

@@ -68,6 +68,19 @@ TEST(RenishawRtl, ErrorsNameTheLine) {
               HasSubstr("bad.rtl:12: run 1 visits its targets in both orders"));
   EXPECT_THAT(errorOf(kHead + "1 1 x\n"), HasSubstr("bad.rtl:10"));
   EXPECT_THAT(errorOf(kHead + "1 1\n"), HasSubstr("expected 'run target-index deviation'"));
+  // Run numbers and indices beyond int's range are refused before any conversion (found by
+  // fuzz_renishaw_rtl and fuzz_positioning: the conversion was undefined behaviour).
+  EXPECT_THAT(errorOf(kHead + "1 1 1.0\n1e10 2 2.0\n"),
+              HasSubstr("bad.rtl:11: deviation row: expected 'run target-index deviation'"));
+  EXPECT_THAT(errorOf(kHead + "1 -6.77778e+14 2.0\n"),
+              HasSubstr("bad.rtl:10: deviation row: expected 'run target-index deviation'"));
+  EXPECT_THAT(errorOf(kHead + "1 1.5 2.0\n"), HasSubstr("expected 'run target-index deviation'"));
+  // A position listed twice would give two readings of one (target, direction, run) (found by
+  // fuzz_renishaw_rtl).
+  std::string twice = kHead;
+  twice.replace(twice.find(" 20\n"), 4, " 10\n");
+  EXPECT_THAT(errorOf(twice + "1 1 1.0\n1 2 2.0\n1 3 2.5\n"),
+              HasSubstr("bad.rtl:3: Targets: 10 is listed twice"));
   EXPECT_THAT(errorOf("DEVIATIONS::\nRun Target Data:\n1 1 0\n"), HasSubstr("'Targets :'"));
   std::string wrong = kHead;
   wrong.replace(wrong.find("count: 3"), 8, "count: 4");

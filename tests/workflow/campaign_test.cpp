@@ -137,6 +137,49 @@ TEST_F(CampaignWorkflow, BadCampaignsAndOutputFoldersAreRefused) {
   EXPECT_THROW((void)runCampaign(o), IoError);
 }
 
+// Keys of the wrong JSON type and numbers out of range are pkm::IoError naming the file and the
+// step, never a JSON library exception (found by fuzz_campaign: {"schema": [...]} and
+// {"schema": 8888888888E8888} ended the program).
+TEST_F(CampaignWorkflow, KeysOfTheWrongTypeAreRefusedWithIoError) {
+  const auto errorOf = [](const std::string& spec) {
+    try {
+      (void)describeCampaign(spec);
+    } catch (const IoError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(errorOf(write("s.json", R"({"schema": [{"id": "a", "kind": "probe-offset"}]})")),
+              HasSubstr("s.json: not a campaign"));
+  // A number beyond a double's range is invalid JSON, not a JSON library exception.
+  EXPECT_THAT(errorOf(write("e.json", R"({"schema": 8888888888E8888, "steps": []})")),
+              HasSubstr("e.json: invalid JSON ([json.exception.out_of_range.406] number overflow"));
+  EXPECT_THAT(errorOf(write("n.json", R"({"schema": "pkm.campaign/1", "name": 5, "steps": [{}]})")),
+              HasSubstr("n.json: \"name\" must be a string"));
+  EXPECT_THAT(errorOf(write("d.json",
+                            R"({"schema": "pkm.campaign/1", "description": null, "steps": [{}]})")),
+              HasSubstr("d.json: \"description\" must be a string"));
+  EXPECT_THAT(errorOf(write("i.json",
+                            R"({"schema": "pkm.campaign/1", "steps": [{"id": 1, "kind": "x"}]})")),
+              HasSubstr("i.json: steps[0]: \"id\" must be a string"));
+  EXPECT_THAT(
+      errorOf(
+          write("k.json", R"({"schema": "pkm.campaign/1", "steps": [{"id": "a", "kind": [1]}]})")),
+      HasSubstr("k.json: steps[0]: \"kind\" must be a string"));
+  // A step's own keys, read when it runs.
+  CampaignOptions o;
+  o.out = dir_ / "out";
+  o.campaign = write("p.json", R"({"schema": "pkm.campaign/1", "steps": [{"id": "cal",
+ "kind": "hexapod-calibration", "scenario": "seed004-hexapod-calibration", "positioning": 5}]})");
+  try {
+    (void)runCampaign(o);
+    FAIL() << "accepted a number for \"positioning\"";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("p.json: steps[0] (cal): "));
+    EXPECT_THAT(e.what(), HasSubstr("type must be string"));
+  }
+}
+
 TEST_F(CampaignWorkflow, BuiltInCampaignsAreListedAndDescribed) {
   const std::vector<std::string> names = builtinCampaignNames();
   ASSERT_FALSE(names.empty());

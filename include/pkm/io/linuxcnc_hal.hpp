@@ -7,6 +7,7 @@
 #include <string>
 
 #include "pkm/io/hexapod_machine.hpp"
+#include "pkm/io/named_text.hpp"
 
 namespace pkm::io {
 
@@ -31,9 +32,17 @@ struct HalReadOptions {
 [[nodiscard]] HexapodMachine readLinuxcncHal(const std::string& hal_path,
                                              const HalReadOptions& options = {});
 
+/// readLinuxcncHal of a HAL file held in memory (its name is the path messages and the machine's
+/// source use) and, when given, its INI, also in memory; no INI is looked for. Throws as
+/// readLinuxcncHal.
+[[nodiscard]] HexapodMachine parseLinuxcncHal(const NamedText& hal,
+                                              const std::optional<NamedText>& ini = std::nullopt);
+
 /// Applies an INI file's [TRAJ] HOME, [TRAJ] LINEAR_UNITS and [JOINT_0..5] MIN_LIMIT/MAX_LIMIT to
 /// `machine`. Throws pkm::IoError "FILE:LINE: message".
 void applyLinuxcncIni(const std::string& ini_path, HexapodMachine& machine);
+/// applyLinuxcncIni of an INI held in memory (messages use its name).
+void applyLinuxcncIni(const NamedText& ini, HexapodMachine& machine);
 
 /// The genhexkins `setp` block for `machine`: joints with the TCP offset folded into the platform
 /// points, spindle-offset, tool-offset (when not 0), convergence-criterion, limit-iterations, and
