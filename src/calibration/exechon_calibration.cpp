@@ -99,6 +99,8 @@ std::size_t ExechonCalibrationData::equations() const {
 void ExechonCalibrationOptions::validate() const {
   PKM_CHECK(
       max_iterations >= 1, "calibration: max_iterations must be >= 1, got {}", max_iterations);
+  PKM_CHECK(function_tolerance >= 0 && gradient_tolerance >= 0 && parameter_tolerance >= 0,
+            "calibration: tolerances must be >= 0");
   PKM_CHECK(loss == RobustLoss::kNone || (loss_scale > 0.0 && std::isfinite(loss_scale)),
             "calibration: a robust loss needs loss_scale > 0");
   PKM_CHECK(measurement_sigma >= 0.0 && std::isfinite(measurement_sigma),
@@ -272,6 +274,9 @@ ExechonCalibrationSummary calibrateExechon(const ExechonModel& initial,
   for (int k = 0; k < kExechonParameters; ++k)
     no.free[static_cast<std::size_t>(k)] = options.free[static_cast<std::size_t>(k)];
   no.max_iterations = options.max_iterations;
+  no.function_tolerance = options.function_tolerance;
+  no.gradient_tolerance = options.gradient_tolerance;
+  no.parameter_tolerance = options.parameter_tolerance;
   no.loss = options.loss;
   no.loss_scale = options.loss_scale;
   no.measurement_sigma = options.measurement_sigma;

@@ -39,6 +39,8 @@ const std::vector<std::string>& hybridSquarenessNames() {
 void HybridCalibrationOptions::validate() const {
   PKM_CHECK(
       max_iterations >= 1, "calibration: max_iterations must be >= 1, got {}", max_iterations);
+  PKM_CHECK(function_tolerance >= 0 && gradient_tolerance >= 0 && parameter_tolerance >= 0,
+            "calibration: tolerances must be >= 0");
   PKM_CHECK(loss == RobustLoss::kNone || (loss_scale > 0.0 && std::isfinite(loss_scale)),
             "calibration: a robust loss needs loss_scale > 0");
   PKM_CHECK(measurement_sigma >= 0.0 && std::isfinite(measurement_sigma),
@@ -127,6 +129,9 @@ HybridCalibrationSummary calibrateHybridSquareness(const kinematics::HybridMachi
   no.free.assign(static_cast<std::size_t>(n), true);
   for (std::size_t k = 0; k < 4; ++k) no.free[k] = options.free[k];
   no.max_iterations = options.max_iterations;
+  no.function_tolerance = options.function_tolerance;
+  no.gradient_tolerance = options.gradient_tolerance;
+  no.parameter_tolerance = options.parameter_tolerance;
   no.loss = options.loss;
   no.loss_scale = options.loss_scale;
   no.measurement_sigma = options.measurement_sigma;

@@ -90,6 +90,8 @@ std::string analysisJson(const ProbeOffsetReport& report) {
          {"ring_center", pair(fit.ring_center)},
          {"ball_path_radius", fit.ball_path_radius},
          {"rms", fit.rms},
+         {"iterations", fit.iterations},
+         {"converged", fit.converged},
          {"touches", report.touches},
          {"tool_direction", report.tool_plus_z ? "+z" : "-z"}};
   if (report.effective_stylus_radius) {

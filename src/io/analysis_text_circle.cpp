@@ -80,6 +80,8 @@ std::string analysisText(const ProbeOffsetReport& report) {
                      num9(fit.ring_center.y()),
                      num9(fit.ball_path_radius),
                      num9(fit.rms));
+  out +=
+      fmt::format("iterations\t{}\nconverged\t{}\n", fit.iterations, fit.converged ? "yes" : "no");
   if (report.effective_stylus_radius)
     out +=
         fmt::format("effective stylus diameter\t{}\n", num9(2.0 * *report.effective_stylus_radius));

@@ -1,8 +1,11 @@
 #include "pkm/metrology/probe_offset.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <string>
 
 #include "pkm/core/error.hpp"
 #include "pkm/metrology/checks.hpp"
@@ -35,32 +38,71 @@ Eigen::Vector2d probeOffsetEq9(
   return {(-x2 + x1 + rho) / 2.0, (-y3 + y1 + rho) / 2.0};
 }
 
-Eigen::Vector2d probeOffsetEq8(
+ProbeOffsetEq8Solution solveProbeOffsetEq8(
     double x1, double y1, double x2, double y3, double ring_radius, double stylus_radius) {
   const double rho =
       checkedPathRadius({x1, y1, x2, y3, ring_radius, stylus_radius}, ring_radius, stylus_radius);
-  Eigen::Vector2d o = probeOffsetEq9(x1, y1, x2, y3, ring_radius, stylus_radius);
+  ProbeOffsetEq8Solution out;
+  Eigen::Vector2d& o = out.o_probe;
+  o = probeOffsetEq9(x1, y1, x2, y3, ring_radius, stylus_radius);
   constexpr int kMaxIterations = 100;
+  // Newton on F(o) = 0, F = (ρ cos θ2 − (x2 − x1) − 2 o_x, ρ sin θ3 − (y3 − y1) − 2 o_y): the
+  // plain fixed-point map contracts only by about 2|o|/ρ per step (20 steps for a 2 mm offset in
+  // a 17 mm path), Newton reaches the rounding floor of the ρ-sized terms, ε·ρ, in a few steps.
+  constexpr double kStepUlps = 8.0;
+  const double floor = kStepUlps * std::numeric_limits<double>::epsilon() * rho;
   for (int it = 0; it < kMaxIterations; ++it) {
     const double sin2 = 2.0 * o.y() / rho;  // +X touch: the ball keeps y, eq. 8 geometry
     const double cos3 = 2.0 * o.x() / rho;  // +Y touch: the ball keeps x
     PKM_CHECK(std::abs(sin2) < 1.0 && std::abs(cos3) < 1.0,
               "probe offset: the offset does not fit inside the ring");
+    const double cos2 = std::sqrt(1.0 - sin2 * sin2);
+    const double sin3 = std::sqrt(1.0 - cos3 * cos3);
     /// Seed 003 eq. 8: x2 − x1 = ρ cos θ2 − 2 o_x, y3 − y1 = ρ sin θ3 − 2 o_y.
-    const Eigen::Vector2d next((rho * std::sqrt(1.0 - sin2 * sin2) - (x2 - x1)) / 2.0,
-                               (rho * std::sqrt(1.0 - cos3 * cos3) - (y3 - y1)) / 2.0);
-    const double step = (next - o).norm();
-    o = next;
-    if (step <= 1e-15 * rho) break;
+    const Eigen::Vector2d f(rho * cos2 - (x2 - x1) - 2.0 * o.x(),
+                            rho * sin3 - (y3 - y1) - 2.0 * o.y());
+    Eigen::Matrix2d j;
+    j << -2.0, -2.0 * sin2 / cos2, -2.0 * cos3 / sin3, -2.0;
+    const Eigen::Vector2d step = -j.partialPivLu().solve(f);
+    PKM_CHECK(step.allFinite(), "probe offset: the offset does not fit inside the ring");
+    o += step;
+    out.iterations = it + 1;
+    if (step.norm() <= floor) {
+      out.converged = true;
+      break;
+    }
   }
-  return o;
+  return out;
+}
+
+Eigen::Vector2d probeOffsetEq8(
+    double x1, double y1, double x2, double y3, double ring_radius, double stylus_radius) {
+  const ProbeOffsetEq8Solution s = solveProbeOffsetEq8(x1, y1, x2, y3, ring_radius, stylus_radius);
+  PKM_CHECK(s.converged,
+            "probe offset: eq. 8 did not converge in {} iterations (offset too large for the "
+            "ring?)",
+            s.iterations);
+  return s.o_probe;
 }
 
 Point2 ballCentre(const ProbeTouch& touch, const Eigen::Vector2d& offset) {
   return touch.position + rot(touch.angle) * offset;
 }
 
-ProbeOffsetFit fitProbeOffset(std::span<const ProbeTouch> touches) {
+bool ProbeOffsetOptions::isValid(std::string* why) const {
+  const char* reason =
+      max_iterations < 1                                ? "max_iterations must be >= 1"
+      : !(step_tolerance > 0.0 && step_tolerance < 1.0) ? "step_tolerance must be in (0, 1)"
+      : !(cost_tolerance > 0.0 && cost_tolerance < 1.0) ? "cost_tolerance must be in (0, 1)"
+                                                        : nullptr;
+  if (reason != nullptr && why != nullptr) *why = reason;
+  return reason == nullptr;
+}
+
+ProbeOffsetFit fitProbeOffset(std::span<const ProbeTouch> touches,
+                              const ProbeOffsetOptions& options) {
+  std::string why;
+  PKM_CHECK(options.isValid(&why), "probe offset: {}", why);
   requireCount(touches.size(), 5, "probe offset");
   std::vector<Point2> s(touches.size());
   double amin = touches[0].angle;
@@ -85,10 +127,14 @@ ProbeOffsetFit fitProbeOffset(std::span<const ProbeTouch> touches) {
   Eigen::Matrix<double, 5, 1> p;
   p << 0.0, 0.0, 0.0, 0.0, start.circle.radius;
   ProbeOffsetFit fit;
-  constexpr int kMaxIterations = 100;
-  for (int it = 0; it < kMaxIterations; ++it) {
+  // A sum of N squares carries a relative rounding error up to N·ε: a cost change below that
+  // cannot be told from none (as in fitCircle), so the step before it reached the minimum.
+  const double floor = static_cast<double>(touches.size()) * std::numeric_limits<double>::epsilon();
+  double previous_cost = std::numeric_limits<double>::infinity();
+  for (int it = 0; it < options.max_iterations; ++it) {
     Eigen::Matrix<double, 5, 5> jtj = Eigen::Matrix<double, 5, 5>::Zero();
     Eigen::Matrix<double, 5, 1> jte = Eigen::Matrix<double, 5, 1>::Zero();
+    double cost = 0.0;
     for (const ProbeTouch& t : touches) {
       const Eigen::Matrix2d r = rot(t.angle);
       const Point2 v = t.position - origin + r * p.segment<2>(2) - p.head<2>();
@@ -99,7 +145,14 @@ ProbeOffsetFit fitProbeOffset(std::span<const ProbeTouch> touches) {
       j << -n, r.transpose() * n, -1.0;
       jtj.noalias() += j * j.transpose();
       jte += j * (d - p(4));
+      cost += (d - p(4)) * (d - p(4));
     }
+    // The last step changed the cost by a negligible fraction: p is the minimum.
+    if (std::abs(previous_cost - cost) <= std::max(options.cost_tolerance, floor) * cost) {
+      fit.converged = true;
+      break;
+    }
+    previous_cost = cost;
     // Dynamic size: GCC 12 warns falsely (maybe-uninitialized) on the fixed-size 5x5 SVD.
     const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(jtj),
                                                 Eigen::ComputeThinU | Eigen::ComputeThinV);
@@ -110,7 +163,10 @@ ProbeOffsetFit fitProbeOffset(std::span<const ProbeTouch> touches) {
     const Eigen::Matrix<double, 5, 1> step = svd.solve(Eigen::VectorXd(-jte));
     p += step;
     fit.iterations = it + 1;
-    if (step.norm() <= 1e-14 * std::max(1.0, p(4))) break;
+    if (step.norm() <= options.step_tolerance * std::max(1.0, p(4))) {
+      fit.converged = true;
+      break;
+    }
   }
   fit.ring_center = origin + p.head<2>();
   fit.offset = p.segment<2>(2);

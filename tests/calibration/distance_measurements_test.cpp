@@ -117,3 +117,35 @@ TEST(DistanceMeasurements, BadValuesAreRejected) {
 
 }  // namespace
 }  // namespace pkm::calibration
+
+namespace pkm::calibration {
+namespace {
+
+TEST(DistanceMeasurements, ConvergesInAFewIterationsOnNoisyDistances) {
+  // Interferometer lines and a ball bar, 1 µm noise: rank-deficient (6 placement directions held
+  // by priors), so the stopping rules must also be reachable with the priors in the cost.
+  constexpr int kMaxIterations = 12;       ///< LM iterations (rejected steps included)
+  constexpr double kNoise = 0.001;         ///< mm, interferometer / ball-bar noise
+  constexpr double kTolStationary = 1e-6;  ///< mm: default vs strict stopping rules
+  const HexapodModel truth = perturbed(test::kSeed + 20);
+  HexapodCalibrationData data;
+  data.distances = measure(truth, test::kSeed + 21, 300);
+  std::mt19937 rng(test::kSeed + 22);
+  std::normal_distribution<double> n(0.0, kNoise);
+  for (DistanceObservation& o : data.distances) o.distance += n(rng);
+  const HexapodCalibrationSummary s = calibrateHexapod(test::millingModel(), data);
+  EXPECT_TRUE(s.converged) << s.termination;
+  EXPECT_LE(s.iterations, kMaxIterations) << s.termination;
+  RecordProperty("iterations", s.iterations);
+  EXPECT_NEAR(s.after.rms, kNoise, 0.3 * kNoise);
+  HexapodCalibrationOptions strict;
+  strict.function_tolerance = 1e-16;
+  strict.gradient_tolerance = 1e-16;
+  strict.parameter_tolerance = 1e-16;
+  strict.max_iterations = 200;
+  const HexapodCalibrationSummary tight = calibrateHexapod(test::millingModel(), data, strict);
+  EXPECT_LT((tight.parameters - s.parameters).cwiseAbs().maxCoeff(), kTolStationary);
+}
+
+}  // namespace
+}  // namespace pkm::calibration

@@ -250,3 +250,38 @@ TEST(ExechonCalibration, DirectionsAddEquationsAndAgree) {
 
 }  // namespace
 }  // namespace pkm::calibration
+
+namespace pkm::calibration {
+namespace {
+
+TEST(ExechonCalibration, ConvergesInAFewIterationsOnNoisyTrackerData) {
+  // Tracker points in the tracker's frame (5 µm), the frame estimated with the 26 parameters, the
+  // Jacobian by central differences through the FK: the stopping rules must be reachable at the
+  // floor those set, not only on exact data.
+  constexpr int kMaxIterations = 15;       ///< LM iterations (rejected steps included)
+  constexpr double kTolStationary = 1e-6;  ///< mm / rad: default vs strict stopping rules
+  Fixture f;
+  const auto s = setup(200, kNoise, "fit-convergence");
+  ExechonCalibrationData data = toData(f.simulate(s), s, true);
+  data.measurement_frame = initialExechonMeasurementFrame(f.nominal_model, data);
+  const ExechonCalibrationSummary sum = calibrateExechon(f.nominal_model, data);
+  EXPECT_TRUE(sum.converged) << sum.termination;
+  EXPECT_LE(sum.iterations, kMaxIterations) << sum.termination;
+  RecordProperty("iterations", sum.iterations);
+  EXPECT_NEAR(sum.after.rms, kNoise, 0.3 * kNoise);
+  // Stationary: stopping rules far below the noise floor find the same minimum.
+  ExechonCalibrationOptions strict;
+  strict.function_tolerance = 1e-16;
+  strict.gradient_tolerance = 1e-16;
+  strict.parameter_tolerance = 1e-16;
+  strict.max_iterations = 200;
+  const ExechonCalibrationSummary tight = calibrateExechon(f.nominal_model, data, strict);
+  EXPECT_LT((tight.parameters - sum.parameters).cwiseAbs().maxCoeff(), kTolStationary);
+  EXPECT_NEAR(tight.after.rms, sum.after.rms, 1e-6 * sum.after.rms);
+  ExechonCalibrationOptions bad;
+  bad.parameter_tolerance = -1.0;
+  EXPECT_THROW((void)calibrateExechon(f.nominal_model, data, bad), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace pkm::calibration

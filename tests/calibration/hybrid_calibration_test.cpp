@@ -128,3 +128,34 @@ TEST(HybridCalibration, BadInputIsRejected) {
 
 }  // namespace
 }  // namespace pkm::calibration
+
+namespace pkm::calibration {
+namespace {
+
+TEST(HybridCalibration, ConvergesInAFewIterationsOnNoisyTrackerData) {
+  constexpr int kMaxIterations = 12;       ///< LM iterations (rejected steps included)
+  constexpr double kTolStationary = 1e-9;  ///< rad: default vs strict stopping rules
+  Bench s;
+  const HybridCalibrationData data = s.data(200, kNoise, true);
+  const HybridCalibrationSummary sum = calibrateHybridSquareness(*s.machine.hybrid, s.errors, data);
+  EXPECT_TRUE(sum.converged) << sum.termination;
+  EXPECT_LE(sum.iterations, kMaxIterations) << sum.termination;
+  RecordProperty("iterations", sum.iterations);
+  expectSquareness(sum.squareness, s.errors.squareness, kNoisySquareness);
+  // Stationary: stopping rules far below the noise floor find the same minimum.
+  HybridCalibrationOptions strict;
+  strict.function_tolerance = 1e-16;
+  strict.gradient_tolerance = 1e-16;
+  strict.parameter_tolerance = 1e-16;
+  strict.max_iterations = 200;
+  const HybridCalibrationSummary tight =
+      calibrateHybridSquareness(*s.machine.hybrid, s.errors, data, strict);
+  expectSquareness(tight.squareness, sum.squareness, kTolStationary);
+  HybridCalibrationOptions bad;
+  bad.function_tolerance = -1.0;
+  EXPECT_THROW((void)calibrateHybridSquareness(*s.machine.hybrid, s.errors, data, bad),
+               InvalidArgument);
+}
+
+}  // namespace
+}  // namespace pkm::calibration

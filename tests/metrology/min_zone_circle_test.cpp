@@ -133,3 +133,43 @@ TEST(MinZoneCircle, RejectsBadInput) {
 
 }  // namespace
 }  // namespace pkm::metrology
+
+namespace pkm::metrology {
+namespace {
+
+TEST(MinZoneCircle, NoisyRingFarFromTheOriginIsCertifiedInAFewExchanges) {
+  // A 50 mm ring measured at machine coordinates metres from the origin: 3-lobe form of 5 µm,
+  // 1 µm probe noise. The exchange's tolerance (1e-13 × R) must stay above the rounding of the
+  // distances from a centre at those coordinates, or it would run to max_exchanges.
+  constexpr int kMaxExchanges = 30;
+  constexpr double kNoise = 0.001;           ///< mm, probe noise
+  constexpr double kForm = 0.005;            ///< mm, 3-lobe amplitude
+  constexpr double kTolStrictRerun = 1e-12;  ///< zone width: default vs strict tolerance, mm
+  const Point2 c(2512.345, -1876.5);
+  std::mt19937 rng(kSeed + 1);
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * std::numbers::pi);
+  std::normal_distribution<double> noise(0.0, kNoise);
+  std::vector<Point2> p;
+  for (int k = 0; k < 20000; ++k) {
+    const double t = angle(rng);
+    const double r = 50.0 + kForm * std::cos(3.0 * t) + noise(rng);
+    p.emplace_back(c + r * Point2(std::cos(t), std::sin(t)));
+  }
+  const MinZoneCircle z = fitMinimumZoneCircle(p);
+  EXPECT_TRUE(z.certified);
+  EXPECT_LE(z.exchanges, kMaxExchanges);
+  RecordProperty("exchanges", z.exchanges);
+  // Near the truth: the centre within the noise, the zone about the form's 2·kForm plus noise.
+  EXPECT_LT((z.center - c).norm(), 2.0 * kNoise);
+  EXPECT_NEAR(z.roundness, 2.0 * kForm, 10.0 * kNoise);
+  EXPECT_LE(z.roundness, roundnessAbout(p, c));
+  // Stationary: a stricter tolerance finds the same zone; moving the centre widens it.
+  MinZoneOptions strict;
+  strict.tolerance = 1e-15;
+  EXPECT_NEAR(fitMinimumZoneCircle(p, strict).roundness, z.roundness, kTolStrictRerun);
+  for (double a = 0.0; a < 2.0 * std::numbers::pi; a += 0.5)
+    EXPECT_GT(roundnessAbout(p, z.center + 1e-6 * Point2(std::cos(a), std::sin(a))), z.roundness);
+}
+
+}  // namespace
+}  // namespace pkm::metrology

@@ -46,6 +46,10 @@ struct ExechonCalibrationData {
 struct ExechonCalibrationOptions {
   ExechonParameterMask free = allExechonParametersFree();
   int max_iterations = 100;  ///< LM iterations, ≥ 1
+  /// Stopping rules of the solve (HexapodCalibrationOptions' of the same names).
+  double function_tolerance = 1e-10;   ///< relative cost change of a step
+  double gradient_tolerance = 1e-14;   ///< Ceres max-norm gradient
+  double parameter_tolerance = 1e-12;  ///< Ceres relative step
   RobustLoss loss = RobustLoss::kNone;
   double loss_scale = 0.0;         ///< model length unit; > 0 when loss ≠ kNone
   double measurement_sigma = 0.0;  ///< residual σ for the covariance; 0 estimates it

@@ -46,9 +46,14 @@ struct HexapodCalibrationData {
 struct HexapodCalibrationOptions {
   HexapodParameterMask free = allHexapodParametersFree();  ///< parameters to estimate
   int max_iterations = 100;                                ///< LM iterations, ≥ 1
-  double function_tolerance = 1e-14;                       ///< Ceres relative cost change
-  double gradient_tolerance = 1e-14;                       ///< Ceres max-norm gradient
-  double parameter_tolerance = 1e-12;                      ///< Ceres relative step
+  /// Converged when a step (accepted, or rejected at LM damping ≤ the scaled diagonal) changes
+  /// ½Σr² by at most this × ½Σr². Reachable on noisy data, where a step at the minimum changes
+  /// the cost only by the rounding of the residuals (~1e-12 of it); a Gauss–Newton step that
+  /// lowers the cost by a fraction t moves the estimate by about √(t·m) of its standard deviations
+  /// (m residuals: 3e-4 for t = 1e-10, m = 1000) (docs/calibration.md, "Solver").
+  double function_tolerance = 1e-10;
+  double gradient_tolerance = 1e-14;   ///< Ceres max-norm gradient
+  double parameter_tolerance = 1e-12;  ///< Ceres relative step
   RobustLoss loss = RobustLoss::kNone;
   double loss_scale = 0.0;  ///< model length unit; > 0 when loss ≠ kNone
   /// Standard deviation of one residual (model length unit) for the covariance; 0 estimates it
@@ -81,8 +86,8 @@ struct ResidualStatistics {
 
 /// What calibrateHexapod did.
 struct HexapodCalibrationSummary {
-  bool converged = false;     ///< Ceres reported convergence (not iteration limit or failure)
-  std::string termination;    ///< Ceres' message
+  bool converged = false;     ///< a stopping rule was met (not the iteration limit, not failure)
+  std::string termination;    ///< the stopping rule's message (Ceres' or the function tolerance's)
   int iterations = 0;         ///< LM iterations taken
   double initial_cost = 0.0;  ///< ½Σr² before
   double final_cost = 0.0;    ///< ½Σr² after

@@ -45,6 +45,10 @@ struct HybridCalibrationData {
 struct HybridCalibrationOptions {
   std::array<bool, 4> free{true, true, true, true};  ///< szX2, sxP, syP, szP
   int max_iterations = 100;
+  /// Stopping rules of the solve (HexapodCalibrationOptions' of the same names).
+  double function_tolerance = 1e-10;   ///< relative cost change of a step
+  double gradient_tolerance = 1e-14;   ///< Ceres max-norm gradient
+  double parameter_tolerance = 1e-12;  ///< Ceres relative step
   RobustLoss loss = RobustLoss::kNone;
   double loss_scale = 0.0;
   double measurement_sigma = 0.0;  ///< 0: estimated from the residuals

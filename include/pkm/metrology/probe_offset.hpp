@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "pkm/metrology/circle_fit.hpp"
@@ -29,9 +30,23 @@ namespace pkm::metrology {
 [[nodiscard]] Eigen::Vector2d probeOffsetEq9(
     double x1, double y1, double x2, double y3, double ring_radius, double stylus_radius);
 
+/// Seed 003 eq. 8 solved for o_probe (see probeOffsetEq8) and how the iteration ended.
+struct ProbeOffsetEq8Solution {
+  Eigen::Vector2d o_probe = Eigen::Vector2d::Zero();  ///< o_probe = −d, mm
+  int iterations = 0;                                 ///< Newton steps taken
+  bool converged = false;  ///< a step reached the rounding floor of ρ before the step limit
+};
+
+/// Seed 003 eq. 8 by Newton's method from eq. 9, stopped when a step is within the rounding floor
+/// of the equations' ρ-sized terms (≤ 8ε·ρ): a few steps for any offset that fits in the ring.
+/// Throws pkm::InvalidArgument like probeOffsetEq9 or when the offset does not fit in the ring.
+[[nodiscard]] ProbeOffsetEq8Solution solveProbeOffsetEq8(
+    double x1, double y1, double x2, double y3, double ring_radius, double stylus_radius);
+
 /// Seed 003 eq. 8 solved without the small-angle approximation: x2 − x1 = ρ cos θ2 − 2 o_x with
 /// sin θ2 = 2 o_y/ρ (the +X touch keeps y = y1), y3 − y1 = ρ sin θ3 − 2 o_y with cos θ3 = 2 o_x/ρ,
-/// ρ = R_master − r_stylus; fixed-point iteration from eq. 9. Same arguments and result.
+/// ρ = R_master − r_stylus; solveProbeOffsetEq8's o_probe. Same arguments and result as
+/// probeOffsetEq9; also throws pkm::InvalidArgument when the iteration does not converge.
 [[nodiscard]] Eigen::Vector2d probeOffsetEq8(
     double x1, double y1, double x2, double y3, double ring_radius, double stylus_radius);
 
@@ -51,15 +66,32 @@ struct ProbeOffsetFit {
   double ball_path_radius = 0.0;  ///< ρ: radius of the ball-centre circle (inside ring: R − r)
   std::vector<double> residuals;  ///< |b_k − centre| − ρ per touch
   double rms = 0.0;               ///< sqrt(mean residual²)
-  int iterations = 0;             ///< Gauss-Newton iterations
+  int iterations = 0;             ///< Gauss-Newton iterations (steps taken)
+  bool converged = false;         ///< a convergence criterion was met within max_iterations
+};
+
+/// Stopping rules of fitProbeOffset. As the circle fit (CircleFitOptions), every criterion is
+/// reachable on noisy touches: a small step, a small relative change of the cost, or a change
+/// within the rounding floor N·ε of the cost's sum of N squares.
+struct ProbeOffsetOptions {
+  int max_iterations = 100;  ///< Gauss-Newton iterations, >= 1
+  /// Converged when a step (centre, offset, radius) is below step_tolerance × max(1, ρ).
+  double step_tolerance = 1e-10;
+  /// Converged when a step changes Σe² by less than cost_tolerance × Σe².
+  double cost_tolerance = 1e-12;
+
+  /// True when every field is usable; otherwise false with the reason in *why (if given).
+  [[nodiscard]] bool isValid(std::string* why = nullptr) const;
 };
 
 /// Least-squares ring centre c, offset d and ball-path radius ρ from touches inside a ring:
 /// minimises Σ(|s_k + Rot(ψ_k)·d − c| − ρ)² by Gauss-Newton (start: d = 0, the LSC of the
-/// positions). Needs >= 5 touches at >= 2 distinct angles ψ spread around the ring. Throws
-/// pkm::InvalidArgument for too few touches, non-finite values, a single angle, or a singular
-/// problem (c and d not separable).
-[[nodiscard]] ProbeOffsetFit fitProbeOffset(std::span<const ProbeTouch> touches);
+/// positions; `converged` false only when max_iterations ran out). Needs >= 5 touches at >= 2
+/// distinct angles ψ spread around the ring. Throws pkm::InvalidArgument for too few touches,
+/// non-finite values, a single angle, a singular problem (c and d not separable) or invalid
+/// options.
+[[nodiscard]] ProbeOffsetFit fitProbeOffset(std::span<const ProbeTouch> touches,
+                                            const ProbeOffsetOptions& options = {});
 
 /// Effective stylus-ball radius from a ring of certified diameter D (ring-gauge calibration:
 /// d_eff = D_cert − D_c for an internal ring): D/2 − ρ. Throws pkm::InvalidArgument unless D > 0.

@@ -11,18 +11,26 @@
 
 namespace pkm::calibration::detail {
 
-/// Stopping rules of solveLeastSquares (Ceres' Solver::Options of the same names).
+/// Stopping rules of solveLeastSquares. gradient_tolerance and parameter_tolerance are Ceres'
+/// Solver::Options of the same names. function_tolerance is applied by solveLeastSquares itself:
+/// converged when a step changes the cost ½Σr² by at most function_tolerance × the cost, counted
+/// only while the Levenberg–Marquardt damping is at most the scaled Jacobian's diagonal (trust
+/// region radius ≥ 1; a step shrunk by heavy damping is no sign of convergence). Unlike Ceres' own
+/// test it keeps an accepted step, and it is reachable on noisy data: there the cost of a step at
+/// the minimum differs from the current one only by the rounding of the residuals, ~1e-12 of the
+/// cost, while Ceres' parameter test (a relative step of 1e-12) is met only after the trust region
+/// has been shrunk by a run of rejected steps.
 struct LeastSquaresSettings {
   int max_iterations = 100;
-  double function_tolerance = 1e-14;
+  double function_tolerance = 1e-10;
   double gradient_tolerance = 1e-14;
   double parameter_tolerance = 1e-12;
 };
 
 /// What the solve reported.
 struct LeastSquaresOutcome {
-  bool converged = false;     ///< Ceres reported convergence (not the iteration limit, not failure)
-  std::string termination;    ///< Ceres' message
+  bool converged = false;     ///< a stopping rule was met (not the iteration limit, not failure)
+  std::string termination;    ///< Ceres' message, or the function tolerance's
   int iterations = 0;         ///< LM iterations taken
   double initial_cost = 0.0;  ///< ½Σr² before
   double final_cost = 0.0;    ///< ½Σr² after

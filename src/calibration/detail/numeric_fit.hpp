@@ -30,7 +30,7 @@ struct NumericProblem {
 struct NumericOptions {
   std::vector<bool> free;  ///< per unknown
   int max_iterations = 100;
-  double function_tolerance = 1e-14;
+  double function_tolerance = 1e-10;  ///< LeastSquaresSettings::function_tolerance
   double gradient_tolerance = 1e-14;
   double parameter_tolerance = 1e-12;
   RobustLoss loss = RobustLoss::kNone;
