@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pkm/io/hexapod_machine.hpp"
@@ -46,6 +47,12 @@ class Output {
     if (!buffer_.empty()) std::fwrite(buffer_.data(), 1, buffer_.size(), stdout);
     buffer_.clear();
     std::fflush(stdout);
+  }
+  /// Writes what the buffer holds, then `text` (without copying it into the buffer).
+  void write(std::string_view text) {
+    if (!buffer_.empty()) std::fwrite(buffer_.data(), 1, buffer_.size(), stdout);
+    buffer_.clear();
+    if (!text.empty()) std::fwrite(text.data(), 1, text.size(), stdout);
   }
 
  private:

@@ -1,11 +1,17 @@
 // `pkm hexapod ...`: ik, fk, check, describe, hal, machines (docs/formats.md).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
+#include <exception>
 #include <future>
 #include <memory>
 #include <optional>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
@@ -34,17 +40,6 @@ kin::PoseRpy poseFromRow(const std::array<double, 6>& v) {
   p.position = {v[0], v[1], v[2]};
   p.rpy = {degToRad(v[3]), degToRad(v[4]), degToRad(v[5])};
   return p;
-}
-
-void appendPose(std::string& out, const kin::PoseRpy& pose) {
-  for (int i = 0; i < 3; ++i) {
-    io::appendNumber(out, pose.position[i]);
-    out += ',';
-  }
-  for (int i = 0; i < 3; ++i) {
-    io::appendNumber(out, radToDeg(pose.rpy[i]));
-    out += ',';
-  }
 }
 
 kin::PoseRpy parseSeed(const std::string& text) {
@@ -89,20 +84,64 @@ struct FkRow {
   kin::FkStatus status = kin::FkStatus::kOk;
 };
 
-std::string formatFkRows(const std::vector<FkRow>& rows) {
-  std::string text;
-  text.reserve(rows.size() * 120);
+/// CSV text of solved rows, in a buffer that is not cleared first (the rows overwrite it).
+struct FkRowsText {
+  std::unique_ptr<char[]> buffer;
+  std::size_t size = 0;
+  [[nodiscard]] std::string_view view() const { return {buffer.get(), size}; }
+};
+
+FkRowsText formatFkRows(const std::vector<FkRow>& rows) {
+  // At most six numbers of 24 bytes, an iteration count of 11, a status of 14 and 8 separators:
+  // 183 bytes a row.
+  constexpr std::size_t kRowRoom = 8 * io::kMaxNumberChars;
+  FkRowsText text{std::make_unique_for_overwrite<char[]>(rows.size() * kRowRoom + 1)};
+  char* o = text.buffer.get();
   for (const FkRow& r : rows) {
-    if (r.status == kin::FkStatus::kOk)
-      appendPose(text, r.pose);
-    else
-      text += ",,,,,,";  // no pose on failure: never print a wrong one
-    text += std::to_string(r.iterations);
-    text += ',';
-    text += kin::toString(r.status);
-    text += '\n';
+    if (r.status == kin::FkStatus::kOk) {
+      for (int i = 0; i < 6; ++i) {
+        o = io::writeNumber(o, i < 3 ? r.pose.position[i] : radToDeg(r.pose.rpy[i - 3]));
+        *o++ = ',';
+      }
+    } else {
+      o = std::copy_n(",,,,,,", 6, o);  // no pose on failure: never print a wrong one
+    }
+    o = std::to_chars(o, o + io::kMaxNumberChars, r.iterations).ptr;
+    *o++ = ',';
+    const std::string_view status = kin::toString(r.status);
+    o = std::copy(status.begin(), status.end(), o);
+    *o++ = '\n';
   }
+  text.size = static_cast<std::size_t>(o - text.buffer.get());
   return text;
+}
+
+/// Up to kFkChunk rows of strut readings read in one go, and what ended the reading: the end of
+/// the input or an error (a bad line), which is raised after the rows before it are printed.
+constexpr std::size_t kFkChunk = 8192;
+struct FkInputChunk {
+  std::vector<kin::StrutVector> readings;
+  bool last = false;
+  std::exception_ptr error;
+};
+
+FkInputChunk readFkChunk(io::CsvReader& reader) {
+  FkInputChunk chunk;
+  chunk.readings.reserve(kFkChunk);
+  std::array<double, 6> row{};
+  try {
+    while (chunk.readings.size() < kFkChunk) {
+      if (!reader.next(row)) {
+        chunk.last = true;
+        break;
+      }
+      chunk.readings.emplace_back(row.data());
+    }
+  } catch (...) {
+    chunk.error = std::current_exception();
+    chunk.last = true;
+  }
+  return chunk;
 }
 
 void runFk(const MachineOption& machine_opt,
@@ -115,36 +154,30 @@ void runFk(const MachineOption& machine_opt,
   io::CsvReader reader(lengths, kLengthColumns);
   Output out;
   out.text() += "x,y,z,a,b,c,iterations,status\n";
-  // Rows are solved in order (each seeds the next, as in a servo loop) in chunks; number
-  // formatting, a third of the work, runs on a second thread while the next chunk is solved.
-  constexpr std::size_t kChunk = 8192;
-  std::future<std::string> formatted;
-  auto emit = [&out, &formatted] {
-    if (!formatted.valid()) return;
-    out.text() += formatted.get();
-    out.maybeFlush();
-  };
-  std::vector<FkRow> rows;
-  rows.reserve(kChunk);
-  std::array<double, 6> row{};
-  kin::StrutVector q;
-  bool more = true;
-  while (more) {
-    more = reader.next(row);
-    if (more) {
-      for (int i = 0; i < kin::kStruts; ++i) q[i] = row[static_cast<std::size_t>(i)];
+  // Rows are solved in order (each seeds the next, as in a servo loop), a chunk at a time; while
+  // one chunk is solved, a second thread prints the chunk before it and reads the chunk after it.
+  FkInputChunk chunk = readFkChunk(reader);
+  std::vector<FkRow> solved;
+  while (true) {
+    std::future<std::pair<FkRowsText, FkInputChunk>> other =
+        std::async(std::launch::async, [&reader, rows = std::move(solved), read = !chunk.last] {
+          return std::pair(formatFkRows(rows), read ? readFkChunk(reader) : FkInputChunk{});
+        });
+    solved.clear();
+    solved.reserve(chunk.readings.size());
+    for (const kin::StrutVector& q : chunk.readings) {
       const workflow::FkStep s = path.solve(q);
-      rows.push_back({s.pose, s.summary.iterations, s.summary.status});
+      solved.push_back({s.pose, s.summary.iterations, s.summary.status});
     }
-    if (rows.size() == kChunk || (!more && !rows.empty())) {
-      emit();
-      formatted =
-          std::async(std::launch::async, [chunk = std::move(rows)] { return formatFkRows(chunk); });
-      rows = {};
-      rows.reserve(kChunk);
+    auto [text, next] = other.get();
+    out.write(text.view());
+    if (chunk.last) {
+      out.write(formatFkRows(solved).view());
+      if (chunk.error) std::rethrow_exception(chunk.error);
+      return;
     }
+    chunk = std::move(next);
   }
-  emit();
 }
 
 void runCheck(const MachineOption& machine_opt, const std::string& poses) {

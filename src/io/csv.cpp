@@ -187,11 +187,30 @@ bool CsvReader::readLine(std::string_view& out) {
   }
 }
 
+bool CsvReader::readPlainRow(std::string_view text, std::span<double> values) const {
+  // Only plain numbers separated by single commas, as programs write them; anything else (blanks,
+  // '+', comments, other fields, errors) is left to the general reading, which names the problem.
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  const std::size_t fields = header_.size();
+  for (std::size_t field = 0; field < fields; ++field) {
+    const int column = column_of_field_[field];
+    if (column < 0) return false;
+    const char* q = detail::scanSimpleDecimal(p, end, values[static_cast<std::size_t>(column)]);
+    if (q == nullptr) return false;
+    if (field + 1 == fields) return q == end;
+    if (q == end || *q != ',') return false;
+    p = q + 1;
+  }
+  return false;
+}
+
 bool CsvReader::next(std::span<double> values) {
   if (values.size() != wanted_)
     throw InvalidArgument("CsvReader::next: wrong number of output values");
   std::string_view text;
   while (readLine(text)) {
+    if (readPlainRow(text, values)) return true;
     const std::string_view t = trim(text);
     if (t.empty() || t.front() == '#') continue;
     std::size_t pos = 0;

@@ -16,6 +16,29 @@ namespace pkm::kinematics {
 namespace {
 /// Strut tolerance of the intermediate stages of a continuation, × the characteristic length.
 constexpr double kStageTolerance = 1e-6;
+struct Pose {
+  Eigen::Vector3d p;
+  Eigen::Matrix3d R;
+};
+
+/// Strut-space step δ = (δp, δθ) for the residual r = delta on input, from a factorisation of the
+/// scaled Jacobian, shortened to the options' trust region.
+void scaledStep(const detail::Lu6& lu,
+                double inv_length,
+                double max_translation,
+                double max_rotation,
+                StrutVector& delta) {
+  detail::substitute6(lu, delta);
+  delta.tail<3>() *= inv_length;
+  const double shrink = std::max(
+      {1.0, delta.head<3>().norm() / max_translation, delta.tail<3>().norm() / max_rotation});
+  if (std::isfinite(shrink)) delta /= shrink;
+}
+
+Pose retract(const Pose& at, const StrutVector& delta, double step) {
+  return Pose{at.p - step * delta.head<3>(), geometry::so3Exp(-step * delta.tail<3>()) * at.R};
+}
+
 }  // namespace
 
 std::string_view toString(FkStatus status) {
@@ -62,48 +85,58 @@ FkSummary forwardKinematics(const HexapodModel& model,
                             const StrutVector& readings,
                             const PoseRpy& seed,
                             const FkOptions& options) {
+  return forwardKinematics(
+      model, data, readings, seed.position, geometry::rotationFromRpy(seed.rpy), seed.rpy, options);
+}
+
+FkSummary forwardKinematics(const HexapodModel& model,
+                            HexapodData& data,
+                            const StrutVector& readings,
+                            const Eigen::Vector3d& world_p_seed,
+                            const Eigen::Matrix3d& world_R_seed,
+                            const Eigen::Vector3d& rpy_near,
+                            const FkOptions& options) {
   std::string why;
   PKM_CHECK(options.isValid(&why), "invalid FkOptions: {}", why);
   FkSummary summary;
-  if (!readings.allFinite() || !seed.position.allFinite() || !seed.rpy.allFinite()) {
+  if (!readings.allFinite() || !world_p_seed.allFinite() || !world_R_seed.allFinite() ||
+      !rpy_near.allFinite()) {
     summary.status = FkStatus::kInvalidInput;
     summary.max_residual = INFINITY;
     return summary;
   }
 
-  struct Pose {
-    Eigen::Vector3d p;
-    Eigen::Matrix3d R;
-  };
-  Pose x{seed.position, geometry::rotationFromRpy(seed.rpy)};
+  Pose x{world_p_seed, world_R_seed};
   const double length = model.characteristicLength();
   const double inv_length = 1.0 / length;
   const double max_translation = options.max_step_translation * length;
   int seed_sign = 0;  // sign of det J at a solve's first linearisation, and at its latest
   int last_sign = 0;
   StrutVector target = readings;  // the readings the current stage solves for
+  bool legs_at_x = false;         // data holds the legs of x (dampedNewton's first evaluation)
   auto evaluate = [&](const Pose& at, StrutVector& r) {
-    detail::computeLegs(model, data, at.p, at.R);
+    if (!legs_at_x || &at != &x) detail::computeLegs(model, data, at.p, at.R);
+    legs_at_x = false;
     r = data.readings - target;
     const double n2 = r.squaredNorm();
     return std::isfinite(n2) ? n2 : INFINITY;
   };
-  auto solve = [&](StrutVector& delta) {
-    // The angular columns × 1/L make the pivot test unit-free; δθ is scaled back after.
-    Matrix6d J = computeStrutJacobian(model, data);
-    J.rightCols<3>() *= inv_length;
-    const double ratio = detail::solve6(J, delta, &last_sign);
-    if (seed_sign == 0) seed_sign = last_sign;
-    delta.tail<3>() *= inv_length;
+  detail::Lu6 lu;         // the factorisation of the last Newton step
+  double lu_ratio = 0.0;  // and its pivot ratio
+  auto solve = [&](StrutVector& delta, bool polishing) {
+    // The polishing step, after a step that converged, is a chord step: the Jacobian factorised
+    // one step before differs from the current one by about the last step's relative size, so it
+    // shrinks the residual as much as a new factorisation would.
+    if (!polishing || !lu.valid) {
+      // The angular columns × 1/L make the pivot test unit-free; δθ is scaled back after.
+      Matrix6d J = computeStrutJacobian(model, data);
+      J.rightCols<3>() *= inv_length;
+      lu_ratio = detail::factor6(J, lu, &last_sign);
+      if (seed_sign == 0) seed_sign = last_sign;
+    }
     // Trust region: a step longer than the options allow is shortened along its direction.
-    const double shrink = std::max({1.0,
-                                    delta.head<3>().norm() / max_translation,
-                                    delta.tail<3>().norm() / options.max_step_rotation});
-    if (std::isfinite(shrink)) delta /= shrink;
-    return ratio;
-  };
-  auto retract = [](const Pose& at, const StrutVector& delta, double step) {
-    return Pose{at.p - step * delta.head<3>(), geometry::so3Exp(-step * delta.tail<3>()) * at.R};
+    if (lu.valid) scaledStep(lu, inv_length, max_translation, options.max_step_rotation, delta);
+    return lu_ratio;
   };
   // A far seed (a cold start): continuation along the straight line of strut readings from the
   // seed's to the target's, in stages of at most options.continuation_step characteristic
@@ -119,14 +152,15 @@ FkSummary forwardKinematics(const HexapodModel& model,
       std::isfinite(gap) && gap > stage_length
           ? static_cast<int>(std::min<double>(std::ceil(gap / stage_length), kMaxStages))
           : 1;
+  FkSummary total;
   FkOptions intermediate = options;
   intermediate.tolerance = std::max(options.tolerance, kStageTolerance * length);
-  FkSummary total;
   int previous_sign = 0;
   for (int k = 1; k <= stages; ++k) {
     target =
         k == stages ? readings : StrutVector(start + (readings - start) * (double(k) / stages));
     seed_sign = last_sign = 0;
+    legs_at_x = true;  // computed above, or left by the last stage (dampedNewton's contract)
     summary = detail::dampedNewton<kStruts>(
         k == stages ? options : intermediate, x, evaluate, solve, retract);
     total.iterations += summary.iterations;
@@ -148,7 +182,7 @@ FkSummary forwardKinematics(const HexapodModel& model,
     summary.max_residual = r.cwiseAbs().maxCoeff();
   }
   data.pose.position = x.p;
-  data.pose.rpy = geometry::rpyFromRotation(x.R, seed.rpy);
+  data.pose.rpy = geometry::rpyFromRotation(x.R, rpy_near);
   return summary;
 }
 

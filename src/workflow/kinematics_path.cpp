@@ -1,7 +1,10 @@
 // Kinematics along a path of rows (kinematics_path.hpp).
 #include "pkm/workflow/kinematics_path.hpp"
 
+#include <cmath>
+
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/exechon_drm.hpp"
 #include "pkm/kinematics/exechon_ik.hpp"
 
@@ -9,41 +12,59 @@ namespace pkm::workflow {
 
 namespace kin = pkm::kinematics;
 
+namespace {
+/// The prediction repeats the last step only when it was at most this long: × the characteristic
+/// length, and in rad.
+constexpr double kMaxPredictedTranslation = 0.05;
+constexpr double kMaxPredictedRotation = 0.05;
+}  // namespace
+
 HexapodFkPath::HexapodFkPath(const io::HexapodMachine& machine,
                              const std::optional<kin::PoseRpy>& seed,
                              bool from_seed)
     : machine_(machine),
       data_(machine.model),
-      seed_(seed.value_or(machine.model.home)),
-      from_seed_(from_seed) {}
+      first_seed_(seed.value_or(machine.model.home)),
+      from_seed_(from_seed),
+      seed_{first_seed_.position, geometry::rotationFromRpy(first_seed_.rpy)},
+      seed_rpy_(first_seed_.rpy),
+      max_predicted_translation_(kMaxPredictedTranslation * machine.model.characteristicLength()) {}
 
 FkStep HexapodFkPath::solve(const kin::StrutVector& readings) {
   // The servo loop's seed: the last pose moved on by the last step (a path sampled at a steady
-  // rate changes little from step to step), unless that step was long.
-  kin::PoseRpy start = seed_;
-  if (previous_) {
-    const Eigen::Vector3d dp = seed_.position - previous_->position;
-    const Eigen::Vector3d da = seed_.rpy - previous_->rpy;
-    constexpr double kMaxPredictedTranslation = 0.05;  // × characteristic length
-    constexpr double kMaxPredictedRotation = 0.05;     // rad
-    if (dp.norm() <= kMaxPredictedTranslation * machine_.model.characteristicLength() &&
-        da.norm() <= kMaxPredictedRotation) {
-      start.position += dp;
-      start.rpy += da;
+  // rate changes little from step to step), unless that step was long. The rotation moves on by
+  // the last step's rotation, R·(R_prevᵀ·R), without any angle conversion.
+  Pose start = seed_;
+  if (has_previous_) {
+    const Eigen::Vector3d dp = seed_.p - previous_.p;
+    const Eigen::Matrix3d step = previous_.R.transpose() * seed_.R;
+    // trace = 1 + 2 cos(angle): the last rotation was at most kMaxPredictedRotation
+    static const double kMinTrace = 1.0 + 2.0 * std::cos(kMaxPredictedRotation);
+    if (dp.norm() <= max_predicted_translation_ && step.trace() >= kMinTrace) {
+      start.p += dp;
+      // One Newton–Schulz step, R ← R·(3I − RᵀR)/2, keeps the product orthonormal to rounding
+      // (repeated products of rounded rotations drift from SO(3) geometrically).
+      const Eigen::Matrix3d predicted = seed_.R * step;
+      start.R =
+          predicted * (1.5 * Eigen::Matrix3d::Identity() - 0.5 * predicted.transpose() * predicted);
     }
   }
   FkStep step;
-  step.summary = kin::forwardKinematics(machine_.model, data_, readings, start, machine_.fk);
+  step.summary = kin::forwardKinematics(
+      machine_.model, data_, readings, start.p, start.R, seed_rpy_, machine_.fk);
   step.pose = data_.pose;
   if (from_seed_) return step;
   if (step.summary.ok()) {
-    if (solved_) previous_ = seed_;  // the seed was a solution too: the last step is known
-    seed_ = data_.pose;
+    previous_ = seed_;
+    has_previous_ = solved_;  // the seed was a solution too: the last step is known
+    seed_ = {data_.world_p_tcp, data_.world_R_platform};
+    seed_rpy_ = data_.pose.rpy;
     solved_ = true;
   } else {
-    previous_.reset();
     solved_ = false;
-    seed_ = machine_.model.home;  // home again after a failure
+    seed_ = {machine_.model.home.position, geometry::rotationFromRpy(machine_.model.home.rpy)};
+    seed_rpy_ = machine_.model.home.rpy;  // home again after a failure
+    has_previous_ = false;
   }
   return step;
 }

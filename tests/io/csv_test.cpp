@@ -421,6 +421,40 @@ TEST_F(CsvTest, UnrequestedColumnMayHoldText) {
   EXPECT_EQ(v, (std::array<double, 2>{1, 3}));
 }
 
+TEST_F(CsvTest, PlainAndOtherRowsReadTheSame) {
+  // Rows of plain numbers take a one-pass reading; rows with blanks, '+', CR line ends, long
+  // numbers or exponents the general one. Both give from_chars's values.
+  const std::string content =
+      "a,b\n"
+      "1.5,-2\n"
+      " 1.5 , -2 \n"
+      "+1.5,-2\r\n"
+      "29.74668048707284,29.746714726167661\n"
+      "1.2345678901234567890123,1e-30\n"
+      "-0,.5\n"
+      "5.,1E3\n";
+  CsvReader r(write("mixed.csv", content), {"b", "a"});
+  std::vector<std::array<double, 2>> rows;
+  std::vector<double> v(2);
+  while (r.next(v)) rows.push_back({v[0], v[1]});
+  const std::vector<std::array<double, 2>> expected = {{-2.0, 1.5},
+                                                       {-2.0, 1.5},
+                                                       {-2.0, 1.5},
+                                                       {29.746714726167661, 29.74668048707284},
+                                                       {1e-30, 1.2345678901234567890123},
+                                                       {0.5, -0.0},
+                                                       {1e3, 5.0}};
+  ASSERT_EQ(rows.size(), expected.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i][0], expected[i][0]) << i;
+    EXPECT_EQ(rows[i][1], expected[i][1]) << i;
+  }
+  EXPECT_EQ(r.line(), 8u);
+  EXPECT_THAT(errorOf("a,b\n1,2\n1,2,\n", {"a", "b"}), HasSubstr("data.csv:3"));
+  EXPECT_THAT(errorOf("a,b\n1,2\n1\n", {"a", "b"}), HasSubstr("data.csv:3"));
+  EXPECT_THAT(errorOf("a,b\n1,2\n1,2x\n", {"a", "b"}), HasSubstr("data.csv:3"));
+}
+
 TEST(ParseFiniteDouble, AcceptsNumbers) {
   double v = 0;
   EXPECT_TRUE(parseFiniteDouble("+1", v));

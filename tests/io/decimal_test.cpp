@@ -6,7 +6,9 @@
 
 #include <bit>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -50,6 +52,52 @@ TEST(DecimalTest, AgreesBitForBitWithFromCharsOnRandomNumbers) {
     }
   }
   EXPECT_GT(answered, 2 * kCases);  // the fast path takes most measurement-like numbers
+}
+
+TEST(DecimalTest, SeventeenToNineteenDigitsAgreeBitForBitWithFromChars) {
+  // The shortest round-trip text of most doubles has 17 digits: the extended-precision step reads
+  // them, and any 19-digit decimal with a power of ten within ±27, exactly as from_chars does.
+  std::mt19937_64 rng(20261127);
+  std::uniform_int_distribution<std::uint64_t> digits19(1'000'000'000'000'000'000u,
+                                                        9'999'999'999'999'999'999u);
+  std::uniform_int_distribution<int> exponent(-27, 27);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int answered = 0;
+  constexpr int kCases = 200000;
+  for (int i = 0; i < kCases; ++i) {
+    const std::uint64_t m = digits19(rng) / (i % 2 == 0 ? 1 : 100);  // 19 and 17 digits
+    const double x = unit(rng) * std::pow(10.0, exponent(rng) / 3);
+    for (const std::string& s : {fmt::format("{}e{}", m, exponent(rng)),
+                                 fmt::format("{}", x),
+                                 fmt::format("{:.17g}", x),
+                                 fmt::format("{:.19f}", x / 1e3)}) {
+      const std::optional<double> f = fast(s);
+      if (!f) continue;
+      ++answered;
+      const std::optional<double> r = reference(s);
+      ASSERT_TRUE(r.has_value()) << s;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(*f), std::bit_cast<std::uint64_t>(*r)) << s;
+    }
+  }
+  if (extendedPrecisionWorks()) EXPECT_GT(answered, 5 * kCases / 2);
+}
+
+TEST(DecimalTest, HalfwayCasesAreLeftToFromChars) {
+  // Exactly halfway between two doubles: the extended result is the halfway point itself, whose
+  // second rounding is not trusted.
+  std::uint64_t m = 0;
+  double v = 0.0;
+  for (int shift = 54; shift <= 63; ++shift) {
+    m = (std::uint64_t{1} << shift) + (std::uint64_t{1} << (shift - 53));
+    EXPECT_FALSE(extendedDecimal(m, 0, v)) << m;
+    EXPECT_FALSE(fast(std::to_string(m)).has_value()) << m;
+    // One above halfway is read (rounded up), as from_chars does.
+    if (extendedPrecisionWorks()) {
+      const std::string above = std::to_string(m + 1);
+      ASSERT_TRUE(fast(above).has_value()) << above;
+      EXPECT_EQ(*fast(above), *reference(above)) << above;
+    }
+  }
 }
 
 TEST(DecimalTest, ScanStopsAtTheFieldEndInsideALongerBuffer) {
@@ -109,11 +157,10 @@ TEST(DecimalTest, EdgeCases) {
                         "nan",
                         "inf",
                         "0x10",
-                        "1e23",
-                        "9007199254740993",
-                        "1234567890123456789",
-                        "123456789012345678",
-                        "1e-23",
+                        "9007199254740993",     // 2^53 + 1: halfway between two doubles
+                        "1152921504606847104",  // 2^60 + 2^7: halfway too
+                        "12345678901234567890",
+                        "1e-28",
                         "1e99999",
                         "12a"}) {
     EXPECT_FALSE(fast(s).has_value()) << s;

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -100,6 +101,26 @@ TEST(NumberFormat, AppendsWithoutClearing) {
   s += ',';
   appendNumber(s, -2.0);
   EXPECT_EQ(s, "a,1.5,-2");
+}
+
+TEST(NumberFormat, WriteNumberStaysWithinItsRoom) {
+  // writeNumber's text is appendNumber's and never longer than 24 bytes (kMaxNumberChars is the
+  // room callers give it), at every exponent and for large integers (std::to_chars's own text).
+  std::mt19937_64 rng(20261128);
+  std::size_t longest = 0;
+  for (int i = 0; i < 200000; ++i) {
+    for (const double v : {std::bit_cast<double>(rng()),
+                           static_cast<double>(rng()),
+                           -static_cast<double>(rng() >> 3)}) {
+      char buf[pkm::io::kMaxNumberChars];
+      const char* end = pkm::io::writeNumber(buf, v);
+      const auto n = static_cast<std::size_t>(end - buf);
+      longest = std::max(longest, n);
+      ASSERT_EQ(std::string(buf, n), formatNumber(v));
+    }
+  }
+  EXPECT_LE(longest, 24u);
+  EXPECT_GE(longest, 23u);  // "-1.2345678901234567e-123" lengths were met
 }
 
 TEST(NumberFormat, NonFinite) {

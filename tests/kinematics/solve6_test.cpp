@@ -32,6 +32,27 @@ TEST(Solve6, MatchesEigenOnRandomSystems) {
   }
 }
 
+TEST(Solve6, DeterminantSignMatchesEigen) {
+  std::mt19937 rng(test::kSeed + 1);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int negative = 0;
+  for (int k = 0; k < 500; ++k) {
+    M6 A;
+    for (int i = 0; i < 36; ++i) A.data()[i] = u(rng);
+    V6 x = V6::Ones();
+    int sign = 0;
+    ASSERT_GT(solve6(A, x, &sign), 0.0);
+    const double det = A.determinant();
+    EXPECT_EQ(sign, det > 0.0 ? 1 : -1) << det;
+    negative += sign < 0;
+  }
+  EXPECT_GT(negative, 100);  // both signs were met
+  V6 b = V6::Ones();
+  int sign = 7;
+  EXPECT_EQ(solve6(M6::Zero(), b, &sign), 0.0);
+  EXPECT_EQ(sign, 0);
+}
+
 TEST(Solve6, NeedsPivotingWhenLeadingEntryIsZero) {
   M6 A = M6::Identity();
   A.row(0).swap(A.row(3));  // a permutation matrix: zero on the first diagonal entry

@@ -58,6 +58,9 @@ class CsvReader {
 
  private:
   bool readLine(std::string_view& out);
+  /// Reads a line of plain numbers, one per header field, all wanted: the common case, in one
+  /// pass. False (values partly written) for any other line.
+  bool readPlainRow(std::string_view text, std::span<double> values) const;
   void readHeader(const std::vector<std::string>& required_columns);
 
   std::FILE* file_ = nullptr;  ///< null: reading text_

@@ -3,9 +3,17 @@
 /// double.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace pkm::io {
+
+/// Room writeNumber needs: the longest text it writes ("-1.2345678901234567e-308") is 24 bytes.
+inline constexpr std::size_t kMaxNumberChars = 32;
+
+/// Writes the text appendNumber appends to [out, out + kMaxNumberChars) and returns its end
+/// (no terminating NUL).
+char* writeNumber(char* out, double value);
 
 /// Appends the shortest round-trip decimal representation of `value` ("nan"/"inf" for non-finite;
 /// -0 is written as 0).

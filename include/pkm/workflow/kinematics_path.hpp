@@ -46,12 +46,21 @@ class HexapodFkPath {
   FkStep solve(const kinematics::StrutVector& readings);
 
  private:
+  /// A pose as the solver takes it: TCP position, platform rotation (world frame).
+  struct Pose {
+    Eigen::Vector3d p;
+    Eigen::Matrix3d R;
+  };
   const io::HexapodMachine& machine_;
   kinematics::HexapodData data_;
-  kinematics::PoseRpy seed_;
+  kinematics::PoseRpy first_seed_;
   bool from_seed_ = false;
-  bool solved_ = false;                          ///< seed_ is the last row's solution
-  std::optional<kinematics::PoseRpy> previous_;  ///< the one before, when both were ok
+  Pose seed_;                  ///< the next solve's seed (the last solution, or the first seed)
+  Eigen::Vector3d seed_rpy_;   ///< its angles
+  bool solved_ = false;        ///< seed_ is the last row's solution
+  bool has_previous_ = false;  ///< previous_ is the solution before it
+  Pose previous_;
+  double max_predicted_translation_ = 0.0;  ///< longest last step the prediction repeats
 };
 
 /// Exechon tool FK along a path of joint readings (kinematics::toolForwardKinematics), seeded as

@@ -3,14 +3,60 @@
 /// and a power of ten within ±22 is exactly m·10^k with m and 10^k both exact doubles, so one
 /// multiplication or division rounds it correctly (Clinger, "How to read floating point numbers
 /// accurately", PLDI 1990): the same double std::from_chars gives, several times faster.
+/// Decimals of 17 to 19 digits (the shortest round-trip text of most doubles) take the same step
+/// in x87 extended precision, whose 64-bit significand holds any 19-digit m and 10^k for |k| ≤ 27
+/// exactly; rounding that correctly rounded result once more to a double is only wrong when it
+/// lies exactly halfway between two doubles, a case left to std::from_chars.
 #pragma once
 
 #include <bit>
+#include <cfloat>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 namespace pkm::io::detail {
+
+/// Whether long double arithmetic rounds to a 64-bit significand here (x87 extended precision:
+/// true on x86-64 Linux; false where long double is another format, or under an emulator such
+/// as valgrind that computes it in double precision).
+inline bool extendedPrecisionWorks() {
+  if constexpr (std::numeric_limits<long double>::digits != 64) {
+    return false;
+  } else {
+    static const bool works = [] {
+      volatile long double one = 1.0L;
+      volatile long double tiny = LDBL_EPSILON;  // 2^-63
+      return one + tiny != one;
+    }();
+    return works;
+  }
+}
+
+/// m·10^exponent rounded correctly to a double through one extended-precision operation, for
+/// m < 2^64 and |exponent| ≤ 27; false (value untouched) when the extended result is halfway
+/// between two doubles or extended precision is not available.
+inline bool extendedDecimal(std::uint64_t m, int exponent, double& value) {
+  if constexpr (std::numeric_limits<long double>::digits != 64) {
+    return false;
+  } else {
+    static constexpr long double kPow10[] = {1e0L,  1e1L,  1e2L,  1e3L,  1e4L,  1e5L,  1e6L,
+                                             1e7L,  1e8L,  1e9L,  1e10L, 1e11L, 1e12L, 1e13L,
+                                             1e14L, 1e15L, 1e16L, 1e17L, 1e18L, 1e19L, 1e20L,
+                                             1e21L, 1e22L, 1e23L, 1e24L, 1e25L, 1e26L, 1e27L};
+    if (exponent < -27 || exponent > 27 || !extendedPrecisionWorks()) return false;
+    const long double x = exponent < 0 ? static_cast<long double>(m) / kPow10[-exponent]
+                                       : static_cast<long double>(m) * kPow10[exponent];
+    std::uint64_t significand = 0;  // the x87 format keeps it, explicit leading bit, first
+    std::memcpy(&significand, &x, sizeof significand);
+    // The 11 bits below a double's last are 100...0: x is a double's halfway point, where
+    // the second rounding may go the wrong way.
+    if ((significand & 0x7FF) == 0x400) return false;
+    value = static_cast<double>(x);
+    return true;
+  }
+}
 
 /// The run of decimal digits at p (at most 8, and none past `end`) as a number, and its length:
 /// eight bytes at a time (SWAR, as fast_float does) when eight are there, else byte by byte.
@@ -68,7 +114,7 @@ inline const char* scanSimpleDecimal(const char* p, const char* end, double& val
   constexpr std::uint64_t kMaxExact = std::uint64_t{1} << 53;
   const bool negative = p < end && *p == '-';
   if (negative) ++p;
-  // At most 18 digits in all (leading zeros included) keeps m exact in 64 bits; longer numbers
+  // At most 19 digits in all (leading zeros included) keeps m exact in 64 bits; longer numbers
   // are left to from_chars.
   std::uint64_t m = 0;
   std::ptrdiff_t digits = appendDigits(p, end, m);
@@ -79,7 +125,7 @@ inline const char* scanSimpleDecimal(const char* p, const char* end, double& val
     exponent = -static_cast<int>(fraction);
     digits += fraction;
   }
-  if (digits == 0 || digits > 18) return nullptr;
+  if (digits == 0 || digits > 19) return nullptr;
   if (p < end && (*p == 'e' || *p == 'E')) {
     ++p;
     const bool negative_exponent = p < end && *p == '-';
@@ -92,9 +138,13 @@ inline const char* scanSimpleDecimal(const char* p, const char* end, double& val
     if (e_digits == 0) return nullptr;
     exponent += negative_exponent ? -e : e;
   }
-  if (m > kMaxExact || exponent < -22 || exponent > 22) return nullptr;
-  double v = static_cast<double>(m);
-  v = exponent < 0 ? v / kPow10[-exponent] : v * kPow10[exponent];
+  double v = 0.0;
+  if (m <= kMaxExact && exponent >= -22 && exponent <= 22) {
+    v = static_cast<double>(m);
+    v = exponent < 0 ? v / kPow10[-exponent] : v * kPow10[exponent];
+  } else if (!extendedDecimal(m, exponent, v)) {
+    return nullptr;
+  }
   value = negative ? -v : v;
   return p;
 }

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <type_traits>
 
 #include "pkm/kinematics/hexapod_fk.hpp"
 
@@ -21,8 +22,8 @@ inline constexpr double kPolishFraction = 1e-3;
 ///       it may keep state (data, Jacobian) for x: `solve` is always called right after the
 ///       evaluation at the current iterate;
 ///   solve(Vec& delta) -> double: replaces delta = r by J⁻¹·r at the current iterate and returns
-///   the
-///       smallest/largest pivot ratio (0 when singular);
+///       the smallest/largest pivot ratio (0 when singular); solve(Vec& delta, bool polishing),
+///       when it takes the flag, may use the previous iterate's J for the polishing step;
 ///   retract(const X& x, const Vec& delta, double step) -> X: the iterate x − step·delta.
 /// Once every residual is within the tolerance, one more step is taken unless the residual is
 /// already below kPolishFraction·tolerance, so that x (not only r) is accurate. On return the
@@ -52,7 +53,12 @@ FkSummary dampedNewton(
     if (iter == options.max_iterations) break;
 
     Vec delta = r;
-    if (!(solve(delta) > options.singular_pivot_ratio) || !delta.allFinite()) {
+    double pivot_ratio = 0.0;
+    if constexpr (std::is_invocable_v<Solve&, Vec&, bool>)
+      pivot_ratio = solve(delta, polishing);
+    else
+      pivot_ratio = solve(delta);
+    if (!(pivot_ratio > options.singular_pivot_ratio) || !delta.allFinite()) {
       summary.status = FkStatus::kSingular;
       break;
     }

@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# Whole-process comparison of `pkm hexapod fk` with LinuxCNC's own genhexkins on the same 100 000-row
+# strut-length file: a smooth path sampled at 1 kHz on the LinuxCNC hexapod-sim geometry (circles of
+# 3 in radius, tilts up to ~9 deg, yaw 11 deg), each row seeded by the previous solution as in a
+# servo loop. Two inputs: the exact lengths of `pkm hexapod ik` (shortest round-trip decimals) and
+# realistic readings (the same lengths + 2e-5 in Gaussian noise, 6 decimals, as an encoder gives).
+# Runs alternate (genhexkins, pkm, genhexkins, ...); the medians and their ratio are printed, and
+# the poses of both programs are compared row by row.
+# The yardstick is the genhexkins-bench tool of the workplace ($GENHEXKINS_BENCH, default
+# ../shared/tools/genhexkins-bench/run.sh): it loads Debian's genhexkins.so and solves the rows as
+# pkm does. Without it (or with GENHEXKINS_BENCH=none) only pkm is timed.
+# Usage: benchmarks/fk_vs_genhexkins_whole_process.sh [path/to/pkm] [rows] [pairs]
+set -euo pipefail
+pkm=${1:-build/bin/pkm}
+rows=${2:-100000}
+pairs=${3:-7}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+bench=${GENHEXKINS_BENCH:-../shared/tools/genhexkins-bench/run.sh}
+[ "$bench" = none ] && bench=""
+if [ -n "$bench" ] && [ ! -f "$bench" ]; then
+  echo "fk vs genhexkins: reference skipped ($bench not found; set GENHEXKINS_BENCH)"
+  bench=""
+fi
+
+awk -v n="$rows" 'BEGIN { print "x,y,z,a,b,c"; pi = atan2(0, -1);
+  for (k = 0; k < n; k++) { t = 2 * pi * k / 10000;
+    printf "%.12f,%.12f,%.12f,%.12f,%.12f,%.12f\n", 3*sin(t), 3*(1-cos(t)), 20+sin(2*t), 8.6*sin(t), 6.9*sin(3*t), 11.5*sin(t) } }' \
+  > "$work/poses.csv"
+"$pkm" hexapod ik --machine hexapod-linuxcnc-sim --poses "$work/poses.csv" | cut -d, -f1-6 > "$work/exact.csv"
+awk -F, 'BEGIN { srand(20261126); pi = atan2(0, -1) }
+  NR == 1 { print; next }
+  { line = "";
+    for (i = 1; i <= 6; i++) {
+      g = sqrt(-2 * log(1 - rand())) * cos(2 * pi * rand());
+      line = line (i > 1 ? "," : "") sprintf("%.6f", $i + 2e-5 * g) }
+    print line }' "$work/exact.csv" > "$work/noisy.csv"
+
+now() { date +%s.%N; }
+median() { printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+
+run_case() {
+  local name=$1 lengths=$2
+  local pkm_times=() ref_times=() s e
+  for ((i = 0; i < pairs; i++)); do
+    if [ -n "$bench" ]; then
+      s=$(now); bash "$bench" "$lengths" > "$work/ref.csv"; e=$(now)
+      ref_times+=("$(echo "$e - $s" | bc -l)")
+    fi
+    s=$(now)
+    "$pkm" hexapod fk --machine hexapod-linuxcnc-sim --lengths "$lengths" --seed 0,0,20,0,0,0 > "$work/pkm.csv"
+    e=$(now)
+    pkm_times+=("$(echo "$e - $s" | bc -l)")
+  done
+  local pkm_med
+  pkm_med=$(median "${pkm_times[@]}")
+  paste -d, "$work/poses.csv" "$work/pkm.csv" | awk -F, -v name="$name" -v rows="$rows" -v t="$pkm_med" -v pairs="$pairs" '
+    NR == 1 { next }
+    { if ($14 != "ok") fail++; steps += $13
+      for (i = 1; i <= 3; i++) { d = $i - $(i + 6); if (d < 0) d = -d; if (d > maxp) maxp = d }
+      for (i = 4; i <= 6; i++) { d = $i - $(i + 6); if (d < 0) d = -d; if (d > maxa) maxa = d } }
+    END {
+      printf "pkm hexapod fk, %s lengths, whole process: %d rows, median of %d runs %.3f s = %.2f us per row\n", name, rows, pairs, t, 1e6 * t / rows
+      printf "  pkm: %d not ok, %.2f Newton steps per row; max |pose - path| %.3g in, %.3g deg\n", fail, steps / rows, maxp, maxa }'
+  [ -n "$bench" ] || { echo "  reference skipped"; return; }
+  local ref_med
+  ref_med=$(median "${ref_times[@]}")
+  paste -d, "$work/pkm.csv" "$work/ref.csv" | awk -F, '
+    NR == 1 { next }
+    { if ($15 != 0) fail++
+      for (i = 1; i <= 3; i++) { d = $i - $(i + 8); if (d < 0) d = -d; if (d > maxp) maxp = d }
+      for (i = 4; i <= 6; i++) { d = $i - $(i + 8); if (d < 0) d = -d; if (d > maxa) maxa = d } }
+    END { printf "  genhexkins: %d not converged; max |pkm - genhexkins| %.3g in, %.3g deg\n", fail, maxp, maxa }'
+  printf '  genhexkins (Debian genhexkins.so, same rows and seeding): median %.3f s -> pkm is %.1fx faster\n' \
+    "$ref_med" "$(echo "$ref_med / $pkm_med" | bc -l)"
+}
+
+run_case exact "$work/exact.csv"
+run_case noisy "$work/noisy.csv"
