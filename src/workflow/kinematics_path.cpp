@@ -45,8 +45,10 @@ FkStep HexapodFkPath::solve(const kin::StrutVector& readings) {
       // One Newton–Schulz step, R ← R·(3I − RᵀR)/2, keeps the product orthonormal to rounding
       // (repeated products of rounded rotations drift from SO(3) geometrically).
       const Eigen::Matrix3d predicted = seed_.R * step;
-      start.R =
-          predicted * (1.5 * Eigen::Matrix3d::Identity() - 0.5 * predicted.transpose() * predicted);
+      Eigen::Matrix3d correction = (predicted.transpose() * predicted).eval();
+      correction *= -0.5;
+      correction.diagonal().array() += 1.5;
+      start.R.noalias() = predicted * correction;
     }
   }
   FkStep step;

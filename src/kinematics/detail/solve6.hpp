@@ -18,7 +18,8 @@ namespace pkm::kinematics::detail {
 struct Lu6 {
   std::array<std::array<double, 6>, 6> m{};
   std::array<int, 6> row{};
-  bool valid = false;  ///< false until a non-singular matrix was factorised
+  std::array<double, 6> inverse_pivot{};  ///< 1 / U(k, k)
+  bool valid = false;                     ///< false until a non-singular matrix was factorised
 };
 
 /// Factorises A into `lu` (partial pivoting by the largest entry of each column). Returns
@@ -55,6 +56,7 @@ inline double factor6(const Eigen::Matrix<double, 6, 6>& A, Lu6& lu, int* det_si
     min_pivot = std::min(min_pivot, best);
     max_pivot = std::max(max_pivot, best);
     const double inv = 1.0 / pivot_row[k];
+    lu.inverse_pivot[k] = inv;
     for (int i = k + 1; i < 6; ++i) {
       double* r = m[lu.row[i]].data();
       const double f = r[k] * inv;
@@ -83,7 +85,7 @@ inline void substitute6(const Lu6& lu, Eigen::Matrix<double, 6, 1>& b) {
     const double* r = m[lu.row[k]].data();
     double s = y[k];
     for (int j = k + 1; j < 6; ++j) s -= r[j] * y[j];
-    y[k] = s / r[k];
+    y[k] = s * lu.inverse_pivot[k];
   }
   for (int k = 0; k < 6; ++k) b[k] = y[k];
 }
