@@ -42,6 +42,8 @@ for name in "${harnesses[@]}"; do
   work="$build/fuzz-work/$name"
   mkdir -p "$work/corpus" "$work/artifacts"
   log="$work/fuzz.log"
+  # Findings of this run only: artifacts of earlier runs stay where they are, older than the stamp.
+  touch "$work/.start"
   echo "== fuzz_$name: ${seconds} s"
   status=0
   # -timeout: an input taking 10 s is a hang; -rss_limit_mb / -malloc_limit_mb: an input needing
@@ -54,7 +56,7 @@ for name in "${harnesses[@]}"; do
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rss=$(sed -n 's/^stat::peak_rss_mb: *//p' "$log" | tail -1)
   cov=$(grep -oE 'cov: [0-9]+ ft: [0-9]+' "$log" | tail -1 || true)
-  findings=$(find "$work/artifacts" -type f | wc -l)
+  findings=$(find "$work/artifacts" -type f -newer "$work/.start" | wc -l)
   line="fuzz_$name: ${execs:-?} executions, ${cov:-no coverage line}, peak RSS ${rss:-?} MB, $findings finding(s)"
   if [ "$status" -ne 0 ] || [ "$findings" -ne 0 ]; then
     failed=1
