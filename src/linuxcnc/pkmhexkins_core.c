@@ -193,19 +193,21 @@ static void effective_joints(const pkm_hex_geometry* g, double base[N][3], doubl
   }
 }
 
-/* The legs of the pose (p, R), in pkm's order of operations (detail::computeLegs). */
-static void compute_legs(const double base[N][3],
-                         const double platform[N][3],
-                         const double length_offset[N],
-                         const double p[3],
-                         const double R[3][3],
+/* The legs of the pose (p, R), in pkm's order of operations (detail::computeLegs). The arrays
+ * are passed flat (base[3·i + k], R[3·row + column]): ISO C before C23 does not convert a
+ * double (*)[3] to a const double (*)[3]. */
+static void compute_legs(const double* base,
+                         const double* platform,
+                         const double* length_offset,
+                         const double* p,
+                         const double* R,
                          legs* out) {
   for (int i = 0; i < N; ++i) {
+    const double* a = platform + 3 * i;
     double leg[3];
     for (int k = 0; k < 3; ++k) {
-      out->r_joint[i][k] =
-          R[k][0] * platform[i][0] + R[k][1] * platform[i][1] + R[k][2] * platform[i][2];
-      leg[k] = (p[k] + out->r_joint[i][k]) - base[i][k];
+      out->r_joint[i][k] = R[3 * k] * a[0] + R[3 * k + 1] * a[1] + R[3 * k + 2] * a[2];
+      leg[k] = (p[k] + out->r_joint[i][k]) - base[3 * i + k];
     }
     const double len = norm3(leg);
     for (int k = 0; k < 3; ++k) out->unit[i][k] = len > 0.0 ? leg[k] / len : 0.0;
@@ -220,7 +222,7 @@ int pkm_hex_inverse(const pkm_hex_geometry* g,
   double base[N][3], platform[N][3];
   legs at;
   effective_joints(g, base, platform);
-  compute_legs(base, platform, g->length_offset, p, R, &at);
+  compute_legs(&base[0][0], &platform[0][0], g->length_offset, p, &R[0][0], &at);
   memcpy(q, at.q, sizeof at.q);
   return all_finite(p, 3) && all_finite(&R[0][0], 9) && all_finite(q, N) ? 0 : -1;
 }
@@ -321,7 +323,8 @@ static void retract(const pose* x, const double delta[N], double step, pose* out
 
 /* The residual at x into r (the legs into s->at); returns |r|² (+infinity when not finite). */
 static double evaluate(solver* s, const pose* x, double r[N]) {
-  compute_legs(s->base, s->platform, s->geometry->length_offset, x->p, x->R, &s->at);
+  compute_legs(
+      &s->base[0][0], &s->platform[0][0], s->geometry->length_offset, x->p, &x->R[0][0], &s->at);
   double n2 = 0.0;
   for (int i = 0; i < N; ++i) {
     r[i] = s->at.q[i] - s->target[i];
@@ -495,7 +498,7 @@ pkm_hex_fk_summary pkm_hex_forward(const pkm_hex_geometry* g,
   pose x;
   memcpy(x.p, p, sizeof x.p);
   memcpy(x.R, R, sizeof x.R);
-  compute_legs(s.base, s.platform, g->length_offset, x.p, x.R, &s.at);
+  compute_legs(&s.base[0][0], &s.platform[0][0], g->length_offset, x.p, &x.R[0][0], &s.at);
   summary = run_stages(&s, q, &x);
   if (summary.status == PKM_HEX_OK) {
     memcpy(p, x.p, sizeof x.p);
