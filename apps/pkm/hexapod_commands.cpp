@@ -77,13 +77,6 @@ void runIk(const MachineOption& machine_opt, const std::string& poses) {
   }
 }
 
-/// One solved row of `pkm hexapod fk`, formatted later.
-struct FkRow {
-  kin::PoseRpy pose;
-  int iterations = 0;
-  kin::FkStatus status = kin::FkStatus::kOk;
-};
-
 /// CSV text of solved rows, in a buffer that is not cleared first (the rows overwrite it).
 struct FkRowsText {
   std::unique_ptr<char[]> buffer;
@@ -91,24 +84,27 @@ struct FkRowsText {
   [[nodiscard]] std::string_view view() const { return {buffer.get(), size}; }
 };
 
-FkRowsText formatFkRows(const std::vector<FkRow>& rows) {
+/// The rows' CSV text; their angles come from `angles`, which must see every step in order.
+FkRowsText formatFkRows(const std::vector<workflow::FkStep>& rows,
+                        workflow::HexapodFkAngles& angles) {
   // At most six numbers of 24 bytes, an iteration count of 11, a status of 14 and 8 separators:
   // 183 bytes a row.
   constexpr std::size_t kRowRoom = 8 * io::kMaxNumberChars;
   FkRowsText text{std::make_unique_for_overwrite<char[]>(rows.size() * kRowRoom + 1)};
   char* o = text.buffer.get();
-  for (const FkRow& r : rows) {
-    if (r.status == kin::FkStatus::kOk) {
+  for (const workflow::FkStep& r : rows) {
+    const Eigen::Vector3d rpy = angles.next(r);
+    if (r.summary.ok()) {
       for (int i = 0; i < 6; ++i) {
-        o = io::writeNumber(o, i < 3 ? r.pose.position[i] : radToDeg(r.pose.rpy[i - 3]));
+        o = io::writeNumber(o, i < 3 ? r.pose.position[i] : radToDeg(rpy[i - 3]));
         *o++ = ',';
       }
     } else {
       o = std::copy_n(",,,,,,", 6, o);  // no pose on failure: never print a wrong one
     }
-    o = std::to_chars(o, o + io::kMaxNumberChars, r.iterations).ptr;
+    o = std::to_chars(o, o + io::kMaxNumberChars, r.summary.iterations).ptr;
     *o++ = ',';
-    const std::string_view status = kin::toString(r.status);
+    const std::string_view status = kin::toString(r.summary.status);
     o = std::copy(status.begin(), status.end(), o);
     *o++ = '\n';
   }
@@ -149,30 +145,31 @@ void runFk(const MachineOption& machine_opt,
            const std::string& seed_text,
            bool from_seed) {
   const io::HexapodMachine machine = machine_opt.load();
-  workflow::HexapodFkPath path(
-      machine, seed_text.empty() ? std::nullopt : std::optional(parseSeed(seed_text)), from_seed);
+  const std::optional<kin::PoseRpy> seed =
+      seed_text.empty() ? std::nullopt : std::optional(parseSeed(seed_text));
+  // The path solves; the angles are converted with the text, on the other thread.
+  workflow::HexapodFkPath path(machine, seed, from_seed, /*angles=*/false);
+  workflow::HexapodFkAngles angles(machine, seed, from_seed);
   io::CsvReader reader(lengths, kLengthColumns);
   Output out;
   out.text() += "x,y,z,a,b,c,iterations,status\n";
   // Rows are solved in order (each seeds the next, as in a servo loop), a chunk at a time; while
-  // one chunk is solved, a second thread prints the chunk before it and reads the chunk after it.
+  // one chunk is solved, a second thread prints the chunk before it and reads the chunk after it
+  // (one such task at a time: the angles and the reader see their rows in order).
   FkInputChunk chunk = readFkChunk(reader);
-  std::vector<FkRow> solved;
+  std::vector<workflow::FkStep> solved;
   while (true) {
-    std::future<std::pair<FkRowsText, FkInputChunk>> other =
-        std::async(std::launch::async, [&reader, rows = std::move(solved), read = !chunk.last] {
-          return std::pair(formatFkRows(rows), read ? readFkChunk(reader) : FkInputChunk{});
+    std::future<std::pair<FkRowsText, FkInputChunk>> other = std::async(
+        std::launch::async, [&reader, &angles, rows = std::move(solved), read = !chunk.last] {
+          return std::pair(formatFkRows(rows, angles), read ? readFkChunk(reader) : FkInputChunk{});
         });
     solved.clear();
     solved.reserve(chunk.readings.size());
-    for (const kin::StrutVector& q : chunk.readings) {
-      const workflow::FkStep s = path.solve(q);
-      solved.push_back({s.pose, s.summary.iterations, s.summary.status});
-    }
+    for (const kin::StrutVector& q : chunk.readings) solved.push_back(path.solve(q));
     auto [text, next] = other.get();
     out.write(text.view());
     if (chunk.last) {
-      out.write(formatFkRows(solved).view());
+      out.write(formatFkRows(solved, angles).view());
       if (chunk.error) std::rethrow_exception(chunk.error);
       return;
     }

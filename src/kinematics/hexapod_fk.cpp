@@ -85,8 +85,13 @@ FkSummary forwardKinematics(const HexapodModel& model,
                             const StrutVector& readings,
                             const PoseRpy& seed,
                             const FkOptions& options) {
-  return forwardKinematics(
-      model, data, readings, seed.position, geometry::rotationFromRpy(seed.rpy), seed.rpy, options);
+  return forwardKinematics(model,
+                           data,
+                           readings,
+                           seed.position,
+                           geometry::rotationFromRpy(seed.rpy),
+                           &seed.rpy,
+                           options);
 }
 
 FkSummary forwardKinematics(const HexapodModel& model,
@@ -94,13 +99,13 @@ FkSummary forwardKinematics(const HexapodModel& model,
                             const StrutVector& readings,
                             const Eigen::Vector3d& world_p_seed,
                             const Eigen::Matrix3d& world_R_seed,
-                            const Eigen::Vector3d& rpy_near,
+                            const Eigen::Vector3d* rpy_near,
                             const FkOptions& options) {
   std::string why;
   PKM_CHECK(options.isValid(&why), "invalid FkOptions: {}", why);
   FkSummary summary;
   if (!readings.allFinite() || !world_p_seed.allFinite() || !world_R_seed.allFinite() ||
-      !rpy_near.allFinite()) {
+      (rpy_near != nullptr && !rpy_near->allFinite())) {
     summary.status = FkStatus::kInvalidInput;
     summary.max_residual = INFINITY;
     return summary;
@@ -182,7 +187,7 @@ FkSummary forwardKinematics(const HexapodModel& model,
     summary.max_residual = r.cwiseAbs().maxCoeff();
   }
   data.pose.position = x.p;
-  data.pose.rpy = geometry::rpyFromRotation(x.R, rpy_near);
+  if (rpy_near != nullptr) data.pose.rpy = geometry::rpyFromRotation(x.R, *rpy_near);
   return summary;
 }
 

@@ -19,16 +19,36 @@ constexpr double kMaxPredictedTranslation = 0.05;
 constexpr double kMaxPredictedRotation = 0.05;
 }  // namespace
 
+HexapodFkAngles::HexapodFkAngles(const io::HexapodMachine& machine,
+                                 const std::optional<kin::PoseRpy>& seed,
+                                 bool from_seed)
+    : machine_(machine),
+      first_(seed.value_or(machine.model.home).rpy),
+      near_(first_),
+      from_seed_(from_seed) {}
+
+Eigen::Vector3d HexapodFkAngles::next(const FkStep& step) {
+  if (!step.summary.ok()) {
+    if (!from_seed_) near_ = machine_.model.home.rpy;  // the path starts again from home
+    return Eigen::Vector3d::Zero();
+  }
+  const Eigen::Vector3d rpy = geometry::rpyFromRotation(step.world_R_platform, near_);
+  if (!from_seed_) near_ = rpy;
+  return rpy;
+}
+
 HexapodFkPath::HexapodFkPath(const io::HexapodMachine& machine,
                              const std::optional<kin::PoseRpy>& seed,
-                             bool from_seed)
+                             bool from_seed,
+                             bool angles)
     : machine_(machine),
       data_(machine.model),
       first_seed_(seed.value_or(machine.model.home)),
       from_seed_(from_seed),
       seed_{first_seed_.position, geometry::rotationFromRpy(first_seed_.rpy)},
-      seed_rpy_(first_seed_.rpy),
-      max_predicted_translation_(kMaxPredictedTranslation * machine.model.characteristicLength()) {}
+      max_predicted_translation_(kMaxPredictedTranslation * machine.model.characteristicLength()) {
+  if (angles) angles_.emplace(machine, seed, from_seed);
+}
 
 FkStep HexapodFkPath::solve(const kin::StrutVector& readings) {
   // The servo loop's seed: the last pose moved on by the last step (a path sampled at a steady
@@ -53,20 +73,20 @@ FkStep HexapodFkPath::solve(const kin::StrutVector& readings) {
   }
   FkStep step;
   step.summary = kin::forwardKinematics(
-      machine_.model, data_, readings, start.p, start.R, seed_rpy_, machine_.fk);
-  step.pose = data_.pose;
+      machine_.model, data_, readings, start.p, start.R, nullptr, machine_.fk);
+  step.pose.position = data_.world_p_tcp;
+  step.world_R_platform = data_.world_R_platform;
+  if (angles_) step.pose.rpy = angles_->next(step);
   if (from_seed_) return step;
   if (step.summary.ok()) {
     previous_ = seed_;
     has_previous_ = solved_;  // the seed was a solution too: the last step is known
     seed_ = {data_.world_p_tcp, data_.world_R_platform};
-    seed_rpy_ = data_.pose.rpy;
     solved_ = true;
   } else {
     solved_ = false;
     seed_ = {machine_.model.home.position, geometry::rotationFromRpy(machine_.model.home.rpy)};
-    seed_rpy_ = machine_.model.home.rpy;  // home again after a failure
-    has_previous_ = false;
+    has_previous_ = false;  // home again after a failure
   }
   return step;
 }

@@ -36,6 +36,36 @@ TEST(HexapodFkPath, ReturnsThePosesAndRecoversAfterAFailure) {
   }
 }
 
+TEST(HexapodFkAngles, GiveThePathsAnglesWhenConvertedApart) {
+  // A path without angles and a HexapodFkAngles fed its steps in order give the same angles as a
+  // path that converts them, across a failure and past c = 180° (continuity, not wrapping).
+  const io::HexapodMachine machine = io::loadHexapodMachine("hexapod-default");
+  kin::HexapodData data(machine.model);
+  kin::PoseRpy seed = machine.model.home;
+  seed.rpy.z() = 3.0;
+  HexapodFkPath with_angles(machine, seed);
+  HexapodFkPath without(machine, seed, false, /*angles=*/false);
+  HexapodFkAngles angles(machine, seed, false);
+  int ok = 0;
+  for (int k = 0; k < 40; ++k) {
+    kin::PoseRpy pose = seed;
+    pose.position += Eigen::Vector3d(0.5 * k, -0.25 * k, 0.1 * k);
+    pose.rpy.z() = 3.0 + 0.01 * k;  // goes past pi
+    kin::StrutVector q = kin::inverseKinematics(machine.model, data, pose);
+    if (k == 20) q.setConstant(std::nan(""));  // a failed row: both start again from home
+    const FkStep a = with_angles.solve(q);
+    const FkStep b = without.solve(q);
+    const Eigen::Vector3d rpy = angles.next(b);
+    ASSERT_EQ(a.summary.ok(), b.summary.ok()) << k;
+    if (!a.summary.ok()) continue;
+    ++ok;
+    EXPECT_EQ(a.pose.position, b.pose.position) << k;
+    EXPECT_EQ(a.pose.rpy, rpy) << k;
+    if (k < 20) EXPECT_NEAR(rpy.z(), pose.rpy.z(), 1e-9) << k;  // continuous past pi
+  }
+  EXPECT_EQ(ok, 39);
+}
+
 TEST(ExechonPosePath, SplitsAHybridCommandAndRoundTripsThroughFk) {
   const io::ExechonMachine machine = io::loadExechonMachine("mxt700s-like");
   ASSERT_TRUE(machine.hybrid.has_value());

@@ -81,14 +81,16 @@ FkSummary forwardKinematics(const HexapodModel& model,
 
 /// As above, with the seed given as the TCP position and platform rotation (world frame), as a
 /// servo loop keeps them from its last solution (data.world_p_tcp, data.world_R_platform): no
-/// roll-pitch-yaw conversion of the seed. `rpy_near` (rad) picks the angles of data.pose.rpy
-/// nearest to it (the last solution's angles, for continuity). Throws as above.
+/// roll-pitch-yaw conversion of the seed. With `rpy_near` (rad), data.pose.rpy is set to the
+/// angles nearest to it (the last solution's, for continuity); without it (nullptr) the angles
+/// are not computed (data.pose.rpy is left as it was; the rotation is data.world_R_platform), for
+/// callers that convert them elsewhere. Throws as above.
 FkSummary forwardKinematics(const HexapodModel& model,
                             HexapodData& data,
                             const StrutVector& readings,
                             const Eigen::Vector3d& world_p_seed,
                             const Eigen::Matrix3d& world_R_seed,
-                            const Eigen::Vector3d& rpy_near,
+                            const Eigen::Vector3d* rpy_near,
                             const FkOptions& options = {});
 
 }  // namespace pkm::kinematics

@@ -24,7 +24,10 @@ namespace pkm::workflow {
 /// One forward solve along a path.
 struct FkStep {
   kinematics::FkSummary summary;  ///< status and iterations
-  kinematics::PoseRpy pose;       ///< hexapod: the solution (valid when summary.ok())
+  /// Hexapod: the solution (valid when summary.ok()); its angles only when the path computes
+  /// them (HexapodFkPath's `angles`), else HexapodFkAngles gives them from world_R_platform.
+  kinematics::PoseRpy pose;
+  Eigen::Matrix3d world_R_platform = Eigen::Matrix3d::Identity();  ///< hexapod: the rotation
   /// Exechon: the tool point (world frame, or the work frame of a hybrid machine given x2, y2)
   /// and the unit tool direction (valid when summary.ok()).
   Eigen::Vector3d tool_point = Eigen::Vector3d::Zero();
@@ -36,12 +39,33 @@ struct FkStep {
 /// previous solutions (the last one, moved on by the last step: a linear prediction), the first
 /// from `seed` (default home), and the one after a failure from home. With `from_seed`, every row
 /// is solved on its own from the seed, as for poses that do not form a path.
+/// The roll-pitch-yaw angles of a HexapodFkPath's solutions, in the order solved, each chosen
+/// nearest to the previous solution's (the first to the seed's; after a failure to home's, from
+/// where the path starts again): the same angles whichever thread converts them.
+class HexapodFkAngles {
+ public:
+  /// As the path's constructor arguments. `machine` must outlive this.
+  HexapodFkAngles(const io::HexapodMachine& machine,
+                  const std::optional<kinematics::PoseRpy>& seed,
+                  bool from_seed);
+  /// The angles of the next step (rad; zero for a failed step, which only moves the reference).
+  Eigen::Vector3d next(const FkStep& step);
+
+ private:
+  const io::HexapodMachine& machine_;
+  Eigen::Vector3d first_;  ///< the seed's angles
+  Eigen::Vector3d near_;   ///< the reference of the next step
+  bool from_seed_ = false;
+};
+
 class HexapodFkPath {
  public:
-  /// `machine` must outlive the path.
+  /// `machine` must outlive the path. With `angles` false the steps' pose.rpy is not computed
+  /// (a HexapodFkAngles made with the same arguments gives them, e.g. on another thread).
   explicit HexapodFkPath(const io::HexapodMachine& machine,
                          const std::optional<kinematics::PoseRpy>& seed = std::nullopt,
-                         bool from_seed = false);
+                         bool from_seed = false,
+                         bool angles = true);
   /// Solves the next row.
   FkStep solve(const kinematics::StrutVector& readings);
 
@@ -55,10 +79,10 @@ class HexapodFkPath {
   kinematics::HexapodData data_;
   kinematics::PoseRpy first_seed_;
   bool from_seed_ = false;
-  Pose seed_;                  ///< the next solve's seed (the last solution, or the first seed)
-  Eigen::Vector3d seed_rpy_;   ///< its angles
-  bool solved_ = false;        ///< seed_ is the last row's solution
-  bool has_previous_ = false;  ///< previous_ is the solution before it
+  Pose seed_;  ///< the next solve's seed (the last solution, or the first seed)
+  std::optional<HexapodFkAngles> angles_;  ///< when the path computes the angles
+  bool solved_ = false;                    ///< seed_ is the last row's solution
+  bool has_previous_ = false;              ///< previous_ is the solution before it
   Pose previous_;
   double max_predicted_translation_ = 0.0;  ///< longest last step the prediction repeats
 };
