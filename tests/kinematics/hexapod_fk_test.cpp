@@ -22,6 +22,19 @@ double rotationError(const PoseRpy& a, const PoseRpy& b) {
       .norm();
 }
 
+/// Pose k of n on a closed servo path around home: a circle of radius 0.2 L with tilts of 10° and
+/// 8° and a yaw of 30°.
+PoseRpy servoPathPose(const HexapodModel& m, int k, int n) {
+  const double r = 0.2 * m.characteristicLength();
+  const double t = 2 * std::numbers::pi * k / n;
+  PoseRpy pose = m.home;
+  pose.position +=
+      Eigen::Vector3d(r * std::sin(t), r * (1 - std::cos(t)), 0.2 * r * std::sin(2 * t));
+  pose.rpy += Eigen::Vector3d(
+      degToRad(10) * std::sin(t), degToRad(8) * std::sin(3 * t), degToRad(30) * std::sin(t));
+  return pose;
+}
+
 class HexapodFkRoundTrip : public ::testing::TestWithParam<int> {
  protected:
   HexapodModel model() const {
@@ -51,17 +64,11 @@ TEST_P(HexapodFkRoundTrip, ColdStartFromHomeRecoversRandomPoses) {
 TEST_P(HexapodFkRoundTrip, WarmStartAlongServoPathTakesFewSteps) {
   const HexapodModel m = model();
   HexapodData data(m);
-  const double r = 0.2 * m.characteristicLength();
   PoseRpy seed = m.home;
   int max_iter = 0;
   const int n = 2000;
   for (int k = 0; k <= n; ++k) {
-    const double t = 2 * std::numbers::pi * k / n;
-    PoseRpy truth = m.home;
-    truth.position +=
-        Eigen::Vector3d(r * std::sin(t), r * (1 - std::cos(t)), 0.2 * r * std::sin(2 * t));
-    truth.rpy += Eigen::Vector3d(
-        degToRad(10) * std::sin(t), degToRad(8) * std::sin(3 * t), degToRad(30) * std::sin(t));
+    const PoseRpy truth = servoPathPose(m, k, n);
     const StrutVector q = inverseKinematics(m, data, truth);
     const FkSummary s = forwardKinematics(m, data, q, seed);
     ASSERT_TRUE(s.ok());
@@ -88,11 +95,7 @@ TEST_P(HexapodFkRoundTrip, NoisyServoPathPolishesToTheRoundingFloor) {
   int max_iter = 0;
   const int n = 2000;
   for (int k = 0; k <= n; ++k) {
-    const double t = 2 * std::numbers::pi * k / n;
-    PoseRpy truth = m.home;
-    truth.position += Eigen::Vector3d(r * std::sin(t), r * (1 - std::cos(t)), 0.0);
-    truth.rpy += Eigen::Vector3d(degToRad(10) * std::sin(t), 0.0, degToRad(30) * std::sin(t));
-    StrutVector q = inverseKinematics(m, ik, truth);
+    StrutVector q = inverseKinematics(m, ik, servoPathPose(m, k, n));
     for (int i = 0; i < kStruts; ++i) q[i] += noise(rng);
     const FkSummary s = forwardKinematics(m, data, q, seed);
     ASSERT_TRUE(s.ok()) << k;
