@@ -1,4 +1,5 @@
-// `pkm exechon ...`: ik (--wrist or --poses), fk, check, drm, describe (docs/formats.md).
+// `pkm exechon ...`: ik (--wrist or --poses), fk, check, drm, describe (docs/formats.md), and
+// linuxcnc-params (docs/linuxcnc.md).
 #include <fmt/format.h>
 
 #include <array>
@@ -10,6 +11,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/io/csv.hpp"
 #include "pkm/io/kinematics_csv.hpp"
+#include "pkm/io/linuxcnc_exechon.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/kinematics/exechon_checks.hpp"
@@ -283,6 +285,14 @@ void addExechonCommands(CLI::App& app) {
   describe->callback([st] {
     Output out;
     out.text() += io::writeExechonJson(st->load());
+  });
+
+  CLI::App* kins = exe->add_subcommand(
+      "linuxcnc-params", "write the parameter file of the LinuxCNC kinematics pkmexechonkins");
+  addMachineOption(*kins, *st);
+  kins->callback([st] {
+    Output out;
+    out.text() += io::linuxcncExechonParameters(st->load());
   });
 }
 
