@@ -1,0 +1,582 @@
+"""A headless LinuxCNC for pkm's in-the-loop tests (tests/linuxcnc/*_test.py, docs/linuxcnc.md).
+
+One LinuxCNC runs per machine (its lock file /tmp/linuxcnc.lock, linuxcncrsh's port 5007, HAL's
+shared memory), so every test that starts one goes through this module. It starts LinuxCNC on a
+configuration with this build's kinematics modules, talks to it, and always cleans up.
+
+API (everything a test needs; the rest of the module is private):
+
+    import lcnc_harness as lh
+
+    lh.require(modules=[so, ...], deadline=150)
+        Exit 77 (CTest's SKIP_RETURN_CODE) unless LinuxCNC is installed, every module file was
+        built, and the modules can be loaded: as root, through a private mount namespace
+        (`unshare --mount`) with LinuxCNC run as the unprivileged user USER (scripts/setup.sh
+        creates it: rtapi_app refuses root); not as root, only if the installed modules are these
+        files. Also arms the test's deadline: after `deadline` seconds, or on SIGTERM/SIGINT, an
+        exception unwinds the test, so that every cleanup still runs (CTest's own TIMEOUT kills
+        without warning: keep `deadline` below it).
+
+    work = lh.workdir("pkm-foo-")              a temporary folder the LinuxCNC user can read
+    cfg = lh.copy_config(src, work, "cfg")     a copy of a configuration folder, writable by USER
+    lh.make_headless(ini)                      DISPLAY = linuxcncrsh, GUI panels and the manual
+                                               tool-change dialog removed
+    lh.set_ini(ini, section, key, value)       sets (or adds) one INI entry in place
+
+    with lh.LinuxCNC(ini, modules=[so, ...], name="calibrated", work=work) as cnc:
+        cnc.home()                             estop off, machine on, home all, wait until homed
+        cnc.mdi("G0 X1 Y1 Z21")                one MDI line, waits until the motion is done
+        cnc.joints(), cnc.world()              joint positions / world position (linuxcncrsh's
+                                               `get joint_pos` / `get abs_act_pos`: 6 decimals)
+        cnc.pins(["joint.0.motor-pos-cmd", "pkmhexkins.geometry-ok"])
+                                               HAL pins and parameters read with full precision
+                                               (float, bool or int), through python3's `hal`
+        cnc.pin(name)                          one of them
+        cnc.ask("get program_status")          one raw linuxcncrsh command; its reply line
+    cnc.log                                    LinuxCNC's whole output (after the `with`)
+    cnc.leftovers                              what cleanup could not remove (should be [])
+    cnc.seconds                                how long LinuxCNC ran
+
+    failures, log = lh.session(ini, modules, name, work, body)
+        Runs body(cnc, failures) in a `with LinuxCNC(...)`; an error raised by LinuxCNC or the
+        body (RuntimeError, OSError) and anything left behind become entries of `failures`.
+        Prints how long LinuxCNC ran. Returns the failures and LinuxCNC's log.
+
+    r = lh.start_fails(ini, modules=[...], name="bad", work=work, timeout=60)
+        Starts LinuxCNC on a configuration that must not start (a kinematics module that fails
+        its `loadrt`): r.started is True if linuxcncrsh answered (it should not), r.returncode
+        is the `linuxcnc` script's exit status, r.log its output, r.leftovers as above.
+
+Guaranteed cleanup (the `with` block's exit, start_fails, and an atexit hook; also after an
+exception, a failed check or the deadline): `shutdown` through linuxcncrsh, then SIGTERM to the
+`linuxcnc` script (its own cleanup), SIGKILL after a grace period; as root, every process of USER
+is ended (the user exists for these tests only), and USER's System V shared memory, semaphores and
+message queues, /dev/shm files, /tmp/linuxcnc.lock, the script's /tmp/linuxcnc.{debug,print}.*
+files and the rtapi FIFO (RTAPI_FIFO_PATH, in the session's HOME in the work folder) are removed. The module folder
+copy lives only in the mount namespace, which ends with its last process.
+
+Serialisation: a session holds an flock on /tmp/pkm-linuxcnc-harness.lock, so two test programs
+(also from different ctest runs or build trees) wait for each other, up to WAIT seconds; a
+LinuxCNC not started by this harness (a live rtapi_app or /tmp/linuxcnc.lock) is also waited for.
+A lock file of USER with no process of USER left (a test killed outright) is stale and removed.
+"""
+import atexit
+import fcntl
+import glob
+import json
+import os
+import pwd
+import re
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+
+USER = "pkm-linuxcnc"  # the unprivileged user LinuxCNC runs as when the tests run as root
+PORT = 5007  # linuxcncrsh's port
+MODULES = "/usr/lib/linuxcnc/modules"  # where LinuxCNC loads modules from (only there)
+LOCK = "/tmp/linuxcnc.lock"  # the `linuxcnc` script's (its path is fixed in the script)
+HARNESS_LOCK = "/tmp/pkm-linuxcnc-harness.lock"
+WAIT = 120  # seconds to wait for another LinuxCNC to finish
+
+
+class Timeout(Exception):
+    """The test's deadline (require(deadline=...)) passed, or the test was asked to stop."""
+
+
+def skip(why):
+    """Ends the test as skipped (exit 77)."""
+    print(f"SKIP: {why}")
+    sys.stdout.flush()
+    sys.exit(77)
+
+
+def _as_root():
+    return os.geteuid() == 0
+
+
+def _uid():
+    return pwd.getpwnam(USER).pw_uid if _as_root() else os.geteuid()
+
+
+def _user_prefix():
+    return ["runuser", "-u", USER, "--"] if _as_root() else []
+
+
+def _raise(signum, frame):
+    raise Timeout(f"stopped by signal {signum} (deadline or SIGTERM): cleaning up")
+
+
+def require(modules=(), deadline=150):
+    """Exit 77 unless LinuxCNC can run here with `modules`; arms the deadline (see the top)."""
+    if shutil.which("linuxcnc") is None or not os.path.isdir(MODULES):
+        skip("LinuxCNC is not installed (scripts/setup.sh installs linuxcnc-uspace)")
+    for module in modules:
+        if not os.path.exists(module):
+            skip(f"{module} was not built (no halcompile or LinuxCNC headers)")
+    if _as_root():
+        try:
+            pwd.getpwnam(USER)
+        except KeyError:
+            skip(f"running as root and user {USER} does not exist (scripts/setup.sh creates it)")
+        if shutil.which("unshare") is None or shutil.which("runuser") is None:
+            skip("unshare or runuser (util-linux) is missing")
+        probe = subprocess.run(["unshare", "--mount", "--propagation", "private", "true"],
+                               capture_output=True, text=True)
+        if probe.returncode != 0:
+            skip(f"cannot make a private mount namespace here: {probe.stderr.strip()}")
+    else:
+        import filecmp
+        for module in modules:
+            installed = os.path.join(MODULES, os.path.basename(module))
+            if not os.path.exists(installed) or not filecmp.cmp(installed, module, shallow=False):
+                skip(f"not root: install {module} into {MODULES} to run this test")
+    signal.signal(signal.SIGALRM, _raise)
+    signal.signal(signal.SIGTERM, _raise)
+    signal.alarm(int(deadline))
+
+
+def workdir(prefix="pkm-linuxcnc-"):
+    """A new temporary folder readable by the LinuxCNC user."""
+    work = tempfile.mkdtemp(prefix=prefix)
+    os.chmod(work, 0o755)
+    return work
+
+
+def _open_up(path):
+    os.chmod(path, 0o777)
+    for root, dirs, files in os.walk(path):
+        for entry in dirs + files:
+            os.chmod(os.path.join(root, entry), 0o777)
+
+
+def copy_config(src, work, name="cfg"):
+    """A copy of the configuration folder `src` in `work`, which USER may write (.var files)."""
+    cfg = os.path.join(work, name)
+    shutil.copytree(src, cfg)
+    _open_up(cfg)
+    return cfg
+
+
+def make_headless(ini):
+    """The configuration as a headless test configuration: linuxcncrsh, no GUI panels."""
+    with open(ini) as f:
+        s = f.read()
+    s = re.sub(r"(?m)^DISPLAY\s*=.*$", "DISPLAY = linuxcncrsh", s)
+    s = re.sub(r"(?m)^(PYVCP|INTRO_GRAPHIC|INTRO_TIME|POSTGUI_HALFILE)\s*=.*\n", "", s)
+    s = re.sub(r"(?m)^HALCMD\s*=\s*loadusr -W hexagui\s*\n", "", s)
+    s = re.sub(r"(?m)^(HALFILE\s*=\s*LIB:basic_sim\.tcl)\s*$", r"\1 -no_use_hal_manualtoolchange",
+               s)
+    with open(ini, "w") as f:
+        f.write(s)
+
+
+def set_ini(ini, section, key, value):
+    """Sets `key = value` in [section] of `ini` (the first such key; added if absent)."""
+    with open(ini) as f:
+        s = f.read()
+    head = re.search(rf"(?m)^\[{re.escape(section)}\]\s*$", s)
+    if head is None:
+        s = s.rstrip("\n") + f"\n\n[{section}]\n{key} = {value}\n"
+    else:
+        end = re.search(r"(?m)^\[", s[head.end():])
+        stop = head.end() + (end.start() if end else len(s) - head.end())
+        body = s[head.end():stop]
+        line = re.search(rf"(?m)^{re.escape(key)}\s*=.*$", body)
+        if line:
+            body = body[:line.start()] + f"{key} = {value}" + body[line.end():]
+        else:
+            body = body.rstrip("\n") + f"\n{key} = {value}\n\n"
+        s = s[:head.end()] + body + s[stop:]
+    with open(ini, "w") as f:
+        f.write(s)
+
+
+# ---- processes and leftovers -------------------------------------------------------------------
+
+def _procs():
+    """(pid, uid, name, state) of every process."""
+    out = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            uid = os.stat(f"/proc/{pid}").st_uid
+            with open(f"/proc/{pid}/stat") as f:
+                stat = f.read()
+        except OSError:
+            continue
+        name = stat[stat.find("(") + 1:stat.rfind(")")]
+        out.append((int(pid), uid, name, stat[stat.rfind(")") + 2]))
+    return out
+
+
+def _rtapi_running():
+    return any(name == "rtapi_app" and state != "Z" for _, _, name, state in _procs())
+
+
+def _user_pids(uid):
+    return [pid for pid, u, _, state in _procs() if u == uid and state != "Z"]
+
+
+def _ipc(uid):
+    """(flag, id, owner) of USER's System V IPC objects (shared memory, semaphores, queues)."""
+    found = []
+    names = (USER, USER[:10], str(uid))
+    for flag in ("-m", "-s", "-q"):
+        r = subprocess.run(["ipcs", flag], capture_output=True, text=True)
+        for line in r.stdout.splitlines():
+            f = line.split()
+            if len(f) >= 3 and f[0].startswith("0x") and f[2] in names:
+                found.append((flag, f[1], f[2]))
+    return found
+
+
+def _tmp_files(uid):
+    files = [LOCK] if os.path.exists(LOCK) else []
+    files += glob.glob("/tmp/linuxcnc.debug.*") + glob.glob("/tmp/linuxcnc.print.*")
+    files += [os.path.join("/dev/shm", f) for f in os.listdir("/dev/shm")]
+    mine = []
+    for path in files:
+        try:
+            if os.stat(path).st_uid == uid:
+                mine.append(path)
+        except OSError:
+            pass
+    return mine
+
+
+def leftovers(fifo=None):
+    """What a LinuxCNC of this harness could have left: processes, IPC objects, files."""
+    uid = _uid()
+    left = []
+    if _as_root():
+        left += [f"process {pid}" for pid in _user_pids(uid)]
+        left += [f"ipc {flag} {ident}" for flag, ident, _ in _ipc(uid)]
+    elif _rtapi_running():
+        left.append("rtapi_app")
+    left += [f"file {p}" for p in _tmp_files(uid)]
+    if fifo and os.path.exists(fifo):
+        left.append(f"file {fifo}")
+    return left
+
+
+def _sweep(fifo=None):
+    """Ends every process of USER and removes its IPC objects and files (root only)."""
+    if not _as_root():
+        if _rtapi_running():
+            subprocess.run(["halrun", "-U"], capture_output=True, timeout=30)
+        for path in _tmp_files(_uid()):
+            if os.path.basename(path).startswith("linuxcnc.") and path.startswith("/tmp/"):
+                os.remove(path)
+        return
+    uid = _uid()
+    for sig in (signal.SIGTERM, signal.SIGKILL):
+        for pid in _user_pids(uid):
+            try:
+                os.kill(pid, sig)
+            except OSError:
+                pass
+        for _ in range(20):
+            if not _user_pids(uid):
+                break
+            time.sleep(0.1)
+    remove = {"-m": "-m", "-s": "-s", "-q": "-q"}
+    for flag, ident, _ in _ipc(uid):
+        subprocess.run(["ipcrm", remove[flag], ident], capture_output=True)
+    for path in _tmp_files(uid) + ([fifo] if fifo and os.path.exists(fifo) else []):
+        try:
+            os.remove(path)
+        except OSError:
+            pass
+
+
+# ---- one LinuxCNC at a time --------------------------------------------------------------------
+
+class _Slot:
+    """The right to run LinuxCNC: the harness flock, and no other LinuxCNC around."""
+
+    def __init__(self):
+        self.fd = None
+
+    def acquire(self):
+        deadline = time.time() + WAIT
+        old = os.umask(0)
+        try:
+            self.fd = os.open(HARNESS_LOCK, os.O_RDWR | os.O_CREAT, 0o666)
+        finally:
+            os.umask(old)
+        while True:
+            try:
+                fcntl.flock(self.fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                break
+            except BlockingIOError:
+                if time.time() > deadline:
+                    raise RuntimeError(f"another test's LinuxCNC still runs after {WAIT} s")
+                time.sleep(0.5)
+        # A LinuxCNC this harness did not start, or the remains of a test killed outright.
+        while _rtapi_running() or os.path.exists(LOCK):
+            if _as_root() and not _user_pids(_uid()) and not _rtapi_running():
+                try:
+                    if os.stat(LOCK).st_uid == _uid():
+                        print(f"note: removing a stale {LOCK} (no process of {USER} left)")
+                        _sweep()
+                        continue
+                except OSError:
+                    continue
+            if time.time() > deadline:
+                self.release()
+                raise RuntimeError(f"another LinuxCNC (rtapi_app or {LOCK}) still runs after "
+                                   f"{WAIT} s")
+            time.sleep(1)
+
+    def release(self):
+        if self.fd is not None:
+            fcntl.flock(self.fd, fcntl.LOCK_UN)
+            os.close(self.fd)
+            self.fd = None
+
+
+_active = []
+
+
+@atexit.register
+def _cleanup_all():
+    for cnc in list(_active):
+        cnc.stop()
+
+
+class LinuxCNC:
+    """One headless LinuxCNC session (see the top of the module)."""
+
+    def __init__(self, ini, modules=(), name="linuxcnc", work=None, env=None):
+        self.ini = os.path.abspath(ini)
+        self.modules = [os.path.abspath(m) for m in modules]
+        self.name = name
+        self.work = work or workdir()
+        self.env = dict(env or {})
+        self.log_path = os.path.join(self.work, f"{name}.log")
+        self.home_dir = os.path.join(self.work, f"{name}.home")  # HOME: written by USER
+        self.fifo = os.path.join(self.home_dir, "rtapi_fifo")
+        self.proc = None
+        self.sock = None
+        self.buf = b""
+        self.log = ""
+        self.leftovers = []
+        self.seconds = 0.0
+        self._slot = _Slot()
+        self._logfile = None
+        self._started = 0.0
+
+    # -- start and stop --
+
+    def launch(self):
+        """Starts the `linuxcnc` script (in its own process group); does not wait for it."""
+        self._slot.acquire()
+        _active.append(self)
+        cfg = os.path.dirname(self.ini)
+        os.makedirs(self.home_dir, exist_ok=True)
+        os.chmod(self.home_dir, 0o777)
+        env = {"RUNTESTS": "1", "HOME": self.home_dir, "RTAPI_FIFO_PATH": self.fifo, **self.env}
+        start = _user_prefix() + ["env"] + [f"{k}={v}" for k, v in env.items()]
+        start += ["linuxcnc", self.ini]
+        if _as_root():
+            copy = os.path.join(self.work, f"{self.name}.modules")
+            shutil.copytree(MODULES, copy, symlinks=True)
+            for module in self.modules:
+                shutil.copy(module, copy)
+            os.chmod(copy, 0o755)
+            script = 'mount --bind "$1" "$2" && shift 2 && exec "$@"'
+            start = ["unshare", "--mount", "--propagation", "private", "sh", "-c", script, "sh",
+                     copy, MODULES] + start
+        self._logfile = open(self.log_path, "w")
+        self._started = time.time()
+        self.proc = subprocess.Popen(start, cwd=cfg, stdout=self._logfile,
+                                     stderr=subprocess.STDOUT, start_new_session=True)
+
+    def connect(self, timeout=30):
+        """Waits for linuxcncrsh and opens a session; False if LinuxCNC ended first."""
+        deadline = time.time() + timeout
+        while True:
+            try:
+                self.sock = socket.create_connection(("127.0.0.1", PORT), timeout=10)
+                break
+            except OSError:
+                if self.proc.poll() is not None:
+                    return False
+                if time.time() > deadline:
+                    raise RuntimeError(f"linuxcncrsh did not answer on port {PORT} in {timeout} s")
+                time.sleep(0.2)
+        self.buf = b""
+        for c in ["hello EMC pkm 1", "set enable EMCTOO", "set echo off", "set verbose on"]:
+            self.ask(c)
+        return True
+
+    def stop(self):
+        """Stops LinuxCNC and removes everything it left (idempotent)."""
+        if self.proc is None:
+            if self in _active:
+                _active.remove(self)
+            self._slot.release()
+            return
+        if self.sock is not None:
+            try:
+                self.sock.sendall(b"shutdown\r\n")  # LinuxCNC closes the connection as it stops
+            except OSError:
+                pass
+        for sig, grace in ((None, 20), (signal.SIGTERM, 10), (signal.SIGKILL, 5)):
+            if sig is not None:
+                try:
+                    os.killpg(self.proc.pid, sig)
+                except OSError:
+                    pass
+            try:
+                self.proc.wait(timeout=grace)
+                break
+            except subprocess.TimeoutExpired:
+                continue
+        if self.sock is not None:
+            self.sock.close()
+            self.sock = None
+        _sweep(self.fifo)
+        self.leftovers = leftovers(self.fifo)
+        self.seconds = time.time() - self._started
+        self._logfile.close()
+        with open(self.log_path, errors="replace") as f:
+            self.log = f.read()
+        self.proc = None
+        if self in _active:
+            _active.remove(self)
+        self._slot.release()
+
+    def __enter__(self):
+        try:
+            self.launch()
+            if not self.connect():
+                raise RuntimeError("LinuxCNC ended before linuxcncrsh answered")
+        except BaseException:
+            self.stop()
+            raise
+        return self
+
+    def __exit__(self, *exc):
+        self.stop()
+        return False
+
+    # -- linuxcncrsh --
+
+    def ask(self, command):
+        """Sends one linuxcncrsh command; returns its reply line."""
+        self.sock.sendall(command.encode() + b"\r\n")
+        while b"\n" not in self.buf:
+            data = self.sock.recv(4096)
+            if not data:
+                raise RuntimeError(f"connection closed after '{command}'")
+            self.buf += data
+        line, self.buf = self.buf.split(b"\n", 1)
+        return line.decode().strip()
+
+    def home(self, timeout=30):
+        """Estop off, machine on, homes all joints and waits until they are homed."""
+        for c in ["set estop off", "set machine on", "set mode manual", "set home -1"]:
+            self.ask(c)
+        deadline = time.time() + timeout
+        while time.time() < deadline:
+            reply = self.ask("get joint_homed")
+            if reply.startswith("JOINT_HOMED") and "NO" not in reply.split():
+                self.ask("set mode mdi")
+                return
+            time.sleep(0.1)
+        raise RuntimeError("homing did not finish")
+
+    def mdi(self, command, timeout=30):
+        """Runs one MDI line (switching to MDI mode) and waits until it is done."""
+        if not self.ask("get mode").endswith("MDI"):
+            self.ask("set mode mdi")
+        reply = self.ask(f"set mdi {command}")
+        if "NAK" in reply:
+            raise RuntimeError(f"MDI '{command}' refused: {reply}")
+        self.ask("set wait done")
+        deadline = time.time() + timeout
+        while time.time() < deadline:
+            if self.ask("get program_status").endswith("IDLE"):
+                return
+            time.sleep(0.05)
+        raise RuntimeError(f"'{command}' did not finish in {timeout} s")
+
+    def numbers(self, what, count=6):
+        """The first `count` numbers of `get <what>`."""
+        return [float(v) for v in self.ask(f"get {what}").split()[1:1 + count]]
+
+    def joints(self, count=6):
+        """Joint positions (linuxcncrsh, 6 decimals)."""
+        return self.numbers("joint_pos", count)
+
+    def world(self, count=6):
+        """World position, LinuxCNC's forward kinematics of the joints (6 decimals)."""
+        return self.numbers("abs_act_pos", count)
+
+    # -- HAL --
+
+    def pins(self, names):
+        """{name: value} of HAL pins or parameters, at full precision (python3's hal module)."""
+        code = ("import hal, json, os, sys\n"
+                "c = hal.component('pkm-read-%d' % os.getpid())\n"
+                "out = {}\n"
+                "for n in sys.argv[1:]:\n"
+                "    try: out[n] = hal.get_value(n)\n"
+                "    except Exception as e: out[n] = 'error: ' + str(e)\n"
+                "c.exit()\n"
+                "print(json.dumps(out))\n")
+        r = subprocess.run(_user_prefix() + ["/usr/bin/python3", "-c", code, *names],
+                           capture_output=True, text=True, timeout=20)
+        if r.returncode != 0:
+            raise RuntimeError(f"reading HAL pins failed: {r.stderr.strip()}")
+        return json.loads(r.stdout.strip().splitlines()[-1])
+
+    def pin(self, name):
+        return self.pins([name])[name]
+
+
+class StartResult:
+    """What start_fails() saw: started, returncode, log, leftovers, seconds."""
+
+    def __init__(self, started, returncode, log, left, seconds):
+        self.started, self.returncode, self.log = started, returncode, log
+        self.leftovers, self.seconds = left, seconds
+
+
+def start_fails(ini, modules=(), name="refused", work=None, timeout=60):
+    """Starts LinuxCNC expecting it not to come up; see the top of the module."""
+    cnc = LinuxCNC(ini, modules, name, work)
+    started = False
+    try:
+        cnc.launch()
+        deadline = time.time() + timeout
+        while cnc.proc.poll() is None and time.time() < deadline:
+            try:
+                socket.create_connection(("127.0.0.1", PORT), timeout=1).close()
+                started = True
+                break
+            except OSError:
+                time.sleep(0.2)
+        returncode = cnc.proc.poll()
+    finally:
+        cnc.stop()
+    return StartResult(started, returncode, cnc.log, cnc.leftovers, cnc.seconds)
+
+
+def session(ini, modules, name, work, body):
+    """Runs body(cnc, failures) on a LinuxCNC; returns (failures, log). See the top."""
+    failures = []
+    cnc = LinuxCNC(ini, modules, name, work)
+    try:
+        with cnc:
+            body(cnc, failures)
+    except (RuntimeError, OSError) as e:
+        failures.append(f"{type(e).__name__}: {e}")
+    if cnc.leftovers:
+        failures.append(f"left behind after LinuxCNC stopped: {cnc.leftovers}")
+    print(f"{name}: LinuxCNC ran {cnc.seconds:.1f} s")
+    return failures, cnc.log
