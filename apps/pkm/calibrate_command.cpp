@@ -128,9 +128,10 @@ void addCalibrateCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   hex->add_option("--holdout", args->holdout, "tracker files kept out of the fit, for validation")
       ->check(CLI::ExistingFile);
-  hex->add_option("--out",
-                  args->request.out,
-                  "calibrated machine file CAL.json (also CAL.hal, CAL.summary.json)")
+  hex->add_option(
+         "--out",
+         args->request.out,
+         "calibrated machine file CAL.json (also CAL.hal, CAL.pkmhexkins.hal, CAL.summary.json)")
       ->required();
   hex->add_option("--frame",
                   args->request.frame,

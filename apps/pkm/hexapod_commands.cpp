@@ -202,6 +202,7 @@ void addHexapodCommands(CLI::App& app) {
     MachineOption machine;
     std::string poses, lengths, seed;
     bool json = false;
+    std::string kins = "genhexkins";
     bool from_seed = false;
   };
   auto st = std::make_shared<State>();
@@ -248,12 +249,19 @@ void addHexapodCommands(CLI::App& app) {
       out.text() += io::describeHexapodMachine(m);
   });
 
-  CLI::App* hal =
-      hex->add_subcommand("hal", "write the machine as a LinuxCNC genhexkins setp block");
+  CLI::App* hal = hex->add_subcommand(
+      "hal", "write the machine as a LinuxCNC setp block (genhexkins, or pkm's pkmhexkins)");
   st->machine.add(*hal);
+  hal->add_option("--kins",
+                  st->kins,
+                  "kinematics module: genhexkins (LinuxCNC's; joints are joint-centre distances) "
+                  "or pkmhexkins (pkm's; joints are the strut readings, all 42 parameters)")
+      ->check(CLI::IsMember({"genhexkins", "pkmhexkins"}))
+      ->capture_default_str();
   hal->callback([st] {
     Output out;
-    out.text() += io::writeLinuxcncSetp(st->machine.load());
+    const io::HexapodMachine m = st->machine.load();
+    out.text() += st->kins == "pkmhexkins" ? io::writePkmhexkinsSetp(m) : io::writeLinuxcncSetp(m);
   });
 
   CLI::App* list = hex->add_subcommand("machines", "list the built-in machines");

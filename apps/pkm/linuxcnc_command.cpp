@@ -1,12 +1,14 @@
 // `pkm linuxcnc install --calibration CAL.json --ini INI [--force]`: a calibrated hexapod written
-// into an existing LinuxCNC configuration in place (workflow::installIntoLinuxcnc,
-// docs/linuxcnc.md).
+// into an existing LinuxCNC configuration in place (workflow::installIntoLinuxcnc), and
+// `pkm linuxcnc config --machine M --out DIR [--comp-file JOINT=FILE ...] [--force]`: a complete
+// configuration (workflow::writeLinuxcncConfig); docs/linuxcnc.md.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include <memory>
 
 #include "cli_common.hpp"
+#include "pkm/workflow/linuxcnc_config.hpp"
 #include "pkm/workflow/linuxcnc_install.hpp"
 
 namespace pkm::cli {
@@ -33,6 +35,76 @@ void runInstall(const workflow::LinuxcncInstallRequest& request) {
       values));
 }
 
+/// "JOINT=FILE" of --comp-file.
+workflow::LinuxcncCompInput parseCompFile(const std::string& text) {
+  const std::size_t eq = text.find('=');
+  int joint = -1;
+  if (eq != std::string::npos && eq > 0 && eq + 1 < text.size()) {
+    const std::string index = text.substr(0, eq);
+    if (index.find_first_not_of("0123456789") == std::string::npos && index.size() < 3)
+      joint = std::stoi(index);
+  }
+  if (joint < 0)
+    throw InvalidArgument(
+        fmt::format("--comp-file '{}': give JOINT=FILE, e.g. 0=strut0.comp", text));
+  return {joint, text.substr(eq + 1)};
+}
+
+void runConfig(workflow::LinuxcncConfigRequest request, const std::vector<std::string>& comp) {
+  for (const std::string& c : comp) request.comp_files.push_back(parseCompFile(c));
+  const workflow::LinuxcncConfigResult r = workflow::writeLinuxcncConfig(request);
+  printNotices(r.notices);
+  std::string text = fmt::format("wrote a LinuxCNC {} configuration:\n", r.kind);
+  for (const std::string& f : r.files) text += fmt::format("  {}\n", f);
+  text += fmt::format(
+      "run it with: linuxcnc {}\n(the kinematics module, {}.so, must be in LinuxCNC's module "
+      "folder: docs/linuxcnc.md)\n",
+      r.ini,
+      r.kind == "exechon" ? "pkmexechonkins" : "pkmhexkins");
+  writeTextOutput("", text);
+}
+
+void addConfig(CLI::App& group) {
+  struct State {
+    workflow::LinuxcncConfigRequest request;
+    std::vector<std::string> comp;
+  };
+  auto st = std::make_shared<State>();
+  CLI::App* config = group.add_subcommand(
+      "config",
+      "write a complete LinuxCNC configuration for a machine on LinuxCNC's simulator: the INI, "
+      "the kinematics HAL file (pkmhexkins or pkmexechonkins), a simulator HAL file, a tool "
+      "table, an Exechon's parameter file and the given joint compensation tables; world "
+      "coordinates are those `pkm hexapod fk` / `pkm exechon fk` report, and after homing the "
+      "machine stands at its home pose");
+  config
+      ->add_option("--machine,-m",
+                   st->request.machine,
+                   "hexapod JSON (also CAL.json of pkm calibrate hexapod), LinuxCNC .hal, Exechon "
+                   "JSON, or a built-in name (default: the default hexapod)")
+      ->capture_default_str();
+  config->add_option(
+      "--ini", st->request.ini, "LinuxCNC INI file of a .hal machine (else the one beside it)");
+  config->add_option("--out,-o", st->request.out, "the configuration folder (created)")->required();
+  config->add_option("--comp-file",
+                     st->comp,
+                     "JOINT=FILE: a compensation table of that joint (pkm compensate table "
+                     "--format linuxcnc0|linuxcnc1), copied as jointN.comp; repeat per joint");
+  config
+      ->add_option("--comp-file-type",
+                   st->request.comp_file_type,
+                   "COMP_FILE_TYPE of the tables: 0 (linuxcnc0) or 1 (linuxcnc1)")
+      ->check(CLI::IsMember({0, 1}));
+  config
+      ->add_option("--display",
+                   st->request.display,
+                   "[DISPLAY] DISPLAY: axis (LinuxCNC's GUI) or linuxcncrsh (headless, telnet "
+                   "port 5007)")
+      ->capture_default_str();
+  config->add_flag("--force", st->request.force, "replace files of the same names in the folder");
+  config->callback([st] { runConfig(st->request, st->comp); });
+}
+
 void addLinuxcnc(CLI::App& app) {
   CLI::App* group = app.add_subcommand("linuxcnc", "work with a LinuxCNC configuration");
   group->require_subcommand(1);
@@ -50,6 +122,7 @@ void addLinuxcnc(CLI::App& app) {
       ->check(CLI::ExistingFile);
   install->add_flag("--force", request->force, "patch the files (else only show the differences)");
   install->callback([request] { runInstall(*request); });
+  addConfig(*group);
 }
 
 const CommandRegistration kRegisterLinuxcnc{110, &addLinuxcnc};

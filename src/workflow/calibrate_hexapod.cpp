@@ -160,7 +160,7 @@ void HexapodCalibrationRequest::validate() const {
 CalibrationOutputs calibrationOutputs(const std::string& out) {
   std::string stem = out;
   if (stem.size() > 5 && stem.ends_with(".json")) stem.resize(stem.size() - 5);
-  return {out, stem + ".hal", stem + ".summary.json"};
+  return {out, stem + ".hal", stem + ".summary.json", stem + ".pkmhexkins.hal"};
 }
 
 HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
@@ -172,7 +172,7 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   control.note(machine.notices);
   const CalibrationOutputs paths = calibrationOutputs(r.out);
   const io::Overwrite overwrite = r.force ? io::Overwrite::kAllow : io::Overwrite::kRefuse;
-  for (const std::string& p : {paths.machine, paths.hal, paths.summary})
+  for (const std::string& p : {paths.machine, paths.hal, paths.summary, paths.pkmhexkins})
     io::checkOverwrite(p, overwrite);
   io::CalibrationInput input, held;
   for (const io::NamedText& f : r.data) io::addCalibrationFile(f, input);
@@ -232,6 +232,7 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   result.summary_json = io::hexapodCalibrationJson(rep);
   io::writeFileAtomic(paths.machine, io::writeHexapodJson(result.calibrated), overwrite);
   io::writeFileAtomic(paths.hal, io::writeLinuxcncSetp(result.calibrated), overwrite);
+  io::writeFileAtomic(paths.pkmhexkins, io::writePkmhexkinsSetp(result.calibrated), overwrite);
   io::writeFileAtomic(paths.summary, result.summary_json, overwrite);
   if (!r.db.empty())
     recordCalibration(r.db,

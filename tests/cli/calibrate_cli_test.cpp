@@ -57,6 +57,7 @@ TEST_F(CalibrateCli, FullPoseTrackerCalibrationMeetsTheTarget) {
   const CliRun describe = pkm({"hexapod", "describe", "--machine", path("cal.json")});
   EXPECT_EQ(describe.code, 0) << describe.err;
   EXPECT_THAT(slurp(path("cal.hal")), HasSubstr("setp genhexkins.base.0.x"));
+  EXPECT_THAT(slurp(path("cal.pkmhexkins.hal")), HasSubstr("setp pkmhexkins.length-offset.5 "));
   EXPECT_TRUE(nlohmann::json::parse(slurp(path("cal.summary.json"))).contains("parameters"));
 }
 

@@ -1,5 +1,7 @@
 // `pkm linuxcnc install`: the differences shown and nothing written without --force (exit 2),
 // the files patched with --force (exit 0), on a copy of LinuxCNC's hexapod-sim configuration.
+// `pkm linuxcnc config`: the folder written, refused without --force, bad --comp-file values;
+// `pkm hexapod hal --kins pkmhexkins`.
 #include <filesystem>
 #include <string>
 
@@ -36,6 +38,68 @@ TEST_F(CliTest, LinuxcncInstallShowsThenPatches) {
   EXPECT_THAT(done.out, HasSubstr("backups: "));
   EXPECT_THAT(slurp(path("cfg/kinematics.hal")), HasSubstr("setp genhexkins.base.0.y  13.3\n"));
   EXPECT_EQ(pkm(args).code, 0);  // nothing left to change
+}
+
+TEST_F(CliTest, LinuxcncConfigWritesRefusesAndForces) {
+  const std::vector<std::string> args{
+      "linuxcnc", "config", "--machine", "hexapod-default", "--out", path("cfg")};
+  const CliRun first = pkm(args);
+  ASSERT_EQ(first.code, 0) << first.err;
+  EXPECT_THAT(first.out, HasSubstr("linuxcnc " + path("cfg/pkm-hx1200.ini")));
+  EXPECT_TRUE(fs::is_regular_file(path("cfg/kinematics.hal")));
+  const CliRun again = pkm(args);
+  EXPECT_EQ(again.code, 2);
+  EXPECT_THAT(again.err, HasSubstr("--force"));
+  std::vector<std::string> forced = args;
+  forced.push_back("--force");
+  EXPECT_EQ(pkm(forced).code, 0);
+}
+
+TEST_F(CliTest, LinuxcncConfigExechonWithCompensationTable) {
+  const std::string table = write("legB.txt", "0 0.001 0.002\n700 -0.001 0\n");
+  const CliRun r = pkm({"linuxcnc",
+                        "config",
+                        "--machine",
+                        "mxt700s-like",
+                        "--out",
+                        path("ex"),
+                        "--comp-file",
+                        "1=" + table,
+                        "--comp-file-type",
+                        "0",
+                        "--display",
+                        "linuxcncrsh"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("exechon"));
+  EXPECT_THAT(slurp(path("ex/mxt700s-like.ini")),
+              HasSubstr("COMP_FILE = joint1.comp\nCOMP_FILE_TYPE = 0\n"));
+  EXPECT_EQ(slurp(path("ex/joint1.comp")), slurp(table));
+}
+
+TEST_F(CliTest, LinuxcncConfigBadCompFile) {
+  const std::string table = write("t.txt", "0 0 0\n");
+  for (const std::string& spec : {"x=" + table, "7=" + table, "=" + table, std::string("1=")}) {
+    const CliRun r = pkm(
+        {"linuxcnc", "config", "--out", path("bad"), "--comp-file", spec, "--comp-file-type", "1"});
+    EXPECT_EQ(r.code, 2) << spec;
+  }
+  const CliRun untyped =
+      pkm({"linuxcnc", "config", "--out", path("bad"), "--comp-file", "1=" + table});
+  EXPECT_EQ(untyped.code, 2);
+  EXPECT_THAT(untyped.err, HasSubstr("--comp-file-type"));
+  EXPECT_FALSE(fs::exists(path("bad")));
+}
+
+TEST_F(CliTest, HexapodHalWritesEitherBlock) {
+  const CliRun gen = pkm({"hexapod", "hal", "--machine", "hexapod-default"});
+  ASSERT_EQ(gen.code, 0) << gen.err;
+  EXPECT_THAT(gen.out, HasSubstr("setp genhexkins.base.0.x"));
+  const CliRun pkmkins =
+      pkm({"hexapod", "hal", "--machine", "hexapod-default", "--kins", "pkmhexkins"});
+  ASSERT_EQ(pkmkins.code, 0) << pkmkins.err;
+  EXPECT_THAT(pkmkins.out, HasSubstr("setp pkmhexkins.length-offset.0 650\n"));
+  EXPECT_THAT(pkmkins.out, ::testing::Not(HasSubstr("genhexkins")));
+  EXPECT_EQ(pkm({"hexapod", "hal", "--kins", "trivkins"}).code, 2);
 }
 
 }  // namespace

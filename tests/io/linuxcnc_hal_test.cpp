@@ -6,14 +6,22 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/hexapod_machine.hpp"
+#include "pkm/io/machine_loader.hpp"
+#include "pkm/io/number_format.hpp"
+#include "pkm/kinematics/hexapod_data.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "support/linuxcnc_sample.hpp"
 #include "support/sample_models.hpp"
@@ -688,6 +696,78 @@ TEST(LinuxcncGenuineConfig, HexapodSimKinematicsHal) {
   ASSERT_TRUE(m.joint_rates.has_value());
   EXPECT_EQ(m.joint_rates->velocity, 20.0);
   EXPECT_EQ(m.joint_rates->acceleration, 200.0);
+}
+
+}  // namespace
+
+namespace {
+
+/// The `setp pkmhexkins.NAME VALUE` lines of a block, by NAME.
+std::map<std::string, double> pkmhexkinsPins(const std::string& text) {
+  std::map<std::string, double> pins;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.starts_with("setp pkmhexkins.")) continue;
+    std::istringstream words(line.substr(16));
+    std::string name, value;
+    words >> name >> value;
+    EXPECT_TRUE(pins.emplace(name, std::stod(value)).second) << "pin set twice: " << name;
+  }
+  return pins;
+}
+
+TEST(PkmhexkinsSetp, EveryParameterExactly) {
+  HexapodMachine m = pkm::io::builtinMachine("hexapod-default");
+  for (std::size_t i = 0; i < m.model.struts.size(); ++i) {
+    m.model.struts[i].length_offset += 0.1 * static_cast<double>(i) + 1.0 / 3.0;
+    m.model.struts[i].world_p_base.y() += 1.0 / 7.0;
+  }
+  m.model.tool_offset = {0.25, -1.0 / 3.0, -200.125};
+  m.model.spindle_offset = 2.5;
+  m.model.home.position = {1.5, -2.0, 210.0};
+  m.model.home.rpy = {0.0, pkm::degToRad(2.0), 0.0};
+  const std::string text = pkm::io::writePkmhexkinsSetp(m);
+  const std::map<std::string, double> pins = pkmhexkinsPins(text);
+  EXPECT_EQ(pins.size(), 18u + 18u + 6u + 3u + 1u + 6u + 2u);
+  const char* xyz[] = {"x", "y", "z"};
+  for (std::size_t i = 0; i < m.model.struts.size(); ++i) {
+    const kin::Strut& s = m.model.struts[i];
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(pins.at(fmt::format("base.{}.{}", i, xyz[k])), s.world_p_base[k]);
+      EXPECT_EQ(pins.at(fmt::format("platform.{}.{}", i, xyz[k])), s.platform_p_joint[k]);
+    }
+    EXPECT_EQ(pins.at(fmt::format("length-offset.{}", i)), s.length_offset);
+  }
+  for (int k = 0; k < 3; ++k)
+    EXPECT_EQ(pins.at(fmt::format("tool.{}", xyz[k])), m.model.tool_offset[k]);
+  EXPECT_EQ(pins.at("spindle-offset"), 2.5);
+  EXPECT_EQ(pins.at("home.x"), 1.5);
+  EXPECT_EQ(pins.at("home.z"), 210.0);
+  EXPECT_NEAR(pins.at("home.b"), 2.0, kTolExact);
+  EXPECT_EQ(pins.at("convergence-criterion"), m.fk.tolerance);
+  EXPECT_EQ(pins.at("limit-iterations"), m.fk.max_iterations);
+  // The joints' INI values are the strut readings (not joint-centre distances) at home.
+  kin::HexapodData data(m.model);
+  const kin::StrutVector q = kin::inverseKinematics(m.model, data, m.model.home);
+  const auto joints = pkm::io::pkmhexkinsJointValues(m);
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    EXPECT_EQ(joints[i].home, q[static_cast<Eigen::Index>(i)]);
+    EXPECT_EQ(joints[i].min_limit, m.model.struts[i].min_reading);
+    EXPECT_EQ(joints[i].max_limit, m.model.struts[i].max_reading);
+    EXPECT_THAT(text,
+                HasSubstr(fmt::format("# [JOINT_{}] HOME = HOME_OFFSET = {}, MIN_LIMIT = 0, "
+                                      "MAX_LIMIT = 500\n",
+                                      i,
+                                      pkm::io::formatNumber(joints[i].home))));
+  }
+}
+
+TEST(PkmhexkinsSetp, OpenStrokeHasNoLimits) {
+  HexapodMachine m = pkm::io::builtinMachine("hexapod-default");
+  m.model.struts[2].min_reading = -std::numeric_limits<double>::infinity();
+  const auto joints = pkm::io::pkmhexkinsJointValues(m);
+  EXPECT_FALSE(joints[2].min_limit.has_value());
+  EXPECT_TRUE(joints[2].max_limit.has_value());
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 /// and write the `setp` block back (docs/machine-format.md, "LinuxCNC").
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -51,5 +52,27 @@ void applyLinuxcncIni(const NamedText& ini, HexapodMachine& machine);
 /// HOME_OFFSET and limits) as comments. LinuxCNC joint positions are full
 /// joint-centre distances, so struts with a length offset get a comment saying so.
 [[nodiscard]] std::string writeLinuxcncSetp(const HexapodMachine& machine);
+
+/// The `setp pkmhexkins.*` block of `machine` for pkm's LinuxCNC kinematics component pkmhexkins
+/// (docs/linuxcnc.md, "The pkmhexkins kinematics component"), pins mapped one to one from the
+/// model: `base.N.x|y|z` (world frame), `platform.N.x|y|z` (platform frame, not folded with the
+/// tool point), `length-offset.N`, `tool.x|y|z` (the controlled point), `spindle-offset`,
+/// `home.x … home.c` (the second forward-kinematics seed, degrees), `convergence-criterion` and
+/// `limit-iterations`; lengths in the machine's unit, numbers in shortest round-trip form. The
+/// INI values that go with it are comments: pkmhexkins' joint positions are the strut readings,
+/// so [JOINT_n] HOME = HOME_OFFSET = the reading at the home pose and MIN_LIMIT/MAX_LIMIT = the
+/// stroke. It does not load the module nor net `tool-offset` (see pkmhexkinsJointValues).
+[[nodiscard]] std::string writePkmhexkinsSetp(const HexapodMachine& machine);
+
+/// A pkmhexkins joint's INI values: HOME = HOME_OFFSET = the strut reading at the machine's home
+/// pose; MIN_LIMIT/MAX_LIMIT = the stroke (none where it is unbounded). Machine length unit.
+struct PkmhexkinsJointValues {
+  double home = 0.0;
+  std::optional<double> min_limit, max_limit;
+};
+
+/// The six joints' pkmhexkins INI values of `machine` (inverse kinematics at model.home).
+[[nodiscard]] std::array<PkmhexkinsJointValues, 6> pkmhexkinsJointValues(
+    const HexapodMachine& machine);
 
 }  // namespace pkm::io

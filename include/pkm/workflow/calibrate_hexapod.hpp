@@ -56,9 +56,10 @@ struct HexapodCalibrationResult {
   std::vector<std::string> notices;     ///< the machine reader's notes and the data files' notes
 };
 
-/// The output paths for `--out CAL.json`: CAL.json, CAL.hal, CAL.summary.json.
+/// The output paths for `--out CAL.json`: CAL.json, CAL.hal (the genhexkins setp block),
+/// CAL.summary.json, and CAL.pkmhexkins.hal (the pkmhexkins setp block; hexapods only).
 struct CalibrationOutputs {
-  std::string machine, hal, summary;
+  std::string machine, hal, summary, pkmhexkins;
 };
 [[nodiscard]] CalibrationOutputs calibrationOutputs(const std::string& out);
 

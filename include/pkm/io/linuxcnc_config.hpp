@@ -1,0 +1,78 @@
+/// @file
+/// @brief A complete LinuxCNC configuration for a pkm machine, as text files (docs/linuxcnc.md,
+/// "From `pkm linuxcnc config` to a running machine"): the INI, the kinematics HAL file (pkm's
+/// components pkmhexkins or pkmexechonkins), a simulator HAL file (motion with the joints looped
+/// back), a tool table and, for an Exechon, the component's parameter file. World coordinates are
+/// the ones `pkm hexapod fk` / `pkm exechon fk` report for the machine, in its length unit; the
+/// joints' HOME is the exact inverse kinematics at the machine's home, so that after homing
+/// LinuxCNC stands at that pose. The workflow (workflow/linuxcnc_config.hpp) writes them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pkm/io/exechon_machine.hpp"
+#include "pkm/io/hexapod_machine.hpp"
+#include "pkm/io/named_text.hpp"
+
+namespace pkm::io {
+
+/// A joint compensation table the INI references ([JOINT_n] COMP_FILE, COMP_FILE_TYPE).
+struct LinuxcncCompReference {
+  int joint = 0;     ///< joint index (hexapod 0–5, Exechon 0–4)
+  std::string file;  ///< the file name inside the configuration folder
+  int type = 1;      ///< COMP_FILE_TYPE: 0 (actual positions) or 1 (trims), docs/compensation.md
+};
+
+/// What the configuration holds besides the machine.
+struct LinuxcncConfigOptions {
+  /// [DISPLAY] DISPLAY: "axis" (LinuxCNC's GUI) or "linuxcncrsh" (headless, telnet port 5007),
+  /// or any other display program LinuxCNC knows. A word of [A-Za-z0-9_.-].
+  std::string display = "axis";
+  std::vector<LinuxcncCompReference> comp_files;  ///< at most one per joint
+  /// Throws pkm::InvalidArgument naming the field: an empty or malformed display, a joint index
+  /// outside 0..joints-1 or given twice, an empty or path-like file name, a type other than 0/1.
+  void validate(int joints) const;
+};
+
+/// The file names of a configuration (inside its folder), the INI first.
+struct LinuxcncConfigNames {
+  std::string ini;         ///< "<machine name>.ini", the name reduced to [A-Za-z0-9_.-]
+  std::string kinematics;  ///< "kinematics.hal"
+  std::string sim;         ///< "sim.hal"
+  std::string tool_table;  ///< "tool.tbl"
+  std::string params;      ///< Exechon: "<machine name>.params"; hexapod: ""
+};
+
+/// The names the configuration of a machine called `machine_name` uses.
+[[nodiscard]] LinuxcncConfigNames linuxcncConfigNames(const std::string& machine_name,
+                                                      bool exechon);
+
+/// The configuration of a hexapod with pkmhexkins: `setp` lines for the 42 geometry parameters,
+/// the tool point, spindle offset and home (writePkmhexkinsSetp); 6 LINEAR joints, the strut
+/// readings, with HOME = HOME_OFFSET = the reading at the home pose and MIN/MAX_LIMIT = the stroke;
+/// world X Y Z A B C (degrees), [TRAJ] HOME = the home pose; the axis limits are how far the
+/// machine reaches along each world coordinate from home within every limit `pkm hexapod check`
+/// applies (stroke, joint cones, interference, conditioning), rounded towards home. Velocities and
+/// accelerations: the machine's joint_rates, else `pkm gcode run`'s defaults (200 unit/s,
+/// 2000 unit/s²); a rotation's rate is the joint rate over the characteristic length. Files in the
+/// order of LinuxcncConfigNames. Throws pkm::InvalidArgument naming the machine's source when the
+/// home pose puts a strut outside its stroke, and as options.validate(6).
+[[nodiscard]] std::vector<NamedText> hexapodLinuxcncConfig(const HexapodMachine& machine,
+                                                           const LinuxcncConfigOptions& options);
+
+/// The configuration of an Exechon with pkmexechonkins (docs/linuxcnc.md, "Exechon kinematics in
+/// LinuxCNC"): the parameter file linuxcncExechonParameters writes, loaded by
+/// `[KINS] KINEMATICS = pkmexechonkins params=NAME.params` (a name relative to the configuration
+/// folder, where LinuxCNC runs); joints 0–2 the leg readings (LINEAR), 3 wrist C and 4 wrist A
+/// (ANGULAR, degrees); world X Y Z (the tool point, `pkm exechon fk`'s x,y,z) A C (the wrist
+/// readings). HOME = HOME_OFFSET = the home configuration's joints; MIN/MAX_LIMIT = the legs'
+/// strokes and the wrist's C and A ranges (±1e9 for an open side); X Y Z limits: the reach along
+/// each coordinate from home with the wrist held (strokes, alpha/beta ranges, conditioning),
+/// rounded towards home; A and C: the wrist ranges. Rates: joint_rates (legs; wrist in deg/s),
+/// else `pkm gcode run`'s defaults. A hybrid machine's X2/Y2 are not part of it. Throws
+/// pkm::InvalidArgument as options.validate(5) and when the home is outside a limit.
+[[nodiscard]] std::vector<NamedText> exechonLinuxcncConfig(const ExechonMachine& machine,
+                                                           const LinuxcncConfigOptions& options);
+
+}  // namespace pkm::io

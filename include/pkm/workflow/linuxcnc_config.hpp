@@ -1,0 +1,62 @@
+/// @file
+/// @brief `pkm linuxcnc config` as a workflow (docs/linuxcnc.md, "From `pkm linuxcnc config` to a
+/// running machine"): a complete, runnable LinuxCNC configuration folder for a hexapod
+/// (pkmhexkins) or an Exechon (pkmexechonkins) on LinuxCNC's simulator, from a machine spec as
+/// `--machine` takes it, with joint compensation tables (COMP_FILE) when given. The files are
+/// io/linuxcnc_config.hpp's; this reads the inputs and writes the folder, refusing to replace a
+/// file without `force`.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pkm/io/named_text.hpp"
+
+namespace pkm::workflow {
+
+/// A joint compensation table to include (`--comp-file JOINT=FILE`).
+struct LinuxcncCompInput {
+  int joint = 0;     ///< the joint it corrects (hexapod 0–5 = struts, Exechon 0–4)
+  std::string path;  ///< the table written by `pkm compensate table --format linuxcnc0|linuxcnc1`
+};
+
+/// A `pkm linuxcnc config` request.
+struct LinuxcncConfigRequest {
+  /// The machine: a hexapod JSON file (also CAL.json of `pkm calibrate hexapod`), a LinuxCNC
+  /// genhexkins `.hal` file, an Exechon JSON file, or a built-in name ("default" = the default
+  /// hexapod).
+  std::string machine = "default";
+  std::string ini;  ///< the INI of a `.hal` machine ("" : found beside it)
+  std::string out;  ///< the configuration folder (created when missing)
+  std::vector<LinuxcncCompInput> comp_files;  ///< copied as jointN.comp, referenced by the INI
+  int comp_file_type = -1;       ///< COMP_FILE_TYPE of every table: 0 or 1 (required with them)
+  std::string display = "axis";  ///< [DISPLAY] DISPLAY ("linuxcncrsh" for a headless machine)
+  bool force = false;            ///< replace files of the same names in `out`
+  /// Throws pkm::InvalidArgument naming the option: empty machine or out, tables without a
+  /// type 0 or 1.
+  void validate() const;
+};
+
+/// What a request produced.
+struct LinuxcncConfigResult {
+  std::string kind;                  ///< "hexapod" or "exechon"
+  std::string ini;                   ///< the INI's path (run `linuxcnc INI`)
+  std::vector<std::string> files;    ///< every path written, the INI first
+  std::vector<std::string> notices;  ///< what the machine reader assumed
+};
+
+/// The configuration's files (names inside the folder and texts) without writing anything; the
+/// compensation tables are read and checked (compensation::parseLinuxcncComp) and included as
+/// `jointN.comp`. `notices` receives the machine reader's notices. Throws pkm::IoError for an
+/// unreadable or malformed machine or table (FILE:LINE), pkm::InvalidArgument as
+/// request.validate() and the io::hexapodLinuxcncConfig / io::exechonLinuxcncConfig checks.
+[[nodiscard]] std::vector<io::NamedText> linuxcncConfigFiles(const LinuxcncConfigRequest& request,
+                                                             std::vector<std::string>& notices);
+
+/// Writes linuxcncConfigFiles into request.out (each file atomically). Without `force`, nothing is
+/// written when one of the files exists: throws pkm::InvalidArgument "PATH exists; pass --force
+/// to replace it (nothing was written)". Other files in the folder are never touched. Throws as
+/// linuxcncConfigFiles, and pkm::IoError when the folder or a file cannot be written.
+[[nodiscard]] LinuxcncConfigResult writeLinuxcncConfig(const LinuxcncConfigRequest& request);
+
+}  // namespace pkm::workflow

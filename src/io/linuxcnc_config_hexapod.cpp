@@ -1,0 +1,130 @@
+// The LinuxCNC configuration of a hexapod with pkmhexkins (io/linuxcnc_config.hpp).
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "detail/linuxcnc_config_detail.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/io/linuxcnc_config.hpp"
+#include "pkm/io/linuxcnc_hal.hpp"
+#include "pkm/io/number_format.hpp"
+#include "pkm/kinematics/hexapod_checks.hpp"
+#include "pkm/kinematics/hexapod_data.hpp"
+
+namespace pkm::io {
+
+namespace kin = pkm::kinematics;
+
+namespace {
+
+/// Largest translation (characteristic lengths) and rotations (degrees) the axis limits search.
+constexpr double kTranslationCap = 2.0;
+constexpr std::array<double, 3> kRotationCapDeg{90.0, 90.0, 180.0};
+constexpr double kAngleStepDeg = 0.01;
+
+/// The world axes: how far the machine reaches from home along each coordinate.
+std::vector<detail::IniAxis> hexapodAxes(const kin::HexapodModel& model,
+                                         const std::array<double, 6>& home,
+                                         double velocity,
+                                         double acceleration) {
+  const double length = model.characteristicLength();
+  kin::HexapodData data(model);
+  std::vector<detail::IniAxis> axes;
+  for (int k = 0; k < 6; ++k) {
+    const bool angular = k >= 3;
+    const double cap =
+        angular ? kRotationCapDeg[static_cast<std::size_t>(k - 3)] : kTranslationCap * length;
+    std::array<double, 2> side{};
+    for (int s = 0; s < 2; ++s) {
+      const double sign = s == 0 ? -1.0 : 1.0;
+      side[static_cast<std::size_t>(s)] = detail::reach(
+          [&](double t) {
+            kin::PoseRpy pose = model.home;
+            if (angular)
+              pose.rpy[k - 3] += degToRad(sign * t);
+            else
+              pose.position[k] += sign * t;
+            return kin::checkPose(model, data, pose).ok();
+          },
+          cap);
+    }
+    const double step = angular ? kAngleStepDeg : detail::limitStep(length);
+    const std::array<double, 2> lim =
+        detail::axisLimits(home[static_cast<std::size_t>(k)], side[0], side[1], step);
+    const double rate = angular ? radToDeg(1.0 / length) : 1.0;
+    axes.push_back({"XYZABC"[k], lim[0], lim[1], velocity * rate, acceleration * rate});
+  }
+  return axes;
+}
+
+}  // namespace
+
+std::vector<NamedText> hexapodLinuxcncConfig(const HexapodMachine& machine,
+                                             const LinuxcncConfigOptions& options) {
+  options.validate(kin::kStruts);
+  const kin::HexapodModel& model = machine.model;
+  kin::HexapodData data(model);
+  const kin::HexapodCheckResult at_home = kin::checkPose(model, data, model.home);
+  for (const kin::LimitViolation& v : at_home.violations)
+    if (v.kind == kin::LimitKind::kStroke || v.kind == kin::LimitKind::kDegenerate)
+      throw InvalidArgument(fmt::format(
+          "{}: the home pose puts {} at {} ({}, limit {}): LinuxCNC could not home the machine",
+          machine.source,
+          v.item,
+          formatNumber(v.value),
+          kin::toString(v.kind),
+          formatNumber(v.limit)));
+  const LinuxcncConfigNames names = linuxcncConfigNames(model.name, false);
+  const double velocity = machine.joint_rates && std::isfinite(machine.joint_rates->velocity)
+                              ? machine.joint_rates->velocity
+                              : detail::kDefaultJointVelocity;
+  const double acceleration =
+      machine.joint_rates && std::isfinite(machine.joint_rates->acceleration)
+          ? machine.joint_rates->acceleration
+          : detail::kDefaultJointAcceleration;
+
+  detail::IniSpec spec;
+  spec.comment = fmt::format(
+      "# LinuxCNC configuration of the hexapod {},\n# written by `pkm linuxcnc config` from {}.\n"
+      "# Kinematics: pkm's component pkmhexkins ({}); a simulated machine ({}).\n"
+      "# World X Y Z A B C: the pose `pkm hexapod fk` reports for this machine ({}, degrees);\n"
+      "# joints 0-5: the strut readings. docs/linuxcnc.md, \"From `pkm linuxcnc config` to a\n"
+      "# running machine\".\n",
+      model.name,
+      machine.source,
+      names.kinematics,
+      names.sim,
+      toString(model.unit));
+  spec.machine = model.name + " (pkm, pkmhexkins)";
+  spec.unit = model.unit;
+  spec.kinematics = "pkmhexkins";
+  spec.home = {model.home.position.x(),
+               model.home.position.y(),
+               model.home.position.z(),
+               radToDeg(model.home.rpy.x()),
+               radToDeg(model.home.rpy.y()),
+               radToDeg(model.home.rpy.z())};
+  spec.axes = hexapodAxes(model, spec.home, velocity, acceleration);
+  const double open = 1e9 * model.characteristicLength();
+  for (const PkmhexkinsJointValues& j : pkmhexkinsJointValues(machine))
+    spec.joints.push_back({false,
+                           j.home,
+                           j.min_limit.value_or(-open),
+                           j.max_limit.value_or(open),
+                           velocity,
+                           acceleration});
+  spec.linear_velocity = velocity;
+  spec.linear_acceleration = acceleration;
+  spec.angular_velocity = spec.axes[3].velocity;
+
+  const std::string kinematics =
+      "# The kinematics: pkm's hexapod component and the machine's geometry as its pins.\n"
+      "loadrt [KINS]KINEMATICS\n\n" +
+      writePkmhexkinsSetp(machine);
+  return {{names.ini, detail::linuxcncIni(spec, names, options)},
+          {names.kinematics, kinematics},
+          {names.sim, detail::simulatorHal(kin::kStruts, "pkmhexkins.tool-offset")},
+          {names.tool_table, detail::toolTable(model.unit)}};
+}
+
+}  // namespace pkm::io

@@ -1,0 +1,162 @@
+// workflow::writeLinuxcncConfig: the folder written (hexapod, calibrated hexapod file, Exechon),
+// compensation tables copied and checked, nothing replaced without force, and the sample
+// configurations in data/linuxcnc equal to what the writer produces today.
+#include "pkm/workflow/linuxcnc_config.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <set>
+
+#include "pkm/core/error.hpp"
+#include "pkm/io/atomic_file.hpp"
+#include "pkm/io/hexapod_machine.hpp"
+#include "pkm/io/machine_loader.hpp"
+#include "support/scratch_files.hpp"
+
+namespace pkm::workflow {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+
+/// A fresh scratch folder.
+fs::path freshDir(const std::string& name) {
+  const fs::path dir = test::scratchPath("linuxcnc_config", name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+TEST(LinuxcncConfigWorkflow, WritesTheHexapodFolder) {
+  const fs::path dir = freshDir("hexapod");
+  LinuxcncConfigRequest r;
+  r.machine = "hexapod-default";
+  r.out = dir.string();
+  const LinuxcncConfigResult res = writeLinuxcncConfig(r);
+  EXPECT_EQ(res.kind, "hexapod");
+  EXPECT_EQ(res.ini, (dir / "pkm-hx1200.ini").string());
+  EXPECT_THAT(res.files,
+              ElementsAre((dir / "pkm-hx1200.ini").string(),
+                          (dir / "kinematics.hal").string(),
+                          (dir / "sim.hal").string(),
+                          (dir / "tool.tbl").string()));
+  for (const std::string& f : res.files) EXPECT_TRUE(fs::is_regular_file(f)) << f;
+}
+
+TEST(LinuxcncConfigWorkflow, RefusesToReplaceWithoutForce) {
+  const fs::path dir = freshDir("refuse");
+  fs::create_directories(dir);
+  io::writeFileAtomic(dir / "kinematics.hal", "mine\n", io::Overwrite::kAllow);
+  io::writeFileAtomic(dir / "notes.txt", "kept\n", io::Overwrite::kAllow);
+  LinuxcncConfigRequest r;
+  r.machine = "hexapod-default";
+  r.out = dir.string();
+  try {
+    (void)writeLinuxcncConfig(r);
+    FAIL() << "no exception";
+  } catch (const InvalidArgument& e) {
+    EXPECT_THAT(e.what(), HasSubstr((dir / "kinematics.hal").string()));
+    EXPECT_THAT(e.what(), HasSubstr("--force"));
+  }
+  EXPECT_FALSE(fs::exists(dir / "pkm-hx1200.ini"));  // nothing written
+  EXPECT_EQ(test::slurp(dir / "kinematics.hal"), "mine\n");
+  r.force = true;
+  (void)writeLinuxcncConfig(r);
+  EXPECT_THAT(test::slurp(dir / "kinematics.hal"), HasSubstr("setp pkmhexkins.base.0.x"));
+  EXPECT_EQ(test::slurp(dir / "notes.txt"), "kept\n");  // other files untouched
+}
+
+TEST(LinuxcncConfigWorkflow, CalibratedMachineFileAndCompensationTables) {
+  const fs::path dir = freshDir("calibrated");
+  fs::create_directories(dir);
+  io::HexapodMachine cal = io::loadHexapodMachine("hexapod-default");
+  cal.model.name = "pkm-hx1200-calibrated";
+  cal.model.struts[2].length_offset += 0.0625;
+  io::writeFileAtomic(dir / "cal.json", io::writeHexapodJson(cal), io::Overwrite::kAllow);
+  io::writeFileAtomic(
+      dir / "s2.txt", "0 -0.01 0.002\n250 0.004 0.003\n500 0 0\n", io::Overwrite::kAllow);
+  LinuxcncConfigRequest r;
+  r.machine = (dir / "cal.json").string();
+  r.out = (dir / "cfg").string();
+  r.comp_files = {{2, (dir / "s2.txt").string()}};
+  r.comp_file_type = 1;
+  r.display = "linuxcncrsh";
+  const LinuxcncConfigResult res = writeLinuxcncConfig(r);
+  EXPECT_EQ(res.ini, (dir / "cfg/pkm-hx1200-calibrated.ini").string());
+  EXPECT_EQ(res.files.back(), (dir / "cfg/joint2.comp").string());
+  EXPECT_EQ(test::slurp(dir / "cfg/joint2.comp"), test::slurp(dir / "s2.txt"));
+  const std::string ini = test::slurp(res.ini);
+  EXPECT_THAT(ini, HasSubstr("[JOINT_2]\n"));
+  EXPECT_THAT(ini, HasSubstr("COMP_FILE = joint2.comp\nCOMP_FILE_TYPE = 1\n"));
+  EXPECT_THAT(ini, HasSubstr("DISPLAY = linuxcncrsh\n"));
+  EXPECT_THAT(test::slurp(dir / "cfg/kinematics.hal"),
+              HasSubstr("setp pkmhexkins.length-offset.2 650.0625\n"));
+}
+
+TEST(LinuxcncConfigWorkflow, BadTablesAndRequests) {
+  const fs::path dir = freshDir("bad");
+  fs::create_directories(dir);
+  io::writeFileAtomic(dir / "bad.txt", "0 1 2\n5 1\n", io::Overwrite::kAllow);
+  LinuxcncConfigRequest r;
+  r.out = (dir / "cfg").string();
+  r.comp_files = {{0, (dir / "bad.txt").string()}};
+  EXPECT_THROW((void)writeLinuxcncConfig(r), InvalidArgument);  // no type
+  r.comp_file_type = 1;
+  try {
+    (void)writeLinuxcncConfig(r);
+    FAIL() << "no exception";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("bad.txt:2"));
+  }
+  r.comp_files = {{6, (dir / "bad.txt").string()}};
+  io::writeFileAtomic(dir / "bad.txt", "0 1 2\n", io::Overwrite::kAllow);
+  EXPECT_THROW((void)writeLinuxcncConfig(r), InvalidArgument);  // joint 6 of a hexapod
+  EXPECT_FALSE(fs::exists(dir / "cfg"));
+  LinuxcncConfigRequest empty;
+  EXPECT_THROW(empty.validate(), InvalidArgument);  // no --out
+}
+
+TEST(LinuxcncConfigWorkflow, Exechon) {
+  const fs::path dir = freshDir("exechon");
+  LinuxcncConfigRequest r;
+  r.machine = "mxt700s-like";
+  r.out = dir.string();
+  const LinuxcncConfigResult res = writeLinuxcncConfig(r);
+  EXPECT_EQ(res.kind, "exechon");
+  EXPECT_TRUE(fs::is_regular_file(dir / "mxt700s-like.params"));
+  EXPECT_THAT(res.notices, ::testing::Contains(HasSubstr("X2/Y2")));
+}
+
+// data/linuxcnc/<sample> must hold exactly what `pkm linuxcnc config --machine <machine>` writes
+// today. When this fails after a change to the writer or a built-in machine, regenerate:
+//   build/bin/pkm linuxcnc config --machine <machine> --out data/linuxcnc/<sample> --force
+TEST(LinuxcncConfigWorkflow, SamplesAreWhatTheWriterProduces) {
+  const std::pair<const char*, const char*> samples[] = {
+      {"hexapod-default", "hexapod-default"},
+      {"hexapod-linuxcnc-sim", "hexapod-linuxcnc-sim"},
+      {"mxt700s-like", "exechon-mxt700s"}};
+  for (const auto& [machine, sample] : samples) {
+    const fs::path dir = fs::path(PKM_SOURCE_DIR) / "data/linuxcnc" / sample;
+    LinuxcncConfigRequest r;
+    r.machine = machine;
+    r.out = dir.string();
+    std::vector<std::string> notices;
+    std::set<std::string> names;
+    for (const io::NamedText& f : linuxcncConfigFiles(r, notices)) {
+      names.insert(f.name);
+      EXPECT_EQ(test::slurp(dir / f.name), f.text)
+          << (dir / f.name) << " is stale: build/bin/pkm linuxcnc config --machine " << machine
+          << " --out data/linuxcnc/" << sample << " --force";
+    }
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      const std::string name = entry.path().filename().string();
+      if (name.starts_with("linuxcnc.var")) continue;  // LinuxCNC's own, after a run in place
+      EXPECT_TRUE(names.count(name)) << entry.path() << " is not written by pkm linuxcnc config";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace pkm::workflow
