@@ -1,7 +1,12 @@
 /* pkmhexkins: a LinuxCNC kinematics module for hexapods with pkm's model (pkmhexkins_core.h),
  * the full 42-parameter calibrated geometry as HAL pins. Documentation: docs/linuxcnc.md,
  * "The pkmhexkins kinematics component". Joints 0-5 are the strut readings; world X Y Z A B C
- * is the TCP pose (A, B, C roll-pitch-yaw in degrees). */
+ * is the TCP pose (A, B, C roll-pitch-yaw in degrees).
+ *
+ * Load: `loadrt pkmhexkins` (pins with the hexapod-sim defaults, set by `setp`), or
+ * `loadrt pkmhexkins params=FILE` (the file pkm writes: the pins' initial values, read and checked
+ * at load, so that a missing parameter or a geometry that does not assemble at home fails the
+ * loadrt with the reason in LinuxCNC's log). The pins still take live changes. */
 #include <math.h>
 #include <string.h>
 
@@ -16,6 +21,9 @@ MODULE_AUTHOR("pkm");
 MODULE_DESCRIPTION("Hexapod kinematics with pkm's model and forward kinematics");
 
 #define N PKM_HEX_STRUTS
+
+static char* params = "";
+RTAPI_MP_STRING(params, "pkm's pkmhexkins parameter file (geometry, tool, home, solver)");
 
 static const double kDegPerRad = 180.0 / 3.14159265358979323846;
 
@@ -192,39 +200,41 @@ static int bit_pin(hal_bit_t** pin, hal_pin_dir_t dir, const char* name) {
   return r;
 }
 
-/* base.N.x|y|z, platform.N.x|y|z and length-offset.N, with the hexapod-sim defaults. */
-static int geometry_pins(void) {
+/* base.N.x|y|z, platform.N.x|y|z, length-offset.N and tool.x|y|z, with the values of g. */
+static int geometry_pins(const pkm_hex_geometry* g) {
   static const char axis[3] = {'x', 'y', 'z'};
-  pkm_hex_geometry g;
-  pkm_hex_sim_geometry(&g);
   char name[48];
   int r = 0;
   for (int i = 0; i < N && r == 0; ++i) {
     for (int k = 0; k < 3 && r == 0; ++k) {
       rtapi_snprintf(name, sizeof name, "base.%d.%c", i, axis[k]);
-      r = float_pin(&hal->base[i][k], HAL_IN, g.base[i][k], name);
+      r = float_pin(&hal->base[i][k], HAL_IN, g->base[i][k], name);
       rtapi_snprintf(name, sizeof name, "platform.%d.%c", i, axis[k]);
-      if (r == 0) r = float_pin(&hal->platform[i][k], HAL_IN, g.platform[i][k], name);
+      if (r == 0) r = float_pin(&hal->platform[i][k], HAL_IN, g->platform[i][k], name);
     }
     rtapi_snprintf(name, sizeof name, "length-offset.%d", i);
-    if (r == 0) r = float_pin(&hal->length_offset[i], HAL_IN, 0.0, name);
+    if (r == 0) r = float_pin(&hal->length_offset[i], HAL_IN, g->length_offset[i], name);
   }
   for (int k = 0; k < 3 && r == 0; ++k) {
     rtapi_snprintf(name, sizeof name, "tool.%c", axis[k]);
-    r = float_pin(&hal->tool[k], HAL_IN, 0.0, name);
+    r = float_pin(&hal->tool[k], HAL_IN, g->tool[k], name);
   }
   return r;
 }
 
-/* Offsets, the home seed, the solver's settings and its outputs. */
-static int other_pins(void) {
+/* Offsets, the home seed, the solver's settings (initial values from p) and its outputs. */
+static int other_pins(const pkm_hex_params* p) {
   static const char* const home[6] = {"home.x", "home.y", "home.z", "home.a", "home.b", "home.c"};
-  int r = float_pin(&hal->spindle_offset, HAL_IN, 0.0, "spindle-offset");
+  const pkm_hex_fk_options* o = &p->options;
+  int r = float_pin(&hal->spindle_offset, HAL_IN, p->geometry.spindle_offset, "spindle-offset");
   if (r == 0) r = float_pin(&hal->tool_offset, HAL_IN, 0.0, "tool-offset");
-  for (int k = 0; k < 6 && r == 0; ++k) r = float_pin(&hal->home[k], HAL_IN, 0.0, home[k]);
-  if (r == 0) r = float_pin(&hal->convergence_criterion, HAL_IN, 1e-9, "convergence-criterion");
-  if (r == 0) r = u32_pin(&hal->limit_iterations, HAL_IN, 120, "limit-iterations");
-  if (r == 0) r = float_pin(&hal->max_error, HAL_IN, 0.0, "max-error");
+  for (int k = 0; k < 6 && r == 0; ++k) r = float_pin(&hal->home[k], HAL_IN, p->home[k], home[k]);
+  if (r == 0)
+    r = float_pin(&hal->convergence_criterion, HAL_IN, o->tolerance, "convergence-criterion");
+  if (r == 0)
+    r = u32_pin(&hal->limit_iterations, HAL_IN, (hal_u32_t)o->max_iterations, "limit-iterations");
+  if (r == 0)
+    r = float_pin(&hal->max_error, HAL_IN, isinf(o->max_error) ? 0.0 : o->max_error, "max-error");
   if (r == 0) r = u32_pin(&hal->last_iterations, HAL_OUT, 0, "last-iterations");
   if (r == 0) r = u32_pin(&hal->max_iterations, HAL_OUT, 0, "max-iterations");
   if (r == 0) r = u32_pin(&hal->fwd_kins_failures, HAL_OUT, 0, "fwd-kins-failures");
@@ -233,13 +243,33 @@ static int other_pins(void) {
   return r;
 }
 
+/* The pins' initial values: the parameter file's (read and checked here), or the hexapod-sim
+ * defaults without one. 0, or −1 with the reason logged. */
+static int initial_values(pkm_hex_params* p) {
+  memset(p, 0, sizeof *p);
+  if (params == NULL || params[0] == '\0') {
+    pkm_hex_sim_geometry(&p->geometry);
+    pkm_hex_default_fk_options(&p->options);
+    return 0;
+  }
+  char why[256];
+  if (pkm_hex_load_params(params, p, why, sizeof why) != 0) {
+    rtapi_print_msg(RTAPI_MSG_ERR, "pkmhexkins: %s: %s\n", params, why);
+    return -1;
+  }
+  rtapi_print_msg(RTAPI_MSG_INFO, "pkmhexkins: parameters from %s\n", params);
+  return 0;
+}
+
 int rtapi_app_main(void) {
+  pkm_hex_params p;
+  if (initial_values(&p) != 0) return -1;
   comp_id = hal_init("pkmhexkins");
   if (comp_id < 0) return comp_id;
   hal = hal_malloc(sizeof(pins));
   int r = hal == NULL ? -1 : 0;
-  if (r == 0) r = geometry_pins();
-  if (r == 0) r = other_pins();
+  if (r == 0) r = geometry_pins(&p.geometry);
+  if (r == 0) r = other_pins(&p);
   if (r != 0) {
     rtapi_print_msg(RTAPI_MSG_ERR, "pkmhexkins: cannot create the HAL pins (%d)\n", r);
     hal_exit(comp_id);

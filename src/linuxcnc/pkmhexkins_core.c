@@ -339,21 +339,72 @@ static double max_abs(const double r[N]) {
   return m;
 }
 
+/* The strut Jacobian at the legs `at`, angular columns scaled by inv_length (1/L): row i is
+ * [u_i, (R·a'_i × u_i)/L]. */
+static void scaled_jacobian(const legs* at, double inv_length, double J[N][N]) {
+  for (int i = 0; i < N; ++i) {
+    const double* u = at->unit[i];
+    const double* a = at->r_joint[i];
+    J[i][0] = u[0];
+    J[i][1] = u[1];
+    J[i][2] = u[2];
+    J[i][3] = (a[1] * u[2] - a[2] * u[1]) * inv_length;
+    J[i][4] = (a[2] * u[0] - a[0] * u[2]) * inv_length;
+    J[i][5] = (a[0] * u[1] - a[1] * u[0]) * inv_length;
+  }
+}
+
+int pkm_hex_check_home(const pkm_hex_geometry* g,
+                       const double p[3],
+                       const double rpy[3],
+                       double singular_pivot_ratio,
+                       char* why,
+                       size_t size) {
+  if (pkm_hex_validate(g, why, size) != 0) return -1;
+  if (!all_finite(p, 3) || !all_finite(rpy, 3)) {
+    if (why != NULL) snprintf(why, size, "the home pose is not finite");
+    return -1;
+  }
+  double R[3][3];
+  pkm_hex_rotation_from_rpy(rpy, R);
+  double scale = 0.0;
+  for (int i = 0; i < N; ++i) scale = fmax(scale, fmax(norm3(g->base[i]), norm3(g->platform[i])));
+  if (!(scale > 0.0)) {
+    if (why != NULL) snprintf(why, size, "all joint centres are at the origin");
+    return -1;
+  }
+  double base[N][3], platform[N][3];
+  legs at;
+  effective_joints(g, base, platform);
+  compute_legs(&base[0][0], &platform[0][0], g->length_offset, p, &R[0][0], &at);
+  for (int i = 0; i < N; ++i)
+    if (!(at.q[i] + g->length_offset[i] > 1e-9 * scale)) {
+      if (why != NULL) snprintf(why, size, "strut %d has zero length at the home pose", i);
+      return -1;
+    }
+  double J[N][N];
+  lu6 lu;
+  int sign = 0;
+  scaled_jacobian(&at, 1.0 / pkm_hex_characteristic_length(g), J);
+  const double ratio = factor6((const double(*)[N])J, &lu, &sign);
+  if (!(ratio > singular_pivot_ratio)) {
+    if (why != NULL)
+      snprintf(why,
+               size,
+               "the geometry is singular at the home pose (Jacobian pivot ratio %.3g): check for "
+               "coincident or collinear joints",
+               ratio);
+    return -1;
+  }
+  return 0;
+}
+
 /* delta ← J⁻¹·delta at the current iterate, shortened to the trust region; returns the pivot
  * ratio. A polishing step reuses the previous factorisation (a chord step). */
 static double solve_step(solver* s, double delta[N], int polishing) {
   if (!polishing || !s->lu.valid) {
     double J[N][N];
-    for (int i = 0; i < N; ++i) {
-      const double* u = s->at.unit[i];
-      const double* a = s->at.r_joint[i];
-      J[i][0] = u[0];
-      J[i][1] = u[1];
-      J[i][2] = u[2];
-      J[i][3] = (a[1] * u[2] - a[2] * u[1]) * s->inv_length;
-      J[i][4] = (a[2] * u[0] - a[0] * u[2]) * s->inv_length;
-      J[i][5] = (a[0] * u[1] - a[1] * u[0]) * s->inv_length;
-    }
+    scaled_jacobian(&s->at, s->inv_length, J);
     s->lu_ratio = factor6((const double(*)[N])J, &s->lu, &s->last_sign);
     if (s->seed_sign == 0) s->seed_sign = s->last_sign;
   }

@@ -83,6 +83,43 @@ double pkm_hex_characteristic_length(const pkm_hex_geometry* geometry);
 /// platform joints (shared joints alone, as in a 6-3 hexapod, are allowed).
 int pkm_hex_validate(const pkm_hex_geometry* geometry, char* why, size_t size);
 
+/// 0 when the geometry assembles at the home pose (p, rpy in rad): pkm_hex_validate, then no strut
+/// of zero length at home, and the scaled strut Jacobian at home not singular (its LU's min/max
+/// pivot ratio above `singular_pivot_ratio`, the test forward kinematics uses). Otherwise −1 with
+/// the reason in `why` (as pkm_hex_validate).
+int pkm_hex_check_home(const pkm_hex_geometry* geometry,
+                       const double p[3],
+                       const double rpy[3],
+                       double singular_pivot_ratio,
+                       char* why,
+                       size_t size);
+
+/// Everything a pkmhexkins parameter file sets (pkm's io::linuxcncHexapodParameters writes it;
+/// docs/linuxcnc.md, "The pkmhexkins parameter file"): the geometry, the home pose (the second
+/// forward-kinematics seed and LinuxCNC's [TRAJ] HOME) and the forward kinematics' settings.
+typedef struct {
+  pkm_hex_geometry geometry;
+  double home[6];              ///< x, y, z (machine unit), a, b, c (degrees, as LinuxCNC's world)
+  pkm_hex_fk_options options;  ///< max_error +infinity when the file gives 0 (no limit)
+} pkm_hex_params;
+
+/// Parses a parameter file's text: `name value...` lines, `#` comments, every name exactly once
+/// (base.N, platform.N: 3 numbers; length-offset.N, spindle-offset, convergence-criterion,
+/// limit-iterations, max-error, max-backtracks, singular-pivot-ratio, max-step-translation,
+/// max-step-rotation, continuation-step: 1; tool: 3; home: 6), then checks the result
+/// (pkm_hex_check_params). 0 and *params set, or −1 with "line N: ..." or "missing NAME" or the
+/// check's reason in `why`; *params is then untouched.
+int pkm_hex_parse_params(const char* text, pkm_hex_params* params, char* why, size_t size);
+
+/// 0 when `params` are usable: the options valid (tolerance > 0, limit-iterations >= 1,
+/// max-backtracks >= 0, 0 < singular-pivot-ratio < 1, positive trust region and continuation
+/// step, max-error >= 0) and the geometry assembling at home (pkm_hex_check_home); −1 and why.
+int pkm_hex_check_params(const pkm_hex_params* params, char* why, size_t size);
+
+/// Reads and parses the parameter file at `path` (stdio; at most 64 KiB). As
+/// pkm_hex_parse_params; a file that cannot be read gives "cannot read PATH".
+int pkm_hex_load_params(const char* path, pkm_hex_params* params, char* why, size_t size);
+
 /// R = Rz(rpy[2])·Ry(rpy[1])·Rx(rpy[0]), rpy in rad.
 void pkm_hex_rotation_from_rpy(const double rpy[3], double R[3][3]);
 
