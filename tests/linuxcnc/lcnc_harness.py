@@ -42,6 +42,12 @@ API (everything a test needs; the rest of the module is private):
         body (RuntimeError, OSError) and anything left behind become entries of `failures`.
         Prints how long LinuxCNC ran. Returns the failures and LinuxCNC's log.
 
+    r = lh.halrun(["loadrt pkmexechonkins params=FILE", "show pin"], modules=[...],
+                  name="hal", work=work)
+        Runs halcmd lines with `halrun -f` (no LinuxCNC: realtime, the lines, unload all) with
+        the modules loadable: r.returncode is halcmd's (non-zero when a loadrt failed), r.log the
+        output, r.leftovers and r.seconds as below.
+
     r = lh.start_fails(ini, modules=[...], name="bad", work=work, timeout=60)
         Starts LinuxCNC on a configuration that must not start (a kinematics module that fails
         its `loadrt`): r.started is True if linuxcncrsh answered (it should not), r.returncode
@@ -350,8 +356,9 @@ def _cleanup_all():
 class LinuxCNC:
     """One headless LinuxCNC session (see the top of the module)."""
 
-    def __init__(self, ini, modules=(), name="linuxcnc", work=None, env=None):
+    def __init__(self, ini, modules=(), name="linuxcnc", work=None, env=None, command=None):
         self.ini = os.path.abspath(ini)
+        self.command = command or ["linuxcnc", self.ini]  # halrun() runs halrun instead
         self.modules = [os.path.abspath(m) for m in modules]
         self.name = name
         self.work = work or workdir()
@@ -380,7 +387,7 @@ class LinuxCNC:
         os.chmod(self.home_dir, 0o777)
         env = {"RUNTESTS": "1", "HOME": self.home_dir, "RTAPI_FIFO_PATH": self.fifo, **self.env}
         start = _user_prefix() + ["env"] + [f"{k}={v}" for k, v in env.items()]
-        start += ["linuxcnc", self.ini]
+        start += self.command
         if _as_root():
             copy = os.path.join(self.work, f"{self.name}.modules")
             shutil.copytree(MODULES, copy, symlinks=True)
@@ -580,3 +587,26 @@ def session(ini, modules, name, work, body):
         failures.append(f"left behind after LinuxCNC stopped: {cnc.leftovers}")
     print(f"{name}: LinuxCNC ran {cnc.seconds:.1f} s")
     return failures, cnc.log
+
+
+def halrun(commands, modules=(), name="halrun", work=None, timeout=60):
+    """Runs halcmd `commands` (a list of lines) with `halrun -f` (realtime started, the commands,
+    then everything unloaded) as LinuxCNC would, with `modules` loadable; no LinuxCNC. Returns a
+    StartResult: returncode (halcmd's; non-zero when a loadrt failed), log (the output),
+    leftovers, seconds; started is False."""
+    work = work or workdir()
+    hal = os.path.join(work, f"{name}.hal")
+    with open(hal, "w") as f:
+        f.write("\n".join(commands) + "\n")
+    os.chmod(hal, 0o644)
+    cnc = LinuxCNC(hal, modules, name, work, command=["halrun", "-f", hal])
+    returncode = None
+    try:
+        cnc.launch()
+        try:
+            returncode = cnc.proc.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            pass
+    finally:
+        cnc.stop()
+    return StartResult(False, returncode, cnc.log, cnc.leftovers, cnc.seconds)

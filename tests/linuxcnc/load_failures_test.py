@@ -1,0 +1,196 @@
+#!/usr/bin/python3
+"""Bad kinematics parameters stop LinuxCNC at load, with the reason in its log (docs/linuxcnc.md).
+
+pkm's kinematics modules read their parameter file at `loadrt` (`[KINS] KINEMATICS = pkmhexkins
+params=FILE`, `pkmexechonkins params=FILE`) and refuse it there: a missing parameter, an unknown
+name, or a geometry that does not assemble fails the loadrt, so LinuxCNC does not start (instead
+of failing at the first move). For each module:
+  - a good file: LinuxCNC starts, homes (pkmhexkins: the world position after homing is the file's
+    home pose; the pins hold the file's values); pkmexechonkins: the module loads in HAL with
+    the file pkm writes and its pins exist;
+  - a missing parameter, an unknown name, a geometry that does not assemble (pkmhexkins: one strut
+    twice, platform joints on one line; pkmexechonkins: dB = 0, singular at home (h = 0)):
+    LinuxCNC does not start, its log has `<module>: FILE: <reason>`, and nothing is left behind.
+The configuration is a copy of data/linuxcnc/hexapod-sim-pkm with its geometry `setp` lines
+removed. LinuxCNC is run by lcnc_harness.py (exit 77 when it cannot run here).
+
+Usage: load_failures_test.py PKM_BINARY HEXKINS_SO EXECHON_SO SOURCE_DIR
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+import lcnc_harness as lh
+
+TOL = 1e-6  # inch (linuxcncrsh prints 6 decimals)
+
+
+def run(cmd):
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f"FAIL: {' '.join(cmd)} exited {r.returncode}\n{r.stdout}\n{r.stderr}")
+    return r.stdout
+
+
+def hexapod_params(m):
+    """The pkmhexkins parameter file of a pkm machine JSON (the format of
+    io::linuxcncHexapodParameters, which tests/linuxcnc/hexkins_params_test.cpp checks)."""
+    lines = ["# pkmhexkins parameters (load_failures_test.py)"]
+    for i, s in enumerate(m["struts"]):
+        lines.append(f"base.{i} " + " ".join(map(repr, s["base"])))
+        lines.append(f"platform.{i} " + " ".join(map(repr, s["platform"])))
+        lines.append(f"length-offset.{i} {s.get('length_offset', 0.0)!r}")
+    h = m["home"]
+    lines += ["tool " + " ".join(map(repr, m["tool_offset"])),
+              f"spindle-offset {m.get('spindle_offset', 0.0)!r}",
+              "home " + " ".join(repr(h[k]) for k in "xyzabc"),
+              "convergence-criterion 1e-9", "limit-iterations 120", "max-error 0",
+              "max-backtracks 12", "singular-pivot-ratio 1e-12", "max-step-translation 0.5",
+              "max-step-rotation 0.25", "continuation-step 0.3"]
+    return "\n".join(lines) + "\n"
+
+
+def make_config(sample, work, name, kinematics, text):
+    """A copy of the sample, its KINEMATICS line set and the parameter file written."""
+    cfg = lh.copy_config(sample, work, name)
+    params = os.path.join(cfg, "kinematics.params")
+    with open(params, "w") as f:
+        f.write(text)
+    os.chmod(params, 0o644)
+    hal = os.path.join(cfg, "kinematics.hal")
+    with open(hal) as f:
+        kept = [l for l in f if not l.startswith("setp pkmhexkins.")]
+    with open(hal, "w") as f:
+        f.writelines(kept if kinematics == "pkmhexkins" else
+                     [l for l in kept if "pkmhexkins" not in l])
+    ini = os.path.join(cfg, "hexapod.ini")
+    lh.set_ini(ini, "KINS", "KINEMATICS", f"{kinematics} params={params}")
+    lh.make_headless(ini)
+    return ini, params
+
+
+def refused(failures, what, ini, module, work, name, reason):
+    """LinuxCNC on `ini` must not start; its log must name the file and the reason."""
+    r = lh.start_fails(ini, [module], name, work)
+    params = os.path.join(os.path.dirname(ini), "kinematics.params")
+    want = f"{os.path.basename(module)[:-3]}: {params}: {reason}"
+    print(f"{what}: started {r.started}, linuxcnc exit {r.returncode}, {r.seconds:.1f} s, "
+          f"message {'found' if want in r.log else 'MISSING'}: '{want}'")
+    if r.started:
+        failures.append(f"{what}: LinuxCNC started")
+    if want not in r.log:
+        failures.append(f"{what}: the log does not say '{want}':\n{r.log}")
+    if r.leftovers:
+        failures.append(f"{what}: left behind: {r.leftovers}")
+
+
+def hexapod_cases(pkm, module, sample, work, failures):
+    machine = json.loads(run([pkm, "hexapod", "describe", "--json", "--machine",
+                              "hexapod-linuxcnc-sim"]))
+    machine["struts"][2]["base"][0] += 0.04  # not the module's defaults: the file must count
+    machine["struts"][5]["length_offset"] = 0.03
+    good = hexapod_params(machine)
+    ini, _ = make_config(sample, work, "hex-good", "pkmhexkins", good)
+    home = [machine["home"][k] for k in "xyzabc"]
+    csv = os.path.join(work, "home.csv")
+    with open(csv, "w") as f:
+        f.write("x,y,z,a,b,c\n" + ",".join(map(repr, home)) + "\n")
+    mpath = os.path.join(work, "machine.json")
+    with open(mpath, "w") as f:
+        json.dump(machine, f)
+    q = [float(v) for v in run([pkm, "hexapod", "ik", "--machine", mpath, "--poses", csv])
+         .strip().splitlines()[1].split(",")[:6]]
+    for i, v in enumerate(q):  # joint homes: the IK at home of this machine
+        for key in ("HOME", "HOME_OFFSET"):
+            lh.set_ini(ini, f"JOINT_{i}", key, repr(v))
+
+    def body(cnc, fails):
+        cnc.home()
+        world = cnc.world()
+        err = max(abs(a - b) for a, b in zip(world, home))
+        print(f"pkmhexkins, good file: world after homing {world}, home {home}: {err:.1e}")
+        if err > TOL:
+            fails.append(f"world after homing {world} is not the file's home {home}")
+        pins = cnc.pins(["pkmhexkins.base.2.x", "pkmhexkins.length-offset.5",
+                         "pkmhexkins.geometry-ok"])
+        if (pins["pkmhexkins.base.2.x"] != machine["struts"][2]["base"][0]
+                or pins["pkmhexkins.length-offset.5"] != 0.03
+                or pins["pkmhexkins.geometry-ok"] is not True):
+            fails.append(f"the pins do not hold the file's values: {pins}")
+
+    fails, log = lh.session(ini, [module], "hex-good", work, body)
+    failures += [f"pkmhexkins, good file: {f}" for f in fails]
+    if "pkmhexkins:" in log and "parameters from" not in log:
+        failures.append(f"pkmhexkins, good file: the module complained:\n{log}")
+
+    lines = good.splitlines(keepends=True)
+    missing = "".join(l for l in lines if not l.startswith("tool "))
+    unknown = good.replace("spindle-offset", "spindel-offset")
+    number = 1 + next(i for i, l in enumerate(lines) if l.startswith("spindle-offset"))
+    twice = json.loads(json.dumps(machine))  # strut 4 a second copy of strut 3
+    twice["struts"][4]["base"] = twice["struts"][3]["base"]
+    twice["struts"][4]["platform"] = twice["struts"][3]["platform"]
+    line = json.loads(json.dumps(machine))  # platform joints on one line: turns about it free
+    for i, s in enumerate(line["struts"]):
+        s["platform"] = [2.0 * i - 5.0, 0.0, 0.0]
+    cases = [("missing parameter", missing, "missing tool"),
+             ("unknown name", unknown, f"line {number}: unknown parameter 'spindel-offset'"),
+             ("one strut twice", hexapod_params(twice), "struts 3 and 4 join the same joints"),
+             ("collinear platform joints", hexapod_params(line), "the geometry is singular at the "
+              "home pose")]
+    for what, text, reason in cases:
+        name = "hex-" + what.replace(" ", "-")
+        ini, _ = make_config(sample, work, name, "pkmhexkins", text)
+        refused(failures, f"pkmhexkins, {what}", ini, module, work, name, reason)
+
+
+def exechon_cases(pkm, module, sample, work, failures):
+    good = run([pkm, "exechon", "linuxcnc-params", "--machine", "mxt700s-like"])
+    # The good file loads: HAL only (the sample is a hexapod; the Exechon configuration is
+    # tested with the Exechon sample).
+    params = os.path.join(work, "exechon-good.params")
+    with open(params, "w") as f:
+        f.write(good)
+    os.chmod(params, 0o644)
+    r = lh.halrun([f"loadrt pkmexechonkins params={params}", "show pin pkmexechonkins"],
+                  [module], "exechon-good", work)
+    print(f"pkmexechonkins, good file: halcmd exit {r.returncode}, {r.seconds:.1f} s")
+    if r.returncode != 0 or "pkmexechonkins.tool-offset" not in r.log:
+        failures.append(f"pkmexechonkins, good file: did not load:\n{r.log}")
+    if r.leftovers:
+        failures.append(f"pkmexechonkins, good file: left behind: {r.leftovers}")
+
+    lines = good.splitlines(keepends=True)
+    number = 1 + next(i for i, l in enumerate(lines) if l.startswith("hz "))
+    cases = [("missing parameter", "".join(l for l in lines if not l.startswith("tool_length")),
+              "missing tool_length"),
+             ("unknown name", good.replace("\nhz ", "\nhzz "),
+              f"line {number}: unknown parameter 'hzz'"),
+             ("dB = 0", re.sub(r"(?m)^dB .*$", "dB 0", good), "tripod: dB must be != 0"),
+             ("home h = 0", re.sub(r"(?m)^home_h .*$", "home_h 0", good),
+              "the tripod is singular at home")]
+    for what, text, reason in cases:
+        name = "exechon-" + re.sub(r"[^a-zA-Z0-9]+", "-", what)
+        ini, _ = make_config(sample, work, name, "pkmexechonkins", text)
+        refused(failures, f"pkmexechonkins, {what}", ini, module, work, name, reason)
+
+
+def main():
+    pkm, hexkins, exechon, source_dir = (os.path.abspath(a) for a in sys.argv[1:5])
+    lh.require([hexkins, exechon])
+    work = lh.workdir("pkm-load-failures-")
+    sample = os.path.join(source_dir, "data/linuxcnc/hexapod-sim-pkm")
+    failures = []
+    hexapod_cases(pkm, hexkins, sample, work, failures)
+    exechon_cases(pkm, exechon, sample, work, failures)
+    if failures:
+        sys.exit("FAIL:\n" + "\n".join(failures))
+    shutil.rmtree(work, ignore_errors=True)
+    print("ok: bad kinematics parameters stop LinuxCNC at load with the reason in its log")
+
+
+if __name__ == "__main__":
+    main()
