@@ -59,7 +59,8 @@ exception, a failed check or the deadline): `shutdown` through linuxcncrsh, then
 is ended (the user exists for these tests only), and USER's System V shared memory, semaphores and
 message queues, /dev/shm files, /tmp/linuxcnc.lock, the script's /tmp/linuxcnc.{debug,print}.*
 files and the rtapi FIFO (RTAPI_FIFO_PATH, in the session's HOME in the work folder) are removed. The module folder
-copy lives only in the mount namespace, which ends with its last process.
+copy lives only in the mount namespace, which ends with its last process. The test process is
+the subreaper of LinuxCNC's daemons, so none is left as a zombie either.
 
 Serialisation: a session holds an flock on /tmp/pkm-linuxcnc-harness.lock, so two test programs
 (also from different ctest runs or build trees) wait for each other, up to WAIT seconds; a
@@ -347,6 +348,29 @@ class _Slot:
 _active = []
 
 
+def _become_subreaper():
+    """Makes this process the reaper of LinuxCNC's orphans (prctl PR_SET_CHILD_SUBREAPER), so
+    that the daemons the `linuxcnc` script leaves behind when it is killed are reaped here rather
+    than left as zombies under a PID 1 that does not reap (as in some containers)."""
+    try:
+        import ctypes
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(36, 1, 0, 0, 0)  # PR_SET_CHILD_SUBREAPER
+    except (OSError, AttributeError):
+        pass
+
+
+def _reap():
+    """Reaps every finished child (the orphans this process adopted as subreaper)."""
+    while True:
+        try:
+            pid, _ = os.waitpid(-1, os.WNOHANG)
+        except ChildProcessError:
+            return
+        if pid == 0:
+            return
+
+
 @atexit.register
 def _cleanup_all():
     for cnc in list(_active):
@@ -382,6 +406,7 @@ class LinuxCNC:
         """Starts the `linuxcnc` script (in its own process group); does not wait for it."""
         self._slot.acquire()
         _active.append(self)
+        _become_subreaper()
         cfg = os.path.dirname(self.ini)
         os.makedirs(self.home_dir, exist_ok=True)
         os.chmod(self.home_dir, 0o777)
@@ -421,7 +446,16 @@ class LinuxCNC:
         return True
 
     def stop(self):
-        """Stops LinuxCNC and removes everything it left (idempotent)."""
+        """Stops LinuxCNC and removes everything it left (idempotent). The deadline's and
+        SIGTERM's signals wait until it is done."""
+        signals = {signal.SIGALRM, signal.SIGTERM, signal.SIGINT}
+        old = signal.pthread_sigmask(signal.SIG_BLOCK, signals)
+        try:
+            self._stop()
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+    def _stop(self):
         if self.proc is None:
             if self in _active:
                 _active.remove(self)
@@ -447,6 +481,7 @@ class LinuxCNC:
             self.sock.close()
             self.sock = None
         _sweep(self.fifo)
+        _reap()
         self.leftovers = leftovers(self.fifo)
         self.seconds = time.time() - self._started
         self._logfile.close()
