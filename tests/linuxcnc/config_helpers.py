@@ -27,12 +27,13 @@ def run(cmd):
 
 def config(pkm, machine, work, name, extra=()):
     """`pkm linuxcnc config --machine MACHINE --display linuxcncrsh` into work/name; the INI."""
-    cfg = os.path.join(work, name)
-    out = run([pkm, "linuxcnc", "config", "--machine", machine, "--out", cfg, "--display",
+    written = os.path.join(work, name + ".written")
+    out = run([pkm, "linuxcnc", "config", "--machine", machine, "--out", written, "--display",
                "linuxcncrsh", *extra])
-    ini = re.search(r"run it with: linuxcnc (\S+)", out).group(1)
+    ini_name = os.path.basename(re.search(r"run it with: linuxcnc (\S+)", out).group(1))
+    cfg = lh.copy_config(written, work, name)  # LinuxCNC's user writes linuxcnc.var and tool.tbl
+    ini = os.path.join(cfg, ini_name)
     lh.set_ini(ini, "DISPLAY", "MAX_FEED_OVERRIDE", "5")  # programs run at up to 5x their feed
-    lh._open_up(cfg)  # LinuxCNC's user writes linuxcnc.var and the tool table there
     return ini
 
 
