@@ -24,7 +24,8 @@ API (everything a test needs; the rest of the module is private):
     lh.set_ini(ini, section, key, value)       sets (or adds) one INI entry in place
 
     with lh.LinuxCNC(ini, modules=[so, ...], name="calibrated", work=work) as cnc:
-        cnc.home()                             estop off, machine on, home all, wait until homed
+        cnc.home()                             estop off, machine on, home all, wait until the
+                                               INI's [KINS] JOINTS joints are homed
         cnc.mdi("G0 X1 Y1 Z21")                one MDI line, waits until the motion is done
         cnc.joints(), cnc.world()              joint positions / world position (linuxcncrsh's
                                                `get joint_pos` / `get abs_act_pos`: 6 decimals)
@@ -519,14 +520,23 @@ class LinuxCNC:
         line, self.buf = self.buf.split(b"\n", 1)
         return line.decode().strip()
 
+    def joint_count(self):
+        """[KINS] JOINTS of the INI (linuxcncrsh reports more joints than the machine has)."""
+        with open(self.ini) as f:
+            m = re.search(r"(?ms)^\[KINS\].*?^JOINTS\s*=\s*(\d+)", f.read())
+        return int(m.group(1)) if m else None
+
     def home(self, timeout=30):
-        """Estop off, machine on, homes all joints and waits until they are homed."""
+        """Estop off, machine on, homes all joints and waits until the INI's [KINS] JOINTS
+        joints are homed."""
         for c in ["set estop off", "set machine on", "set mode manual", "set home -1"]:
             self.ask(c)
+        joints = self.joint_count()
         deadline = time.time() + timeout
         while time.time() < deadline:
-            reply = self.ask("get joint_homed")
-            if reply.startswith("JOINT_HOMED") and "NO" not in reply.split():
+            reply = self.ask("get joint_homed").split()
+            flags = reply[1:1 + joints] if joints else reply[1:]
+            if reply[:1] == ["JOINT_HOMED"] and flags and all(f == "YES" for f in flags):
                 self.ask("set mode mdi")
                 return
             time.sleep(0.1)

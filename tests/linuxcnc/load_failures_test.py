@@ -5,14 +5,16 @@ pkm's kinematics modules read their parameter file at `loadrt` (`[KINS] KINEMATI
 params=FILE`, `pkmexechonkins params=FILE`) and refuse it there: a missing parameter, an unknown
 name, or a geometry that does not assemble fails the loadrt, so LinuxCNC does not start (instead
 of failing at the first move). For each module:
-  - a good file: LinuxCNC starts, homes (pkmhexkins: the world position after homing is the file's
-    home pose; the pins hold the file's values); pkmexechonkins: the module loads in HAL with
-    the file pkm writes and its pins exist;
+  - a good file: LinuxCNC starts and homes; pkmhexkins (a copy of data/linuxcnc/hexapod-sim-pkm,
+    its geometry `setp` lines removed, the geometry moved away from the module's defaults and
+    given as a parameter file): the world position after homing is the file's home, the pins
+    hold the file's values, and at two MDI poses the joints are pkm's IK of the file's machine;
+    pkmexechonkins (a copy of data/linuxcnc/exechon-mxt700s): the world position after homing is
+    [TRAJ] HOME;
   - a missing parameter, an unknown name, a geometry that does not assemble (pkmhexkins: one strut
     twice, platform joints on one line; pkmexechonkins: dB = 0, singular at home (h = 0)):
     LinuxCNC does not start, its log has `<module>: FILE: <reason>`, and nothing is left behind.
-The configuration is a copy of data/linuxcnc/hexapod-sim-pkm with its geometry `setp` lines
-removed. LinuxCNC is run by lcnc_harness.py (exit 77 when it cannot run here).
+LinuxCNC is run by lcnc_harness.py (exit 77 when it cannot run here).
 
 Usage: load_failures_test.py PKM_BINARY HEXKINS_SO EXECHON_SO SOURCE_DIR
 """
@@ -72,11 +74,9 @@ def make_config(sample, work, name, kinematics, text):
     return ini, params
 
 
-def refused(failures, what, ini, module, work, name, reason):
-    """LinuxCNC on `ini` must not start; its log must name the file and the reason."""
+def refused(failures, what, ini, module, work, name, want):
+    """LinuxCNC on `ini` must not start; its log must have the line `want`."""
     r = lh.start_fails(ini, [module], name, work)
-    params = os.path.join(os.path.dirname(ini), "kinematics.params")
-    want = f"{os.path.basename(module)[:-3]}: {params}: {reason}"
     print(f"{what}: started {r.started}, linuxcnc exit {r.returncode}, {r.seconds:.1f} s, "
           f"message {'found' if want in r.log else 'MISSING'}: '{want}'")
     if r.started:
@@ -95,14 +95,15 @@ def hexapod_cases(pkm, module, sample, work, failures):
     good = hexapod_params(machine)
     ini, _ = make_config(sample, work, "hex-good", "pkmhexkins", good)
     home = [machine["home"][k] for k in "xyzabc"]
-    csv = os.path.join(work, "home.csv")
-    with open(csv, "w") as f:
-        f.write("x,y,z,a,b,c\n" + ",".join(map(repr, home)) + "\n")
+    csv = os.path.join(work, "poses.csv")
     mpath = os.path.join(work, "machine.json")
     with open(mpath, "w") as f:
         json.dump(machine, f)
-    q = [float(v) for v in run([pkm, "hexapod", "ik", "--machine", mpath, "--poses", csv])
-         .strip().splitlines()[1].split(",")[:6]]
+    poses = [home, [0.5, -1.0, 21.0, 2.0, -3.0, 4.0], [-1.5, 0.5, 19.0, -4.0, 1.0, -2.0]]
+    with open(csv, "w") as f:
+        f.write("x,y,z,a,b,c\n" + "".join(",".join(map(repr, p)) + "\n" for p in poses))
+    rows = run([pkm, "hexapod", "ik", "--machine", mpath, "--poses", csv]).strip().splitlines()
+    q, *moves = [[float(v) for v in r.split(",")[:6]] for r in rows[1:]]
     for i, v in enumerate(q):  # joint homes: the IK at home of this machine
         for key in ("HOME", "HOME_OFFSET"):
             lh.set_ini(ini, f"JOINT_{i}", key, repr(v))
@@ -120,6 +121,13 @@ def hexapod_cases(pkm, module, sample, work, failures):
                 or pins["pkmhexkins.length-offset.5"] != 0.03
                 or pins["pkmhexkins.geometry-ok"] is not True):
             fails.append(f"the pins do not hold the file's values: {pins}")
+        for pose, want in zip(poses[1:], moves):
+            cnc.mdi("G0 X{} Y{} Z{} A{} B{} C{}".format(*pose))
+            got = cnc.joints()
+            err = max(abs(a - b) for a, b in zip(got, want))
+            print(f"pkmhexkins, good file: joints at {pose} {got}, pkm IK {want}: {err:.1e}")
+            if err > TOL:
+                fails.append(f"joints at {pose} differ from pkm's IK by {err}")
 
     fails, log = lh.session(ini, [module], "hex-good", work, body)
     failures += [f"pkmhexkins, good file: {f}" for f in fails]
@@ -143,25 +151,33 @@ def hexapod_cases(pkm, module, sample, work, failures):
               "home pose")]
     for what, text, reason in cases:
         name = "hex-" + what.replace(" ", "-")
-        ini, _ = make_config(sample, work, name, "pkmhexkins", text)
-        refused(failures, f"pkmhexkins, {what}", ini, module, work, name, reason)
+        ini, params = make_config(sample, work, name, "pkmhexkins", text)
+        refused(failures, f"pkmhexkins, {what}", ini, module, work, name,
+                f"pkmhexkins: {params}: {reason}")
 
 
-def exechon_cases(pkm, module, sample, work, failures):
-    good = run([pkm, "exechon", "linuxcnc-params", "--machine", "mxt700s-like"])
-    # The good file loads: HAL only (the sample is a hexapod; the Exechon configuration is
-    # tested with the Exechon sample).
-    params = os.path.join(work, "exechon-good.params")
-    with open(params, "w") as f:
-        f.write(good)
-    os.chmod(params, 0o644)
-    r = lh.halrun([f"loadrt pkmexechonkins params={params}", "show pin pkmexechonkins"],
-                  [module], "exechon-good", work)
-    print(f"pkmexechonkins, good file: halcmd exit {r.returncode}, {r.seconds:.1f} s")
-    if r.returncode != 0 or "pkmexechonkins.tool-offset" not in r.log:
-        failures.append(f"pkmexechonkins, good file: did not load:\n{r.log}")
-    if r.leftovers:
-        failures.append(f"pkmexechonkins, good file: left behind: {r.leftovers}")
+def exechon_cases(module, sample, work, failures):
+    """The Exechon sample (its KINEMATICS line: pkmexechonkins params=mxt700s-like.params)."""
+    with open(os.path.join(sample, "mxt700s-like.params")) as f:
+        good = f.read()
+    cfg = lh.copy_config(sample, work, "exechon-good")
+    ini = os.path.join(cfg, "mxt700s-like.ini")
+    lh.make_headless(ini)
+    with open(ini) as f:
+        home = [float(v) for v in re.search(r"(?m)^HOME = (.*)$", f.read()).group(1).split()]
+
+    def body(cnc, fails):
+        cnc.home()
+        world = cnc.world()
+        err = max(abs(a - b) for a, b in zip(world, home))
+        print(f"pkmexechonkins, good file: world after homing {world}, home {home}: {err:.1e}")
+        if err > 1e-5:  # mm
+            fails.append(f"world after homing {world} is not [TRAJ] HOME {home}")
+        if cnc.pin("pkmexechonkins.fwd-kins-fail") is not False:
+            fails.append("forward kinematics failed after homing")
+
+    fails, log = lh.session(ini, [module], "exechon-good", work, body)
+    failures += [f"pkmexechonkins, good file: {f}" for f in fails]
 
     lines = good.splitlines(keepends=True)
     number = 1 + next(i for i, l in enumerate(lines) if l.startswith("hz "))
@@ -174,18 +190,24 @@ def exechon_cases(pkm, module, sample, work, failures):
               "the tripod is singular at home")]
     for what, text, reason in cases:
         name = "exechon-" + re.sub(r"[^a-zA-Z0-9]+", "-", what)
-        ini, _ = make_config(sample, work, name, "pkmexechonkins", text)
-        refused(failures, f"pkmexechonkins, {what}", ini, module, work, name, reason)
+        cfg = lh.copy_config(sample, work, name)
+        with open(os.path.join(cfg, "mxt700s-like.params"), "w") as f:
+            f.write(text)
+        ini = os.path.join(cfg, "mxt700s-like.ini")
+        lh.make_headless(ini)
+        refused(failures, f"pkmexechonkins, {what}", ini, module, work, name,
+                f"pkmexechonkins: mxt700s-like.params: {reason}")
 
 
 def main():
     pkm, hexkins, exechon, source_dir = (os.path.abspath(a) for a in sys.argv[1:5])
     lh.require([hexkins, exechon])
     work = lh.workdir("pkm-load-failures-")
-    sample = os.path.join(source_dir, "data/linuxcnc/hexapod-sim-pkm")
     failures = []
-    hexapod_cases(pkm, hexkins, sample, work, failures)
-    exechon_cases(pkm, exechon, sample, work, failures)
+    hexapod_cases(pkm, hexkins, os.path.join(source_dir, "data/linuxcnc/hexapod-sim-pkm"), work,
+                  failures)
+    exechon_cases(exechon, os.path.join(source_dir, "data/linuxcnc/exechon-mxt700s"), work,
+                  failures)
     if failures:
         sys.exit("FAIL:\n" + "\n".join(failures))
     shutil.rmtree(work, ignore_errors=True)
