@@ -9,6 +9,7 @@
 #include <future>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -25,6 +26,7 @@
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "pkm/workflow/kinematics_path.hpp"
+#include "serial_worker.hpp"
 
 namespace pkm::cli {
 
@@ -77,22 +79,16 @@ void runIk(const MachineOption& machine_opt, const std::string& poses) {
   }
 }
 
-/// CSV text of solved rows, in a buffer that is not cleared first (the rows overwrite it).
-struct FkRowsText {
-  std::unique_ptr<char[]> buffer;
-  std::size_t size = 0;
-  [[nodiscard]] std::string_view view() const { return {buffer.get(), size}; }
-};
-
-/// The rows' CSV text; their angles come from `angles`, which must see every step in order.
-FkRowsText formatFkRows(const std::vector<workflow::FkStep>& rows,
-                        workflow::HexapodFkAngles& angles) {
-  // At most six numbers of 24 bytes, an iteration count of 11, a status of 14 and 8 separators:
-  // 183 bytes a row.
-  constexpr std::size_t kRowRoom = 8 * io::kMaxNumberChars;
-  FkRowsText text{std::make_unique_for_overwrite<char[]>(rows.size() * kRowRoom + 1)};
-  char* o = text.buffer.get();
-  for (const workflow::FkStep& r : rows) {
+/// Writes the rows' CSV text at `o` (room: kFkRowRoom a row) and returns its end; their angles come
+/// from `angles`, which must see every step in order.
+/// At most six numbers of kMaxNumberChars, an iteration count of 11, a status of 14 and 8
+/// separators a row.
+constexpr std::size_t kFkRowRoom = 8 * io::kMaxNumberChars;
+char* formatFkRows(const workflow::FkStep* rows,
+                   std::size_t count,
+                   workflow::HexapodFkAngles& angles,
+                   char* o) {
+  for (const workflow::FkStep& r : std::span(rows, count)) {
     const Eigen::Vector3d rpy = angles.next(r);
     if (r.summary.ok()) {
       for (int i = 0; i < 6; ++i) {
@@ -108,25 +104,23 @@ FkRowsText formatFkRows(const std::vector<workflow::FkStep>& rows,
     o = std::copy(status.begin(), status.end(), o);
     *o++ = '\n';
   }
-  text.size = static_cast<std::size_t>(o - text.buffer.get());
-  return text;
+  return o;
 }
 
-/// Up to kFkChunk rows of strut readings read in one go, and what ended the reading: the end of
-/// the input or an error (a bad line), which is raised after the rows before it are printed.
-constexpr std::size_t kFkChunk = 8192;
+/// Rows of strut readings read in one go, and what ended the reading: the end of the input or an
+/// error (a bad line), which is raised after the rows before it are printed.
 struct FkInputChunk {
   std::vector<kin::StrutVector> readings;
   bool last = false;
   std::exception_ptr error;
 };
 
-FkInputChunk readFkChunk(io::CsvReader& reader) {
+FkInputChunk readFkChunk(io::CsvReader& reader, std::size_t rows) {
   FkInputChunk chunk;
-  chunk.readings.reserve(kFkChunk);
+  chunk.readings.reserve(rows);
   std::array<double, 6> row{};
   try {
-    while (chunk.readings.size() < kFkChunk) {
+    while (chunk.readings.size() < rows) {
       if (!reader.next(row)) {
         chunk.last = true;
         break;
@@ -139,6 +133,11 @@ FkInputChunk readFkChunk(io::CsvReader& reader) {
   }
   return chunk;
 }
+
+/// Rows solved between two hand-overs to the printing thread, and the largest input chunk (the
+/// first chunks are smaller, so that solving starts early).
+constexpr std::size_t kFkPiece = 1024;
+constexpr std::size_t kFkMaxChunk = 8192;
 
 void runFk(const MachineOption& machine_opt,
            const std::string& lengths,
@@ -153,27 +152,41 @@ void runFk(const MachineOption& machine_opt,
   io::CsvReader reader(lengths, kLengthColumns);
   Output out;
   out.text() += "x,y,z,a,b,c,iterations,status\n";
-  // Rows are solved in order (each seeds the next, as in a servo loop), a chunk at a time; while
-  // one chunk is solved, a second thread prints the chunk before it and reads the chunk after it
-  // (one such task at a time: the angles and the reader see their rows in order).
-  FkInputChunk chunk = readFkChunk(reader);
-  std::vector<workflow::FkStep> solved;
+  // Rows are solved in order on this thread (each seeds the next, as in a servo loop). A second
+  // thread reads the input a chunk ahead and prints the solved rows a piece at a time, in order
+  // (the angles and the reader see their rows in order); `out` is its alone from here.
+  auto text = std::make_unique_for_overwrite<char[]>(kFkPiece * kFkRowRoom);
+  SerialWorker printer;
+  auto read_ahead = [&printer, &reader](std::size_t rows) {
+    auto next = std::make_shared<std::promise<FkInputChunk>>();
+    std::future<FkInputChunk> result = next->get_future();
+    printer.post([next, &reader, rows] { next->set_value(readFkChunk(reader, rows)); });
+    return result;
+  };
+  std::size_t chunk_rows = kFkPiece;
+  FkInputChunk chunk = read_ahead(chunk_rows).get();
   while (true) {
-    std::future<std::pair<FkRowsText, FkInputChunk>> other = std::async(
-        std::launch::async, [&reader, &angles, rows = std::move(solved), read = !chunk.last] {
-          return std::pair(formatFkRows(rows, angles), read ? readFkChunk(reader) : FkInputChunk{});
-        });
-    solved.clear();
-    solved.reserve(chunk.readings.size());
-    for (const kin::StrutVector& q : chunk.readings) solved.push_back(path.solve(q));
-    auto [text, next] = other.get();
-    out.write(text.view());
+    std::future<FkInputChunk> next;
+    if (!chunk.last) {
+      chunk_rows = std::min(2 * chunk_rows, kFkMaxChunk);
+      next = read_ahead(chunk_rows);
+    }
+    for (std::size_t first = 0; first < chunk.readings.size(); first += kFkPiece) {
+      auto piece = std::make_shared<std::vector<workflow::FkStep>>();
+      const std::size_t end = std::min(first + kFkPiece, chunk.readings.size());
+      piece->reserve(end - first);
+      for (std::size_t i = first; i < end; ++i) piece->push_back(path.solve(chunk.readings[i]));
+      printer.post([piece, &angles, &out, buffer = text.get()] {
+        out.write({buffer, formatFkRows(piece->data(), piece->size(), angles, buffer)});
+      });
+    }
     if (chunk.last) {
-      out.write(formatFkRows(solved, angles).view());
+      printer.drain();
+      out.flush();
       if (chunk.error) std::rethrow_exception(chunk.error);
       return;
     }
-    chunk = std::move(next);
+    chunk = next.get();
   }
 }
 

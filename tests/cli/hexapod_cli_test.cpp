@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -199,6 +200,55 @@ TEST_F(HexapodCli, FkImpossibleRowGivesEmptyPoseAndNextRowReseedsFromHome) {
   const auto next = splitFields(lines[2]);
   EXPECT_EQ(next[7], "ok");
   for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(num(next[i]), kReference[1].pose[i], 1e-6);
+}
+
+// A path long enough for several input chunks and printed pieces (the two-thread pipeline): every
+// row in order, each the path's pose; a bad line far down still prints every row before it.
+TEST_F(HexapodCli, FkLongPathKeepsOrderAndReportsLateBadLine) {
+  constexpr int kRows = 20000;
+  std::string poses = "x,y,z,a,b,c\n";
+  for (int k = 0; k < kRows; ++k) {
+    const double t = 2.0 * 3.141592653589793 * k / kRows;
+    poses += std::to_string(3 * std::sin(t)) + "," + std::to_string(3 * (1 - std::cos(t))) + "," +
+             std::to_string(20 + std::sin(2 * t)) + "," + std::to_string(8 * std::sin(t)) + "," +
+             std::to_string(6 * std::sin(3 * t)) + "," + std::to_string(11 * std::sin(t)) + "\n";
+  }
+  const CliRun ik =
+      pkm({"hexapod", "ik", "-m", "hexapod-linuxcnc-sim", "-p", write("P.csv", poses)});
+  ASSERT_EQ(ik.code, 0) << ik.err;
+  const CliRun fk = pkm({"hexapod",
+                         "fk",
+                         "-m",
+                         "hexapod-linuxcnc-sim",
+                         "-l",
+                         write("L.csv", ik.out),
+                         "--seed",
+                         "0,0,20,0,0,0"});
+  ASSERT_EQ(fk.code, 0) << fk.err;
+  const auto want = splitLines(poses);
+  const auto got = splitLines(fk.out);
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t k = 1; k < got.size(); ++k) {
+    const auto g = splitFields(got[k]);
+    const auto w = splitFields(want[k]);
+    ASSERT_EQ(g.size(), 8u) << got[k];
+    ASSERT_EQ(g[7], "ok") << "row " << k;
+    for (std::size_t i = 0; i < 6; ++i)
+      ASSERT_NEAR(num(g[i]), num(w[i]), kTolRoundTrip) << "row " << k << " column " << i;
+  }
+  // Line 15002 of the file (row 15001) is bad: 15000 rows, then FILE:LINE and exit 2.
+  auto lines = splitLines(ik.out);
+  lines[15001] = "1,2,x,4,5,6";
+  std::string bad;
+  for (const auto& l : lines) bad += l + "\n";
+  const std::string file = write("B.csv", bad);
+  const CliRun r =
+      pkm({"hexapod", "fk", "-m", "hexapod-linuxcnc-sim", "-l", file, "--seed", "0,0,20,0,0,0"});
+  EXPECT_EQ(r.code, kExitUsage);
+  EXPECT_THAT(r.err, HasSubstr(file + ":15002:"));
+  const auto printed = splitLines(r.out);
+  ASSERT_EQ(printed.size(), 15001u);
+  EXPECT_EQ(printed.back(), got[15000]);
 }
 
 // ---------------------------------------------------------------------------------------------

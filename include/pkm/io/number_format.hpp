@@ -8,8 +8,10 @@
 
 namespace pkm::io {
 
-/// Room writeNumber needs: the longest text it writes ("-1.2345678901234567e-308") is 24 bytes.
-inline constexpr std::size_t kMaxNumberChars = 32;
+/// Room writeNumber needs at `out`: the longest text it writes ("-1.2345678901234567e-308") is 24
+/// bytes; it may also write (and leave undefined) bytes up to out + kMaxNumberChars, as slack for
+/// fixed-size copies.
+inline constexpr std::size_t kMaxNumberChars = 48;
 
 /// Writes the text appendNumber appends to [out, out + kMaxNumberChars) and returns its end
 /// (no terminating NUL).
