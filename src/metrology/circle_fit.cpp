@@ -135,10 +135,7 @@ Circle fitCircleKasa(std::span<const Point2> points) {
 
 bool CircleFitOptions::isValid(std::string* why) const {
   const char* reason =
-      max_iterations < 1                                ? "max_iterations must be >= 1"
-      : !(step_tolerance > 0.0 && step_tolerance < 1.0) ? "step_tolerance must be in (0, 1)"
-      : !(cost_tolerance > 0.0 && cost_tolerance < 1.0) ? "cost_tolerance must be in (0, 1)"
-                                                        : nullptr;
+      levenbergMarquardtSettingsProblem(max_iterations, step_tolerance, cost_tolerance);
   if (reason != nullptr && why != nullptr) *why = reason;
   return reason == nullptr;
 }

@@ -91,10 +91,7 @@ Point2 ballCentre(const ProbeTouch& touch, const Eigen::Vector2d& offset) {
 
 bool ProbeOffsetOptions::isValid(std::string* why) const {
   const char* reason =
-      max_iterations < 1                                ? "max_iterations must be >= 1"
-      : !(step_tolerance > 0.0 && step_tolerance < 1.0) ? "step_tolerance must be in (0, 1)"
-      : !(cost_tolerance > 0.0 && cost_tolerance < 1.0) ? "cost_tolerance must be in (0, 1)"
-                                                        : nullptr;
+      levenbergMarquardtSettingsProblem(max_iterations, step_tolerance, cost_tolerance);
   if (reason != nullptr && why != nullptr) *why = reason;
   return reason == nullptr;
 }

@@ -14,6 +14,15 @@ namespace {
 using M6 = Eigen::Matrix<double, 6, 6>;
 using V6 = Eigen::Matrix<double, 6, 1>;
 
+/// A·x = b as forward kinematics solves it: factor6, then substitute6 when not singular (b is
+/// left as it was otherwise); factor6's pivot ratio.
+double solve6(const M6& A, V6& b, int* det_sign = nullptr) {
+  Lu6 lu;
+  const double ratio = factor6(A, lu, det_sign);
+  if (lu.valid) substitute6(lu, b);
+  return ratio;
+}
+
 TEST(Solve6, MatchesEigenOnRandomSystems) {
   std::mt19937 rng(test::kSeed);
   std::uniform_real_distribution<double> u(-1, 1);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -35,6 +36,17 @@ TEST(MetrologyChecks, RejectsTooFewPoints) {
   } catch (const InvalidArgument& e) {
     EXPECT_STREQ(e.what(), "circle: needs at least 3 points, got 2");
   }
+}
+
+TEST(MetrologyChecks, LevenbergMarquardtSettings) {
+  EXPECT_EQ(levenbergMarquardtSettingsProblem(100, 1e-12, 1e-12), nullptr);
+  EXPECT_STREQ(levenbergMarquardtSettingsProblem(0, 1e-12, 1e-12), "max_iterations must be >= 1");
+  EXPECT_STREQ(levenbergMarquardtSettingsProblem(10, 0.0, 1e-12),
+               "step_tolerance must be in (0, 1)");
+  EXPECT_STREQ(levenbergMarquardtSettingsProblem(10, 1e-12, 1.0),
+               "cost_tolerance must be in (0, 1)");
+  EXPECT_STREQ(levenbergMarquardtSettingsProblem(10, 1e-12, std::nan("")),
+               "cost_tolerance must be in (0, 1)");
 }
 
 }  // namespace

@@ -16,4 +16,10 @@ void requireFinite(std::span<const double> values, std::string_view what);
 /// count < minimum.
 void requireCount(std::size_t count, std::size_t minimum, std::string_view what);
 
+/// The stopping settings of a Levenberg–Marquardt fit (circle, probe offset): nullptr when usable
+/// (max_iterations >= 1, both tolerances in (0, 1)), else the reason.
+[[nodiscard]] const char* levenbergMarquardtSettingsProblem(int max_iterations,
+                                                            double step_tolerance,
+                                                            double cost_tolerance);
+
 }  // namespace pkm::metrology

@@ -90,15 +90,4 @@ inline void substitute6(const Lu6& lu, Eigen::Matrix<double, 6, 1>& b) {
   for (int k = 0; k < 6; ++k) b[k] = y[k];
 }
 
-/// Solves A·x = b (b becomes x) through factor6 and substitute6, with factor6's return value and
-/// `det_sign`; b is left as it was when A is singular.
-inline double solve6(const Eigen::Matrix<double, 6, 6>& A,
-                     Eigen::Matrix<double, 6, 1>& b,
-                     int* det_sign = nullptr) {
-  Lu6 lu;
-  const double ratio = factor6(A, lu, det_sign);
-  if (lu.valid) substitute6(lu, b);
-  return ratio;
-}
-
 }  // namespace pkm::kinematics::detail
