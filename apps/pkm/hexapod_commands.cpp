@@ -1,4 +1,4 @@
-// `pkm hexapod ...`: ik, fk, check, describe, hal, machines (docs/formats.md).
+// `pkm hexapod ...`: ik, fk, check, describe, hal, linuxcnc-params, machines (docs/formats.md).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -19,6 +19,7 @@
 #include "pkm/io/csv.hpp"
 #include "pkm/io/kinematics_csv.hpp"
 #include "pkm/io/linuxcnc_hal.hpp"
+#include "pkm/io/linuxcnc_hexapod_params.hpp"
 #include "pkm/io/machine_description.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/number_format.hpp"
@@ -275,6 +276,16 @@ void addHexapodCommands(CLI::App& app) {
     Output out;
     const io::HexapodMachine m = st->machine.load();
     out.text() += st->kins == "pkmhexkins" ? io::writePkmhexkinsSetp(m) : io::writeLinuxcncSetp(m);
+  });
+
+  CLI::App* params = hex->add_subcommand(
+      "linuxcnc-params",
+      "write the parameter file of the LinuxCNC kinematics pkmhexkins (loadrt pkmhexkins "
+      "params=FILE: read and checked at load)");
+  st->machine.add(*params);
+  params->callback([st] {
+    Output out;
+    out.text() += io::linuxcncHexapodParameters(st->machine.load());
   });
 
   CLI::App* list = hex->add_subcommand("machines", "list the built-in machines");

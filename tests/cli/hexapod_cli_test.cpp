@@ -277,6 +277,21 @@ TEST_F(HexapodCli, CheckRuns) {
   EXPECT_EQ(splitFields(lines[2]).size(), columns);
 }
 
+// The pkmhexkins parameter file (read by the component at loadrt; its parser's round trip is
+// tests/io/linuxcnc_hexapod_params_test.cpp): every strut, the tool and home, the machine's unit.
+TEST_F(HexapodCli, LinuxcncParamsWritesTheComponentsFile) {
+  const CliRun r = pkm({"hexapod", "linuxcnc-params", "--machine", "hexapod-linuxcnc-sim"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("lengths in inch"));
+  EXPECT_THAT(r.out, HasSubstr("\nbase.0 -22.95 13.25 0\n"));
+  EXPECT_THAT(r.out, HasSubstr("\nplatform.2 10.459 -4.884 0\n"));
+  EXPECT_THAT(r.out, HasSubstr("\nlength-offset.5 "));
+  EXPECT_THAT(r.out, HasSubstr("\nhome 0 0 20 0 0 0\n"));
+  const CliRun bad = pkm({"hexapod", "linuxcnc-params", "--machine", "no-such-machine"});
+  EXPECT_EQ(bad.code, kExitUsage);
+  EXPECT_THAT(bad.err, HasSubstr("no-such-machine"));
+}
+
 TEST_F(HexapodCli, HalOutputReadBackGivesSameIk) {
   const std::string poses = write("P.csv", kSimPoses);
   const CliRun hal = pkm({"hexapod", "hal", "--machine", "hexapod-linuxcnc-sim"});
