@@ -151,17 +151,18 @@ def run_program(cnc, path, count, at_stop, timeout=120, feed_override=500):
         if "NAK" in reply:
             raise RuntimeError(f"'{c}' refused: {reply}")
     deadline = time.time() + timeout
-    stops, running, last_line = 0, True, None
+    stops, running, started, last_line = 0, True, False, None
     while time.time() < deadline:
         status = cnc.ask("get program_status").split()[-1]
         line = cnc.ask("get program_line").split()[-1]
+        started = started or status != "IDLE"  # `set run` returns before the program starts
         if status == "PAUSED" and line != last_line:  # a new stop (not the last one, resuming)
             if stops >= count:
                 raise RuntimeError(f"{path}: more than {count} stops")
             at_stop(stops)
             stops, last_line = stops + 1, line
             cnc.ask("set resume")
-        elif status == "IDLE":
+        elif status == "IDLE" and started:
             running = False
             break
         time.sleep(0.05)
