@@ -1,0 +1,99 @@
+/// @file
+/// @brief The instruments and the environment of a measurement as data: what an uncertainty
+/// budget needs to know about them (ISO/TR 230-9:2005 §6, ISO 230-2:2014 Annex A). The defaults
+/// are typical values of current laser calibration systems with environmental compensation,
+/// strain-gauge touch probes, dial gauges and laser trackers as manufacturers' datasheets state
+/// them (docs/analysis.md, "Instrument and environment defaults", lists the sources); every
+/// ± figure of a datasheet is taken as the half-width of a rectangular distribution unless a
+/// field says otherwise. Read and written as JSON by io/uncertainty_sources.hpp.
+#pragma once
+
+#include <string>
+
+#include "pkm/metrology/air_refractive_index.hpp"
+
+namespace pkm::metrology {
+
+/// A laser interferometer with its environmental compensation unit (air and material sensors).
+struct LaserInterferometer {
+  std::string name = "typical HeNe laser calibration system with environmental compensation";
+  double vacuum_wavelength_um = kHeNeVacuumWavelengthUm;  ///< λ_vac, µm
+  double wavelength_accuracy_ppm = 0.05;         ///< vacuum wavelength (frequency) accuracy, ± ppm
+  double resolution_mm = 1e-6;                   ///< display resolution, mm (quantisation ±res/2)
+  double air_temperature_accuracy_k = 0.2;       ///< air temperature sensor, ± K
+  double air_pressure_accuracy_pa = 100.0;       ///< air pressure sensor, ± Pa (±1 hPa)
+  double air_humidity_accuracy_percent = 6.0;    ///< humidity sensor, ± %RH
+  double material_temperature_accuracy_k = 0.1;  ///< material temperature sensor, ± K
+  /// Straightness optics (short range): accuracy ±(a + b·|reading| + c·L²) with the reading in
+  /// µm and the measured length L in m; here a in mm, b relative, c in mm/m².
+  double straightness_accuracy_mm = 0.5e-3;
+  double straightness_relative = 0.005;
+  double straightness_length_mm_per_m2 = 0.15e-3;
+  /// Angular optics accuracy of a slope measured over the beam, ± (a + b·L) rad with L in m.
+  double angular_accuracy_rad = 0.2e-6;
+  double angular_accuracy_rad_per_m = 0.05e-6;
+};
+
+/// A touch probe on the machine (on-machine measurement, seed 003).
+struct TouchProbe {
+  std::string name = "typical strain-gauge touch probe";
+  double repeatability_2sigma_mm = 0.25e-3;  ///< unidirectional repeatability, 2σ, mm
+  double form_2d_mm = 0.25e-3;               ///< 2D (XY) form deviation (lobing), ± mm
+  /// Expanded uncertainty (k = 2) of the effective stylus radius from its ring-gauge calibration.
+  double stylus_radius_uncertainty_mm = 0.5e-3;
+  /// Expanded uncertainty (k = 2) of the master ring's certified diameter, mm.
+  double ring_diameter_uncertainty_mm = 1.0e-3;
+};
+
+/// A dial gauge or digital indicator (constrained-motion calibration, seed 004).
+struct DialGauge {
+  std::string name = "typical digital indicator, 1 um resolution";
+  double accuracy_mm = 3e-3;    ///< maximum permissible error over the used range, ± mm
+  double resolution_mm = 1e-3;  ///< display resolution, mm
+};
+
+/// A laser tracker (hexapod and Exechon calibration).
+struct LaserTrackerSpec {
+  std::string name = "typical laser tracker (interferometer mode)";
+  double accuracy_mm = 15e-3;       ///< maximum permissible error a of ±(a + b·L), mm
+  double accuracy_mm_per_m = 6e-3;  ///< b, mm per m of range
+};
+
+/// The environment of a test and the artefact/machine material.
+struct MeasurementEnvironment {
+  AirConditions air;                     ///< mean air state in the beam path during the test
+  double material_temperature_c = 20.0;  ///< the machine scale's (or workpiece's) temperature, °C
+  double expansion_coefficient_per_k = 11.5e-6;          ///< α of the scale material (steel), 1/K
+  double expansion_coefficient_accuracy_per_k = 1.0e-6;  ///< ± uncertainty of α, 1/K
+  /// Air temperature change during the test, ± K: acts on the dead path (the beam between the
+  /// interferometer and the zero position, not compensated after the laser is zeroed).
+  double air_temperature_variation_k = 0.5;
+  double dead_path_mm = 0.0;        ///< dead path length, mm
+  double misalignment_rad = 50e-6;  ///< beam-to-axis misalignment bound θ, rad (cosine error)
+  /// Abbe offset between the measuring line and the functional point, mm, and the range of the
+  /// axis's angular error (pitch or yaw) over the travel, rad: Abbe error ± offset × range / 2.
+  double abbe_offset_mm = 0.0;
+  double angular_error_range_rad = 0.0;
+  /// Set-up repeatability: standard uncertainty of re-setting the optics and the axis, mm
+  /// (ISO/TR 230-9 u_SETUP).
+  double setup_repeatability_mm = 0.0;
+  /// Environmental variation error E_VE of a drift test (ISO 230-2:2014 Annex A), mm: the range
+  /// of the reading of a stationary axis over the test duration.
+  double environmental_variation_mm = 0.0;
+};
+
+/// Everything an uncertainty budget of `pkm analyze` reads: instruments and environment.
+struct UncertaintySources {
+  LaserInterferometer laser;
+  TouchProbe probe;
+  DialGauge dial_gauge;
+  LaserTrackerSpec tracker;
+  MeasurementEnvironment environment;
+  double coverage_factor = 2.0;  ///< k of every expanded uncertainty (ISO/TR 230-9: 2)
+
+  /// True when every number is finite, every accuracy >= 0, the air state valid (AirConditions)
+  /// and k > 0; otherwise false with the reason in *why (if given).
+  [[nodiscard]] bool isValid(std::string* why = nullptr) const;
+};
+
+}  // namespace pkm::metrology

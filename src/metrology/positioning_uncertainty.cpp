@@ -1,0 +1,292 @@
+// Uncertainty budgets of ISO 230-2 results (metrology/positioning_uncertainty.hpp).
+#include "pkm/metrology/positioning_uncertainty.hpp"
+
+#include <cmath>
+#include <optional>
+
+#include "pkm/core/error.hpp"
+
+namespace pkm::metrology {
+namespace {
+
+constexpr double kPpm = 1e-6;
+
+/// One directional mean of a target: x̄, s and n (a candidate extreme of a range).
+struct Mean {
+  double target = 0.0;
+  double mean = 0.0;
+  double s = 0.0;
+  int n = 0;
+};
+
+std::vector<Mean> directionalMeans(const Iso230_2Result& r) {
+  std::vector<Mean> out;
+  for (const TargetStatistics& t : r.targets) {
+    out.push_back({t.target, t.mean_up, t.s_up, t.runs_up});
+    out.push_back({t.target, t.mean_down, t.s_down, t.runs_down});
+  }
+  return out;
+}
+
+/// Variance of a mean of n readings with standard deviation s: s²/n.
+double meanVariance(const Mean& m) { return m.s * m.s / m.n; }
+/// Variance of the estimate s itself (normal readings): s²/(2(n − 1)).
+double sVariance(double s, int n) { return s * s / (2.0 * (n - 1)); }
+
+UncertaintyContributor statistic(std::string name, double u, std::string source) {
+  UncertaintyContributor c;
+  c.name = std::move(name);
+  c.value = u;
+  c.unit = "mm";
+  c.distribution = Distribution::kNormal;
+  c.normal_k = 1.0;
+  c.source = std::move(source);
+  return c;
+}
+
+UncertaintyContributor bounded(
+    std::string name, double half_width, std::string unit, double sensitivity, std::string source) {
+  UncertaintyContributor c;
+  c.name = std::move(name);
+  c.value = half_width;
+  c.unit = std::move(unit);
+  c.distribution = Distribution::kRectangular;
+  c.sensitivity = sensitivity;
+  c.source = std::move(source);
+  return c;
+}
+
+/// The resolution of two readings (a difference) and E_VE: the terms of B and R.
+void addReadingContributors(UncertaintyBudget& b, const UncertaintySources& src) {
+  addContributor(b,
+                 bounded("laser resolution (two readings)",
+                         src.laser.resolution_mm / 2.0,
+                         "mm",
+                         std::sqrt(2.0),
+                         "instrument"));
+  addContributor(b,
+                 bounded("environmental variation error E_VE",
+                         src.environment.environmental_variation_mm / 2.0,
+                         "mm",
+                         1.0,
+                         "drift test (ISO 230-2 Annex A)"));
+}
+
+UncertaintyBudget newBudget(const char* quantity, double value, const UncertaintySources& src) {
+  UncertaintyBudget b;
+  b.quantity = quantity;
+  b.unit = "mm";
+  b.value = value;
+  b.coverage_factor = src.coverage_factor;
+  return b;
+}
+
+/// E or M: a range between the largest and the smallest of `means`.
+UncertaintyBudget rangeBudget(const char* quantity,
+                              double value,
+                              const std::vector<Mean>& means,
+                              double mean_variance_scale,
+                              const UncertaintySources& src) {
+  const Mean* hi = &means.front();
+  const Mean* lo = &means.front();
+  for (const Mean& m : means) {
+    if (m.mean > hi->mean) hi = &m;
+    if (m.mean < lo->mean) lo = &m;
+  }
+  UncertaintyBudget b = newBudget(quantity, value, src);
+  addLaserLengthContributors(b, std::abs(hi->target - lo->target), src);
+  addContributor(b,
+                 statistic("sampling of the extreme means (s/sqrt(n))",
+                           std::sqrt(mean_variance_scale * (meanVariance(*hi) + meanVariance(*lo))),
+                           "test data"));
+  addContributor(b,
+                 bounded("laser resolution (two readings)",
+                         src.laser.resolution_mm / 2.0,
+                         "mm",
+                         std::sqrt(2.0),
+                         "instrument"));
+  return b;
+}
+
+UncertaintyBudget accuracyBudget(double value,
+                                 const std::vector<Mean>& means,
+                                 double k,
+                                 const UncertaintySources& src) {
+  const Mean* hi = &means.front();
+  const Mean* lo = &means.front();
+  for (const Mean& m : means) {
+    if (m.mean + k * m.s > hi->mean + k * hi->s) hi = &m;
+    if (m.mean - k * m.s < lo->mean - k * lo->s) lo = &m;
+  }
+  UncertaintyBudget b = newBudget("A", value, src);
+  addLaserLengthContributors(b, std::abs(hi->target - lo->target), src);
+  addContributor(b,
+                 statistic("sampling of the extreme means (s/sqrt(n))",
+                           std::sqrt(meanVariance(*hi) + meanVariance(*lo)),
+                           "test data"));
+  addContributor(b,
+                 statistic("sampling of the extreme standard deviations (k s)",
+                           k * std::sqrt(sVariance(hi->s, hi->n) + sVariance(lo->s, lo->n)),
+                           "test data"));
+  addContributor(b,
+                 bounded("laser resolution (two readings)",
+                         src.laser.resolution_mm / 2.0,
+                         "mm",
+                         std::sqrt(2.0),
+                         "instrument"));
+  return b;
+}
+
+UncertaintyBudget reversalBudget(const Iso230_2Result& r, const UncertaintySources& src) {
+  const TargetStatistics* c = &r.targets.front();
+  for (const TargetStatistics& t : r.targets)
+    if (std::abs(t.reversal) > std::abs(c->reversal)) c = &t;
+  UncertaintyBudget b = newBudget("B", r.B, src);
+  const double u = std::sqrt(c->s_up * c->s_up / c->runs_up + c->s_down * c->s_down / c->runs_down);
+  addContributor(b,
+                 statistic("sampling of the two means at the target (s/sqrt(n))", u, "test data"));
+  addReadingContributors(b, src);
+  return b;
+}
+
+UncertaintyBudget repeatabilityBudget(const Iso230_2Result& r,
+                                      double k,
+                                      const UncertaintySources& src) {
+  const TargetStatistics* c = &r.targets.front();
+  for (const TargetStatistics& t : r.targets)
+    if (t.repeatability > c->repeatability) c = &t;
+  UncertaintyBudget b = newBudget("R", r.R, src);
+  const double bidirectional = k * c->s_up + k * c->s_down + std::abs(c->reversal);
+  double u = 0.0;
+  if (c->repeatability == bidirectional) {
+    const double u_b = c->s_up * c->s_up / c->runs_up + c->s_down * c->s_down / c->runs_down;
+    u = std::sqrt(k * k * (sVariance(c->s_up, c->runs_up) + sVariance(c->s_down, c->runs_down)) +
+                  u_b);
+  } else if (c->repeatability == 2.0 * k * c->s_up) {
+    u = 2.0 * k * std::sqrt(sVariance(c->s_up, c->runs_up));
+  } else {
+    u = 2.0 * k * std::sqrt(sVariance(c->s_down, c->runs_down));
+  }
+  addContributor(b, statistic("sampling of the standard deviations at the target", u, "test data"));
+  addReadingContributors(b, src);
+  return b;
+}
+
+}  // namespace
+
+void addLaserLengthContributors(UncertaintyBudget& b,
+                                double length_mm,
+                                const UncertaintySources& src) {
+  std::string why;
+  PKM_CHECK(src.isValid(&why), "uncertainty sources: {}", why);
+  PKM_CHECK(std::isfinite(length_mm) && length_mm >= 0.0,
+            "uncertainty: measured length must be >= 0, got {}",
+            length_mm);
+  const LaserInterferometer& laser = src.laser;
+  const MeasurementEnvironment& env = src.environment;
+  const double L = length_mm;
+  const AirIndexSensitivity dn = edlenSensitivity(env.air, laser.vacuum_wavelength_um);
+  addContributor(b,
+                 bounded("laser wavelength (vacuum)",
+                         laser.wavelength_accuracy_ppm,
+                         "ppm",
+                         L * kPpm,
+                         "instrument"));
+  addContributor(b,
+                 bounded("air temperature sensor",
+                         laser.air_temperature_accuracy_k,
+                         "K",
+                         L * dn.per_kelvin,
+                         "instrument; Edlen sensitivity"));
+  addContributor(b,
+                 bounded("air pressure sensor",
+                         laser.air_pressure_accuracy_pa,
+                         "Pa",
+                         L * dn.per_pascal,
+                         "instrument; Edlen sensitivity"));
+  addContributor(b,
+                 bounded("air humidity sensor",
+                         laser.air_humidity_accuracy_percent,
+                         "%RH",
+                         L * dn.per_percent_rh,
+                         "instrument; Edlen sensitivity"));
+  addContributor(b,
+                 bounded("material temperature sensor",
+                         laser.material_temperature_accuracy_k,
+                         "K",
+                         L * env.expansion_coefficient_per_k,
+                         "instrument"));
+  addContributor(b,
+                 bounded("expansion coefficient",
+                         env.expansion_coefficient_accuracy_per_k,
+                         "1/K",
+                         L * std::abs(env.material_temperature_c - 20.0),
+                         "environment"));
+  addContributor(b,
+                 bounded("dead path (air change during the test)",
+                         env.air_temperature_variation_k,
+                         "K",
+                         env.dead_path_mm * dn.per_kelvin,
+                         "environment; Edlen sensitivity"));
+  addContributor(b,
+                 bounded("cosine error (beam misalignment)",
+                         L * env.misalignment_rad * env.misalignment_rad / 2.0,
+                         "mm",
+                         1.0,
+                         "set-up"));
+  addContributor(b,
+                 bounded("Abbe error",
+                         env.abbe_offset_mm * env.angular_error_range_rad / 2.0,
+                         "mm",
+                         1.0,
+                         "set-up"));
+  addContributor(b, statistic("set-up repeatability", env.setup_repeatability_mm, "set-up"));
+  addContributor(b,
+                 bounded("environmental variation error E_VE",
+                         env.environmental_variation_mm / 2.0,
+                         "mm",
+                         1.0,
+                         "drift test (ISO 230-2 Annex A)"));
+}
+
+std::vector<UncertaintyBudget> iso230_2Uncertainty(const Iso230_2Result& result,
+                                                   const UncertaintySources& sources,
+                                                   double coverage) {
+  std::string why;
+  PKM_CHECK(sources.isValid(&why), "uncertainty sources: {}", why);
+  if (!result.bidirectional || result.targets.empty()) return {};
+  const std::vector<Mean> directional = directionalMeans(result);
+  std::vector<Mean> bidirectional;
+  for (const TargetStatistics& t : result.targets) {
+    // x̄i = (x̄i↑ + x̄i↓)/2: its variance is (s↑²/n↑ + s↓²/n↓)/4; carried as s²/n with n = 1.
+    const double var = (t.s_up * t.s_up / t.runs_up + t.s_down * t.s_down / t.runs_down) / 4.0;
+    bidirectional.push_back({t.target, t.mean, std::sqrt(var), 1});
+  }
+  std::vector<UncertaintyBudget> out;
+  out.push_back(rangeBudget("E", result.E, directional, 1.0, sources));
+  out.push_back(rangeBudget("M", result.M, bidirectional, 1.0, sources));
+  out.push_back(accuracyBudget(result.A, directional, coverage, sources));
+  out.push_back(reversalBudget(result, sources));
+  out.push_back(repeatabilityBudget(result, coverage, sources));
+  return out;
+}
+
+std::vector<ConformanceResult> decideIso230_2Conformance(
+    const std::vector<UncertaintyBudget>& budgets,
+    const std::vector<std::pair<std::string, double>>& tolerances) {
+  std::vector<ConformanceResult> out;
+  for (const auto& [name, limit] : tolerances) {
+    const UncertaintyBudget* found = nullptr;
+    for (const UncertaintyBudget& b : budgets)
+      if (b.quantity == name) found = &b;
+    PKM_CHECK(found != nullptr,
+              "conformance: no uncertainty budget for '{}' (E, M, A, B or R of bidirectional data)",
+              name);
+    PKM_CHECK(std::isfinite(limit), "conformance: tolerance of {} must be finite", name);
+    const double U = found->expandedUncertainty();
+    out.push_back({name, found->value, U, limit, decideConformance(found->value, U, limit)});
+  }
+  return out;
+}
+
+}  // namespace pkm::metrology
