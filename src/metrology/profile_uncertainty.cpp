@@ -1,0 +1,266 @@
+// Uncertainty budgets of straightness, parallelism and circles (metrology/profile_uncertainty.hpp).
+#include "pkm/metrology/profile_uncertainty.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "pkm/core/error.hpp"
+
+namespace pkm::metrology {
+namespace {
+
+void checkSources(const UncertaintySources& sources) {
+  std::string why;
+  PKM_CHECK(sources.isValid(&why), "uncertainty sources: {}", why);
+}
+
+UncertaintyBudget newBudget(const char* quantity, double value, const UncertaintySources& src) {
+  UncertaintyBudget b;
+  b.quantity = quantity;
+  b.unit = "mm";
+  b.value = value;
+  b.coverage_factor = src.coverage_factor;
+  return b;
+}
+
+UncertaintyContributor make(std::string name,
+                            double value,
+                            Distribution d,
+                            double sensitivity,
+                            std::string source,
+                            double normal_k = 1.0) {
+  UncertaintyContributor c;
+  c.name = std::move(name);
+  c.value = value;
+  c.unit = "mm";
+  c.distribution = d;
+  c.normal_k = normal_k;
+  c.sensitivity = sensitivity;
+  c.source = std::move(source);
+  return c;
+}
+
+/// The straightness optics' accuracy a + b·|reading| + c·L² (mm) over a length L (mm).
+double opticsAccuracy(const LaserInterferometer& laser, double reading_mm, double length_mm) {
+  const double length_m = length_mm / 1000.0;
+  return laser.straightness_accuracy_mm + laser.straightness_relative * std::abs(reading_mm) +
+         laser.straightness_length_mm_per_m2 * length_m * length_m;
+}
+
+double span(std::span<const double> x) {
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  return *hi - *lo;
+}
+
+/// Pooled standard deviation of readings about their per-position means and the mean number of
+/// readings per position; {0, 1} when no position repeats.
+std::pair<double, double> pooledScatter(std::span<const double> position,
+                                        std::span<const double> deviation) {
+  std::map<double, std::vector<double>> groups;
+  for (std::size_t k = 0; k < position.size(); ++k) groups[position[k]].push_back(deviation[k]);
+  double squares = 0.0;
+  std::size_t dof = 0;
+  for (const auto& [p, values] : groups) {
+    double mean = 0.0;
+    for (double v : values) mean += v;
+    mean /= static_cast<double>(values.size());
+    for (double v : values) squares += (v - mean) * (v - mean);
+    dof += values.size() - 1;
+  }
+  if (dof == 0) return {0.0, 1.0};
+  return {std::sqrt(squares / static_cast<double>(dof)),
+          static_cast<double>(position.size()) / static_cast<double>(groups.size())};
+}
+
+/// Standard error of a least-squares slope: s_r / √Σ(u − ū)².
+double slopeStandardError(const SlopeRun& run) {
+  const std::size_t n = run.position.size();
+  PKM_CHECK(n >= 3 && run.residual.size() == n,
+            "parallelism uncertainty: a run needs >= 3 points and one residual per point");
+  double mean = 0.0;
+  for (double u : run.position) mean += u;
+  mean /= static_cast<double>(n);
+  double sxx = 0.0, sr = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    sxx += (run.position[k] - mean) * (run.position[k] - mean);
+    sr += run.residual[k] * run.residual[k];
+  }
+  PKM_CHECK(sxx > 0.0, "parallelism uncertainty: a run's positions are all equal");
+  return std::sqrt(sr / static_cast<double>(n - 2) / sxx);
+}
+
+}  // namespace
+
+UncertaintyBudget straightnessUncertainty(double straightness,
+                                          std::span<const double> position,
+                                          std::span<const double> raw_position,
+                                          std::span<const double> raw_deviation,
+                                          const UncertaintySources& src) {
+  checkSources(src);
+  PKM_CHECK(position.size() >= 2, "straightness uncertainty: needs >= 2 positions");
+  PKM_CHECK(raw_position.size() == raw_deviation.size(),
+            "straightness uncertainty: {} raw positions but {} deviations",
+            raw_position.size(),
+            raw_deviation.size());
+  UncertaintyBudget b = newBudget("straightness", straightness, src);
+  addContributor(b,
+                 make("straightness optics (two readings)",
+                      opticsAccuracy(src.laser, straightness, span(position)),
+                      Distribution::kRectangular,
+                      std::sqrt(2.0),
+                      "instrument"));
+  const auto [s, n] = pooledScatter(raw_position, raw_deviation);
+  addContributor(b,
+                 make("sampling of the two extreme means (s/sqrt(n))",
+                      s / std::sqrt(n),
+                      Distribution::kNormal,
+                      std::sqrt(2.0),
+                      "test data"));
+  return b;
+}
+
+UncertaintyBudget parallelismUncertainty(double parallelism,
+                                         const SlopeRun& reference,
+                                         const SlopeRun& axis,
+                                         const UncertaintySources& src) {
+  checkSources(src);
+  const double u_ref = slopeStandardError(reference);
+  const double u_axis = slopeStandardError(axis);
+  const double travel = span(axis.position);
+  const double l_ref = span(reference.position);
+  UncertaintyBudget b = newBudget("parallelism", parallelism, src);
+  addContributor(b,
+                 make("reference line slope (least squares)",
+                      u_ref,
+                      Distribution::kNormal,
+                      travel,
+                      "test data"));
+  addContributor(
+      b,
+      make("axis line slope (least squares)", u_axis, Distribution::kNormal, travel, "test data"));
+  addContributor(b,
+                 make("straightness optics, reference run",
+                      opticsAccuracy(src.laser, 0.0, l_ref),
+                      Distribution::kRectangular,
+                      std::sqrt(2.0) * travel / l_ref,
+                      "instrument"));
+  addContributor(b,
+                 make("straightness optics, axis run",
+                      opticsAccuracy(src.laser, 0.0, travel),
+                      Distribution::kRectangular,
+                      std::sqrt(2.0),
+                      "instrument"));
+  return b;
+}
+
+std::vector<UncertaintyBudget> circleUncertainty(const CircleFit& lsc,
+                                                 const MinZoneCircle& mzc,
+                                                 const UncertaintySources& src) {
+  checkSources(src);
+  const std::size_t n = lsc.residuals.size();
+  PKM_CHECK(n >= 4, "circle uncertainty: needs >= 4 points, got {}", n);
+  const TouchProbe& probe = src.probe;
+  const MeasurementEnvironment& env = src.environment;
+  const double R = lsc.circle.radius;
+  const double s = lsc.rms * std::sqrt(static_cast<double>(n) / static_cast<double>(n - 3));
+  UncertaintyBudget radius = newBudget("radius", R, src);
+  addContributor(radius,
+                 make("least-squares fit (s/sqrt(N))",
+                      s / std::sqrt(static_cast<double>(n)),
+                      Distribution::kNormal,
+                      1.0,
+                      "test data"));
+  addContributor(radius,
+                 make("stylus radius calibration",
+                      probe.stylus_radius_uncertainty_mm,
+                      Distribution::kNormal,
+                      1.0,
+                      "instrument",
+                      2.0));
+  addContributor(radius,
+                 make("probe form error (2D)",
+                      probe.form_2d_mm,
+                      Distribution::kRectangular,
+                      1.0,
+                      "instrument"));
+  UncertaintyContributor temperature = make("ring temperature",
+                                            src.laser.material_temperature_accuracy_k,
+                                            Distribution::kRectangular,
+                                            R * env.expansion_coefficient_per_k,
+                                            "environment");
+  temperature.unit = "K";
+  addContributor(radius, temperature);
+  UncertaintyContributor alpha = make("expansion coefficient",
+                                      env.expansion_coefficient_accuracy_per_k,
+                                      Distribution::kRectangular,
+                                      R * std::abs(env.material_temperature_c - 20.0),
+                                      "environment");
+  alpha.unit = "1/K";
+  addContributor(radius, alpha);
+  std::vector<UncertaintyBudget> out{radius};
+  for (const auto& [name, value] :
+       {std::pair{"roundness_lsc", lsc.roundness}, std::pair{"roundness_mzc", mzc.roundness}}) {
+    UncertaintyBudget b = newBudget(name, value, src);
+    addContributor(b,
+                   make("probe repeatability (two points)",
+                        probe.repeatability_2sigma_mm,
+                        Distribution::kNormal,
+                        std::sqrt(2.0),
+                        "instrument",
+                        2.0));
+    addContributor(b,
+                   make("probe form error (two points)",
+                        probe.form_2d_mm,
+                        Distribution::kRectangular,
+                        std::sqrt(2.0),
+                        "instrument"));
+    out.push_back(std::move(b));
+  }
+  return out;
+}
+
+std::vector<UncertaintyBudget> probeOffsetUncertainty(const ProbeOffsetFit& fit,
+                                                      std::span<const ProbeTouch> touches,
+                                                      const UncertaintySources& src) {
+  checkSources(src);
+  const std::size_t n = touches.size();
+  PKM_CHECK(n >= 6, "probe offset uncertainty: needs >= 6 touches, got {}", n);
+  Eigen::MatrixXd J(static_cast<Eigen::Index>(n), 5);
+  double squares = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Point2 b = ballCentre(touches[k], fit.offset);
+    const Eigen::Vector2d u = (b - fit.ring_center).normalized();
+    const double c = std::cos(touches[k].angle), s = std::sin(touches[k].angle);
+    const auto row = static_cast<Eigen::Index>(k);
+    J.row(row) << -u.x(), -u.y(), u.x() * c + u.y() * s, -u.x() * s + u.y() * c, -1.0;
+    const double e = (b - fit.ring_center).norm() - fit.ball_path_radius;
+    squares += e * e;
+  }
+  const Eigen::Matrix<double, 5, 5> normal = J.transpose() * J;
+  const Eigen::FullPivLU<Eigen::Matrix<double, 5, 5>> lu(normal);
+  PKM_CHECK(lu.isInvertible(), "probe offset uncertainty: the touches do not separate the offset");
+  const Eigen::Matrix<double, 5, 5> cov = squares / static_cast<double>(n - 5) * lu.inverse();
+  std::vector<UncertaintyBudget> out;
+  for (int axis = 0; axis < 2; ++axis) {
+    UncertaintyBudget b = newBudget(axis == 0 ? "offset_x" : "offset_y", fit.offset[axis], src);
+    addContributor(b,
+                   make("least-squares fit (covariance)",
+                        std::sqrt(cov(2 + axis, 2 + axis)),
+                        Distribution::kNormal,
+                        1.0,
+                        "test data"));
+    addContributor(b,
+                   make("probe form error (reversal)",
+                        src.probe.form_2d_mm,
+                        Distribution::kRectangular,
+                        0.5,
+                        "instrument"));
+    out.push_back(std::move(b));
+  }
+  return out;
+}
+
+}  // namespace pkm::metrology
