@@ -55,9 +55,9 @@ void LinuxcncConfigOptions::validate(int joints) const {
   }
 }
 
-LinuxcncConfigNames linuxcncConfigNames(const std::string& machine_name, bool exechon) {
+LinuxcncConfigNames linuxcncConfigNames(const std::string& machine_name) {
   const std::string s = stem(machine_name);
-  return {s + ".ini", "kinematics.hal", "sim.hal", "tool.tbl", exechon ? s + ".params" : ""};
+  return {s + ".ini", "kinematics.hal", "sim.hal", "tool.tbl", s + ".params"};
 }
 
 namespace detail {

@@ -81,7 +81,7 @@ std::vector<NamedText> exechonLinuxcncConfig(const ExechonMachine& machine,
         v.item,
         kin::toString(v.kind)));
   }
-  const LinuxcncConfigNames names = linuxcncConfigNames(model.name, true);
+  const LinuxcncConfigNames names = linuxcncConfigNames(model.name);
   const std::optional<JointRateSpec>& rates = machine.joint_rates;
   auto rate = [&rates](double JointRateSpec::*field, double fallback) {
     return rates && std::isfinite((*rates).*field) ? (*rates).*field : fallback;

@@ -7,6 +7,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/io/linuxcnc_config.hpp"
 #include "pkm/io/linuxcnc_hal.hpp"
+#include "pkm/io/linuxcnc_hexapod_params.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/kinematics/hexapod_checks.hpp"
 #include "pkm/kinematics/hexapod_data.hpp"
@@ -74,7 +75,7 @@ std::vector<NamedText> hexapodLinuxcncConfig(const HexapodMachine& machine,
           formatNumber(v.value),
           kin::toString(v.kind),
           formatNumber(v.limit)));
-  const LinuxcncConfigNames names = linuxcncConfigNames(model.name, false);
+  const LinuxcncConfigNames names = linuxcncConfigNames(model.name);
   const double velocity = machine.joint_rates && std::isfinite(machine.joint_rates->velocity)
                               ? machine.joint_rates->velocity
                               : detail::kDefaultJointVelocity;
@@ -86,18 +87,19 @@ std::vector<NamedText> hexapodLinuxcncConfig(const HexapodMachine& machine,
   detail::IniSpec spec;
   spec.comment = fmt::format(
       "# LinuxCNC configuration of the hexapod {},\n# written by `pkm linuxcnc config` from {}.\n"
-      "# Kinematics: pkm's component pkmhexkins ({}); a simulated machine ({}).\n"
+      "# Kinematics: pkm's component pkmhexkins with the parameter file {}; a simulated\n"
+      "# machine ({}).\n"
       "# World X Y Z A B C: the pose `pkm hexapod fk` reports for this machine ({}, degrees);\n"
       "# joints 0-5: the strut readings. docs/linuxcnc.md, \"From `pkm linuxcnc config` to a\n"
       "# running machine\".\n",
       model.name,
       machine.source,
-      names.kinematics,
+      names.params,
       names.sim,
       toString(model.unit));
   spec.machine = model.name + " (pkm, pkmhexkins)";
   spec.unit = model.unit;
-  spec.kinematics = "pkmhexkins";
+  spec.kinematics = "pkmhexkins params=" + names.params;
   spec.home = {model.home.position.x(),
                model.home.position.y(),
                model.home.position.z(),
@@ -117,14 +119,19 @@ std::vector<NamedText> hexapodLinuxcncConfig(const HexapodMachine& machine,
   spec.linear_acceleration = acceleration;
   spec.angular_velocity = spec.axes[3].velocity;
 
-  const std::string kinematics =
-      "# The kinematics: pkm's hexapod component and the machine's geometry as its pins.\n"
-      "loadrt [KINS]KINEMATICS\n\n" +
-      writePkmhexkinsSetp(machine);
+  const std::string kinematics = fmt::format(
+      "# The kinematics: pkm's hexapod component, its geometry, home and solver settings read\n"
+      "# from {} at load ([KINS] KINEMATICS; the name is relative to this folder, where\n"
+      "# LinuxCNC runs): a file that is missing a value or does not assemble stops LinuxCNC\n"
+      "# there, with the reason in its log. The pins (docs/linuxcnc.md) start at the file's\n"
+      "# values; a setp after this line would override it.\n"
+      "loadrt [KINS]KINEMATICS\n",
+      names.params);
   return {{names.ini, detail::linuxcncIni(spec, names, options)},
           {names.kinematics, kinematics},
           {names.sim, detail::simulatorHal(kin::kStruts, "pkmhexkins.tool-offset")},
-          {names.tool_table, detail::toolTable(model.unit)}};
+          {names.tool_table, detail::toolTable(model.unit)},
+          {names.params, linuxcncHexapodParameters(machine)}};
 }
 
 }  // namespace pkm::io

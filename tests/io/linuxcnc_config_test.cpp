@@ -16,6 +16,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/io/linuxcnc_exechon.hpp"
 #include "pkm/io/linuxcnc_hal.hpp"
+#include "pkm/io/linuxcnc_hexapod_params.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/kinematics/exechon_checks.hpp"
@@ -64,13 +65,15 @@ std::map<std::string, std::string> byName(const std::vector<io::NamedText>& file
 TEST(LinuxcncConfig, HexapodFilesJointsAndHome) {
   const io::HexapodMachine m = io::builtinMachine("hexapod-default");
   const std::vector<io::NamedText> files = io::hexapodLinuxcncConfig(m, {});
-  ASSERT_EQ(files.size(), 4u);
+  ASSERT_EQ(files.size(), 5u);
   EXPECT_EQ(files[0].name, "pkm-hx1200.ini");
   EXPECT_EQ(files[1].name, "kinematics.hal");
   EXPECT_EQ(files[2].name, "sim.hal");
   EXPECT_EQ(files[3].name, "tool.tbl");
+  EXPECT_EQ(files[4].name, "pkm-hx1200.params");
+  EXPECT_EQ(files[4].text, io::linuxcncHexapodParameters(m));
   const Ini ini = parseIni(files[0].text);
-  EXPECT_EQ(ini.at("KINS").at("KINEMATICS"), "pkmhexkins");
+  EXPECT_EQ(ini.at("KINS").at("KINEMATICS"), "pkmhexkins params=pkm-hx1200.params");
   EXPECT_EQ(ini.at("KINS").at("JOINTS"), "6");
   EXPECT_EQ(ini.at("TRAJ").at("LINEAR_UNITS"), "mm");
   EXPECT_EQ(ini.at("TRAJ").at("COORDINATES"), "X Y Z A B C");
@@ -90,7 +93,7 @@ TEST(LinuxcncConfig, HexapodFilesJointsAndHome) {
     EXPECT_EQ(ini.at(s).count("COMP_FILE"), 0u);
   }
   EXPECT_THAT(files[1].text, HasSubstr("loadrt [KINS]KINEMATICS\n"));
-  EXPECT_THAT(files[1].text, HasSubstr(io::writePkmhexkinsSetp(m)));
+  EXPECT_THAT(files[1].text, ::testing::Not(HasSubstr("setp pkmhexkins")));  // the file has it
   for (int j = 0; j < 6; ++j)
     EXPECT_THAT(files[2].text,
                 HasSubstr("joint." + std::to_string(j) + ".motor-pos-cmd => joint." +
@@ -220,10 +223,9 @@ TEST(LinuxcncConfig, HomeOutsideTheStrokeIsRefused) {
 }
 
 TEST(LinuxcncConfig, NamesComeFromTheMachineName) {
-  EXPECT_EQ(io::linuxcncConfigNames("my hexapod/2", false).ini, "my-hexapod-2.ini");
-  EXPECT_EQ(io::linuxcncConfigNames("..", false).ini, "machine.ini");
-  EXPECT_EQ(io::linuxcncConfigNames("x", true).params, "x.params");
-  EXPECT_EQ(io::linuxcncConfigNames("x", false).params, "");
+  EXPECT_EQ(io::linuxcncConfigNames("my hexapod/2").ini, "my-hexapod-2.ini");
+  EXPECT_EQ(io::linuxcncConfigNames("..").ini, "machine.ini");
+  EXPECT_EQ(io::linuxcncConfigNames("x").params, "x.params");
 }
 
 }  // namespace

@@ -98,7 +98,7 @@ def main():
     commanded = []
 
     def body(cnc, failures):
-        ch.home(cnc, 6)
+        cnc.home()
 
         def at_stop(k):
             line, _, want = ends[k]

@@ -121,21 +121,6 @@ def check(failures, what, got, want, tol=TOL):
     return err
 
 
-def home(cnc, joints, timeout=30):
-    """Estop off, machine on, homes all joints, waits until the first `joints` are homed
-    (linuxcncrsh prints more homed flags than the machine has joints)."""
-    for c in ["set estop off", "set machine on", "set mode manual", "set home -1"]:
-        cnc.ask(c)
-    deadline = time.time() + timeout
-    while time.time() < deadline:
-        flags = cnc.ask("get joint_homed").split()[1:1 + joints]
-        if len(flags) == joints and all(f == "YES" for f in flags):
-            cnc.ask("set mode mdi")
-            return
-        time.sleep(0.1)
-    raise RuntimeError("homing did not finish")
-
-
 def joint_pins(cnc, joints):
     """The joint positions at full precision (HAL joint.N.pos-fb)."""
     values = cnc.pins([f"joint.{j}.pos-fb" for j in range(joints)])

@@ -44,7 +44,7 @@ def hexapod_body(pkm, machine, work, ini, poses, program, joints=6):
     stopped = ch.with_stops(program, ends, os.path.join(os.path.dirname(ini), "program.ngc"))
 
     def body(cnc, failures):
-        ch.home(cnc, joints)
+        cnc.home()
         ch.check(failures, "joints after homing", ch.joint_pins(cnc, joints), home_joints,
                  ch.PIN_TOL)
         ch.check(failures, "world after homing", cnc.world(6), home)
@@ -99,7 +99,7 @@ def exechon_body(pkm, machine, work, ini, poses, program, source_dir):
         return [w[0], w[1], w[2], w[3], w[5]]  # X Y Z A C (B is not a coordinate)
 
     def body(cnc, failures):
-        ch.home(cnc, 5)
+        cnc.home()
         ch.check(failures, "joints after homing", ch.joint_pins(cnc, 5), home_joints, ch.PIN_TOL)
         ch.check(failures, "world after homing", world5(cnc), home[:4] + home[5:])
         for pose, want in zip(poses, expected):

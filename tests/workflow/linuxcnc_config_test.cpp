@@ -41,7 +41,8 @@ TEST(LinuxcncConfigWorkflow, WritesTheHexapodFolder) {
               ElementsAre((dir / "pkm-hx1200.ini").string(),
                           (dir / "kinematics.hal").string(),
                           (dir / "sim.hal").string(),
-                          (dir / "tool.tbl").string()));
+                          (dir / "tool.tbl").string(),
+                          (dir / "pkm-hx1200.params").string()));
   for (const std::string& f : res.files) EXPECT_TRUE(fs::is_regular_file(f)) << f;
 }
 
@@ -64,7 +65,8 @@ TEST(LinuxcncConfigWorkflow, RefusesToReplaceWithoutForce) {
   EXPECT_EQ(test::slurp(dir / "kinematics.hal"), "mine\n");
   r.force = true;
   (void)writeLinuxcncConfig(r);
-  EXPECT_THAT(test::slurp(dir / "kinematics.hal"), HasSubstr("setp pkmhexkins.base.0.x"));
+  EXPECT_THAT(test::slurp(dir / "kinematics.hal"), HasSubstr("loadrt [KINS]KINEMATICS"));
+  EXPECT_THAT(test::slurp(dir / "pkm-hx1200.params"), HasSubstr("\nbase.0 "));
   EXPECT_EQ(test::slurp(dir / "notes.txt"), "kept\n");  // other files untouched
 }
 
@@ -91,8 +93,8 @@ TEST(LinuxcncConfigWorkflow, CalibratedMachineFileAndCompensationTables) {
   EXPECT_THAT(ini, HasSubstr("[JOINT_2]\n"));
   EXPECT_THAT(ini, HasSubstr("COMP_FILE = joint2.comp\nCOMP_FILE_TYPE = 1\n"));
   EXPECT_THAT(ini, HasSubstr("DISPLAY = linuxcncrsh\n"));
-  EXPECT_THAT(test::slurp(dir / "cfg/kinematics.hal"),
-              HasSubstr("setp pkmhexkins.length-offset.2 650.0625\n"));
+  EXPECT_THAT(test::slurp(dir / "cfg/pkm-hx1200-calibrated.params"),
+              HasSubstr("\nlength-offset.2 650.0625\n"));
 }
 
 TEST(LinuxcncConfigWorkflow, BadTablesAndRequests) {

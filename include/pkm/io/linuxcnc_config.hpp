@@ -41,15 +41,16 @@ struct LinuxcncConfigNames {
   std::string kinematics;  ///< "kinematics.hal"
   std::string sim;         ///< "sim.hal"
   std::string tool_table;  ///< "tool.tbl"
-  std::string params;      ///< Exechon: "<machine name>.params"; hexapod: ""
+  std::string params;      ///< "<machine name>.params", the kinematics' parameter file
 };
 
 /// The names the configuration of a machine called `machine_name` uses.
-[[nodiscard]] LinuxcncConfigNames linuxcncConfigNames(const std::string& machine_name,
-                                                      bool exechon);
+[[nodiscard]] LinuxcncConfigNames linuxcncConfigNames(const std::string& machine_name);
 
-/// The configuration of a hexapod with pkmhexkins: `setp` lines for the 42 geometry parameters,
-/// the tool point, spindle offset and home (writePkmhexkinsSetp); 6 LINEAR joints, the strut
+/// The configuration of a hexapod with pkmhexkins: the parameter file linuxcncHexapodParameters
+/// writes (the 42 geometry parameters, tool point, spindle offset, home and solver settings),
+/// loaded by `[KINS] KINEMATICS = pkmhexkins params=NAME.params` (read and checked at load, a
+/// name relative to the configuration folder); 6 LINEAR joints, the strut
 /// readings, with HOME = HOME_OFFSET = the reading at the home pose and MIN/MAX_LIMIT = the stroke;
 /// world X Y Z A B C (degrees), [TRAJ] HOME = the home pose; the axis limits are how far the
 /// machine reaches along each world coordinate from home within every limit `pkm hexapod check`
