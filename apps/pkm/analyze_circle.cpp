@@ -20,6 +20,7 @@ namespace {
 
 struct CircleState {
   AnalyzeIo io;
+  UncertaintyArgs uncertainty;
 };
 
 void addCircle(CLI::App& analyze) {
@@ -28,8 +29,12 @@ void addCircle(CLI::App& analyze) {
       "circle",
       "least-squares and minimum-zone circle and roundness; header x,y (files concatenated)");
   st->io.add(*cmd);
-  cmd->callback(
-      [st] { printReport(st->io, workflow::analyzeCircle({io::readNamedTexts(st->io.data)})); });
+  st->uncertainty.add(*cmd);
+  cmd->callback([st] {
+    printReport(
+        st->io,
+        workflow::analyzeCircle({io::readNamedTexts(st->io.data), st->uncertainty.parsed()}));
+  });
 }
 
 const AnalyzeRegistration kRegisterCircle{60, &addCircle};
@@ -85,6 +90,7 @@ struct ProbeOffsetState {
   std::optional<double> ring_diameter;
   std::optional<double> stylus_diameter;
   std::string tool_direction = "-z";
+  UncertaintyArgs uncertainty;
 };
 
 void addProbeOffset(CLI::App& analyze) {
@@ -104,12 +110,14 @@ void addProbeOffset(CLI::App& analyze) {
                   st->tool_direction,
                   "tool direction, -z (default, vertical spindle) or +z: the sense of the angles")
       ->check(CLI::IsMember({"-z", "+z"}));
+  st->uncertainty.add(*cmd);
   cmd->callback([st] {
     printReport(st->io,
                 workflow::analyzeProbeOffset({io::readNamedTexts(st->io.data),
                                               st->ring_diameter,
                                               st->stylus_diameter,
-                                              st->tool_direction == "+z"}));
+                                              st->tool_direction == "+z",
+                                              st->uncertainty.parsed()}));
   });
 }
 

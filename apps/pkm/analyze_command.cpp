@@ -7,6 +7,8 @@
 
 #include "analyze_common.hpp"
 #include "cli_common.hpp"
+#include "pkm/io/named_text.hpp"
+#include "pkm/io/uncertainty_sources.hpp"
 
 namespace pkm::cli {
 namespace {
@@ -36,6 +38,19 @@ void AnalyzeIo::add(CLI::App& cmd, std::size_t min_files, std::size_t max_files)
   else
     opt->expected(static_cast<int>(min_files), static_cast<int>(max_files));
   cmd.add_flag("--json", json, "print one JSON object instead of a table");
+}
+
+void UncertaintyArgs::add(CLI::App& cmd) {
+  cmd.add_option("--uncertainty",
+                 file,
+                 "instruments and environment of the uncertainty budgets (JSON; default: "
+                 "typical datasheet values, docs/formats.md \"Uncertainty sources\")")
+      ->check(CLI::ExistingFile);
+}
+
+metrology::UncertaintySources UncertaintyArgs::parsed() const {
+  return file.empty() ? metrology::UncertaintySources{}
+                      : io::readUncertaintySources(io::readNamedText(file));
 }
 
 void PositioningColumnArgs::add(CLI::App& cmd) {

@@ -13,6 +13,7 @@
 #include "pkm/io/analysis_report.hpp"
 #include "pkm/io/analysis_text.hpp"
 #include "pkm/io/positioning_files.hpp"
+#include "pkm/metrology/uncertainty_sources.hpp"
 
 namespace pkm::cli {
 
@@ -42,6 +43,15 @@ struct PositioningColumnArgs {
   void add(CLI::App& cmd);
   /// The parsed options. Throws pkm::InvalidArgument for a bad --columns item.
   [[nodiscard]] io::PositioningColumns parsed() const;
+};
+
+/// `--uncertainty FILE`: the instruments and environment of the uncertainty budgets
+/// (io::readUncertaintySources; docs/formats.md, "Uncertainty sources").
+struct UncertaintyArgs {
+  std::string file;  ///< "" : the built-in typical values
+  void add(CLI::App& cmd);
+  /// The sources read from `file`, or the defaults. Throws pkm::IoError "FILE:LINE: ...".
+  [[nodiscard]] metrology::UncertaintySources parsed() const;
 };
 
 /// Writes `text` to stdout as it is.

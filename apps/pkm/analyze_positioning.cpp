@@ -28,7 +28,30 @@ struct Iso230_2State {
   PositioningColumnArgs columns;
   double coverage = 2.0;
   bool strict = false;
+  UncertaintyArgs uncertainty;
+  std::vector<std::string> tolerances;
 };
+
+/// `NAME=VALUE` items (E=0.02) as (name, tolerance); throws pkm::InvalidArgument for a bad item.
+std::vector<std::pair<std::string, double>> parseTolerances(const std::vector<std::string>& items) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const std::string& item : items) {
+    const auto eq = item.find('=');
+    double v = NAN;
+    try {
+      std::size_t used = 0;
+      if (eq != std::string::npos) v = std::stod(item.substr(eq + 1), &used);
+      if (eq == std::string::npos || used != item.size() - eq - 1) v = NAN;
+    } catch (const std::exception&) {
+      v = NAN;
+    }
+    if (!std::isfinite(v))
+      throw InvalidArgument(
+          fmt::format("--tolerance '{}': expected NAME=VALUE, e.g. E=0.02", item));
+    out.emplace_back(item.substr(0, eq), v);
+  }
+  return out;
+}
 
 void addIso230_2(CLI::App& analyze) {
   auto st = std::make_shared<Iso230_2State>();
@@ -44,6 +67,12 @@ void addIso230_2(CLI::App& analyze) {
   cmd->add_flag("--strict",
                 st->strict,
                 "refuse data that miss the ISO 230-2 test conditions or look implausible");
+  st->uncertainty.add(*cmd);
+  cmd->add_option("--tolerance",
+                  st->tolerances,
+                  "NAME=VALUE[,...]: upper tolerance of E, M, A, B or R (mm), decided per "
+                  "ISO 14253-1 with the expanded uncertainty")
+      ->delimiter(',');
   cmd->callback([st] {
     workflow::Iso230_2Request request;
     request.data = io::readNamedTexts(st->io.data);
@@ -52,6 +81,8 @@ void addIso230_2(CLI::App& analyze) {
     request.ini = st->columns.ini;
     request.coverage = st->coverage;
     request.strict = st->strict;
+    request.uncertainty = st->uncertainty.parsed();
+    request.tolerances = parseTolerances(st->tolerances);
     printReport(st->io, workflow::analyzeIso230_2(request));
   });
 }
@@ -62,6 +93,7 @@ const AnalyzeRegistration kRegisterIso230_2{10, &addIso230_2};
 
 struct StraightnessState {
   AnalyzeIo io;
+  UncertaintyArgs uncertainty;
   std::string reference = "lsq";
 };
 
@@ -74,10 +106,12 @@ void addStraightness(CLI::App& analyze) {
   st->io.add(*cmd);
   cmd->add_option("--reference", st->reference, "reference line: endpoint, lsq or minzone")
       ->check(CLI::IsMember({"endpoint", "lsq", "minzone"}));
+  st->uncertainty.add(*cmd);
   cmd->callback([st] {
     const auto reference = metrology::parseStraightnessReference(st->reference);
     printReport(st->io,
-                workflow::analyzeStraightness({io::readNamedTexts(st->io.data), reference}));
+                workflow::analyzeStraightness(
+                    {io::readNamedTexts(st->io.data), reference, st->uncertainty.parsed()}));
   });
 }
 
@@ -92,6 +126,7 @@ struct ParallelismState {
   std::string plane = "horizontal";
   std::optional<double> szX2;
   AnalyzeIo io;  // only --json: the files are --reference and --axis
+  UncertaintyArgs uncertainty;
 };
 
 void runParallelism(const ParallelismState& st) {
@@ -104,6 +139,7 @@ void runParallelism(const ParallelismState& st) {
   request.plane = st.plane == "horizontal" ? io::ParallelismPlane::kHorizontal
                                            : io::ParallelismPlane::kVertical;
   request.szX2 = st.szX2;
+  request.uncertainty = st.uncertainty.parsed();
   printReport(st.io, workflow::analyzeParallelism(request));
 }
 
@@ -132,6 +168,7 @@ void addParallelism(CLI::App& analyze) {
       ->check(CLI::IsMember({"horizontal", "vertical"}));
   cmd->add_option("--szX2", st->szX2, "szX2 in rad (horizontal plane: also report szP)");
   cmd->add_flag("--json", st->io.json, "print one JSON object instead of a table");
+  st->uncertainty.add(*cmd);
   cmd->callback([st] { runParallelism(*st); });
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 #include <utility>
 
+#include "io/detail/uncertainty_json.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/io/analysis_report.hpp"
 
@@ -65,7 +66,8 @@ std::string analysisJson(const CircleReport& report) {
                    {"rms", lsc.rms},
                    {"iterations", lsc.iterations},
                    {"converged", lsc.converged},
-                   {"points", report.sources.size()}});
+                   {"points", report.sources.size()},
+                   {"uncertainty", detail::uncertaintyJson(report.uncertainty)}});
 }
 
 std::string analysisJson(const CircularReport& report) {
@@ -103,6 +105,7 @@ std::string analysisJson(const ProbeOffsetReport& report) {
     j["eq8_o_probe"] = pair(report.paper->eq8);
     j["eq_runs"] = report.paper->runs;
   }
+  j["uncertainty"] = detail::uncertaintyJson(report.uncertainty);
   return dump(j);
 }
 

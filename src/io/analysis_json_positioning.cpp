@@ -4,6 +4,7 @@
 #include <string>
 #include <utility>
 
+#include "io/detail/uncertainty_json.hpp"
 #include "pkm/io/analysis_report.hpp"
 
 namespace pkm::io {
@@ -56,6 +57,8 @@ std::string analysisJson(const Iso230_2Report& report) {
   j["iso230_2_conditions"] =
       Json{{"met", report.nonconformities.empty()}, {"nonconformities", report.nonconformities}};
   if (!report.warnings.empty()) j["warnings"] = report.warnings;
+  j["uncertainty"] = detail::uncertaintyJson(report.uncertainty);
+  if (!report.conformance.empty()) j["conformance"] = detail::conformanceJson(report.conformance);
   return dump(j);
 }
 
@@ -83,6 +86,7 @@ std::string analysisJson(const StraightnessReport& report) {
     residuals.push_back(Json::array({position[k], r.residuals[k]}));
   }
   j["residuals"] = std::move(residuals);
+  j["uncertainty"] = detail::uncertaintyJson(report.uncertainty);
   return dump(j);
 }
 
@@ -104,6 +108,7 @@ std::string analysisJson(const ParallelismReport& report) {
     profile.push_back(Json::array({report.axis_position[k], r.deviations[k]}));
   }
   j["deviations"] = std::move(profile);
+  j["uncertainty"] = detail::uncertaintyJson(report.uncertainty);
   return dump(j);
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "io/detail/uncertainty_json.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/io/analysis_text.hpp"
 
@@ -42,6 +43,7 @@ std::string analysisText(const CircleReport& report) {
                        num9(c.point.y()),
                        report.sources[c.index].name,
                        report.sources[c.index].line);
+  out += detail::uncertaintyText(report.uncertainty);
   return out;
 }
 
@@ -91,6 +93,7 @@ std::string analysisText(const ProbeOffsetReport& report) {
     out += fmt::format(
         "eq. 8 o_probe ({} runs)\t{}\t{}\n", p->runs, num9(p->eq8.x()), num9(p->eq8.y()));
   }
+  out += detail::uncertaintyText(report.uncertainty);
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/detail/uncertainty_json.hpp"
 #include "pkm/io/analysis_text.hpp"
 
 namespace pkm::io {
@@ -50,6 +51,8 @@ std::string analysisText(const Iso230_2Report& report) {
   if (report.nonconformities.empty()) out += "conditions\tISO 230-2 test conditions met\n";
   for (const std::string& n : report.nonconformities) out += fmt::format("nonconforming\t{}\n", n);
   for (const std::string& w : report.warnings) out += fmt::format("warning\t{}\n", w);
+  out += detail::uncertaintyText(report.uncertainty);
+  out += detail::conformanceText(report.conformance);
   return out;
 }
 
@@ -69,6 +72,7 @@ std::string analysisText(const StraightnessReport& report) {
     out += fmt::format("raw_points\t{}\nraw_straightness\t{}\n",
                        report.raw->points,
                        num(report.raw->straightness));
+  out += detail::uncertaintyText(report.uncertainty);
   return out;
 }
 
@@ -88,6 +92,7 @@ std::string analysisText(const ParallelismReport& report) {
       num(r.max_deviation));
   if (report.sxP) out += fmt::format("sxP\t{}\n", num(*report.sxP));
   if (report.szP) out += fmt::format("szP\t{}\n", num(*report.szP));
+  out += detail::uncertaintyText(report.uncertainty);
   return out;
 }
 

@@ -13,6 +13,7 @@
 #include "pkm/core/parallel.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/io/text_table.hpp"
+#include "pkm/metrology/profile_uncertainty.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -109,6 +110,9 @@ void readTouches(const io::TextTable& t,
 
 }  // namespace
 
+/// Touches the probe-offset budget needs (five unknowns and one degree of freedom).
+constexpr std::size_t kMinTouchesForUncertainty = 6;
+
 void CircleRequest::validate() const { requireData(data); }
 
 io::CircleReport analyzeCircle(CircleRequest request) {
@@ -134,6 +138,7 @@ io::CircleReport analyzeCircle(CircleRequest request) {
   metrology::MinZoneOptions opt;
   opt.start = report.lsc.circle.center;
   report.mzc = metrology::fitMinimumZoneCircle(p, opt);
+  report.uncertainty = metrology::circleUncertainty(report.lsc, report.mzc, request.uncertainty);
   return report;
 }
 
@@ -199,6 +204,9 @@ io::ProbeOffsetReport analyzeProbeOffset(const ProbeOffsetRequest& request) {
     if (!labelled.empty())
       report.paper = paperOffset(labelled, *request.ring_diameter / 2.0, *stylus_radius);
   }
+  if (touches.size() >= kMinTouchesForUncertainty)
+    report.uncertainty =
+        metrology::probeOffsetUncertainty(report.fit, touches, request.uncertainty);
   return report;
 }
 

@@ -10,6 +10,8 @@
 #include "pkm/core/error.hpp"
 #include "pkm/io/positioning_files.hpp"
 #include "pkm/metrology/iso230_2_conformity.hpp"
+#include "pkm/metrology/positioning_uncertainty.hpp"
+#include "pkm/metrology/profile_uncertainty.hpp"
 #include "pkm/workflow/machine_unit.hpp"
 
 namespace pkm::workflow {
@@ -37,7 +39,9 @@ io::Iso230_2Report analyzeIso230_2(const Iso230_2Request& request) {
       metrology::evaluateIso230_2(samples, {.coverage_factor = request.coverage}),
       request.coverage,
       metrology::iso230_2Nonconformities(samples),
-      metrology::implausibleDeviations(samples)};
+      metrology::implausibleDeviations(samples),
+      {},
+      {}};
   for (std::string& w : unitMismatchWarnings(unstated, unit))
     report.warnings.push_back(std::move(w));
   if (request.strict && !(report.nonconformities.empty() && report.warnings.empty())) {
@@ -45,6 +49,9 @@ io::Iso230_2Report analyzeIso230_2(const Iso230_2Request& request) {
     all.insert(all.end(), report.warnings.begin(), report.warnings.end());
     throw InvalidArgument(fmt::format("--strict: {}", fmt::join(all, "; ")));
   }
+  report.uncertainty =
+      metrology::iso230_2Uncertainty(report.result, request.uncertainty, request.coverage);
+  report.conformance = metrology::decideIso230_2Conformance(report.uncertainty, request.tolerances);
   return report;
 }
 
@@ -62,6 +69,8 @@ io::StraightnessReport analyzeStraightness(const StraightnessRequest& request) {
         metrology::evaluateStraightness(points.position, points.value, request.reference)
             .straightness};
   report.result = metrology::evaluateStraightness(p.position, p.value, request.reference);
+  report.uncertainty = {metrology::straightnessUncertainty(
+      report.result.straightness, p.position, points.position, points.value, request.uncertainty)};
   report.position = std::move(p.position);
   report.deviation = std::move(p.value);
   return report;
@@ -90,6 +99,17 @@ io::ParallelismReport analyzeParallelism(const ParallelismRequest& request) {
     report.sxP = metrology::pkmSquarenessFromSlopes(0.0, difference, 0.0).sxP;
   else if (request.szX2)
     report.szP = metrology::pkmSquarenessFromSlopes(difference, 0.0, *request.szX2).szP;
+  if (ref.position.size() >= 3 && axis.position.size() >= 3) {
+    const auto lsq = metrology::StraightnessReference::kLeastSquares;
+    const std::vector<double> ref_r =
+        metrology::evaluateStraightness(ref.position, ref.value, lsq).residuals;
+    const std::vector<double> axis_r =
+        metrology::evaluateStraightness(axis.position, axis.value, lsq).residuals;
+    report.uncertainty = {metrology::parallelismUncertainty(report.result.parallelism,
+                                                            {ref.position, ref_r},
+                                                            {axis.position, axis_r},
+                                                            request.uncertainty)};
+  }
   report.axis_position = std::move(axis.position);
   return report;
 }

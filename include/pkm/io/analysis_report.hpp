@@ -17,6 +17,7 @@
 #include "pkm/metrology/body_diagonals.hpp"
 #include "pkm/metrology/circle_fit.hpp"
 #include "pkm/metrology/circular_test.hpp"
+#include "pkm/metrology/conformance.hpp"
 #include "pkm/metrology/face_diagonal.hpp"
 #include "pkm/metrology/iso230_2.hpp"
 #include "pkm/metrology/min_zone_circle.hpp"
@@ -26,6 +27,7 @@
 #include "pkm/metrology/shifted_diagonal.hpp"
 #include "pkm/metrology/step_diagonal.hpp"
 #include "pkm/metrology/straightness.hpp"
+#include "pkm/metrology/uncertainty_budget.hpp"
 
 namespace pkm::io {
 
@@ -37,6 +39,10 @@ struct Iso230_2Report {
   /// empty when they conform.
   std::vector<std::string> nonconformities;
   std::vector<std::string> warnings;  ///< plausibility (metrology::implausibleDeviations)
+  /// Budgets of E, M, A, B, R (metrology::iso230_2Uncertainty; empty for unidirectional data).
+  std::vector<metrology::UncertaintyBudget> uncertainty;
+  /// ISO 14253-1 decisions for the tolerances given (none: empty).
+  std::vector<metrology::ConformanceResult> conformance;
 };
 
 /// Straightness about a reference line (ISO 230-1:2012 §3.4.8).
@@ -52,6 +58,8 @@ struct StraightnessReport {
     double straightness = 0.0;
   };
   std::optional<Raw> raw;
+  /// Budget of the straightness (metrology::straightnessUncertainty).
+  std::vector<metrology::UncertaintyBudget> uncertainty;
 };
 
 /// The plane of a parallelism measurement (seed 000 §3.1).
@@ -69,6 +77,8 @@ struct ParallelismReport {
   metrology::ParallelismResult result;
   std::optional<double> sxP;  ///< vertical plane: sxP, rad
   std::optional<double> szP;  ///< horizontal plane with szX2 given: szP, rad
+  /// Budget of the parallelism (metrology::parallelismUncertainty).
+  std::vector<metrology::UncertaintyBudget> uncertainty;
 };
 
 /// Face-diagonal squareness (seed 000 eqs 4-10).
@@ -134,6 +144,8 @@ struct CircleReport {
   metrology::CircleFit lsc;
   metrology::MinZoneCircle mzc;
   PointSources sources;  ///< per point, in input order (the contacts' origins)
+  /// Budgets of radius, roundness_lsc and roundness_mzc (metrology::circleUncertainty).
+  std::vector<metrology::UncertaintyBudget> uncertainty;
 };
 
 /// ISO 230-4:2005 circular test.
@@ -156,6 +168,8 @@ struct ProbeOffsetReport {
   bool tool_plus_z = false;                       ///< tool direction +z (else −z)
   std::optional<double> effective_stylus_radius;  ///< with a ring diameter, mm
   std::optional<PaperProbeOffset> paper;          ///< with a ring diameter and labelled touches
+  /// Budgets of offset_x and offset_y (metrology::probeOffsetUncertainty).
+  std::vector<metrology::UncertaintyBudget> uncertainty;
 };
 
 /// The JSON documents of `pkm analyze <kind> --json`, one per report type.

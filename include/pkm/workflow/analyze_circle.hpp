@@ -11,12 +11,15 @@
 
 #include "pkm/io/analysis_report.hpp"
 #include "pkm/io/named_text.hpp"
+#include "pkm/metrology/uncertainty_sources.hpp"
 
 namespace pkm::workflow {
 
 /// Circle fits of `x,y` points (x_mm, y_mm accepted).
 struct CircleRequest {
   std::vector<io::NamedText> data;  ///< `x,y` tables, concatenated (required)
+  /// The probe and environment of the budgets (metrology::circleUncertainty).
+  metrology::UncertaintySources uncertainty{};
   /// Throws pkm::IoError without data.
   void validate() const;
 };
@@ -49,6 +52,8 @@ struct ProbeOffsetRequest {
   std::optional<double> ring_diameter;    ///< certified ring diameter, mm (> 0)
   std::optional<double> stylus_diameter;  ///< ball diameter for eqs. 8-9 (> 0; default effective)
   bool tool_plus_z = false;  ///< tool direction +z (angles clockwise seen from above) or −z
+  /// The probe of the budgets (metrology::probeOffsetUncertainty; none below 6 touches).
+  metrology::UncertaintySources uncertainty{};
   /// Throws pkm::IoError without data, pkm::InvalidArgument for a diameter not > 0.
   void validate() const;
 };

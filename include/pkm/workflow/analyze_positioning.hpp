@@ -9,11 +9,13 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pkm/io/analysis_report.hpp"
 #include "pkm/io/named_text.hpp"
 #include "pkm/io/positioning_files.hpp"
+#include "pkm/metrology/uncertainty_sources.hpp"
 
 namespace pkm::workflow {
 
@@ -32,6 +34,10 @@ struct Iso230_2Request {
   /// Refuse (pkm::InvalidArgument) data that miss the ISO 230-2 test conditions or look
   /// implausible, instead of flagging them in the report.
   bool strict = false;
+  /// The laser and environment of the budgets of E, M, A, B, R (metrology::iso230_2Uncertainty).
+  metrology::UncertaintySources uncertainty{};
+  /// Tolerances (quantity E, M, A, B or R; upper limit in mm) decided per ISO 14253-1.
+  std::vector<std::pair<std::string, double>> tolerances{};
   /// Throws pkm::IoError without data, pkm::InvalidArgument for a coverage factor not > 0.
   void validate() const;
 };
@@ -47,6 +53,8 @@ struct StraightnessRequest {
   /// `position,deviation` tables or simulator straightness files (averaged per target; required).
   std::vector<io::NamedText> data;
   metrology::StraightnessReference reference = metrology::StraightnessReference::kLeastSquares;
+  /// The straightness optics of the budget (metrology::straightnessUncertainty).
+  metrology::UncertaintySources uncertainty{};
   /// Throws pkm::IoError without data.
   void validate() const;
 };
@@ -65,6 +73,9 @@ struct ParallelismRequest {
   metrology::StraightnessReference line = metrology::StraightnessReference::kLeastSquares;
   io::ParallelismPlane plane = io::ParallelismPlane::kHorizontal;
   std::optional<double> szX2;  ///< rad; horizontal plane: also report szP (seed 000 eq 3)
+  /// The straightness optics of the budget (metrology::parallelismUncertainty; none when a run
+  /// has fewer than 3 points).
+  metrology::UncertaintySources uncertainty{};
   /// Throws pkm::IoError without reference or axis data, pkm::InvalidArgument for a sign not
   /// ±1.
   void validate() const;

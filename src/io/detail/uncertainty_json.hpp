@@ -1,0 +1,33 @@
+/// @file
+/// @brief Internal: uncertainty budgets as JSON members of the analysis documents
+/// (docs/formats.md, "Uncertainty in result documents").
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "pkm/metrology/conformance.hpp"
+#include "pkm/metrology/uncertainty_budget.hpp"
+
+namespace pkm::io::detail {
+
+/// {"value", "unit", "U", "u_c", "k", "budget": [{"name", "value", "unit", "distribution",
+/// "divisor", "standard_uncertainty", "sensitivity", "contribution", "source"}, ...]}.
+nlohmann::ordered_json budgetJson(const metrology::UncertaintyBudget& budget);
+
+/// The "uncertainty" member: {"coverage_factor": k, "<quantity>": budgetJson, ...}; an empty
+/// object when there are no budgets.
+nlohmann::ordered_json uncertaintyJson(const std::vector<metrology::UncertaintyBudget>& budgets);
+
+/// The "conformance" member: [{"quantity", "value", "U", "tolerance", "decision"}, ...].
+nlohmann::ordered_json conformanceJson(const std::vector<metrology::ConformanceResult>& results);
+
+/// The lines of the tables: "uncertainty (k = K)", then per budget "NAME<TAB>VALUE ± U UNIT<TAB>
+/// largest: CONTRIBUTOR" (6 significant digits); "" when there are no budgets.
+std::string uncertaintyText(const std::vector<metrology::UncertaintyBudget>& budgets);
+
+/// One line per decision: "conformance<TAB>NAME<TAB>VALUE ± U against T<TAB>DECISION".
+std::string conformanceText(const std::vector<metrology::ConformanceResult>& results);
+
+}  // namespace pkm::io::detail

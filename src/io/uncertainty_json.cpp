@@ -1,0 +1,81 @@
+// Uncertainty budgets as JSON members of the analysis documents (io/detail/uncertainty_json.hpp).
+#include "io/detail/uncertainty_json.hpp"
+
+#include <fmt/format.h>
+
+#include <string>
+
+namespace pkm::io::detail {
+
+using Json = nlohmann::ordered_json;
+
+Json budgetJson(const metrology::UncertaintyBudget& budget) {
+  Json rows = Json::array();
+  for (const metrology::UncertaintyContributor& c : budget.contributors) {
+    rows.push_back(Json{{"name", c.name},
+                        {"value", c.value},
+                        {"unit", c.unit},
+                        {"distribution", metrology::toString(c.distribution)},
+                        {"divisor", c.divisor()},
+                        {"standard_uncertainty", c.standardUncertainty()},
+                        {"sensitivity", c.sensitivity},
+                        {"contribution", c.contribution()},
+                        {"source", c.source}});
+  }
+  return Json{{"value", budget.value},
+              {"unit", budget.unit},
+              {"U", budget.expandedUncertainty()},
+              {"u_c", budget.combinedStandardUncertainty()},
+              {"k", budget.coverage_factor},
+              {"budget", std::move(rows)}};
+}
+
+Json uncertaintyJson(const std::vector<metrology::UncertaintyBudget>& budgets) {
+  Json out = Json::object();
+  if (budgets.empty()) return out;
+  out["coverage_factor"] = budgets.front().coverage_factor;
+  for (const metrology::UncertaintyBudget& b : budgets) out[b.quantity] = budgetJson(b);
+  return out;
+}
+
+Json conformanceJson(const std::vector<metrology::ConformanceResult>& results) {
+  Json out = Json::array();
+  for (const metrology::ConformanceResult& r : results) {
+    out.push_back(Json{{"quantity", r.quantity},
+                       {"value", r.value},
+                       {"U", r.expanded_u},
+                       {"tolerance", r.tolerance},
+                       {"decision", metrology::toString(r.decision)}});
+  }
+  return out;
+}
+
+std::string uncertaintyText(const std::vector<metrology::UncertaintyBudget>& budgets) {
+  if (budgets.empty()) return {};
+  std::string out = fmt::format("uncertainty (k = {})\n", budgets.front().coverage_factor);
+  for (const metrology::UncertaintyBudget& b : budgets) {
+    const auto largest = b.largestContributor();
+    out += fmt::format("{}\t{:.6g} ± {:.2g} {}\tlargest: {}\n",
+                       b.quantity,
+                       b.value,
+                       b.expandedUncertainty(),
+                       b.unit,
+                       largest ? b.contributors[*largest].name : "-");
+  }
+  return out;
+}
+
+std::string conformanceText(const std::vector<metrology::ConformanceResult>& results) {
+  std::string out;
+  for (const metrology::ConformanceResult& r : results) {
+    out += fmt::format("conformance\t{}\t{:.6g} ± {:.2g} against {:.6g}\t{}\n",
+                       r.quantity,
+                       r.value,
+                       r.expanded_u,
+                       r.tolerance,
+                       metrology::toString(r.decision));
+  }
+  return out;
+}
+
+}  // namespace pkm::io::detail
