@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """COMP_FILE tables written by `pkm compensate table` in a running LinuxCNC (docs/compensation.md).
 
-Two struts of data/linuxcnc/hexapod-sim-pkm get a joint error table: joint 0 a `--format
+Two struts of data/linuxcnc/hexapod-linuxcnc-sim get a joint error table: joint 0 a `--format
 linuxcnc0` file (COMP_FILE_TYPE = 0), joint 1 a `--format linuxcnc1` file (type 1), each written
 by pkm from ISO 230-2 positioning data with known errors e = reading − target per direction (5
 runs, no noise, so the evaluated means are the errors). The tables' rows are the struts' readings
@@ -101,9 +101,9 @@ def main():
     pkm, module, source_dir = (os.path.abspath(a) for a in sys.argv[1:4])
     lh.require([module])
     work = lh.workdir("pkm-comp-file-")
-    sample = os.path.join(source_dir, "data/linuxcnc/hexapod-sim-pkm")
+    sample = os.path.join(source_dir, "data/linuxcnc/hexapod-linuxcnc-sim")
     cfg = lh.copy_config(sample, work, "cfg")
-    ini = os.path.join(cfg, "hexapod.ini")
+    ini = os.path.join(cfg, "hexapod-linuxcnc-sim.ini")
     lh.make_headless(ini)
 
     poses = os.path.join(work, "poses.csv")

@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """The pkmhexkins kinematics module in a running LinuxCNC (docs/linuxcnc.md).
 
-The sample configuration data/linuxcnc/hexapod-sim-pkm is given a calibrated geometry (all 42
-parameters of the hexapod-sim machine moved, the platform's tool point too), written as the
-module's HAL pins from a pkm machine file. LinuxCNC is started on it headless (linuxcncrsh, POSIX
+A calibrated hexapod-sim machine (all 42 parameters moved, the platform's tool point too) gets its
+configuration from `pkm linuxcnc config`, switched to the pins route: the geometry as the
+module's HAL pins (`pkm hexapod hal --kins pkmhexkins`) instead of the parameter file (that
+route: config_runs_test.py, load_failures_test.py). LinuxCNC is started on it headless (linuxcncrsh, POSIX
 non-realtime) with the module built by this build tree, homed, and moved by MDI. Checked:
   - after homing, LinuxCNC's world position (its forward kinematics) is [TRAJ] HOME;
   - at each pose, the joint positions equal pkm's inverse kinematics of the calibrated machine,
@@ -34,7 +35,7 @@ HOME = (0.0, 0.0, 20.0, 0.0, 0.0, 0.0)
 POSES = [(1, 1, 21, 0, 0, 0), (-2, 1.5, 19, 3, -2, 5), (0.5, -2, 22.5, -4, 1, -3),
          (2.5, 0.5, 20.5, 6, 4, -8)]
 TOOL_POSES = [(0.5, -0.5, 20, 0, 0, 0), (-1, 1, 21, 5, -4, 2)]
-TOOL_LENGTH = 0.5  # T1 in the sample's tool table
+TOOL_LENGTH = 0.5  # T1 in the tool table write_config writes
 TOL = 1e-6  # inch: 6 printed decimals (5e-7) plus the FK tolerance (1e-9)
 
 
@@ -59,10 +60,15 @@ def calibrated_machine(source_dir):
     return m
 
 
-def pkm_ik(pkm, machine, poses, work):
-    path = os.path.join(work, "machine.json")
+def write_machine(machine, work, name):
+    path = os.path.join(work, name + ".json")
     with open(path, "w") as f:
         json.dump(machine, f)
+    return path
+
+
+def pkm_ik(pkm, machine, poses, work):
+    path = write_machine(machine, work, "ik-machine")
     csv = os.path.join(work, "poses.csv")
     with open(csv, "w") as f:
         f.write("x,y,z,a,b,c\n" + "".join(",".join(map(repr, p)) + "\n" for p in poses))
@@ -70,32 +76,35 @@ def pkm_ik(pkm, machine, poses, work):
     return [[float(v) for v in r.split(",")[:6]] for r in rows[1:]]
 
 
-def write_config(cfg, machine, home_joints):
-    """The sample made headless, with the machine's pins and joint homes."""
-    hal = []
-    for i, s in enumerate(machine["struts"]):
-        for k, c in enumerate("xyz"):
-            hal.append(f"setp pkmhexkins.base.{i}.{c} {s['base'][k]!r}\n")
-            hal.append(f"setp pkmhexkins.platform.{i}.{c} {s['platform'][k]!r}\n")
-        hal.append(f"setp pkmhexkins.length-offset.{i} {s['length_offset']!r}\n")
-    for k, c in enumerate("xyz"):
-        hal.append(f"setp pkmhexkins.tool.{c} {machine['tool_offset'][k]!r}\n")
-    path = os.path.join(cfg, "kinematics.hal")
-    with open(path) as f:
-        kept = [l for l in f if not re.match(r"setp pkmhexkins\.(base|platform|length-offset)", l)]
-    with open(path, "w") as f:
-        f.writelines(hal + kept)
-    ini = os.path.join(cfg, "hexapod.ini")
-    with open(ini) as f:
-        s = f.read()
-    for i, q in enumerate(home_joints):  # each joint's HOME and HOME_OFFSET: the IK at home
-        for key in ("HOME", "HOME_OFFSET"):
-            s = re.sub(rf"(\[JOINT_{i}\][^\[]*?^{key} = )[^\n]*", rf"\g<1>{q!r}", s,
-                       flags=re.M | re.S)
-    with open(ini, "w") as f:
-        f.write(s)
-    lh.make_headless(ini)
-    return ini
+def write_config(pkm, machine_path, work, name, setp=None):
+    """`pkm linuxcnc config` of the machine, switched to the pins route: [KINS] KINEMATICS =
+    pkmhexkins (no parameter file), its geometry the `setp` block of `pkm hexapod hal --kins
+    pkmhexkins` (or `setp`, a block given instead); T1 is a TOOL_LENGTH tool."""
+    cfg = os.path.join(work, name)
+    run([pkm, "linuxcnc", "config", "--machine", machine_path, "--out", cfg, "--display",
+         "linuxcncrsh"])
+    ini = os.path.join(cfg, next(f for f in os.listdir(cfg) if f.endswith(".ini")))
+    if setp is None:
+        setp = run([pkm, "hexapod", "hal", "--kins", "pkmhexkins", "--machine", machine_path])
+    with open(os.path.join(cfg, "kinematics.hal"), "w") as f:
+        f.write("loadrt [KINS]KINEMATICS\n" + setp)
+    with open(os.path.join(cfg, "tool.tbl"), "w") as f:
+        f.write(f"T1 P1 Z{TOOL_LENGTH!r} ;test tool\n")
+    lh.set_ini(ini, "KINS", "KINEMATICS", "pkmhexkins")
+    cfg = lh.copy_config(cfg, work, name + "-run")  # readable by the LinuxCNC user
+    return os.path.join(cfg, os.path.basename(ini))
+
+
+def strut_copied(setp, src, dst):
+    """The setp block with strut `dst`'s joint centres set to strut `src`'s."""
+    values = dict(l.split()[1:3] for l in setp.splitlines() if l.startswith("setp "))
+    out = []
+    for line in setp.splitlines(keepends=True):
+        parts = line.split()
+        if len(parts) == 3 and re.fullmatch(rf"pkmhexkins\.(base|platform)\.{dst}\.[xyz]", parts[1]):
+            line = f"setp {parts[1]} {values[parts[1].replace(f'.{dst}.', f'.{src}.')]}\n"
+        out.append(line)
+    return "".join(out)
 
 
 def check(failures, what, got, want):
@@ -161,20 +170,18 @@ def main():
     tooled = dict(machine, spindle_offset=TOOL_LENGTH)
     tool_poses = [(x, y, z + TOOL_LENGTH, a, b, c) for x, y, z, a, b, c in TOOL_POSES]
     expected_tool = pkm_ik(pkm, tooled, tool_poses, work)
-    sample = os.path.join(source_dir, "data/linuxcnc/hexapod-sim-pkm")
+    machine_path = write_machine(machine, work, "calibrated")
 
-    ini = write_config(lh.copy_config(sample, work, "cfg"), machine, expected[0])
+    ini = write_config(pkm, machine_path, work, "cfg")
     failures, text = lh.session(ini, [module], "calibrated", work, moves(expected, expected_tool))
     if "pkmhexkins:" in text:
         failures.append("the module reported an error")
     if failures:
         sys.exit("FAIL:\n" + "\n".join(failures) + "\n--- linuxcnc log ---\n" + text)
 
-    # A geometry that does not assemble: strut 4 given as a second copy of strut 3.
-    bad = json.loads(json.dumps(machine))
-    bad["struts"][4]["base"] = bad["struts"][3]["base"]
-    bad["struts"][4]["platform"] = bad["struts"][3]["platform"]
-    bad_ini = write_config(lh.copy_config(sample, work, "bad"), bad, expected[0])
+    # A geometry that does not assemble, set by pins: strut 4 given as a second copy of strut 3.
+    setp = run([pkm, "hexapod", "hal", "--kins", "pkmhexkins", "--machine", machine_path])
+    bad_ini = write_config(pkm, machine_path, work, "bad", strut_copied(setp, 3, 4))
     failures, text = lh.session(bad_ini, [module], "bad-geometry", work, refused)
     message = "pkmhexkins: unusable geometry: struts 3 and 4 join the same joints"
     if message not in text:

@@ -5,9 +5,9 @@ pkm's kinematics modules read their parameter file at `loadrt` (`[KINS] KINEMATI
 params=FILE`, `pkmexechonkins params=FILE`) and refuse it there: a missing parameter, an unknown
 name, or a geometry that does not assemble fails the loadrt, so LinuxCNC does not start (instead
 of failing at the first move). For each module:
-  - a good file: LinuxCNC starts and homes; pkmhexkins (a copy of data/linuxcnc/hexapod-sim-pkm,
-    its geometry `setp` lines removed, the geometry moved away from the module's defaults and
-    given as a parameter file): the world position after homing is the file's home, the pins
+  - a good file: LinuxCNC starts and homes; pkmhexkins (a copy of
+    data/linuxcnc/hexapod-linuxcnc-sim, the geometry moved away from the module's defaults and
+    written by `pkm hexapod linuxcnc-params`): the world position after homing is the file's home, the pins
     hold the file's values, and at two MDI poses the joints are pkm's IK of the file's machine;
     pkmexechonkins (a copy of data/linuxcnc/exechon-mxt700s): the world position after homing is
     [TRAJ] HOME;
@@ -37,22 +37,20 @@ def run(cmd):
     return r.stdout
 
 
-def hexapod_params(m):
-    """The pkmhexkins parameter file of a pkm machine JSON (the format of
-    io::linuxcncHexapodParameters, which tests/linuxcnc/hexkins_params_test.cpp checks)."""
-    lines = ["# pkmhexkins parameters (load_failures_test.py)"]
-    for i, s in enumerate(m["struts"]):
-        lines.append(f"base.{i} " + " ".join(map(repr, s["base"])))
-        lines.append(f"platform.{i} " + " ".join(map(repr, s["platform"])))
-        lines.append(f"length-offset.{i} {s.get('length_offset', 0.0)!r}")
-    h = m["home"]
-    lines += ["tool " + " ".join(map(repr, m["tool_offset"])),
-              f"spindle-offset {m.get('spindle_offset', 0.0)!r}",
-              "home " + " ".join(repr(h[k]) for k in "xyzabc"),
-              "convergence-criterion 1e-9", "limit-iterations 120", "max-error 0",
-              "max-backtracks 12", "singular-pivot-ratio 1e-12", "max-step-translation 0.5",
-              "max-step-rotation 0.25", "continuation-step 0.3"]
-    return "\n".join(lines) + "\n"
+def replace_lines(text, values):
+    """The parameter file `text` with the lines of the names in `values` (name -> numbers)
+    replaced."""
+    out = []
+    for line in text.splitlines(keepends=True):
+        name = line.split(" ", 1)[0]
+        out.append(f"{name} {' '.join(map(repr, values[name]))}\n" if name in values else line)
+    return "".join(out)
+
+
+def numbers(text, name):
+    """The numbers of the line `name ...` of a parameter file."""
+    line = next(l for l in text.splitlines() if l.split(" ", 1)[0] == name)
+    return [float(v) for v in line.split()[1:]]
 
 
 def make_config(sample, work, name, kinematics, text):
@@ -68,7 +66,7 @@ def make_config(sample, work, name, kinematics, text):
     with open(hal, "w") as f:
         f.writelines(kept if kinematics == "pkmhexkins" else
                      [l for l in kept if "pkmhexkins" not in l])
-    ini = os.path.join(cfg, "hexapod.ini")
+    ini = os.path.join(cfg, "hexapod-linuxcnc-sim.ini")
     lh.set_ini(ini, "KINS", "KINEMATICS", f"{kinematics} params={params}")
     lh.make_headless(ini)
     return ini, params
@@ -92,13 +90,13 @@ def hexapod_cases(pkm, module, sample, work, failures):
                               "hexapod-linuxcnc-sim"]))
     machine["struts"][2]["base"][0] += 0.04  # not the module's defaults: the file must count
     machine["struts"][5]["length_offset"] = 0.03
-    good = hexapod_params(machine)
-    ini, _ = make_config(sample, work, "hex-good", "pkmhexkins", good)
-    home = [machine["home"][k] for k in "xyzabc"]
-    csv = os.path.join(work, "poses.csv")
     mpath = os.path.join(work, "machine.json")
     with open(mpath, "w") as f:
         json.dump(machine, f)
+    good = run([pkm, "hexapod", "linuxcnc-params", "--machine", mpath])
+    ini, _ = make_config(sample, work, "hex-good", "pkmhexkins", good)
+    home = [machine["home"][k] for k in "xyzabc"]
+    csv = os.path.join(work, "poses.csv")
     poses = [home, [0.5, -1.0, 21.0, 2.0, -3.0, 4.0], [-1.5, 0.5, 19.0, -4.0, 1.0, -2.0]]
     with open(csv, "w") as f:
         f.write("x,y,z,a,b,c\n" + "".join(",".join(map(repr, p)) + "\n" for p in poses))
@@ -138,17 +136,15 @@ def hexapod_cases(pkm, module, sample, work, failures):
     missing = "".join(l for l in lines if not l.startswith("tool "))
     unknown = good.replace("spindle-offset", "spindel-offset")
     number = 1 + next(i for i, l in enumerate(lines) if l.startswith("spindle-offset"))
-    twice = json.loads(json.dumps(machine))  # strut 4 a second copy of strut 3
-    twice["struts"][4]["base"] = twice["struts"][3]["base"]
-    twice["struts"][4]["platform"] = twice["struts"][3]["platform"]
-    line = json.loads(json.dumps(machine))  # platform joints on one line: turns about it free
-    for i, s in enumerate(line["struts"]):
-        s["platform"] = [2.0 * i - 5.0, 0.0, 0.0]
+    # Geometries pkm itself would not load, made from its file: strut 4 a second copy of strut 3;
+    # the platform joints on one line (turns about it are free).
+    twice = replace_lines(good, {"base.4": numbers(good, "base.3"),
+                                 "platform.4": numbers(good, "platform.3")})
+    line = replace_lines(good, {f"platform.{i}": [2.0 * i - 5.0, 0.0, 0.0] for i in range(6)})
     cases = [("missing parameter", missing, "missing tool"),
              ("unknown name", unknown, f"line {number}: unknown parameter 'spindel-offset'"),
-             ("one strut twice", hexapod_params(twice), "struts 3 and 4 join the same joints"),
-             ("collinear platform joints", hexapod_params(line), "the geometry is singular at the "
-              "home pose")]
+             ("one strut twice", twice, "struts 3 and 4 join the same joints"),
+             ("collinear platform joints", line, "the geometry is singular at the home pose")]
     for what, text, reason in cases:
         name = "hex-" + what.replace(" ", "-")
         ini, params = make_config(sample, work, name, "pkmhexkins", text)
@@ -204,7 +200,7 @@ def main():
     lh.require([hexkins, exechon])
     work = lh.workdir("pkm-load-failures-")
     failures = []
-    hexapod_cases(pkm, hexkins, os.path.join(source_dir, "data/linuxcnc/hexapod-sim-pkm"), work,
+    hexapod_cases(pkm, hexkins, os.path.join(source_dir, "data/linuxcnc/hexapod-linuxcnc-sim"), work,
                   failures)
     exechon_cases(exechon, os.path.join(source_dir, "data/linuxcnc/exechon-mxt700s"), work,
                   failures)
