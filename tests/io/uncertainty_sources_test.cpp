@@ -1,0 +1,70 @@
+// Instrument and environment descriptions as JSON (io/uncertainty_sources.hpp): round trip,
+// partial documents and bad input with FILE:LINE.
+#include "pkm/io/uncertainty_sources.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "pkm/core/error.hpp"
+
+namespace pkm::io {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string errorOf(const std::string& text) {
+  try {
+    (void)readUncertaintySources({"src.json", text});
+  } catch (const IoError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(UncertaintySourcesJson, RoundTripsEveryField) {
+  metrology::UncertaintySources s;
+  s.laser.name = "lab laser";
+  s.laser.wavelength_accuracy_ppm = 0.02;
+  s.laser.air_pressure_accuracy_pa = 0.1 + 0.2;  // not a short decimal
+  s.probe.form_2d_mm = 1e-3;
+  s.tracker.accuracy_mm = 0.01;
+  s.environment.air.temperature_c = 21.7;
+  s.environment.dead_path_mm = 150.0;
+  s.environment.material_temperature_c = 23.4;
+  s.coverage_factor = 2.5;
+  const std::string text = uncertaintySourcesJson(s);
+  const metrology::UncertaintySources back = readUncertaintySources({"round.json", text});
+  EXPECT_EQ(uncertaintySourcesJson(back), text);
+  EXPECT_EQ(back.laser.name, "lab laser");
+  EXPECT_EQ(back.laser.air_pressure_accuracy_pa, 0.1 + 0.2);
+  EXPECT_EQ(back.environment.air.temperature_c, 21.7);
+  EXPECT_EQ(back.coverage_factor, 2.5);
+  EXPECT_THAT(text, HasSubstr(kUncertaintySourcesSchema));
+}
+
+TEST(UncertaintySourcesJson, MissingMembersKeepTheDefaults) {
+  const metrology::UncertaintySources s =
+      readUncertaintySources({"p.json", R"({"environment": {"dead_path_mm": 200}})"});
+  EXPECT_EQ(s.environment.dead_path_mm, 200.0);
+  EXPECT_EQ(s.laser.wavelength_accuracy_ppm,
+            metrology::LaserInterferometer{}.wavelength_accuracy_ppm);
+  EXPECT_EQ(uncertaintySourcesJson(readUncertaintySources({"e.json", "{}"})),
+            uncertaintySourcesJson(metrology::UncertaintySources{}));
+}
+
+TEST(UncertaintySourcesJson, BadInputNamesFileAndLine) {
+  EXPECT_THAT(errorOf("{\n  \"laser\": {\n    \"bogus\": 1\n  }\n}\n"),
+              HasSubstr("src.json:3: /laser/bogus: unknown key 'bogus'"));
+  EXPECT_THAT(errorOf("{\n  \"probe\": {\n    \"form_2d_mm\": \"big\"\n  }\n}\n"),
+              HasSubstr("src.json:3: /probe/form_2d_mm: expected a number"));
+  EXPECT_THAT(errorOf("{\n  \"environment\": {\"air\": {\"pressure_pa\": 5}}\n}\n"),
+              HasSubstr("pressure"));
+  EXPECT_THAT(errorOf("{\n  \"laser\": [1,\n"), HasSubstr("src.json:"));
+  EXPECT_THAT(errorOf(R"({"schema": "other"})"), HasSubstr("unsupported schema"));
+  EXPECT_THAT(errorOf(R"({"coverage_factor": 0})"), HasSubstr("coverage_factor"));
+}
+
+}  // namespace
+}  // namespace pkm::io
