@@ -13,7 +13,7 @@
 namespace pkm::io {
 
 /// The schema name written and accepted in "schema".
-inline constexpr const char* kUncertaintySourcesSchema = "pkm-uncertainty-sources-1";
+inline constexpr const char* kUncertaintySourcesSchema = "pkm.uncertainty-sources/1";
 
 /// Reads an uncertainty-sources document. Throws pkm::IoError "NAME:LINE: /pointer: message" for
 /// invalid JSON, an unknown key, a value of the wrong type, or values that fail
