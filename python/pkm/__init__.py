@@ -13,6 +13,7 @@ from ._pkm import (  # noqa: F401
     builtin_machines,
     load_machine,
 )
+from . import metrology  # noqa: E402,F401
 
 __all__ = [
     "ConvergenceError",
@@ -21,4 +22,5 @@ __all__ = [
     "LimitError",
     "builtin_machines",
     "load_machine",
+    "metrology",
 ]

@@ -6,6 +6,5 @@ namespace pkm::python {
 void exposeCalibration(py::module_&) {}
 void exposeSimulation(py::module_&) {}
 void exposeGcode(py::module_&) {}
-void exposeMetrology(py::module_&) {}
 
 }  // namespace pkm::python
