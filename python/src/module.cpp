@@ -12,7 +12,4 @@ PYBIND11_MODULE(_pkm, m) {
   p::exposeHexapod(m);
   p::exposeExechon(m);
   p::exposeMetrology(m);
-  p::exposeCalibration(m);
-  p::exposeSimulation(m);
-  p::exposeGcode(m);
 }
