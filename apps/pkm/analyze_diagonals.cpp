@@ -21,6 +21,7 @@ struct DiagonalsState {
   std::vector<double> size;
   double coverage = 2.0;
   std::vector<std::string> compare;
+  UncertaintyArgs uncertainty;
 };
 
 void runDiagonals(const DiagonalsState& st) {
@@ -37,6 +38,7 @@ void runDiagonals(const DiagonalsState& st) {
     throw CLI::ValidationError("--compare", "needs --method step or shifted");
   }
   request.compare = io::readNamedTexts(st.compare);
+  request.uncertainty = st.uncertainty.parsed();
   CliRunControl control;
   const io::DiagonalsReport report = workflow::analyzeDiagonals(request, control.control());
   control.finish();
@@ -62,6 +64,7 @@ void addDiagonals(CLI::App& analyze) {
                   "measurement files of XY lines (linear or straightness) to compare with the 2-D "
                   "prediction (step, shifted)")
       ->check(CLI::ExistingFile);
+  st->uncertainty.add(*cmd);
   cmd->callback([st] { runDiagonals(*st); });
 }
 

@@ -181,6 +181,7 @@ struct SquarenessState {
   std::vector<std::string> start, pdge;
   std::string axes;
   bool scale = false, first_work = false, second_work = false;
+  UncertaintyArgs uncertainty;
 };
 
 /// "A,B" as two finite numbers; throws pkm::InvalidArgument naming the option.
@@ -224,6 +225,7 @@ void runSquareness(const SquarenessState& st) {
   request.fit_scale = st.scale;
   request.first_moves_work = st.first_work;
   request.second_moves_work = st.second_work;
+  request.uncertainty = st.uncertainty.parsed();
   printReport(st.io, workflow::analyzeSquareness(request));
 }
 
@@ -250,6 +252,7 @@ void addSquareness(CLI::App& analyze) {
   cmd->add_flag("--second-moves-work",
                 st->second_work,
                 "the second axis moves the work, not the tool (seed 000: Y2)");
+  st->uncertainty.add(*cmd);
   cmd->callback([st] { runSquareness(*st); });
 }
 

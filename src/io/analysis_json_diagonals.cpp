@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "io/detail/uncertainty_json.hpp"
 #include "pkm/io/analysis_report.hpp"
 
 namespace pkm::io {
@@ -140,6 +141,7 @@ std::string analysisJson(const DiagonalsReport& report) {
   if (report.step) stepJson(*report.step, j);
   if (report.shifted) shiftedJson(*report.shifted, j);
   if (!report.compare.empty()) j["compare"] = compareJson(report.compare);
+  j["uncertainty"] = detail::uncertaintyJson(report.uncertainty, report.monte_carlo);
   return j.dump(2) + "\n";
 }
 

@@ -122,6 +122,7 @@ std::string analysisJson(const SquarenessReport& report) {
     j["scale"] = Json::array({(*r.scale)[0], (*r.scale)[1]});
     j["scale_model"] = r.scale_per_axis ? "per_axis" : "common";
   }
+  j["uncertainty"] = detail::uncertaintyJson(report.uncertainty, report.monte_carlo);
   return dump(j);
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "io/detail/uncertainty_json.hpp"
 #include "pkm/io/analysis_text.hpp"
 
 namespace pkm::io {
@@ -87,6 +88,13 @@ std::string analysisText(const DiagonalsReport& report) {
   compareText(report.compare, o);
   if (report.step) stepText(*report.step, o);
   if (report.shifted) shiftedText(*report.shifted, o);
+  // The table is CSV with '#' notes: the uncertainty lines are notes too.
+  const std::string u = detail::uncertaintyText(report.uncertainty) +
+                        detail::monteCarloText(report.uncertainty, report.monte_carlo);
+  for (std::size_t b = 0, e = 0; b < u.size(); b = e + 1) {
+    e = u.find('\n', b);
+    o += "# " + u.substr(b, e - b) + "\n";
+  }
   return o;
 }
 

@@ -111,6 +111,8 @@ std::string analysisText(const SquarenessReport& report) {
                        num((*r.scale)[1]),
                        r.scale_per_axis ? "per axis" : "common");
   }
+  out += detail::uncertaintyText(report.uncertainty);
+  out += detail::monteCarloText(report.uncertainty, report.monte_carlo);
   return out;
 }
 

@@ -38,6 +38,22 @@ Json uncertaintyJson(const std::vector<metrology::UncertaintyBudget>& budgets) {
   return out;
 }
 
+Json uncertaintyJson(const std::vector<metrology::UncertaintyBudget>& budgets,
+                     const std::vector<metrology::MonteCarloResult>& monte_carlo) {
+  Json out = uncertaintyJson(budgets);
+  for (std::size_t i = 0; i < budgets.size() && i < monte_carlo.size(); ++i) {
+    const metrology::MonteCarloResult& m = monte_carlo[i];
+    out[budgets[i].quantity]["monte_carlo"] =
+        Json{{"mean", m.mean},
+             {"u", m.standard_uncertainty},
+             {"U", budgets[i].coverage_factor * m.standard_uncertainty},
+             {"low", m.low},
+             {"high", m.high},
+             {"trials", m.trials}};
+  }
+  return out;
+}
+
 Json conformanceJson(const std::vector<metrology::ConformanceResult>& results) {
   Json out = Json::array();
   for (const metrology::ConformanceResult& r : results) {
@@ -61,6 +77,23 @@ std::string uncertaintyText(const std::vector<metrology::UncertaintyBudget>& bud
                        b.expandedUncertainty(),
                        b.unit,
                        largest ? b.contributors[*largest].name : "-");
+  }
+  return out;
+}
+
+std::string monteCarloText(const std::vector<metrology::UncertaintyBudget>& budgets,
+                           const std::vector<metrology::MonteCarloResult>& monte_carlo) {
+  std::string out;
+  for (std::size_t i = 0; i < budgets.size() && i < monte_carlo.size(); ++i) {
+    const metrology::MonteCarloResult& m = monte_carlo[i];
+    out +=
+        fmt::format("monte carlo\t{}\tU = {:.2g} {}\t95 % interval [{:.6g}, {:.6g}], {} trials\n",
+                    budgets[i].quantity,
+                    budgets[i].coverage_factor * m.standard_uncertainty,
+                    budgets[i].unit,
+                    m.low,
+                    m.high,
+                    m.trials);
   }
   return out;
 }

@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "analyze_diagonal_inputs.hpp"
+#include "analyze_diagonal_uncertainty.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/metrology/per_target.hpp"
 #include "pkm/metrology/plane_prediction.hpp"
@@ -118,7 +119,12 @@ std::vector<io::DiagonalComparison> compareAll(const DiagonalsRequest& request,
   return out;
 }
 
-metrology::BodyDiagonalResult body(const DiagonalsRequest& request, const RunControl& control) {
+void setBudgets(io::DiagonalsReport& report, detail::SquarenessBudgets budgets) {
+  report.uncertainty = std::move(budgets.linear);
+  report.monte_carlo = std::move(budgets.monte_carlo);
+}
+
+void body(const DiagonalsRequest& request, const RunControl& control, io::DiagonalsReport& report) {
   const std::vector<metrology::BodyDiagonalSample> samples =
       detail::readBodySamples(request.data, request.size);
   // ISO 230-2 needs ≥ 2 runs per target and direction on every diagonal.
@@ -131,7 +137,30 @@ metrology::BodyDiagonalResult body(const DiagonalsRequest& request, const RunCon
       per_target.begin(), per_target.end(), [](const auto& kv) { return kv.second >= 2; });
   if (!options.iso230_2)
     control.note({"ISO 230-2 statistics need at least 2 runs per target and direction; omitted"});
-  return metrology::evaluateBodyDiagonals(samples, request.size, options);
+  report.body = metrology::evaluateBodyDiagonals(samples, request.size, options);
+  setBudgets(report,
+             detail::bodySquarenessBudgets(
+                 samples, *report.body, request.size, request.uncertainty, request.monte_carlo));
+}
+
+void step(const DiagonalsRequest& request, io::DiagonalsReport& report) {
+  const std::vector<metrology::StepDiagonalPass> passes =
+      detail::readStepPasses(request.data, request.size);
+  report.step = metrology::extractStepDiagonal(passes, request.size);
+  report.compare = compareAll(request, metrology::planeModel(*report.step));
+  setBudgets(report,
+             detail::stepSquarenessBudgets(
+                 passes, *report.step, request.size, request.uncertainty, request.monte_carlo));
+}
+
+void shifted(const DiagonalsRequest& request, io::DiagonalsReport& report) {
+  const std::vector<metrology::ShiftedDiagonalMeasurement> ms =
+      detail::readShiftedMeasurements(request.data, request.size);
+  report.shifted = metrology::evaluateShiftedDiagonals(ms, request.size);
+  report.compare = compareAll(request, metrology::planeModel(*report.shifted));
+  setBudgets(report,
+             detail::shiftedSquarenessBudgets(
+                 ms, *report.shifted, request.size, request.uncertainty, request.monte_carlo));
 }
 
 }  // namespace
@@ -150,17 +179,13 @@ io::DiagonalsReport analyzeDiagonals(const DiagonalsRequest& request, const RunC
   report.size = request.size;
   switch (request.method) {
     case io::DiagonalMethod::kBody:
-      report.body = body(request, control);
+      body(request, control, report);
       break;
     case io::DiagonalMethod::kStep:
-      report.step = metrology::extractStepDiagonal(
-          detail::readStepPasses(request.data, request.size), request.size);
-      report.compare = compareAll(request, metrology::planeModel(*report.step));
+      step(request, report);
       break;
     case io::DiagonalMethod::kShifted:
-      report.shifted = metrology::evaluateShiftedDiagonals(
-          detail::readShiftedMeasurements(request.data, request.size), request.size);
-      report.compare = compareAll(request, metrology::planeModel(*report.shifted));
+      shifted(request, report);
       break;
   }
   return report;

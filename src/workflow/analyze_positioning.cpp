@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "pkm/core/error.hpp"
@@ -12,6 +13,7 @@
 #include "pkm/metrology/iso230_2_conformity.hpp"
 #include "pkm/metrology/positioning_uncertainty.hpp"
 #include "pkm/metrology/profile_uncertainty.hpp"
+#include "pkm/metrology/squareness_uncertainty.hpp"
 #include "pkm/workflow/machine_unit.hpp"
 
 namespace pkm::workflow {
@@ -109,6 +111,13 @@ io::ParallelismReport analyzeParallelism(const ParallelismRequest& request) {
                                                             {ref.position, ref_r},
                                                             {axis.position, axis_r},
                                                             request.uncertainty)};
+    const auto [lo, hi] = std::minmax_element(axis.position.begin(), axis.position.end());
+    const metrology::UncertaintyBudget& p = report.uncertainty.front();
+    if (report.sxP)
+      report.uncertainty.push_back(metrology::eq11Uncertainty(p, *hi - *lo, 1, "sxP", *report.sxP));
+    if (report.szP)
+      report.uncertainty.push_back(
+          metrology::eq11Uncertainty(p, *hi - *lo, -1, "szP", *report.szP));
   }
   report.axis_position = std::move(axis.position);
   return report;

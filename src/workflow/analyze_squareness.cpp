@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "analyze_diagonal_uncertainty.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/error_table.hpp"
 #include "pkm/io/positioning_files.hpp"
@@ -197,12 +198,14 @@ io::SquarenessReport analyzeSquareness(const SquarenessRequest& request) {
   std::vector<metrology::PdgeTerm> pdge;
   for (const PdgeInput& in : request.pdge) pdge.push_back(readPdge(in));
   io::SquarenessReport report;
-  report.result =
-      metrology::fitFaceDiagonalSquareness(diagonals,
-                                           pdge,
-                                           {.fit_scale = request.fit_scale,
-                                            .first_moves_work = request.first_moves_work,
-                                            .second_moves_work = request.second_moves_work});
+  const metrology::FaceDiagonalOptions fit{.fit_scale = request.fit_scale,
+                                           .first_moves_work = request.first_moves_work,
+                                           .second_moves_work = request.second_moves_work};
+  report.result = metrology::fitFaceDiagonalSquareness(diagonals, pdge, fit);
+  detail::SquarenessBudgets budgets = detail::faceSquarenessBudget(
+      diagonals, pdge, fit, report.result, request.uncertainty, request.monte_carlo);
+  report.uncertainty = std::move(budgets.linear);
+  report.monte_carlo = std::move(budgets.monte_carlo);
   report.diagonals = diagonals.size();
   report.pdge_tables = pdge.size();
   return report;

@@ -165,3 +165,39 @@ TEST_F(AnalyzeDiagonalsCli, InputErrors) {
 }
 
 }  // namespace
+
+namespace pkm::test {
+namespace {
+
+constexpr double kTolMonteCarloVsLinear = 0.05;  // relative: U from 20000 Monte Carlo trials
+
+TEST_F(AnalyzeDiagonalsCli, SquarenessCarriesUWithItsMonteCarloCheck) {
+  ASSERT_EQ(pkm({"simulate", "seed001-diagonals", "--out", path("D")}).code, 0);
+  std::vector<std::string> args = {"analyze", "diagonals", "--size", "500,400,300", "--json"};
+  args.push_back("--data");
+  for (const auto& f : files(path("D"), "diag-")) args.push_back(f);
+  const nlohmann::json j = nlohmann::json::parse(pkm(args).out);
+  const nlohmann::json& u = j["uncertainty"];
+  EXPECT_EQ(u["coverage_factor"], 2.0);
+  for (const char* key : {"squareness_xy", "squareness_xz", "squareness_yz"}) {
+    const double U = u[key]["U"].get<double>();
+    EXPECT_EQ(u[key]["value"], j[key]) << key;
+    EXPECT_EQ(u[key]["unit"], "rad");
+    EXPECT_GT(U, 0.1 * kUrad) << key;
+    EXPECT_LT(U, 10 * kUrad) << key;
+    EXPECT_NEAR(u[key]["monte_carlo"]["U"].get<double>(), U, kTolMonteCarloVsLinear * U) << key;
+  }
+  // A coarse laser resolution (1 µm) widens U; a bad sources file stops with FILE:LINE.
+  args.insert(args.end(),
+              {"--uncertainty", write("coarse.json", R"({"laser": {"resolution_mm": 0.001}})")});
+  const nlohmann::json c = nlohmann::json::parse(pkm(args).out);
+  EXPECT_GT(c["uncertainty"]["squareness_xy"]["U"].get<double>(),
+            u["squareness_xy"]["U"].get<double>());
+  args.back() = write("bad.json", "{\n  \"laser\": {\"x\": 1}\n}\n");
+  const CliRun b = pkm(args);
+  EXPECT_EQ(b.code, 2);
+  EXPECT_THAT(b.err, ::testing::HasSubstr("bad.json:2: /laser/x: unknown key"));
+}
+
+}  // namespace
+}  // namespace pkm::test

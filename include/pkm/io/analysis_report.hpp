@@ -21,6 +21,7 @@
 #include "pkm/metrology/face_diagonal.hpp"
 #include "pkm/metrology/iso230_2.hpp"
 #include "pkm/metrology/min_zone_circle.hpp"
+#include "pkm/metrology/monte_carlo.hpp"
 #include "pkm/metrology/parallelism.hpp"
 #include "pkm/metrology/plane_prediction.hpp"
 #include "pkm/metrology/probe_offset.hpp"
@@ -86,6 +87,10 @@ struct SquarenessReport {
   metrology::FaceDiagonalResult result;
   std::size_t diagonals = 0;    ///< diagonals fitted
   std::size_t pdge_tables = 0;  ///< PDGE tables removed
+  /// Budget of the squareness (metrology::propagateBothWays: linear, with its Monte Carlo check
+  /// in `monte_carlo`, the same order).
+  std::vector<metrology::UncertaintyBudget> uncertainty;
+  std::vector<metrology::MonteCarloResult> monte_carlo;
 };
 
 /// The diagonal method of `pkm analyze diagonals`.
@@ -110,6 +115,10 @@ struct DiagonalsReport {
   std::optional<metrology::StepDiagonalResult> step;
   std::optional<metrology::ShiftedDiagonalResult> shifted;
   std::vector<DiagonalComparison> compare;  ///< step and shifted only, in input order
+  /// Budgets of squareness_xy, _xz, _yz (linear; metrology::propagateBothWays) and their Monte
+  /// Carlo propagations in `monte_carlo`, the same order.
+  std::vector<metrology::UncertaintyBudget> uncertainty;
+  std::vector<metrology::MonteCarloResult> monte_carlo;
 };
 
 /// Where a point was read: the input's name and its 1-based line.

@@ -10,6 +10,8 @@
 
 #include "pkm/io/analysis_report.hpp"
 #include "pkm/io/named_text.hpp"
+#include "pkm/metrology/monte_carlo.hpp"
+#include "pkm/metrology/uncertainty_sources.hpp"
 #include "pkm/workflow/progress.hpp"
 
 namespace pkm::workflow {
@@ -26,6 +28,10 @@ struct DiagonalsRequest {
   /// Linear or straightness measurement files of XY lines compared with the 2-D prediction
   /// (step and shifted only).
   std::vector<io::NamedText> compare;
+  /// Instruments and environment of the squareness budgets (metrology::diagonalLineInputs).
+  metrology::UncertaintySources uncertainty{};
+  /// The Monte Carlo propagation beside the linear budgets (each trial re-evaluates the method).
+  metrology::MonteCarloOptions monte_carlo{.trials = 20000};
   /// Throws pkm::IoError without data, pkm::InvalidArgument for a box side not finite and > 0 or
   /// comparison files with the body method.
   void validate() const;

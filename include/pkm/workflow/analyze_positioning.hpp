@@ -15,6 +15,7 @@
 #include "pkm/io/analysis_report.hpp"
 #include "pkm/io/named_text.hpp"
 #include "pkm/io/positioning_files.hpp"
+#include "pkm/metrology/monte_carlo.hpp"
 #include "pkm/metrology/uncertainty_sources.hpp"
 
 namespace pkm::workflow {
@@ -107,6 +108,10 @@ struct SquarenessRequest {
   bool fit_scale = false;          ///< also fit the scale errors (needs two diagonals)
   bool first_moves_work = false;   ///< the first axis moves the work, not the tool
   bool second_moves_work = false;  ///< the second axis moves the work (seed 000: Y2)
+  /// Instruments and environment of the squareness budget (metrology::diagonalLineInputs).
+  metrology::UncertaintySources uncertainty{};
+  /// The Monte Carlo propagation beside the linear budget (each trial refits the diagonals).
+  metrology::MonteCarloOptions monte_carlo{.trials = 20000};
   /// Throws pkm::IoError without data, pkm::InvalidArgument for a PDGE axis not 0 or 1 or a
   /// non-finite start.
   void validate() const;

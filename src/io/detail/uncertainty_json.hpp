@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pkm/metrology/conformance.hpp"
+#include "pkm/metrology/monte_carlo.hpp"
 #include "pkm/metrology/uncertainty_budget.hpp"
 
 namespace pkm::io::detail {
@@ -20,12 +21,22 @@ nlohmann::ordered_json budgetJson(const metrology::UncertaintyBudget& budget);
 /// object when there are no budgets.
 nlohmann::ordered_json uncertaintyJson(const std::vector<metrology::UncertaintyBudget>& budgets);
 
+/// uncertaintyJson with each budget's Monte Carlo propagation (GUM S1; monte_carlo[i] belongs to
+/// budgets[i]) as its "monte_carlo" member: {"mean", "u", "U" (= k u), "low", "high", "trials"}.
+nlohmann::ordered_json uncertaintyJson(const std::vector<metrology::UncertaintyBudget>& budgets,
+                                       const std::vector<metrology::MonteCarloResult>& monte_carlo);
+
 /// The "conformance" member: [{"quantity", "value", "U", "tolerance", "decision"}, ...].
 nlohmann::ordered_json conformanceJson(const std::vector<metrology::ConformanceResult>& results);
 
 /// The lines of the tables: "uncertainty (k = K)", then per budget "NAME<TAB>VALUE ± U UNIT<TAB>
 /// largest: CONTRIBUTOR" (6 significant digits); "" when there are no budgets.
 std::string uncertaintyText(const std::vector<metrology::UncertaintyBudget>& budgets);
+
+/// One line per Monte Carlo propagation: "monte carlo<TAB>NAME<TAB>U = U UNIT<TAB>95 % interval
+/// [LOW, HIGH], M trials"; "" when there are none.
+std::string monteCarloText(const std::vector<metrology::UncertaintyBudget>& budgets,
+                           const std::vector<metrology::MonteCarloResult>& monte_carlo);
 
 /// One line per decision: "conformance<TAB>NAME<TAB>VALUE ± U against T<TAB>DECISION".
 std::string conformanceText(const std::vector<metrology::ConformanceResult>& results);

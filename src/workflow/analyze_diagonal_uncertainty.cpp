@@ -1,0 +1,212 @@
+// The squareness budgets of the diagonal methods (analyze_diagonal_uncertainty.hpp).
+#include "analyze_diagonal_uncertainty.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
+
+namespace pkm::workflow::detail {
+namespace {
+
+constexpr std::array<const char*, 3> kNames = {"squareness_xy", "squareness_xz", "squareness_yz"};
+
+/// The three squareness values (xy, xz, yz) of one evaluation of a method on perturbed lines.
+using ThreeModel = std::function<std::array<double, 3>(std::span<const double> x)>;
+
+SquarenessBudgets propagateThree(const ThreeModel& model,
+                                 const std::array<double, 3>& values,
+                                 const metrology::UncertaintyBudget& inputs,
+                                 const metrology::MonteCarloOptions& options) {
+  SquarenessBudgets out;
+  for (std::size_t q = 0; q < 3; ++q) {
+    const auto one = [&model, q](std::span<const double> x) { return model(x)[q]; };
+    metrology::NonlinearBudget b =
+        metrology::propagateBothWays(kNames[q], "rad", values[q], one, inputs, options);
+    out.linear.push_back(std::move(b.linear));
+    out.monte_carlo.push_back(b.monte_carlo);
+  }
+  return out;
+}
+
+/// Standard error of a least-squares slope times `length`, from the residuals' RMS over n points
+/// with the sum of squared position deviations sxx; 0 when n < 3 or sxx = 0.
+double slopeStatistics(double rms, std::size_t n, double sxx, double length) {
+  if (n < 3 || sxx <= 0.0) return 0.0;
+  const double s = rms * std::sqrt(static_cast<double>(n) / static_cast<double>(n - 2));
+  return s / std::sqrt(sxx) * length;
+}
+
+}  // namespace
+
+SquarenessBudgets bodySquarenessBudgets(std::span<const metrology::BodyDiagonalSample> samples,
+                                        const metrology::BodyDiagonalResult& result,
+                                        const Eigen::Vector3d& size,
+                                        const metrology::UncertaintySources& sources,
+                                        const metrology::MonteCarloOptions& options) {
+  std::array<double, 4> sum{}, sum2{};
+  std::array<std::size_t, 4> n{};
+  for (const auto& s : samples) {
+    const auto k = static_cast<std::size_t>(s.diagonal);
+    sum[k] += s.position;
+    sum2[k] += s.position * s.position;
+    ++n[k];
+  }
+  std::vector<metrology::DiagonalLineInput> lines;
+  std::array<double, 4> errors{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const double sxx = n[k] ? sum2[k] - sum[k] * sum[k] / static_cast<double>(n[k]) : 0.0;
+    const metrology::DiagonalEvaluation& e = result.diagonals[k];
+    lines.push_back({metrology::toString(metrology::kBodyDiagonals[k]),
+                     result.length,
+                     slopeStatistics(e.residual_rms, n[k], sxx, result.length)});
+    errors[k] = e.length_error;
+  }
+  const metrology::UncertaintyBudget inputs = metrology::diagonalLineInputs(lines, sources);
+  const double D = result.length;
+  const ThreeModel model = [&](std::span<const double> x) {
+    std::array<double, 4> perturbed = errors;
+    for (std::size_t k = 0; k < 4; ++k) perturbed[k] += metrology::lineLengthError(x, k, D);
+    const metrology::BodyDiagonalSolution s = metrology::solveBodyDiagonals(size, perturbed);
+    return std::array<double, 3>{s.squareness_xy, s.squareness_xz, s.squareness_yz};
+  };
+  const metrology::BodyDiagonalSolution& s = result.solution;
+  return propagateThree(
+      model, {s.squareness_xy, s.squareness_xz, s.squareness_yz}, inputs, options);
+}
+
+SquarenessBudgets shiftedSquarenessBudgets(
+    std::span<const metrology::ShiftedDiagonalMeasurement> measurements,
+    const metrology::ShiftedDiagonalResult& result,
+    const Eigen::Vector3d& size,
+    const metrology::UncertaintySources& sources,
+    const metrology::MonteCarloOptions& options) {
+  // Lines in order of first appearance; each measurement's line index.
+  std::map<std::pair<int, int>, std::size_t> index;
+  std::vector<std::size_t> line_of;
+  std::vector<std::vector<double>> values;
+  std::vector<metrology::DiagonalLineInput> lines;
+  for (const auto& m : measurements) {
+    const std::pair<int, int> key{static_cast<int>(m.diagonal), m.axis};
+    if (!index.count(key)) {
+      index[key] = lines.size();
+      Eigen::Vector3d travel = metrology::diagonalTravel(m.diagonal, size);
+      if (m.axis >= 0) travel[m.axis] += m.shift;
+      const std::string axis = m.axis < 0 ? "" : fmt::format(" shifted {}", "xyz"[m.axis]);
+      lines.push_back({metrology::toString(m.diagonal) + axis, travel.norm(), 0.0});
+      values.emplace_back();
+    }
+    line_of.push_back(index[key]);
+    values[index[key]].push_back(m.length_error);
+  }
+  // Pooled scatter of repeated measurements of a line.
+  double squares = 0.0;
+  std::size_t dof = 0;
+  for (const auto& v : values) {
+    double mean = 0.0;
+    for (double e : v) mean += e / static_cast<double>(v.size());
+    for (double e : v) squares += (e - mean) * (e - mean);
+    dof += v.size() - 1;
+  }
+  const double s = dof ? std::sqrt(squares / static_cast<double>(dof)) : 0.0;
+  for (std::size_t k = 0; k < lines.size(); ++k)
+    lines[k].statistics_mm = s / std::sqrt(static_cast<double>(values[k].size()));
+  const metrology::UncertaintyBudget inputs = metrology::diagonalLineInputs(lines, sources);
+  const std::vector<metrology::ShiftedDiagonalMeasurement> base(measurements.begin(),
+                                                                measurements.end());
+  const ThreeModel model = [&](std::span<const double> x) {
+    std::vector<metrology::ShiftedDiagonalMeasurement> perturbed = base;
+    for (std::size_t i = 0; i < perturbed.size(); ++i) {
+      const std::size_t k = line_of[i];
+      perturbed[i].length_error += metrology::lineLengthError(x, k, lines[k].length_mm);
+    }
+    return metrology::evaluateShiftedDiagonals(perturbed, size).squareness;
+  };
+  return propagateThree(model, result.squareness, inputs, options);
+}
+
+SquarenessBudgets stepSquarenessBudgets(std::span<const metrology::StepDiagonalPass> passes,
+                                        const metrology::StepDiagonalResult& result,
+                                        const Eigen::Vector3d& size,
+                                        const metrology::UncertaintySources& sources,
+                                        const metrology::MonteCarloOptions& options) {
+  double q2 = 0.0;
+  std::size_t nq = 0;
+  for (const metrology::StepDiagonalAxis& a : result.axes) {
+    for (double q : a.residual) q2 += q * q;
+    nq += a.residual.size();
+  }
+  const double statistics = nq ? std::sqrt(q2 / static_cast<double>(nq)) / 2.0 : 0.0;
+  const double D = size.norm();
+  std::vector<metrology::DiagonalLineInput> lines;
+  for (metrology::BodyDiagonal d : metrology::kBodyDiagonals)
+    lines.push_back({metrology::toString(d), D, statistics});
+  const metrology::UncertaintyBudget inputs = metrology::diagonalLineInputs(lines, sources);
+  // The share of a step's travel along the beam after the X and the Y sub-move: a², a² + b².
+  const Eigen::Vector3d c2 = (size / D).cwiseAbs2();
+  const std::array<double, 3> share{c2.x(), c2.x() + c2.y(), 1.0};
+  const std::vector<metrology::StepDiagonalPass> base(passes.begin(), passes.end());
+  const ThreeModel model = [&](std::span<const double> x) {
+    std::vector<metrology::StepDiagonalPass> perturbed = base;
+    for (metrology::StepDiagonalPass& p : perturbed) {
+      const double per_mm =
+          metrology::lineLengthError(x, static_cast<std::size_t>(p.diagonal), D) / D;
+      double previous = p.steps.front().target;
+      for (metrology::StepDiagonalStep& s : p.steps) {
+        for (std::size_t m = 0; m < 3; ++m)
+          s.deviation[m] += per_mm * (previous + share[m] * (s.target - previous));
+        previous = s.target;
+      }
+    }
+    const metrology::StepDiagonalResult r = metrology::extractStepDiagonal(perturbed, size);
+    return std::array<double, 3>{r.squareness_xy, r.squareness_xz, r.squareness_yz};
+  };
+  return propagateThree(
+      model, {result.squareness_xy, result.squareness_xz, result.squareness_yz}, inputs, options);
+}
+
+SquarenessBudgets faceSquarenessBudget(std::span<const metrology::FaceDiagonal> diagonals,
+                                       std::span<const metrology::PdgeTerm> pdge,
+                                       const metrology::FaceDiagonalOptions& fit,
+                                       const metrology::FaceDiagonalResult& result,
+                                       const metrology::UncertaintySources& sources,
+                                       const metrology::MonteCarloOptions& options) {
+  std::vector<metrology::DiagonalLineInput> lines;
+  for (std::size_t k = 0; k < diagonals.size(); ++k) {
+    double length = 0.0, s2 = 0.0, r2 = 0.0;
+    std::size_t n = 0;
+    for (std::size_t j = 0; j < diagonals[k].points.size(); ++j) {
+      const metrology::DiagonalPoint& p = diagonals[k].points[j];
+      const double s = std::hypot(p.u, p.v);
+      if (s == 0.0) continue;
+      length = std::max(length, s);
+      s2 += s * s;
+      r2 += result.residuals[k][j] * result.residuals[k][j];
+      ++n;
+    }
+    if (n == 0) length = 1.0;  // a diagonal of start points only: no reading moves it
+    const double stat = n >= 2 ? std::sqrt(r2 / static_cast<double>(n - 1) / s2) * length : 0.0;
+    lines.push_back({fmt::format("diagonal {}", k + 1), length, stat});
+  }
+  const metrology::UncertaintyBudget inputs = metrology::diagonalLineInputs(lines, sources);
+  const std::vector<metrology::FaceDiagonal> base(diagonals.begin(), diagonals.end());
+  const metrology::MeasurementModel model = [&](std::span<const double> x) {
+    std::vector<metrology::FaceDiagonal> perturbed = base;
+    for (std::size_t k = 0; k < perturbed.size(); ++k) {
+      const double per_mm =
+          metrology::lineLengthError(x, k, lines[k].length_mm) / lines[k].length_mm;
+      for (metrology::DiagonalPoint& p : perturbed[k].points)
+        p.deviation += per_mm * std::hypot(p.u, p.v);
+    }
+    return metrology::fitFaceDiagonalSquareness(perturbed, pdge, fit).squareness;
+  };
+  metrology::NonlinearBudget b =
+      metrology::propagateBothWays("squareness", "rad", result.squareness, model, inputs, options);
+  return {{std::move(b.linear)}, {b.monte_carlo}};
+}
+
+}  // namespace pkm::workflow::detail
