@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <string>
 
 #include "cli_common.hpp"
 #include "pkm/workflow/campaign.hpp"
@@ -52,6 +54,38 @@ std::string summaryTable(const workflow::CampaignResult& result) {
   return table;
 }
 
+/// "VALUE ± U" (4 and 2 significant digits), "VALUE" without U, "-" without a value.
+std::string withU(double value, double u) {
+  if (!std::isfinite(value)) return "-";
+  if (!std::isfinite(u)) return numText(value);
+  return fmt::format("{:.4g} ± {:.2g}", value, u);
+}
+
+/// The rows with an expanded uncertainty: before ± U -> after ± U and the improvement, or "not
+/// significant" when it is smaller than √(U_before² + U_after²), then the paper's figures.
+std::string uncertaintyTable(const workflow::CampaignResult& result) {
+  std::string table = "\nuncertainty (k = 2): before -> after, improvement\n";
+  for (const workflow::CampaignStepResult& s : result.steps)
+    for (const workflow::CampaignRow& r : s.rows) {
+      if (!std::isfinite(r.before_U) && !std::isfinite(r.after_U)) continue;
+      const std::optional<bool> significant = r.significant();
+      std::string change;
+      if (significant)
+        change = *significant
+                     ? fmt::format("improvement {}", withU(r.before - r.after, r.combinedU()))
+                     : "not significant";
+      if (!r.paper.empty()) change += fmt::format("  (paper: {})", r.paper);
+      table += fmt::format("{:<10} {:<52} {} -> {} {}  {}\n",
+                           s.id,
+                           r.quantity,
+                           withU(r.before, r.before_U),
+                           withU(r.after, r.after_U),
+                           r.unit,
+                           change);
+    }
+  return table;
+}
+
 /// Runs the campaign; returns false when a target was missed.
 bool runCampaign(RunArgs a) {
   a.options.out = a.out;
@@ -66,6 +100,7 @@ bool runCampaign(RunArgs a) {
   };
   const workflow::CampaignResult r = workflow::runCampaign(a.options, control);
   fmt::print("{}", summaryTable(r));
+  fmt::print("{}", uncertaintyTable(r));
   fmt::print("\n{} in {:.2f} s; report: {}\n",
              r.targets == 0 ? "no targets (nothing measured after compensation)"
              : r.all_pass   ? fmt::format("all targets met ({})", r.targets)

@@ -2,6 +2,8 @@
 // /api/campaign/ID/report.html (docs/web.md): workflow::runCampaign into the server's folder.
 #include <fmt/format.h>
 
+#include <optional>
+
 #include "api_state.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/atomic_file.hpp"
@@ -20,6 +22,12 @@ std::string event(const char* name, const Json& data) {
   return fmt::format("event: {}\ndata: {}\n\n", name, data.dump());
 }
 
+/// Whether the row's improvement is larger than its combined U: true, false or null.
+Json significantJson(const workflow::CampaignRow& row) {
+  const std::optional<bool> s = row.significant();
+  return s ? Json(*s) : Json(nullptr);
+}
+
 Json stepsJson(const workflow::CampaignResult& r) {
   Json steps = Json::array();
   for (const workflow::CampaignStepResult& st : r.steps) {
@@ -31,7 +39,10 @@ Json stepsJson(const workflow::CampaignResult& r) {
                       {"after", finiteOrNull(row.after)},
                       {"target", row.target ? Json(*row.target) : Json(nullptr)},
                       {"paper", row.paper},
-                      {"pass", row.pass()}});
+                      {"pass", row.pass()},
+                      {"before_U", finiteOrNull(row.before_U)},
+                      {"after_U", finiteOrNull(row.after_U)},
+                      {"significant", significantJson(row)}});
     steps.push_back({{"id", st.id}, {"title", st.title}, {"rows", rows}});
   }
   return steps;

@@ -14,6 +14,7 @@
 #include "pkm/compensation/axis_table.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/metrology/body_diagonals.hpp"
+#include "pkm/metrology/positioning_uncertainty.hpp"
 #include "pkm/simulation/cartesian_machine.hpp"
 
 namespace pkm::workflow::campaign {
@@ -28,9 +29,39 @@ const std::array<std::string, 4> kDiagonals = {"diag-ppp", "diag-npp", "diag-pnp
 
 struct Analysis {
   met::BodyDiagonalResult body;
-  double max_length_error = 0.0;  ///< max |ΔD| of the four diagonals, mm
+  double max_length_error = 0.0;             ///< max |ΔD| of the four diagonals, mm
+  double max_length_error_U = std::nan("");  ///< its U (k = 2), mm (lengthErrorU)
   met::Iso230_2Result face_pp, face_np, linear_x, linear_y;
 };
+
+/// U (k = 2, mm) of the length error ΔD = slope · D of diagonal `k` (typical instruments): the
+/// laser's length contributors over D (metrology::addLaserLengthContributors) and the
+/// least-squares slope's standard error times D.
+double lengthErrorU(const std::vector<met::BodyDiagonalSample>& samples,
+                    const met::BodyDiagonalResult& body,
+                    std::size_t k) {
+  double sum = 0.0, sum2 = 0.0;
+  std::size_t n = 0;
+  for (const met::BodyDiagonalSample& s : samples) {
+    if (s.diagonal != met::kBodyDiagonals[k]) continue;
+    sum += s.position;
+    sum2 += s.position * s.position;
+    ++n;
+  }
+  met::UncertaintyBudget b;
+  met::addLaserLengthContributors(b, body.length, {});
+  const double sxx = n ? sum2 - sum * sum / static_cast<double>(n) : 0.0;
+  if (n >= 3 && sxx > 0.0) {
+    met::UncertaintyContributor c;
+    c.name = "least-squares slope x D";
+    c.unit = "mm";
+    c.value = body.diagonals[k].residual_rms *
+              std::sqrt(static_cast<double>(n) / static_cast<double>(n - 2)) / std::sqrt(sxx) *
+              body.length;
+    met::addContributor(b, c);
+  }
+  return b.expandedUncertainty();
+}
 
 Analysis analyse(const LineData& d, const Eigen::Vector3d& size, const std::string& src) {
   Analysis a;
@@ -43,8 +74,12 @@ Analysis analyse(const LineData& d, const Eigen::Vector3d& size, const std::stri
   met::BodyDiagonalOptions options;
   options.iso230_2 = false;
   a.body = met::evaluateBodyDiagonals(samples, size, options);
-  for (const met::DiagonalEvaluation& e : a.body.diagonals)
-    a.max_length_error = std::max(a.max_length_error, std::abs(e.length_error));
+  for (std::size_t k = 0; k < 4; ++k) {
+    const double e = std::abs(a.body.diagonals[k].length_error);
+    if (k > 0 && e <= a.max_length_error) continue;
+    a.max_length_error = e;
+    a.max_length_error_U = lengthErrorU(samples, a.body, k);
+  }
   a.face_pp = iso230_2(d.runs("face-xy-pp", src));
   a.face_np = iso230_2(d.runs("face-xy-np", src));
   a.linear_x = iso230_2(d.runs("linear-x", src));
@@ -144,6 +179,9 @@ StepOutcome fromFiles(const StepContext& ctx) {
       {"Y positioning (ISO 230-2 E)", ab.linear_y.E}};
   for (const auto& [quantity, value] : figures)
     out.rows.push_back({quantity, "mm", value, std::nan(""), std::nullopt, "", "as measured"});
+  const double U[] = {
+      ab.max_length_error_U, iso230_2U(ab.linear_x, "E"), iso230_2U(ab.linear_y, "E")};
+  for (std::size_t k = 0; k < 3; ++k) out.rows[out.rows.size() - 3 + k].before_U = U[k];
   const met::BodyDiagonalSolution& sb = ab.body.solution;
   out.record.results.push_back({"squareness.xy", "estimate", sb.squareness_xy, "rad"});
   out.record.results.push_back({"squareness.xz", "estimate", sb.squareness_xz, "rad"});
@@ -191,6 +229,16 @@ void addRows(StepOutcome& out,
       {"Y positioning (ISO 230-2 E)", ab.linear_y.E, aa.linear_y.E}};
   for (const auto& [quantity, b, a] : figures)
     out.rows.push_back({quantity, "mm", b, a, std::nullopt, "", noise});
+  const std::pair<double, double> U[] = {
+      {ab.max_length_error_U, aa.max_length_error_U},
+      {iso230_2U(ab.face_pp, "E"), iso230_2U(aa.face_pp, "E")},
+      {iso230_2U(ab.face_np, "E"), iso230_2U(aa.face_np, "E")},
+      {iso230_2U(ab.linear_x, "E"), iso230_2U(aa.linear_x, "E")},
+      {iso230_2U(ab.linear_y, "E"), iso230_2U(aa.linear_y, "E")}};
+  for (std::size_t k = 0; k < 5; ++k) {
+    SummaryRow& row = out.rows[out.rows.size() - 5 + k];
+    std::tie(row.before_U, row.after_U) = U[k];
+  }
   const met::BodyDiagonalSolution& sb = ab.body.solution;
   out.record.results.push_back({"squareness.xy", "estimate", sb.squareness_xy, "rad"});
   out.record.results.push_back({"squareness.xz", "estimate", sb.squareness_xz, "rad"});

@@ -14,6 +14,7 @@
 #include "pkm/io/measurement_files.hpp"
 #include "pkm/io/simulation_metadata.hpp"
 #include "pkm/metrology/per_target.hpp"
+#include "pkm/metrology/positioning_uncertainty.hpp"
 
 namespace pkm::workflow::campaign {
 
@@ -113,6 +114,17 @@ metrology::Iso230_2Result iso230_2(const std::vector<sim::LineRun>& runs) {
     for (const sim::LineReading& r : run.readings)
       if (r.sub_step == 0) samples.push_back({r.target, r.direction, run.run, r.reading});
   return metrology::evaluateIso230_2(samples);
+}
+
+double expandedU(const std::vector<metrology::UncertaintyBudget>& budgets,
+                 const std::string& quantity) {
+  for (const metrology::UncertaintyBudget& b : budgets)
+    if (b.quantity == quantity) return b.expandedUncertainty();
+  return std::nan("");
+}
+
+double iso230_2U(const metrology::Iso230_2Result& result, const std::string& quantity) {
+  return expandedU(metrology::iso230_2Uncertainty(result, {}), quantity);
 }
 
 void meanReadings(const std::vector<sim::LineRun>& runs,

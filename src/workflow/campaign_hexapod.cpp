@@ -215,6 +215,8 @@ void addRows(const StepContext& ctx,
        std::nullopt,
        "12 -> < 0.5 mm (540 mm along x)",
        fmt::format("laser {:g} µm + {:g} ppm", ls.noise.sigma * 1e3, ls.noise.sigma_ppm)});
+  out.rows.back().before_U = iso230_2U(pb, "M");
+  out.rows.back().after_U = iso230_2U(pa, "M");
   out.record.results.push_back({"calibration.residual_rms", "after", s.after.rms, "mm"});
 }
 

@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 #include "campaign_hybrid_detail.hpp"
 #include "campaign_steps.hpp"
@@ -46,6 +48,9 @@ void addMeasuredRows(StepOutcome& out, const Analysis& ab) {
       {"face diagonal X2-PZ error (ISO 230-2 E)", ab.diag_xz.E}};
   for (const auto& [quantity, value] : figures)
     out.rows.push_back({quantity, "mm", value, std::nan(""), std::nullopt, "", "as measured"});
+  const double U[] = {
+      ab.horizontal_U, ab.vertical_U, iso230_2U(ab.diag_xy, "E"), iso230_2U(ab.diag_xz, "E")};
+  for (std::size_t k = 0; k < 4; ++k) out.rows[out.rows.size() - 4 + k].before_U = U[k];
 }
 
 /// The step on measured laser files ("data": {"folder": DIR}): analysis and compensation files,
@@ -129,6 +134,14 @@ void addRows(const StepContext& ctx,
                       0.02,
                       "",
                       li_noise});
+  const std::pair<double, double> U[] = {{ab.horizontal_U, aa.horizontal_U},
+                                         {ab.vertical_U, aa.vertical_U},
+                                         {iso230_2U(ab.diag_xy, "E"), iso230_2U(aa.diag_xy, "E")},
+                                         {iso230_2U(ab.diag_xz, "E"), iso230_2U(aa.diag_xz, "E")}};
+  for (std::size_t k = 0; k < 4; ++k) {
+    SummaryRow& row = out.rows[out.rows.size() - 4 + k];
+    std::tie(row.before_U, row.after_U) = U[k];
+  }
 }
 
 /// The report section of the simulated step, without its plots.

@@ -4,6 +4,7 @@
 /// figures and report section).
 #pragma once
 
+#include <limits>
 #include <memory>
 
 #include "campaign_steps.hpp"
@@ -19,6 +20,9 @@ struct HybridAnalysis {
   metrology::ParallelismResult horizontal, vertical;  ///< Y2-PY parallelism (seed 000 §3.1)
   kinematics::HybridSquareness squareness;            ///< the four squareness errors
   metrology::Iso230_2Result diag_xy, diag_xz;         ///< the face diagonals X2-Y2 and X2-PZ
+  /// U (k = 2, mm) of |parallelism| (metrology::parallelismUncertainty, typical instruments).
+  double horizontal_U = std::numeric_limits<double>::quiet_NaN();
+  double vertical_U = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Parallelism from the straightness runs, szX2 and syP from the face diagonals with the

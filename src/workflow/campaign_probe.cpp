@@ -15,6 +15,7 @@
 #include "pkm/io/probe_files.hpp"
 #include "pkm/metrology/circle_fit.hpp"
 #include "pkm/metrology/probe_offset.hpp"
+#include "pkm/metrology/profile_uncertainty.hpp"
 #include "pkm/simulation/touch_probe.hpp"
 
 namespace pkm::workflow::campaign {
@@ -153,6 +154,14 @@ Analysis analyse(const StepContext& ctx, StepOutcome& out, const Touches& t) {
   return a;
 }
 
+/// U (k = 2, µm) of an LSC roundness (metrology::circleUncertainty, typical probe): the probe's
+/// repeatability and form at the two extreme points; NaN with fewer than 4 points.
+double roundnessU(const met::CircleFit& lsc) {
+  if (lsc.residuals.size() < 4) return std::nan("");
+  const auto budgets = met::circleUncertainty(lsc, met::MinZoneCircle{}, {});
+  return expandedU(budgets, "roundness_lsc") * 1e3;
+}
+
 /// The summary rows (the offset error only when `simulated`) and the fitted offset for the store.
 void addRows(StepOutcome& out, const Touches& t, const Analysis& a, bool simulated) {
   const double sigma = t.setup.noise.sigma;
@@ -172,6 +181,8 @@ void addRows(StepOutcome& out, const Touches& t, const Analysis& a, bool simulat
                       target,
                       "65 % lower",
                       noise});
+  out.rows.back().before_U = roundnessU(a.before.fit);
+  out.rows.back().after_U = roundnessU(a.after.fit);
   if (simulated)
     out.rows.push_back({"stylus offset error |d_fit - d_true|",
                         "µm",

@@ -24,6 +24,7 @@
 #include "pkm/io/scenario.hpp"
 #include "pkm/io/text_table.hpp"
 #include "pkm/metrology/iso230_2.hpp"
+#include "pkm/metrology/uncertainty_budget.hpp"
 #include "pkm/simulation/campaign.hpp"
 #include "pkm/simulation/touch_probe.hpp"
 #include "pkm/workflow/campaign.hpp"
@@ -119,6 +120,16 @@ void writeLineFiles(const StepContext& context,
 
 /// ISO 230-2 of line runs (reading − target = deviation), coverage k = 2.
 [[nodiscard]] metrology::Iso230_2Result iso230_2(const std::vector<simulation::LineRun>& runs);
+
+/// The expanded uncertainty U (k = 2) of the budget of `quantity` in `budgets`; NaN when there
+/// is none.
+[[nodiscard]] double expandedU(const std::vector<metrology::UncertaintyBudget>& budgets,
+                               const std::string& quantity);
+
+/// U (k = 2, mm) of ISO 230-2's `quantity` ("E", "M", "A", "B", "R") of `result` with the typical
+/// instrument and environment (metrology::iso230_2Uncertainty); NaN for unidirectional data.
+[[nodiscard]] double iso230_2U(const metrology::Iso230_2Result& result,
+                               const std::string& quantity);
 
 /// Per target: (target, mean over runs and both directions of the reading), sorted by target.
 void meanReadings(const std::vector<simulation::LineRun>& runs,

@@ -37,6 +37,20 @@ TEST_F(CampaignCli, DefaultCampaignMeetsTheTargetsAndWritesEverything) {
   EXPECT_EQ(targets["seed000"], 4);
   EXPECT_EQ(targets["seed003"], 1);
   EXPECT_EQ(targets["seed004"], 1);
+  // Expanded uncertainties (k = 2) where a budget exists, null elsewhere; the parallelism's
+  // improvement is far larger than its combined U.
+  for (const Json& row : s["rows"]) {
+    for (const char* key : {"before_U", "after_U", "significant"})
+      EXPECT_TRUE(row.contains(key)) << key << row.dump();
+    if (row["before"].is_null()) EXPECT_TRUE(row["before_U"].is_null()) << row.dump();
+  }
+  const Json& parallelism = s["rows"][0];
+  EXPECT_GT(parallelism["before_U"].get<double>(), 0.0);
+  EXPECT_LT(parallelism["before_U"].get<double>(), 0.01);
+  EXPECT_TRUE(parallelism["significant"].get<bool>());
+  EXPECT_TRUE(s["rows"][11]["after_U"].is_null());  // the TCP error has no budget yet
+  EXPECT_THAT(r.out, HasSubstr("uncertainty (k = 2): before -> after, improvement"));
+  EXPECT_THAT(r.out, HasSubstr(" ± "));
   // Every step's files exist: measurements before and after, the controller compensation.
   for (const Json& step : s["steps"])
     for (const Json& f : step["files"])

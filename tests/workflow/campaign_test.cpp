@@ -48,6 +48,20 @@ class CampaignWorkflow : public ::testing::Test {
   fs::path dir_;
 };
 
+TEST(CampaignRow, AnImprovementSmallerThanTheCombinedUIsNotSignificant) {
+  // before 0.010 ± 0.003, after 0.007 ± 0.004 mm: √(0.003² + 0.004²) = 0.005 > 0.003.
+  CampaignRow row{"x", "mm", 0.010, 0.007, std::nullopt, "", ""};
+  EXPECT_FALSE(row.significant().has_value());  // no U yet
+  row.before_U = 0.003;
+  row.after_U = 0.004;
+  EXPECT_NEAR(row.combinedU(), 0.005, 1e-15);
+  EXPECT_EQ(row.significant(), std::optional<bool>(false));
+  row.before = 0.020;  // 0.013 > 0.005
+  EXPECT_EQ(row.significant(), std::optional<bool>(true));
+  row.after = std::nan("");  // not measured after
+  EXPECT_FALSE(row.significant().has_value());
+}
+
 TEST_F(CampaignWorkflow, OneStepCampaignMeetsItsTargetAndReportsProgressInOrder) {
   CampaignOptions o;
   o.campaign = probeCampaign();

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,6 +29,16 @@ struct CampaignRow {
   std::string noise;  ///< the instrument noise of the measurement
   /// True when there is no target or |after| <= target.
   [[nodiscard]] bool pass() const;
+  /// Expanded uncertainty (k = 2, GUM; docs/analysis.md "Measurement uncertainty") of `before`
+  /// and `after`, in `unit`; NaN where the value has none (not measured, or no budget yet).
+  double before_U = std::numeric_limits<double>::quiet_NaN();
+  double after_U = std::numeric_limits<double>::quiet_NaN();
+  /// Whether the improvement before − after is significant: |before − after| >= the combined
+  /// uncertainty √(U_before² + U_after²) (the two measurements independent). nullopt when a value
+  /// or a U is missing.
+  [[nodiscard]] std::optional<bool> significant() const;
+  /// √(U_before² + U_after²), in `unit`; NaN when either is missing.
+  [[nodiscard]] double combinedU() const;
 };
 
 /// What one step produced.
