@@ -69,19 +69,18 @@ std::string uncertaintyTable(const workflow::CampaignResult& result) {
     for (const workflow::CampaignRow& r : s.rows) {
       if (!std::isfinite(r.before_U) && !std::isfinite(r.after_U)) continue;
       const std::optional<bool> significant = r.significant();
-      std::string change;
-      if (significant)
-        change = *significant
-                     ? fmt::format("improvement {}", withU(r.before - r.after, r.combinedU()))
-                     : "not significant";
-      if (!r.paper.empty()) change += fmt::format("  (paper: {})", r.paper);
-      table += fmt::format("{:<10} {:<52} {} -> {} {}  {}\n",
+      table += fmt::format("{:<10} {:<52} {} -> {} {}",
                            s.id,
                            r.quantity,
                            withU(r.before, r.before_U),
                            withU(r.after, r.after_U),
-                           r.unit,
-                           change);
+                           r.unit);
+      if (significant)
+        table += *significant
+                     ? fmt::format("  improvement {}", withU(r.before - r.after, r.combinedU()))
+                     : std::string("  not significant");
+      if (!r.paper.empty()) table += fmt::format("  (paper: {})", r.paper);
+      table += "\n";
     }
   return table;
 }

@@ -170,8 +170,8 @@ Json uncertaintySection(const std::vector<campaign::StepOutcome>& outcomes) {
       "Measurement uncertainty of the summary figures",
       {"Expanded uncertainties U (k = 2, GUM; ISO/TR 230-9) with the typical instruments and "
        "environment of docs/analysis.md. An improvement smaller than the combined uncertainty "
-       "sqrt(U_before^2 + U_after^2) is not significant. Rows without a budget yet (the "
-       "calibrated TCP error, the stylus offset error) show no U."});
+       "sqrt(U_before^2 + U_after^2) is not significant. The calibrated TCP error has no "
+       "budget yet and shows no U."});
   Json t = campaign::table("Before and after with U (k = 2)",
                            {"step",
                             "quantity",

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -128,6 +129,9 @@ Touches measuredTouches(const StepContext& ctx, StepOutcome& out) {
 struct Analysis {
   std::size_t offset_touches = 0;
   met::ProbeOffsetFit fit;
+  /// U (k = 2, mm) bounding any component of the offset (the larger of U(offset_x), U(offset_y),
+  /// metrology::probeOffsetUncertainty with the typical probe).
+  double offset_U = std::nan("");
   double radius = 0.0;  ///< effective stylus radius
   Roundness before, after;
 };
@@ -141,6 +145,8 @@ Analysis analyse(const StepContext& ctx, StepOutcome& out, const Touches& t) {
   Analysis a;
   a.offset_touches = offset_touches.size();
   a.fit = met::fitProbeOffset(offset_touches);
+  const auto budgets = met::probeOffsetUncertainty(a.fit, offset_touches, {});
+  a.offset_U = std::max(expandedU(budgets, "offset_x"), expandedU(budgets, "offset_y"));
   a.radius = met::effectiveStylusRadius(t.setup.ring_diameter, a.fit.ball_path_radius);
   a.before = roundness(t.setup, t.before, a.fit.offset, a.radius, false);
   a.after = roundness(t.setup, t.after, a.fit.offset, a.radius, true);
@@ -191,6 +197,7 @@ void addRows(StepOutcome& out, const Touches& t, const Analysis& a, bool simulat
                         std::nullopt,
                         "",
                         noise});
+  if (simulated) out.rows.back().after_U = a.offset_U * 1e3;
   out.record.results.push_back({"probe.offset_x", "estimate", a.fit.offset.x(), "mm"});
   out.record.results.push_back({"probe.offset_y", "estimate", a.fit.offset.y(), "mm"});
 }
