@@ -198,6 +198,18 @@ TEST_F(AnalyzePositioningCli, RecoversSeed000FromSimulatedFiles) {
   EXPECT_NEAR(v["sxP"].get<double>(), -14.74 * kMrad, kTolFirstOrder);
   EXPECT_NEAR(v["dalpha"].get<double>(), v["sxP"].get<double>(), kTolJson);
   EXPECT_NEAR(v["parallelism"].get<double>(), v["dalpha"].get<double>() * 300.0, 1e-9);
+  // Eq. 11's budgets: the parallelism budget over the 300 mm travel (rad); szX2 taken as exact.
+  const Json& uh = h["uncertainty"];
+  const Json& uv = v["uncertainty"];
+  EXPECT_EQ(uv["sxP"]["value"], v["sxP"]);
+  EXPECT_EQ(uh["szP"]["unit"], "rad");
+  EXPECT_NEAR(uv["sxP"]["U"].get<double>(), uv["parallelism"]["U"].get<double>() / 300.0, 1e-12);
+  EXPECT_NEAR(uh["szP"]["U"].get<double>(), uh["parallelism"]["U"].get<double>() / 300.0, 1e-12);
+  // The face-diagonal squareness has its budget with the Monte Carlo check beside it.
+  const Json us = Json::parse(square.out)["uncertainty"]["squareness"];
+  EXPECT_GT(us["U"].get<double>(), 0.0);
+  EXPECT_NEAR(
+      us["monte_carlo"]["U"].get<double>(), us["U"].get<double>(), 0.05 * us["U"].get<double>());
 }
 
 // --- real instrument exports (regressions of a first try with real data) -----------------
