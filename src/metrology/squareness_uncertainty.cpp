@@ -94,6 +94,43 @@ double lineLengthError(std::span<const double> x, std::size_t line, double lengt
   return x[0] * length_mm + x[k] + x[k + 1] + x[k + 2];
 }
 
+double bodyDiagonalStatistics(std::span<const BodyDiagonalSample> samples,
+                              const BodyDiagonalResult& result,
+                              BodyDiagonal diagonal) {
+  double sum = 0.0, sum2 = 0.0;
+  std::size_t n = 0;
+  for (const BodyDiagonalSample& s : samples) {
+    if (s.diagonal != diagonal) continue;
+    sum += s.position;
+    sum2 += s.position * s.position;
+    ++n;
+  }
+  const double sxx = n ? sum2 - sum * sum / static_cast<double>(n) : 0.0;
+  if (n < 3 || !(sxx > 0.0)) return 0.0;
+  const double rms = result.diagonals[static_cast<std::size_t>(diagonal)].residual_rms;
+  const double s = rms * std::sqrt(static_cast<double>(n) / static_cast<double>(n - 2));
+  return s / std::sqrt(sxx) * result.length;
+}
+
+UncertaintyBudget bodyDiagonalLengthErrorUncertainty(std::span<const BodyDiagonalSample> samples,
+                                                     const BodyDiagonalResult& result,
+                                                     BodyDiagonal diagonal,
+                                                     const UncertaintySources& src) {
+  UncertaintyBudget b;
+  b.quantity = "length_error";
+  b.unit = "mm";
+  b.value = result.diagonals[static_cast<std::size_t>(diagonal)].length_error;
+  b.coverage_factor = src.coverage_factor;
+  addLaserLengthContributors(b, result.length, src);
+  addContributor(b,
+                 input("least-squares slope x D",
+                       bodyDiagonalStatistics(samples, result, diagonal),
+                       "mm",
+                       Distribution::kNormal,
+                       "test data"));
+  return b;
+}
+
 NonlinearBudget propagateBothWays(const std::string& quantity,
                                   const std::string& unit,
                                   double value,

@@ -33,14 +33,6 @@ SquarenessBudgets propagateThree(const ThreeModel& model,
   return out;
 }
 
-/// Standard error of a least-squares slope times `length`, from the residuals' RMS over n points
-/// with the sum of squared position deviations sxx; 0 when n < 3 or sxx = 0.
-double slopeStatistics(double rms, std::size_t n, double sxx, double length) {
-  if (n < 3 || sxx <= 0.0) return 0.0;
-  const double s = rms * std::sqrt(static_cast<double>(n) / static_cast<double>(n - 2));
-  return s / std::sqrt(sxx) * length;
-}
-
 }  // namespace
 
 SquarenessBudgets bodySquarenessBudgets(std::span<const metrology::BodyDiagonalSample> samples,
@@ -48,23 +40,14 @@ SquarenessBudgets bodySquarenessBudgets(std::span<const metrology::BodyDiagonalS
                                         const Eigen::Vector3d& size,
                                         const metrology::UncertaintySources& sources,
                                         const metrology::MonteCarloOptions& options) {
-  std::array<double, 4> sum{}, sum2{};
-  std::array<std::size_t, 4> n{};
-  for (const auto& s : samples) {
-    const auto k = static_cast<std::size_t>(s.diagonal);
-    sum[k] += s.position;
-    sum2[k] += s.position * s.position;
-    ++n[k];
-  }
   std::vector<metrology::DiagonalLineInput> lines;
   std::array<double, 4> errors{};
   for (std::size_t k = 0; k < 4; ++k) {
-    const double sxx = n[k] ? sum2[k] - sum[k] * sum[k] / static_cast<double>(n[k]) : 0.0;
-    const metrology::DiagonalEvaluation& e = result.diagonals[k];
-    lines.push_back({metrology::toString(metrology::kBodyDiagonals[k]),
+    const metrology::BodyDiagonal d = metrology::kBodyDiagonals[k];
+    lines.push_back({metrology::toString(d),
                      result.length,
-                     slopeStatistics(e.residual_rms, n[k], sxx, result.length)});
-    errors[k] = e.length_error;
+                     metrology::bodyDiagonalStatistics(samples, result, d)});
+    errors[k] = result.diagonals[k].length_error;
   }
   const metrology::UncertaintyBudget inputs = metrology::diagonalLineInputs(lines, sources);
   const double D = result.length;

@@ -14,7 +14,7 @@
 #include "pkm/compensation/axis_table.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/metrology/body_diagonals.hpp"
-#include "pkm/metrology/positioning_uncertainty.hpp"
+#include "pkm/metrology/squareness_uncertainty.hpp"
 #include "pkm/simulation/cartesian_machine.hpp"
 
 namespace pkm::workflow::campaign {
@@ -30,38 +30,9 @@ const std::array<std::string, 4> kDiagonals = {"diag-ppp", "diag-npp", "diag-pnp
 struct Analysis {
   met::BodyDiagonalResult body;
   double max_length_error = 0.0;             ///< max |ΔD| of the four diagonals, mm
-  double max_length_error_U = std::nan("");  ///< its U (k = 2), mm (lengthErrorU)
+  double max_length_error_U = std::nan("");  ///< its U (k = 2), mm
   met::Iso230_2Result face_pp, face_np, linear_x, linear_y;
 };
-
-/// U (k = 2, mm) of the length error ΔD = slope · D of diagonal `k` (typical instruments): the
-/// laser's length contributors over D (metrology::addLaserLengthContributors) and the
-/// least-squares slope's standard error times D.
-double lengthErrorU(const std::vector<met::BodyDiagonalSample>& samples,
-                    const met::BodyDiagonalResult& body,
-                    std::size_t k) {
-  double sum = 0.0, sum2 = 0.0;
-  std::size_t n = 0;
-  for (const met::BodyDiagonalSample& s : samples) {
-    if (s.diagonal != met::kBodyDiagonals[k]) continue;
-    sum += s.position;
-    sum2 += s.position * s.position;
-    ++n;
-  }
-  met::UncertaintyBudget b;
-  met::addLaserLengthContributors(b, body.length, {});
-  const double sxx = n ? sum2 - sum * sum / static_cast<double>(n) : 0.0;
-  if (n >= 3 && sxx > 0.0) {
-    met::UncertaintyContributor c;
-    c.name = "least-squares slope x D";
-    c.unit = "mm";
-    c.value = body.diagonals[k].residual_rms *
-              std::sqrt(static_cast<double>(n) / static_cast<double>(n - 2)) / std::sqrt(sxx) *
-              body.length;
-    met::addContributor(b, c);
-  }
-  return b.expandedUncertainty();
-}
 
 Analysis analyse(const LineData& d, const Eigen::Vector3d& size, const std::string& src) {
   Analysis a;
@@ -78,7 +49,9 @@ Analysis analyse(const LineData& d, const Eigen::Vector3d& size, const std::stri
     const double e = std::abs(a.body.diagonals[k].length_error);
     if (k > 0 && e <= a.max_length_error) continue;
     a.max_length_error = e;
-    a.max_length_error_U = lengthErrorU(samples, a.body, k);
+    a.max_length_error_U =
+        met::bodyDiagonalLengthErrorUncertainty(samples, a.body, met::kBodyDiagonals[k], {})
+            .expandedUncertainty();
   }
   a.face_pp = iso230_2(d.runs("face-xy-pp", src));
   a.face_np = iso230_2(d.runs("face-xy-np", src));

@@ -14,9 +14,10 @@
 namespace pkm::metrology {
 namespace {
 
-constexpr double kTolLinear = 1e-9;      // relative: central differences of a linear model
-constexpr double kTolMonteCarlo = 0.02;  // relative: u from 20000 trials (sd of u ≈ 0.5 %)
-constexpr double kTolBudget = 1e-15;     // mm, rad: arithmetic of one contributor
+constexpr double kTolLinear = 1e-9;       // relative: central differences of a linear model
+constexpr double kTolMonteCarlo = 0.02;   // relative: u from 20000 trials (sd of u ≈ 0.5 %)
+constexpr double kTolBudget = 1e-15;      // mm, rad: arithmetic of one contributor
+constexpr double kTolStatistics = 1e-12;  // mm: a least-squares line, then a square root
 const Eigen::Vector3d kBox{500.0, 400.0, 300.0};
 
 /// Sources with only the lines' statistics: no scale, resolution or cosine error.
@@ -103,6 +104,27 @@ TEST(SquarenessUncertainty, ShiftedDiagonalsMonteCarloAgreesWithLinear) {
     EXPECT_NEAR(b.monte_carlo.standard_uncertainty, u, kTolMonteCarlo * u) << q;
     EXPECT_NEAR(b.monte_carlo.mean, nominal.squareness[q], u / 10.0) << q;
   }
+}
+
+TEST(SquarenessUncertainty, BodyDiagonalLengthErrorByHand) {
+  // Every diagonal read at 0, D/2, D: deviations 0, 1, 0 µm. Line: slope 0, residuals −1/3, 2/3,
+  // −1/3 µm, RMS √(2/9) µm; s = RMS·√(3/1); Σ(u − ū)² = D²/2, so u(ΔD) = s/(D/√2)·D
+  // = √(2/9)·√3·√2 µm = √(4/3) µm = 1.1547 µm.
+  const double D = kBox.norm();
+  std::vector<BodyDiagonalSample> samples;
+  for (BodyDiagonal d : kBodyDiagonals)
+    for (const auto& [position, deviation] : {std::pair{0.0, 0.0}, {D / 2, 1e-3}, {D, 0.0}})
+      samples.push_back({d, position, deviation});
+  const BodyDiagonalResult r = evaluateBodyDiagonals(samples, kBox, {.iso230_2 = false});
+  const double expected = std::sqrt(4.0 / 3.0) * 1e-3;
+  EXPECT_NEAR(bodyDiagonalStatistics(samples, r, BodyDiagonal::kNNP), expected, kTolStatistics);
+  const UncertaintyBudget only =
+      bodyDiagonalLengthErrorUncertainty(samples, r, BodyDiagonal::kPPP, statisticsOnly());
+  EXPECT_NEAR(only.combinedStandardUncertainty(), expected, kTolStatistics);
+  // With the default laser, the length contributors over D add to it.
+  EXPECT_GT(bodyDiagonalLengthErrorUncertainty(samples, r, BodyDiagonal::kPPP, {})
+                .combinedStandardUncertainty(),
+            expected);
 }
 
 TEST(SquarenessUncertainty, Eq11FromTheParallelismBudget) {

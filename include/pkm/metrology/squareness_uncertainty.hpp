@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/metrology/body_diagonals.hpp"
 #include "pkm/metrology/monte_carlo.hpp"
 #include "pkm/metrology/uncertainty_budget.hpp"
 #include "pkm/metrology/uncertainty_sources.hpp"
@@ -40,6 +41,23 @@ struct DiagonalLineInput {
 /// The length error (mm) a draw `x` of diagonalLineInputs adds to line `line` of length
 /// `length_mm`: x[0]·L + the line's three inputs. Precondition: x has 1 + 3·lines entries.
 [[nodiscard]] double lineLengthError(std::span<const double> x, std::size_t line, double length_mm);
+
+/// Standard uncertainty (mm) of the length error ΔD = slope · D of body diagonal `diagonal` from
+/// its readings: the least-squares slope's standard error s_r √(n/(n − 2))/√Σ(u − ū)² times D
+/// (s_r the residuals' RMS of `result`; they include the diagonal's straightness shape, so this is
+/// conservative); 0 with fewer than 3 readings or a single position.
+[[nodiscard]] double bodyDiagonalStatistics(std::span<const BodyDiagonalSample> samples,
+                                            const BodyDiagonalResult& result,
+                                            BodyDiagonal diagonal);
+
+/// Budget "length_error" (mm) of body diagonal `diagonal` (ISO 230-6): the laser's length
+/// contributors over D (addLaserLengthContributors) and bodyDiagonalStatistics. Throws
+/// pkm::InvalidArgument for invalid sources.
+[[nodiscard]] UncertaintyBudget bodyDiagonalLengthErrorUncertainty(
+    std::span<const BodyDiagonalSample> samples,
+    const BodyDiagonalResult& result,
+    BodyDiagonal diagonal,
+    const UncertaintySources& sources);
 
 /// A budget propagated both ways.
 struct NonlinearBudget {
