@@ -153,51 +153,6 @@ campaign::StepOutcome runStep(const Json& step,
   return outcome;
 }
 
-/// The improvement before − after ± its combined U, "not significant" when smaller than that U,
-/// null without both values and both U.
-Json improvementJson(const campaign::SummaryRow& r) {
-  const std::optional<bool> significant = r.significant();
-  if (!significant) return nullptr;
-  if (!*significant) return "not significant";
-  return fmt::format("{:.4g} ± {:.2g}", r.before - r.after, r.combinedU());
-}
-
-/// The report's last section: every summary row with U (k = 2) before and after and the
-/// improvement, or "not significant" (docs/campaign.md, "Uncertainty").
-Json uncertaintySection(const std::vector<campaign::StepOutcome>& outcomes) {
-  Json sec = campaign::section(
-      "uncertainty",
-      "Measurement uncertainty of the summary figures",
-      {"Expanded uncertainties U (k = 2, GUM; ISO/TR 230-9) with the typical instruments and "
-       "environment of docs/analysis.md. An improvement smaller than the combined uncertainty "
-       "sqrt(U_before^2 + U_after^2) is not significant. The calibrated TCP error has no "
-       "budget yet and shows no U."});
-  Json t = campaign::table("Before and after with U (k = 2)",
-                           {"step",
-                            "quantity",
-                            "unit",
-                            "before",
-                            "U before",
-                            "after",
-                            "U after",
-                            "improvement (before - after)"});
-  for (const campaign::StepOutcome& s : outcomes)
-    for (const campaign::SummaryRow& r : s.rows)
-      t["rows"].push_back({s.id,
-                           r.quantity,
-                           r.unit,
-                           campaign::cell(r.before),
-                           campaign::cell(r.before_U, 2),
-                           campaign::cell(r.after),
-                           campaign::cell(r.after_U, 2),
-                           improvementJson(r)});
-  sec["tables"].push_back(t);
-  return sec;
-}
-
-/// A decision as JSON: true, false or null.
-Json optionalJson(std::optional<bool> b) { return b ? Json(*b) : Json(nullptr); }
-
 /// summary.json's rows.
 Json summaryRows(const std::vector<campaign::StepOutcome>& steps) {
   Json rows = Json::array();
@@ -214,7 +169,7 @@ Json summaryRows(const std::vector<campaign::StepOutcome>& steps) {
                       {"pass", r.pass()},
                       {"before_U", campaign::cell(r.before_U, 2)},
                       {"after_U", campaign::cell(r.after_U, 2)},
-                      {"significant", optionalJson(r.significant())}});
+                      {"significant", campaign::significantJson(r)}});
   return rows;
 }
 
@@ -249,7 +204,7 @@ Json reportData(const std::string& name,
   report["summary"] = summary;
   report["sections"] = Json::array();
   for (const campaign::StepOutcome& s : outcomes) report["sections"].push_back(s.section);
-  report["sections"].push_back(uncertaintySection(outcomes));
+  report["sections"].push_back(campaign::uncertaintySection(outcomes));
   return report;
 }
 
@@ -295,14 +250,6 @@ void storeResults(const std::string& db,
 
 bool CampaignRow::pass() const {
   return !target || (std::isfinite(after) && std::abs(after) <= *target);
-}
-
-double CampaignRow::combinedU() const { return std::hypot(before_U, after_U); }
-
-std::optional<bool> CampaignRow::significant() const {
-  const double u = combinedU();
-  if (!std::isfinite(before) || !std::isfinite(after) || !std::isfinite(u)) return std::nullopt;
-  return std::abs(before - after) >= u;
 }
 
 void CampaignOptions::validate() const {

@@ -94,6 +94,12 @@ Json table(const std::string& title, const std::vector<std::string>& columns);
 Json cell(double value, int digits = 4);
 /// A report section with id, title and paragraphs.
 Json section(const std::string& id, const std::string& title, std::vector<std::string> text);
+/// Whether the row's improvement exceeds its combined U (CampaignRow::significant): true, false
+/// or null.
+Json significantJson(const SummaryRow& row);
+/// The report's last section: every summary row with U (k = 2) before and after and the
+/// improvement, or "not significant" (docs/campaign.md, "Uncertainty").
+Json uncertaintySection(const std::vector<StepOutcome>& outcomes);
 
 }  // namespace pkm::workflow::campaign
 

@@ -1,0 +1,74 @@
+// The uncertainty of a campaign's summary rows (workflow/campaign.hpp, campaign_steps.hpp):
+// significance of an improvement and the report's uncertainty section (docs/campaign.md,
+// "Uncertainty").
+#include <fmt/format.h>
+
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "campaign_steps.hpp"
+#include "pkm/workflow/campaign.hpp"
+
+namespace pkm::workflow {
+
+double CampaignRow::combinedU() const { return std::hypot(before_U, after_U); }
+
+std::optional<bool> CampaignRow::significant() const {
+  const double u = combinedU();
+  if (!std::isfinite(before) || !std::isfinite(after) || !std::isfinite(u)) return std::nullopt;
+  return std::abs(before - after) >= u;
+}
+
+namespace campaign {
+namespace {
+
+/// The improvement before − after ± its combined U, "not significant" when smaller than that U,
+/// null without both values and both U.
+Json improvementJson(const SummaryRow& r) {
+  const std::optional<bool> significant = r.significant();
+  if (!significant) return nullptr;
+  if (!*significant) return "not significant";
+  return fmt::format("{:.4g} ± {:.2g}", r.before - r.after, r.combinedU());
+}
+
+}  // namespace
+
+Json significantJson(const SummaryRow& row) {
+  const std::optional<bool> s = row.significant();
+  return s ? Json(*s) : Json(nullptr);
+}
+
+Json uncertaintySection(const std::vector<StepOutcome>& outcomes) {
+  Json sec = section(
+      "uncertainty",
+      "Measurement uncertainty of the summary figures",
+      {"Expanded uncertainties U (k = 2, GUM; ISO/TR 230-9) with the typical instruments and "
+       "environment of docs/analysis.md. An improvement smaller than the combined uncertainty "
+       "sqrt(U_before^2 + U_after^2) is not significant. The calibrated TCP error has no "
+       "budget yet and shows no U."});
+  Json t = table("Before and after with U (k = 2)",
+                 {"step",
+                  "quantity",
+                  "unit",
+                  "before",
+                  "U before",
+                  "after",
+                  "U after",
+                  "improvement (before - after)"});
+  for (const StepOutcome& s : outcomes)
+    for (const SummaryRow& r : s.rows)
+      t["rows"].push_back({s.id,
+                           r.quantity,
+                           r.unit,
+                           cell(r.before),
+                           cell(r.before_U, 2),
+                           cell(r.after),
+                           cell(r.after_U, 2),
+                           improvementJson(r)});
+  sec["tables"].push_back(t);
+  return sec;
+}
+
+}  // namespace campaign
+}  // namespace pkm::workflow
