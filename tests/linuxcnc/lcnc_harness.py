@@ -428,7 +428,7 @@ class LinuxCNC:
         self.proc = subprocess.Popen(start, cwd=cfg, stdout=self._logfile,
                                      stderr=subprocess.STDOUT, start_new_session=True)
 
-    def connect(self, timeout=30):
+    def connect(self, timeout=90):
         """Waits for linuxcncrsh and opens a session; False if LinuxCNC ended first."""
         deadline = time.time() + timeout
         while True:
@@ -526,7 +526,7 @@ class LinuxCNC:
             m = re.search(r"(?ms)^\[KINS\].*?^JOINTS\s*=\s*(\d+)", f.read())
         return int(m.group(1)) if m else None
 
-    def home(self, timeout=30):
+    def home(self, timeout=90):
         """Estop off, machine on, homes all joints and waits until the INI's [KINS] JOINTS
         joints are homed."""
         for c in ["set estop off", "set machine on", "set mode manual", "set home -1"]:
@@ -542,7 +542,7 @@ class LinuxCNC:
             time.sleep(0.1)
         raise RuntimeError("homing did not finish")
 
-    def mdi(self, command, timeout=30):
+    def mdi(self, command, timeout=60):
         """Runs one MDI line (switching to MDI mode) and waits until it is done."""
         if not self.ask("get mode").endswith("MDI"):
             self.ask("set mode mdi")
