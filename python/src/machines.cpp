@@ -2,12 +2,18 @@
 // (io::machineTypeOf, io::loadHexapodMachine, io::loadExechonMachine).
 #include "machines.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common.hpp"
+#include "pkm/core/error.hpp"
 #include "pkm/io/machine_loader.hpp"
 
 namespace pkm::python {
@@ -17,6 +23,13 @@ void exposeMachines(py::module_& m) {
       "load_machine",
       [](const py::object& spec_obj, const std::optional<std::string>& ini) -> py::object {
         const std::string spec = py::str(py::module_::import("os").attr("fspath")(spec_obj));
+        const std::vector<std::string> builtin = io::builtinMachineNames("");
+        if (!std::filesystem::exists(spec) &&
+            std::find(builtin.begin(), builtin.end(), spec) == builtin.end())
+          throw InvalidArgument(
+              fmt::format("{}: no such file, and not a built-in machine (built-in: {})",
+                          spec,
+                          fmt::join(builtin, ", ")));
         if (io::machineTypeOf(spec) == "exechon")
           return py::cast(
               Exechon{std::make_shared<const io::ExechonMachine>(io::loadExechonMachine(spec))});

@@ -56,8 +56,10 @@ def test_with_geometry_is_a_new_machine():
 
 
 def test_errors_name_the_input(tmp_path):
-    with pytest.raises(ValueError, match="not a built-in"):
+    with pytest.raises(ValueError, match="not a built-in") as e:
         pkm.load_machine("no-such-machine")
+    for name in pkm.builtin_machines():  # every type's built-ins are offered
+        assert name in str(e.value)
     bad = tmp_path / "bad.json"
     bad.write_text('{"type": "hexapod", "struts": 3}')
     with pytest.raises(ValueError, match="bad.json"):
