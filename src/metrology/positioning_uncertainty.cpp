@@ -56,14 +56,20 @@ UncertaintyContributor bounded(
   return c;
 }
 
-/// The resolution of two readings (a difference) and E_VE: the terms of B and R.
-void addReadingContributors(UncertaintyBudget& b, const UncertaintySources& src) {
+/// The laser's resolution in a difference of two readings (rectangular, half the resolution,
+/// sensitivity √2).
+void addResolutionContributor(UncertaintyBudget& b, const UncertaintySources& src) {
   addContributor(b,
                  bounded("laser resolution (two readings)",
                          src.laser.resolution_mm / 2.0,
                          "mm",
                          std::sqrt(2.0),
                          "instrument"));
+}
+
+/// The resolution of two readings (a difference) and E_VE: the terms of B and R.
+void addReadingContributors(UncertaintyBudget& b, const UncertaintySources& src) {
+  addResolutionContributor(b, src);
   addContributor(b,
                  bounded("environmental variation error E_VE",
                          src.environment.environmental_variation_mm / 2.0,
@@ -99,12 +105,7 @@ UncertaintyBudget rangeBudget(const char* quantity,
                  statistic("sampling of the extreme means (s/sqrt(n))",
                            std::sqrt(mean_variance_scale * (meanVariance(*hi) + meanVariance(*lo))),
                            "test data"));
-  addContributor(b,
-                 bounded("laser resolution (two readings)",
-                         src.laser.resolution_mm / 2.0,
-                         "mm",
-                         std::sqrt(2.0),
-                         "instrument"));
+  addResolutionContributor(b, src);
   return b;
 }
 
@@ -128,12 +129,7 @@ UncertaintyBudget accuracyBudget(double value,
                  statistic("sampling of the extreme standard deviations (k s)",
                            k * std::sqrt(sVariance(hi->s, hi->n) + sVariance(lo->s, lo->n)),
                            "test data"));
-  addContributor(b,
-                 bounded("laser resolution (two readings)",
-                         src.laser.resolution_mm / 2.0,
-                         "mm",
-                         std::sqrt(2.0),
-                         "instrument"));
+  addResolutionContributor(b, src);
   return b;
 }
 
