@@ -35,6 +35,8 @@ bool UncertaintySources::isValid(std::string* why) const {
       {"dial_gauge resolution_mm", dial_gauge.resolution_mm},
       {"tracker accuracy_mm", tracker.accuracy_mm},
       {"tracker accuracy_mm_per_m", tracker.accuracy_mm_per_m},
+      {"tracker range_mm", tracker.range_mm},
+      {"tracker orientation_accuracy_rad", tracker.orientation_accuracy_rad},
       {"environment expansion_coefficient_accuracy_per_k", e.expansion_coefficient_accuracy_per_k},
       {"environment air_temperature_variation_k", e.air_temperature_variation_k},
       {"environment dead_path_mm", e.dead_path_mm},

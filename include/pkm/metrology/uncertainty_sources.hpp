@@ -57,6 +57,11 @@ struct LaserTrackerSpec {
   std::string name = "typical laser tracker (interferometer mode)";
   double accuracy_mm = 15e-3;       ///< maximum permissible error a of ±(a + b·L), mm
   double accuracy_mm_per_m = 6e-3;  ///< b, mm per m of range
+  /// The tracker-to-target range L used in a + b·L when the readings are already in the
+  /// machine frame (the tracker's position unknown), mm.
+  double range_mm = 3000.0;
+  /// Orientation accuracy of a 6-DOF probe (T-Probe/T-Mac class: ±0.01°), ± rad per axis.
+  double orientation_accuracy_rad = 1.75e-4;
 };
 
 /// The environment of a test and the artefact/machine material.

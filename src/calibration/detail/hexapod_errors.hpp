@@ -1,0 +1,67 @@
+/// @file
+/// @brief Internal: the measured coordinates of hexapod calibration data that an error source
+/// acts on, shared by the linear budgets (hexapod_budget.cpp) and their Monte Carlo
+/// (hexapod_budget_monte_carlo.cpp), so that both propagate exactly the same inputs.
+#pragma once
+
+#include <vector>
+
+#include "calibration/detail/observations.hpp"
+#include "pkm/metrology/uncertainty_budget.hpp"
+#include "pkm/metrology/uncertainty_sources.hpp"
+
+namespace pkm::calibration::detail {
+
+/// One measured coordinate of one observation. `coordinate`: pose 0–2 position, 3–5 rotation
+/// vector (left perturbation, measurement axes), 6–11 strut readings; point 0–2 position, 6–11
+/// strut readings; gauge station 0–2 its gauges, 3–5 the reference station's gauges (of
+/// ref.set); distance 0 the distance.
+struct MeasuredCoordinate {
+  ObservationRef ref;
+  int coordinate = 0;
+  double u = 0.0;  ///< standard uncertainty of the error on it (model unit or rad)
+};
+
+/// An independent error source: its contributor (value = the reference spread) and every
+/// coordinate it acts on, each with an independent error of that distribution.
+struct CoordinateSource {
+  metrology::UncertaintyContributor contributor;
+  std::vector<MeasuredCoordinate> coordinates;
+};
+
+/// The instrument and set-up sources of `data` (docs/calibration.md, "Uncertainty budgets"):
+/// tracker a + b·L on pose and point positions, 6-DOF probe orientation, dial-gauge accuracy and
+/// resolution on every gauge reading, the distance instrument, set-up repeatability when > 0.
+/// Lengths of `sources` (mm) are converted to `unit`. Sources that act on nothing are left out.
+[[nodiscard]] std::vector<CoordinateSource> hexapodCoordinateSources(
+    const HexapodCalibrationData& data,
+    const metrology::UncertaintySources& sources,
+    LengthUnit unit);
+
+/// The residual-space coordinates of every observation (pose readings, point positions, station
+/// gauges, distances), each with standard uncertainty `sigma`: the Type A scatter's inputs.
+[[nodiscard]] std::vector<MeasuredCoordinate> residualCoordinates(
+    const HexapodCalibrationData& data, double sigma);
+
+/// Adds `delta` to the measured coordinate `c` of `data`.
+void perturbMeasurement(HexapodCalibrationData& data, const MeasuredCoordinate& c, double delta);
+
+/// One draw of an error of `distribution` with standard uncertainty `u` from a uniform variate
+/// source `uniform` (values in (0, 1)) and a normal variate source `normal`.
+template <class Uniform, class Normal>
+double drawError(metrology::Distribution distribution, double u, Uniform& uniform, Normal& normal) {
+  constexpr double kSqrt3 = 1.7320508075688772, kSqrt6 = 2.449489742783178;
+  switch (distribution) {
+    case metrology::Distribution::kNormal:
+      return u * normal();
+    case metrology::Distribution::kRectangular:
+      return u * kSqrt3 * (2.0 * uniform() - 1.0);
+    case metrology::Distribution::kTriangular:
+      return u * kSqrt6 * (uniform() + uniform() - 1.0);
+    case metrology::Distribution::kUShaped:
+      return u * 1.4142135623730951 * std::sin(6.283185307179586 * uniform());
+  }
+  return 0.0;
+}
+
+}  // namespace pkm::calibration::detail

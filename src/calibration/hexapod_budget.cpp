@@ -1,0 +1,225 @@
+// Linear uncertainty budgets of a hexapod calibration and the predicted TCP uncertainty
+// (calibration/hexapod_budget.hpp).
+#include "pkm/calibration/hexapod_budget.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "detail/hexapod_errors.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/kinematics/hexapod_ik.hpp"
+
+namespace pkm::calibration {
+namespace {
+
+using detail::ObservationRef;
+
+/// The fit's unknowns at the estimate: the identification Jacobian's free columns, then frame and
+/// backlash columns, with the observation row offsets.
+struct Stacked {
+  Eigen::MatrixXd J;                     ///< rows: observations (then priors); cols: unknowns
+  Eigen::Index observation_rows = 0;     ///< rows of J from observations
+  std::vector<Eigen::Index> row_offset;  ///< first row of each observation (observations order)
+};
+
+/// Evaluation context: the estimate, its frame and backlash.
+struct AtEstimate {
+  kinematics::HexapodModel model;
+  detail::FrameEstimate frame;
+  bool has_frame = false;
+  std::optional<kinematics::StrutVector> backlash;
+  [[nodiscard]] const detail::FrameEstimate* framePtr() const {
+    return has_frame ? &frame : nullptr;
+  }
+};
+
+Eigen::VectorXd blockResidual(const AtEstimate& at,
+                              kinematics::HexapodData& work,
+                              const HexapodCalibrationData& data,
+                              const ObservationRef& ref) {
+  double r[6] = {0, 0, 0, 0, 0, 0};
+  const bool ok = detail::evaluate(at.model,
+                                   work,
+                                   data,
+                                   ref,
+                                   at.framePtr(),
+                                   r,
+                                   nullptr,
+                                   nullptr,
+                                   at.backlash ? &*at.backlash : nullptr);
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(ref.rows());
+  if (ok)
+    for (Eigen::Index k = 0; k < ref.rows(); ++k) out(k) = r[k];
+  return out;
+}
+
+Stacked stackUnknowns(const AtEstimate& at,
+                      const HexapodCalibrationData& data,
+                      const HexapodCalibrationSummary& fit,
+                      const HexapodCalibrationOptions& calibration) {
+  const std::vector<ObservationRef> refs = detail::observations(data);
+  const auto n_free = static_cast<Eigen::Index>(fit.free_indices.size());
+  const Eigen::Index n_frame = at.has_frame ? 6 : 0, n_back = at.backlash ? 6 : 0;
+  Stacked s;
+  s.observation_rows = static_cast<Eigen::Index>(data.equations());
+  const bool prior = calibration.parameter_prior_sigma > 0.0;
+  s.J.setZero(s.observation_rows + (prior ? n_free : 0), n_free + n_frame + n_back);
+  kinematics::HexapodData work(at.model);
+  Eigen::Index row = 0;
+  for (const ObservationRef& ref : refs) {
+    s.row_offset.push_back(row);
+    double r[6];
+    Eigen::MatrixXd Jt, Jf, Jb;
+    if (detail::evaluate(at.model,
+                         work,
+                         data,
+                         ref,
+                         at.framePtr(),
+                         r,
+                         &Jt,
+                         at.has_frame ? &Jf : nullptr,
+                         at.backlash ? &*at.backlash : nullptr,
+                         at.backlash ? &Jb : nullptr)) {
+      for (Eigen::Index c = 0; c < n_free; ++c)
+        s.J.block(row, c, ref.rows(), 1) = Jt.col(fit.free_indices[static_cast<std::size_t>(c)]);
+      if (at.has_frame) s.J.block(row, n_free, ref.rows(), 6) = Jf;
+      if (at.backlash) s.J.block(row, n_free + n_frame, ref.rows(), 6) = Jb;
+    }
+    row += ref.rows();
+  }
+  if (prior)
+    s.J.bottomLeftCorner(n_free, n_free)
+        .diagonal()
+        .setConstant(calibration.measurement_sigma / calibration.parameter_prior_sigma);
+  return s;
+}
+
+/// The effect matrix of one source: per coordinate, the central difference of the residual blocks
+/// it touches (a reference gauge touches every station of its set), scaled by u/u_ref.
+Eigen::MatrixXd effectOf(const AtEstimate& at,
+                         const HexapodCalibrationData& data,
+                         const Stacked& s,
+                         const std::vector<ObservationRef>& refs,
+                         const detail::CoordinateSource& source) {
+  const double u_ref = source.contributor.standardUncertainty();
+  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(s.observation_rows,
+                                            static_cast<Eigen::Index>(source.coordinates.size()));
+  kinematics::HexapodData work(at.model);
+  HexapodCalibrationData d = data;
+  for (std::size_t j = 0; j < source.coordinates.size(); ++j) {
+    const detail::MeasuredCoordinate& c = source.coordinates[j];
+    const bool rotation =
+        c.ref.kind == ObservationRef::Kind::kPose && c.coordinate >= 3 && c.coordinate < 6;
+    const double h = rotation ? 1e-6 : 1e-6 * at.model.characteristicLength();
+    for (std::size_t b = 0; b < refs.size(); ++b) {
+      const ObservationRef& ref = refs[b];
+      const bool touched = ref.kind == c.ref.kind && ref.set == c.ref.set &&
+                           (ref.index == c.ref.index ||
+                            (ref.kind == ObservationRef::Kind::kGauge && c.coordinate >= 3));
+      if (!touched) continue;
+      detail::MeasuredCoordinate plus = c;
+      d = data;
+      detail::perturbMeasurement(d, plus, h);
+      const Eigen::VectorXd rp = blockResidual(at, work, d, ref);
+      d = data;
+      detail::perturbMeasurement(d, plus, -h);
+      const Eigen::VectorXd rm = blockResidual(at, work, d, ref);
+      E.block(s.row_offset[b], static_cast<Eigen::Index>(j), ref.rows(), 1) =
+          (rp - rm) / (2.0 * h) * (u_ref > 0.0 ? c.u / u_ref : 0.0);
+    }
+  }
+  return E;
+}
+
+}  // namespace
+
+HexapodParameterUncertainty hexapodParameterUncertainty(
+    const kinematics::HexapodModel& initial,
+    const HexapodCalibrationData& data,
+    const HexapodCalibrationSummary& fit,
+    const HexapodCalibrationOptions& calibration,
+    const metrology::UncertaintySources& sources) {
+  std::string why;
+  PKM_CHECK(sources.isValid(&why), "{}", why);
+  PKM_CHECK(!fit.free_indices.empty() &&
+                data.measurement_frame.has_value() == fit.measurement_frame.has_value(),
+            "hexapod budgets: the fit does not belong to the data");
+  AtEstimate at{withHexapodParameters(initial, fit.parameters), {}, false, fit.backlash};
+  if (fit.measurement_frame) {
+    at.frame.initial = *fit.measurement_frame;
+    at.has_frame = true;
+  }
+  const Stacked s = stackUnknowns(at, data, fit, calibration);
+  const std::vector<ObservationRef> refs = detail::observations(data);
+
+  ParameterBudgetInput in;
+  const std::string unit(toString(initial.unit));
+  for (const int k : fit.free_indices) {
+    in.names.push_back(hexapodParameterName(k));
+    in.units.push_back(unit);
+  }
+  if (at.has_frame)
+    for (std::size_t k = 0; k < 6; ++k) {
+      in.names.push_back(measurementFrameNames()[k]);
+      in.units.push_back(k < 3 ? unit : "rad");
+    }
+  if (at.backlash)
+    for (const std::string& n : backlashNames()) {
+      in.names.push_back(n);
+      in.units.push_back(unit);
+    }
+  in.values.resize(static_cast<Eigen::Index>(in.names.size()));
+  Eigen::Index v = 0;
+  for (const int k : fit.free_indices) in.values(v++) = fit.parameters(k);
+  for (Eigen::Index k = 0; k < (at.has_frame ? 6 : 0); ++k) in.values(v++) = 0.0;
+  for (Eigen::Index k = 0; k < (at.backlash ? 6 : 0); ++k) in.values(v++) = (*at.backlash)(k);
+  in.inverse = identificationInverse(s.J, fit.identifiability.rank, s.observation_rows);
+  in.residual_sigma = fit.sigma;
+  in.residual_unit = unit;
+  for (const detail::CoordinateSource& src :
+       detail::hexapodCoordinateSources(data, sources, initial.unit))
+    in.sources.push_back({src.contributor, effectOf(at, data, s, refs, src)});
+  in.coverage_factor = sources.coverage_factor;
+
+  HexapodParameterUncertainty out;
+  out.linear = parameterBudgets(in);
+  out.covariance = Eigen::MatrixXd::Zero(kHexapodParameters, kHexapodParameters);
+  for (std::size_t a = 0; a < in.names.size(); ++a)
+    out.parameter_indices.push_back(a < fit.free_indices.size() ? fit.free_indices[a] : -1);
+  for (std::size_t a = 0; a < fit.free_indices.size(); ++a)
+    for (std::size_t b = 0; b < fit.free_indices.size(); ++b)
+      out.covariance(fit.free_indices[a], fit.free_indices[b]) =
+          out.linear.covariance(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+  return out;
+}
+
+TcpUncertainty hexapodTcpUncertainty(const kinematics::HexapodModel& estimated,
+                                     const Eigen::MatrixXd& covariance,
+                                     const std::vector<kinematics::PoseRpy>& poses,
+                                     double coverage_factor) {
+  PKM_CHECK(covariance.rows() == kHexapodParameters && covariance.cols() == kHexapodParameters,
+            "TCP uncertainty: the covariance must be 42 x 42, got {} x {}",
+            covariance.rows(),
+            covariance.cols());
+  PKM_CHECK(coverage_factor > 0.0, "TCP uncertainty: the coverage factor must be > 0");
+  TcpUncertainty out;
+  kinematics::HexapodData work(estimated);
+  double sum = 0.0;
+  for (const kinematics::PoseRpy& pose : poses) {
+    const kinematics::StrutVector q = kinematics::inverseKinematics(estimated, work, pose);
+    PoseParameterJacobian J;
+    if (!forwardPoseError(estimated, work, q, pose, pose, &J)) {
+      out.expanded.push_back(std::numeric_limits<double>::quiet_NaN());
+      continue;
+    }
+    const double U = positionExpandedUncertainty(J.topRows<3>(), covariance, coverage_factor);
+    out.expanded.push_back(U);
+    out.max = std::max(out.max, U);
+    sum += U;
+    ++out.poses;
+  }
+  out.mean = out.poses > 0 ? sum / out.poses : 0.0;
+  return out;
+}
+
+}  // namespace pkm::calibration
