@@ -1,6 +1,6 @@
-// The refractive index of air (metrology/air_refractive_index.hpp): modified Edlén equation and
+// The refractive index of air (core/air_refractive_index.hpp): modified Edlén equation and
 // the saturation vapour pressure of water, written from the published equations.
-#include "pkm/metrology/air_refractive_index.hpp"
+#include "pkm/core/air_refractive_index.hpp"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 
 #include "pkm/core/error.hpp"
 
-namespace pkm::metrology {
+namespace pkm {
 namespace {
 
 constexpr double kKelvin = 273.15;
@@ -97,4 +97,4 @@ AirIndexSensitivity edlenSensitivity(const AirConditions& air, double vacuum_wav
   return out;
 }
 
-}  // namespace pkm::metrology
+}  // namespace pkm

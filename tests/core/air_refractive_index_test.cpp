@@ -1,12 +1,12 @@
-// The refractive index of air (metrology/air_refractive_index.hpp) against NIST's tabulated
+// The refractive index of air (core/air_refractive_index.hpp) against NIST's tabulated
 // values of the modified Edlén equation.
-#include "pkm/metrology/air_refractive_index.hpp"
+#include "pkm/core/air_refractive_index.hpp"
 
 #include <gtest/gtest.h>
 
 #include "pkm/core/error.hpp"
 
-namespace pkm::metrology {
+namespace pkm {
 namespace {
 
 constexpr double kTolNistTable = 1.5e-9;  // the table gives n to 9 decimals (±5e-10) + rounding
@@ -73,4 +73,4 @@ TEST(AirRefractiveIndex, RejectsConditionsOutsideTheEquationsRange) {
 }
 
 }  // namespace
-}  // namespace pkm::metrology
+}  // namespace pkm

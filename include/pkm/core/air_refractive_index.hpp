@@ -11,7 +11,7 @@
 
 #include <string>
 
-namespace pkm::metrology {
+namespace pkm {
 
 /// The state of the air in the beam path.
 struct AirConditions {
@@ -55,4 +55,4 @@ struct AirIndexSensitivity {
 [[nodiscard]] AirIndexSensitivity edlenSensitivity(
     const AirConditions& air, double vacuum_wavelength_um = kHeNeVacuumWavelengthUm);
 
-}  // namespace pkm::metrology
+}  // namespace pkm
