@@ -2,6 +2,7 @@
 #include "pkm/io/calibration_report.hpp"
 
 #include "detail/calibration_json.hpp"
+#include "detail/calibration_uncertainty_json.hpp"
 
 namespace pkm::io {
 namespace {
@@ -38,15 +39,38 @@ ordered_json monteCarloJson(const HexapodCalibrationReport::MonteCarlo& m) {
 
 ordered_json parametersJson(const HexapodCalibrationReport& r) {
   const cal::HexapodCalibrationSummary& s = r.fit;
+  // U (k) of each parameter with a budget; null for fixed parameters.
+  std::vector<ordered_json> U(cal::kHexapodParameters);
+  if (r.uncertainty) {
+    const auto& p = r.uncertainty->parameters;
+    for (std::size_t b = 0; b < p.parameter_indices.size(); ++b)
+      if (p.parameter_indices[b] >= 0)
+        U[static_cast<std::size_t>(p.parameter_indices[b])] =
+            p.linear.budgets[b].expandedUncertainty();
+  }
   ordered_json params = ordered_json::array();
-  for (int k = 0; k < cal::kHexapodParameters; ++k)
+  for (int k = 0; k < cal::kHexapodParameters; ++k) {
     params.push_back({{"name", cal::hexapodParameterName(k)},
                       {"free", r.free[static_cast<std::size_t>(k)]},
                       {"initial", s.initial(k)},
                       {"estimate", s.parameters(k)},
                       {"change", s.parameters(k) - s.initial(k)},
                       {"sigma", s.standard_deviation(k)}});
+    if (r.uncertainty) params.back()["U"] = U[static_cast<std::size_t>(k)];
+  }
   return params;
+}
+
+/// The view of the report's uncertainty for the shared JSON and text.
+detail::CalibrationUncertaintyView uncertaintyView(const HexapodCalibrationReport& r,
+                                                   const std::string& unit) {
+  const HexapodCalibrationReport::Uncertainty& u = *r.uncertainty;
+  return {u.sources,
+          u.parameters.linear,
+          u.monte_carlo ? &*u.monte_carlo : nullptr,
+          u.tcp_poses,
+          u.tcp,
+          unit};
 }
 
 /// The members from "machine" to "residuals": what was fitted and how the solver did.
@@ -98,7 +122,17 @@ std::string hexapodCalibrationJson(const HexapodCalibrationReport& r) {
   j["tcp_error_map"] = map;
   j["parameters"] = parametersJson(r);
   j["outputs"] = {{"machine", r.out_machine}, {"hal", r.out_hal}, {"summary", r.out_summary}};
+  if (r.uncertainty) {
+    const std::string unit(toString(r.unit));
+    j["uncertainty"] = detail::calibrationUncertaintyJson(uncertaintyView(r, unit));
+  }
   return j.dump(2) + "\n";
+}
+
+std::string hexapodCalibrationUncertaintyText(const HexapodCalibrationReport& r) {
+  if (!r.uncertainty) return {};
+  const std::string unit(toString(r.unit));
+  return detail::calibrationUncertaintyText(uncertaintyView(r, unit));
 }
 
 }  // namespace pkm::io

@@ -85,8 +85,7 @@ geometry::RigidTransform registerTracker(const StepContext& ctx,
   if (trackers.empty())
     throw IoError(fmt::format("{}: the scenario has no tracker measurement", ctx.source));
   const sim::TrackerSetup& setup = *trackers.front().setup;
-  const std::vector<Eigen::Vector3d> nests = {
-      {-500, -500, 0}, {500, -500, 0}, {500, 500, 0}, {-500, 500, 0}, {0, 0, 0}, {0, -700, 0}};
+  const std::vector<Eigen::Vector3d>& nests = detail::fiducialNests();
   sim::RandomStream rng(seed, "tracker-registration");
   std::vector<Eigen::Vector3d> measured;
   std::string csv = fmt::format(
@@ -192,7 +191,8 @@ void addRows(const StepContext& ctx,
              const Pass& before,
              const Pass& after,
              const std::string& linear,
-             const cal::HexapodCalibrationSummary& s) {
+             const cal::HexapodCalibrationSummary& s,
+             const detail::TcpRowUncertainty& u) {
   const std::string noise = noiseText(holdout.setup->noise);
   out.rows.push_back({fmt::format("TCP error, {} held-out poses, max", holdout.readings.size()),
                       "mm",
@@ -201,8 +201,12 @@ void addRows(const StepContext& ctx,
                       0.05,
                       "12 -> < 0.5 mm",
                       noise});
+  out.rows.back().before_U = u.before_U;
+  out.rows.back().after_U = u.after_U;
   out.rows.push_back(
       {"TCP error, held-out poses, RMS", "mm", eb.rms, ea.rms, std::nullopt, "", noise});
+  out.rows.back().before_U = u.before_U;
+  out.rows.back().after_U = u.after_U;
   const metrology::Iso230_2Result pb = iso230_2(before.lines.runs(linear, ctx.source));
   const metrology::Iso230_2Result pa = iso230_2(after.lines.runs(linear, ctx.source));
   const sim::LineSetup& ls = before.lines.setup(linear, ctx.source);
@@ -253,6 +257,8 @@ StepOutcome runHexapodCalibrationStep(const StepContext& ctx) {
   const geometry::RigidTransform world_T_tracker =
       registerTracker(ctx, out, scenario, seed, before.trackers);
   const cal::HexapodCalibrationSummary s = calibrate(ctx, vm->nominal(), world_T_tracker, input);
+  kinematics::HexapodModel fitted_model = vm->nominal();
+  fitted_model.tool_offset += input.target_offset.value_or(Eigen::Vector3d::Zero());
 
   // 3. Compensation: the calibrated kinematics in the controller.
   compensate(ctx, out, *vm, s);
@@ -266,13 +272,24 @@ StepOutcome runHexapodCalibrationStep(const StepContext& ctx) {
   const sim::TrackerResult& ha = tracker(after.trackers, holdout.front(), ctx.source);
   const TcpErrors eb = tcpErrors(hb, *vm, world_T_tracker);
   const TcpErrors ea = tcpErrors(ha, *vm, world_T_tracker);
-  addRows(ctx, out, hb, eb, ea, before, after, linear, s);
+  const detail::TcpRowUncertainty tcp_u =
+      detail::tcpRowUncertainty(fitted_model, input.data, s, hb, world_T_tracker);
+  addRows(ctx, out, hb, eb, ea, before, after, linear, s, tcp_u);
 
   // 6. Report section.
-  out.section = detail::hexapodSection(
-      ctx,
-      out,
-      {scenario, seed, input.data.poses.size(), s, *vm, eb, ea, before.lines, after.lines, linear});
+  out.section = detail::hexapodSection(ctx,
+                                       out,
+                                       {scenario,
+                                        seed,
+                                        input.data.poses.size(),
+                                        s,
+                                        *vm,
+                                        eb,
+                                        ea,
+                                        before.lines,
+                                        after.lines,
+                                        linear,
+                                        &tcp_u.budget});
   return out;
 }
 

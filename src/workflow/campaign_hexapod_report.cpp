@@ -124,6 +124,7 @@ Json hexapodSection(const StepContext& ctx, const StepOutcome& out, const Hexapo
        positioningPlot(
            ctx, out.id + "-positioning", d.positioning, d.lines_before, d.lines_after)});
   sec["tables"] = Json::array({identifiabilityTable(d.summary), parameterTable(d.vm, d.summary)});
+  if (d.uncertainty != nullptr) sec["tables"].push_back(budgetTable(*d.uncertainty));
   return sec;
 }
 

@@ -45,8 +45,9 @@ Json uncertaintySection(const std::vector<StepOutcome>& outcomes) {
       "Measurement uncertainty of the summary figures",
       {"Expanded uncertainties U (k = 2, GUM; ISO/TR 230-9) with the typical instruments and "
        "environment of docs/analysis.md. An improvement smaller than the combined uncertainty "
-       "sqrt(U_before^2 + U_after^2) is not significant. The calibrated TCP error has no "
-       "budget yet and shows no U."});
+       "sqrt(U_before^2 + U_after^2) is not significant. A TCP error's U before calibration is "
+       "the tracker's reading and registration; after calibration it also carries the "
+       "calibration's predicted TCP uncertainty (the calibration step's budget table)."});
   Json t = table("Before and after with U (k = 2)",
                  {"step",
                   "quantity",

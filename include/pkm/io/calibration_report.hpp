@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/calibration/hexapod_budget.hpp"
 #include "pkm/calibration/hexapod_calibration.hpp"
 #include "pkm/calibration/holdout.hpp"
 #include "pkm/calibration/uncertainty.hpp"
@@ -49,10 +50,26 @@ struct HexapodCalibrationReport {
   };
   std::optional<MonteCarlo> monte_carlo;
   std::string out_machine, out_hal, out_summary;  ///< the files written
+  /// The uncertainty budgets of the calibrated parameters and the predicted TCP uncertainty
+  /// (docs/calibration.md, "Uncertainty budgets").
+  struct Uncertainty {
+    std::string sources;  ///< the sources file, or "typical datasheet values"
+    calibration::HexapodParameterUncertainty parameters;  ///< linear budgets
+    /// --uncertainty-trials: the GUM Supplement 1 propagation of the same inputs.
+    std::optional<calibration::BudgetMonteCarloResult> monte_carlo;
+    std::string tcp_poses;            ///< where the TCP U is predicted: "held-out", "workspace"
+    calibration::TcpUncertainty tcp;  ///< the predicted TCP U at those poses (k)
+  };
+  std::optional<Uncertainty> uncertainty;
 };
 
 /// The report as JSON text (two-space indent, closing newline): the exact document
 /// `pkm calibrate hexapod` writes to CAL.summary.json and prints with --json.
 [[nodiscard]] std::string hexapodCalibrationJson(const HexapodCalibrationReport& report);
+
+/// The uncertainty lines of the text summary (value ± U of every estimated unknown with its
+/// largest contributor, the full budget of the least certain, the Monte Carlo check, the predicted
+/// TCP uncertainty); "" without report.uncertainty.
+[[nodiscard]] std::string hexapodCalibrationUncertaintyText(const HexapodCalibrationReport& report);
 
 }  // namespace pkm::io
