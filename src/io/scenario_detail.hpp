@@ -10,6 +10,7 @@
 #include "io/detail/error_table_json.hpp"
 #include "io/detail/json_doc.hpp"
 #include "pkm/simulation/dial_gauges.hpp"
+#include "pkm/simulation/environment.hpp"
 #include "pkm/simulation/hybrid_tripod_errors.hpp"
 #include "pkm/simulation/line_measurement.hpp"
 
@@ -66,6 +67,13 @@ inline int integer(const JsonDoc& doc,
 
 /// The tripod errors as one JSON object with the keys readTripodErrors reads (truth.json).
 [[nodiscard]] std::string tripodErrorsJson(const simulation::ExechonTripodErrors& errors);
+
+/// A scenario's "environment" at `ptr`: a preset name ("ideal", "realistic") or an object
+/// {"preset", "duration_h", "air": {...}} whose members override the preset's (docs/formats.md,
+/// "Scenario files"; an object is named "custom"). Fails through `doc`.
+[[nodiscard]] simulation::Environment readEnvironment(const JsonDoc& doc,
+                                                      const json& obj,
+                                                      const std::string& ptr);
 
 /// The built-in scenario texts (generated from data/scenarios/*.json): {file stem, JSON text}.
 const std::vector<std::pair<std::string_view, std::string_view>>& embeddedScenarios();

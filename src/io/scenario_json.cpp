@@ -111,7 +111,9 @@ Scenario parseScenarioJson(const std::string& text,
   const json root = detail::parseJson(text, source);
   const JsonDoc doc(text, source);
   doc.onlyKeys(
-      root, "", {"schema", "type", "name", "description", "seed", "machine", "measurements"});
+      root,
+      "",
+      {"schema", "type", "name", "description", "seed", "machine", "measurements", "environment"});
   if (doc.string(root, "", "schema", "pkm.scenario/1") != "pkm.scenario/1")
     doc.fail("/schema", "must be \"pkm.scenario/1\"");
   if (doc.string(root, "", "type", "") != "simulation_scenario")
@@ -137,6 +139,8 @@ Scenario parseScenarioJson(const std::string& text,
         detail::readHexapod(doc, m, "/machine", resolve(out.machine_spec, base_dir));
   } else
     doc.fail("/machine/kind", "must be \"cartesian\", \"hybrid\" or \"hexapod\"");
+  if (root.contains("environment"))
+    out.campaign.environment = detail::readEnvironment(doc, root["environment"], "/environment");
   const json& list = doc.required(root, "", "measurements");
   if (!list.is_array()) doc.fail("/measurements", "expected an array");
   for (std::size_t i = 0; i < list.size(); ++i) {

@@ -1,13 +1,20 @@
 #include "pkm/simulation/campaign.hpp"
 
+#include <algorithm>
 #include <set>
 
 #include "pkm/core/error.hpp"
 
 namespace pkm::simulation {
 
+namespace {
+constexpr double kSecondsPerHour = 3600.0;
+}  // namespace
+
 void Campaign::validate() const {
   PKM_CHECK(machine != nullptr, "campaign '{}' has no machine", name);
+  std::string why;
+  PKM_CHECK(environment.isValid(&why), "campaign '{}': environment: {}", name, why);
   const auto axes = static_cast<Eigen::Index>(machine->axisNames().size());
   std::set<std::string> names;
   for (const LineSetup& m : measurements) {
@@ -31,9 +38,22 @@ void Campaign::validate() const {
 std::vector<MeasurementResult> runCampaign(const Campaign& campaign, std::uint64_t seed) {
   campaign.validate();
   std::vector<MeasurementResult> results;
+  const Environment& env = campaign.environment;
+  const double window_s =
+      env.duration_h * kSecondsPerHour /
+      static_cast<double>(std::max<std::size_t>(1, campaign.measurements.size()));
   for (const LineSetup& setup : campaign.measurements) {
     RandomStream rng(seed, setup.name);
-    results.push_back({&setup, simulateLine(*campaign.machine, setup, rng)});
+    if (!env.active()) {
+      results.push_back({&setup, simulateLine(*campaign.machine, setup, rng)});
+      continue;
+    }
+    MeasurementConditions conditions(env,
+                                     static_cast<double>(results.size()) * window_s,
+                                     window_s,
+                                     readingCount(setup),
+                                     streamSeed(seed, setup.name + "/environment"));
+    results.push_back({&setup, simulateLine(*campaign.machine, setup, rng, &conditions)});
   }
   return results;
 }

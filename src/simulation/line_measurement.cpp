@@ -17,8 +17,9 @@ class LineInstrument {
  public:
   LineInstrument(const LineSetup& setup,
                  const Eigen::Vector3d& beam,
-                 const geometry::RigidTransform& datum)
-      : setup_(setup), beam_(beam), datum_(datum) {
+                 const geometry::RigidTransform& datum,
+                 const MeasurementConditions* conditions)
+      : setup_(setup), beam_(beam), datum_(datum), conditions_(conditions) {
     lateral_ = setup.lateral.normalized();
     if (setup.quantity == LineQuantity::kStraightness) {
       Eigen::Vector3d l = setup.lateral - setup.lateral.dot(beam) * beam;
@@ -34,7 +35,8 @@ class LineInstrument {
     const Eigen::Vector3d d = pose * setup_.reflector_offset - datum_ * setup_.reflector_offset;
     switch (setup_.quantity) {
       case LineQuantity::kLinear:
-        return datum_target + beam_.dot(d);
+        return datum_target + (conditions_ != nullptr ? conditions_->laserDisplacement(beam_.dot(d))
+                                                      : beam_.dot(d));
       case LineQuantity::kStraightness:
         return lateral_.dot(d);
       case LineQuantity::kAngular:
@@ -47,6 +49,7 @@ class LineInstrument {
   const LineSetup& setup_;
   Eigen::Vector3d beam_;
   geometry::RigidTransform datum_;
+  const MeasurementConditions* conditions_;
   Eigen::Vector3d lateral_;
 };
 
@@ -115,9 +118,22 @@ std::vector<double> cycleTargets(const PositioningCycle& cycle, RandomStream& rn
   return targets;
 }
 
+int readingCount(const LineSetup& setup) {
+  const auto moving = static_cast<int>((setup.line.direction.array() != 0.0).count());
+  const int per_target = setup.procedure == LineProcedure::kStepDiagonal ? moving : 1;
+  return setup.cycle.runs * setup.cycle.targets * (setup.cycle.bidirectional ? 2 : 1) * per_target;
+}
+
 std::vector<LineRun> simulateLine(VirtualMachine& machine,
                                   const LineSetup& setup,
                                   RandomStream& rng) {
+  return simulateLine(machine, setup, rng, nullptr);
+}
+
+std::vector<LineRun> simulateLine(VirtualMachine& machine,
+                                  const LineSetup& setup,
+                                  RandomStream& rng,
+                                  MeasurementConditions* conditions) {
   setup.validate();
   const std::vector<double> targets = cycleTargets(setup.cycle, rng);
   const Eigen::Vector3d beam = machine.nominalPose(setup.line.at(1.0)).translation() -
@@ -132,7 +148,8 @@ std::vector<LineRun> simulateLine(VirtualMachine& machine,
 
   machine.reset(rng.bits());
   machine.moveTo(setup.line.at(below));
-  const LineInstrument instrument(setup, beam, machine.moveTo(setup.line.at(s0)));
+  if (conditions != nullptr) conditions->zero();
+  const LineInstrument instrument(setup, beam, machine.moveTo(setup.line.at(s0)), conditions);
 
   const Eigen::Vector3d datum_nominal = machine.nominalPose(setup.line.at(s0)).translation();
   const auto moving_axes = static_cast<int>((setup.line.direction.array() != 0.0).count());
@@ -142,6 +159,7 @@ std::vector<LineRun> simulateLine(VirtualMachine& machine,
     run.run = r;
     Eigen::VectorXd at = setup.line.at(below);  // the current command
     const auto readAt = [&](double target, int direction, int sub_step) {
+      if (conditions != nullptr) conditions->next();
       const double truth = instrument.truth(machine.moveTo(at), s0);
       run.readings.push_back(
           {target, direction, setup.noise.apply(truth, target - s0, rng), sub_step});

@@ -1,5 +1,6 @@
 // Helpers shared by the campaign steps (campaign_steps.hpp).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <fstream>
@@ -149,6 +150,15 @@ io::Scenario stepScenario(const StepContext& context, std::uint64_t& seed) {
     spec = (context.base_dir / spec).string();
   io::Scenario scenario = io::loadScenario(spec);
   seed = scenario.seed;
+  if (context.spec.contains("environment")) {
+    const Json& e = context.spec["environment"];
+    const auto preset = e.is_string() ? sim::environmentPreset(e.get<std::string>()) : std::nullopt;
+    if (!preset)
+      throw IoError(fmt::format("{}: \"environment\" must be a preset name: {}",
+                                context.source,
+                                fmt::join(sim::environmentPresetNames(), ", ")));
+    scenario.campaign.environment = *preset;
+  }
   if (context.spec.contains("seed")) {
     if (!context.spec["seed"].is_number_unsigned())
       throw IoError(fmt::format("{}: \"seed\" must be a non-negative integer", context.source));

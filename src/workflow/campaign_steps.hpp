@@ -189,7 +189,8 @@ template <class Machine>
 }
 
 /// The scenario named by the step's "scenario" (a file relative to the campaign's folder, or a
-/// built-in name) and the seed ("seed", default the scenario's).
+/// built-in name) and the seed ("seed", default the scenario's); the step's "environment" (a preset
+/// name, simulation::environmentPreset) replaces the scenario's environment.
 [[nodiscard]] io::Scenario stepScenario(const StepContext& context, std::uint64_t& seed);
 
 }  // namespace pkm::workflow::campaign

@@ -185,3 +185,54 @@ TEST(Scenario, Seed000StraightnessSlopesGiveTheParallelismErrors) {
 }
 
 }  // namespace
+
+namespace {
+
+std::string withEnvironment(const std::string& environment) {
+  std::string text = kMinimal;
+  text.insert(text.find("\"machine\""), "\"environment\": " + environment + ",\n  ");
+  return text;
+}
+
+TEST(Scenario, EnvironmentIsIdealByDefaultAPresetOrAnObject) {
+  EXPECT_FALSE(io::parseScenarioJson(kMinimal, "s.json").campaign.environment.active());
+  const io::Scenario r = io::parseScenarioJson(withEnvironment("\"realistic\""), "s.json");
+  EXPECT_EQ(r.campaign.environment.name, "realistic");
+  EXPECT_TRUE(r.campaign.environment.air.enabled);
+  const io::Scenario c =
+      io::parseScenarioJson(withEnvironment(R"({"preset": "realistic", "duration_h": 2,
+        "air": {"temperature_c": {"change": 0.5}, "pressure_sensor": {"offset": 20},
+                "dead_path_mm": 0}})"),
+                            "s.json");
+  const sim::Environment& e = c.campaign.environment;
+  EXPECT_EQ(e.name, "custom");
+  EXPECT_EQ(e.duration_h, 2.0);
+  EXPECT_EQ(e.air.temperature_c.change, 0.5);
+  EXPECT_EQ(e.air.temperature_c.start, 20.5);  // kept from the preset
+  EXPECT_EQ(e.air.pressure_sensor.offset, 20.0);
+  EXPECT_EQ(e.air.pressure_sensor.noise, 5.0);
+  EXPECT_EQ(e.air.dead_path_mm, 0.0);
+  const io::Scenario off =
+      io::parseScenarioJson(withEnvironment(R"({"air": {"enabled": false}})"), "s.json");
+  EXPECT_FALSE(off.campaign.environment.active());
+}
+
+TEST(Scenario, EnvironmentErrorsNameTheLineAndPointer) {
+  const auto message = [](const std::string& env) {
+    try {
+      (void)io::parseScenarioJson(withEnvironment(env), "s.json");
+    } catch (const pkm::IoError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(message("\"lab\""), HasSubstr("s.json:5: /environment: unknown environment 'lab'"));
+  EXPECT_THAT(message(R"({"air": {"dead_path_mm": -3}})"),
+              HasSubstr("s.json:5: /environment/air: dead_path_mm must be >= 0"));
+  EXPECT_THAT(message(R"({"air": {"humidity_sensor": {"noise": -1}}})"),
+              HasSubstr("/environment/air/humidity_sensor/noise: must be >= 0"));
+  EXPECT_THAT(message(R"({"air": {"wind": 1}})"), HasSubstr("unknown key 'wind'"));
+  EXPECT_THAT(message(R"({"duration_h": 0})"), HasSubstr("duration_h must be > 0"));
+}
+
+}  // namespace

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "pkm/core/air_refractive_index.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/simulation/cartesian_machine.hpp"
 
@@ -72,6 +73,37 @@ TEST(Campaign, ValidateRejectsBadCampaigns) {
   wrong.line.start = Eigen::VectorXd::Zero(5);
   wrong.line.direction = Eigen::VectorXd::Unit(5, 0);
   EXPECT_THROW(campaign({wrong}).validate(), pkm::InvalidArgument);
+}
+
+TEST(Campaign, TheEnvironmentActsOnLinearReadingsWithItsAnalyticSize) {
+  // An ideal machine and instrument: only the air's compensation error remains.
+  sim::Campaign c = campaign({setup("x", 0), setup("x-h", 0)});
+  c.machine =
+      std::make_shared<sim::CartesianMachine>(sim::CartesianLayout{}, sim::CartesianErrors{});
+  for (sim::LineSetup& m : c.measurements) m.noise = {};
+  c.measurements[1].quantity = sim::LineQuantity::kStraightness;
+  c.measurements[1].lateral = Eigen::Vector3d::UnitY();
+  const auto ideal = sim::runCampaign(c, 3);
+  c.environment.name = "custom";
+  c.environment.air.enabled = true;
+  c.environment.air.temperature_sensor.offset = -0.3;  // K: the sensor reads cold
+  const auto air = sim::runCampaign(c, 3);
+  const double n_t = pkm::refractiveIndexEdlen({20.0, 101325.0, 50.0});
+  const double n_s = pkm::refractiveIndexEdlen({19.7, 101325.0, 50.0});
+  const double s0 = air[0].runs[0].readings[0].target;
+  for (const sim::LineRun& run : air[0].runs)
+    for (const sim::LineReading& r : run.readings)
+      EXPECT_NEAR(r.reading - r.target, (r.target - s0) * (n_t - n_s) / n_s, 1e-12);
+  // About −0.28 ppm: −0.083 µm at 300 mm.
+  EXPECT_LT(air[0].runs[0].readings[6].reading - air[0].runs[0].readings[6].target, -0.08e-3);
+  EXPECT_EQ(readings(ideal[1]), readings(air[1]));  // straightness optics are differential
+  EXPECT_EQ(readings(air[0]), readings(sim::runCampaign(c, 3)[0]));
+}
+
+TEST(Campaign, AnInvalidEnvironmentIsRejected) {
+  sim::Campaign c = campaign({setup("x", 0)});
+  c.environment.duration_h = -1.0;
+  EXPECT_THROW(c.validate(), pkm::InvalidArgument);
 }
 
 }  // namespace

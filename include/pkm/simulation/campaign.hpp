@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pkm/simulation/dial_gauges.hpp"
+#include "pkm/simulation/environment.hpp"
 #include "pkm/simulation/exechon_tracker.hpp"
 #include "pkm/simulation/hybrid_tracker.hpp"
 #include "pkm/simulation/laser_tracker.hpp"
@@ -39,6 +40,8 @@ struct Campaign {
   /// Touch-probe measurements on a master ring (seed 003); need a hybrid (Exechon) machine. Run
   /// with runTouchProbes (pkm/simulation/touch_probe.hpp).
   std::vector<TouchProbeSetup> probes;
+  /// The workshop's environment (environment.hpp); the default is ideal (every source off).
+  Environment environment;
   /// Throws pkm::InvalidArgument when there is no machine, a set-up is invalid, a line's size is
   /// not the machine's axis count, two measurements (of either kind) share a name, or dial gauges
   /// are set up on a machine that is not a hexapod.
@@ -53,7 +56,10 @@ struct MeasurementResult {
 
 /// Runs every measurement. Measurement k draws only from RandomStream(seed, setup.name), so the
 /// numbers of one measurement do not depend on which others exist. Identical results for the same
-/// seed on every platform. Throws pkm::InvalidArgument (Campaign::validate, simulateLine).
+/// seed on every platform. In an active environment, line measurement k of N occupies the campaign
+/// time [k·T/N, (k+1)·T/N) (T = environment.duration_h) and its environment draws from
+/// RandomStream(seed, setup.name + "/environment"). Throws pkm::InvalidArgument
+/// (Campaign::validate, simulateLine).
 [[nodiscard]] std::vector<MeasurementResult> runCampaign(const Campaign& campaign,
                                                          std::uint64_t seed);
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/simulation/measurement_conditions.hpp"
 #include "pkm/simulation/noise.hpp"
 #include "pkm/simulation/virtual_machine.hpp"
 
@@ -128,5 +129,18 @@ struct LineRun {
 [[nodiscard]] std::vector<LineRun> simulateLine(VirtualMachine& machine,
                                                 const LineSetup& setup,
                                                 RandomStream& rng);
+
+/// simulateLine in an environment (environment.hpp): `conditions` (null: the ideal environment,
+/// as above) is zeroed with the instrument and advanced before every reading (readingCount of
+/// them); a linear reading's displacement from the datum becomes
+/// conditions->laserDisplacement(b·(p(s) − p(s₀))). Straightness and angular optics are
+/// differential (both beams in the same air), so the air does not act on them.
+[[nodiscard]] std::vector<LineRun> simulateLine(VirtualMachine& machine,
+                                                const LineSetup& setup,
+                                                RandomStream& rng,
+                                                MeasurementConditions* conditions);
+
+/// The number of readings simulateLine takes (runs × targets × passes × sub-moves per target).
+[[nodiscard]] int readingCount(const LineSetup& setup);
 
 }  // namespace pkm::simulation

@@ -1,0 +1,81 @@
+/// @file
+/// @brief The environment of a simulated campaign (docs/simulation-errors.md): error sources a real
+/// workshop adds to every measurement and that pkm's analyses do not model. Each is off in the
+/// default ("ideal") environment, which reproduces the simulator's behaviour without them.
+/// - Air: the air's temperature, pressure and humidity drift over the campaign (a linear drift
+///   plus an AR(1) fluctuation); a laser interferometer counts fringes of the wavelength in the
+///   TRUE air (modified Edlén, pkm/core/air_refractive_index.hpp) while its environmental
+///   compensation unit converts them with the index of the air its own sensors read (with their
+///   offsets and noise), so a displacement Δ reads Δ·n_true/n_sensed, plus the dead-path error
+///   L_dp·(n_true(τ) − n_true(τ₀))/n_sensed (ISO 230-2:2014 Annex A; ISO/TR 230-9 §6).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pkm/core/air_refractive_index.hpp"
+
+namespace pkm::simulation {
+
+/// A quantity over the campaign: value(τ) = start + change·τ/T + x(τ), T the campaign's duration
+/// and x an AR(1) (Ornstein–Uhlenbeck) fluctuation with standard deviation `fluctuation` and
+/// correlation time `correlation_s`, sampled at the readings (x_{j+1} = φ·x_j +
+/// √(1 − φ²)·fluctuation·ε, φ = exp(−Δτ/correlation_s), x at a measurement's start drawn from
+/// N(0, fluctuation²)). Units: those of the quantity (°C, Pa, %).
+struct Drift {
+  double start = 0.0;            ///< value at the campaign's start
+  double change = 0.0;           ///< change over the whole campaign (linear)
+  double fluctuation = 0.0;      ///< standard deviation of the fluctuation, ≥ 0
+  double correlation_s = 600.0;  ///< correlation time of the fluctuation, s, > 0
+  /// The smooth part start + change·fraction (fraction = τ/T in [0, 1]).
+  [[nodiscard]] double smooth(double fraction) const { return start + change * fraction; }
+  /// True when every field is finite, fluctuation ≥ 0 and correlation_s > 0.
+  [[nodiscard]] bool isValid() const;
+};
+
+/// One sensor of a compensation unit: reading = true value + offset + N(0, noise²) per reading
+/// (units of the quantity).
+struct SensorError {
+  double offset = 0.0;  ///< fixed calibration error of the sensor
+  double noise = 0.0;   ///< standard deviation per reading, ≥ 0
+  /// True when both are finite and noise ≥ 0.
+  [[nodiscard]] bool isValid() const;
+};
+
+/// The air along the laser beam and the laser's compensation of it.
+struct AirEnvironment {
+  bool enabled = false;  ///< false: the ideal laser (no refractive-index error)
+  Drift temperature_c{20.0, 0.0, 0.0, 600.0};     ///< air temperature, °C
+  Drift pressure_pa{101325.0, 0.0, 0.0, 600.0};   ///< absolute pressure, Pa
+  Drift humidity_percent{50.0, 0.0, 0.0, 600.0};  ///< relative humidity, %
+  SensorError temperature_sensor;  ///< the compensation unit's air-temperature sensor, °C
+  SensorError pressure_sensor;     ///< its pressure sensor, Pa
+  SensorError humidity_sensor;     ///< its humidity sensor, %
+  /// Dead path: beam length from the laser head to the reflector at the datum, mm (≥ 0), over
+  /// which the index change since zeroing is not compensated.
+  double dead_path_mm = 0.0;
+  double vacuum_wavelength_um = kHeNeVacuumWavelengthUm;  ///< laser vacuum wavelength, µm
+  /// True when every part is valid and the drift stays inside Edlén's range.
+  [[nodiscard]] bool isValid(std::string* why = nullptr) const;
+};
+
+/// The environment of a campaign. Default: ideal (every source off).
+struct Environment {
+  std::string name = "ideal";  ///< the preset it came from, or "custom"
+  double duration_h = 8.0;     ///< campaign duration T over which the drifts run, h, > 0
+  AirEnvironment air;          ///< the air and the laser's compensation
+  /// True when any source is on.
+  [[nodiscard]] bool active() const { return air.enabled; }
+  /// True when every part is valid; otherwise false with the reason in *why.
+  [[nodiscard]] bool isValid(std::string* why = nullptr) const;
+};
+
+/// A named environment (docs/simulation-errors.md): "ideal" (every source off) or "realistic"
+/// (every finished source on at magnitudes from the literature). std::nullopt for another name.
+[[nodiscard]] std::optional<Environment> environmentPreset(std::string_view name);
+/// The names environmentPreset knows.
+[[nodiscard]] std::vector<std::string_view> environmentPresetNames();
+
+}  // namespace pkm::simulation

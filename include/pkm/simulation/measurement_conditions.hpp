@@ -1,0 +1,65 @@
+/// @file
+/// @brief The environment's state during one measurement of a campaign (environment.hpp): the
+/// campaign clock at each reading, the true air and what the compensation unit's sensors read,
+/// and the laser displacement reading that results.
+#pragma once
+
+#include <cstdint>
+
+#include "pkm/core/air_refractive_index.hpp"
+#include "pkm/simulation/environment.hpp"
+#include "pkm/simulation/random.hpp"
+
+namespace pkm::simulation {
+
+/// The conditions of one measurement. The measurement occupies the campaign time [start_s,
+/// start_s + window_s): the instrument is zeroed at start_s and its `readings` readings follow
+/// at equal steps window_s/readings (the last at the window's end). The fluctuations and the
+/// sensor noise draw from the measurement's own stream, nothing when they are zero.
+class MeasurementConditions {
+ public:
+  /// Keeps a reference to `environment` (must outlive this). Throws pkm::InvalidArgument for an
+  /// invalid environment, a negative start, a window ≤ 0 or readings < 1.
+  MeasurementConditions(const Environment& environment,
+                        double start_s,
+                        double window_s,
+                        int readings,
+                        std::uint64_t seed);
+
+  /// The instrument is zeroed: the clock at start_s, the fluctuations drawn from their
+  /// stationary distribution, n_true(τ₀) kept for the dead path.
+  void zero();
+  /// The next reading: the clock advances one step, the fluctuations one AR(1) step, the sensors
+  /// draw their noise.
+  void next();
+
+  /// Campaign time of the current reading, s.
+  [[nodiscard]] double timeS() const { return time_s_; }
+  /// The true air now (°C, Pa, %).
+  [[nodiscard]] AirConditions trueAir() const;
+  /// What the compensation unit's sensors read now.
+  [[nodiscard]] AirConditions sensedAir() const { return sensed_; }
+  /// The refractive index of the true air now and at the zeroing.
+  [[nodiscard]] double trueIndex() const;
+  [[nodiscard]] double datumIndex() const { return n_datum_; }
+
+  /// The laser's reading of a true displacement `displacement_mm` along the beam since the datum
+  /// (mm): [n_t·(L_dp + Δ) − n_t(τ₀)·L_dp]/n_s = Δ + Δ·(n_t − n_s)/n_s + L_dp·(n_t − n_t(τ₀))/n_s,
+  /// n_t the true index, n_s the index of the sensed air (ISO 230-2:2014 Annex A). Δ itself when
+  /// the air source is off.
+  [[nodiscard]] double laserDisplacement(double displacement_mm) const;
+
+ private:
+  [[nodiscard]] double fraction() const;
+
+  const Environment& env_;
+  double start_s_ = 0.0;
+  double step_s_ = 0.0;
+  double time_s_ = 0.0;
+  RandomStream rng_;
+  double x_t_ = 0.0, x_p_ = 0.0, x_h_ = 0.0;  // fluctuations of t, p and RH
+  AirConditions sensed_;
+  double n_datum_ = 1.0;
+};
+
+}  // namespace pkm::simulation

@@ -1,0 +1,92 @@
+// A scenario's "environment" (docs/formats.md, "Scenario files"; docs/simulation-errors.md): a
+// preset name or an object that starts from a preset and overrides its members.
+#include <string>
+
+#include "io/scenario_detail.hpp"
+#include "pkm/simulation/environment.hpp"
+
+namespace pkm::io::detail {
+
+namespace sim = pkm::simulation;
+
+namespace {
+
+bool boolean(
+    const JsonDoc& doc, const json& obj, const std::string& ptr, const char* key, bool fallback) {
+  if (!obj.contains(key)) return fallback;
+  if (!obj[key].is_boolean()) doc.fail(ptr + "/" + key, "expected true or false");
+  return obj[key].get<bool>();
+}
+
+void readDrift(const JsonDoc& doc, const json& obj, const std::string& ptr, sim::Drift& d) {
+  doc.onlyKeys(obj, ptr, {"start", "change", "fluctuation", "correlation_s"});
+  d.start = doc.number(obj, ptr, "start", d.start);
+  d.change = doc.number(obj, ptr, "change", d.change);
+  d.fluctuation = doc.number(obj, ptr, "fluctuation", d.fluctuation);
+  d.correlation_s = doc.number(obj, ptr, "correlation_s", d.correlation_s);
+  if (!d.isValid()) doc.fail(ptr, "fluctuation must be >= 0 and correlation_s > 0");
+}
+
+void readSensor(const JsonDoc& doc, const json& obj, const std::string& ptr, sim::SensorError& s) {
+  doc.onlyKeys(obj, ptr, {"offset", "noise"});
+  s.offset = doc.number(obj, ptr, "offset", s.offset);
+  s.noise = doc.number(obj, ptr, "noise", s.noise);
+  if (!s.isValid()) doc.fail(ptr + "/noise", "must be >= 0");
+}
+
+void readAir(const JsonDoc& doc, const json& obj, const std::string& ptr, sim::AirEnvironment& a) {
+  doc.onlyKeys(obj,
+               ptr,
+               {"enabled",
+                "temperature_c",
+                "pressure_pa",
+                "humidity_percent",
+                "temperature_sensor",
+                "pressure_sensor",
+                "humidity_sensor",
+                "dead_path_mm",
+                "vacuum_wavelength_um"});
+  a.enabled = boolean(doc, obj, ptr, "enabled", true);
+  const std::pair<const char*, sim::Drift*> drifts[] = {{"temperature_c", &a.temperature_c},
+                                                        {"pressure_pa", &a.pressure_pa},
+                                                        {"humidity_percent", &a.humidity_percent}};
+  for (const auto& [key, drift] : drifts)
+    if (obj.contains(key)) readDrift(doc, obj[key], ptr + "/" + key, *drift);
+  const std::pair<const char*, sim::SensorError*> sensors[] = {
+      {"temperature_sensor", &a.temperature_sensor},
+      {"pressure_sensor", &a.pressure_sensor},
+      {"humidity_sensor", &a.humidity_sensor}};
+  for (const auto& [key, sensor] : sensors)
+    if (obj.contains(key)) readSensor(doc, obj[key], ptr + "/" + key, *sensor);
+  a.dead_path_mm = doc.number(obj, ptr, "dead_path_mm", a.dead_path_mm);
+  a.vacuum_wavelength_um = doc.number(obj, ptr, "vacuum_wavelength_um", a.vacuum_wavelength_um);
+  std::string why;
+  if (!a.isValid(&why)) doc.fail(ptr, why);
+}
+
+sim::Environment preset(const JsonDoc& doc, const std::string& name, const std::string& ptr) {
+  const auto e = sim::environmentPreset(name);
+  if (!e) {
+    std::string known;
+    for (const auto n : sim::environmentPresetNames())
+      known += (known.empty() ? "" : ", ") + std::string(n);
+    doc.fail(ptr, "unknown environment '" + name + "' (known: " + known + ")");
+  }
+  return *e;
+}
+
+}  // namespace
+
+sim::Environment readEnvironment(const JsonDoc& doc, const json& obj, const std::string& ptr) {
+  if (obj.is_string()) return preset(doc, obj.get<std::string>(), ptr);
+  doc.onlyKeys(obj, ptr, {"preset", "duration_h", "air"});
+  sim::Environment e = preset(doc, doc.string(obj, ptr, "preset", "ideal"), ptr + "/preset");
+  e.name = "custom";
+  e.duration_h = doc.number(obj, ptr, "duration_h", e.duration_h);
+  if (obj.contains("air")) readAir(doc, obj["air"], ptr + "/air", e.air);
+  std::string why;
+  if (!e.isValid(&why)) doc.fail(ptr, why);
+  return e;
+}
+
+}  // namespace pkm::io::detail

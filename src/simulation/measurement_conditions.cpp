@@ -1,0 +1,95 @@
+#include "pkm/simulation/measurement_conditions.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "pkm/core/error.hpp"
+
+namespace pkm::simulation {
+
+namespace {
+
+constexpr double kSecondsPerHour = 3600.0;
+
+/// One AR(1) step of a fluctuation of standard deviation `sigma` over `dt` seconds.
+double ar1(double x, const Drift& d, double dt, RandomStream& rng) {
+  if (d.fluctuation == 0.0) return 0.0;
+  const double phi = std::exp(-dt / d.correlation_s);
+  return phi * x + rng.normal(std::sqrt(1.0 - phi * phi) * d.fluctuation);
+}
+
+double sense(double truth, const SensorError& s, RandomStream& rng) {
+  return truth + s.offset + rng.normal(s.noise);
+}
+
+}  // namespace
+
+MeasurementConditions::MeasurementConditions(const Environment& environment,
+                                             double start_s,
+                                             double window_s,
+                                             int readings,
+                                             std::uint64_t seed)
+    : env_(environment), start_s_(start_s), time_s_(start_s), rng_(seed) {
+  std::string why;
+  PKM_CHECK(environment.isValid(&why), "environment '{}': {}", environment.name, why);
+  PKM_CHECK(
+      std::isfinite(start_s) && start_s >= 0.0, "measurement start {} s must be >= 0", start_s);
+  PKM_CHECK(
+      std::isfinite(window_s) && window_s > 0.0, "measurement window {} s must be > 0", window_s);
+  PKM_CHECK(readings >= 1, "a measurement needs at least one reading, got {}", readings);
+  step_s_ = window_s / readings;
+}
+
+double MeasurementConditions::fraction() const {
+  const double f = time_s_ / (env_.duration_h * kSecondsPerHour);
+  return f < 0.0 ? 0.0 : (f > 1.0 ? 1.0 : f);
+}
+
+AirConditions MeasurementConditions::trueAir() const {
+  const AirEnvironment& a = env_.air;
+  const double f = fraction();
+  const double rh = a.humidity_percent.smooth(f) + x_h_;
+  return {a.temperature_c.smooth(f) + x_t_,
+          a.pressure_pa.smooth(f) + x_p_,
+          std::fmin(100.0, std::fmax(0.0, rh))};
+}
+
+double MeasurementConditions::trueIndex() const {
+  return refractiveIndexEdlen(trueAir(), env_.air.vacuum_wavelength_um);
+}
+
+void MeasurementConditions::zero() {
+  time_s_ = start_s_;
+  const AirEnvironment& a = env_.air;
+  if (!a.enabled) return;
+  x_t_ = rng_.normal(a.temperature_c.fluctuation);
+  x_p_ = rng_.normal(a.pressure_pa.fluctuation);
+  x_h_ = rng_.normal(a.humidity_percent.fluctuation);
+  n_datum_ = trueIndex();
+  sensed_ = trueAir();
+}
+
+void MeasurementConditions::next() {
+  time_s_ += step_s_;
+  const AirEnvironment& a = env_.air;
+  if (!a.enabled) return;
+  x_t_ = ar1(x_t_, a.temperature_c, step_s_, rng_);
+  x_p_ = ar1(x_p_, a.pressure_pa, step_s_, rng_);
+  x_h_ = ar1(x_h_, a.humidity_percent, step_s_, rng_);
+  const AirConditions t = trueAir();
+  sensed_ = {sense(t.temperature_c, a.temperature_sensor, rng_),
+             sense(t.pressure_pa, a.pressure_sensor, rng_),
+             sense(t.relative_humidity, a.humidity_sensor, rng_)};
+  // A sensor cannot read outside its range: a humidity sensor reads 0..100 %.
+  sensed_.relative_humidity = std::fmin(100.0, std::fmax(0.0, sensed_.relative_humidity));
+}
+
+double MeasurementConditions::laserDisplacement(double displacement_mm) const {
+  const AirEnvironment& a = env_.air;
+  if (!a.enabled) return displacement_mm;
+  const double n_t = trueIndex();
+  const double n_s = refractiveIndexEdlen(sensed_, a.vacuum_wavelength_um);
+  return (n_t * (a.dead_path_mm + displacement_mm) - n_datum_ * a.dead_path_mm) / n_s;
+}
+
+}  // namespace pkm::simulation

@@ -1,0 +1,126 @@
+// MeasurementConditions: the laser's reading in drifting air compensated by sensors with errors,
+// against the analytic sizes (Δ·(n_t − n_s)/n_s, dead path L·Δn/n), the AR(1) fluctuation's
+// standard deviation, determinism per seed.
+#include "pkm/simulation/measurement_conditions.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "pkm/core/air_refractive_index.hpp"
+#include "pkm/core/error.hpp"
+
+namespace {
+
+namespace sim = pkm::simulation;
+
+sim::Environment airOnly() {
+  sim::Environment e;
+  e.name = "custom";
+  e.duration_h = 1.0;
+  e.air.enabled = true;
+  return e;
+}
+
+TEST(MeasurementConditions, IdealEnvironmentReadsTheDisplacement) {
+  const sim::Environment e;
+  sim::MeasurementConditions c(e, 0.0, 60.0, 3, 1);
+  c.zero();
+  c.next();
+  EXPECT_EQ(c.laserDisplacement(123.456), 123.456);
+}
+
+TEST(MeasurementConditions, SensorOffsetGivesTheIndexDifferenceTimesTheLength) {
+  sim::Environment e = airOnly();
+  e.air.temperature_sensor.offset = 0.2;  // K: the sensor reads 0.2 K warm
+  e.air.pressure_sensor.offset = -100.0;  // Pa
+  sim::MeasurementConditions c(e, 0.0, 600.0, 2, 1);
+  c.zero();
+  c.next();
+  const pkm::AirConditions truth{20.0, 101325.0, 50.0};
+  const double n_t = pkm::refractiveIndexEdlen(truth);
+  const double n_s = pkm::refractiveIndexEdlen({20.2, 101225.0, 50.0});
+  const double L = 1000.0;  // mm
+  EXPECT_NEAR(c.laserDisplacement(L) - L, L * (n_t - n_s) / n_s, 1e-12);
+  // By the sensitivities: (0.93e-6·0.2 + 2.7e-9·100)·1000 mm ≈ 0.46 µm, the reading too long.
+  const pkm::AirIndexSensitivity k = pkm::edlenSensitivity(truth);
+  EXPECT_NEAR(c.laserDisplacement(L) - L, -L * (0.2 * k.per_kelvin - 100.0 * k.per_pascal), 1e-6);
+  EXPECT_GT(c.laserDisplacement(L) - L, 0.4e-3);
+}
+
+TEST(MeasurementConditions, DeadPathSeesTheIndexChangeSinceZeroing) {
+  sim::Environment e = airOnly();
+  e.air.temperature_c = {20.0, 1.0, 0.0, 600.0};  // +1 K over the hour
+  e.air.dead_path_mm = 500.0;
+  sim::MeasurementConditions c(e, 0.0, 3600.0, 4, 1);  // the whole hour, 4 readings
+  c.zero();
+  for (int i = 0; i < 4; ++i) c.next();
+  EXPECT_DOUBLE_EQ(c.timeS(), 3600.0);
+  EXPECT_DOUBLE_EQ(c.trueAir().temperature_c, 21.0);
+  // Perfect sensors: the measured displacement is exact; the dead path is not compensated.
+  const double n0 = pkm::refractiveIndexEdlen({20.0, 101325.0, 50.0});
+  const double n1 = pkm::refractiveIndexEdlen({21.0, 101325.0, 50.0});
+  EXPECT_NEAR(c.laserDisplacement(0.0), 500.0 * (n1 - n0) / n1, 1e-13);
+  // By the sensitivity at the mid temperature (−0.95 ppm/K at 50 %RH): about −0.48 µm.
+  const double per_kelvin = pkm::edlenSensitivity({20.5, 101325.0, 50.0}).per_kelvin;
+  EXPECT_NEAR(c.laserDisplacement(0.0), 500.0 * per_kelvin, 1e-3 * 500.0 * std::abs(per_kelvin));
+  EXPECT_NEAR(c.laserDisplacement(300.0) - 300.0, 500.0 * (n1 - n0) / n1, 1e-12);
+}
+
+TEST(MeasurementConditions, FluctuationHasItsStandardDeviationAndSeedsRepeat) {
+  sim::Environment e = airOnly();
+  e.duration_h = 100.0;
+  e.air.temperature_c = {20.0, 0.0, 0.1, 60.0};
+  const auto series = [&](std::uint64_t seed) {
+    sim::MeasurementConditions c(e, 0.0, 100.0 * 3600.0, 6000, seed);  // 60 s steps
+    c.zero();
+    std::vector<double> t;
+    for (int i = 0; i < 6000; ++i) {
+      c.next();
+      t.push_back(c.trueAir().temperature_c);
+    }
+    return t;
+  };
+  const std::vector<double> a = series(5);
+  EXPECT_EQ(a, series(5));
+  EXPECT_NE(a, series(6));
+  double sum = 0.0, sum2 = 0.0, lag = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    sum += a[i] - 20.0;
+    sum2 += (a[i] - 20.0) * (a[i] - 20.0);
+    if (i > 0) lag += (a[i] - 20.0) * (a[i - 1] - 20.0);
+  }
+  const double n = static_cast<double>(a.size());
+  EXPECT_NEAR(std::sqrt(sum2 / n), 0.1, 0.01);
+  // Correlated: lag-one correlation exp(−60/60) = 0.37, not 0 as white noise would give.
+  EXPECT_NEAR(lag / sum2, std::exp(-1.0), 0.05);
+  EXPECT_NEAR(sum / n, 0.0, 0.02);
+}
+
+TEST(MeasurementConditions, SensorNoiseScattersTheCompensation) {
+  sim::Environment e = airOnly();
+  e.air.temperature_sensor.noise = 0.05;  // K per reading
+  sim::MeasurementConditions c(e, 0.0, 3600.0, 4000, 3);
+  c.zero();
+  double sum2 = 0.0;
+  for (int i = 0; i < 4000; ++i) {
+    c.next();
+    const double err = c.laserDisplacement(1000.0) - 1000.0;
+    sum2 += err * err;
+  }
+  // 1000 mm × 0.93e-6/K × 0.05 K = 0.047 µm.
+  EXPECT_NEAR(std::sqrt(sum2 / 4000.0), 1000.0 * 0.93e-6 * 0.05, 0.004e-3);
+}
+
+TEST(MeasurementConditions, RejectsBadArguments) {
+  const sim::Environment e;
+  EXPECT_THROW(sim::MeasurementConditions(e, -1.0, 60.0, 1, 1), pkm::InvalidArgument);
+  EXPECT_THROW(sim::MeasurementConditions(e, 0.0, 0.0, 1, 1), pkm::InvalidArgument);
+  EXPECT_THROW(sim::MeasurementConditions(e, 0.0, 60.0, 0, 1), pkm::InvalidArgument);
+  sim::Environment bad = airOnly();
+  bad.air.temperature_c.correlation_s = 0.0;
+  EXPECT_THROW(sim::MeasurementConditions(bad, 0.0, 60.0, 1, 1), pkm::InvalidArgument);
+}
+
+}  // namespace
