@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "pkm/core/error.hpp"
 #include "pkm/kinematics/hexapod_data.hpp"
@@ -24,11 +25,13 @@ HoldoutErrors hexapodHoldoutErrors(const kinematics::HexapodModel& model,
     if (backlash) q -= 0.5 * approach.cwiseProduct(*backlash);  // the estimated hysteresis
     if (!kinematics::forwardKinematics(model, work, q, model.home).ok()) {
       ++e.failures;
+      e.errors.push_back(std::numeric_limits<double>::quiet_NaN());
       return;
     }
     Eigen::Vector3d p = work.world_p_tcp;
     if (frame) p = frame->linear().transpose() * (p - frame->translation());
     const double d = (p - measured).norm();
+    e.errors.push_back(d);
     sum2 += d * d;
     sum += d;
     e.max = std::max(e.max, d);
@@ -58,11 +61,13 @@ HoldoutErrors targetErrors(const std::vector<Observation>& observations,
     const std::optional<Eigen::Vector3d> p = predict(o);
     if (!p) {
       if (count_failures) ++e.failures;
+      e.errors.push_back(std::numeric_limits<double>::quiet_NaN());
       continue;
     }
     const Eigen::Vector3d m =
         frame ? Eigen::Vector3d(frame->linear() * o.point + frame->translation()) : o.point;
     const double d = (m - *p).norm();
+    e.errors.push_back(d);
     sum += d * d;
     e.max = std::max(e.max, d);
     ++e.poses;

@@ -131,6 +131,14 @@ void readInput(const ExechonCalibrationRequest& r,
   control.note(input.notes);
 }
 
+/// Refuses (pkm::IoError) when one of the output files of `out` exists and not `force`.
+void checkOutputs(const std::string& out, bool hybrid, bool force) {
+  const io::Overwrite overwrite = force ? io::Overwrite::kAllow : io::Overwrite::kRefuse;
+  io::checkOverwrite(calibrationOutputs(out).machine, overwrite);
+  io::checkOverwrite(calibrationOutputs(out).summary, overwrite);
+  if (hybrid) io::checkOverwrite(calibrationErrorsOutput(out), overwrite);
+}
+
 }  // namespace
 
 cal::RobustLoss detail::robustLoss(const std::string& name) {
@@ -140,7 +148,7 @@ cal::RobustLoss detail::robustLoss(const std::string& name) {
 }
 
 void ExechonCalibrationRequest::validate() const {
-  detail::checkCalibrationRequest(data, "tracker file", out, frame, loss, monte_carlo);
+  detail::checkCalibrationRequest(data, "tracker file", out, db, frame, loss, monte_carlo);
 }
 
 std::string calibrationErrorsOutput(const std::string& out) {
@@ -152,17 +160,12 @@ std::string calibrationErrorsOutput(const std::string& out) {
 ExechonCalibrationResult calibrateExechon(const ExechonCalibrationRequest& r,
                                           const RunControl& control) {
   r.validate();
-  const io::ExechonMachine machine = io::loadExechonMachine(r.machine);
+  const io::ExechonMachine machine = r.loaded ? *r.loaded : io::loadExechonMachine(r.machine);
   control.note(machine.notices);
-  const CalibrationOutputs paths = calibrationOutputs(r.out);
-  const std::string errors_path = calibrationErrorsOutput(r.out);
   io::ExechonCalibrationInput input, held;
   readInput(r, input, held, control);
   const bool hybrid = !input.hybrid.observations.empty();
-  const io::Overwrite overwrite = r.force ? io::Overwrite::kAllow : io::Overwrite::kRefuse;
-  io::checkOverwrite(paths.machine, overwrite);
-  io::checkOverwrite(paths.summary, overwrite);
-  if (hybrid) io::checkOverwrite(errors_path, overwrite);
+  if (!r.out.empty()) checkOutputs(r.out, hybrid, r.force);
   const Eigen::Vector3d target =
       r.target_offset.value_or(input.target_offset.value_or(Eigen::Vector3d::Zero()));
   input.data.target_offset = target;
@@ -176,21 +179,16 @@ ExechonCalibrationResult calibrateExechon(const ExechonCalibrationRequest& r,
   rep.data_notes = input.notes;
   if (!input.data.observations.empty())
     rep.tripod = detail::fitTripod(r, machine, input, held, result.calibrated, control);
-  std::string errors_text;
   if (hybrid) {
     rep.hybrid.emplace();
-    errors_text = io::writeGeometricErrorsJson(
+    result.errors_json = io::writeGeometricErrorsJson(
         fitSquareness(r, machine, result.calibrated, input, held, *rep.hybrid));
   }
-  rep.out_machine = paths.machine;
-  rep.out_summary = paths.summary;
-  if (hybrid) rep.out_errors = errors_path;
   result.summary_json = io::exechonCalibrationJson(rep);
-  io::writeFileAtomic(paths.machine, io::writeExechonJson(result.calibrated), overwrite);
-  if (hybrid) io::writeFileAtomic(errors_path, errors_text, overwrite);
-  io::writeFileAtomic(paths.summary, result.summary_json, overwrite);
-  result.written = {paths.machine, paths.summary};
-  if (hybrid) result.written.push_back(errors_path);
+  if (r.out.empty()) return result;
+  writeExechonCalibration(result, r.out, r.force);
+  const CalibrationOutputs paths = calibrationOutputs(r.out);
+  const std::string errors_path = calibrationErrorsOutput(r.out);
   if (!r.db.empty()) {
     std::vector<std::pair<std::string, std::string>> comps{{"machine-json", paths.machine}};
     if (hybrid) comps.emplace_back("errors-json", errors_path);
@@ -204,6 +202,25 @@ ExechonCalibrationResult calibrateExechon(const ExechonCalibrationRequest& r,
                        comps});
   }
   return result;
+}
+
+void writeExechonCalibration(ExechonCalibrationResult& result, const std::string& out, bool force) {
+  PKM_CHECK(!out.empty(), "give the calibrated machine file CAL.json");
+  const bool hybrid = result.report.hybrid.has_value();
+  checkOutputs(out, hybrid, force);
+  const CalibrationOutputs paths = calibrationOutputs(out);
+  const std::string errors_path = calibrationErrorsOutput(out);
+  io::ExechonCalibrationReport& rep = result.report;
+  rep.out_machine = paths.machine;
+  rep.out_summary = paths.summary;
+  rep.out_errors = hybrid ? errors_path : "";
+  result.summary_json = io::exechonCalibrationJson(rep);
+  const io::Overwrite overwrite = force ? io::Overwrite::kAllow : io::Overwrite::kRefuse;
+  io::writeFileAtomic(paths.machine, io::writeExechonJson(result.calibrated), overwrite);
+  if (hybrid) io::writeFileAtomic(errors_path, result.errors_json, overwrite);
+  io::writeFileAtomic(paths.summary, result.summary_json, overwrite);
+  result.written = {paths.machine, paths.summary};
+  if (hybrid) result.written.push_back(errors_path);
 }
 
 }  // namespace pkm::workflow

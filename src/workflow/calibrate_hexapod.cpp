@@ -151,10 +151,17 @@ void describe(io::HexapodCalibrationReport& rep,
   for (std::size_t k = 0; k < rep.free.size(); ++k) rep.free[k] = options.free[k];
 }
 
+/// Refuses (pkm::IoError) when one of the output files exists and not `force`.
+void checkOutputs(const CalibrationOutputs& paths, bool force) {
+  const io::Overwrite overwrite = force ? io::Overwrite::kAllow : io::Overwrite::kRefuse;
+  for (const std::string& p : {paths.machine, paths.hal, paths.summary, paths.pkmhexkins})
+    io::checkOverwrite(p, overwrite);
+}
+
 }  // namespace
 
 void HexapodCalibrationRequest::validate() const {
-  detail::checkCalibrationRequest(data, "calibration file", out, frame, loss, monte_carlo);
+  detail::checkCalibrationRequest(data, "calibration file", out, db, frame, loss, monte_carlo);
 }
 
 CalibrationOutputs calibrationOutputs(const std::string& out) {
@@ -168,12 +175,9 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   r.validate();
   io::HalReadOptions hal;
   if (!r.ini.empty()) hal.ini_path = r.ini;
-  const io::HexapodMachine machine = io::loadHexapodMachine(r.machine, hal);
+  const io::HexapodMachine machine = r.loaded ? *r.loaded : io::loadHexapodMachine(r.machine, hal);
   control.note(machine.notices);
-  const CalibrationOutputs paths = calibrationOutputs(r.out);
-  const io::Overwrite overwrite = r.force ? io::Overwrite::kAllow : io::Overwrite::kRefuse;
-  for (const std::string& p : {paths.machine, paths.hal, paths.summary, paths.pkmhexkins})
-    io::checkOverwrite(p, overwrite);
+  if (!r.out.empty()) checkOutputs(calibrationOutputs(r.out), r.force);
   io::CalibrationInput input, held;
   for (const io::NamedText& f : r.data) io::addCalibrationFile(f, input);
   for (const io::NamedText& f : r.holdout) io::addCalibrationFile(f, held);
@@ -225,15 +229,12 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   rep.tcp_before = cal::tcpErrorOverWorkspace(machine.model, result.calibrated.model, workspace);
   if (r.monte_carlo > 0)
     rep.monte_carlo = monteCarlo(r, model, input, s, workspace, options, control);
-  rep.out_machine = paths.machine;
-  rep.out_hal = paths.hal;
-  rep.out_summary = paths.summary;
-
   result.summary_json = io::hexapodCalibrationJson(rep);
-  io::writeFileAtomic(paths.machine, io::writeHexapodJson(result.calibrated), overwrite);
-  io::writeFileAtomic(paths.hal, io::writeLinuxcncSetp(result.calibrated), overwrite);
-  io::writeFileAtomic(paths.pkmhexkins, io::writePkmhexkinsSetp(result.calibrated), overwrite);
-  io::writeFileAtomic(paths.summary, result.summary_json, overwrite);
+  result.notices = machine.notices;
+  result.notices.insert(result.notices.end(), input.notes.begin(), input.notes.end());
+  if (r.out.empty()) return result;
+  writeHexapodCalibration(result, r.out, r.force);
+  const CalibrationOutputs paths = calibrationOutputs(r.out);
   if (!r.db.empty())
     recordCalibration(r.db,
                       {machine.model.name,
@@ -243,9 +244,23 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
                        result.summary_json,
                        std::string(toString(model.unit)),
                        {{"linuxcnc-hal", paths.hal}, {"machine-json", paths.machine}}});
-  result.notices = machine.notices;
-  result.notices.insert(result.notices.end(), input.notes.begin(), input.notes.end());
   return result;
+}
+
+void writeHexapodCalibration(HexapodCalibrationResult& result, const std::string& out, bool force) {
+  PKM_CHECK(!out.empty(), "give the calibrated machine file CAL.json");
+  const CalibrationOutputs paths = calibrationOutputs(out);
+  checkOutputs(paths, force);
+  io::HexapodCalibrationReport& rep = result.report;
+  rep.out_machine = paths.machine;
+  rep.out_hal = paths.hal;
+  rep.out_summary = paths.summary;
+  result.summary_json = io::hexapodCalibrationJson(rep);
+  const io::Overwrite overwrite = force ? io::Overwrite::kAllow : io::Overwrite::kRefuse;
+  io::writeFileAtomic(paths.machine, io::writeHexapodJson(result.calibrated), overwrite);
+  io::writeFileAtomic(paths.hal, io::writeLinuxcncSetp(result.calibrated), overwrite);
+  io::writeFileAtomic(paths.pkmhexkins, io::writePkmhexkinsSetp(result.calibrated), overwrite);
+  io::writeFileAtomic(paths.summary, result.summary_json, overwrite);
 }
 
 }  // namespace pkm::workflow

@@ -17,11 +17,13 @@ std::vector<std::string> inputNames(const std::vector<io::NamedText>& inputs) {
 void checkCalibrationRequest(const std::vector<io::NamedText>& data,
                              const std::string& data_what,
                              const std::string& out,
+                             const std::string& db,
                              const std::string& frame,
                              const std::string& loss,
                              int monte_carlo) {
   PKM_CHECK(!data.empty(), "--data: give at least one {}", data_what);
-  PKM_CHECK(!out.empty(), "--out: give the calibrated machine file CAL.json");
+  PKM_CHECK(db.empty() || !out.empty(),
+            "--db: a calibration record names the files written; give --out CAL.json too");
   PKM_CHECK(frame == "auto" || frame == "world" || frame == "tracker",
             "--frame must be auto, world or tracker, got '{}'",
             frame);

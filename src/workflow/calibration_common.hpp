@@ -16,11 +16,13 @@
 namespace pkm::workflow::detail {
 
 /// Throws pkm::InvalidArgument naming the option: no --data files (`data_what` says which files
-/// are wanted), no --out, a --frame other than auto/world/tracker, a --loss other than
-/// none/huber/cauchy, or a --monte-carlo count other than 0 or 2 … 100000.
+/// are wanted), a --db without --out (a record names the files written), a --frame other than
+/// auto/world/tracker, a --loss other than none/huber/cauchy, or a --monte-carlo count other than 0
+/// or 2 … 100000.
 void checkCalibrationRequest(const std::vector<io::NamedText>& data,
                              const std::string& data_what,
                              const std::string& out,
+                             const std::string& db,
                              const std::string& frame,
                              const std::string& loss,
                              int monte_carlo);

@@ -208,12 +208,12 @@ Json reportData(const std::string& name,
   return report;
 }
 
-/// summary.json, report-data.json, report.html.
-void writeCampaignFiles(const fs::path& out,
-                        const std::string& name,
-                        const std::string& source,
-                        const Json& spec,
-                        const std::vector<campaign::StepOutcome>& outcomes) {
+/// summary.json, report-data.json, report.html; returns summary.json's text.
+std::string writeCampaignFiles(const fs::path& out,
+                               const std::string& name,
+                               const std::string& source,
+                               const Json& spec,
+                               const std::vector<campaign::StepOutcome>& outcomes) {
   const std::string report_text = reportData(name, spec, outcomes).dump(1) + "\n";
   io::writeFileAtomic(out / "report-data.json", report_text, io::Overwrite::kAllow);
   io::writeFileAtomic(out / "report.html",
@@ -226,7 +226,9 @@ void writeCampaignFiles(const fs::path& out,
   sj["steps"] = Json::array();
   for (const campaign::StepOutcome& s : outcomes)
     sj["steps"].push_back({{"id", s.id}, {"title", s.title}, {"files", s.files}});
-  io::writeFileAtomic(out / "summary.json", sj.dump(2) + "\n", io::Overwrite::kAllow);
+  std::string summary = sj.dump(2) + "\n";
+  io::writeFileAtomic(out / "summary.json", summary, io::Overwrite::kAllow);
+  return summary;
 }
 
 /// Adds every step to the result store `db`.
@@ -289,7 +291,7 @@ CampaignResult runCampaign(const CampaignOptions& options, const RunControl& con
   for (std::size_t k = 0; k < n; ++k)
     outcomes.push_back(runStep(spec["steps"][k], k, n, source, options, base_dir, control, t0));
   control.checkCancelled();
-  writeCampaignFiles(options.out, result.name, source, spec, outcomes);
+  result.summary_json = writeCampaignFiles(options.out, result.name, source, spec, outcomes);
   if (!options.db.empty()) storeResults(options.db, options.out, result.name, outcomes);
   for (const campaign::StepOutcome& s : outcomes) {
     result.steps.push_back({s.id, s.title, s.rows, s.files});

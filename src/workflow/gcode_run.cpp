@@ -138,26 +138,37 @@ void GcodeRunRequest::validate() const {
   PKM_CHECK(max_points > 0, "--max-points must be > 0");
   refuseOverwrite(out, force);
   refuseOverwrite(report, force);
-  const bool exechon = io::machineTypeOf(machine) == "exechon";
-  if (!exechon && orientation != "vector")
+  if (hexapod && exechon)
+    throw InvalidArgument("give one loaded machine, not a hexapod and an Exechon");
+  const bool on_exechon = onExechon();
+  if (!on_exechon && orientation != "vector")
     throw InvalidArgument("--orientation applies to Exechon machines only");
-  if (exechon && (strut_diameter || !ini.empty()))
+  if (on_exechon && (strut_diameter || !ini.empty()))
     throw InvalidArgument("--strut-diameter and --ini apply to hexapods only");
   PKM_CHECK(!strut_diameter || (*strut_diameter > 0.0 && std::isfinite(*strut_diameter)),
             "--strut-diameter must be > 0");
   interpreter.validate();
 }
 
+bool GcodeRunRequest::onExechon() const {
+  if (hexapod || exechon) return exechon != nullptr;
+  return io::machineTypeOf(machine) == "exechon";
+}
+
 GcodeRunResult runGcode(const GcodeRunRequest& request, const RunControl& control) {
   request.validate();
-  const bool exechon = io::machineTypeOf(request.machine) == "exechon";
+  const bool exechon = request.onExechon();
   const detail::GcodeProgress progress(control);
   std::optional<io::HexapodMachine> hexapod;
-  if (!exechon) {
+  if (!exechon && request.hexapod) {
+    hexapod = *request.hexapod;
+  } else if (!exechon) {
     io::HalReadOptions hal;
     if (!request.ini.empty()) hal.ini_path = request.ini;
     hexapod = io::loadHexapodMachine(request.machine, hal);
     control.note(hexapod->notices);
+  }
+  if (hexapod) {
     if (!hexapod->startup_code.empty())
       control.note({fmt::format("{}: RS274NGC_STARTUP_CODE \"{}\" runs before the program",
                                 hexapod->startup_code_source,

@@ -169,8 +169,9 @@ void runExechon(const GcodeRunRequest& request,
                                         request.program.name,
                                         m.line,
                                         io::formatNumber(m.end[4])));
-  const io::ExechonMachine machine = io::loadExechonMachine(request.machine);
-  control.note(machine.notices);
+  const io::ExechonMachine machine =
+      request.exechon ? *request.exechon : io::loadExechonMachine(request.machine);
+  if (!request.exechon) control.note(machine.notices);
   auto model = std::make_shared<kinematics::ExechonModel>(machine.model);
   run.exechon = true;
   run.machine_name = model->name;

@@ -61,8 +61,10 @@ std::vector<ScenarioInfo> listScenarios() {
   return out;
 }
 
-SimulateResult simulateScenario(const std::string& spec, std::optional<std::uint64_t> seed_option) {
-  const io::Scenario scenario = io::loadScenario(spec);
+namespace {
+
+/// Every measurement of `scenario` simulated with `seed_option` (default: the scenario's seed).
+SimulateResult simulate(const io::Scenario& scenario, std::optional<std::uint64_t> seed_option) {
   SimulateResult result;
   result.scenario = scenario.campaign.name;
   const std::uint64_t seed = result.seed = seed_option.value_or(scenario.seed);
@@ -86,22 +88,37 @@ SimulateResult simulateScenario(const std::string& spec, std::optional<std::uint
   return result;
 }
 
-SimulateResult runSimulate(const SimulateOptions& options) {
-  options.validate();
-  // Simulate first, then check and write, so nothing is written for a failing scenario.
-  SimulateResult result = simulateScenario(options.scenario, options.seed);
-  const fs::path& dir = options.out;
+}  // namespace
+
+SimulateResult simulateScenario(const std::string& spec, std::optional<std::uint64_t> seed_option) {
+  return simulate(io::loadScenario(spec), seed_option);
+}
+
+SimulateResult simulateScenarioText(const io::NamedText& scenario,
+                                    std::optional<std::uint64_t> seed,
+                                    const std::string& base_dir) {
+  return simulate(io::parseScenarioJson(scenario.text, scenario.name, base_dir), seed);
+}
+
+void writeSimulation(const SimulateResult& result, const fs::path& dir, bool force) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir))
     throw IoError(fmt::format("{}: cannot create the directory", dir.string()));
-  if (!options.force)
+  if (!force)
     for (const SimulatedFile& f : result.files)
       if (fs::exists(dir / f.name, ec))
         throw IoError(fmt::format("{}: exists; refusing to overwrite (use --force)",
                                   (dir / f.name).string()));
   for (const SimulatedFile& f : result.files)
     io::writeFileAtomic(dir / f.name, f.text, io::Overwrite::kAllow);
+}
+
+SimulateResult runSimulate(const SimulateOptions& options) {
+  options.validate();
+  // Simulate first, then check and write, so nothing is written for a failing scenario.
+  SimulateResult result = simulateScenario(options.scenario, options.seed);
+  writeSimulation(result, options.out, options.force);
   return result;
 }
 

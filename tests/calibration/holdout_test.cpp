@@ -1,5 +1,6 @@
 // calibration::hexapodHoldoutErrors: zero on exact data, the known offset when every measurement
-// is displaced, measurements given in another frame, hysteresis removed, FK failures counted.
+// is displaced (each observation's error too), measurements given in another frame, hysteresis
+// removed, FK failures counted (NaN in the per-observation errors).
 #include "pkm/calibration/holdout.hpp"
 
 #include <gtest/gtest.h>
@@ -45,6 +46,8 @@ TEST(HexapodHoldoutErrors, ExactDataGiveZeroAndADisplacementGivesItself) {
   const Eigen::Vector3d shift(0.3, -0.4, 0.0);  // |shift| = 0.5
   for (PointObservation& o : held.points) o.point += shift;
   const HoldoutErrors shifted = hexapodHoldoutErrors(model, std::nullopt, held);
+  ASSERT_EQ(shifted.errors.size(), 20u);
+  for (const double d : shifted.errors) EXPECT_NEAR(d, 0.5, kTolRoundTrip);
   EXPECT_NEAR(shifted.rms, 0.5, kTolRoundTrip);
   EXPECT_NEAR(shifted.mean, 0.5, kTolRoundTrip);
   EXPECT_NEAR(shifted.max, 0.5, kTolRoundTrip);
@@ -82,6 +85,10 @@ TEST(HexapodHoldoutErrors, ReadingsWithoutASolutionAreCountedAsFailures) {
   EXPECT_EQ(e.poses, 19);
   EXPECT_EQ(e.failures, 1);
   EXPECT_LT(e.max, kTolRoundTrip);
+  // Per observation, in order, NaN where the FK failed.
+  ASSERT_EQ(e.errors.size(), 20u);
+  EXPECT_TRUE(std::isnan(e.errors[3]));
+  EXPECT_LT(e.errors[4], kTolRoundTrip);
 }
 
 TEST(HexapodHoldoutErrors, PosesCountWithTheirPositions) {

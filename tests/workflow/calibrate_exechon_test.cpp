@@ -82,6 +82,21 @@ TEST_F(CalibrateExechonWorkflow, HybridFilesGiveTheFourSquarenessErrors) {
   EXPECT_TRUE(fs::is_regular_file(dir_ / "hybrid.errors.json"));
 }
 
+TEST_F(CalibrateExechonWorkflow, WithoutOutWritesNothingAndWritesItLater) {
+  ExechonCalibrationRequest r;
+  r.data = {sim("tracker-hybrid.csv")};
+  r.errors = "mxt700s-seed000";
+  ExechonCalibrationResult result = calibrateExechon(r);
+  EXPECT_TRUE(result.written.empty());
+  EXPECT_FALSE(result.errors_json.empty());
+  writeExechonCalibration(result, (dir_ / "later.json").string(), false);
+  EXPECT_EQ(result.written.size(), 3u);
+  EXPECT_EQ(io::readFileText(dir_ / "later.summary.json"), result.summary_json);
+  EXPECT_EQ(io::readFileText(dir_ / "later.errors.json"), result.errors_json);
+  EXPECT_THAT(result.summary_json, HasSubstr("later.errors.json"));
+  EXPECT_THROW(writeExechonCalibration(result, (dir_ / "later.json").string(), false), IoError);
+}
+
 TEST_F(CalibrateExechonWorkflow, HybridDataNeedAHybridMachine) {
   ExechonCalibrationRequest r;
   r.machine = "exechon-zoppi2010";

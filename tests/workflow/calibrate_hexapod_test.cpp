@@ -88,6 +88,30 @@ TEST_F(CalibrateHexapodWorkflow, MeetsTheHeldOutTargetAndWritesItsFiles) {
   EXPECT_THAT(io::readFileText(dir_ / "cal.hal"), HasSubstr("setp"));
 }
 
+TEST_F(CalibrateHexapodWorkflow, WithoutOutWritesNothingAndWritesTheSameFilesLater) {
+  HexapodCalibrationRequest r = request("direct.json");
+  const HexapodCalibrationResult direct = calibrateHexapod(r);
+  r.out.clear();
+  HexapodCalibrationResult kept = calibrateHexapod(r);
+  EXPECT_TRUE(kept.report.out_machine.empty());
+  EXPECT_EQ(kept.summary_json, io::hexapodCalibrationJson(kept.report));
+  EXPECT_FALSE(fs::exists(dir_ / "later.json"));
+  writeHexapodCalibration(kept, (dir_ / "later.json").string(), false);
+  EXPECT_EQ(kept.report.out_machine, (dir_ / "later.json").string());
+  EXPECT_EQ(io::readFileText(dir_ / "later.summary.json"), kept.summary_json);
+  for (const char* suffix : {".json", ".hal", ".pkmhexkins.hal"})
+    EXPECT_EQ(io::readFileText(dir_ / (std::string("later") + suffix)),
+              io::readFileText(dir_ / (std::string("direct") + suffix)))
+        << suffix;
+  EXPECT_THROW(writeHexapodCalibration(kept, (dir_ / "later.json").string(), false), IoError);
+  // A machine already loaded is used as it is; a record needs the files it names.
+  r.loaded = direct.calibrated;
+  r.machine = "no-such-machine";
+  EXPECT_EQ(calibrateHexapod(r).report.machine, direct.calibrated.model.name);
+  r.db = (dir_ / "pkm.db").string();
+  EXPECT_THROW((void)calibrateHexapod(r), InvalidArgument);
+}
+
 TEST_F(CalibrateHexapodWorkflow, RefusesToOverwriteWithoutForce) {
   io::writeFileAtomic(dir_ / "mine.hal", "the user's HAL file", io::Overwrite::kAllow);
   try {

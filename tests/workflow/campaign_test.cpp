@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -86,6 +87,8 @@ TEST_F(CampaignWorkflow, OneStepCampaignMeetsItsTargetAndReportsProgressInOrder)
   for (const char* f : {"summary.json", "report-data.json", "report.html"})
     EXPECT_TRUE(fs::is_regular_file(o.out / f)) << f;
   EXPECT_EQ(r.report, fs::absolute(o.out / "report.html").lexically_normal());
+  std::ifstream summary(o.out / "summary.json", std::ios::binary);
+  EXPECT_EQ(r.summary_json, std::string(std::istreambuf_iterator<char>(summary), {}));
   EXPECT_FALSE(fs::exists("pkm.db"));  // no store unless asked
 
   ASSERT_GE(events.size(), 3u);

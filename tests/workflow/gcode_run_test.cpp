@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "pkm/core/error.hpp"
+#include "pkm/io/machine_loader.hpp"
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
@@ -120,6 +121,28 @@ TEST(GcodeRunWorkflow, FramesDrawTheMachineAlongThePath) {
   const GcodeRunResult er = runGcode(e);
   ASSERT_FALSE(er.frames.empty());
   EXPECT_EQ(er.frames[0].wrist_points.size(), er.frames[0].status == "ok" ? 1u : 0u);
+}
+
+TEST(GcodeRunWorkflow, AMachineLoadedByTheFrontEndIsUsedInsteadOfItsName) {
+  const std::string program = "G0 X0 Y0 Z200\nG1 X10 F600\nG1 X20\nM2\n";
+  const GcodeRunResult by_name = runGcode(request(program));
+  GcodeRunRequest q = request(program, "no-such-machine");
+  auto machine = std::make_shared<io::HexapodMachine>(io::loadHexapodMachine("hexapod-default"));
+  q.hexapod = machine;
+  const GcodeRunResult loaded = runGcode(q);
+  EXPECT_EQ(io::gcodeRunJson(loaded.report), io::gcodeRunJson(by_name.report));
+  // A changed geometry is what runs: a longer offset, a shorter reading.
+  q.path_points = 10;
+  const GcodeRunResult before = runGcode(q);
+  machine->model.struts[0].length_offset += 5.0;
+  const GcodeRunResult changed = runGcode(q);
+  ASSERT_FALSE(changed.path.q.empty());
+  EXPECT_NEAR(changed.path.q[0][0], before.path.q[0][0] - 5.0, 1e-9);
+  q.exechon = std::make_shared<io::ExechonMachine>(io::loadExechonMachine("mxt700s-like"));
+  EXPECT_THROW((void)runGcode(q), InvalidArgument);
+  q.hexapod = nullptr;
+  q.program = {"e.ngc", "G0 X0 Y0 Z0\nG1 X1 F100\n"};
+  EXPECT_EQ(runGcode(q).report.machine_type, "exechon");
 }
 
 TEST(GcodeRunWorkflow, AProgramNeedingTooManyPointsIsRefusedAtItsLine) {

@@ -80,5 +80,36 @@ TEST(SimulateWorkflow, ListsTheBuiltInScenarios) {
   }
 }
 
+TEST(SimulateWorkflow, AScenarioGivenAsTextGivesTheFilesOfItsFile) {
+  const SimulateResult a = simulateScenario("seed003-probe-offset", 7);
+  // scenario.json is the scenario with its seed: simulated again it gives the same files.
+  const SimulateResult b = simulateScenarioText({"mine.json", a.files.back().text}, std::nullopt);
+  EXPECT_EQ(b.seed, 7u);
+  ASSERT_EQ(a.files.size(), b.files.size());
+  for (std::size_t k = 0; k < a.files.size(); ++k) {
+    EXPECT_EQ(a.files[k].name, b.files[k].name);
+    EXPECT_EQ(a.files[k].text, b.files[k].text) << a.files[k].name;
+  }
+  try {
+    (void)simulateScenarioText(
+        {"mine.json", "{\n  \"type\": \"simulation_scenario\",\n  \"x\": 1\n}"}, std::nullopt);
+    FAIL() << "accepted an unknown key";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("mine.json:"));
+  }
+}
+
+TEST(SimulateWorkflow, WriteSimulationCreatesTheFolder) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("pkm_workflow_write_sim_" + std::to_string(::getpid())) / "a";
+  fs::remove_all(dir.parent_path());
+  const SimulateResult r = simulateScenario("seed003-probe-offset", std::nullopt);
+  writeSimulation(r, dir, false);
+  for (const SimulatedFile& f : r.files) EXPECT_EQ(slurp(dir / f.name), f.text) << f.name;
+  EXPECT_THROW(writeSimulation(r, dir, false), IoError);
+  writeSimulation(r, dir, true);
+  fs::remove_all(dir.parent_path());
+}
+
 }  // namespace
 }  // namespace pkm::workflow

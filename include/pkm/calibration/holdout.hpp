@@ -5,6 +5,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "pkm/calibration/exechon_calibration.hpp"
 #include "pkm/calibration/hexapod_calibration.hpp"
@@ -21,6 +22,9 @@ struct HoldoutErrors {
   double rms = 0.0;   ///< root mean square of |error|
   double max = 0.0;   ///< largest |error|
   double mean = 0.0;  ///< mean |error|
+  /// |error| of every observation in the order of the data (hexapod: poses, then points), NaN
+  /// where there is no prediction (FK failed, command unreachable): for plots of the errors.
+  std::vector<double> errors;
 };
 
 /// |FK(q) − measured| over the poses and points of `held` (their positions), FK from `model.home`.

@@ -22,11 +22,15 @@ namespace pkm::workflow {
 /// An Exechon calibration request.
 struct ExechonCalibrationRequest {
   std::string machine = "mxt700s-like";  ///< Exechon machine file or built-in name
+  /// A machine already loaded (a second front end's object): used instead of `machine` when set.
+  std::optional<io::ExechonMachine> loaded;
   /// Exechon and hybrid tracker files, read whole or uploaded (required).
   std::vector<io::NamedText> data;
   std::vector<io::NamedText> holdout;  ///< tracker files kept out of the fit
-  std::string out;                     ///< CAL.json; CAL.summary.json (and CAL.errors.json) beside
-  std::string frame = "auto";          ///< tracker readings: "auto", "world", "tracker"
+  /// CAL.json; CAL.summary.json (and CAL.errors.json) beside it. "" : nothing written (a front
+  /// end that keeps the result; writeExechonCalibration writes it later); needs `db` empty.
+  std::string out;
+  std::string frame = "auto";  ///< tracker readings: "auto", "world", "tracker"
   /// The tracker target in the tool frame; default the files' `smr offset mm`.
   std::optional<Eigen::Vector3d> target_offset;
   std::vector<std::string> fix;  ///< parameters held at their initial value (e.g. "tripod.hx")
@@ -51,18 +55,28 @@ struct ExechonCalibrationResult {
   io::ExechonCalibrationReport report;  ///< every figure (io::exechonCalibrationJson)
   std::string summary_json;             ///< the summary document, as written
   io::ExechonMachine calibrated;        ///< the calibrated machine, as written
-  std::vector<std::string> written;     ///< the files written, in order
+  /// With hybrid data: the estimated geometric errors (CAL.errors.json,
+  /// io::writeGeometricErrorsJson).
+  std::string errors_json;
+  std::vector<std::string> written;  ///< the files written, in order (none without request.out)
 };
 
 /// CAL.errors.json for `--out CAL.json`.
 [[nodiscard]] std::string calibrationErrorsOutput(const std::string& out);
 
-/// Runs the calibration and writes its files (atomically; refused when one exists unless
-/// `force`). Notices: the machine reader's and the data files' notes. Progress: Monte Carlo
-/// trials, cancellation checked after them. Throws pkm::IoError for unreadable files
-/// (FILE:LINE), pkm::InvalidArgument for a bad request, hybrid data without a hybrid machine, or a
-/// fit that does not explain the data or is implausible — in which case nothing is written.
+/// Runs the calibration and, with request.out, writes its files (writeExechonCalibration). Notices:
+/// the machine reader's and the data files' notes. Progress: Monte Carlo trials, cancellation
+/// checked after them. Throws pkm::IoError for unreadable files (FILE:LINE), pkm::InvalidArgument
+/// for a bad request, hybrid data without a hybrid machine, or a fit that does not explain the data
+/// or is implausible — in which case nothing is written.
 [[nodiscard]] ExechonCalibrationResult calibrateExechon(const ExechonCalibrationRequest& request,
                                                         const RunControl& control = {});
+
+/// Writes a calibration's files as `pkm calibrate exechon --out OUT` does: the calibrated machine
+/// OUT (io::writeExechonJson), CAL.errors.json with hybrid data, and the summary (its outputs set
+/// to these paths first: result.report.out_*, result.summary_json and result.written are
+/// updated). Atomic writes; throws pkm::IoError when a file exists and not `force` (checked for
+/// all before any is written) or cannot be written.
+void writeExechonCalibration(ExechonCalibrationResult& result, const std::string& out, bool force);
 
 }  // namespace pkm::workflow

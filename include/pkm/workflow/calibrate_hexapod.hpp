@@ -20,11 +20,15 @@ namespace pkm::workflow {
 /// A hexapod calibration request.
 struct HexapodCalibrationRequest {
   std::string machine = "default";  ///< machine file, LinuxCNC .hal, or built-in name
-  std::string ini;                  ///< the LinuxCNC INI of a .hal machine ("" : found from it)
+  /// A machine already loaded (a second front end's object): used instead of `machine` when set.
+  std::optional<io::HexapodMachine> loaded;
+  std::string ini;  ///< the LinuxCNC INI of a .hal machine ("" : found from it)
   /// Calibration files, read whole or uploaded (required; io::addCalibrationFile).
   std::vector<io::NamedText> data;
   std::vector<io::NamedText> holdout;  ///< tracker files kept out of the fit
-  std::string out;                     ///< CAL.json; CAL.hal and CAL.summary.json beside it
+  /// CAL.json; CAL.hal and CAL.summary.json beside it. "" : nothing written (a front end that
+  /// keeps the result; writeHexapodCalibration writes it later); needs `db` empty.
+  std::string out;
   std::string frame = "auto";  ///< tracker readings: "auto" (files' metadata), "world", "tracker"
   /// The tracker target in the tool frame; default the files' `smr offset mm`.
   std::optional<Eigen::Vector3d> target_offset;
@@ -63,12 +67,19 @@ struct CalibrationOutputs {
 };
 [[nodiscard]] CalibrationOutputs calibrationOutputs(const std::string& out);
 
-/// Runs the calibration and writes its files (atomically; refused when one exists unless
-/// `force`). Progress: Monte Carlo trials ("Monte Carlo N/M"), with cancellation checked between
-/// them. Throws pkm::IoError for unreadable files (FILE:LINE), pkm::InvalidArgument for a bad
-/// request, too few observations or a fit that does not explain the data
-/// (calibration::explainsData) — in which case nothing is written.
+/// Runs the calibration and, with request.out, writes its files (writeHexapodCalibration).
+/// Progress: Monte Carlo trials ("Monte Carlo N/M"), with cancellation checked between them. Throws
+/// pkm::IoError for unreadable files (FILE:LINE), pkm::InvalidArgument for a bad request, too few
+/// observations or a fit that does not explain the data (calibration::explainsData) — in which case
+/// nothing is written.
 [[nodiscard]] HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& request,
                                                         const RunControl& control = {});
+
+/// Writes a calibration's files as `pkm calibrate hexapod --out OUT` does: the calibrated machine
+/// OUT (io::writeHexapodJson), the genhexkins and pkmhexkins setp blocks and the summary (its
+/// outputs set to these paths first: result.report.out_* and result.summary_json are updated).
+/// Atomic writes; throws pkm::IoError when a file exists and not `force` (checked for all four
+/// before any is written) or cannot be written.
+void writeHexapodCalibration(HexapodCalibrationResult& result, const std::string& out, bool force);
 
 }  // namespace pkm::workflow

@@ -69,6 +69,8 @@ struct CampaignResult {
   bool all_pass = true;          ///< every target met
   double seconds = 0.0;          ///< wall-clock time of the run
   std::filesystem::path report;  ///< report.html, absolute
+  /// The text of summary.json (pkm.campaign-summary/1, docs/campaign.md), as written.
+  std::string summary_json;
 };
 
 /// A campaign's name, number of steps and description (`pkm campaign list`).

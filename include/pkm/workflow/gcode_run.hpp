@@ -6,11 +6,14 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "pkm/cnc/path_interpolation.hpp"
+#include "pkm/io/exechon_machine.hpp"
 #include "pkm/io/gcode_run_report.hpp"
+#include "pkm/io/hexapod_machine.hpp"
 #include "pkm/io/named_text.hpp"
 #include "pkm/workflow/gcode_interpreter.hpp"
 #include "pkm/workflow/pose_checks.hpp"
@@ -25,6 +28,10 @@ struct GcodeRunRequest {
   /// Hexapod or Exechon: machine file, LinuxCNC `.hal` (hexapod) or built-in name.
   std::string machine = "default";
   std::string ini;  ///< the LinuxCNC INI of a .hal machine ("" : found from it)
+  /// A machine the front end has already loaded (e.g. a Python pkm.Hexapod, possibly with a
+  /// changed geometry), used instead of `machine` and `ini`; at most one of the two is set.
+  std::shared_ptr<const io::HexapodMachine> hexapod;
+  std::shared_ptr<const io::ExechonMachine> exechon;
   /// Hexapod: the strut diameter for the interference check, machine unit (default: the machine
   /// file's; a LinuxCNC configuration has none, so the check is off without it). > 0.
   std::optional<double> strut_diameter;
@@ -54,9 +61,13 @@ struct GcodeRunRequest {
   /// Drawings of the machine along the path for an animation (GcodeRunResult::frames), evenly
   /// spaced in time (0: none).
   std::size_t frames = 0;
+  /// Whether the run is on an Exechon: `exechon` is set, or (without a loaded machine) `machine`
+  /// names one (io::machineTypeOf).
+  [[nodiscard]] bool onExechon() const;
   /// Throws pkm::InvalidArgument for a limit or tolerance that is not > 0 or an orientation for a
-  /// hexapod, pkm::IoError "PATH exists; pass --force to overwrite it" for an existing `out` or
-  /// `report` without `force`, and as GcodeInterpreterSettings::validate.
+  /// hexapod, for both loaded machines set, pkm::IoError "PATH exists; pass --force to overwrite
+  /// it" for an existing `out` or `report` without `force`, and as
+  /// GcodeInterpreterSettings::validate.
   void validate() const;
 };
 

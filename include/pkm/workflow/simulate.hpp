@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "pkm/io/named_text.hpp"
+
 namespace pkm::workflow {
 
 /// A simulation run.
@@ -50,6 +52,20 @@ struct ScenarioInfo {
 /// Throws pkm::IoError for a scenario that cannot be loaded (naming it and the line).
 [[nodiscard]] SimulateResult simulateScenario(const std::string& scenario,
                                               std::optional<std::uint64_t> seed);
+
+/// Simulates the scenario given as JSON text (a front end's document, e.g. a Python dict; the
+/// format of a scenario file, docs/formats.md "Scenario files"), named `scenario.name` in
+/// messages; relative file names in it (a hybrid machine's "machine" and "errors") are taken
+/// relative to `base_dir` where that file exists. Throws pkm::IoError "NAME:LINE: /pointer:
+/// message" for a bad scenario.
+[[nodiscard]] SimulateResult simulateScenarioText(const io::NamedText& scenario,
+                                                  std::optional<std::uint64_t> seed,
+                                                  const std::string& base_dir = {});
+
+/// Writes the files of `result` into `dir` (created), replacing existing files only with
+/// `force`. Throws pkm::IoError "DIR: cannot create the directory" and (without `force`, before
+/// anything is written) "PATH: exists; refusing to overwrite (use --force)".
+void writeSimulation(const SimulateResult& result, const std::filesystem::path& dir, bool force);
 
 /// Simulates, then writes the files into `options.out` (created). Nothing is written for a
 /// failing scenario, and (without `force`) nothing when any of the files exists: pkm::IoError
