@@ -6,6 +6,7 @@
 
 #include <cstdio>
 
+#include "analyze_common.hpp"
 #include "calibrate_common.hpp"
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
@@ -20,6 +21,7 @@ struct CalibrateArgs {
   std::vector<std::string> data, holdout;  ///< --data, --holdout paths (read into the request)
   std::vector<double> target_offset;
   bool json = false;
+  UncertaintyArgs uncertainty;  ///< --uncertainty FILE
 };
 
 /// The text summary of a hexapod calibration.
@@ -87,6 +89,7 @@ std::string calibrationText(const workflow::HexapodCalibrationRequest& r,
         a.p95,
         a.max);
   }
+  t += io::hexapodCalibrationUncertaintyText(rep);
   t += fmt::format("wrote {}, {}, {}\n", rep.out_machine, rep.out_hal, rep.out_summary);
   return t;
 }
@@ -97,6 +100,8 @@ void runCalibrate(CalibrateArgs args) {
     args.request.target_offset =
         Eigen::Vector3d(args.target_offset[0], args.target_offset[1], args.target_offset[2]);
   }
+  args.request.uncertainty = args.uncertainty.parsed();
+  args.request.uncertainty_name = args.uncertainty.file;
   args.request.data = io::readNamedTexts(args.data);
   args.request.holdout = io::readNamedTexts(args.holdout);
   CliRunControl run;
@@ -180,6 +185,12 @@ void addCalibrateCommand(CLI::App& app) {
                   args->request.measurement_sigma,
                   "residual sigma, machine unit, for --prior-sigma and the covariance (default: "
                   "estimated from the residuals)");
+  args->uncertainty.add(*hex);
+  hex->add_option("--uncertainty-trials",
+                  args->request.uncertainty_trials,
+                  "also propagate the budgets by Monte Carlo (GUM S1): re-fits on perturbed "
+                  "observations, adaptive, at most N (>= 20)")
+      ->check(CLI::Range(20, 100000));
   hex->add_flag("--backlash",
                 args->request.backlash,
                 "also estimate a per-strut backlash; approach directions follow from the row order "

@@ -2,11 +2,13 @@
 // (calibration/hexapod_budget.hpp).
 #include "pkm/calibration/hexapod_budget.hpp"
 
+#include <Eigen/QR>
 #include <cmath>
 #include <limits>
 
 #include "detail/hexapod_errors.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 
 namespace pkm::calibration {
@@ -196,23 +198,48 @@ HexapodParameterUncertainty hexapodParameterUncertainty(
 TcpUncertainty hexapodTcpUncertainty(const kinematics::HexapodModel& estimated,
                                      const Eigen::MatrixXd& covariance,
                                      const std::vector<kinematics::PoseRpy>& poses,
-                                     double coverage_factor) {
+                                     double coverage_factor,
+                                     bool align_rigid) {
   PKM_CHECK(covariance.rows() == kHexapodParameters && covariance.cols() == kHexapodParameters,
             "TCP uncertainty: the covariance must be 42 x 42, got {} x {}",
             covariance.rows(),
             covariance.cols());
   PKM_CHECK(coverage_factor > 0.0, "TCP uncertainty: the coverage factor must be > 0");
-  TcpUncertainty out;
+  // The stacked position Jacobian of the poses whose FK converges.
   kinematics::HexapodData work(estimated);
-  double sum = 0.0;
+  std::vector<Eigen::Matrix<double, 3, kHexapodParameters>> rows;
+  std::vector<Eigen::Vector3d> points;
+  std::vector<bool> ok;
   for (const kinematics::PoseRpy& pose : poses) {
     const kinematics::StrutVector q = kinematics::inverseKinematics(estimated, work, pose);
     PoseParameterJacobian J;
-    if (!forwardPoseError(estimated, work, q, pose, pose, &J)) {
+    ok.push_back(forwardPoseError(estimated, work, q, pose, pose, &J).has_value());
+    if (!ok.back()) continue;
+    rows.push_back(J.topRows<3>());
+    points.push_back(pose.position);
+  }
+  const auto n = static_cast<Eigen::Index>(rows.size());
+  Eigen::MatrixXd P(3 * n, kHexapodParameters);
+  for (Eigen::Index i = 0; i < n; ++i) P.middleRows<3>(3 * i) = rows[static_cast<std::size_t>(i)];
+  if (align_rigid && n >= 3) {
+    // Remove what a rigid motion δt + δω × p_i explains: P ← (I − R R⁺) P.
+    Eigen::MatrixXd R(3 * n, 6);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      R.block<3, 3>(3 * i, 0).setIdentity();
+      R.block<3, 3>(3 * i, 3) = -geometry::hat(points[static_cast<std::size_t>(i)]);
+    }
+    P -= R * R.completeOrthogonalDecomposition().solve(P);
+  }
+  TcpUncertainty out;
+  double sum = 0.0;
+  Eigen::Index k = 0;
+  for (const bool converged : ok) {
+    if (!converged) {
       out.expanded.push_back(std::numeric_limits<double>::quiet_NaN());
       continue;
     }
-    const double U = positionExpandedUncertainty(J.topRows<3>(), covariance, coverage_factor);
+    const double U =
+        positionExpandedUncertainty(P.middleRows<3>(3 * k++), covariance, coverage_factor);
     out.expanded.push_back(U);
     out.max = std::max(out.max, U);
     sum += U;

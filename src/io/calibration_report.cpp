@@ -65,12 +65,15 @@ ordered_json parametersJson(const HexapodCalibrationReport& r) {
 detail::CalibrationUncertaintyView uncertaintyView(const HexapodCalibrationReport& r,
                                                    const std::string& unit) {
   const HexapodCalibrationReport::Uncertainty& u = *r.uncertainty;
+  std::size_t parameters = 0;
+  for (const int k : u.parameters.parameter_indices) parameters += k >= 0 ? 1 : 0;
   return {u.sources,
           u.parameters.linear,
           u.monte_carlo ? &*u.monte_carlo : nullptr,
           u.tcp_poses,
           u.tcp,
-          unit};
+          unit,
+          parameters};
 }
 
 /// The members from "machine" to "residuals": what was fitted and how the solver did.

@@ -62,10 +62,10 @@ std::string calibrationUncertaintyText(const CalibrationUncertaintyView& v) {
                               budgets.front().coverage_factor,
                               v.sources);
   std::size_t widest = 0;
-  for (std::size_t k = 0; k < budgets.size(); ++k) {
+  for (std::size_t k = 0; k < std::min(budgets.size(), v.text_budgets); ++k) {
     const metrology::UncertaintyBudget& b = budgets[k];
     const auto largest = b.largestContributor();
-    t += fmt::format("  {:<10} {:.6f} ± {:.2g} {}\tlargest: {}\n",
+    t += fmt::format("  {:<12} {:.6f} ± {:.2g} {}\tlargest: {}\n",
                      b.quantity,
                      b.value,
                      b.expandedUncertainty(),

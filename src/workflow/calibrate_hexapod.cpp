@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "calibration_common.hpp"
+#include "calibration_uncertainty.hpp"
 #include "pkm/calibration/acceptance.hpp"
 #include "pkm/calibration/hexapod_calibration.hpp"
 #include "pkm/calibration/holdout.hpp"
@@ -108,6 +109,31 @@ io::HexapodCalibrationReport::MonteCarlo monteCarlo(const HexapodCalibrationRequ
   out.sigma_gauge = mc.gauge_sigma;
   control.checkCancelled();
   return out;
+}
+
+/// The budgets of the calibrated parameters and the predicted TCP uncertainty at the held-out
+/// configurations (or the workspace poses without held-out data).
+io::HexapodCalibrationReport::Uncertainty uncertainty(const HexapodCalibrationRequest& r,
+                                                      const kinematics::HexapodModel& model,
+                                                      const io::CalibrationInput& input,
+                                                      const io::CalibrationInput& held,
+                                                      const cal::HexapodCalibrationSummary& s,
+                                                      const std::vector<kinematics::PoseRpy>& ws,
+                                                      const cal::HexapodCalibrationOptions& options,
+                                                      const RunControl& control) {
+  detail::CalibrationUncertaintyRequest u;
+  u.sources = r.uncertainty;
+  if (!r.uncertainty_name.empty()) u.sources_name = r.uncertainty_name;
+  u.monte_carlo_trials = r.uncertainty_trials;
+  u.threads = r.threads;
+  const bool has_held = !held.data.poses.empty() || !held.data.points.empty();
+  const std::vector<kinematics::PoseRpy> check =
+      has_held
+          ? detail::checkPoses(
+                cal::withHexapodParameters(model, s.parameters), held.data, s.measurement_frame)
+          : ws;
+  return detail::hexapodCalibrationUncertainty(
+      model, input.data, s, options, u, check, has_held ? "held-out" : "workspace", control);
 }
 
 /// The held-out check: the nominal model with the frame fitted through it, against the
@@ -229,6 +255,7 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   rep.tcp_before = cal::tcpErrorOverWorkspace(machine.model, result.calibrated.model, workspace);
   if (r.monte_carlo > 0)
     rep.monte_carlo = monteCarlo(r, model, input, s, workspace, options, control);
+  rep.uncertainty = uncertainty(r, model, input, held, s, workspace, options, control);
   result.summary_json = io::hexapodCalibrationJson(rep);
   result.notices = machine.notices;
   result.notices.insert(result.notices.end(), input.notes.begin(), input.notes.end());

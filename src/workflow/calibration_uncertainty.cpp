@@ -65,8 +65,11 @@ io::HexapodCalibrationReport::Uncertainty hexapodCalibrationUncertainty(
   }
   const kinematics::HexapodModel estimated = cal::withHexapodParameters(initial, fit.parameters);
   u.tcp_poses = check_label;
-  u.tcp = cal::hexapodTcpUncertainty(
-      estimated, u.parameters.covariance, check, request.sources.coverage_factor);
+  u.tcp = cal::hexapodTcpUncertainty(estimated,
+                                     u.parameters.covariance,
+                                     check,
+                                     request.sources.coverage_factor,
+                                     fit.measurement_frame.has_value());
   return u;
 }
 

@@ -178,6 +178,71 @@ TEST_F(CalibrateCli, MonteCarloGivesTheWorkspaceTcpUncertainty) {
   EXPECT_LE(map["after"]["p95"].get<double>(), map["after"]["max"].get<double>());
 }
 
+TEST_F(CalibrateCli, ParametersCarryUWithTheirBudgetAndTheTcpItsPredictedU) {
+  const std::vector<std::string> base = {"calibrate",
+                                         "hexapod",
+                                         "--machine",
+                                         "hexapod-default",
+                                         "--data",
+                                         path("sim/tracker-pose.csv"),
+                                         "--holdout",
+                                         path("sim/tracker-holdout.csv"),
+                                         "--out",
+                                         path("cal.json"),
+                                         "--force"};
+  std::vector<std::string> args = base;
+  for (const char* a : {"--json", "--uncertainty-trials", "40", "--threads", "1"})
+    args.emplace_back(a);
+  const CliRun r = pkm(args);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& u = j["uncertainty"];
+  EXPECT_EQ(u["coverage_factor"], 2.0);
+  EXPECT_EQ(u["sources"], "typical datasheet values");
+  // Every parameter row keeps its keys and gains U; its budget lists the tracker and the probe.
+  for (const auto& p : j["parameters"]) {
+    ASSERT_TRUE(p.contains("sigma")) << p.dump();
+    const auto& b = u["parameters"][p["name"].get<std::string>()];
+    EXPECT_GT(p["U"].get<double>(), 0.0) << p.dump();
+    EXPECT_EQ(p["U"].get<double>(), b["U"].get<double>());
+    EXPECT_NEAR(b["U"].get<double>(), 2.0 * b["u_c"].get<double>(), 1e-12);
+    ASSERT_GE(b["budget"].size(), 2u) << b.dump();
+    for (const char* key : {"name", "value", "distribution", "sensitivity", "contribution"})
+      EXPECT_TRUE(b["budget"][0].contains(key)) << key;
+    // GUM S1 re-fits agree with the linear propagation (40 trials: each u within ±35 %).
+    EXPECT_NEAR(b["monte_carlo"]["U"].get<double>() / b["U"].get<double>(), 1.0, 0.35) << p["name"];
+  }
+  EXPECT_EQ(u["monte_carlo"]["trials"], 40);
+  EXPECT_TRUE(u["parameters"].contains("frame.x"));  // the tracker frame's unknowns too
+  // The predicted TCP uncertainty at the 50 held-out poses, rigid motion of the world removed:
+  // tens of µm with a typical tracker and 6-DOF probe, above the measured held-out error.
+  EXPECT_EQ(u["tcp"]["count"], 50);
+  EXPECT_GT(u["tcp"]["U_max"].get<double>(), j["holdout"]["after"]["max"].get<double>());
+  EXPECT_LT(u["tcp"]["U_max"].get<double>(), 0.1);
+  // Text: value ± U per parameter, the largest budget, the TCP line.
+  const CliRun t = pkm(base);
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_THAT(t.out, HasSubstr("calibrated parameters (k = 2; sources: typical datasheet values)"));
+  EXPECT_THAT(t.out, HasSubstr("  offset0      "));
+  EXPECT_THAT(t.out, HasSubstr("6-DOF probe orientation\t0.000175 rad\trectangular"));
+  EXPECT_THAT(t.out, HasSubstr("predicted TCP uncertainty after calibration (k = 2, 50 held-out"));
+  // A worse tracker widens U; a bad sources file stops with FILE:LINE and exit 2.
+  std::vector<std::string> worse = base;
+  for (const std::string& a : {std::string("--json"),
+                               std::string("--uncertainty"),
+                               write("tracker.json", R"({"tracker": {"accuracy_mm": 0.1}})")})
+    worse.push_back(a);
+  const auto w = nlohmann::json::parse(pkm(worse).out);
+  EXPECT_EQ(w["uncertainty"]["sources"].get<std::string>(), path("tracker.json"));
+  EXPECT_GT(w["parameters"][0]["U"].get<double>(), j["parameters"][0]["U"].get<double>());
+  std::vector<std::string> bad = base;
+  bad.push_back("--uncertainty");
+  bad.push_back(write("bad.json", "{\n  \"tracker\": {\"range\": 1}\n}\n"));
+  const CliRun b = pkm(bad);
+  EXPECT_EQ(b.code, 2);
+  EXPECT_THAT(b.err, HasSubstr("bad.json:2: /tracker/range: unknown key"));
+}
+
 TEST_F(CalibrateCli, DialGaugeCalibrationNamesWhatItCannotSee) {
   // Without prior information the fit wanders along the directions the gauges see only weakly
   // (platform joints moved by ~80 mm): refused, naming the remedy.

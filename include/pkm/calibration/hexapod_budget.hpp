@@ -105,11 +105,16 @@ struct TcpUncertainty {
 
 /// The uncertainty of the TCP position the calibrated controller reaches at each commanded pose:
 /// q = IK_estimated(X), J_tcp = ∂p_FK(q; θ)/∂θ (forwardPoseError's position rows) and Σ the
-/// 42 × 42 parameter covariance. Throws pkm::InvalidArgument for a covariance that is not
+/// 42 × 42 parameter covariance. With `align_rigid` (a calibration whose measurement frame was
+/// estimated: the data fix the machine only up to a rigid motion of the world), the stacked
+/// covariance of the TCP positions is first projected onto the complement of the rigid motions
+/// δt + δω × p_i of the poses (the linear counterpart of the rigid alignment in
+/// monteCarloHexapod), needs >= 3 poses. Throws pkm::InvalidArgument for a covariance that is not
 /// 42 × 42 or k <= 0.
 [[nodiscard]] TcpUncertainty hexapodTcpUncertainty(const kinematics::HexapodModel& estimated,
                                                    const Eigen::MatrixXd& covariance,
                                                    const std::vector<kinematics::PoseRpy>& poses,
-                                                   double coverage_factor = 2.0);
+                                                   double coverage_factor = 2.0,
+                                                   bool align_rigid = false);
 
 }  // namespace pkm::calibration

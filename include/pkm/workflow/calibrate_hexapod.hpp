@@ -13,6 +13,7 @@
 #include "pkm/io/calibration_report.hpp"
 #include "pkm/io/hexapod_machine.hpp"
 #include "pkm/io/named_text.hpp"
+#include "pkm/metrology/uncertainty_sources.hpp"
 #include "pkm/workflow/progress.hpp"
 
 namespace pkm::workflow {
@@ -48,6 +49,13 @@ struct HexapodCalibrationRequest {
   double sigma_gauge = 0.0;             ///< Monte Carlo gauge noise (0: the fitted σ)
   int threads = 0;                      ///< Monte Carlo worker threads (0: all cores)
   std::string db;                       ///< result store to record the calibration in ("" : none)
+  /// Instruments of the uncertainty budgets (`--uncertainty FILE`; default: typical datasheet
+  /// values; docs/calibration.md, "Uncertainty budgets").
+  metrology::UncertaintySources uncertainty;
+  std::string uncertainty_name;  ///< the sources file's name ("" : the typical values)
+  /// GUM Supplement 1 Monte Carlo of the budgets: the adaptive procedure's trial limit (0: the
+  /// linear budgets only; else >= 20).
+  int uncertainty_trials = 0;
   /// Throws pkm::InvalidArgument naming the option for an unusable setting.
   void validate() const;
 };

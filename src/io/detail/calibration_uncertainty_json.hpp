@@ -19,6 +19,9 @@ struct CalibrationUncertaintyView {
   const std::string& tcp_poses;                            ///< "held-out" or "workspace"
   const calibration::TcpUncertainty& tcp;                  ///< the predicted TCP U
   const std::string& unit;                                 ///< the machine's length unit
+  /// How many budgets, from the first, the text lists (the machine's parameters; the frame and
+  /// backlash unknowns after them are in the JSON only).
+  std::size_t text_budgets = 0;
 };
 
 /// {"coverage_factor", "sources", "residual_sigma", "instrument_sigma", "fit_sigma",
