@@ -13,7 +13,7 @@ from ._pkm import (  # noqa: F401
     builtin_machines,
     load_machine,
 )
-from . import metrology  # noqa: E402,F401
+from . import calibration, metrology  # noqa: E402,F401
 
 __all__ = [
     "ConvergenceError",
@@ -21,6 +21,7 @@ __all__ = [
     "Hexapod",
     "LimitError",
     "builtin_machines",
+    "calibration",
     "load_machine",
     "metrology",
 ]

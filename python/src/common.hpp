@@ -53,5 +53,6 @@ void exposeMachines(py::module_& m);
 void exposeHexapod(py::module_& m);
 void exposeExechon(py::module_& m);
 void exposeMetrology(py::module_& m);
+void exposeCalibration(py::module_& m);
 
 }  // namespace pkm::python

@@ -12,4 +12,5 @@ PYBIND11_MODULE(_pkm, m) {
   p::exposeHexapod(m);
   p::exposeExechon(m);
   p::exposeMetrology(m);
+  p::exposeCalibration(m);
 }

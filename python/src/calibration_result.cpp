@@ -1,0 +1,342 @@
+// pkm.calibration.CalibrationResult (calibration.hpp): a calibration workflow's result as
+// attributes (numpy arrays of the fit, the members of the summary document), the calibrated
+// machine as a pkm.Hexapod / pkm.Exechon, to_dict() = the summary document the command line prints
+// with --json, and save() = the files `--out` writes.
+#include <pybind11/stl.h>
+
+#include <array>
+#include <optional>
+#include <string_view>
+
+#include "calibration.hpp"
+#include "machines.hpp"
+#include "pkm/calibration/exechon_parameters.hpp"
+#include "pkm/calibration/hexapod_calibration.hpp"
+#include "pkm/calibration/hexapod_parameters.hpp"
+#include "pkm/calibration/hybrid_calibration.hpp"
+
+namespace pkm::python {
+namespace {
+
+namespace cal = pkm::calibration;
+
+py::array_t<double> vectorArray(const double* v, Eigen::Index n) {
+  py::array_t<double> out = newArray(n);
+  std::copy(v, v + n, out.mutable_data());
+  return out;
+}
+
+py::array_t<double> matrixArray(const Eigen::MatrixXd& m) {
+  py::array_t<double> out = newArray(m.rows(), m.cols());
+  double* p = out.mutable_data();
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.cols(); ++j) p[i * m.cols() + j] = m(i, j);
+  return out;
+}
+
+py::array namesArray(const std::vector<std::string>& names) {
+  return statusArray(std::vector<std::string_view>(names.begin(), names.end()));
+}
+
+/// holdout_errors_before / _after: |error| per held-out observation (NaN: no prediction).
+template <class Holdout>
+void addHoldoutErrors(py::dict& a, const std::optional<Holdout>& h) {
+  const auto errors = [](const calibration::HoldoutErrors& e) -> py::object {
+    return vectorArray(e.errors.data(), static_cast<Eigen::Index>(e.errors.size()));
+  };
+  a["holdout_errors_before"] = h ? errors(h->before) : py::none();
+  a["holdout_errors_after"] = h ? errors(h->after) : py::none();
+}
+
+py::object member(const py::dict& doc, const char* key) {
+  return doc.contains(key) ? py::object(doc[key]) : py::object(py::none());
+}
+
+/// The attributes a least-squares fit has (hexapod, Exechon tripod): `names` are the parameter
+/// names, `columns` the identifiability columns, `covariance_names` the covariance's rows.
+template <class Summary, std::size_t N>
+void addFit(py::dict& a,
+            const Summary& s,
+            const py::dict& doc,
+            const std::vector<std::string>& names,
+            const std::array<bool, N>& free,
+            const std::vector<std::string>& columns,
+            const std::vector<std::string>& covariance_names) {
+  const auto n = static_cast<Eigen::Index>(names.size());
+  a["parameter_names"] = namesArray(names);
+  a["initial"] = vectorArray(s.initial.data(), n);
+  a["parameters"] = vectorArray(s.parameters.data(), n);
+  a["change"] = vectorArray(Eigen::VectorXd(s.parameters - s.initial).data(), n);
+  a["standard_deviation"] = vectorArray(s.standard_deviation.data(), n);
+  py::array_t<bool> f(static_cast<py::ssize_t>(N));
+  std::copy(free.begin(), free.end(), f.mutable_data());
+  a["free"] = f;
+  a["covariance"] = matrixArray(s.covariance);
+  a["covariance_names"] = namesArray(covariance_names);
+  a["sigma"] = s.sigma;
+  a["converged"] = s.converged;
+  a["iterations"] = s.iterations;
+  a["termination"] = s.termination;
+  const cal::Identifiability& id = s.identifiability;
+  a["rank"] = id.rank;
+  a["condition_number"] = id.condition_number;
+  py::dict ident = py::dict(doc["identifiability"]);
+  ident["equations"] = id.equations;
+  ident["names"] = namesArray(columns);
+  ident["singular_values"] = vectorArray(id.singular_values.data(), id.singular_values.size());
+  ident["null_space"] = matrixArray(id.null_space);
+  a["identifiability"] = ident;
+  a["residuals_before"] = doc["residuals"]["before"];
+  a["residuals_after"] = doc["residuals"]["after"];
+  a["holdout"] = member(doc, "holdout");
+  a["measurement_frame"] =
+      s.measurement_frame ? py::object(matrixArray(s.measurement_frame->matrix())) : py::none();
+  a["frame_sigma"] = s.measurement_frame
+                         ? py::object(vectorArray(s.frame_standard_deviation.data(), 6))
+                         : py::none();
+  a["worst_observations"] = doc["worst_observations"];
+  a["tcp_error_map"] = member(doc, "tcp_error_map");
+  a["monte_carlo"] = member(doc, "monte_carlo");
+}
+
+/// The fit attributes as None (an Exechon calibration from hybrid data only).
+void addNoFit(py::dict& a) {
+  for (const char* key : {"parameter_names",
+                          "initial",
+                          "parameters",
+                          "change",
+                          "standard_deviation",
+                          "free",
+                          "covariance",
+                          "covariance_names",
+                          "sigma",
+                          "converged",
+                          "iterations",
+                          "termination",
+                          "rank",
+                          "condition_number",
+                          "identifiability",
+                          "residuals_before",
+                          "residuals_after",
+                          "holdout",
+                          "measurement_frame",
+                          "frame_sigma",
+                          "worst_observations",
+                          "tcp_error_map",
+                          "monte_carlo"})
+    a[key] = py::none();
+}
+
+std::vector<std::string> hexapodNames() {
+  std::vector<std::string> names;
+  for (int k = 0; k < cal::kHexapodParameters; ++k) names.push_back(cal::hexapodParameterName(k));
+  return names;
+}
+
+std::vector<std::string> exechonNames(int unknowns) {
+  std::vector<std::string> names;
+  for (int k = 0; k < unknowns; ++k)
+    names.push_back(
+        k < cal::kExechonParameters
+            ? cal::exechonParameterName(k)
+            : cal::measurementFrameNames()[static_cast<std::size_t>(k - cal::kExechonParameters)]);
+  return names;
+}
+
+/// The hybrid squareness attributes (None without hybrid data).
+void addHybrid(py::dict& a, const workflow::ExechonCalibrationResult& r, const py::dict& doc) {
+  if (!r.report.hybrid) {
+    for (const char* key :
+         {"squareness", "squareness_names", "squareness_sigma", "hybrid", "geometric_errors"})
+      a[key] = py::none();
+    return;
+  }
+  const cal::HybridCalibrationSummary& s = r.report.hybrid->fit;
+  const Eigen::Vector4d q(
+      s.squareness.sz_x2, s.squareness.sx_p, s.squareness.sy_p, s.squareness.sz_p);
+  a["squareness"] = vectorArray(q.data(), 4);
+  a["squareness_names"] = namesArray(cal::hybridSquarenessNames());
+  a["squareness_sigma"] = vectorArray(s.standard_deviation.data(), 4);
+  a["hybrid"] = doc["hybrid"];
+  a["geometric_errors"] = jsonLoads(r.errors_json);
+}
+
+}  // namespace
+
+const std::string& CalibrationResult::summaryJson() const {
+  return std::visit([](const auto& r) -> const std::string& { return r.summary_json; }, *result);
+}
+
+CalibrationResult hexapodResult(workflow::HexapodCalibrationResult result) {
+  CalibrationResult out{"hexapod", {}, {}};
+  const py::dict doc = jsonLoads(result.summary_json);
+  const cal::HexapodCalibrationSummary& s = result.report.fit;
+  std::vector<std::string> columns;
+  for (const int k : s.free_indices) columns.push_back(cal::hexapodParameterName(k));
+  if (s.measurement_frame)
+    columns.insert(
+        columns.end(), cal::measurementFrameNames().begin(), cal::measurementFrameNames().end());
+  if (s.backlash)
+    columns.insert(columns.end(), cal::backlashNames().begin(), cal::backlashNames().end());
+  const std::vector<std::string> names = hexapodNames();
+  addFit(out.attributes, s, doc, names, result.report.free, columns, names);
+  py::dict& a = out.attributes;
+  a["backlash"] = s.backlash ? py::object(vectorArray(s.backlash->data(), 6)) : py::none();
+  a["backlash_sigma"] =
+      s.backlash ? py::object(vectorArray(s.backlash_standard_deviation.data(), 6)) : py::none();
+  a["observations"] = doc["observations"];
+  a["target_offset"] = vectorArray(result.report.target_offset.data(), 3);
+  addHoldoutErrors(a, result.report.holdout);
+  a["notices"] = result.notices;
+  a["machine"] = py::cast(Hexapod{std::make_shared<const io::HexapodMachine>(result.calibrated)});
+  out.result = std::make_shared<decltype(out.result)::element_type>(std::move(result));
+  return out;
+}
+
+CalibrationResult exechonResult(workflow::ExechonCalibrationResult result) {
+  CalibrationResult out{"exechon", {}, {}};
+  const py::dict doc = jsonLoads(result.summary_json);
+  py::dict& a = out.attributes;
+  if (result.report.tripod) {
+    const io::ExechonTripodReport& t = *result.report.tripod;
+    std::vector<std::string> columns;
+    for (const int k : t.fit.free_indices) columns.push_back(exechonNames(k + 1).back());
+    addFit(a,
+           t.fit,
+           doc,
+           exechonNames(cal::kExechonParameters),
+           t.free,
+           columns,
+           exechonNames(static_cast<int>(t.fit.covariance.rows())));
+    a["observations"] = doc["observations"];
+    a["target_offset"] = vectorArray(t.target_offset.data(), 3);
+    addHoldoutErrors(a, t.holdout);
+  } else {
+    addNoFit(a);
+    addHoldoutErrors(a, std::optional<io::HoldoutComparison>());
+    a["observations"] = py::none();
+    a["target_offset"] = py::none();
+  }
+  addHybrid(a, result, doc);
+  a["machine"] = py::cast(Exechon{std::make_shared<const io::ExechonMachine>(result.calibrated)});
+  out.result = std::make_shared<decltype(out.result)::element_type>(std::move(result));
+  return out;
+}
+
+void exposeCalibrationResult(py::module_& m) {
+  py::class_<CalibrationResult>(m, "CalibrationResult", R"doc(The result of a calibration.
+
+Attributes (lengths in the machine's unit, angles in rad unless the name says deg):
+
+machine : Hexapod or Exechon
+    The calibrated machine, usable at once (ik, fk, check).
+parameter_names, initial, parameters, change, standard_deviation, free : ndarray
+    The kinematic parameters (42 for a hexapod: per strut the base joint bx, by, bz, the
+    platform joint px, py, pz and the length offset; 26 for an Exechon), in the order of the
+    summary document's "parameters"; `free` is False for parameters held (`fix`).
+covariance : ndarray
+    The estimate's covariance (hexapod 42 x 42; Exechon 26 x 26, or 32 x 32 with the tracker
+    frame), rows named by `covariance_names`; zero rows and columns for fixed parameters.
+sigma : float
+    The residual standard deviation the covariance uses.
+rank, condition_number : int, float
+    Identifiability of the free unknowns (with the tracker frame and backlash when fitted).
+identifiability : dict
+    parameters, equations, rank, condition_number, unidentifiable (one {name: coefficient}
+    dict per direction the data cannot see), names (the columns), singular_values and
+    null_space (columns x unidentifiable directions) as arrays.
+residuals_before, residuals_after : dict
+    equations, rms, max, fk_failures of the fitted data before and after.
+holdout : dict or None
+    The held-out errors before and after ("before"/"after": poses, fk_failures, mean, rms, max).
+holdout_errors_before, holdout_errors_after : ndarray or None
+    |error| of each held-out observation (TCP or target position, length unit), in the order
+    of the held-out data (hexapod: poses, then points); NaN where the FK did not converge.
+    Before: the nominal machine (with its own fitted tracker frame); after: the calibrated one.
+converged, iterations, termination : bool, int, str
+    How the solver stopped.
+measurement_frame : ndarray (4, 4) or None
+    world_T_tracker, estimated when the readings are in the tracker's frame; frame_sigma its
+    standard deviations (dx, dy, dz, rx, ry, rz; world axes).
+worst_observations, tcp_error_map, monte_carlo, observations, target_offset
+    As in the summary document.
+backlash, backlash_sigma : ndarray (6,) or None
+    Hexapod, with backlash=True: the per-strut backlash.
+squareness, squareness_names, squareness_sigma, hybrid, geometric_errors
+    Exechon with hybrid data: szX2, sxP, syP, szP (rad), the hybrid fit's summary and the
+    estimated geometric errors document (CAL.errors.json); None otherwise.
+)doc")
+      .def_readonly("kind", &CalibrationResult::kind, "'hexapod' or 'exechon'.")
+      .def("__getattr__",
+           [](const CalibrationResult& r, const std::string& name) -> py::object {
+             if (!r.attributes.contains(name))
+               throw py::attribute_error("CalibrationResult has no attribute '" + name + "'");
+             return r.attributes[py::str(name)];
+           })
+      .def("__dir__",
+           [](const CalibrationResult& r) {
+             py::list names;
+             for (auto item : r.attributes) names.append(item.first);
+             for (const char* s : {"kind", "to_dict", "to_json", "save"}) names.append(s);
+             return names;
+           })
+      .def(
+          "to_dict",
+          [](const CalibrationResult& r) { return jsonLoads(r.summaryJson()); },
+          "The summary document as dicts and lists: what `pkm calibrate KIND --json` prints "
+          "(its `outputs` name the files once save() wrote them).")
+      .def(
+          "to_json",
+          [](const CalibrationResult& r) { return r.summaryJson(); },
+          "The summary document as text, byte for byte what the command line writes.")
+      .def(
+          "save",
+          [](CalibrationResult& r, const py::object& out, bool force) {
+            const std::string path = py::str(py::module_::import("os").attr("fspath")(out));
+            std::vector<std::string> written;
+            {
+              py::gil_scoped_release release;
+              std::visit(
+                  [&](auto& res) {
+                    using T = std::decay_t<decltype(res)>;
+                    if constexpr (std::is_same_v<T, workflow::HexapodCalibrationResult>) {
+                      workflow::writeHexapodCalibration(res, path, force);
+                      const workflow::CalibrationOutputs o = workflow::calibrationOutputs(path);
+                      written = {o.machine, o.hal, o.pkmhexkins, o.summary};
+                    } else {
+                      workflow::writeExechonCalibration(res, path, force);
+                      written = res.written;
+                    }
+                  },
+                  *r.result);
+            }
+            return written;
+          },
+          py::arg("out"),
+          py::arg("force") = false,
+          R"doc(Writes the files `pkm calibrate KIND --out OUT` writes.
+
+Hexapod: OUT (the calibrated machine JSON), OUT.hal (genhexkins setp block),
+OUT.pkmhexkins.hal and OUT.summary.json (OUT without .json as the stem). Exechon: OUT,
+OUT.summary.json and with hybrid data OUT.errors.json. The summary's "outputs" name them.
+
+Returns
+-------
+list of str
+    The paths written.
+
+Raises
+------
+ValueError
+    When a file exists and not `force` (nothing is written then), or cannot be written.)doc")
+      .def("__repr__", [](const CalibrationResult& r) {
+        const py::dict& a = r.attributes;
+        if (a["rank"].is_none())
+          return std::string("<pkm.calibration.CalibrationResult exechon (hybrid)>");
+        return py::str("<pkm.calibration.CalibrationResult {}: rank {}, residual RMS {} -> {}>")
+            .format(r.kind, a["rank"], a["residuals_before"]["rms"], a["residuals_after"]["rms"])
+            .cast<std::string>();
+      });
+}
+
+}  // namespace pkm::python

@@ -1,0 +1,365 @@
+"""pkm.calibration against the pkm program: hexapod and Exechon calibration from files and from
+arrays give the summary `pkm calibrate ... --json` prints (same numbers), the calibrated machine
+file it writes, and the numbers of its text summary to the printed precision; a round trip on
+simulated data with a known truth recovers the geometry within the reported uncertainty; pose
+planning equals `pkm plan-poses`; bad input raises ValueError with pkm's message and
+ConvergenceError only on request. The seed 004 example runs headless."""
+
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import pkm
+from conftest import REPO, column, parse_csv
+
+POSE = ["l0", "l1", "l2", "l3", "l4", "l5", "x", "y", "z", "a", "b", "c"]
+GAUGE = ["station", "x_mm", "y_mm", "z_mm", "a_deg", "b_deg", "c_deg", "l0_mm", "l1_mm",
+         "l2_mm", "l3_mm", "l4_mm", "l5_mm", "g0_mm", "g1_mm", "g2_mm"]
+EXECHON = ["q0", "q1", "q2", "c", "a", "x", "y", "z"]
+HYBRID = ["x2", "y2", "xp", "yp", "zp", "x", "y", "z"]
+
+
+def read_table(path, columns):
+    """A simulator file as (metadata dict, (N, len(columns)) array), numbers parsed exactly."""
+    meta, lines = {}, []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#"):
+                key, _, value = line[1:].partition(":")
+                meta[key.strip()] = value.strip()
+            elif line.strip():
+                lines.append(line)
+    rows = parse_csv("".join(lines))
+    return meta, np.column_stack([column(rows, c) for c in columns])
+
+
+def vector(text):
+    """'(x, y, z)' as an array."""
+    return np.array([float(v) for v in text.strip("()").split(",")])
+
+
+def without(doc, *keys):
+    """The summary without members that differ between runs or name the inputs."""
+    doc = json.loads(json.dumps(doc))
+    for part in [doc] + ([doc["hybrid"]] if "hybrid" in doc else []):
+        if "solver" in part:
+            part["solver"].pop("seconds", None)
+        for key in keys:
+            part.pop(key, None)
+    return doc
+
+
+@pytest.fixture(scope="module")
+def s4(run_cli, tmp_path_factory):
+    out = tmp_path_factory.mktemp("s4") / "sim"
+    run_cli(["simulate", "seed004-hexapod-calibration", "--out", str(out)])
+    return out
+
+
+@pytest.fixture(scope="module")
+def ex(run_cli, tmp_path_factory):
+    out = tmp_path_factory.mktemp("ex") / "sim"
+    run_cli(["simulate", "exechon-calibration", "--out", str(out)])
+    return out
+
+
+# --- hexapod -------------------------------------------------------------------------------
+
+
+def test_hexapod_from_files_equals_the_cli(run_cli, s4, tmp_path):
+    pose, hold = str(s4 / "tracker-pose.csv"), str(s4 / "tracker-holdout.csv")
+    cli = json.loads(run_cli(["calibrate", "hexapod", "--machine", "hexapod-default", "--data",
+                              pose, "--holdout", hold, "--out", str(tmp_path / "cli.json"),
+                              "--json"]).stdout)
+    r = pkm.calibration.hexapod("hexapod-default", files=[pose], holdout=[hold])
+    assert r.to_dict()["outputs"] == {"machine": "", "hal": "", "summary": ""}
+    written = r.save(tmp_path / "py.json")
+    assert written == [str(tmp_path / n) for n in
+                       ("py.json", "py.hal", "py.pkmhexkins.hal", "py.summary.json")]
+    assert without(r.to_dict(), "outputs") == without(cli, "outputs")
+    assert r.to_dict()["outputs"]["machine"] == str(tmp_path / "py.json")
+    with open(tmp_path / "py.summary.json") as f:
+        assert f.read() == r.to_json()
+    for suffix in (".json", ".hal", ".pkmhexkins.hal"):
+        with open(tmp_path / ("py" + suffix)) as a, open(tmp_path / ("cli" + suffix)) as b:
+            assert a.read() == b.read(), suffix
+    with pytest.raises(ValueError, match="exists"):
+        r.save(tmp_path / "py.json")
+    r.save(tmp_path / "py.json", force=True)
+
+
+def test_hexapod_from_arrays_equals_the_files(run_cli, s4, tmp_path):
+    meta, poses = read_table(s4 / "tracker-pose.csv", POSE)
+    _, held = read_table(s4 / "tracker-holdout.csv", POSE)
+    cli = run_cli(["calibrate", "hexapod", "--machine", "hexapod-default", "--data",
+                   str(s4 / "tracker-pose.csv"), "--holdout", str(s4 / "tracker-holdout.csv"),
+                   "--out", str(tmp_path / "cli.json")])
+    r = pkm.calibration.hexapod("hexapod-default", poses=poses, holdout=held, frame="tracker",
+                                target_offset=vector(meta["smr offset mm"]))
+    with open(tmp_path / "cli.summary.json") as f:
+        doc = json.load(f)
+    same = ("data", "worst_observations", "outputs")
+    assert without(r.to_dict(), *same) == without(doc, *same)
+    assert [w["residual"] for w in r.worst_observations] == \
+        [w["residual"] for w in doc["worst_observations"]]
+    assert r.worst_observations[0]["source"].startswith("poses:")
+    # The text summary's numbers, to its printed precision.
+    text = cli.stdout
+    m = re.search(r"held-out TCP error: RMS (\S+) -> (\S+), max (\S+) -> (\S+)", text)
+    h = r.holdout
+    assert m.groups() == tuple(f"{v:.6g}" for v in (h["before"]["rms"], h["after"]["rms"],
+                                                     h["before"]["max"], h["after"]["max"]))
+    m = re.search(r"identifiable: (\d+) of (\d+) unknowns \(condition number (\S+)\)", text)
+    assert m.groups() == (str(r.rank), str(r.identifiability["parameters"]),
+                          f"{r.condition_number:.4g}")
+    assert text.count("not identifiable:") == len(r.identifiability["unidentifiable"])
+    m = re.search(r"fitted residuals \(mm\): RMS (\S+) -> (\S+), max", text)
+    assert m.groups() == (f"{r.residuals_before['rms']:.6g}", f"{r.residuals_after['rms']:.6g}")
+
+
+def test_hexapod_result_attributes(s4, tmp_path):
+    r = pkm.calibration.hexapod("hexapod-default", files=[str(s4 / "tracker-pose.csv")],
+                                holdout=[str(s4 / "tracker-holdout.csv")])
+    doc = r.to_dict()
+    params = doc["parameters"]
+    assert list(r.parameter_names) == [p["name"] for p in params]
+    assert np.array_equal(r.parameters, [p["estimate"] for p in params])
+    assert np.array_equal(r.initial, [p["initial"] for p in params])
+    assert np.array_equal(r.standard_deviation, [p["sigma"] for p in params])
+    assert np.array_equal(r.free, [p["free"] for p in params])
+    assert r.covariance.shape == (42, 42)
+    assert np.allclose(np.sqrt(np.diag(r.covariance)), r.standard_deviation, rtol=1e-12)
+    assert r.rank == doc["identifiability"]["rank"] == 42
+    ident = r.identifiability
+    assert ident["parameters"] == 48 and list(ident["names"][-6:]) == [
+        "frame.x", "frame.y", "frame.z", "frame.rx", "frame.ry", "frame.rz"]
+    assert ident["null_space"].shape == (48, 6) and len(ident["singular_values"]) == 48
+    assert r.residuals_after == doc["residuals"]["after"]
+    assert r.converged and r.iterations == doc["solver"]["iterations"]
+    assert r.measurement_frame.shape == (4, 4) and r.frame_sigma.shape == (6,)
+    assert np.allclose(r.measurement_frame[:3, 3], doc["measurement_frame"]["position"])
+    # Per held-out pose errors agree with the summary's statistics.
+    for key in ("before", "after"):
+        e = getattr(r, "holdout_errors_" + key)
+        assert len(e) == 50
+        assert math.isclose(np.sqrt(np.mean(e ** 2)), r.holdout[key]["rms"], rel_tol=1e-12)
+        assert math.isclose(e.max(), r.holdout[key]["max"], rel_tol=1e-15)
+    assert r.backlash is None and r.backlash_sigma is None
+    assert any("200 poses" in n for n in r.notices)
+    # The calibrated machine is usable at once and is the file save() writes.
+    assert isinstance(r.machine, pkm.Hexapod)
+    assert r.machine.name == "pkm-hx1200-calibrated"
+    home = np.array([0, 0, 200, 0, 0, 0.0])
+    assert np.allclose(r.machine.fk(r.machine.ik(home))[0], home, atol=1e-9)
+    p = r.parameters.reshape(6, 7)
+    assert np.array_equal(r.machine.base_joints, p[:, :3])
+    assert np.array_equal(r.machine.platform_joints, p[:, 3:6])
+    assert np.array_equal(r.machine.length_offsets, p[:, 6])
+    r.save(tmp_path / "cal.json")
+    assert np.array_equal(pkm.load_machine(tmp_path / "cal.json").ik(home), r.machine.ik(home))
+    assert "rank 42" in repr(r) and "to_dict" in dir(r)
+
+
+def test_hexapod_gauges_from_arrays_equal_the_file_and_convergence_is_raised_on_request(run_cli,
+                                                                                       s4):
+    path = str(s4 / "constrained-motion.csv")
+    meta, gauges = read_table(path, GAUGE)
+    tips = np.array([vector(t) for t in re.findall(r"\([^)]*\)", meta["gauge points mm"])])
+    cli = json.loads(run_cli(["calibrate", "hexapod", "--machine", "hexapod-default", "--data",
+                              path, "--out", "/nonexistent-dir/none.json",
+                              "--allow-large-changes", "--json"], check=False).stdout or "{}")
+    r = pkm.calibration.hexapod("hexapod-default", gauges=gauges, gauge_points=tips,
+                                allow_large_changes=True)
+    assert not r.converged and r.iterations == 100
+    assert r.observations["constrained_sets"] == 1 and r.observations["equations"] == 72
+    f = pkm.calibration.hexapod("hexapod-default", files=path, allow_large_changes=True)
+    same = ("data", "worst_observations", "outputs")
+    assert without(r.to_dict(), *same) == without(f.to_dict(), *same)
+    if cli:  # the program refuses to write into a missing folder before fitting
+        assert without(cli, *same) == without(f.to_dict(), *same)
+    with pytest.raises(pkm.ConvergenceError, match="did not converge after 100 iterations"):
+        pkm.calibration.hexapod("hexapod-default", gauges=gauges, gauge_points=tips,
+                                allow_large_changes=True, raise_on_failure=True)
+    with pytest.raises(ValueError, match="implausibly far"):
+        pkm.calibration.hexapod("hexapod-default", gauges=gauges, gauge_points=tips)
+
+
+def random_poses(n, seed):
+    rng = np.random.default_rng(seed)
+    lo = np.array([-150, -150, 150, -8, -8, -15.0])
+    return lo + (-2 * lo * [1, 1, 0, 1, 1, 1] + [0, 0, 100, 0, 0, 0]) * rng.random((n, 6))
+
+
+def test_round_trip_recovers_a_known_geometry():
+    nominal = pkm.load_machine("hexapod-default")
+    rng = np.random.default_rng(4)
+    truth = nominal.with_geometry(
+        base_joints=nominal.base_joints + rng.normal(0, 1.0, (6, 3)),
+        platform_joints=nominal.platform_joints + rng.normal(0, 1.0, (6, 3)),
+        length_offsets=nominal.length_offsets + rng.normal(0, 1.0, 6))
+    poses = random_poses(150, 1)
+    readings = truth.ik(poses)
+    exact = pkm.calibration.hexapod(nominal, poses=np.hstack([readings, poses]), frame="world")
+    assert exact.rank == 42
+    true = np.hstack([truth.base_joints, truth.platform_joints,
+                      truth.length_offsets[:, None]]).ravel()
+    assert np.max(np.abs(exact.parameters - true)) < 1e-6
+    # 5 µm position and 10 µrad orientation noise: within 4 σ of the reported uncertainty.
+    noisy = poses.copy()
+    noisy[:, :3] += rng.normal(0, 0.005, (150, 3))
+    noisy[:, 3:] += np.degrees(rng.normal(0, 10e-6, (150, 3)))
+    r = pkm.calibration.hexapod(nominal, poses=np.hstack([readings, noisy]), frame="world",
+                                holdout=np.hstack([truth.ik(random_poses(30, 2)),
+                                                   random_poses(30, 2)]))
+    z = np.abs(r.parameters - true) / r.standard_deviation
+    assert np.count_nonzero(z < 4) >= 40, z
+    assert r.holdout["after"]["rms"] < 0.02 < r.holdout["before"]["rms"]
+
+
+def test_hexapod_errors_raise_value_error_with_pkms_message(s4, tmp_path):
+    _, poses = read_table(s4 / "tracker-pose.csv", POSE)
+    cal = pkm.calibration.hexapod
+    with pytest.raises(ValueError, match=r"poses: expected an array of shape \(N, 12\)"):
+        cal("hexapod-default", poses=poses[:, :11], frame="tracker")
+    bad = poses.copy()
+    bad[3, 7] = np.nan
+    with pytest.raises(ValueError, match="poses.*row 3.*not a finite number"):
+        cal("hexapod-default", poses=bad, frame="tracker")
+    with pytest.raises(ValueError, match="too few observations: 3 poses"):
+        cal("hexapod-default", poses=poses[:3], frame="world")
+    with pytest.raises(ValueError, match="do not state their frame"):
+        cal("hexapod-default", poses=poses)
+    with pytest.raises(ValueError, match="nosuch"):
+        cal("hexapod-default", poses=poses, frame="tracker", fix=["nosuch"])
+    with pytest.raises(ValueError, match="--loss must be none, huber or cauchy"):
+        cal("hexapod-default", poses=poses, frame="tracker", loss="l1")
+    with pytest.raises(ValueError, match="no-such-machine"):
+        cal("no-such-machine", poses=poses, frame="tracker")
+    with pytest.raises(ValueError, match="gauge_points"):
+        cal("hexapod-default", gauges=np.zeros((3, 16)))
+    with pytest.raises(ValueError, match="--data: give at least one"):
+        cal("hexapod-default")
+    with pytest.raises(ValueError, match="--db"):
+        cal("hexapod-default", poses=poses, frame="tracker", db=tmp_path / "pkm.db")
+    with pytest.raises(ValueError, match="target_offset"):
+        cal("hexapod-default", poses=poses, frame="tracker", target_offset=[1, 2])
+    with pytest.raises(ValueError, match="no-such-file"):
+        cal("hexapod-default", files=[str(tmp_path / "no-such-file.csv")])
+
+
+# --- Exechon -------------------------------------------------------------------------------
+
+
+def test_exechon_from_files_and_arrays_equals_the_cli(run_cli, ex, tmp_path):
+    fit, hybrid = str(ex / "tracker-fit.csv"), str(ex / "tracker-hybrid.csv")
+    hold, hhold = str(ex / "tracker-holdout.csv"), str(ex / "tracker-hybrid-holdout.csv")
+    cli = json.loads(run_cli(["calibrate", "exechon", "--machine", "mxt700s-like", "--data", fit,
+                              hybrid, "--holdout", hold, hhold, "--errors", "mxt700s-seed000",
+                              "--out", str(tmp_path / "cli.json"), "--json"]).stdout)
+    r = pkm.calibration.exechon("mxt700s-like", files=[fit, hybrid], holdout=[hold, hhold],
+                                errors="mxt700s-seed000")
+    r.save(tmp_path / "py.json")
+    assert without(r.to_dict(), "outputs") == without(cli, "outputs")
+    for suffix in (".json", ".errors.json"):
+        with open(tmp_path / ("py" + suffix)) as a, open(tmp_path / ("cli" + suffix)) as b:
+            assert a.read() == b.read(), suffix
+    meta, points = read_table(fit, EXECHON)
+    hmeta, hybrid_rows = read_table(hybrid, HYBRID)
+    arrays = pkm.calibration.exechon(
+        "mxt700s-like", points=points, hybrid=hybrid_rows,
+        holdout=read_table(hold, EXECHON)[1], hybrid_holdout=read_table(hhold, HYBRID)[1],
+        errors="mxt700s-seed000", frame="tracker", target_offset=vector(meta["smr offset mm"]),
+        hybrid_target_offset=vector(hmeta["smr offset mm"]))
+    same = ("data", "worst_observations", "outputs")
+    assert without(arrays.to_dict(), *same) == without(cli, *same)
+    # Attributes.
+    assert isinstance(r.machine, pkm.Exechon)
+    assert list(r.squareness_names) == ["szX2", "sxP", "syP", "szP"]
+    assert np.array_equal(r.squareness, list(cli["hybrid"]["squareness"].values()))
+    assert np.array_equal(r.parameters, [p["estimate"] for p in cli["parameters"]])
+    assert r.covariance.shape == (32, 32) and list(r.covariance_names[-1:]) == ["frame.rz"]
+    assert r.rank == cli["identifiability"]["rank"]
+    assert len(r.holdout_errors_after) == cli["holdout"]["after"]["poses"]
+    assert r.geometric_errors is not None
+    assert without(r.to_dict())["hybrid"] == without(cli)["hybrid"] == without({"hybrid": r.hybrid})["hybrid"]
+
+
+def test_exechon_errors(ex):
+    _, points = read_table(ex / "tracker-fit.csv", EXECHON)
+    with pytest.raises(ValueError, match=r"points: expected an array of shape \(N, 8\)"):
+        pkm.calibration.exechon(points=points[:, :7], frame="tracker")
+    with pytest.raises(ValueError, match="hybrid"):
+        pkm.calibration.exechon("exechon-zoppi2010", hybrid=points, frame="tracker")
+    with pytest.raises(ValueError, match="nosuch"):
+        pkm.calibration.exechon(points=points, frame="tracker", fix=["nosuch"])
+
+
+# --- pose planning -------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("machine,args", [("hexapod-default", []),
+                                          ("hexapod-default", ["--measurement", "point"]),
+                                          ("mxt700s-like", ["--target-offset", "40,0,0"])])
+def test_plan_poses_equals_the_cli(run_cli, tmp_path, machine, args):
+    cli = run_cli(["plan-poses", "--machine", machine, "--count", "16", "--candidates", "120",
+                   "--seed", "3", "--gcode", str(tmp_path / "cli.ngc"), *args]).stdout
+    kw = {}
+    if "--measurement" in args:
+        kw["measurement"] = "point"
+    if "--target-offset" in args:
+        kw["target_offset"] = [40, 0, 0]
+    plan = pkm.calibration.plan_poses(machine, count=16, candidates=120, seed=3,
+                                      gcode=tmp_path / "py.ngc", **kw)
+    assert plan.csv == cli
+    with open(tmp_path / "cli.ngc") as a:
+        assert plan.gcode == a.read()
+    rows = parse_csv(cli)
+    names = ["x", "y", "z", "a", "b", "c"] if plan.kind == "hexapod" else \
+        ["x", "y", "z", "i", "j", "k"]
+    assert np.array_equal(plan.poses, np.column_stack([column(rows, n) for n in names]))
+    doc = plan.to_dict()
+    assert plan.rank == doc["rank"] and len(plan.chosen) == 16 and len(plan.indices) == 5
+    assert plan.index_value >= plan.random_baseline
+    if plan.kind == "exechon":
+        assert plan.moves.shape == (17, 5)
+    with pytest.raises(ValueError, match="exists"):
+        pkm.calibration.plan_poses(machine, count=16, candidates=120, gcode=tmp_path / "py.ngc")
+
+
+def test_plan_poses_errors():
+    with pytest.raises(ValueError, match="candidates"):
+        pkm.calibration.plan_poses(count=10, candidates=5)
+    with pytest.raises(ValueError):
+        pkm.calibration.plan_poses(index="O9")
+
+
+# --- the seed 004 example ------------------------------------------------------------------
+
+
+def run_example(out_dir, *args):
+    p = subprocess.run([sys.executable, os.path.join(REPO, "examples", "python",
+                                                     "calibrate_hexapod.py"), str(out_dir), *args],
+                       capture_output=True, text=True, env=dict(os.environ, MPLBACKEND="Agg"))
+    assert p.returncode == 0, p.stderr
+    return p.stdout
+
+
+def test_calibrate_hexapod_example(s4, tmp_path):
+    out = run_example(tmp_path, "--data", str(s4))
+    assert "held-out TCP error (50 poses)" in out and "calibrated machine written" in out
+    m = re.search(r"positioning error (\S+) mm with the nominal controller, (\S+) mm calibrated",
+                  out)
+    assert float(m.group(1)) > 10 and float(m.group(2)) < 0.5  # seed 004: 12 mm -> < 0.5 mm
+    assert os.path.exists(tmp_path / "seed004-calibrated.json")
+
+
+@pytest.mark.skipif(not hasattr(pkm, "simulate"), reason="pkm.simulate is not bound")
+def test_calibrate_hexapod_example_simulates_in_python(s4, tmp_path):
+    # The same scenario and seed as `pkm simulate`: the same numbers.
+    assert run_example(tmp_path / "py") == run_example(tmp_path / "py", "--data", str(s4))
