@@ -6,22 +6,35 @@ degrees, LinuxCNC roll-pitch-yaw poses x, y, z, a, b, c). See docs/python.md.
 """
 
 from ._pkm import (  # noqa: F401
+    CampaignSummary,
     ConvergenceError,
     Exechon,
     Hexapod,
     LimitError,
+    Simulation,
     builtin_machines,
+    campaigns,
     load_machine,
+    run_campaign,
+    scenarios,
+    simulate,
 )
-from . import calibration, metrology  # noqa: E402,F401
+from . import calibration, gcode, metrology  # noqa: E402,F401
 
 __all__ = [
+    "CampaignSummary",
     "ConvergenceError",
     "Exechon",
     "Hexapod",
     "LimitError",
+    "Simulation",
     "builtin_machines",
     "calibration",
+    "campaigns",
+    "gcode",
     "load_machine",
     "metrology",
+    "run_campaign",
+    "scenarios",
+    "simulate",
 ]

@@ -1,5 +1,6 @@
 // The extension module pkm._pkm (docs/python.md): each area registers its bindings.
 #include "common.hpp"
+#include "simulation.hpp"
 
 PYBIND11_MODULE(_pkm, m) {
   m.doc() =
@@ -13,4 +14,7 @@ PYBIND11_MODULE(_pkm, m) {
   p::exposeExechon(m);
   p::exposeMetrology(m);
   p::exposeCalibration(m);
+  p::exposeSimulation(m);
+  p::exposeCampaign(m);
+  p::exposeGcode(m);
 }

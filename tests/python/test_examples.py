@@ -27,3 +27,8 @@ def test_fit_circle(run_cli, tmp_path):
 def test_hexapod_path(tmp_path):
     out = run_example("hexapod_path.py", str(tmp_path))
     assert "FK round trip" in out
+
+
+def test_gcode_struts(tmp_path):
+    out = run_example("gcode_struts.py", str(tmp_path))
+    assert "result: all checks pass" in out and "strut lengths" in out

@@ -1,0 +1,167 @@
+"""pkm.gcode.moves and pkm.gcode.run against `pkm gcode moves|run` on the same program: the moves
+CSV, the joint CSV (--out) and the report (--report), bounded memory, errors."""
+
+import json
+import os
+
+import numpy as np
+import pytest
+
+import pkm
+
+from conftest import REPO, column, parse_csv
+
+GCODE = os.path.join(REPO, "examples", "gcode")
+HEXAPOD_PROGRAM = os.path.join(GCODE, "hexapod_contour.ngc")
+EXECHON_PROGRAM = os.path.join(GCODE, "exechon_contour.ngc")
+AXES = ["x", "y", "z", "a", "b", "c"]
+
+
+@pytest.mark.parametrize("program,tools", [("drilling.ngc", None), ("pocket_loops.ngc", None),
+                                           ("sphere.ngc", "tools.tbl")])
+def test_moves_equal_cli(run_cli, program, tools):
+    path = os.path.join(GCODE, program)
+    options = ["--tool-table", os.path.join(GCODE, tools)] if tools else []
+    out = run_cli(["gcode", "moves", path, *options])
+    m = pkm.gcode.moves(path, tool_table=os.path.join(GCODE, tools) if tools else None)
+    assert m.csv == out.stdout
+    assert m.note in out.stderr
+    rows = parse_csv(out.stdout)
+    assert len(m) == len(rows) == len(m.line)
+    np.testing.assert_array_equal(m.line, [int(r["line"]) for r in rows])
+    assert m.line.dtype == np.int64
+    assert list(m.kind) == [r["kind"] for r in rows]
+    assert list(m.plane) == [r["plane"] for r in rows]
+    np.testing.assert_array_equal(m.position, np.column_stack([column(rows, k) for k in AXES]))
+    np.testing.assert_array_equal(m.center,
+                                  np.column_stack([column(rows, k) for k in ("cx", "cy", "cz")]))
+    np.testing.assert_array_equal(m.turns, column(rows, "turns"))
+    np.testing.assert_array_equal(m.feed, column(rows, "feed"))
+    assert np.isnan(m.feed[m.kind == "rapid"]).all()
+
+
+def test_moves_from_text_and_options(run_cli, tmp_path):
+    text = "G10 L2 P1 X100\nG0 X1 Y2\nG2 X11 Y2 I5 J0 F300\nM2\n"
+    m = pkm.gcode.moves(text)
+    assert list(m.kind) == ["rapid", "arc"]
+    np.testing.assert_array_equal(m.center[1], [106, 2, np.nan])
+    assert m.turns[1] == -1 and m.ended_by_m2 and m.lines == 4
+    tools = os.path.join(GCODE, "tools.tbl")
+    prog = tmp_path / "tool.ngc"
+    prog.write_text("T1 M6\nG43\nG0 X0 Y0 Z0\n/G0 X5\nM2\n")
+    cli = run_cli(["gcode", "moves", str(prog), "--tool-table", tools, "--block-delete"])
+    mine = pkm.gcode.moves(str(prog), tool_table=tools, block_delete=True)
+    assert mine.csv == cli.stdout and len(mine) == 1
+
+
+def test_bad_program_line_raises_with_the_line(run_cli, tmp_path):
+    bad = tmp_path / "bad.ngc"
+    bad.write_text("G0 X0\nG1 X1 F100\nG1 X2 Q\n")
+    p = run_cli(["gcode", "moves", str(bad)], check=False)
+    assert p.returncode == 2
+    with pytest.raises(ValueError, match=r"bad\.ngc:3: ") as e:
+        pkm.gcode.moves(bad)
+    assert str(e.value) in p.stderr
+    with pytest.raises(ValueError, match=r"^upload:3: "):
+        pkm.gcode.moves(bad.read_text(), name="upload")
+    with pytest.raises(ValueError, match=r"^program:3: "):
+        pkm.gcode.run("hexapod-default", bad.read_text())
+    with pytest.raises(ValueError, match="cannot open"):
+        pkm.gcode.moves(tmp_path / "missing.ngc")
+    with pytest.raises(ValueError, match="tool-units"):
+        pkm.gcode.moves("G0 X1\n", tool_units="furlong")
+
+
+def joint_csv_and_report(run_cli, tmp_path, program, *args):
+    joints, report = tmp_path / "j.csv", tmp_path / "r.json"
+    p = run_cli(["gcode", "run", program, "--out", str(joints), "--report", str(report), *args],
+                check=False)
+    assert p.returncode in (0, 1), p.stderr
+    return p, parse_csv(joints.read_text()), json.loads(report.read_text())
+
+
+@pytest.mark.parametrize("machine,program,joints", [
+    ("hexapod-default", HEXAPOD_PROGRAM, [f"q{i}" for i in range(6)]),
+    ("mxt700s-like", EXECHON_PROGRAM, ["q0", "q1", "q2", "wrist_c", "wrist_a"]),
+])
+def test_run_equals_cli(run_cli, tmp_path, machine, program, joints):
+    p, rows, report = joint_csv_and_report(run_cli, tmp_path, program, "--machine", machine)
+    r = pkm.gcode.run(machine, program)
+    assert r.report == report
+    assert r.text == p.stdout and str(r) == p.stdout
+    assert r.ok == report["ok"] and r.total_points == report["points"] == len(rows)
+    np.testing.assert_array_equal(r.t, column(rows, "t"))
+    np.testing.assert_array_equal(r.line, [int(x["line"]) for x in rows])
+    np.testing.assert_array_equal(r.pose, np.column_stack([column(rows, k) for k in AXES]))
+    np.testing.assert_array_equal(r.joints, np.column_stack([column(rows, k) for k in joints]))
+    np.testing.assert_array_equal(r.index, np.arange(len(rows)))
+    assert len(r.joint_names) == len(joints) == len(r.joint_units)
+
+
+def test_run_on_loaded_machines_and_options(run_cli, tmp_path):
+    _, _, report = joint_csv_and_report(run_cli, tmp_path, HEXAPOD_PROGRAM, "--tolerance", "0.05",
+                                        "--max-joint-velocity", "150", "--strut-diameter", "40")
+    hexapod = pkm.load_machine("hexapod-default")
+    r = pkm.gcode.run(hexapod, HEXAPOD_PROGRAM, tolerance=0.05, max_joint_velocity=150,
+                      strut_diameter=40)
+    assert r.report == report
+    # A changed geometry is what runs (longer struts: other stroke margins).
+    longer = hexapod.with_geometry(length_offsets=hexapod.length_offsets + 5)
+    changed = pkm.gcode.run(longer, HEXAPOD_PROGRAM)
+    assert not np.array_equal(changed.joints, pkm.gcode.run(hexapod, HEXAPOD_PROGRAM).joints)
+    exechon = pkm.load_machine("mxt700s-like")
+    assert pkm.gcode.run(exechon, EXECHON_PROGRAM).report["machine_type"] == "exechon"
+
+
+def test_run_writes_the_cli_files(run_cli, tmp_path):
+    joints, report = tmp_path / "cli.csv", tmp_path / "cli.json"
+    run_cli(["gcode", "run", HEXAPOD_PROGRAM, "--out", str(joints), "--report", str(report)])
+    pkm.gcode.run("hexapod-default", HEXAPOD_PROGRAM, out=tmp_path / "j.csv",
+                  report=tmp_path / "r.json")
+    assert (tmp_path / "j.csv").read_bytes() == joints.read_bytes()
+    assert (tmp_path / "r.json").read_bytes() == report.read_bytes()
+    with pytest.raises(ValueError, match="exists; pass --force"):
+        pkm.gcode.run("hexapod-default", HEXAPOD_PROGRAM, out=tmp_path / "j.csv")
+
+
+def test_decimated_path_keeps_the_ends():
+    full = pkm.gcode.run("hexapod-default", HEXAPOD_PROGRAM)
+    r = pkm.gcode.run("hexapod-default", HEXAPOD_PROGRAM, path_points=20)
+    assert 20 <= len(r.t) < len(full.t)
+    assert r.index[0] == 0 and r.index[-1] == full.total_points - 1
+    np.testing.assert_array_equal(r.joints, full.joints[r.index])
+    np.testing.assert_array_equal(r.t, full.t[r.index])
+    assert r.report == full.report  # the checks see every point
+    none = pkm.gcode.run("hexapod-default", HEXAPOD_PROGRAM, path_points=0)
+    assert none.joints.shape == (0, 0) and none.total_points == 0
+
+
+def test_point_limit_bounds_memory(run_cli, tmp_path):
+    program = tmp_path / "helix.ngc"
+    program.write_text("G0 X0 Y0 Z200\nG1 X10 F600\nG2 X10 Y0 I-10 J0 Z150 P100000000\n")
+    p = run_cli(["gcode", "run", str(program), "--max-points", "1000"], check=False)
+    assert p.returncode == 2
+    with pytest.raises(ValueError, match=r"helix\.ngc:3: .*--max-points") as e:
+        pkm.gcode.run("hexapod-default", program, max_points=1000)
+    assert str(e.value) in p.stderr
+    with pytest.raises(ValueError, match="--max-points"):
+        pkm.gcode.run("hexapod-default", program)  # the default limit, refused quickly
+
+
+def test_violations_and_errors(run_cli, tmp_path):
+    program = "G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\n"
+    r = pkm.gcode.run("hexapod-default", program)
+    assert not r.ok and r.report["checks"]["stroke"]["violations"] > 0
+    assert r.report["checks"]["stroke"]["first_violation"]["line"] == 3
+    with pytest.raises(pkm.LimitError, match=r"program:3: stroke violated"):
+        pkm.gcode.run("hexapod-default", program, raise_on_violation=True)
+    with pytest.raises(ValueError, match="no-such-machine"):
+        pkm.gcode.run("no-such-machine", program)
+    with pytest.raises(ValueError, match="--orientation applies to Exechon"):
+        pkm.gcode.run("hexapod-default", program, orientation="axes")
+    with pytest.raises(ValueError, match="--tolerance must be > 0"):
+        pkm.gcode.run("hexapod-default", program, tolerance=-1)
+    with pytest.raises(ValueError, match="B.*Exechon has no B axis"):
+        pkm.gcode.run("mxt700s-like", "G0 X0 Y0 Z50\nG1 B5 F100\n")
+    with pytest.raises(ValueError, match="no motion"):
+        pkm.gcode.run("hexapod-default", "G21\nM2\n")
