@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common.hpp"
+#include "paths.hpp"
 #include "pkm/core/error.hpp"
 #include "simulation.hpp"
 
@@ -78,12 +79,11 @@ CampaignSummary runCampaign(const py::object& campaign,
                             bool force,
                             const py::object& db,
                             const py::object& progress) {
-  const py::module_ os = py::module_::import("os");
   workflow::CampaignOptions o;
-  o.campaign = py::str(os.attr("fspath")(campaign));
-  o.out = py::str(os.attr("fspath")(out)).cast<std::string>();
+  o.campaign = pathOf(campaign, "campaign");
+  o.out = pathOf(out, "out");
   o.force = force;
-  if (!db.is_none()) o.db = py::str(os.attr("fspath")(db));
+  if (!db.is_none()) o.db = pathOf(db, "db");
   PythonProgress watcher{progress, {}, py::none()};
   workflow::RunControl control;
   control.progress = [&watcher](const workflow::ProgressEvent& e) { watcher(e); };

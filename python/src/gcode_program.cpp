@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include "paths.hpp"
 #include "pkm/cnc/program.hpp"
 
 namespace pkm::python {
@@ -21,13 +22,9 @@ bool hasProgramExtension(std::string_view s) {
 
 }  // namespace
 
-std::string pathOf(py::handle obj) {
-  return py::str(py::module_::import("os").attr("fspath")(obj));
-}
-
 io::NamedText programOf(py::handle obj, const std::optional<std::string>& name) {
   bool file = !py::isinstance<py::str>(obj);
-  const std::string s = pathOf(obj);
+  const std::string s = pathOf(obj, "program (a file or the program's text)");
   if (!file && s.find('\n') == std::string::npos) {
     std::error_code ec;
     file = hasProgramExtension(s) || std::filesystem::is_regular_file(s, ec);
@@ -41,7 +38,7 @@ workflow::GcodeInterpreterSettings interpreterOf(const py::object& tool_table,
                                                  bool block_delete,
                                                  std::uint64_t max_iterations) {
   workflow::GcodeInterpreterSettings s;
-  if (!tool_table.is_none()) s.tool_table = pathOf(tool_table);
+  if (!tool_table.is_none()) s.tool_table = pathOf(tool_table, "tool_table");
   s.tool_units = tool_units;
   s.block_delete = block_delete;
   s.max_iterations = max_iterations;

@@ -16,7 +16,8 @@ namespace pkm::python {
 /// The program `obj`: an os.PathLike is a file; a str is the program's text when it holds a
 /// newline or is not the name of an existing file (a name ending in .ngc, .nc, .tap or .gcode is
 /// always a file); else the file it names. A file is named by its path in messages, a text by
-/// `name` (default "program"). Throws pkm::IoError "PATH: cannot open G-code file".
+/// `name` (default "program"). Throws pkm::IoError "PATH: cannot open G-code file", and
+/// pkm::InvalidArgument for another type.
 [[nodiscard]] io::NamedText programOf(py::handle obj, const std::optional<std::string>& name);
 
 /// The interpreter settings of the --tool-table, --tool-units, --block-delete and
@@ -25,8 +26,5 @@ namespace pkm::python {
                                                                const std::string& tool_units,
                                                                bool block_delete,
                                                                std::uint64_t max_iterations);
-
-/// os.fspath(obj) as a str.
-[[nodiscard]] std::string pathOf(py::handle obj);
 
 }  // namespace pkm::python

@@ -13,6 +13,7 @@
 #include "common.hpp"
 #include "gcode_program.hpp"
 #include "machines.hpp"
+#include "paths.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/gcode_run_report.hpp"
 
@@ -82,12 +83,12 @@ void machineOf(const py::object& machine, workflow::GcodeRunRequest& q) {
   else if (py::isinstance<Exechon>(machine))
     q.exechon = machine.cast<const Exechon&>().machine;
   else
-    q.machine = pathOf(machine);
+    q.machine = pathOf(machine, "machine (a pkm.Hexapod, a pkm.Exechon, a name or a file)");
 }
 
 /// The optional path arguments as strings ("" : not given).
-std::string optionalPath(const py::object& obj) {
-  return obj.is_none() ? std::string() : pathOf(obj);
+std::string optionalPath(const py::object& obj, const char* what) {
+  return obj.is_none() ? std::string() : pathOf(obj, what);
 }
 
 Run run(const py::object& machine,
@@ -114,7 +115,7 @@ Run run(const py::object& machine,
         bool raise_on_violation) {
   workflow::GcodeRunRequest q;
   machineOf(machine, q);
-  q.ini = optionalPath(ini);
+  q.ini = optionalPath(ini, "ini");
   q.tolerance = tolerance;
   q.strut_diameter = strut_diameter;
   q.max_joint_velocity = max_joint_velocity;
@@ -126,8 +127,8 @@ Run run(const py::object& machine,
   q.interpreter = interpreterOf(tool_table, tool_units, block_delete, max_iterations);
   q.max_points = max_points;
   q.path_points = path_points.value_or(std::numeric_limits<std::size_t>::max());
-  q.out = optionalPath(out);
-  q.report = optionalPath(report);
+  q.out = optionalPath(out, "out");
+  q.report = optionalPath(report, "report");
   q.force = force;
   q.validate();  // option errors before the program is read, as the command
   q.program = programOf(program, name);

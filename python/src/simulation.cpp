@@ -13,6 +13,7 @@
 
 #include "columns.hpp"
 #include "common.hpp"
+#include "paths.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/workflow/simulate.hpp"
 
@@ -78,12 +79,12 @@ Simulation simulate(const py::object& scenario,
     py::gil_scoped_release release;
     result = workflow::simulateScenarioText(text, seed, std::filesystem::current_path().string());
   } else {
-    const std::string spec = py::str(py::module_::import("os").attr("fspath")(scenario));
+    const std::string spec = pathOf(scenario, "scenario (a built-in name, a file or a dict)");
     py::gil_scoped_release release;
     result = workflow::simulateScenario(spec, seed);
   }
   if (!out.is_none()) {
-    const std::string dir = py::str(py::module_::import("os").attr("fspath")(out));
+    const std::string dir = pathOf(out, "out");
     py::gil_scoped_release release;
     workflow::writeSimulation(result, dir, force);
   }
@@ -124,7 +125,7 @@ void exposeSimulation(py::module_& m) {
       .def(
           "write",
           [](const Simulation& s, const py::object& out, bool force) {
-            const std::string dir = py::str(py::module_::import("os").attr("fspath")(out));
+            const std::string dir = pathOf(out, "out");
             py::gil_scoped_release release;
             workflow::writeSimulation(s.result, dir, force);
           },

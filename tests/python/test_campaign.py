@@ -91,6 +91,8 @@ def test_errors_carry_pkm_messages(run_cli, tmp_path, campaign_file):
         s.column("teleport")
     with pytest.raises(AttributeError):
         s.teleport
+    with pytest.raises(ValueError, match=r"out: .*got NoneType"):
+        pkm.run_campaign(campaign_file, out=None)
 
 
 def test_campaigns_list_the_cli(run_cli):

@@ -165,3 +165,12 @@ def test_violations_and_errors(run_cli, tmp_path):
         pkm.gcode.run("mxt700s-like", "G0 X0 Y0 Z50\nG1 B5 F100\n")
     with pytest.raises(ValueError, match="no motion"):
         pkm.gcode.run("hexapod-default", "G21\nM2\n")
+
+
+def test_arguments_of_the_wrong_type_raise_value_error():
+    with pytest.raises(ValueError, match=r"program .*required, got list"):
+        pkm.gcode.moves(["G0 X1"])
+    with pytest.raises(ValueError, match=r"machine .*required, got int"):
+        pkm.gcode.run(3, HEXAPOD_PROGRAM)
+    with pytest.raises(ValueError, match=r"tool_table: .*got float"):
+        pkm.gcode.moves("G0 X1\n", tool_table=1.5)

@@ -115,3 +115,10 @@ def test_scenarios_list_the_cli(run_cli):
     listed = [f"{s['name']}\t{s['measurements']} measurements\t{s['description']}"
               for s in pkm.scenarios()]
     assert listed == lines
+
+
+def test_arguments_of_the_wrong_type_raise_value_error():
+    with pytest.raises(ValueError, match=r"scenario .*required, got list"):
+        pkm.simulate(["seed003-probe-offset"])
+    with pytest.raises(ValueError, match=r"out: .*got int"):
+        pkm.simulate("seed003-probe-offset", out=3)
