@@ -13,6 +13,7 @@
 #include "machines.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/number_format.hpp"
+#include "pkm/io/uncertainty_sources.hpp"
 #include "tables.hpp"
 
 namespace pkm::python {
@@ -143,6 +144,14 @@ struct CommonOptions {
   py::object db;
 };
 
+/// The options only a hexapod calibration has.
+struct HexapodOptions {
+  bool backlash;
+  double prior_sigma, measurement_sigma, sigma_gauge;
+  py::object uncertainty;  ///< the sources file of the uncertainty budgets, or None
+  int uncertainty_trials;
+};
+
 template <class Request>
 void setCommon(Request& r, const CommonOptions& o) {
   r.frame = o.frame;
@@ -170,10 +179,7 @@ CalibrationResult hexapod(const py::object& machine,
                           const py::object& pivot,
                           const py::object& files,
                           const py::object& holdout,
-                          bool backlash,
-                          double prior_sigma,
-                          double measurement_sigma,
-                          double sigma_gauge,
+                          const HexapodOptions& options,
                           bool raise_on_failure,
                           const CommonOptions& common) {
   workflow::HexapodCalibrationRequest r;
@@ -212,10 +218,15 @@ CalibrationResult hexapod(const py::object& machine,
       },
       frame);
   setCommon(r, common);
-  r.backlash = backlash;
-  r.prior_sigma = prior_sigma;
-  r.measurement_sigma = measurement_sigma;
-  r.sigma_gauge = sigma_gauge;
+  r.backlash = options.backlash;
+  r.prior_sigma = options.prior_sigma;
+  r.measurement_sigma = options.measurement_sigma;
+  r.sigma_gauge = options.sigma_gauge;
+  if (!options.uncertainty.is_none()) {
+    r.uncertainty_name = fspath(options.uncertainty);
+    r.uncertainty = io::readUncertaintySources(io::readNamedText(r.uncertainty_name));
+  }
+  r.uncertainty_trials = options.uncertainty_trials;
   workflow::HexapodCalibrationResult result;
   {
     py::gil_scoped_release release;
@@ -275,14 +286,7 @@ CalibrationResult exechon(const py::object& machine,
   return exechonResult(std::move(result));
 }
 
-}  // namespace
-
-void exposeCalibration(py::module_& m) {
-  py::module_ c = m.def_submodule(
-      "calibration",
-      "Kinematic calibration (`pkm calibrate hexapod`, `pkm calibrate exechon`) and calibration "
-      "pose planning (`pkm plan-poses`) from numpy arrays (docs/python.md, docs/calibration.md).");
-  exposeCalibrationResult(c);
+void defHexapod(py::module_& c) {
   c.def(
       "hexapod",
       [](const py::object& machine,
@@ -312,7 +316,11 @@ void exposeCalibration(py::module_& m) {
          const py::object& out,
          bool force,
          const py::object& db,
+         const py::object& uncertainty,
+         int uncertainty_trials,
          bool raise_on_failure) {
+        const HexapodOptions options{
+            backlash, prior_sigma, measurement_sigma, sigma_gauge, uncertainty, uncertainty_trials};
         const CommonOptions common{frame,
                                    target_offset,
                                    fix,
@@ -336,10 +344,7 @@ void exposeCalibration(py::module_& m) {
                        pivot,
                        files,
                        holdout,
-                       backlash,
-                       prior_sigma,
-                       measurement_sigma,
-                       sigma_gauge,
+                       options,
                        raise_on_failure,
                        common);
       },
@@ -371,6 +376,8 @@ void exposeCalibration(py::module_& m) {
       py::arg("out") = py::none(),
       py::arg("force") = false,
       py::arg("db") = py::none(),
+      py::arg("uncertainty") = py::none(),
+      py::arg("uncertainty_trials") = 0,
       py::arg("raise_on_failure") = false,
       R"doc(Calibrates a hexapod's 42 kinematic parameters: `pkm calibrate hexapod`.
 
@@ -426,6 +433,11 @@ out, force : str, bool
     Also write the files `--out` writes (see CalibrationResult.save).
 db : str, optional
     Record the calibration in this result store (needs `out`).
+uncertainty : str, optional
+    The instruments' uncertainty sources file of the budgets (`--uncertainty`; default typical
+    datasheet values); the budgets are in to_dict()["uncertainty"] and expanded_uncertainty.
+uncertainty_trials : int
+    GUM Supplement 1 Monte Carlo of the budgets: the trial limit (0: linear budgets only).
 raise_on_failure : bool
     Raise pkm.ConvergenceError when the solver stopped without converging.
 
@@ -441,6 +453,9 @@ ValueError
     of the file the array was written as, its metadata lines, the header, then row 0).
 ConvergenceError
     With raise_on_failure=True only.)doc");
+}
+
+void defExechon(py::module_& c) {
   c.def(
       "exechon",
       [](const py::object& machine,
@@ -546,6 +561,18 @@ Raises
 ------
 ValueError, ConvergenceError
     As hexapod().)doc");
+}
+
+}  // namespace
+
+void exposeCalibration(py::module_& m) {
+  py::module_ c = m.def_submodule(
+      "calibration",
+      "Kinematic calibration (`pkm calibrate hexapod`, `pkm calibrate exechon`) and calibration "
+      "pose planning (`pkm plan-poses`) from numpy arrays (docs/python.md, docs/calibration.md).");
+  exposeCalibrationResult(c);
+  defHexapod(c);
+  defExechon(c);
   exposePosePlanning(c);
 }
 

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <limits>
 #include <optional>
 #include <string_view>
 
@@ -97,6 +98,20 @@ void addFit(py::dict& a,
   a["worst_observations"] = doc["worst_observations"];
   a["tcp_error_map"] = member(doc, "tcp_error_map");
   a["monte_carlo"] = member(doc, "monte_carlo");
+  a["uncertainty"] = member(doc, "uncertainty");
+  // U (k = 2) of each parameter, when the summary has uncertainty budgets.
+  const py::list rows = doc["parameters"];
+  if (rows.size() > 0 && py::dict(rows[0]).contains("U")) {
+    py::array_t<double> u = newArray(static_cast<py::ssize_t>(rows.size()));
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const py::object value = rows[k]["U"];  // null for fixed parameters
+      u.mutable_data()[k] =
+          value.is_none() ? std::numeric_limits<double>::quiet_NaN() : value.cast<double>();
+    }
+    a["expanded_uncertainty"] = u;
+  } else {
+    a["expanded_uncertainty"] = py::none();
+  }
 }
 
 /// The fit attributes as None (an Exechon calibration from hybrid data only).
@@ -123,7 +138,9 @@ void addNoFit(py::dict& a) {
                           "frame_sigma",
                           "worst_observations",
                           "tcp_error_map",
-                          "monte_carlo"})
+                          "monte_carlo",
+                          "uncertainty",
+                          "expanded_uncertainty"})
     a[key] = py::none();
 }
 
@@ -258,8 +275,10 @@ converged, iterations, termination : bool, int, str
 measurement_frame : ndarray (4, 4) or None
     world_T_tracker, estimated when the readings are in the tracker's frame; frame_sigma its
     standard deviations (dx, dy, dz, rx, ry, rz; world axes).
-worst_observations, tcp_error_map, monte_carlo, observations, target_offset
-    As in the summary document.
+worst_observations, tcp_error_map, monte_carlo, observations, target_offset, uncertainty
+    As in the summary document (None when it has no such member).
+expanded_uncertainty : ndarray or None
+    U (k = 2) of each parameter from the uncertainty budgets, when the summary has them.
 backlash, backlash_sigma : ndarray (6,) or None
     Hexapod, with backlash=True: the per-strut backlash.
 squareness, squareness_names, squareness_sigma, hybrid, geometric_errors

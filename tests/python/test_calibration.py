@@ -190,6 +190,37 @@ def test_hexapod_gauges_from_arrays_equal_the_file_and_convergence_is_raised_on_
         pkm.calibration.hexapod("hexapod-default", gauges=gauges, gauge_points=tips)
 
 
+@pytest.mark.parametrize("cli_args,kwargs", [
+    (["--fix", "offset0,base1.z"], {"fix": ["offset0", "base1.z"]}),
+    (["--loss", "cauchy", "--loss-scale", "0.01"], {"loss": "cauchy", "loss_scale": 0.01}),
+    (["--backlash"], {"backlash": True}),
+    (["--monte-carlo", "4", "--threads", "1", "--sigma-position", "0.004"],
+     {"monte_carlo": 4, "threads": 1, "sigma_position": 0.004}),
+    (["--uncertainty-trials", "20", "--threads", "1"], {"uncertainty_trials": 20, "threads": 1}),
+])
+def test_hexapod_options_equal_the_cli(run_cli, s4, tmp_path, cli_args, kwargs):
+    pose, hold = str(s4 / "tracker-pose.csv"), str(s4 / "tracker-holdout.csv")
+    cli = json.loads(run_cli(["calibrate", "hexapod", "--machine", "hexapod-default", "--data",
+                              pose, "--holdout", hold, "--out", str(tmp_path / "cli.json"),
+                              "--json", *cli_args]).stdout)
+    r = pkm.calibration.hexapod("hexapod-default", files=[pose], holdout=[hold], **kwargs)
+    doc = without(r.to_dict(), "outputs")
+    for d in (doc, cli):  # wall times
+        d.get("monte_carlo", {}).pop("seconds", None)
+        d.get("uncertainty", {}).get("monte_carlo", {}).pop("seconds", None)
+    assert doc == without(cli, "outputs")
+    if "backlash" in kwargs:
+        assert np.array_equal(r.backlash, cli["backlash"]["values"])
+    if "fix" in kwargs:
+        assert not r.free[list(r.parameter_names).index("offset0")]
+    if "monte_carlo" in kwargs:
+        assert r.monte_carlo["trials"] == 4
+    if r.expanded_uncertainty is not None:
+        assert np.array_equal(r.expanded_uncertainty,
+                              [np.nan if p["U"] is None else p["U"] for p in cli["parameters"]],
+                              equal_nan=True)
+
+
 def random_poses(n, seed):
     rng = np.random.default_rng(seed)
     lo = np.array([-150, -150, 150, -8, -8, -15.0])
