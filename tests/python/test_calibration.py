@@ -253,6 +253,35 @@ def test_round_trip_recovers_a_known_geometry():
     assert r.holdout["after"]["rms"] < 0.02 < r.holdout["before"]["rms"]
 
 
+def test_points_and_distances_from_arrays_equal_their_files(s4, tmp_path):
+    same = ("data", "worst_observations", "outputs")
+    path = str(s4 / "tracker-point.csv")
+    meta, points = read_table(path, POSE[:9])
+    a = pkm.calibration.hexapod("hexapod-default", points=points, frame="tracker",
+                                target_offset=vector(meta["smr offset mm"]))
+    f = pkm.calibration.hexapod("hexapod-default", files=path)
+    assert without(a.to_dict(), *same) == without(f.to_dict(), *same)
+    assert a.observations["points"] == 105
+    # Ball-bar lengths to a pivot, exact for a machine with known errors.
+    nominal = pkm.load_machine("hexapod-default")
+    truth = nominal.with_geometry(length_offsets=nominal.length_offsets + [0.3, -0.2, 0.1, 0, 0.2,
+                                                                           -0.1])
+    poses = random_poses(80, 5)
+    pivot = np.array([10.0, -20.0, 0.5])
+    rows = np.column_stack([truth.ik(poses), np.linalg.norm(poses[:, :3] - pivot, axis=1)])
+    text = "# pivot mm: (10, -20, 0.5)\nl0,l1,l2,l3,l4,l5,distance\n" + "".join(
+        ",".join(repr(float(v)) for v in r) + "\n" for r in rows)
+    (tmp_path / "bar.csv").write_text(text)
+    fixed = [n for n in pkm.calibration.hexapod(nominal, files=str(tmp_path / "bar.csv"),
+                                                allow_large_changes=True).parameter_names
+             if not n.startswith("offset")]
+    a = pkm.calibration.hexapod(nominal, distances=rows, pivot=pivot, fix=fixed)
+    f = pkm.calibration.hexapod(nominal, files=str(tmp_path / "bar.csv"), fix=fixed)
+    assert without(a.to_dict(), *same) == without(f.to_dict(), *same)
+    assert a.observations["distances"] == 80 and a.rank == 6
+    assert np.allclose(a.machine.length_offsets, truth.length_offsets, atol=1e-6)
+
+
 def test_hexapod_errors_raise_value_error_with_pkms_message(s4, tmp_path):
     _, poses = read_table(s4 / "tracker-pose.csv", POSE)
     cal = pkm.calibration.hexapod
