@@ -64,6 +64,65 @@ void readAir(const JsonDoc& doc, const json& obj, const std::string& ptr, sim::A
   if (!a.isValid(&why)) doc.fail(ptr, why);
 }
 
+/// α from "<prefix>_material" (a name) or "<prefix>_cte_per_k" (a number, 1/K); `fallback` when
+/// neither is given. Both at once is an error.
+double cte(const JsonDoc& doc,
+           const json& obj,
+           const std::string& ptr,
+           const std::string& prefix,
+           double fallback) {
+  const std::string by_name = prefix + "_material";
+  const std::string by_value = prefix + "_cte_per_k";
+  if (obj.contains(by_name) && obj.contains(by_value))
+    doc.fail(ptr + "/" + by_name, "give either " + by_name + " or " + by_value);
+  if (obj.contains(by_value)) return doc.number(obj, ptr, by_value.c_str(), fallback);
+  if (!obj.contains(by_name)) return fallback;
+  const std::string name = doc.string(obj, ptr, by_name.c_str(), "");
+  const auto alpha = sim::expansionCoefficient(name);
+  if (!alpha)
+    doc.fail(ptr + "/" + by_name,
+             "unknown material '" + name + "' (steel, cast_iron, aluminium, granite, invar)");
+  return *alpha;
+}
+
+void readThermal(const JsonDoc& doc,
+                 const json& obj,
+                 const std::string& ptr,
+                 sim::ThermalEnvironment& t) {
+  doc.onlyKeys(obj,
+               ptr,
+               {"enabled",
+                "material_temperature_c",
+                "material_sensor",
+                "machine_material",
+                "machine_cte_per_k",
+                "assumed_material",
+                "assumed_cte_per_k",
+                "warmup_drift_mm",
+                "warmup_time_constant_h",
+                "strut_warmup_k",
+                "strut_material",
+                "strut_cte_per_k"});
+  t.enabled = boolean(doc, obj, ptr, "enabled", true);
+  if (obj.contains("material_temperature_c"))
+    readDrift(doc,
+              obj["material_temperature_c"],
+              ptr + "/material_temperature_c",
+              t.material_temperature_c);
+  if (obj.contains("material_sensor"))
+    readSensor(doc, obj["material_sensor"], ptr + "/material_sensor", t.material_sensor);
+  t.machine_cte_per_k = cte(doc, obj, ptr, "machine", t.machine_cte_per_k);
+  t.assumed_cte_per_k = cte(doc, obj, ptr, "assumed", t.assumed_cte_per_k);
+  t.strut_cte_per_k = cte(doc, obj, ptr, "strut", t.strut_cte_per_k);
+  if (obj.contains("warmup_drift_mm"))
+    t.warmup_drift_mm = doc.vec3(obj["warmup_drift_mm"], ptr + "/warmup_drift_mm");
+  t.warmup_time_constant_h =
+      doc.number(obj, ptr, "warmup_time_constant_h", t.warmup_time_constant_h);
+  t.strut_warmup_k = doc.number(obj, ptr, "strut_warmup_k", t.strut_warmup_k);
+  std::string why;
+  if (!t.isValid(&why)) doc.fail(ptr, why);
+}
+
 sim::Environment preset(const JsonDoc& doc, const std::string& name, const std::string& ptr) {
   const auto e = sim::environmentPreset(name);
   if (!e) {
@@ -79,11 +138,12 @@ sim::Environment preset(const JsonDoc& doc, const std::string& name, const std::
 
 sim::Environment readEnvironment(const JsonDoc& doc, const json& obj, const std::string& ptr) {
   if (obj.is_string()) return preset(doc, obj.get<std::string>(), ptr);
-  doc.onlyKeys(obj, ptr, {"preset", "duration_h", "air"});
+  doc.onlyKeys(obj, ptr, {"preset", "duration_h", "air", "thermal"});
   sim::Environment e = preset(doc, doc.string(obj, ptr, "preset", "ideal"), ptr + "/preset");
   e.name = "custom";
   e.duration_h = doc.number(obj, ptr, "duration_h", e.duration_h);
   if (obj.contains("air")) readAir(doc, obj["air"], ptr + "/air", e.air);
+  if (obj.contains("thermal")) readThermal(doc, obj["thermal"], ptr + "/thermal", e.thermal);
   std::string why;
   if (!e.isValid(&why)) doc.fail(ptr, why);
   return e;

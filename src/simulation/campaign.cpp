@@ -35,26 +35,32 @@ void Campaign::validate() const {
   }
 }
 
+double measurementWindowS(const Campaign& campaign) {
+  const std::size_t n = campaign.measurements.size() + campaign.trackers.size();
+  return campaign.environment.duration_h * kSecondsPerHour /
+         static_cast<double>(std::max<std::size_t>(1, n));
+}
+
 std::vector<MeasurementResult> runCampaign(const Campaign& campaign, std::uint64_t seed) {
   campaign.validate();
   std::vector<MeasurementResult> results;
   const Environment& env = campaign.environment;
-  const double window_s =
-      env.duration_h * kSecondsPerHour /
-      static_cast<double>(std::max<std::size_t>(1, campaign.measurements.size()));
+  const double window_s = measurementWindowS(campaign);
+  auto* hexapod = dynamic_cast<HexapodVirtualMachine*>(campaign.machine.get());
   for (const LineSetup& setup : campaign.measurements) {
     RandomStream rng(seed, setup.name);
     if (!env.active()) {
       results.push_back({&setup, simulateLine(*campaign.machine, setup, rng)});
       continue;
     }
-    MeasurementConditions conditions(env,
-                                     static_cast<double>(results.size()) * window_s,
-                                     window_s,
-                                     readingCount(setup),
-                                     streamSeed(seed, setup.name + "/environment"));
+    const double start_s =
+        env.elapsed_h * kSecondsPerHour + static_cast<double>(results.size()) * window_s;
+    if (hexapod != nullptr) hexapod->setStrutGrowth(env.strutGrowth(start_s + window_s / 2));
+    MeasurementConditions conditions(
+        env, start_s, window_s, readingCount(setup), streamSeed(seed, setup.name + "/environment"));
     results.push_back({&setup, simulateLine(*campaign.machine, setup, rng, &conditions)});
   }
+  if (hexapod != nullptr) hexapod->setStrutGrowth(0.0);
   return results;
 }
 

@@ -13,9 +13,10 @@ bool fail(std::string* why, const std::string& message) {
   return false;
 }
 
-/// The air at both ends of a drift (fluctuations aside) must be inside Edlén's range.
-bool airInRange(const AirEnvironment& a, std::string* why) {
-  for (const double f : {0.0, 1.0}) {
+/// The air at both ends of a pass (fluctuations aside) must be inside Edlén's range; `last` is the
+/// pass's end as a fraction of the duration.
+bool airInRange(const AirEnvironment& a, double last, std::string* why) {
+  for (const double f : {0.0, last}) {
     const AirConditions c{
         a.temperature_c.smooth(f), a.pressure_pa.smooth(f), a.humidity_percent.smooth(f)};
     std::string reason;
@@ -40,7 +41,53 @@ AirEnvironment realisticAir() {
   return a;
 }
 
+/// "realistic": a machine that warms up over the shift (docs/simulation-errors.md).
+ThermalEnvironment realisticThermal() {
+  ThermalEnvironment t;
+  t.enabled = true;
+  t.material_temperature_c = {20.5, 1.0, 0.02, 3600.0};  // follows the air, slowly
+  t.material_sensor = {0.05, 0.01};                      // within ±0.1 K
+  t.machine_cte_per_k = 11.0e-6;  // steel screws in a cast-iron and steel structure
+  t.assumed_cte_per_k = 11.5e-6;  // the operator enters steel
+  t.warmup_drift_mm = {0.005, 0.008, -0.030};
+  t.warmup_time_constant_h = 1.0;
+  t.strut_warmup_k = 2.0;
+  t.strut_cte_per_k = 11.5e-6;
+  return t;
+}
+
 }  // namespace
+
+std::optional<double> expansionCoefficient(std::string_view material) {
+  if (material == "steel") return 11.5e-6;
+  if (material == "cast_iron") return 10.5e-6;
+  if (material == "aluminium") return 23.1e-6;
+  if (material == "granite") return 7.0e-6;
+  if (material == "invar") return 1.2e-6;
+  return std::nullopt;
+}
+
+bool ThermalEnvironment::isValid(std::string* why) const {
+  if (!material_temperature_c.isValid() || !material_sensor.isValid())
+    return fail(why, "the material temperature drift or its sensor is invalid");
+  if (!std::isfinite(machine_cte_per_k) || !std::isfinite(assumed_cte_per_k) ||
+      !std::isfinite(strut_cte_per_k) || !std::isfinite(strut_warmup_k) ||
+      !warmup_drift_mm.allFinite())
+    return fail(why, "thermal values must be finite");
+  if (!std::isfinite(warmup_time_constant_h) || warmup_time_constant_h <= 0.0)
+    return fail(why,
+                fmt::format("warmup_time_constant_h must be > 0, got {}", warmup_time_constant_h));
+  return true;
+}
+
+double Environment::warmup(double time_s) const {
+  if (!thermal.enabled) return 0.0;
+  return 1.0 - std::exp(-time_s / (thermal.warmup_time_constant_h * 3600.0));
+}
+
+double Environment::strutGrowth(double time_s) const {
+  return thermal.enabled ? thermal.strut_cte_per_k * thermal.strut_warmup_k * warmup(time_s) : 0.0;
+}
 
 bool Drift::isValid() const {
   return std::isfinite(start) && std::isfinite(change) && std::isfinite(fluctuation) &&
@@ -63,13 +110,16 @@ bool AirEnvironment::isValid(std::string* why) const {
   if (!std::isfinite(vacuum_wavelength_um) || vacuum_wavelength_um < 0.3 ||
       vacuum_wavelength_um > 1.7)
     return fail(why, "vacuum_wavelength_um must be in 0.3..1.7");
-  return airInRange(*this, why);
+  return true;
 }
 
 bool Environment::isValid(std::string* why) const {
   if (!std::isfinite(duration_h) || duration_h <= 0.0)
     return fail(why, fmt::format("duration_h must be > 0, got {}", duration_h));
-  return air.isValid(why);
+  if (!std::isfinite(elapsed_h) || elapsed_h < 0.0)
+    return fail(why, fmt::format("elapsed_h must be >= 0, got {}", elapsed_h));
+  return air.isValid(why) && airInRange(air, 1.0 + elapsed_h / duration_h, why) &&
+         thermal.isValid(why);
 }
 
 std::optional<Environment> environmentPreset(std::string_view name) {
@@ -78,6 +128,7 @@ std::optional<Environment> environmentPreset(std::string_view name) {
   if (name == "realistic") {
     e.name = "realistic";
     e.air = realisticAir();
+    e.thermal = realisticThermal();
     return e;
   }
   return std::nullopt;

@@ -62,6 +62,13 @@ void HexapodVirtualMachine::setControllerModel(kin::HexapodModel model) {
   controller_data_ = kin::HexapodData(controller_);
 }
 
+void HexapodVirtualMachine::setStrutGrowth(double relative) {
+  PKM_CHECK(std::isfinite(relative) && relative > -1.0,
+            "strut growth {} must be finite and > -1",
+            relative);
+  growth_ = relative;
+}
+
 std::vector<std::string> HexapodVirtualMachine::axisNames() const {
   return {"x", "y", "z", "a", "b", "c"};
 }
@@ -96,6 +103,9 @@ geometry::RigidTransform HexapodVirtualMachine::moveTo(const Eigen::VectorXd& co
     actual[i] +=
         -0.5 * actuation_.backlash[i] * approach_[iu] + rng_.normal(actuation_.repeatability_sigma);
   }
+  if (growth_ != 0.0)
+    for (Eigen::Index i = 0; i < kin::kStruts; ++i)
+      actual[i] += growth_ * (actual[i] + true_.struts[static_cast<std::size_t>(i)].length_offset);
   const kin::PoseRpy seed = moved_ ? last_pose_ : pose;
   last_ = commanded_;
   moved_ = true;

@@ -149,7 +149,12 @@ std::vector<LineRun> simulateLine(VirtualMachine& machine,
   machine.reset(rng.bits());
   machine.moveTo(setup.line.at(below));
   if (conditions != nullptr) conditions->zero();
-  const LineInstrument instrument(setup, beam, machine.moveTo(setup.line.at(s0)), conditions);
+  // The machine's pose in the environment (thermal expansion and warm-up; unchanged without).
+  const auto actual = [&](const geometry::RigidTransform& pose) {
+    return conditions != nullptr ? conditions->actualPose(pose) : pose;
+  };
+  const LineInstrument instrument(
+      setup, beam, actual(machine.moveTo(setup.line.at(s0))), conditions);
 
   const Eigen::Vector3d datum_nominal = machine.nominalPose(setup.line.at(s0)).translation();
   const auto moving_axes = static_cast<int>((setup.line.direction.array() != 0.0).count());
@@ -160,7 +165,7 @@ std::vector<LineRun> simulateLine(VirtualMachine& machine,
     Eigen::VectorXd at = setup.line.at(below);  // the current command
     const auto readAt = [&](double target, int direction, int sub_step) {
       if (conditions != nullptr) conditions->next();
-      const double truth = instrument.truth(machine.moveTo(at), s0);
+      const double truth = instrument.truth(actual(machine.moveTo(at)), s0);
       run.readings.push_back(
           {target, direction, setup.noise.apply(truth, target - s0, rng), sub_step});
     };

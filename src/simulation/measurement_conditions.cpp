@@ -10,6 +10,7 @@ namespace pkm::simulation {
 namespace {
 
 constexpr double kSecondsPerHour = 3600.0;
+constexpr double kReferenceC = 20.0;  // ISO 1: the reference temperature of lengths
 
 /// One AR(1) step of a fluctuation of standard deviation `sigma` over `dt` seconds.
 double ar1(double x, const Drift& d, double dt, RandomStream& rng) {
@@ -41,8 +42,7 @@ MeasurementConditions::MeasurementConditions(const Environment& environment,
 }
 
 double MeasurementConditions::fraction() const {
-  const double f = time_s_ / (env_.duration_h * kSecondsPerHour);
-  return f < 0.0 ? 0.0 : (f > 1.0 ? 1.0 : f);
+  return time_s_ / (env_.duration_h * kSecondsPerHour);
 }
 
 AirConditions MeasurementConditions::trueAir() const {
@@ -58,19 +58,36 @@ double MeasurementConditions::trueIndex() const {
   return refractiveIndexEdlen(trueAir(), env_.air.vacuum_wavelength_um);
 }
 
+double MeasurementConditions::materialTemperature() const {
+  return env_.thermal.material_temperature_c.smooth(fraction()) + x_m_;
+}
+
 void MeasurementConditions::zero() {
   time_s_ = start_s_;
   const AirEnvironment& a = env_.air;
-  if (!a.enabled) return;
-  x_t_ = rng_.normal(a.temperature_c.fluctuation);
-  x_p_ = rng_.normal(a.pressure_pa.fluctuation);
-  x_h_ = rng_.normal(a.humidity_percent.fluctuation);
-  n_datum_ = trueIndex();
-  sensed_ = trueAir();
+  if (a.enabled) {
+    x_t_ = rng_.normal(a.temperature_c.fluctuation);
+    x_p_ = rng_.normal(a.pressure_pa.fluctuation);
+    x_h_ = rng_.normal(a.humidity_percent.fluctuation);
+    n_datum_ = trueIndex();
+    sensed_ = trueAir();
+  }
+  if (env_.thermal.enabled) {
+    x_m_ = rng_.normal(env_.thermal.material_temperature_c.fluctuation);
+    sensed_material_ = materialTemperature();
+  }
 }
 
 void MeasurementConditions::next() {
   time_s_ += step_s_;
+  advanceAir();
+  const ThermalEnvironment& t = env_.thermal;
+  if (!t.enabled) return;
+  x_m_ = ar1(x_m_, t.material_temperature_c, step_s_, rng_);
+  sensed_material_ = sense(materialTemperature(), t.material_sensor, rng_);
+}
+
+void MeasurementConditions::advanceAir() {
   const AirEnvironment& a = env_.air;
   if (!a.enabled) return;
   x_t_ = ar1(x_t_, a.temperature_c, step_s_, rng_);
@@ -86,10 +103,25 @@ void MeasurementConditions::next() {
 
 double MeasurementConditions::laserDisplacement(double displacement_mm) const {
   const AirEnvironment& a = env_.air;
-  if (!a.enabled) return displacement_mm;
-  const double n_t = trueIndex();
-  const double n_s = refractiveIndexEdlen(sensed_, a.vacuum_wavelength_um);
-  return (n_t * (a.dead_path_mm + displacement_mm) - n_datum_ * a.dead_path_mm) / n_s;
+  double reading = displacement_mm;
+  if (a.enabled) {
+    const double n_t = trueIndex();
+    const double n_s = refractiveIndexEdlen(sensed_, a.vacuum_wavelength_um);
+    reading = (n_t * (a.dead_path_mm + displacement_mm) - n_datum_ * a.dead_path_mm) / n_s;
+  }
+  const ThermalEnvironment& t = env_.thermal;
+  if (t.enabled) reading /= 1.0 + t.assumed_cte_per_k * (sensed_material_ - kReferenceC);
+  return reading;
+}
+
+geometry::RigidTransform MeasurementConditions::actualPose(
+    const geometry::RigidTransform& pose) const {
+  const ThermalEnvironment& t = env_.thermal;
+  if (!t.enabled) return pose;
+  geometry::RigidTransform out = pose;
+  const double scale = 1.0 + t.machine_cte_per_k * (materialTemperature() - kReferenceC);
+  out.translation() = scale * pose.translation() + env_.warmup(time_s_) * t.warmup_drift_mm;
+  return out;
 }
 
 }  // namespace pkm::simulation

@@ -72,10 +72,16 @@ std::vector<TrackerResult> runLaserTrackers(const Campaign& campaign, std::uint6
   campaign.validate();
   validateTrackers(campaign);
   std::vector<TrackerResult> results;
+  const double window_s = measurementWindowS(campaign);
   for (const TrackerSetup& setup : campaign.trackers) {
     RandomStream rng(seed, setup.name);
     auto& hexapod = dynamic_cast<HexapodVirtualMachine&>(*campaign.machine);
+    // The window's middle: trackers follow the line measurements on the campaign clock.
+    const double k = static_cast<double>(campaign.measurements.size() + results.size()) + 0.5;
+    const double elapsed_s = campaign.environment.elapsed_h * 3600.0;
+    hexapod.setStrutGrowth(campaign.environment.strutGrowth(elapsed_s + k * window_s));
     results.push_back({&setup, simulateLaserTracker(hexapod, setup, rng)});
+    hexapod.setStrutGrowth(0.0);
   }
   return results;
 }

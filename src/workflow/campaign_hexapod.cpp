@@ -265,7 +265,8 @@ StepOutcome runHexapodCalibrationStep(const StepContext& ctx) {
 
   // 4. Measure again.
   ctx.progress("re-measure: the same poses with the calibrated kinematics in the controller");
-  const Pass after = measure(ctx, out, "measured-after", scenario, remeasureSeed(seed));
+  const io::Scenario later = remeasureScenario(scenario);  // the Pass points into it
+  const Pass after = measure(ctx, out, "measured-after", later, remeasureSeed(seed));
 
   // 5. Figures.
   const sim::TrackerResult& hb = tracker(before.trackers, holdout.front(), ctx.source);

@@ -277,7 +277,7 @@ StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
       detail::compensateHybrid(ctx, out, before, vm->model(), ab);
 
   ctx.progress("re-measure: the same lines through the compensating controller");
-  io::Scenario again = scenario;
+  io::Scenario again = remeasureScenario(scenario);
   again.campaign.machine = std::make_shared<sim::CompensatedMachine>(vm, chain);
   const LineData after{sim::runCampaign(again.campaign, remeasureSeed(seed))};
   writeLineFiles(ctx, out, "measured-after", scenario, remeasureSeed(seed), after);

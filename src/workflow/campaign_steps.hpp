@@ -147,6 +147,14 @@ void meanReadings(const std::vector<simulation::LineRun>& runs,
 /// against the same noise).
 [[nodiscard]] inline std::uint64_t remeasureSeed(std::uint64_t seed) { return seed + 1; }
 
+/// The scenario of the re-measurement after compensation: the same, one campaign duration later
+/// on its environment's clock (simulation::Environment::elapsed_h; nothing changes in the ideal
+/// environment), so that drifts and warm-up are not the ones the compensation was made from.
+[[nodiscard]] inline io::Scenario remeasureScenario(io::Scenario scenario) {
+  scenario.campaign.environment.elapsed_h += scenario.campaign.environment.duration_h;
+  return scenario;
+}
+
 /// Laser measurement files (the `pkm simulate` line format, any number of runs per measurement)
 /// read from a folder, with set-ups rebuilt from their metadata. `data` points into `setups`
 /// (list nodes keep their addresses when the struct is moved).

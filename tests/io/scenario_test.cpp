@@ -215,6 +215,20 @@ TEST(Scenario, EnvironmentIsIdealByDefaultAPresetOrAnObject) {
   const io::Scenario off =
       io::parseScenarioJson(withEnvironment(R"({"air": {"enabled": false}})"), "s.json");
   EXPECT_FALSE(off.campaign.environment.active());
+  const io::Scenario t = io::parseScenarioJson(
+      withEnvironment(R"({"thermal": {"machine_material": "cast_iron", "assumed_cte_per_k": 1.1e-5,
+        "material_temperature_c": {"start": 22}, "warmup_drift_mm": [0, 0, -0.02],
+        "strut_material": "aluminium", "strut_warmup_k": 3}})"),
+      "s.json");
+  const sim::ThermalEnvironment& th = t.campaign.environment.thermal;
+  EXPECT_TRUE(th.enabled);
+  EXPECT_FALSE(t.campaign.environment.air.enabled);
+  EXPECT_EQ(th.machine_cte_per_k, 10.5e-6);
+  EXPECT_EQ(th.assumed_cte_per_k, 1.1e-5);
+  EXPECT_EQ(th.strut_cte_per_k, 23.1e-6);
+  EXPECT_EQ(th.material_temperature_c.start, 22.0);
+  EXPECT_EQ(th.warmup_drift_mm.z(), -0.02);
+  EXPECT_EQ(th.strut_warmup_k, 3.0);
 }
 
 TEST(Scenario, EnvironmentErrorsNameTheLineAndPointer) {
@@ -233,6 +247,12 @@ TEST(Scenario, EnvironmentErrorsNameTheLineAndPointer) {
               HasSubstr("/environment/air/humidity_sensor/noise: must be >= 0"));
   EXPECT_THAT(message(R"({"air": {"wind": 1}})"), HasSubstr("unknown key 'wind'"));
   EXPECT_THAT(message(R"({"duration_h": 0})"), HasSubstr("duration_h must be > 0"));
+  EXPECT_THAT(message(R"({"thermal": {"machine_material": "wood"}})"),
+              HasSubstr("/environment/thermal/machine_material: unknown material 'wood'"));
+  EXPECT_THAT(message(R"({"thermal": {"strut_material": "steel", "strut_cte_per_k": 1e-5}})"),
+              HasSubstr("give either strut_material or strut_cte_per_k"));
+  EXPECT_THAT(message(R"({"thermal": {"warmup_time_constant_h": 0}})"),
+              HasSubstr("warmup_time_constant_h must be > 0"));
 }
 
 }  // namespace

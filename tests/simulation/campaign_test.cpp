@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "pkm/core/air_refractive_index.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/simulation/cartesian_machine.hpp"
@@ -98,6 +100,42 @@ TEST(Campaign, TheEnvironmentActsOnLinearReadingsWithItsAnalyticSize) {
   EXPECT_LT(air[0].runs[0].readings[6].reading - air[0].runs[0].readings[6].target, -0.08e-3);
   EXPECT_EQ(readings(ideal[1]), readings(air[1]));  // straightness optics are differential
   EXPECT_EQ(readings(air[0]), readings(sim::runCampaign(c, 3)[0]));
+}
+
+TEST(Campaign, ThermalSourcesAppearInTheLinesWithTheirAnalyticSize) {
+  sim::Campaign c = campaign({setup("x", 0), setup("x-v", 0)});
+  c.machine =
+      std::make_shared<sim::CartesianMachine>(sim::CartesianLayout{}, sim::CartesianErrors{});
+  for (sim::LineSetup& m : c.measurements) m.noise = {};
+  c.measurements[1].quantity = sim::LineQuantity::kStraightness;
+  c.measurements[1].lateral = Eigen::Vector3d::UnitZ();
+  sim::Environment& e = c.environment;
+  e.name = "custom";
+  e.duration_h = 2.0;  // each measurement one hour
+  e.thermal.enabled = true;
+  e.thermal.material_temperature_c = {21.0, 0.0, 0.0, 3600.0};
+  e.thermal.machine_cte_per_k = 10.5e-6;  // cast iron, the operator entered steel
+  e.thermal.warmup_drift_mm = {0.0, 0.0, -0.020};
+  const auto r = sim::runCampaign(c, 3);
+  const double s0 = r[0].runs[0].readings[0].target;
+  // Linear: (s − s₀)·(1 + α_m ΔT)/(1 + α_a ΔT) − (s − s₀) ≈ −1 ppm; the warm-up is across x.
+  for (const sim::LineRun& run : r[0].runs)
+    for (const sim::LineReading& x : run.readings)
+      EXPECT_NEAR(
+          x.reading - x.target, (x.target - s0) * ((1 + 10.5e-6) / (1 + 11.5e-6) - 1.0), 1e-12);
+  // Vertical straightness: the warm-up's z since zeroing at τ₀ = 1 h, read at the window's end.
+  const double tau0 = 3600.0, tau_end = 7200.0;
+  const auto warm = [](double t) { return -0.020 * (1.0 - std::exp(-t / 3600.0)); };
+  const sim::LineReading& last = r[1].runs.back().readings.back();
+  EXPECT_NEAR(last.reading, warm(tau_end) - warm(tau0), 1e-12);  // about −4.7 µm
+  EXPECT_LT(last.reading, -4e-3);
+  // A later pass (the re-measurement after compensation) continues the clock: nearly warm.
+  e.elapsed_h = 2.0;
+  const auto later = sim::runCampaign(c, 3);
+  EXPECT_NEAR(later[1].runs.back().readings.back().reading,
+              warm(tau_end + 7200.0) - warm(tau0 + 7200.0),
+              1e-12);
+  EXPECT_GT(later[1].runs.back().readings.back().reading, -1e-3);
 }
 
 TEST(Campaign, AnInvalidEnvironmentIsRejected) {

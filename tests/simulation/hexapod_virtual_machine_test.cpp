@@ -66,6 +66,26 @@ TEST(HexapodVirtualMachine, LengthOffsetGivesTheFirstOrderPoseError) {
   }
 }
 
+TEST(HexapodVirtualMachine, StrutGrowthLengthensEveryStrutInProportion) {
+  sim::HexapodVirtualMachine m(pkm::test::millingModel(), {});
+  const double g = 11.5e-6 * 2.0;  // steel struts 2 K warm
+  m.setStrutGrowth(g);
+  EXPECT_EQ(m.strutGrowth(), g);
+  const Eigen::VectorXd c = command(5, 8, 195, 0.02, 0.01, -0.03);
+  const pkm::geometry::RigidTransform actual = m.moveTo(c);
+  const kin::StrutVector reached = trueReadings(m, actual);
+  for (Eigen::Index i = 0; i < kin::kStruts; ++i) {
+    const double joint_distance =
+        m.commandedReadings()[i] + m.truth().struts[static_cast<std::size_t>(i)].length_offset;
+    EXPECT_NEAR(reached[i] - m.commandedReadings()[i], g * joint_distance, 1e-9) << i;
+  }
+  // About 23 ppm of a strut of several hundred mm: micrometres at the tool.
+  EXPECT_GT((actual.translation() - m.nominalPose(c).translation()).norm(), 1e-3);
+  m.setStrutGrowth(0.0);
+  EXPECT_NEAR((m.moveTo(c).matrix() - m.nominalPose(c).matrix()).norm(), 0.0, kTolRoundTrip);
+  EXPECT_THROW(m.setStrutGrowth(std::nan("")), pkm::InvalidArgument);
+}
+
 TEST(HexapodVirtualMachine, BacklashMakesTheApproachDirectionMatter) {
   // A strut that moved in +reading stops b/2 short of its command, one that moved in − b/2 beyond.
   const double b = 0.004;

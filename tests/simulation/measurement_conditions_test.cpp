@@ -10,6 +10,7 @@
 
 #include "pkm/core/air_refractive_index.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 
 namespace {
 
@@ -111,6 +112,61 @@ TEST(MeasurementConditions, SensorNoiseScattersTheCompensation) {
   }
   // 1000 mm × 0.93e-6/K × 0.05 K = 0.047 µm.
   EXPECT_NEAR(std::sqrt(sum2 / 4000.0), 1000.0 * 0.93e-6 * 0.05, 0.004e-3);
+}
+
+sim::Environment thermalOnly(double temperature_c) {
+  sim::Environment e;
+  e.name = "custom";
+  e.duration_h = 1.0;
+  e.thermal.enabled = true;
+  e.thermal.material_temperature_c = {temperature_c, 0.0, 0.0, 3600.0};
+  return e;
+}
+
+TEST(MeasurementConditions, TheLaserNormalisesTheMachinesExpansionToTwentyDegrees) {
+  sim::Environment e = thermalOnly(22.0);
+  sim::MeasurementConditions c(e, 0.0, 600.0, 2, 1);
+  c.zero();
+  c.next();
+  pkm::geometry::RigidTransform p = pkm::geometry::RigidTransform::Identity();
+  p.translation() = Eigen::Vector3d(500.0, 100.0, 0.0);
+  // The machine 2 K warm: its positions scale by 1 + 11.5e-6 × 2 about the origin.
+  EXPECT_NEAR((c.actualPose(p).translation() - p.translation() * (1 + 23e-6)).norm(), 0.0, 1e-12);
+  // Same α entered and a perfect sensor: the normalisation removes the expansion exactly.
+  EXPECT_NEAR(c.laserDisplacement(500.0 * (1 + 23e-6)), 500.0, 1e-12);
+  // The operator enters steel for a cast-iron machine: Δ·(α_m − α_a)·ΔT = −1 ppm/K × 2 K.
+  e.thermal.machine_cte_per_k = 10.5e-6;
+  const double expanded = 1000.0 * (1 + 10.5e-6 * 2.0);
+  EXPECT_NEAR(c.laserDisplacement(expanded) - 1000.0, -2e-3, 1e-7);
+  // A material sensor reading 0.1 K warm: −α·0.1 K = −1.15 µm per metre.
+  e.thermal.machine_cte_per_k = 11.5e-6;
+  e.thermal.material_sensor.offset = 0.1;
+  sim::MeasurementConditions d(e, 0.0, 600.0, 2, 1);
+  d.zero();
+  d.next();
+  EXPECT_NEAR(d.sensedMaterialTemperature(), 22.1, 1e-12);
+  EXPECT_NEAR(d.laserDisplacement(1000.0 * (1 + 23e-6)) - 1000.0, -1.15e-3, 1e-7);
+}
+
+TEST(MeasurementConditions, WarmUpDriftApproachesItsFinalValueExponentially) {
+  sim::Environment e = thermalOnly(20.0);
+  e.duration_h = 4.0;
+  e.thermal.warmup_drift_mm = {0.005, 0.0, -0.030};
+  e.thermal.warmup_time_constant_h = 1.0;
+  sim::MeasurementConditions c(e, 0.0, 7200.0, 2, 1);  // readings at 1 h and 2 h
+  c.zero();
+  const pkm::geometry::RigidTransform origin = pkm::geometry::RigidTransform::Identity();
+  EXPECT_NEAR(c.actualPose(origin).translation().norm(), 0.0, 1e-15);
+  c.next();
+  const double one = 1.0 - std::exp(-1.0);  // 63 % after one time constant
+  EXPECT_NEAR(c.actualPose(origin).translation().z(), -0.030 * one, 1e-15);
+  EXPECT_NEAR(c.actualPose(origin).translation().x(), 0.005 * one, 1e-15);
+  c.next();
+  EXPECT_NEAR(c.actualPose(origin).translation().z(), -0.030 * (1.0 - std::exp(-2.0)), 1e-15);
+  // The struts: α·ΔT·(1 − exp(−τ/τ_w)).
+  e.thermal.strut_warmup_k = 2.0;
+  EXPECT_NEAR(e.strutGrowth(3600.0), 11.5e-6 * 2.0 * one, 1e-18);
+  EXPECT_EQ(sim::Environment{}.strutGrowth(3600.0), 0.0);
 }
 
 TEST(MeasurementConditions, RejectsBadArguments) {

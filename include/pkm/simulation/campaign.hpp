@@ -48,6 +48,14 @@ struct Campaign {
   void validate() const;
 };
 
+/// The campaign time each measurement of an active environment occupies, s: T/N with T =
+/// environment.duration_h and N the number of line and hexapod laser-tracker measurements (lines
+/// first, in order, then trackers). Line k starts at elapsed + k·window, tracker j at elapsed +
+/// (lines + j)·window (elapsed = environment.elapsed_h). A
+/// hexapod's struts keep, during one measurement, the thermal growth of the window's middle
+/// (Environment::strutGrowth).
+[[nodiscard]] double measurementWindowS(const Campaign& campaign);
+
 /// One measurement's result.
 struct MeasurementResult {
   const LineSetup* setup = nullptr;  ///< points into the campaign

@@ -8,8 +8,15 @@
 ///   compensation unit converts them with the index of the air its own sensors read (with their
 ///   offsets and noise), so a displacement Δ reads Δ·n_true/n_sensed, plus the dead-path error
 ///   L_dp·(n_true(τ) − n_true(τ₀))/n_sensed (ISO 230-2:2014 Annex A; ISO/TR 230-9 §6).
+/// - Thermal: the machine's structure and scales expand with the material temperature (positions
+///   scale by 1 + α_machine·(T_m − 20 °C) about the work frame's origin) while the laser
+///   normalises its reading to 20 °C with the CTE the operator entered and its material sensor's
+///   reading; a warm-up drift of the tool point d∞·(1 − exp(−τ/τ_w)); the hexapod's struts grow by
+///   α_strut·ΔT_strut(τ)·L with the same warm-up law (ISO 230-3; Mayr et al., CIRP Annals 61(2),
+///   2012).
 #pragma once
 
+#include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -57,7 +64,32 @@ struct AirEnvironment {
   /// which the index change since zeroing is not compensated.
   double dead_path_mm = 0.0;
   double vacuum_wavelength_um = kHeNeVacuumWavelengthUm;  ///< laser vacuum wavelength, µm
-  /// True when every part is valid and the drift stays inside Edlén's range.
+  /// True when every part is valid (Environment::isValid checks the drift against Edlén's range).
+  [[nodiscard]] bool isValid(std::string* why = nullptr) const;
+};
+
+/// The linear expansion coefficient of a named material, 1/K: "steel" 11.5e-6, "cast_iron"
+/// 10.5e-6, "aluminium" 23.1e-6, "granite" 7.0e-6, "invar" 1.2e-6 (handbook values at 20 °C;
+/// docs/simulation-errors.md). std::nullopt for another name.
+[[nodiscard]] std::optional<double> expansionCoefficient(std::string_view material);
+
+/// The machine's temperature and its effects.
+struct ThermalEnvironment {
+  bool enabled = false;  ///< false: the machine at 20 °C, no warm-up
+  /// Temperature of the machine structure and scales, °C (a slow drift; the reference is 20 °C).
+  Drift material_temperature_c{20.0, 0.0, 0.0, 3600.0};
+  SensorError material_sensor;         ///< the laser's material-temperature sensor, °C
+  double machine_cte_per_k = 11.5e-6;  ///< true α of the structure and scales, 1/K
+  /// α the operator entered in the laser software for its normalisation to 20 °C, 1/K.
+  double assumed_cte_per_k = 11.5e-6;
+  /// Warm-up: the tool point's displacement in the work frame after a long run, mm; reached as
+  /// d∞·(1 − exp(−τ/τ_w)) from the campaign's start (the machine switched on at τ = 0).
+  Eigen::Vector3d warmup_drift_mm = Eigen::Vector3d::Zero();
+  double warmup_time_constant_h = 1.0;  ///< τ_w, h, > 0
+  /// Hexapod struts: temperature rise after a long run, K (same time constant), and their α.
+  double strut_warmup_k = 0.0;
+  double strut_cte_per_k = 11.5e-6;
+  /// True when every value is finite and the time constant > 0.
   [[nodiscard]] bool isValid(std::string* why = nullptr) const;
 };
 
@@ -65,10 +97,20 @@ struct AirEnvironment {
 struct Environment {
   std::string name = "ideal";  ///< the preset it came from, or "custom"
   double duration_h = 8.0;     ///< campaign duration T over which the drifts run, h, > 0
+  /// Hours since the machine was switched on (and the drifts began) when this pass of the
+  /// measurements starts, ≥ 0: 0 for the first pass; a campaign's re-measurement after
+  /// compensation runs one duration later (the drifts go on linearly, the warm-up nearly done).
+  double elapsed_h = 0.0;
   AirEnvironment air;          ///< the air and the laser's compensation
+  ThermalEnvironment thermal;  ///< the machine's temperature, warm-up, struts
   /// True when any source is on.
-  [[nodiscard]] bool active() const { return air.enabled; }
-  /// True when every part is valid; otherwise false with the reason in *why.
+  [[nodiscard]] bool active() const { return air.enabled || thermal.enabled; }
+  /// The warm-up fraction 1 − exp(−τ/τ_w) at campaign time `time_s` (0 when thermal is off).
+  [[nodiscard]] double warmup(double time_s) const;
+  /// The struts' relative thermal growth α_strut·ΔT_strut(τ) at campaign time `time_s`.
+  [[nodiscard]] double strutGrowth(double time_s) const;
+  /// True when every part is valid and the air stays inside Edlén's range over the pass;
+  /// otherwise false with the reason in *why.
   [[nodiscard]] bool isValid(std::string* why = nullptr) const;
 };
 

@@ -89,6 +89,13 @@ class HexapodVirtualMachine final : public VirtualMachine {
   void setControllerModel(kinematics::HexapodModel model);
   /// The true model (the truth).
   [[nodiscard]] const kinematics::HexapodModel& truth() const { return true_; }
+  /// Thermal growth of the struts (environment.hpp): every strut's joint distance (reading +
+  /// length offset) is (1 + `relative`) times what the actuation gives, e.g. α·ΔT = 11.5e-6 ×
+  /// 2 K. 0 (the default) leaves the struts as they are. Throws pkm::InvalidArgument unless finite
+  /// and > −1.
+  void setStrutGrowth(double relative);
+  /// The current relative strut growth.
+  [[nodiscard]] double strutGrowth() const { return growth_; }
 
  private:
   kinematics::HexapodModel nominal_;
@@ -103,6 +110,7 @@ class HexapodVirtualMachine final : public VirtualMachine {
   std::array<int, kinematics::kStruts> approach_{};
   bool moved_ = false;
   kinematics::PoseRpy last_pose_;
+  double growth_ = 0.0;
 };
 
 }  // namespace pkm::simulation

@@ -132,7 +132,8 @@ struct LineRun {
 
 /// simulateLine in an environment (environment.hpp): `conditions` (null: the ideal environment,
 /// as above) is zeroed with the instrument and advanced before every reading (readingCount of
-/// them); a linear reading's displacement from the datum becomes
+/// them); every pose the machine reaches (the datum's too) becomes conditions->actualPose(pose)
+/// (thermal expansion, warm-up), and a linear reading's displacement from the datum becomes
 /// conditions->laserDisplacement(b·(p(s) − p(s₀))). Straightness and angular optics are
 /// differential (both beams in the same air), so the air does not act on them.
 [[nodiscard]] std::vector<LineRun> simulateLine(VirtualMachine& machine,

@@ -7,12 +7,14 @@
 #include <cstdint>
 
 #include "pkm/core/air_refractive_index.hpp"
+#include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/simulation/environment.hpp"
 #include "pkm/simulation/random.hpp"
 
 namespace pkm::simulation {
 
-/// The conditions of one measurement. The measurement occupies the campaign time [start_s,
+/// The conditions of one measurement. The drifts' fraction τ/T is not clamped: a later pass
+/// (Environment::elapsed_h) continues them. The measurement occupies the campaign time [start_s,
 /// start_s + window_s): the instrument is zeroed at start_s and its `readings` readings follow
 /// at equal steps window_s/readings (the last at the window's end). The fluctuations and the
 /// sensor noise draw from the measurement's own stream, nothing when they are zero.
@@ -45,12 +47,22 @@ class MeasurementConditions {
 
   /// The laser's reading of a true displacement `displacement_mm` along the beam since the datum
   /// (mm): [n_t·(L_dp + Δ) − n_t(τ₀)·L_dp]/n_s = Δ + Δ·(n_t − n_s)/n_s + L_dp·(n_t − n_t(τ₀))/n_s,
-  /// n_t the true index, n_s the index of the sensed air (ISO 230-2:2014 Annex A). Δ itself when
-  /// the air source is off.
+  /// n_t the true index, n_s the index of the sensed air (ISO 230-2:2014 Annex A); with the thermal
+  /// source on, then normalised to 20 °C: divided by 1 + α_assumed·(T_m,sensed − 20). Δ itself
+  /// when both sources are off.
   [[nodiscard]] double laserDisplacement(double displacement_mm) const;
+
+  /// The true material (machine) temperature now and what the laser's material sensor reads, °C.
+  [[nodiscard]] double materialTemperature() const;
+  [[nodiscard]] double sensedMaterialTemperature() const { return sensed_material_; }
+  /// The machine's actual pose now for the pose `pose` it would have at 20 °C and cold (work
+  /// frame, mm): translation p → p·(1 + α_machine·(T_m − 20)) + d∞·(1 − exp(−τ/τ_w)). `pose`
+  /// itself when the thermal source is off.
+  [[nodiscard]] geometry::RigidTransform actualPose(const geometry::RigidTransform& pose) const;
 
  private:
   [[nodiscard]] double fraction() const;
+  void advanceAir();
 
   const Environment& env_;
   double start_s_ = 0.0;
@@ -58,6 +70,8 @@ class MeasurementConditions {
   double time_s_ = 0.0;
   RandomStream rng_;
   double x_t_ = 0.0, x_p_ = 0.0, x_h_ = 0.0;  // fluctuations of t, p and RH
+  double x_m_ = 0.0;                          // fluctuation of the material temperature
+  double sensed_material_ = 20.0;
   AirConditions sensed_;
   double n_datum_ = 1.0;
 };
