@@ -8,6 +8,7 @@
 
 #include <cstdio>
 
+#include "analyze_common.hpp"
 #include "calibrate_common.hpp"
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
@@ -21,6 +22,7 @@ struct ExechonArgs {
   std::vector<std::string> data, holdout;  ///< --data, --holdout paths (read into the request)
   std::vector<double> target_offset;
   bool json = false;
+  UncertaintyArgs uncertainty;  ///< --uncertainty FILE
 };
 
 /// The tripod fit's lines of the text summary.
@@ -127,6 +129,8 @@ void runExechon(ExechonArgs args) {
     args.request.target_offset =
         Eigen::Vector3d(args.target_offset[0], args.target_offset[1], args.target_offset[2]);
   }
+  args.request.uncertainty = args.uncertainty.parsed();
+  args.request.uncertainty_name = args.uncertainty.file;
   args.request.data = io::readNamedTexts(args.data);
   args.request.holdout = io::readNamedTexts(args.holdout);
   CliRunControl run;
@@ -139,7 +143,10 @@ void runExechon(ExechonArgs args) {
     return;
   }
   Output out;
-  if (r.report.tripod) out.text() += tripodText(r.report, *r.report.tripod);
+  if (r.report.tripod) {
+    out.text() += tripodText(r.report, *r.report.tripod);
+    out.text() += io::exechonCalibrationUncertaintyText(*r.report.tripod, r.report.unit);
+  }
   if (r.report.hybrid) out.text() += hybridText(r.report, *r.report.hybrid);
   out.text() += fmt::format("wrote {}\n", fmt::join(r.written, ", "));
 }
@@ -198,6 +205,7 @@ void addCalibrateExechon(CLI::App& calibrate) {
                  "Monte Carlo: tool-direction noise, urad (default 0)");
   ex->add_option(
       "--threads", args->request.threads, "Monte Carlo worker threads (default: all cores)");
+  args->uncertainty.add(*ex);
   ex->add_flag("--force", args->request.force, "overwrite existing output files");
   ex->add_flag(
       "--allow-large-changes",

@@ -2,6 +2,7 @@
 #include "pkm/io/exechon_calibration_report.hpp"
 
 #include "detail/calibration_json.hpp"
+#include "detail/calibration_uncertainty_json.hpp"
 
 namespace pkm::io {
 namespace {
@@ -49,7 +50,29 @@ ordered_json parametersJson(const ExechonTripodReport& t, LengthUnit unit) {
                       {"estimate", s.parameters(k)},
                       {"change", s.parameters(k) - s.initial(k)},
                       {"sigma", s.standard_deviation(k)}});
+  if (t.uncertainty) {
+    for (ordered_json& p : params) p["U"] = nullptr;
+    const auto& u = t.uncertainty->parameters;
+    for (std::size_t b = 0; b < u.parameter_indices.size(); ++b)
+      if (u.parameter_indices[b] >= 0)
+        params[static_cast<std::size_t>(u.parameter_indices[b])]["U"] =
+            u.linear.budgets[b].expandedUncertainty();
+  }
   return params;
+}
+
+/// The view of the tripod's uncertainty for the shared JSON and text.
+detail::CalibrationUncertaintyView uncertaintyView(const ExechonTripodReport& t,
+                                                   const std::string& unit) {
+  const ExechonTripodReport::Uncertainty& u = *t.uncertainty;
+  std::size_t parameters = 0;
+  for (const int k : u.parameters.parameter_indices) parameters += k >= 0 ? 1 : 0;
+  return {u.sources, u.parameters.linear, nullptr, u.tcp_poses, u.tcp, unit, parameters};
+}
+
+ordered_json uncertaintyJson(const ExechonTripodReport& t, LengthUnit unit) {
+  const std::string u(toString(unit));
+  return detail::calibrationUncertaintyJson(uncertaintyView(t, u));
 }
 
 /// The tripod members, added to the top level of the document.
@@ -78,6 +101,7 @@ void addTripod(const ExechonTripodReport& t, LengthUnit unit, ordered_json& j) {
   if (t.monte_carlo)
     j["monte_carlo"] = monteCarloJson(*t.monte_carlo, s.measurement_frame.has_value());
   j["parameters"] = parametersJson(t, unit);
+  if (t.uncertainty) j["uncertainty"] = uncertaintyJson(t, unit);
 }
 
 ordered_json hybridJson(const HybridSquarenessReport& h) {
@@ -112,6 +136,12 @@ ordered_json hybridJson(const HybridSquarenessReport& h) {
 }
 
 }  // namespace
+
+std::string exechonCalibrationUncertaintyText(const ExechonTripodReport& tripod, LengthUnit unit) {
+  if (!tripod.uncertainty) return {};
+  const std::string u(toString(unit));
+  return detail::calibrationUncertaintyText(uncertaintyView(tripod, u));
+}
 
 std::string exechonCalibrationJson(const ExechonCalibrationReport& r) {
   ordered_json j;

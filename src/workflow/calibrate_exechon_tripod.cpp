@@ -145,6 +145,31 @@ void accept(const cal::ExechonCalibrationSummary& s,
       detail::worstList(s.worst)));
 }
 
+/// The budgets of the tripod fit and the predicted tool-point U at the held-out configurations
+/// (or at the fitted ones without held-out data).
+io::ExechonTripodReport::Uncertainty uncertainty(const ExechonCalibrationRequest& r,
+                                                 const kinematics::ExechonModel& initial,
+                                                 const cal::ExechonCalibrationData& data,
+                                                 const cal::ExechonCalibrationData& held,
+                                                 const cal::ExechonCalibrationSummary& s,
+                                                 const cal::ExechonCalibrationOptions& options) {
+  io::ExechonTripodReport::Uncertainty u;
+  u.sources = r.uncertainty_name.empty() ? "typical datasheet values" : r.uncertainty_name;
+  u.parameters = cal::exechonParameterUncertainty(initial, data, s, options, r.uncertainty);
+  const cal::ExechonCalibrationData& at = held.observations.empty() ? data : held;
+  u.tcp_poses = held.observations.empty() ? "fitted" : "held-out";
+  std::vector<kinematics::ExechonJoints> joints;
+  for (const cal::ExechonObservation& o : at.observations) joints.push_back(o.joints);
+  u.tcp = cal::exechonToolUncertainty(
+      cal::withExechonParameters(initial, s.parameters, initial.world_T_zoppi),
+      u.parameters.covariance,
+      joints,
+      data.target_offset,
+      options.fk,
+      r.uncertainty.coverage_factor);
+  return u;
+}
+
 }  // namespace
 
 io::ExechonTripodReport fitTripod(const ExechonCalibrationRequest& r,
@@ -194,6 +219,7 @@ io::ExechonTripodReport fitTripod(const ExechonCalibrationRequest& r,
   workspaceMap(machine, calibrated.model, s.covariance, report);
   if (r.monte_carlo > 0)
     report.monte_carlo = monteCarlo(r, machine, input.data, s, calibrated.model, options, control);
+  report.uncertainty = uncertainty(r, machine.model, input.data, held.data, s, options);
   return report;
 }
 

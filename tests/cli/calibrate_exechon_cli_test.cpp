@@ -54,6 +54,28 @@ TEST_F(CalibrateExechonCli, TrackerCalibrationMeetsTheTarget) {
   EXPECT_EQ(j["parameters"].size(), 26u);
   EXPECT_THAT(j["worst_observations"][0]["source"].get<std::string>(),
               HasSubstr("tracker-fit.csv:"));
+  // Every free parameter carries U (k = 2) with its budget; the held-out tool point its
+  // predicted U, which covers the measured held-out error.
+  const auto& u = j["uncertainty"];
+  for (const auto& p : j["parameters"]) {
+    if (!p["free"].get<bool>()) {
+      EXPECT_TRUE(p["U"].is_null()) << p.dump();
+      continue;
+    }
+    EXPECT_GT(p["U"].get<double>(), 0.0) << p.dump();
+    EXPECT_FALSE(u["parameters"][p["name"].get<std::string>()]["budget"].empty());
+  }
+  EXPECT_EQ(u["tcp"]["poses"], "held-out");
+  EXPECT_GT(u["tcp"]["U_max"].get<double>(), j["holdout"]["after"]["max"].get<double>());
+  // A bad sources file: exit 2 naming it.
+  const CliRun bad = calibrate({"--data",
+                                path("sim/tracker-fit.csv"),
+                                "--out",
+                                path("cal2.json"),
+                                "--uncertainty",
+                                write("bad.json", "{\"schema\": \"other/1\"}\n")});
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("bad.json:1:"));
   // The calibrated machine file loads and is a usable Exechon machine.
   const std::string poses = write("poses.csv", "x,y,z,i,j,k\n0,0,0,0,0,-1\n100,-50,200,0,0,-1\n");
   const CliRun ik = pkm({"exechon", "ik", "--machine", path("cal.json"), "--poses", poses});

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/calibration/exechon_budget.hpp"
 #include "pkm/calibration/exechon_calibration.hpp"
 #include "pkm/calibration/exechon_uncertainty.hpp"
 #include "pkm/calibration/holdout.hpp"
@@ -46,7 +47,21 @@ struct ExechonTripodReport {
     double sigma_position = 0.0, sigma_orientation = 0.0;
   };
   std::optional<MonteCarlo> monte_carlo;
+  /// The uncertainty budgets of the parameters and the predicted tool-point uncertainty
+  /// (docs/calibration.md, "Uncertainty budgets").
+  struct Uncertainty {
+    std::string sources;  ///< the sources file, or "typical datasheet values"
+    calibration::ExechonParameterUncertainty parameters;  ///< linear budgets
+    std::string tcp_poses;            ///< where the tool-point U is predicted: "held-out"
+    calibration::TcpUncertainty tcp;  ///< the predicted tool-point U at those configurations
+  };
+  std::optional<Uncertainty> uncertainty;
 };
+
+/// The uncertainty lines of the text summary (as hexapodCalibrationUncertaintyText); "" without
+/// tripod.uncertainty.
+[[nodiscard]] std::string exechonCalibrationUncertaintyText(const ExechonTripodReport& tripod,
+                                                            LengthUnit unit);
 
 /// The hybrid machine's four squareness errors from the hybrid tracker files.
 struct HybridSquarenessReport {

@@ -15,6 +15,7 @@
 #include "pkm/io/exechon_calibration_report.hpp"
 #include "pkm/io/exechon_machine.hpp"
 #include "pkm/io/named_text.hpp"
+#include "pkm/metrology/uncertainty_sources.hpp"
 #include "pkm/workflow/progress.hpp"
 
 namespace pkm::workflow {
@@ -46,6 +47,10 @@ struct ExechonCalibrationRequest {
   double sigma_orientation_urad = 0.0;  ///< Monte Carlo tool-direction noise, µrad
   int threads = 0;                      ///< Monte Carlo worker threads (0: all cores)
   std::string db;                       ///< result store to record the calibration in ("" : none)
+  /// Instruments of the tripod fit's uncertainty budgets (`--uncertainty FILE`; default:
+  /// typical datasheet values; docs/calibration.md, "Uncertainty budgets").
+  metrology::UncertaintySources uncertainty;
+  std::string uncertainty_name;  ///< the sources file's name ("" : the typical values)
   /// Throws pkm::InvalidArgument naming the option for an unusable setting.
   void validate() const;
 };

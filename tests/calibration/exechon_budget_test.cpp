@@ -1,0 +1,138 @@
+#include "pkm/calibration/exechon_budget.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "pkm/core/error.hpp"
+#include "pkm/io/machine_loader.hpp"
+#include "pkm/simulation/exechon_tracker.hpp"
+#include "pkm/simulation/hybrid_tripod_errors.hpp"
+#include "support/tolerances.hpp"
+
+namespace pkm::calibration {
+namespace {
+
+using kinematics::ExechonModel;
+
+constexpr double kNoise = 0.005;  ///< mm: simulated tracker noise per coordinate
+constexpr double kDeg = M_PI / 180.0;
+
+/// A world-frame calibration of the mxt700s-like Exechon with a few assembly errors (base
+/// placement known), as in exechon_uncertainty_test.cpp.
+struct Problem {
+  ExechonModel initial = io::loadExechonMachine("mxt700s-like").model;
+  ExechonCalibrationData data;
+  ExechonCalibrationOptions options;
+  ExechonCalibrationSummary fit;
+  std::vector<kinematics::ExechonJoints> check;
+  Problem() {
+    simulation::ExechonTripodErrors e;
+    e.dA = 1.2;
+    e.pA = 0.6;
+    e.length_offset = Eigen::Vector3d(0.8, -1.1, 0.5);
+    e.c0 = 0.8e-3;
+    e.tool_length = 0.3;
+    const ExechonModel truth = simulation::perturbedExechon(initial, e);
+    simulation::ExechonTrackerSetup s;
+    s.name = "budget";
+    s.count = 25;
+    s.box_min = Eigen::Vector3d(-300, -300, -100);
+    s.box_max = Eigen::Vector3d(300, 300, 300);
+    s.max_tilt = 30 * kDeg;
+    s.smr_offset = Eigen::Vector3d(40, 0, 20);
+    s.noise.range_sigma = kNoise;
+    s.noise.angle_sigma = kNoise / 2000.0;
+    simulation::RandomStream rng(test::kSeed, s.name);
+    data.target_offset = s.smr_offset;
+    for (const auto& r : simulation::simulateExechonTracker(initial, truth, {}, s, rng)) {
+      ExechonObservation o;
+      o.joints = r.joints;
+      o.point = r.measured;
+      data.observations.push_back(o);
+      check.push_back(r.joints);
+    }
+    for (int k = kExechonBaseParameter; k < kExechonParameters; ++k)
+      options.free[static_cast<std::size_t>(k)] = false;
+    options.measurement_sigma = kNoise;
+    fit = calibrateExechon(initial, data, options);
+  }
+};
+
+const Problem& problem() {
+  static const Problem p;
+  return p;
+}
+
+metrology::UncertaintySources tracker(double half_width_mm) {
+  metrology::UncertaintySources s;
+  s.tracker.accuracy_mm = half_width_mm;
+  s.tracker.accuracy_mm_per_m = 0.0;
+  return s;
+}
+
+TEST(ExechonParameterUncertainty, TheFitScatterAloneIsTheFitCovariance) {
+  const Problem& p = problem();
+  const ExechonParameterUncertainty u =
+      exechonParameterUncertainty(p.initial, p.data, p.fit, p.options, tracker(0.0));
+  ASSERT_EQ(u.linear.budgets.size(), p.fit.free_indices.size());
+  EXPECT_DOUBLE_EQ(u.linear.fit_sigma, kNoise);
+  for (std::size_t b = 0; b < u.linear.budgets.size(); ++b) {
+    const int k = u.parameter_indices[b];
+    ASSERT_GE(k, 0);
+    EXPECT_NEAR(std::sqrt(u.covariance(k, k)),
+                p.fit.standard_deviation(k),
+                1e-3 * p.fit.standard_deviation(k))
+        << exechonParameterName(k);
+  }
+}
+
+TEST(ExechonParameterUncertainty, AnInstrumentThatExplainsTheScatterReplacesTheTypeA) {
+  // A tracker of ±√3·σ rectangular has u = σ per coordinate: it explains the residual σ entirely,
+  // so no Type A remains and the budgets equal the fit covariance, now from the instrument.
+  const Problem& p = problem();
+  const ExechonParameterUncertainty u = exechonParameterUncertainty(
+      p.initial, p.data, p.fit, p.options, tracker(std::sqrt(3.0) * kNoise));
+  EXPECT_NEAR(u.linear.instrument_sigma, kNoise, 1e-12);
+  EXPECT_EQ(u.linear.fit_sigma, 0.0);
+  for (std::size_t b = 0; b < u.linear.budgets.size(); ++b) {
+    const metrology::UncertaintyBudget& budget = u.linear.budgets[b];
+    ASSERT_EQ(budget.contributors.size(), 1u) << budget.quantity;
+    EXPECT_EQ(budget.contributors[0].distribution, metrology::Distribution::kRectangular);
+    const int k = u.parameter_indices[b];
+    EXPECT_NEAR(budget.combinedStandardUncertainty(),
+                p.fit.standard_deviation(k),
+                1e-3 * p.fit.standard_deviation(k));
+    EXPECT_EQ(budget.unit, exechonParameterIsLength(k) ? "mm" : "rad");
+  }
+  metrology::UncertaintySources bad = tracker(1.0);
+  bad.coverage_factor = 0.0;
+  EXPECT_THROW((void)exechonParameterUncertainty(p.initial, p.data, p.fit, p.options, bad),
+               InvalidArgument);
+}
+
+TEST(ExechonToolUncertainty, LiesBetweenTheTraceBoundsOfTheLinearisedTargetUncertainty) {
+  // k·√λ_max of a 3 × 3 covariance lies between k·√(trace/3) and k·√trace
+  // (exechonTargetUncertainty gives √trace).
+  const Problem& p = problem();
+  const ExechonModel estimate =
+      withExechonParameters(p.initial, p.fit.parameters, p.initial.world_T_zoppi);
+  const Eigen::MatrixXd cov =
+      p.fit.covariance.topLeftCorner(kExechonParameters, kExechonParameters);
+  const TcpUncertainty t =
+      exechonToolUncertainty(estimate, cov, p.check, p.data.target_offset, p.options.fk, 2.0);
+  ASSERT_EQ(t.poses, static_cast<int>(p.check.size()));
+  for (std::size_t i = 0; i < p.check.size(); ++i) {
+    const auto trace = exechonTargetUncertainty(
+        estimate, cov, p.check[i], p.data.target_offset, estimate.home, p.options.fk);
+    ASSERT_TRUE(trace.has_value());
+    EXPECT_LE(t.expanded[i], 2.0 * *trace * (1 + 1e-9));
+    EXPECT_GE(t.expanded[i], 2.0 * *trace / std::sqrt(3.0) * (1 - 1e-9));
+  }
+  EXPECT_THROW((void)exechonToolUncertainty(
+                   estimate, Eigen::MatrixXd::Zero(2, 2), p.check, p.data.target_offset),
+               InvalidArgument);
+}
+
+}  // namespace
+}  // namespace pkm::calibration
