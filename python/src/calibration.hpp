@@ -1,6 +1,7 @@
 /// @file
 /// @brief What the calibration binding files share (calibration.cpp: the requests from arrays;
-/// calibration_result.cpp: the result object; calibration_plan.cpp: pose planning). No domain
+/// calibration_result.cpp: the result object; calibration_plan.cpp: pose planning;
+/// calibration_module.cpp: the registration and docstrings). No domain
 /// logic: the workflows (workflow::calibrateHexapod, calibrateExechon, planPoses) do the work.
 #pragma once
 
@@ -31,6 +32,58 @@ struct CalibrationResult {
 [[nodiscard]] CalibrationResult hexapodResult(workflow::HexapodCalibrationResult result);
 /// The result object of an Exechon calibration.
 [[nodiscard]] CalibrationResult exechonResult(workflow::ExechonCalibrationResult result);
+
+/// What both calibrations share in their requests.
+struct CommonOptions {
+  std::string frame;
+  py::object target_offset;
+  std::vector<std::string> fix;
+  std::string loss;
+  double loss_scale;
+  int monte_carlo;
+  double sigma_position, sigma_orientation;
+  int threads;
+  bool allow_large_changes;
+  py::object out;
+  bool force;
+  py::object db;
+};
+
+/// The options only a hexapod calibration has.
+struct HexapodOptions {
+  bool backlash;
+  double prior_sigma, measurement_sigma, sigma_gauge;
+  py::object uncertainty;  ///< the sources file of the uncertainty budgets, or None
+  int uncertainty_trials;
+};
+
+/// `pkm calibrate hexapod` on the tables of the arguments (calibration.cpp; pkm.calibration.hexapod
+/// documents them): arrays, dicts of columns or paths, written as the command's files.
+[[nodiscard]] CalibrationResult runHexapodCalibration(const py::object& machine,
+                                                      const py::object& poses,
+                                                      const py::object& points,
+                                                      const py::object& gauges,
+                                                      const py::object& gauge_points,
+                                                      const py::object& table_normal,
+                                                      const py::object& distances,
+                                                      const py::object& pivot,
+                                                      const py::object& files,
+                                                      const py::object& holdout,
+                                                      const HexapodOptions& options,
+                                                      bool raise_on_failure,
+                                                      const CommonOptions& common);
+
+/// `pkm calibrate exechon` on the tables of the arguments (pkm.calibration.exechon documents them).
+[[nodiscard]] CalibrationResult runExechonCalibration(const py::object& machine,
+                                                      const py::object& points,
+                                                      const py::object& hybrid,
+                                                      const py::object& files,
+                                                      const py::object& holdout,
+                                                      const py::object& hybrid_holdout,
+                                                      const py::object& errors,
+                                                      const py::object& hybrid_target_offset,
+                                                      bool raise_on_failure,
+                                                      const CommonOptions& common);
 
 /// Registers CalibrationResult in `m` (calibration_result.cpp).
 void exposeCalibrationResult(py::module_& m);
