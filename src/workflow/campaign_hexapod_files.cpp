@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "calibration_uncertainty.hpp"
+#include "campaign_hexapod_detail.hpp"
 #include "campaign_steps.hpp"
 #include "pkm/calibration/acceptance.hpp"
 #include "pkm/calibration/hexapod_calibration.hpp"
@@ -174,6 +176,23 @@ StepOutcome runHexapodCalibrationFiles(const StepContext& ctx) {
                       "as measured"});
   addHeldOutRows(out, machine, input, held, s, unit);
   out.section = filesSection(out, fit.size(), holdout.size(), machine, s);
+  // The budgets (typical instruments) and the predicted TCP U at the held-out configurations.
+  kinematics::HexapodModel model = machine.model;
+  model.tool_offset += input.target_offset.value_or(Eigen::Vector3d::Zero());
+  const bool has_held = !held.data.poses.empty() || !held.data.points.empty();
+  const io::HexapodCalibrationReport::Uncertainty u =
+      workflow::detail::hexapodCalibrationUncertainty(
+          model,
+          input.data,
+          s,
+          {},
+          {},
+          has_held
+              ? workflow::detail::checkPoses(
+                    cal::withHexapodParameters(model, s.parameters), held.data, s.measurement_frame)
+              : std::vector<kinematics::PoseRpy>{},
+          "held-out");
+  out.section["tables"].push_back(detail::budgetTable(u));
   return out;
 }
 

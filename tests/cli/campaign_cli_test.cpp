@@ -156,6 +156,14 @@ TEST_F(CampaignCli, MeasuredFilesAreCalibratedAndTheKinematicsWritten) {
       EXPECT_GT(row["before"].get<double>(), 1.0);
     }
   EXPECT_TRUE(held);
+  // The section shows the calibration's budget table with the predicted TCP U.
+  const Json report = Json::parse(slurp(dir_ / "o" / "report-data.json"));
+  bool budget = false;
+  for (const Json& sec : report["sections"])
+    for (const Json& t : sec["tables"])
+      budget =
+          budget || t["title"].get<std::string>().rfind("Calibration uncertainty (k = 2)", 0) == 0;
+  EXPECT_TRUE(budget);
   EXPECT_TRUE(std::filesystem::is_regular_file(dir_ / "o/hx/compensation/kinematics.hal"));
   expectUsageError(pkm({"campaign",
                         "run",
