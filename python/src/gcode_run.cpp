@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 #include <string>
@@ -23,7 +24,8 @@ namespace {
 /// pkm.gcode.Run.
 struct Run {
   py::object t, line, index, pose, joints;
-  py::object report;  ///< the --report document as a dict
+  py::object report;    ///< the --report document as a dict
+  py::list violations;  ///< the first max_violations violations of each check, as dicts
   std::vector<std::string> notes;
   workflow::GcodeRunResult result;
 };
@@ -56,6 +58,26 @@ void pathArrays(const workflow::GcodeRunPath& p, Run& run) {
   run.joints = joints;
   run.line = line;
   run.index = index;
+}
+
+/// The violations of a run as dicts (check, line, position, item, value, limit, margin, unit).
+py::list violationsOf(const std::vector<workflow::GcodeRunViolation>& list) {
+  py::list out;
+  for (const workflow::GcodeRunViolation& v : list) {
+    py::dict d;
+    d["check"] = v.check;
+    d["line"] = v.event.line;
+    py::array_t<double> position = newArray(6);
+    std::copy(v.event.position.begin(), v.event.position.end(), position.mutable_data());
+    d["position"] = position;
+    d["item"] = v.event.item;
+    d["value"] = v.event.value;
+    d["limit"] = v.event.limit;
+    d["margin"] = v.event.margin;
+    d["unit"] = v.event.unit;
+    out.append(d);
+  }
+  return out;
 }
 
 /// Raises pkm.LimitError naming every violated check and its first violation.
@@ -108,6 +130,7 @@ Run run(const py::object& machine,
         std::uint64_t max_iterations,
         std::size_t max_points,
         std::optional<std::size_t> path_points,
+        std::size_t max_violations,
         const py::object& out,
         const py::object& report,
         bool force,
@@ -127,6 +150,7 @@ Run run(const py::object& machine,
   q.interpreter = interpreterOf(tool_table, tool_units, block_delete, max_iterations);
   q.max_points = max_points;
   q.path_points = path_points.value_or(std::numeric_limits<std::size_t>::max());
+  q.max_violations = max_violations;
   q.out = optionalPath(out, "out");
   q.report = optionalPath(report, "report");
   q.force = force;
@@ -141,6 +165,7 @@ Run run(const py::object& machine,
   }
   if (raise_on_violation && !r.result.ok()) raiseOnViolation(r.result.report);
   pathArrays(r.result.path, r);
+  r.violations = violationsOf(r.result.violations);
   r.report = jsonLoads(io::gcodeRunJson(r.result.report));
   return r;
 }
@@ -173,6 +198,12 @@ void exposeGcodeRun(py::module_& g) {
                     "dict: the check report, the JSON document of `pkm gcode run --report` "
                     "(checks.NAME.{enabled, violations, unit, worst, first_violation}, "
                     "cycle_time_s, points, ok, ...).")
+      .def_readonly("violations",
+                    &Run::violations,
+                    "list of dict: with max_violations > 0, the first max_violations violated "
+                    "points of each check, by check then path order: check, line, position (6,) "
+                    "(x, y, z mm, a, b, c deg, machine coordinates), item, value, limit, margin "
+                    "(< 0) and unit (report['checks'][name]['violations'] counts them all).")
       .def_readonly("notes",
                     &Run::notes,
                     "list of str: the notices the command prints as 'pkm: note:' (a LinuxCNC "
@@ -223,6 +254,7 @@ void exposeGcodeRun(py::module_& g) {
         py::arg("max_iterations") = std::uint64_t{10'000'000},
         py::arg("max_points") = cnc::kDefaultMaxPathPoints,
         py::arg("path_points") = py::none(),
+        py::arg("max_violations") = std::size_t{0},
         py::arg("out") = py::none(),
         py::arg("report") = py::none(),
         py::arg("force") = false,
@@ -266,6 +298,8 @@ path_points : int, optional
     Most points of the returned arrays (default: every point; 0: none). A longer path is
     decimated evenly, keeping the ends and every check's worst point; the checks always see
     every point.
+max_violations : int, default 0
+    Most violations returned per check in `violations` (0: none); the report counts them all.
 out : str or os.PathLike, optional
     Also write the joint CSV (--out).
 report : str or os.PathLike, optional
@@ -281,7 +315,7 @@ Returns
 -------
 Run
     t (M,), line (M,), pose (M, 6), joints (M, J), joint_names, joint_units, report (dict, as
-    --report writes it), ok, text (the printed report), notes.
+    --report writes it), ok, text (the printed report), violations, notes.
 
 Raises
 ------

@@ -174,3 +174,16 @@ def test_arguments_of_the_wrong_type_raise_value_error():
         pkm.gcode.run(3, HEXAPOD_PROGRAM)
     with pytest.raises(ValueError, match=r"tool_table: .*got float"):
         pkm.gcode.moves("G0 X1\n", tool_table=1.5)
+
+
+def test_violations_listed_per_check():
+    program = "G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\n"
+    r = pkm.gcode.run("hexapod-default", program, max_violations=3)
+    stroke = [v for v in r.violations if v["check"] == "stroke"]
+    assert 1 <= len(stroke) <= 3
+    first = r.report["checks"]["stroke"]["first_violation"]
+    assert stroke[0]["line"] == first["line"] == 3
+    assert stroke[0]["item"] == first["item"] and stroke[0]["margin"] == first["margin"]
+    np.testing.assert_array_equal(stroke[0]["position"], first["position"])
+    assert all(v["margin"] < 0 for v in r.violations)
+    assert pkm.gcode.run("hexapod-default", program).violations == []
