@@ -128,6 +128,14 @@ std::string frameLine(const std::string& frame) {
   return frame == "world" || frame == "tracker" ? "# frame: " + frame + "\n" : "";
 }
 
+/// The uncertainty budgets' sources file (`--uncertainty FILE`; None: the typical values).
+template <class Request>
+void setUncertainty(Request& r, const py::object& file) {
+  if (file.is_none()) return;
+  r.uncertainty_name = fspath(file);
+  r.uncertainty = io::readUncertaintySources(io::readNamedText(r.uncertainty_name));
+}
+
 template <class Request>
 void setCommon(Request& r, const CommonOptions& o) {
   r.frame = o.frame;
@@ -200,10 +208,7 @@ CalibrationResult runHexapodCalibration(const py::object& machine,
   r.prior_sigma = options.prior_sigma;
   r.measurement_sigma = options.measurement_sigma;
   r.sigma_gauge = options.sigma_gauge;
-  if (!options.uncertainty.is_none()) {
-    r.uncertainty_name = fspath(options.uncertainty);
-    r.uncertainty = io::readUncertaintySources(io::readNamedText(r.uncertainty_name));
-  }
+  setUncertainty(r, options.uncertainty);
   r.uncertainty_trials = options.uncertainty_trials;
   workflow::HexapodCalibrationResult result;
   {
@@ -223,6 +228,7 @@ CalibrationResult runExechonCalibration(const py::object& machine,
                                         const py::object& hybrid_holdout,
                                         const py::object& errors,
                                         const py::object& hybrid_target_offset,
+                                        const py::object& uncertainty,
                                         bool raise_on_failure,
                                         const CommonOptions& common) {
   workflow::ExechonCalibrationRequest r;
@@ -247,6 +253,7 @@ CalibrationResult runExechonCalibration(const py::object& machine,
   addTables(r.holdout, holdout, "holdout", tracker, frame);
   addTables(r.holdout, hybrid_holdout, "hybrid_holdout", fixed(kHybridColumns), hybrid_meta);
   if (!errors.is_none()) r.errors = fspath(errors);
+  setUncertainty(r, uncertainty);
   setCommon(r, common);
   workflow::ExechonCalibrationResult result;
   {

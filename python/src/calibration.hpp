@@ -82,6 +82,7 @@ struct HexapodOptions {
                                                       const py::object& hybrid_holdout,
                                                       const py::object& errors,
                                                       const py::object& hybrid_target_offset,
+                                                      const py::object& uncertainty,
                                                       bool raise_on_failure,
                                                       const CommonOptions& common);
 

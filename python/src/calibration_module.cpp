@@ -188,6 +188,7 @@ void defExechon(py::module_& c) {
          const py::object& hybrid_holdout,
          const py::object& errors,
          const py::object& hybrid_target_offset,
+         const py::object& uncertainty,
          const std::string& frame,
          const py::object& target_offset,
          const std::vector<std::string>& fix,
@@ -223,6 +224,7 @@ void defExechon(py::module_& c) {
                                      hybrid_holdout,
                                      errors,
                                      hybrid_target_offset,
+                                     uncertainty,
                                      raise_on_failure,
                                      common);
       },
@@ -235,6 +237,7 @@ void defExechon(py::module_& c) {
       py::arg("hybrid_holdout") = py::none(),
       py::arg("errors") = py::none(),
       py::arg("hybrid_target_offset") = py::none(),
+      py::arg("uncertainty") = py::none(),
       py::arg("frame") = "auto",
       py::arg("target_offset") = py::none(),
       py::arg("fix") = std::vector<std::string>{},
@@ -270,8 +273,8 @@ hybrid_target_offset : array_like (3,), optional
     Hybrid arrays: the SMR in the tool frame (a hybrid file's `smr offset mm`; target_offset
     is the Exechon tracker readings' only).
 frame, target_offset, fix, loss, loss_scale, monte_carlo, sigma_position, sigma_orientation,
-threads, allow_large_changes, out, force, db, raise_on_failure
-    As in hexapod() (fix names e.g. "tripod.hx").
+threads, allow_large_changes, out, force, db, uncertainty, raise_on_failure
+    As in hexapod() (fix names e.g. "tripod.hx"; the budgets are the tripod fit's).
 
 Returns
 -------

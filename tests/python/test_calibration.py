@@ -350,6 +350,26 @@ def test_exechon_from_files_and_arrays_equals_the_cli(run_cli, ex, tmp_path):
     assert without(r.to_dict())["hybrid"] == without(cli)["hybrid"] == without({"hybrid": r.hybrid})["hybrid"]
 
 
+@pytest.mark.parametrize("kind", ["hexapod", "exechon"])
+def test_uncertainty_sources_equal_the_cli(run_cli, s4, ex, tmp_path, kind):
+    sources = tmp_path / "sources.json"
+    sources.write_text('{"tracker": {"accuracy_mm": 0.03, "accuracy_mm_per_m": 0.01}}\n')
+    data = str(s4 / "tracker-pose.csv") if kind == "hexapod" else str(ex / "tracker-fit.csv")
+    machine = "hexapod-default" if kind == "hexapod" else "mxt700s-like"
+    cli = json.loads(run_cli(["calibrate", kind, "--machine", machine, "--data", data,
+                              "--uncertainty", str(sources), "--out", str(tmp_path / "c.json"),
+                              "--json"]).stdout)
+    calibrate = getattr(pkm.calibration, kind)
+    r = calibrate(machine, files=data, uncertainty=sources)
+    assert without(r.to_dict(), "outputs") == without(cli, "outputs")
+    assert r.uncertainty["sources"] == str(sources)
+    typical = calibrate(machine, files=data)
+    assert np.nanmax(r.expanded_uncertainty - typical.expanded_uncertainty) > 0
+    (tmp_path / "bad.json").write_text('{"tracker": {"accuracy_mm": "a"}}\n')
+    with pytest.raises(ValueError, match="bad.json:1"):
+        calibrate(machine, files=data, uncertainty=tmp_path / "bad.json")
+
+
 def test_exechon_errors(ex):
     _, points = read_table(ex / "tracker-fit.csv", EXECHON)
     with pytest.raises(ValueError, match=r"points: expected an array of shape \(N, 8\)"):
