@@ -80,7 +80,14 @@ CampaignSummary runCampaign(const py::object& campaign,
                             const py::object& db,
                             const py::object& progress) {
   workflow::CampaignOptions o;
-  o.campaign = pathOf(campaign, "campaign");
+  if (py::isinstance<py::dict>(campaign)) {
+    o.campaign = "campaign";  // names the document in messages and summary.json's source
+    o.campaign_text = py::module_::import("json")
+                          .attr("dumps")(campaign, py::arg("indent") = 2)
+                          .cast<std::string>();
+  } else {
+    o.campaign = pathOf(campaign, "campaign (a built-in name, a file or a dict)");
+  }
   o.out = pathOf(out, "out");
   o.force = force;
   if (!db.is_none()) o.db = pathOf(db, "db");
@@ -187,8 +194,10 @@ is released while it runs; Ctrl-C stops it at the next progress report.
 
 Parameters
 ----------
-campaign : str or os.PathLike, default "default"
-    A built-in campaign's name (see campaigns()) or a pkm.campaign/1 file.
+campaign : str, os.PathLike or dict, default "default"
+    A built-in campaign's name (see campaigns()), a pkm.campaign/1 file, or the campaign document
+    itself as a dict (messages and summary.json's "source" name it "campaign"; relative file
+    names in it are taken from the current directory).
 out : str or os.PathLike
     The output folder: summary.json, report-data.json, report.html and one folder per step.
 force : bool, default False

@@ -275,11 +275,14 @@ CampaignInfo describeCampaign(const std::string& spec) {
 
 CampaignResult runCampaign(const CampaignOptions& options, const RunControl& control) {
   options.validate();
-  const auto [text, source] = loadText(options.campaign);
+  const bool given = !options.campaign_text.empty();
+  const auto [text, source] =
+      given ? std::pair{options.campaign_text, options.campaign} : loadText(options.campaign);
   const Json spec = parseCampaign(text, source);
   prepareOutput(options);
-  const fs::path base_dir =
-      source.rfind("builtin:", 0) == 0 ? fs::current_path() : fs::path(source).parent_path();
+  const fs::path base_dir = given || source.rfind("builtin:", 0) == 0
+                                ? fs::current_path()
+                                : fs::path(source).parent_path();
   CampaignResult result;
   result.name = spec.value("name", std::string("campaign"));
   result.source = source;

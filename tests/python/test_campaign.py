@@ -38,6 +38,16 @@ def test_campaign_file_equals_cli(run_cli, tmp_path, campaign_file):
     assert "one" in repr(s) and "rows" in dir(s)
 
 
+def test_campaign_as_dict(tmp_path, campaign_file):
+    from_file = pkm.run_campaign(campaign_file, out=tmp_path / "f").to_dict()
+    from_dict = pkm.run_campaign(json.loads(ONE_STEP), out=tmp_path / "d").to_dict()
+    assert from_dict.pop("source") == "campaign"
+    from_file.pop("source")
+    assert from_dict == from_file
+    with pytest.raises(ValueError, match=r"^campaign"):
+        pkm.run_campaign({"schema": "other", "steps": []}, out=tmp_path / "e")
+
+
 def test_default_campaign_rows_with_uncertainty(run_cli, tmp_path):
     cli = cli_summary(run_cli, "default", tmp_path / "cli")
     s = pkm.run_campaign(out=tmp_path / "py")

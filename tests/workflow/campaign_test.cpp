@@ -103,6 +103,34 @@ TEST_F(CampaignWorkflow, OneStepCampaignMeetsItsTargetAndReportsProgressInOrder)
   EXPECT_THAT(events.back().message, HasSubstr("done in"));
 }
 
+TEST_F(CampaignWorkflow, ACampaignGivenAsTextRunsAsItsFile) {
+  CampaignOptions file;
+  file.campaign = probeCampaign();
+  file.out = dir_ / "file";
+  CampaignOptions text;
+  std::ifstream in(file.campaign, std::ios::binary);
+  text.campaign_text.assign(std::istreambuf_iterator<char>(in), {});
+  text.campaign = "mine";
+  text.out = dir_ / "text";
+  const CampaignResult a = runCampaign(file);
+  const CampaignResult b = runCampaign(text);
+  EXPECT_EQ(b.source, "mine");
+  ASSERT_EQ(a.steps.size(), b.steps.size());
+  ASSERT_EQ(a.steps[0].rows.size(), b.steps[0].rows.size());
+  for (std::size_t k = 0; k < a.steps[0].rows.size(); ++k) {
+    EXPECT_EQ(a.steps[0].rows[k].quantity, b.steps[0].rows[k].quantity);
+    EXPECT_EQ(a.steps[0].rows[k].after, b.steps[0].rows[k].after);
+  }
+  text.campaign_text = "{\"schema\": \"other\", \"steps\": []}";
+  text.out = dir_ / "bad";
+  try {
+    (void)runCampaign(text);
+    FAIL() << "accepted another schema";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("mine"));
+  }
+}
+
 TEST_F(CampaignWorkflow, CancellationStopsTheRunBeforeTheReport) {
   CampaignOptions o;
   o.campaign = probeCampaign();

@@ -55,6 +55,10 @@ struct CampaignOptions {
   std::filesystem::path out;         ///< the output directory (required)
   bool force = false;                ///< write into a non-empty output directory
   std::string db;                    ///< the result store (SQLite) to add to; empty: none
+  /// The campaign document itself (pkm.campaign/1 JSON, e.g. from a front end's dict), used
+  /// instead of reading `campaign` when not empty; `campaign` then names it in messages and in
+  /// summary.json's "source", and relative file names in it are taken from the current directory.
+  std::string campaign_text;
   /// Throws pkm::IoError "give --out DIR" when `out` is empty.
   void validate() const;
 };
