@@ -106,7 +106,7 @@ def main():
     nominal = pkm.load_machine("hexapod-default")
 
     # How good could 30 poses be? The planner's choice against a random one.
-    plan = pkm.calibration.plan_poses("hexapod-default", count=30)
+    plan = pkm.calibration.plan_poses("hexapod-default", count=30, candidates=300)
     print(f"pose planning: {plan.summary}")
 
     poses, held, target, truth = load_measurements(args.data)
