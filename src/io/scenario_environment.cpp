@@ -123,6 +123,27 @@ void readThermal(const JsonDoc& doc,
   if (!t.isValid(&why)) doc.fail(ptr, why);
 }
 
+void readSetup(const JsonDoc& doc,
+               const json& obj,
+               const std::string& ptr,
+               sim::SetupEnvironment& set) {
+  doc.onlyKeys(obj,
+               ptr,
+               {"enabled",
+                "beam_misalignment_urad",
+                "reflector_offset_mm",
+                "probe_lobing_um",
+                "probe_lobes"});
+  set.enabled = boolean(doc, obj, ptr, "enabled", true);
+  set.beam_misalignment_rad =
+      doc.number(obj, ptr, "beam_misalignment_urad", set.beam_misalignment_rad * 1e6) / 1e6;
+  set.reflector_offset_mm = doc.number(obj, ptr, "reflector_offset_mm", set.reflector_offset_mm);
+  set.probe_lobing_mm = doc.number(obj, ptr, "probe_lobing_um", set.probe_lobing_mm * 1e3) / 1e3;
+  set.probe_lobes = integer(doc, obj, ptr, "probe_lobes", set.probe_lobes, 1, 100);
+  std::string why;
+  if (!set.isValid(&why)) doc.fail(ptr, why);
+}
+
 sim::Environment preset(const JsonDoc& doc, const std::string& name, const std::string& ptr) {
   const auto e = sim::environmentPreset(name);
   if (!e) {
@@ -138,12 +159,13 @@ sim::Environment preset(const JsonDoc& doc, const std::string& name, const std::
 
 sim::Environment readEnvironment(const JsonDoc& doc, const json& obj, const std::string& ptr) {
   if (obj.is_string()) return preset(doc, obj.get<std::string>(), ptr);
-  doc.onlyKeys(obj, ptr, {"preset", "duration_h", "air", "thermal"});
+  doc.onlyKeys(obj, ptr, {"preset", "duration_h", "air", "thermal", "setup"});
   sim::Environment e = preset(doc, doc.string(obj, ptr, "preset", "ideal"), ptr + "/preset");
   e.name = "custom";
   e.duration_h = doc.number(obj, ptr, "duration_h", e.duration_h);
   if (obj.contains("air")) readAir(doc, obj["air"], ptr + "/air", e.air);
   if (obj.contains("thermal")) readThermal(doc, obj["thermal"], ptr + "/thermal", e.thermal);
+  if (obj.contains("setup")) readSetup(doc, obj["setup"], ptr + "/setup", e.setup);
   std::string why;
   if (!e.isValid(&why)) doc.fail(ptr, why);
   return e;

@@ -168,6 +168,7 @@ Scenario parseScenarioJson(const std::string& text,
                "must be \"laser\" (default), \"dial_gauges\", \"laser_tracker\" or "
                "\"touch_probe\"");
   }
+  sim::applyProbeEnvironment(out.campaign);
   try {
     out.campaign.validate();
     sim::validateTrackers(out.campaign);

@@ -64,6 +64,15 @@ std::vector<MeasurementResult> runCampaign(const Campaign& campaign, std::uint64
   return results;
 }
 
+void applyProbeEnvironment(Campaign& campaign) {
+  const SetupEnvironment& set = campaign.environment.setup;
+  if (!set.enabled) return;
+  for (TouchProbeSetup& p : campaign.probes) {
+    p.lobing = set.probe_lobing_mm;
+    p.lobes = set.probe_lobes;
+  }
+}
+
 std::vector<ConstrainedResult> runConstrainedMotion(const Campaign& campaign, std::uint64_t seed) {
   campaign.validate();
   std::vector<ConstrainedResult> results;

@@ -56,7 +56,26 @@ ThermalEnvironment realisticThermal() {
   return t;
 }
 
+/// "realistic": an operator's careful set-up (docs/simulation-errors.md).
+SetupEnvironment realisticSetup() {
+  SetupEnvironment s;
+  s.enabled = true;
+  s.beam_misalignment_rad = 200e-6;  // aligned to 0.2 mm over 1 m
+  s.reflector_offset_mm = 5.0;       // the reflector a few mm off the tool point
+  s.probe_lobing_mm = 0.25e-3;       // strain-gauge probe, 2D form ±0.25 µm
+  s.probe_lobes = 3;
+  return s;
+}
+
 }  // namespace
+
+bool SetupEnvironment::isValid(std::string* why) const {
+  for (const double v : {beam_misalignment_rad, reflector_offset_mm, probe_lobing_mm})
+    if (!std::isfinite(v) || v < 0.0) return fail(why, "set-up errors must be finite and >= 0");
+  if (probe_lobes < 1)
+    return fail(why, fmt::format("probe_lobes must be >= 1, got {}", probe_lobes));
+  return true;
+}
 
 std::optional<double> expansionCoefficient(std::string_view material) {
   if (material == "steel") return 11.5e-6;
@@ -119,7 +138,7 @@ bool Environment::isValid(std::string* why) const {
   if (!std::isfinite(elapsed_h) || elapsed_h < 0.0)
     return fail(why, fmt::format("elapsed_h must be >= 0, got {}", elapsed_h));
   return air.isValid(why) && airInRange(air, 1.0 + elapsed_h / duration_h, why) &&
-         thermal.isValid(why);
+         thermal.isValid(why) && setup.isValid(why);
 }
 
 std::optional<Environment> environmentPreset(std::string_view name) {
@@ -129,6 +148,7 @@ std::optional<Environment> environmentPreset(std::string_view name) {
     e.name = "realistic";
     e.air = realisticAir();
     e.thermal = realisticThermal();
+    e.setup = realisticSetup();
     return e;
   }
   return std::nullopt;

@@ -19,7 +19,12 @@ class LineInstrument {
                  const Eigen::Vector3d& beam,
                  const geometry::RigidTransform& datum,
                  const MeasurementConditions* conditions)
-      : setup_(setup), beam_(beam), datum_(datum), conditions_(conditions) {
+      : setup_(setup),
+        beam_(conditions != nullptr ? conditions->laserBeam(beam) : beam),
+        datum_(datum),
+        conditions_(conditions),
+        offset_(conditions != nullptr ? setup.reflector_offset + conditions->reflectorOffset()
+                                      : setup.reflector_offset) {
     lateral_ = setup.lateral.normalized();
     if (setup.quantity == LineQuantity::kStraightness) {
       Eigen::Vector3d l = setup.lateral - setup.lateral.dot(beam) * beam;
@@ -32,7 +37,7 @@ class LineInstrument {
 
   /// The true (noise-free) reading at the actual pose.
   [[nodiscard]] double truth(const geometry::RigidTransform& pose, double datum_target) const {
-    const Eigen::Vector3d d = pose * setup_.reflector_offset - datum_ * setup_.reflector_offset;
+    const Eigen::Vector3d d = pose * offset_ - datum_ * offset_;
     switch (setup_.quantity) {
       case LineQuantity::kLinear:
         return datum_target + (conditions_ != nullptr ? conditions_->laserDisplacement(beam_.dot(d))
@@ -50,6 +55,7 @@ class LineInstrument {
   Eigen::Vector3d beam_;
   geometry::RigidTransform datum_;
   const MeasurementConditions* conditions_;
+  Eigen::Vector3d offset_;  // the reflector's offset from the tool point, tool frame
   Eigen::Vector3d lateral_;
 };
 

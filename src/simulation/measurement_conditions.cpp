@@ -1,6 +1,7 @@
 #include "pkm/simulation/measurement_conditions.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "pkm/core/error.hpp"
@@ -39,6 +40,25 @@ MeasurementConditions::MeasurementConditions(const Environment& environment,
       std::isfinite(window_s) && window_s > 0.0, "measurement window {} s must be > 0", window_s);
   PKM_CHECK(readings >= 1, "a measurement needs at least one reading, got {}", readings);
   step_s_ = window_s / readings;
+  const SetupEnvironment& set = environment.setup;
+  if (set.enabled) {  // drawn once per measurement, before anything else
+    tilt_azimuth_ = rng_.uniform(0.0, 2.0 * std::numbers::pi);
+    for (Eigen::Index k = 0; k < 3; ++k)
+      reflector_offset_[k] = rng_.normal(set.reflector_offset_mm);
+  }
+}
+
+Eigen::Vector3d MeasurementConditions::laserBeam(const Eigen::Vector3d& beam) const {
+  const SetupEnvironment& set = env_.setup;
+  if (!set.enabled || set.beam_misalignment_rad == 0.0) return beam;
+  // Two unit vectors across the beam, then the tilt towards the drawn azimuth.
+  const Eigen::Vector3d helper =
+      std::abs(beam.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
+  const Eigen::Vector3d e1 = beam.cross(helper).normalized();
+  const Eigen::Vector3d e2 = beam.cross(e1);
+  const Eigen::Vector3d across = std::cos(tilt_azimuth_) * e1 + std::sin(tilt_azimuth_) * e2;
+  const double theta = set.beam_misalignment_rad;
+  return std::cos(theta) * beam + std::sin(theta) * across;
 }
 
 double MeasurementConditions::fraction() const {

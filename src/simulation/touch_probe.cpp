@@ -102,7 +102,8 @@ class Prober {
     const Eigen::Vector3d p = start + t * Eigen::Vector3d(u.x(), u.y(), 0.0);
     r.drm = drmAt(p);
     r.ball = ball(p, spindle + r.drm);
-    const double measured = s_.noise.apply(t, t, rng);
+    const double lobe = s_.lobing * std::cos(s_.lobes * (approach - planeTurn(s_, r)));
+    const double measured = s_.noise.apply(t + lobe, t, rng);
     r.position = start + measured * Eigen::Vector3d(u.x(), u.y(), 0.0);
     return r;
   }
@@ -136,6 +137,9 @@ void TouchProbeSetup::validate() const {
             name);
   PKM_CHECK(circle_points >= 4, "{}: circle_points must be >= 4", name);
   PKM_CHECK(runs >= 1, "{}: runs must be >= 1", name);
+  PKM_CHECK(std::isfinite(lobing) && lobing >= 0.0 && lobes >= 1,
+            "{}: lobing must be >= 0 and lobes >= 1",
+            name);
   noise.validate();
 }
 

@@ -158,6 +158,7 @@ io::Scenario stepScenario(const StepContext& context, std::uint64_t& seed) {
                                 context.source,
                                 fmt::join(sim::environmentPresetNames(), ", ")));
     scenario.campaign.environment = *preset;
+    sim::applyProbeEnvironment(scenario.campaign);
   }
   if (context.spec.contains("seed")) {
     if (!context.spec["seed"].is_number_unsigned())

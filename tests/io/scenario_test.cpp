@@ -229,6 +229,16 @@ TEST(Scenario, EnvironmentIsIdealByDefaultAPresetOrAnObject) {
   EXPECT_EQ(th.material_temperature_c.start, 22.0);
   EXPECT_EQ(th.warmup_drift_mm.z(), -0.02);
   EXPECT_EQ(th.strut_warmup_k, 3.0);
+  const io::Scenario set = io::parseScenarioJson(
+      withEnvironment(R"({"setup": {"beam_misalignment_urad": 500, "reflector_offset_mm": 2,
+        "probe_lobing_um": 0.5, "probe_lobes": 4}})"),
+      "s.json");
+  const sim::SetupEnvironment& su = set.campaign.environment.setup;
+  EXPECT_TRUE(su.enabled);
+  EXPECT_DOUBLE_EQ(su.beam_misalignment_rad, 500e-6);
+  EXPECT_EQ(su.reflector_offset_mm, 2.0);
+  EXPECT_DOUBLE_EQ(su.probe_lobing_mm, 0.5e-3);
+  EXPECT_EQ(su.probe_lobes, 4);
 }
 
 TEST(Scenario, EnvironmentErrorsNameTheLineAndPointer) {
@@ -253,6 +263,10 @@ TEST(Scenario, EnvironmentErrorsNameTheLineAndPointer) {
               HasSubstr("give either strut_material or strut_cte_per_k"));
   EXPECT_THAT(message(R"({"thermal": {"warmup_time_constant_h": 0}})"),
               HasSubstr("warmup_time_constant_h must be > 0"));
+  EXPECT_THAT(message(R"({"setup": {"probe_lobes": 0}})"),
+              HasSubstr("/environment/setup/probe_lobes: must be an integer in [1, 100]"));
+  EXPECT_THAT(message(R"({"setup": {"reflector_offset_mm": -1}})"),
+              HasSubstr("set-up errors must be finite and >= 0"));
 }
 
 }  // namespace

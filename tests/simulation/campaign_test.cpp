@@ -138,6 +138,50 @@ TEST(Campaign, ThermalSourcesAppearInTheLinesWithTheirAnalyticSize) {
   EXPECT_GT(later[1].runs.back().readings.back().reading, -1e-3);
 }
 
+TEST(Campaign, SetUpErrorsGiveTheCosineErrorAndTheAbbeErrorOfTheDrawnOffset) {
+  // A pitch error of X growing to 100 µrad over 300 mm: an offset reflector reads it (Abbe).
+  sim::CartesianErrors errors;
+  Eigen::MatrixXd values = Eigen::MatrixXd::Zero(2, 6);
+  values(1, 4) = 100e-6;  // ey at 300 mm
+  errors.axes[0] = pkm::geometry::ErrorTable1d({0.0, 300.0}, values);
+  sim::Campaign c = campaign({setup("x", 0)});
+  c.machine = std::make_shared<sim::CartesianMachine>(sim::CartesianLayout{}, errors);
+  c.measurements[0].noise = {};
+  sim::Environment& e = c.environment;
+  e.name = "custom";
+  e.setup.enabled = true;
+  e.setup.beam_misalignment_rad = 1e-3;
+  const auto ideal = sim::runCampaign(campaign({c.measurements[0]}), 3);
+  // The cosine error alone (no offset): (s − s₀)(cos θ − 1) ≈ −0.5 ppm.
+  sim::Campaign flat = c;
+  flat.machine =
+      std::make_shared<sim::CartesianMachine>(sim::CartesianLayout{}, sim::CartesianErrors{});
+  const auto cosine = sim::runCampaign(flat, 3);
+  const double s0 = cosine[0].runs[0].readings[0].target;
+  for (const sim::LineReading& x : cosine[0].runs[0].readings)
+    EXPECT_NEAR(x.reading - x.target, (x.target - s0) * (std::cos(1e-3) - 1.0), 1e-12);
+  // The reflector offset: the same readings as a set-up with the drawn offset (no tilt).
+  e.setup.beam_misalignment_rad = 0.0;
+  e.setup.reflector_offset_mm = 10.0;
+  const auto abbe = sim::runCampaign(c, 3);
+  const sim::MeasurementConditions drawn(e, 0.0, 1.0, 1, sim::streamSeed(3, "x/environment"));
+  sim::Campaign known = campaign({c.measurements[0]});
+  known.machine = c.machine;
+  known.measurements[0].reflector_offset = drawn.reflectorOffset();
+  const auto expected = sim::runCampaign(known, 3);
+  EXPECT_EQ(readings(abbe[0]).size(), readings(expected[0]).size());
+  for (std::size_t i = 0; i < readings(abbe[0]).size(); ++i)
+    EXPECT_NEAR(readings(abbe[0])[i], readings(expected[0])[i], 1e-12);
+  // Pitch times the offset's z (a pitch ε_y tilts the tool so that +z moves along +x), to first
+  // order: the second-order terms ε²·|o| are below 2e-7 mm here.
+  const sim::LineReading& end = abbe[0].runs[0].readings[6];
+  const sim::LineReading& plain = ideal[0].runs[0].readings[6];
+  EXPECT_NEAR(end.reading - plain.reading,
+              (100e-6 * end.target / 300.0 - 100e-6 * s0 / 300.0) * drawn.reflectorOffset().z(),
+              2e-7);
+  EXPECT_GT(std::abs(end.reading - plain.reading), 1e-4);
+}
+
 TEST(Campaign, AnInvalidEnvironmentIsRejected) {
   sim::Campaign c = campaign({setup("x", 0)});
   c.environment.duration_h = -1.0;

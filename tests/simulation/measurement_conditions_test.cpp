@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -167,6 +168,30 @@ TEST(MeasurementConditions, WarmUpDriftApproachesItsFinalValueExponentially) {
   e.thermal.strut_warmup_k = 2.0;
   EXPECT_NEAR(e.strutGrowth(3600.0), 11.5e-6 * 2.0 * one, 1e-18);
   EXPECT_EQ(sim::Environment{}.strutGrowth(3600.0), 0.0);
+}
+
+TEST(MeasurementConditions, TheBeamIsTiltedByTheMisalignmentAndTheReflectorOffsetDrawn) {
+  sim::Environment e;
+  e.name = "custom";
+  e.setup.enabled = true;
+  e.setup.beam_misalignment_rad = 1e-3;
+  e.setup.reflector_offset_mm = 5.0;
+  const Eigen::Vector3d b = Eigen::Vector3d(1.0, 2.0, 2.0) / 3.0;
+  double sum2 = 0.0;
+  for (std::uint64_t seed = 1; seed <= 400; ++seed) {
+    const sim::MeasurementConditions c(e, 0.0, 60.0, 1, seed);
+    const Eigen::Vector3d t = c.laserBeam(b);
+    EXPECT_NEAR(t.norm(), 1.0, 1e-15);
+    EXPECT_NEAR(std::acos(std::min(1.0, t.dot(b))), 1e-3, 1e-9);  // the cosine error's angle
+    sum2 += c.reflectorOffset().squaredNorm();
+  }
+  EXPECT_NEAR(std::sqrt(sum2 / 1200.0), 5.0, 0.3);  // σ per component
+  const sim::MeasurementConditions again(e, 0.0, 60.0, 1, 7);
+  EXPECT_EQ(again.reflectorOffset(),
+            sim::MeasurementConditions(e, 0.0, 60.0, 1, 7).reflectorOffset());
+  const sim::MeasurementConditions off(sim::Environment{}, 0.0, 60.0, 1, 7);
+  EXPECT_EQ(off.laserBeam(b), b);
+  EXPECT_EQ(off.reflectorOffset(), Eigen::Vector3d::Zero());
 }
 
 TEST(MeasurementConditions, RejectsBadArguments) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -148,6 +149,27 @@ TEST(TouchProbe, DrmCompensationReducesTheRoundness) {
     hi = std::max(hi, planeTurn(s, t));
   }
   EXPECT_LT(rw, 2.0 * s.stylus_offset.norm() * (hi - lo) + 10.0 * kRmp600Sigma);
+}
+
+TEST(TouchProbe, PreTravelLobingShiftsEachTouchByItsDirectionalSize) {
+  const TouchProbeSetup plain = paperSetup(0.0);
+  TouchProbeSetup lobed = plain;
+  lobed.lobing = 0.25e-3;  // ±0.25 µm, three lobes
+  RandomStream a(kSeed), b(kSeed);
+  const TouchProbeResult p = simulateTouchProbe(plain, a);
+  const TouchProbeResult l = simulateTouchProbe(lobed, b);
+  ASSERT_EQ(p.circle_compensated.size(), l.circle_compensated.size());
+  double largest = 0.0;
+  for (std::size_t i = 0; i < p.circle_compensated.size(); ++i) {
+    const TouchRecord& r = l.circle_compensated[i];
+    const Eigen::Vector2d u(std::cos(r.approach), std::sin(r.approach));
+    const double shift = u.dot((r.position - p.circle_compensated[i].position).head<2>());
+    EXPECT_NEAR(shift, 0.25e-3 * std::cos(3.0 * (r.approach - planeTurn(lobed, r))), 1e-12) << i;
+    largest = std::max(largest, std::abs(shift));
+  }
+  EXPECT_GT(largest, 0.2e-3);
+  lobed.lobes = 0;
+  EXPECT_THROW(lobed.validate(), InvalidArgument);
 }
 
 TEST(TouchProbe, RejectsBadSetups) {

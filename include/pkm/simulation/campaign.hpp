@@ -56,6 +56,11 @@ struct Campaign {
 /// (Environment::strutGrowth).
 [[nodiscard]] double measurementWindowS(const Campaign& campaign);
 
+/// Gives every touch probe of the campaign the environment's pre-travel lobing
+/// (SetupEnvironment::probe_lobing_mm and probe_lobes) when the set-up source is on; leaves them
+/// as they are otherwise. Call after setting campaign.environment.
+void applyProbeEnvironment(Campaign& campaign);
+
 /// One measurement's result.
 struct MeasurementResult {
   const LineSetup* setup = nullptr;  ///< points into the campaign

@@ -14,6 +14,8 @@
 ///   reading; a warm-up drift of the tool point d∞·(1 − exp(−τ/τ_w)); the hexapod's struts grow by
 ///   α_strut·ΔT_strut(τ)·L with the same warm-up law (ISO 230-3; Mayr et al., CIRP Annals 61(2),
 ///   2012).
+/// - Set-up: laser beam misalignment (cosine error), the reflector's unknown offset from the tool
+///   point (Abbe: the machine's angular errors times it), a touch probe's pre-travel lobing.
 #pragma once
 
 #include <Eigen/Core>
@@ -93,6 +95,27 @@ struct ThermalEnvironment {
   [[nodiscard]] bool isValid(std::string* why = nullptr) const;
 };
 
+/// How the instruments are set up (the operator's part).
+struct SetupEnvironment {
+  bool enabled = false;  ///< false: every instrument set up perfectly
+  /// Angle between the laser beam and the line of motion, rad (≥ 0): the laser reads the
+  /// displacement along its own beam, Δ·cos θ for a motion along the line (cosine error), plus
+  /// sin θ times the motion across the line. The tilt's direction around the line is drawn per
+  /// measurement.
+  double beam_misalignment_rad = 0.0;
+  /// Standard deviation of each component of the reflector's unknown offset from the tool point,
+  /// mm (≥ 0), drawn per measurement: the machine's angular errors times it show in the reading
+  /// (Abbe), on top of the set-up's own reflector_offset.
+  double reflector_offset_mm = 0.0;
+  /// A touch probe's pre-travel variation with direction (lobing): amplitude, mm (≥ 0); the
+  /// probe triggers a·cos(n·ψ) later along the approach, ψ the approach direction in the probe's
+  /// frame, n = probe_lobes (3 for a kinematic probe's three seats).
+  double probe_lobing_mm = 0.0;
+  int probe_lobes = 3;  ///< ≥ 1
+  /// True when every value is finite and ≥ 0 and probe_lobes ≥ 1.
+  [[nodiscard]] bool isValid(std::string* why = nullptr) const;
+};
+
 /// The environment of a campaign. Default: ideal (every source off).
 struct Environment {
   std::string name = "ideal";  ///< the preset it came from, or "custom"
@@ -103,8 +126,9 @@ struct Environment {
   double elapsed_h = 0.0;
   AirEnvironment air;          ///< the air and the laser's compensation
   ThermalEnvironment thermal;  ///< the machine's temperature, warm-up, struts
+  SetupEnvironment setup;      ///< the instruments' set-up errors
   /// True when any source is on.
-  [[nodiscard]] bool active() const { return air.enabled || thermal.enabled; }
+  [[nodiscard]] bool active() const { return air.enabled || thermal.enabled || setup.enabled; }
   /// The warm-up fraction 1 − exp(−τ/τ_w) at campaign time `time_s` (0 when thermal is off).
   [[nodiscard]] double warmup(double time_s) const;
   /// The struts' relative thermal growth α_strut·ΔT_strut(τ) at campaign time `time_s`.

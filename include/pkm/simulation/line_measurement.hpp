@@ -133,9 +133,11 @@ struct LineRun {
 /// simulateLine in an environment (environment.hpp): `conditions` (null: the ideal environment,
 /// as above) is zeroed with the instrument and advanced before every reading (readingCount of
 /// them); every pose the machine reaches (the datum's too) becomes conditions->actualPose(pose)
-/// (thermal expansion, warm-up), and a linear reading's displacement from the datum becomes
-/// conditions->laserDisplacement(b·(p(s) − p(s₀))). Straightness and angular optics are
-/// differential (both beams in the same air), so the air does not act on them.
+/// (thermal expansion, warm-up), the reflector sits at reflector_offset +
+/// conditions->reflectorOffset(), and a linear reading's displacement from the datum becomes
+/// conditions->laserDisplacement(b'·(p(s) − p(s₀))), b' = conditions->laserBeam(b) (set-up).
+/// Straightness and angular optics are differential (both beams in the same air), so the air does
+/// not act on them.
 [[nodiscard]] std::vector<LineRun> simulateLine(VirtualMachine& machine,
                                                 const LineSetup& setup,
                                                 RandomStream& rng,

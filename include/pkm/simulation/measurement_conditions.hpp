@@ -52,6 +52,14 @@ class MeasurementConditions {
   /// when both sources are off.
   [[nodiscard]] double laserDisplacement(double displacement_mm) const;
 
+  /// The beam the laser reads along for the nominal beam direction `beam` (unit): tilted by the
+  /// set-up's misalignment θ towards the direction drawn for this measurement; `beam` itself
+  /// without the set-up source.
+  [[nodiscard]] Eigen::Vector3d laserBeam(const Eigen::Vector3d& beam) const;
+  /// The reflector's offset from the tool point drawn for this measurement (tool frame, mm);
+  /// zero without the set-up source.
+  [[nodiscard]] const Eigen::Vector3d& reflectorOffset() const { return reflector_offset_; }
+
   /// The true material (machine) temperature now and what the laser's material sensor reads, °C.
   [[nodiscard]] double materialTemperature() const;
   [[nodiscard]] double sensedMaterialTemperature() const { return sensed_material_; }
@@ -72,6 +80,8 @@ class MeasurementConditions {
   double x_t_ = 0.0, x_p_ = 0.0, x_h_ = 0.0;  // fluctuations of t, p and RH
   double x_m_ = 0.0;                          // fluctuation of the material temperature
   double sensed_material_ = 20.0;
+  double tilt_azimuth_ = 0.0;  // direction of the beam's tilt around the line, rad
+  Eigen::Vector3d reflector_offset_ = Eigen::Vector3d::Zero();
   AirConditions sensed_;
   double n_datum_ = 1.0;
 };

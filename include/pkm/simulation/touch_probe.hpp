@@ -44,6 +44,11 @@ struct TouchProbeSetup {
   int runs = 5;              ///< repetitions of each sequence (seed 003: 5), >= 1
   double start_angle = 0.0;  ///< approach angle of the first circle touch, rad
   NoiseModel noise;          ///< trigger noise along the approach, mm
+  /// Pre-travel variation with direction (lobing): the probe triggers
+  /// lobing·cos(lobes·ψ) further along the approach, ψ = approach − planeTurn the direction in
+  /// the probe's frame, mm (≥ 0; 0: none). Set from the environment by applyProbeEnvironment.
+  double lobing = 0.0;
+  int lobes = 3;  ///< number of lobes, ≥ 1 (3: a kinematic probe's three seats)
   /// The Exechon whose tool IK gives φ_DRM (the machine of the scenario); required.
   std::shared_ptr<const kinematics::ExechonModel> machine;
   /// Throws pkm::InvalidArgument (naming the measurement) for non-finite values, a direction that
