@@ -69,8 +69,9 @@ inline int integer(const JsonDoc& doc,
 [[nodiscard]] std::string tripodErrorsJson(const simulation::ExechonTripodErrors& errors);
 
 /// A scenario's "environment" at `ptr`: a preset name ("ideal", "realistic") or an object
-/// {"preset", "duration_h", "air": {...}, "thermal": {...}, "setup": {...}} whose members override the preset's
-/// (docs/formats.md, "Scenario files"; an object is named "custom"). Fails through `doc`.
+/// {"preset", "duration_h", "air": {...}, "thermal": {...}, "setup": {...}} whose members override
+/// the preset's (docs/formats.md, "Scenario files"; an object is named "custom"). Fails through
+/// `doc`.
 [[nodiscard]] simulation::Environment readEnvironment(const JsonDoc& doc,
                                                       const json& obj,
                                                       const std::string& ptr);
