@@ -22,8 +22,8 @@ struct Pose {
 };
 
 /// Strut-space step δ = (δp, δθ) for the residual r = delta on input, from a factorisation of the
-/// scaled Jacobian, shortened to the options' trust region.
-void scaledStep(const detail::Lu6& lu,
+/// scaled Jacobian, shortened to the options' trust region. Returns whether it was shortened.
+bool scaledStep(const detail::Lu6& lu,
                 double inv_length,
                 double max_translation,
                 double max_rotation,
@@ -33,6 +33,29 @@ void scaledStep(const detail::Lu6& lu,
   const double shrink = std::max(
       {1.0, delta.head<3>().norm() / max_translation, delta.tail<3>().norm() / max_rotation});
   if (std::isfinite(shrink)) delta /= shrink;
+  return shrink != 1.0;
+}
+
+/// The strut residuals left after the full Newton step δ from the legs in `data` (the pose the
+/// Jacobian was taken at), to second order in δ: the first-order part J·δ cancels the residual,
+/// what is left is, per leg with unit vector u, length l and joint offset r,
+///   s = u·q + (|w|² − (u·w)²) / (2 l),  w = −δp − δθ×r,  q = ½ δθ×(δθ×r)
+/// (the leg vector after the step is v + w + q + O(δ³), from exp(−δθ)·r; the length is the
+/// second-order Taylor expansion of |v + d|).
+StrutVector secondOrderResidual(const HexapodData& data, const StrutVector& delta) {
+  const Eigen::Vector3d dp = delta.head<3>();
+  const Eigen::Vector3d dtheta = delta.tail<3>();
+  StrutVector s;
+  for (int i = 0; i < kStruts; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const Eigen::Vector3d c = dtheta.cross(data.world_r_joint[k]);
+    const Eigen::Vector3d w = -dp - c;
+    const Eigen::Vector3d& u = data.unit_leg[k];
+    const double uw = u.dot(w);
+    s[i] =
+        0.5 * u.dot(dtheta.cross(c)) + (w.squaredNorm() - uw * uw) / (2.0 * data.joint_distance[i]);
+  }
+  return s;
 }
 
 Pose retract(const Pose& at, const StrutVector& delta, double step) {
@@ -139,8 +162,20 @@ FkSummary forwardKinematics(const HexapodModel& model,
       lu_ratio = detail::factor6(J, lu, &last_sign);
       if (seed_sign == 0) seed_sign = last_sign;
     }
+    if (!lu.valid) return lu_ratio;
     // Trust region: a step longer than the options allow is shortened along its direction.
-    if (lu.valid) scaledStep(lu, inv_length, max_translation, options.max_step_rotation, delta);
+    if (scaledStep(lu, inv_length, max_translation, options.max_step_rotation, delta) || polishing)
+      return lu_ratio;
+    // A full Newton step leaves a residual of second order in its length. Where that is above
+    // what needs polishing, the step is corrected for it with the same factorisation (one
+    // substitution, no new evaluation of the legs): the step then lands within O(|δ|³), which on
+    // a path of noisy readings saves the polishing step's evaluation.
+    StrutVector s = secondOrderResidual(data, delta);
+    if (s.cwiseAbs().maxCoeff() > detail::kPolishFraction * options.tolerance && s.allFinite()) {
+      detail::substitute6(lu, s);
+      s.tail<3>() *= inv_length;
+      delta += s;
+    }
     return lu_ratio;
   };
   // A far seed (a cold start): continuation along the straight line of strut readings from the

@@ -108,6 +108,36 @@ TEST_P(HexapodFkRoundTrip, NoisyServoPathPolishesToTheRoundingFloor) {
   EXPECT_LE(max_iter, 3);
 }
 
+TEST_P(HexapodFkRoundTrip, SecondOrderCorrectedStepLandsInOneIteration) {
+  // A seed 5e-6·L and 5e-6 rad from the solution (a servo cycle with noisy readings): the full
+  // Newton step leaves ~1e-11·L of second-order residual; corrected for it with the same
+  // factorisation it lands below the polishing threshold, so one iteration, no polishing step,
+  // and the pose of a solve to a far tighter criterion.
+  const HexapodModel m = model();
+  HexapodData data(m), tight_data(m), ik(m);
+  FkOptions tight;
+  tight.tolerance = 1e-13 * m.characteristicLength();
+  const double length = m.characteristicLength();
+  std::mt19937 rng(test::kSeed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int k = 0; k < 200; ++k) {
+    const PoseRpy truth = servoPathPose(m, k, 200);
+    const StrutVector q = inverseKinematics(m, ik, truth);
+    PoseRpy seed = truth;
+    for (int i = 0; i < 3; ++i) {
+      seed.position[i] += 5e-6 * length * unit(rng);
+      seed.rpy[i] += 5e-6 * unit(rng);
+    }
+    const FkSummary s = forwardKinematics(m, data, q, seed);
+    ASSERT_TRUE(s.ok()) << k;
+    EXPECT_EQ(s.iterations, 1) << k;
+    EXPECT_LE(s.max_residual, 1e-3 * FkOptions{}.tolerance) << k;
+    ASSERT_TRUE(forwardKinematics(m, tight_data, q, seed, tight).ok()) << k;
+    EXPECT_LT((data.pose.position - tight_data.pose.position).norm(), 1e-12 * length);
+    EXPECT_LT(rotationError(data.pose, tight_data.pose), 1e-12);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Models, HexapodFkRoundTrip, ::testing::Values(0, 1));
 
 TEST(HexapodFk, LinuxcncReferencePosesFromHome) {
