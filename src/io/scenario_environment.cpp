@@ -144,6 +144,20 @@ void readSetup(const JsonDoc& doc,
   if (!set.isValid(&why)) doc.fail(ptr, why);
 }
 
+void readStructure(const JsonDoc& doc,
+                   const json& obj,
+                   const std::string& ptr,
+                   sim::StructureEnvironment& st) {
+  doc.onlyKeys(obj, ptr, {"enabled", "correlated_sigma_um", "correlation_s", "white_sigma_um"});
+  st.enabled = boolean(doc, obj, ptr, "enabled", true);
+  st.correlated_sigma_mm =
+      doc.number(obj, ptr, "correlated_sigma_um", st.correlated_sigma_mm * 1e3) / 1e3;
+  st.correlation_s = doc.number(obj, ptr, "correlation_s", st.correlation_s);
+  st.white_sigma_mm = doc.number(obj, ptr, "white_sigma_um", st.white_sigma_mm * 1e3) / 1e3;
+  std::string why;
+  if (!st.isValid(&why)) doc.fail(ptr, why);
+}
+
 sim::Environment preset(const JsonDoc& doc, const std::string& name, const std::string& ptr) {
   const auto e = sim::environmentPreset(name);
   if (!e) {
@@ -159,13 +173,15 @@ sim::Environment preset(const JsonDoc& doc, const std::string& name, const std::
 
 sim::Environment readEnvironment(const JsonDoc& doc, const json& obj, const std::string& ptr) {
   if (obj.is_string()) return preset(doc, obj.get<std::string>(), ptr);
-  doc.onlyKeys(obj, ptr, {"preset", "duration_h", "air", "thermal", "setup"});
+  doc.onlyKeys(obj, ptr, {"preset", "duration_h", "air", "thermal", "setup", "structure"});
   sim::Environment e = preset(doc, doc.string(obj, ptr, "preset", "ideal"), ptr + "/preset");
   e.name = "custom";
   e.duration_h = doc.number(obj, ptr, "duration_h", e.duration_h);
   if (obj.contains("air")) readAir(doc, obj["air"], ptr + "/air", e.air);
   if (obj.contains("thermal")) readThermal(doc, obj["thermal"], ptr + "/thermal", e.thermal);
   if (obj.contains("setup")) readSetup(doc, obj["setup"], ptr + "/setup", e.setup);
+  if (obj.contains("structure"))
+    readStructure(doc, obj["structure"], ptr + "/structure", e.structure);
   std::string why;
   if (!e.isValid(&why)) doc.fail(ptr, why);
   return e;

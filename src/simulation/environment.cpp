@@ -67,7 +67,27 @@ SetupEnvironment realisticSetup() {
   return s;
 }
 
+/// "realistic": a structure that does not return to the same point to better than about a
+/// micrometre (docs/simulation-errors.md).
+StructureEnvironment realisticStructure() {
+  StructureEnvironment s;
+  s.enabled = true;
+  s.correlated_sigma_mm = 1.0e-3;
+  s.correlation_s = 600.0;
+  s.white_sigma_mm = 0.2e-3;
+  return s;
+}
+
 }  // namespace
+
+bool StructureEnvironment::isValid(std::string* why) const {
+  if (!std::isfinite(correlated_sigma_mm) || correlated_sigma_mm < 0.0 ||
+      !std::isfinite(white_sigma_mm) || white_sigma_mm < 0.0)
+    return fail(why, "structure sigmas must be finite and >= 0");
+  if (!std::isfinite(correlation_s) || correlation_s <= 0.0)
+    return fail(why, fmt::format("structure correlation_s must be > 0, got {}", correlation_s));
+  return true;
+}
 
 bool SetupEnvironment::isValid(std::string* why) const {
   for (const double v : {beam_misalignment_rad, reflector_offset_mm, probe_lobing_mm})
@@ -138,7 +158,7 @@ bool Environment::isValid(std::string* why) const {
   if (!std::isfinite(elapsed_h) || elapsed_h < 0.0)
     return fail(why, fmt::format("elapsed_h must be >= 0, got {}", elapsed_h));
   return air.isValid(why) && airInRange(air, 1.0 + elapsed_h / duration_h, why) &&
-         thermal.isValid(why) && setup.isValid(why);
+         thermal.isValid(why) && setup.isValid(why) && structure.isValid(why);
 }
 
 std::optional<Environment> environmentPreset(std::string_view name) {
@@ -149,6 +169,7 @@ std::optional<Environment> environmentPreset(std::string_view name) {
     e.air = realisticAir();
     e.thermal = realisticThermal();
     e.setup = realisticSetup();
+    e.structure = realisticStructure();
     return e;
   }
   return std::nullopt;

@@ -96,15 +96,29 @@ void MeasurementConditions::zero() {
     x_m_ = rng_.normal(env_.thermal.material_temperature_c.fluctuation);
     sensed_material_ = materialTemperature();
   }
+  advanceStructure(true);
+}
+
+void MeasurementConditions::advanceStructure(bool first) {
+  const StructureEnvironment& st = env_.structure;
+  if (!st.enabled) return;
+  const double phi = first ? 0.0 : std::exp(-step_s_ / st.correlation_s);
+  const double innovation = std::sqrt(1.0 - phi * phi) * st.correlated_sigma_mm;
+  for (Eigen::Index k = 0; k < 3; ++k) {
+    wander_[k] = phi * wander_[k] + rng_.normal(innovation);
+    white_[k] = rng_.normal(st.white_sigma_mm);
+  }
 }
 
 void MeasurementConditions::next() {
   time_s_ += step_s_;
   advanceAir();
   const ThermalEnvironment& t = env_.thermal;
-  if (!t.enabled) return;
-  x_m_ = ar1(x_m_, t.material_temperature_c, step_s_, rng_);
-  sensed_material_ = sense(materialTemperature(), t.material_sensor, rng_);
+  if (t.enabled) {
+    x_m_ = ar1(x_m_, t.material_temperature_c, step_s_, rng_);
+    sensed_material_ = sense(materialTemperature(), t.material_sensor, rng_);
+  }
+  advanceStructure(false);
 }
 
 void MeasurementConditions::advanceAir() {
@@ -137,10 +151,12 @@ double MeasurementConditions::laserDisplacement(double displacement_mm) const {
 geometry::RigidTransform MeasurementConditions::actualPose(
     const geometry::RigidTransform& pose) const {
   const ThermalEnvironment& t = env_.thermal;
-  if (!t.enabled) return pose;
   geometry::RigidTransform out = pose;
-  const double scale = 1.0 + t.machine_cte_per_k * (materialTemperature() - kReferenceC);
-  out.translation() = scale * pose.translation() + env_.warmup(time_s_) * t.warmup_drift_mm;
+  if (t.enabled) {
+    const double scale = 1.0 + t.machine_cte_per_k * (materialTemperature() - kReferenceC);
+    out.translation() = scale * pose.translation() + env_.warmup(time_s_) * t.warmup_drift_mm;
+  }
+  if (env_.structure.enabled) out.translation() += wander_ + white_;
   return out;
 }
 

@@ -239,6 +239,15 @@ TEST(Scenario, EnvironmentIsIdealByDefaultAPresetOrAnObject) {
   EXPECT_EQ(su.reflector_offset_mm, 2.0);
   EXPECT_DOUBLE_EQ(su.probe_lobing_mm, 0.5e-3);
   EXPECT_EQ(su.probe_lobes, 4);
+  const io::Scenario st = io::parseScenarioJson(
+      withEnvironment(R"({"structure": {"correlated_sigma_um": 2, "correlation_s": 300,
+        "white_sigma_um": 0.5}})"),
+      "s.json");
+  const sim::StructureEnvironment& str = st.campaign.environment.structure;
+  EXPECT_TRUE(str.enabled);
+  EXPECT_DOUBLE_EQ(str.correlated_sigma_mm, 2e-3);
+  EXPECT_EQ(str.correlation_s, 300.0);
+  EXPECT_DOUBLE_EQ(str.white_sigma_mm, 0.5e-3);
 }
 
 TEST(Scenario, EnvironmentErrorsNameTheLineAndPointer) {
@@ -267,6 +276,8 @@ TEST(Scenario, EnvironmentErrorsNameTheLineAndPointer) {
               HasSubstr("/environment/setup/probe_lobes: must be an integer in [1, 100]"));
   EXPECT_THAT(message(R"({"setup": {"reflector_offset_mm": -1}})"),
               HasSubstr("set-up errors must be finite and >= 0"));
+  EXPECT_THAT(message(R"({"structure": {"correlation_s": 0}})"),
+              HasSubstr("/environment/structure: structure correlation_s must be > 0"));
 }
 
 }  // namespace

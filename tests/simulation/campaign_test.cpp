@@ -182,6 +182,32 @@ TEST(Campaign, SetUpErrorsGiveTheCosineErrorAndTheAbbeErrorOfTheDrawnOffset) {
   EXPECT_GT(std::abs(end.reading - plain.reading), 1e-4);
 }
 
+TEST(Campaign, NonRepeatableStructureErrorsScatterTheReadings) {
+  sim::LineSetup line = setup("x-h", 0);
+  line.noise = {};
+  line.quantity = sim::LineQuantity::kStraightness;
+  line.lateral = Eigen::Vector3d::UnitY();
+  line.cycle = {0.0, 300.0, 50, 0.0, 20, 2.0, true};  // 2000 readings
+  sim::Campaign c = campaign({line});
+  c.machine =
+      std::make_shared<sim::CartesianMachine>(sim::CartesianLayout{}, sim::CartesianErrors{});
+  c.environment.name = "custom";
+  c.environment.structure.enabled = true;
+  c.environment.structure.white_sigma_mm = 1e-3;
+  const auto result = sim::runCampaign(c, 5);
+  std::vector<double> v;
+  for (const sim::LineRun& run : result[0].runs)
+    for (const sim::LineReading& r : run.readings) v.push_back(r.reading);
+  double mean = 0.0;
+  for (const double x : v) mean += x / static_cast<double>(v.size());
+  double sum2 = 0.0;
+  for (const double x : v) sum2 += (x - mean) * (x - mean);
+  // Each reading minus the datum's: the datum's draw is common to all readings (the mean), the
+  // scatter about it is the white σ.
+  EXPECT_NEAR(std::sqrt(sum2 / static_cast<double>(v.size())), 1e-3, 0.05e-3);
+  EXPECT_GT(std::abs(mean), 0.0);
+}
+
 TEST(Campaign, AnInvalidEnvironmentIsRejected) {
   sim::Campaign c = campaign({setup("x", 0)});
   c.environment.duration_h = -1.0;

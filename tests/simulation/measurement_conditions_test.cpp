@@ -194,6 +194,37 @@ TEST(MeasurementConditions, TheBeamIsTiltedByTheMisalignmentAndTheReflectorOffse
   EXPECT_EQ(off.reflectorOffset(), Eigen::Vector3d::Zero());
 }
 
+TEST(MeasurementConditions, NonRepeatableErrorsHaveTheirVarianceAndSpectrum) {
+  sim::Environment e;
+  e.name = "custom";
+  e.duration_h = 100.0;
+  e.structure.enabled = true;
+  e.structure.correlated_sigma_mm = 1e-3;
+  e.structure.correlation_s = 60.0;
+  e.structure.white_sigma_mm = 0.5e-3;
+  const int n = 20000;
+  sim::MeasurementConditions c(e, 0.0, 60.0 * n, n, 11);  // 60 s steps
+  c.zero();
+  const pkm::geometry::RigidTransform origin = pkm::geometry::RigidTransform::Identity();
+  std::vector<double> x;
+  for (int i = 0; i < n; ++i) {
+    c.next();
+    x.push_back(c.actualPose(origin).translation().x());
+  }
+  double sum2 = 0.0, lag = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    sum2 += x[i] * x[i];
+    if (i > 0) lag += x[i] * x[i - 1];
+  }
+  // Variance σ_c² + σ_w² = 1.25 µm²; lag-one covariance φ·σ_c², φ = exp(−1): correlation 0.29.
+  EXPECT_NEAR(std::sqrt(sum2 / n), std::sqrt(1.25) * 1e-3, 0.05e-3);
+  EXPECT_NEAR(lag / sum2, std::exp(-1.0) / 1.25, 0.04);
+  sim::MeasurementConditions again(e, 0.0, 60.0 * n, n, 11);
+  again.zero();
+  again.next();
+  EXPECT_EQ(again.actualPose(origin).translation().x(), x.front());
+}
+
 TEST(MeasurementConditions, RejectsBadArguments) {
   const sim::Environment e;
   EXPECT_THROW(sim::MeasurementConditions(e, -1.0, 60.0, 1, 1), pkm::InvalidArgument);

@@ -16,6 +16,7 @@
 ///   2012).
 /// - Set-up: laser beam misalignment (cosine error), the reflector's unknown offset from the tool
 ///   point (Abbe: the machine's angular errors times it), a touch probe's pre-travel lobing.
+/// - Structure: non-repeatable errors of the tool point with a spectrum (AR(1) plus white).
 #pragma once
 
 #include <Eigen/Core>
@@ -116,6 +117,18 @@ struct SetupEnvironment {
   [[nodiscard]] bool isValid(std::string* why = nullptr) const;
 };
 
+/// The structure's non-repeatable errors: the tool point wanders by an AR(1) (Ornstein–Uhlenbeck)
+/// process, correlated over `correlation_s` (a red, 1/f²-like spectrum below 1/(2π·τ_c)), plus
+/// white noise, each component independent, work frame.
+struct StructureEnvironment {
+  bool enabled = false;              ///< false: no non-repeatable errors beyond the machine's own
+  double correlated_sigma_mm = 0.0;  ///< σ of the AR(1) part per component, mm (≥ 0)
+  double correlation_s = 600.0;      ///< its correlation time, s (> 0)
+  double white_sigma_mm = 0.0;       ///< σ of the white part per component and reading, mm (≥ 0)
+  /// True when every value is finite, the sigmas ≥ 0 and correlation_s > 0.
+  [[nodiscard]] bool isValid(std::string* why = nullptr) const;
+};
+
 /// The environment of a campaign. Default: ideal (every source off).
 struct Environment {
   std::string name = "ideal";  ///< the preset it came from, or "custom"
@@ -124,11 +137,14 @@ struct Environment {
   /// measurements starts, ≥ 0: 0 for the first pass; a campaign's re-measurement after
   /// compensation runs one duration later (the drifts go on linearly, the warm-up nearly done).
   double elapsed_h = 0.0;
-  AirEnvironment air;          ///< the air and the laser's compensation
-  ThermalEnvironment thermal;  ///< the machine's temperature, warm-up, struts
-  SetupEnvironment setup;      ///< the instruments' set-up errors
+  AirEnvironment air;              ///< the air and the laser's compensation
+  ThermalEnvironment thermal;      ///< the machine's temperature, warm-up, struts
+  SetupEnvironment setup;          ///< the instruments' set-up errors
+  StructureEnvironment structure;  ///< the structure's non-repeatable errors
   /// True when any source is on.
-  [[nodiscard]] bool active() const { return air.enabled || thermal.enabled || setup.enabled; }
+  [[nodiscard]] bool active() const {
+    return air.enabled || thermal.enabled || setup.enabled || structure.enabled;
+  }
   /// The warm-up fraction 1 − exp(−τ/τ_w) at campaign time `time_s` (0 when thermal is off).
   [[nodiscard]] double warmup(double time_s) const;
   /// The struts' relative thermal growth α_strut·ΔT_strut(τ) at campaign time `time_s`.

@@ -64,13 +64,15 @@ class MeasurementConditions {
   [[nodiscard]] double materialTemperature() const;
   [[nodiscard]] double sensedMaterialTemperature() const { return sensed_material_; }
   /// The machine's actual pose now for the pose `pose` it would have at 20 °C and cold (work
-  /// frame, mm): translation p → p·(1 + α_machine·(T_m − 20)) + d∞·(1 − exp(−τ/τ_w)). `pose`
-  /// itself when the thermal source is off.
+  /// frame, mm): translation p → p·(1 + α_machine·(T_m − 20)) + d∞·(1 − exp(−τ/τ_w)) (thermal)
+  /// + the structure's non-repeatable error now (AR(1) + white, drawn at zero() and next()).
+  /// `pose` itself when both sources are off.
   [[nodiscard]] geometry::RigidTransform actualPose(const geometry::RigidTransform& pose) const;
 
  private:
   [[nodiscard]] double fraction() const;
   void advanceAir();
+  void advanceStructure(bool first);
 
   const Environment& env_;
   double start_s_ = 0.0;
@@ -82,6 +84,8 @@ class MeasurementConditions {
   double sensed_material_ = 20.0;
   double tilt_azimuth_ = 0.0;  // direction of the beam's tilt around the line, rad
   Eigen::Vector3d reflector_offset_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d wander_ = Eigen::Vector3d::Zero();  // AR(1) part of the structure's error
+  Eigen::Vector3d white_ = Eigen::Vector3d::Zero();   // white part at the current reading
   AirConditions sensed_;
   double n_datum_ = 1.0;
 };
