@@ -259,6 +259,35 @@ TEST_F(CampaignCli, ListNamesTheBuiltInCampaigns) {
   const CliRun r = pkm({"campaign", "list"});
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("default\t4 steps"));
+  EXPECT_THAT(r.out, HasSubstr("realistic\t4 steps"));
+}
+
+TEST_F(CampaignCli, TheRealisticEnvironmentLeavesLargerAfterFigures) {
+  // The same scenarios with every unmodelled source on: compensation still works, but the
+  // figures after it are no longer those of a perfectly modelled machine.
+  const auto after = [&](const std::string& campaign) {
+    const CliRun r =
+        pkm({"campaign", "run", campaign, "--out", path(campaign), "--no-db", "--force"});
+    EXPECT_TRUE(r.code == 0 || r.code == 1) << r.err;
+    std::map<std::string, double> v;
+    const Json summary = Json::parse(slurp(dir_ / campaign / "summary.json"));
+    for (const Json& row : summary["rows"])
+      if (row["after"].is_number())
+        v[row["step"].get<std::string>() + " " + row["quantity"].get<std::string>()] =
+            row["after"].get<double>();
+    return v;
+  };
+  const std::map<std::string, double> ideal = after("default");
+  const std::map<std::string, double> real = after("realistic");
+  ASSERT_EQ(ideal.size(), real.size());
+  EXPECT_GT(real.at("seed001 X positioning (ISO 230-2 E)"),
+            2.0 * ideal.at("seed001 X positioning (ISO 230-2 E)"));
+  EXPECT_GT(real.at("seed000 parallelism Y2-PY, horizontal (300 mm)"),
+            2.0 * ideal.at("seed000 parallelism Y2-PY, horizontal (300 mm)"));
+  EXPECT_GT(real.at("seed003 roundness of the 40.001 mm ring, 180 touches (LSC)"),
+            ideal.at("seed003 roundness of the 40.001 mm ring, 180 touches (LSC)"));
+  // Deterministic per seed.
+  EXPECT_EQ(real, after("realistic"));
 }
 
 }  // namespace
