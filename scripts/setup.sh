@@ -7,6 +7,8 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config clang lld
   libeigen3-dev libceres-dev libfmt-dev libcli11-dev nlohmann-json3-dev
+  libgoogle-glog-dev libgflags-dev libsuitesparse-dev libatlas-base-dev libgfortran-12-dev
+  libunwind-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang-format bc
   libboost-python1.74.0 libsqlite3-dev
