@@ -64,7 +64,9 @@ struct FkSummary {
 /// Solves the platform TCP pose whose strut readings equal `readings`, starting from `seed` (the
 /// previous servo-cycle pose, or home). Newton-Raphson on (p, R): J_q_x·δ = r(x), p ← p − δp, R ←
 /// exp(−[δθ]×)·R (a true SO(3) update, unlike genhexkins' additive angle update), LU with partial
-/// pivoting, and step halving when the full step does not reduce |r|. Once every residual is within
+/// pivoting, and step halving when the full step does not reduce |r|. A full step is corrected for
+/// its second-order strut residual (the legs' curvature, from the same factorisation), so a seed
+/// close to the answer lands within O(|δ|³) in one iteration. Once every residual is within
 /// the tolerance, one more step is taken unless the residual is already below 1e-3·tolerance (so
 /// the pose, not only the struts, is accurate to the tolerance; it is counted in iterations). Steps
 /// are limited to the options' trust region; a far seed is solved by continuation along the
