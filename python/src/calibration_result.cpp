@@ -39,14 +39,16 @@ py::array namesArray(const std::vector<std::string>& names) {
   return statusArray(std::vector<std::string_view>(names.begin(), names.end()));
 }
 
-/// holdout_errors_before / _after: |error| per held-out observation (NaN: no prediction).
+/// |error| per held-out observation (NaN: no prediction).
+py::array_t<double> errorsArray(const calibration::HoldoutErrors& e) {
+  return vectorArray(e.errors.data(), static_cast<Eigen::Index>(e.errors.size()));
+}
+
+/// holdout_errors_before / _after (None without held-out data).
 template <class Holdout>
 void addHoldoutErrors(py::dict& a, const std::optional<Holdout>& h) {
-  const auto errors = [](const calibration::HoldoutErrors& e) -> py::object {
-    return vectorArray(e.errors.data(), static_cast<Eigen::Index>(e.errors.size()));
-  };
-  a["holdout_errors_before"] = h ? errors(h->before) : py::none();
-  a["holdout_errors_after"] = h ? errors(h->after) : py::none();
+  a["holdout_errors_before"] = h ? py::object(errorsArray(h->before)) : py::none();
+  a["holdout_errors_after"] = h ? py::object(errorsArray(h->after)) : py::none();
 }
 
 py::object member(const py::dict& doc, const char* key) {
@@ -163,8 +165,13 @@ std::vector<std::string> exechonNames(int unknowns) {
 /// The hybrid squareness attributes (None without hybrid data).
 void addHybrid(py::dict& a, const workflow::ExechonCalibrationResult& r, const py::dict& doc) {
   if (!r.report.hybrid) {
-    for (const char* key :
-         {"squareness", "squareness_names", "squareness_sigma", "hybrid", "geometric_errors"})
+    for (const char* key : {"squareness",
+                            "squareness_names",
+                            "squareness_sigma",
+                            "hybrid",
+                            "geometric_errors",
+                            "hybrid_holdout_errors_before",
+                            "hybrid_holdout_errors_after"})
       a[key] = py::none();
     return;
   }
@@ -175,6 +182,9 @@ void addHybrid(py::dict& a, const workflow::ExechonCalibrationResult& r, const p
   a["squareness_names"] = namesArray(cal::hybridSquarenessNames());
   a["squareness_sigma"] = vectorArray(s.standard_deviation.data(), 4);
   a["hybrid"] = doc["hybrid"];
+  const std::optional<io::HoldoutComparison>& h = r.report.hybrid->holdout;
+  a["hybrid_holdout_errors_before"] = h ? py::object(errorsArray(h->before)) : py::none();
+  a["hybrid_holdout_errors_after"] = h ? py::object(errorsArray(h->after)) : py::none();
   a["geometric_errors"] = jsonLoads(r.errors_json);
 }
 
@@ -284,6 +294,8 @@ backlash, backlash_sigma : ndarray (6,) or None
 squareness, squareness_names, squareness_sigma, hybrid, geometric_errors
     Exechon with hybrid data: szX2, sxP, syP, szP (rad), the hybrid fit's summary and the
     estimated geometric errors document (CAL.errors.json); None otherwise.
+hybrid_holdout_errors_before, hybrid_holdout_errors_after : ndarray or None
+    |error| of each held-out hybrid observation (NaN: a command the tripod cannot reach).
 )doc")
       .def_readonly("kind", &CalibrationResult::kind, "'hexapod' or 'exechon'.")
       .def("__getattr__",

@@ -346,6 +346,9 @@ def test_exechon_from_files_and_arrays_equals_the_cli(run_cli, ex, tmp_path):
     assert r.covariance.shape == (32, 32) and list(r.covariance_names[-1:]) == ["frame.rz"]
     assert r.rank == cli["identifiability"]["rank"]
     assert len(r.holdout_errors_after) == cli["holdout"]["after"]["poses"]
+    e = r.hybrid_holdout_errors_after
+    assert math.isclose(np.sqrt(np.nanmean(e ** 2)), cli["hybrid"]["holdout"]["after"]["rms"],
+                        rel_tol=1e-12)
     assert r.geometric_errors is not None
     assert without(r.to_dict())["hybrid"] == without(cli)["hybrid"] == without({"hybrid": r.hybrid})["hybrid"]
 
