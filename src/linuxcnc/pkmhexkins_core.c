@@ -399,8 +399,35 @@ int pkm_hex_check_home(const pkm_hex_geometry* g,
   return 0;
 }
 
+/* The strut residuals left after the full step delta from the legs in s->at, to second order
+ * (pkm's secondOrderResidual): per leg with unit vector u, length l and joint offset r,
+ * s = u·q + (|w|² − (u·w)²)/(2l), w = −δp − δθ×r, q = ½ δθ×(δθ×r). */
+static void second_order_residual(const solver* s, const double delta[N], double out[N]) {
+  const double* dp = delta;
+  const double* dt = delta + 3;
+  for (int i = 0; i < N; ++i) {
+    const double* r = s->at.r_joint[i];
+    const double* u = s->at.unit[i];
+    const double c[3] = {
+        dt[1] * r[2] - dt[2] * r[1], dt[2] * r[0] - dt[0] * r[2], dt[0] * r[1] - dt[1] * r[0]};
+    const double tc[3] = {
+        dt[1] * c[2] - dt[2] * c[1], dt[2] * c[0] - dt[0] * c[2], dt[0] * c[1] - dt[1] * c[0]};
+    double w2 = 0.0, uw = 0.0, uq = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double w = -dp[k] - c[k];
+      w2 += w * w;
+      uw += u[k] * w;
+      uq += u[k] * tc[k];
+    }
+    const double length = s->at.q[i] + s->geometry->length_offset[i];
+    out[i] = 0.5 * uq + (w2 - uw * uw) / (2.0 * length);
+  }
+}
+
 /* delta ← J⁻¹·delta at the current iterate, shortened to the trust region; returns the pivot
- * ratio. A polishing step reuses the previous factorisation (a chord step). */
+ * ratio. A polishing step reuses the previous factorisation (a chord step). A full step is
+ * corrected for its second-order residual with the same factorisation where that residual needs
+ * polishing (pkm's forwardKinematics). */
 static double solve_step(solver* s, double delta[N], int polishing) {
   if (!polishing || !s->lu.valid) {
     double J[N][N];
@@ -416,6 +443,13 @@ static double solve_step(solver* s, double delta[N], int polishing) {
   const double shrink = fmax(1.0, fmax(t, w));
   if (isfinite(shrink))
     for (int k = 0; k < N; ++k) delta[k] /= shrink;
+  if (shrink != 1.0 || polishing) return s->lu_ratio;
+  double e[N];
+  second_order_residual(s, delta, e);
+  if (max_abs(e) > kPolishFraction * s->options->tolerance && all_finite(e, N)) {
+    substitute6(&s->lu, e);
+    for (int k = 0; k < N; ++k) delta[k] += k < 3 ? e[k] : e[k] * s->inv_length;
+  }
   return s->lu_ratio;
 }
 
