@@ -189,7 +189,8 @@ TEST(MeasurementConditions, TheBeamIsTiltedByTheMisalignmentAndTheReflectorOffse
   const sim::MeasurementConditions again(e, 0.0, 60.0, 1, 7);
   EXPECT_EQ(again.reflectorOffset(),
             sim::MeasurementConditions(e, 0.0, 60.0, 1, 7).reflectorOffset());
-  const sim::MeasurementConditions off(sim::Environment{}, 0.0, 60.0, 1, 7);
+  const sim::Environment ideal;  // kept by reference: must outlive the conditions
+  const sim::MeasurementConditions off(ideal, 0.0, 60.0, 1, 7);
   EXPECT_EQ(off.laserBeam(b), b);
   EXPECT_EQ(off.reflectorOffset(), Eigen::Vector3d::Zero());
 }

@@ -27,6 +27,8 @@ class MeasurementConditions {
                         double window_s,
                         int readings,
                         std::uint64_t seed);
+  /// A temporary environment would dangle: refused at compile time.
+  MeasurementConditions(Environment&&, double, double, int, std::uint64_t) = delete;
 
   /// The instrument is zeroed: the clock at start_s, the fluctuations drawn from their
   /// stationary distribution, n_true(τ₀) kept for the dead path.
