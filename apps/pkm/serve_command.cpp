@@ -1,81 +1,54 @@
-// `pkm serve [--host 127.0.0.1] [--port 8787] [--open]`: the web application and its JSON API
-// (server::HttpServer, docs/web.md) until Ctrl-C.
+// `pkm serve [--host 127.0.0.1] [--port 8787] [--open]`: checks the options and replaces this
+// process with the program `pkm-serve` beside it (apps/pkm-serve), which runs the web application.
+// The server's libraries (cpp-httplib with OpenSSL, zlib and brotli) are then loaded only by the
+// server: every other pkm command starts about 2 ms sooner (docs/architecture.md, "Programs").
 #include <fmt/format.h>
-#include <pthread.h>
-#include <signal.h>
 #include <unistd.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <ctime>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <memory>
-#include <thread>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
 
 #include "cli_common.hpp"
-#include "pkm/server/http_server.hpp"
+#include "pkm/core/error.hpp"
+#include "serve_options.hpp"
 
 namespace pkm::cli {
 namespace {
 
-struct ServeArgs {
-  server::ServerOptions options;
-  bool open = false;
-};
-
-/// Opens `url` in the desktop's browser, if there is one (best effort, detached).
-void openBrowser(const std::string& url) {
-  if (std::system("command -v xdg-open >/dev/null 2>&1") != 0) {
-    fmt::print(stderr, "pkm: note: no xdg-open here; open {} yourself\n", url);
-    return;
-  }
-  const std::string cmd = fmt::format("xdg-open '{}' >/dev/null 2>&1 &", url);
-  if (std::system(cmd.c_str()) != 0) fmt::print(stderr, "pkm: note: could not open {}\n", url);
+/// The directory of the running program (from /proc/self/exe).
+std::filesystem::path programDirectory() {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path{} : self.parent_path();
 }
 
-void runServe(ServeArgs& a) {
-  // SIGINT and SIGTERM are taken by a thread of ours (sigtimedwait), which stops the server:
-  // blocked here, before any thread starts, so that every thread inherits the mask.
-  sigset_t signals;
-  sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
-  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
-  server::HttpServer http(a.options);
-  const int port = http.bind();
-  const std::string url = fmt::format("http://{}:{}/", a.options.host, port);
-  fmt::print("pkm: serving {}\n", url);
+[[noreturn]] void execServe(const ServeOptions& o) {
+  const std::filesystem::path server = programDirectory() / "pkm-serve";
+  std::vector<std::string> args = {
+      server.string(), "--host", o.host, "--port", std::to_string(o.port)};
+  if (o.open) args.emplace_back("--open");
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
   std::fflush(stdout);
-  if (a.open) openBrowser(url);
-  std::atomic<bool> done{false};
-  std::thread watcher([&] {
-    const timespec tick{0, 200'000'000};
-    while (!done.load()) {
-      if (sigtimedwait(&signals, nullptr, &tick) > 0) {
-        fmt::print(stderr, "pkm: stopping\n");
-        http.stop();
-        return;
-      }
-    }
-  });
-  http.listen();
-  done = true;
-  watcher.join();
+  ::execv(server.c_str(), argv.data());
+  throw std::runtime_error(fmt::format("cannot run {} ({}); it is built and installed beside pkm",
+                                       server.string(),
+                                       std::strerror(errno)));
 }
 
 void addServe(CLI::App& app) {
-  auto a = std::make_shared<ServeArgs>();
-  CLI::App* cmd = app.add_subcommand(
-      "serve",
-      "the web application: the machine in 3-D, programs by G-code or blocks checked in a "
-      "simulator, campaigns (docs/web.md); serves until Ctrl-C");
-  cmd->add_option("--host",
-                  a->options.host,
-                  "address to listen on (default 127.0.0.1: this "
-                  "machine only)");
-  cmd->add_option("--port", a->options.port, "port (default 8787; 0: any free port)")
-      ->check(CLI::Range(0, 65535));
-  cmd->add_flag("--open", a->open, "open the page in the desktop's browser");
-  cmd->callback([a] { runServe(*a); });
+  auto o = std::make_shared<ServeOptions>();
+  CLI::App* cmd = app.add_subcommand("serve", kServeDescription);
+  addServeOptions(*cmd, *o);
+  cmd->callback([o] { execServe(*o); });
 }
 
 const CommandRegistration kRegisterServe{120, &addServe};
