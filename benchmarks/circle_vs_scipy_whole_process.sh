@@ -48,14 +48,16 @@ PY
 have_scipy=1
 "$python" -c 'import scipy.optimize' 2>/dev/null || have_scipy=0
 
-now() { date +%s.%N; }
+# Times are read from bash's $EPOCHREALTIME (no process is started to read the clock, which would
+# add a fork and exec of date(1) to every measured run).
+export LC_ALL=C  # a decimal point in $EPOCHREALTIME
 pkm_times=()
 ref_times=()
 for ((i = 0; i < pairs; i++)); do
-  s=$(now); "$pkm" analyze circle --data "$work/ring.csv" --json > "$work/pkm.json"; e=$(now)
+  s=$EPOCHREALTIME; "$pkm" analyze circle --data "$work/ring.csv" --json > "$work/pkm.json"; e=$EPOCHREALTIME
   pkm_times+=("$(echo "$e - $s" | bc -l)")
   if [ "$have_scipy" = 1 ]; then
-    s=$(now); "$python" "$work/reference.py" "$work/ring.csv" > "$work/ref.txt"; e=$(now)
+    s=$EPOCHREALTIME; "$python" "$work/reference.py" "$work/ring.csv" > "$work/ref.txt"; e=$EPOCHREALTIME
     ref_times+=("$(echo "$e - $s" | bc -l)")
   fi
 done

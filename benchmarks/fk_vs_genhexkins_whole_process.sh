@@ -37,7 +37,9 @@ awk -F, 'BEGIN { srand(20261126); pi = atan2(0, -1) }
       line = line (i > 1 ? "," : "") sprintf("%.6f", $i + 2e-5 * g) }
     print line }' "$work/exact.csv" > "$work/noisy.csv"
 
-now() { date +%s.%N; }
+# Times are read from bash's $EPOCHREALTIME (no process is started to read the clock, which would
+# add a fork and exec of date(1) to every measured run).
+export LC_ALL=C  # a decimal point in $EPOCHREALTIME
 median() { printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 run_case() {
@@ -45,12 +47,12 @@ run_case() {
   local pkm_times=() ref_times=() s e
   for ((i = 0; i < pairs; i++)); do
     if [ -n "$bench" ]; then
-      s=$(now); bash "$bench" "$lengths" > "$work/ref.csv"; e=$(now)
+      s=$EPOCHREALTIME; bash "$bench" "$lengths" > "$work/ref.csv"; e=$EPOCHREALTIME
       ref_times+=("$(echo "$e - $s" | bc -l)")
     fi
-    s=$(now)
+    s=$EPOCHREALTIME
     "$pkm" hexapod fk --machine hexapod-linuxcnc-sim --lengths "$lengths" --seed 0,0,20,0,0,0 > "$work/pkm.csv"
-    e=$(now)
+    e=$EPOCHREALTIME
     pkm_times+=("$(echo "$e - $s" | bc -l)")
   done
   local pkm_med

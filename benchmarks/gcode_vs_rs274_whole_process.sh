@@ -86,7 +86,10 @@ awk -v n="$lines" 'BEGIN {
 if [ -n "${PROGRAM:-}" ]; then cp "$PROGRAM" "$work/prog.ngc"; fi
 : > "$work/empty.tbl"
 
-now() { date +%s%N; }
+# Times are read from bash's $EPOCHREALTIME (no process is started to read the clock, which would
+# add a fork and exec of date(1) to every measured run).
+export LC_ALL=C  # a decimal point in $EPOCHREALTIME
+now_us() { local t=$EPOCHREALTIME; REPLY=${t/./}; }  # microseconds, in $REPLY
 run_pkm() { "$pkm" gcode moves "$work/prog.ngc" > "$work/moves.csv" 2> "$work/pkm_err.txt"; }
 run_rs274() {
   : > "$work/rs274.var"
@@ -100,11 +103,11 @@ echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 : > "$work/t_rs274"
 for ((i = 0; i < pairs; i++)); do
   if [ -n "$rs274" ]; then
-    s=$(now); run_rs274; e=$(now)
-    echo $(((e - s) / 1000)) >> "$work/t_rs274"
+    now_us; s=$REPLY; run_rs274; now_us; e=$REPLY
+    echo $((e - s)) >> "$work/t_rs274"
   fi
-  s=$(now); run_pkm; e=$(now)
-  echo $(((e - s) / 1000)) >> "$work/t_pkm"
+  now_us; s=$REPLY; run_pkm; now_us; e=$REPLY
+  echo $((e - s)) >> "$work/t_pkm"
 done
 echo "load average after:  $(cut -d' ' -f1-3 /proc/loadavg)"
 

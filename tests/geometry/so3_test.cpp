@@ -40,6 +40,21 @@ TEST(So3, ExpMatchesAngleAxis) {
   }
 }
 
+TEST(So3, ExpSeriesBranchMatchesAngleAxisAcrossItsSwitch) {
+  // so3Exp uses a Taylor series below 1e-3 rad: the small angles of Newton steps (1e-9 .. 1e-2
+  // rad, across the switch) against Eigen's angle-axis rotation, to rounding.
+  constexpr double kTolRounding = 4e-16;  // a few units in the last place of an entry
+  std::mt19937 rng(test::kSeed);
+  for (const double angle : {1e-9, 3e-7, 2e-5, 9.99e-4, 1.001e-3, 5e-3, 2e-2}) {
+    for (int k = 0; k < 20; ++k) {
+      const Eigen::Vector3d axis = randomVector(rng, 1.0).normalized();
+      const Eigen::Matrix3d expected = Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+      EXPECT_LT((so3Exp(angle * axis) - expected).cwiseAbs().maxCoeff(), kTolRounding) << angle;
+      EXPECT_TRUE(isRotation(so3Exp(angle * axis)));
+    }
+  }
+}
+
 TEST(So3, ExpNearIdentityIsFirstOrderAccurate) {
   const Eigen::Vector3d w(1e-9, -2e-9, 3e-10);
   EXPECT_LT((so3Exp(w) - (Eigen::Matrix3d::Identity() + hat(w))).norm(), kTolExact);
