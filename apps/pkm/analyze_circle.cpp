@@ -43,6 +43,7 @@ const AnalyzeRegistration kRegisterCircle{60, &addCircle};
 
 struct CircularState {
   AnalyzeIo io;
+  UncertaintyArgs uncertainty;
   std::string centre = "lsc";
   std::vector<double> nominal_center;
   std::optional<double> nominal_radius;
@@ -60,6 +61,7 @@ void runCircular(const CircularState& st) {
     request.nominal_center = metrology::Point2(st.nominal_center[0], st.nominal_center[1]);
   }
   request.nominal_radius = st.nominal_radius;
+  request.uncertainty = st.uncertainty.parsed();
   printReport(st.io, workflow::analyzeCircular(request));
 }
 
@@ -70,6 +72,7 @@ void addCircular(CLI::App& analyze) {
       "ISO 230-4 circular deviation G, G(b) and hysteresis H; header x,y,direction (cw/ccw), or "
       "two x,y files (CW, CCW)");
   st->io.add(*cmd, 1, 2);
+  st->uncertainty.add(*cmd);
   cmd->add_option("--centre", st->centre, "centre of G and H: lsc (default), mzc or nominal")
       ->check(CLI::IsMember({"lsc", "mzc", "nominal"}));
   cmd->add_option(

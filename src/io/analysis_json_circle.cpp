@@ -82,7 +82,8 @@ std::string analysisJson(const CircularReport& report) {
                    {"cw", runJson(r.cw)},
                    {"ccw", runJson(r.ccw)},
                    {"points_cw", report.points_cw},
-                   {"points_ccw", report.points_ccw}});
+                   {"points_ccw", report.points_ccw},
+                   {"uncertainty", detail::uncertaintyJson(report.uncertainty)}});
 }
 
 std::string analysisJson(const ProbeOffsetReport& report) {

@@ -67,6 +67,7 @@ std::string analysisText(const CircularReport& report) {
                        num9(*r.ccw.radial_deviation_max),
                        num9(*r.ccw.radial_deviation_min),
                        num9(*r.ccw.mean_radial_deviation));
+  out += detail::uncertaintyText(report.uncertainty);
   return out;
 }
 

@@ -60,6 +60,11 @@ std::vector<Section> sections(metrology::UncertaintySources& s) {
         {"accuracy_mm_per_m", &s.tracker.accuracy_mm_per_m},
         {"range_mm", &s.tracker.range_mm},
         {"orientation_accuracy_rad", &s.tracker.orientation_accuracy_rad}}},
+      {"ballbar",
+       &s.ballbar.name,
+       {{"sensor_accuracy_mm", &s.ballbar.sensor_accuracy_mm},
+        {"resolution_mm", &s.ballbar.resolution_mm},
+        {"length_uncertainty_mm", &s.ballbar.length_uncertainty_mm}}},
       {"environment",
        nullptr,
        {{"material_temperature_c", &e.material_temperature_c},
@@ -101,10 +106,16 @@ void readFields(const JsonDoc& doc,
 metrology::UncertaintySources readUncertaintySources(const NamedText& text) {
   const detail::json root = detail::parseJson(text.text, text.name);
   const JsonDoc doc(text.text, text.name);
-  doc.onlyKeys(
-      root,
-      "",
-      {"schema", "laser", "probe", "dial_gauge", "tracker", "environment", "coverage_factor"});
+  doc.onlyKeys(root,
+               "",
+               {"schema",
+                "laser",
+                "probe",
+                "dial_gauge",
+                "tracker",
+                "ballbar",
+                "environment",
+                "coverage_factor"});
   if (const std::string s = doc.string(root, "", "schema", kUncertaintySourcesSchema);
       s != kUncertaintySourcesSchema)
     doc.fail(

@@ -109,7 +109,8 @@ UncertaintyBudget rangeBudget(const char* quantity,
   return b;
 }
 
-UncertaintyBudget accuracyBudget(double value,
+UncertaintyBudget accuracyBudget(const char* quantity,
+                                 double value,
                                  const std::vector<Mean>& means,
                                  double k,
                                  const UncertaintySources& src) {
@@ -119,7 +120,7 @@ UncertaintyBudget accuracyBudget(double value,
     if (m.mean + k * m.s > hi->mean + k * hi->s) hi = &m;
     if (m.mean - k * m.s < lo->mean - k * lo->s) lo = &m;
   }
-  UncertaintyBudget b = newBudget("A", value, src);
+  UncertaintyBudget b = newBudget(quantity, value, src);
   addLaserLengthContributors(b, std::abs(hi->target - lo->target), src);
   addContributor(b,
                  statistic("sampling of the extreme means (s/sqrt(n))",
@@ -166,6 +167,52 @@ UncertaintyBudget repeatabilityBudget(const Iso230_2Result& r,
   addContributor(b, statistic("sampling of the standard deviations at the target", u, "test data"));
   addReadingContributors(b, src);
   return b;
+}
+
+/// The means of the one direction of unidirectional data (up when every target has runs up).
+std::vector<Mean> oneDirection(const Iso230_2Result& r, bool up) {
+  std::vector<Mean> out;
+  for (const TargetStatistics& t : r.targets)
+    out.push_back(up ? Mean{t.target, t.mean_up, t.s_up, t.runs_up}
+                     : Mean{t.target, t.mean_down, t.s_down, t.runs_down});
+  return out;
+}
+
+/// R↑ (or R↓) = max_i 2k s_i: the sampling uncertainty of that s, 2k·s/√(2(n − 1)).
+UncertaintyBudget unidirectionalRepeatabilityBudget(const char* quantity,
+                                                    double value,
+                                                    const std::vector<Mean>& means,
+                                                    double k,
+                                                    const UncertaintySources& src) {
+  const Mean* c = &means.front();
+  for (const Mean& m : means)
+    if (m.s > c->s) c = &m;
+  UncertaintyBudget b = newBudget(quantity, value, src);
+  addContributor(b,
+                 statistic("sampling of the standard deviation at the target",
+                           2.0 * k * std::sqrt(sVariance(c->s, c->n)),
+                           "test data"));
+  addReadingContributors(b, src);
+  return b;
+}
+
+/// E, A and R of the direction that unidirectional data has: "E_up", "A_up", "R_up" (or _down).
+std::vector<UncertaintyBudget> unidirectionalBudgets(const Iso230_2Result& result,
+                                                     double coverage,
+                                                     const UncertaintySources& src) {
+  const bool up = std::isfinite(result.E_up);
+  if (!up && !std::isfinite(result.E_down)) return {};
+  const std::vector<Mean> means = oneDirection(result, up);
+  for (const Mean& m : means)
+    if (m.n < 2) return {};
+  std::vector<UncertaintyBudget> out;
+  out.push_back(
+      rangeBudget(up ? "E_up" : "E_down", up ? result.E_up : result.E_down, means, 1.0, src));
+  out.push_back(accuracyBudget(
+      up ? "A_up" : "A_down", up ? result.A_up : result.A_down, means, coverage, src));
+  out.push_back(unidirectionalRepeatabilityBudget(
+      up ? "R_up" : "R_down", up ? result.R_up : result.R_down, means, coverage, src));
+  return out;
 }
 
 }  // namespace
@@ -250,7 +297,8 @@ std::vector<UncertaintyBudget> iso230_2Uncertainty(const Iso230_2Result& result,
                                                    double coverage) {
   std::string why;
   PKM_CHECK(sources.isValid(&why), "uncertainty sources: {}", why);
-  if (!result.bidirectional || result.targets.empty()) return {};
+  if (result.targets.empty()) return {};
+  if (!result.bidirectional) return unidirectionalBudgets(result, coverage, sources);
   const std::vector<Mean> directional = directionalMeans(result);
   std::vector<Mean> bidirectional;
   for (const TargetStatistics& t : result.targets) {
@@ -261,7 +309,7 @@ std::vector<UncertaintyBudget> iso230_2Uncertainty(const Iso230_2Result& result,
   std::vector<UncertaintyBudget> out;
   out.push_back(rangeBudget("E", result.E, directional, 1.0, sources));
   out.push_back(rangeBudget("M", result.M, bidirectional, 1.0, sources));
-  out.push_back(accuracyBudget(result.A, directional, coverage, sources));
+  out.push_back(accuracyBudget("A", result.A, directional, coverage, sources));
   out.push_back(reversalBudget(result, sources));
   out.push_back(repeatabilityBudget(result, coverage, sources));
   return out;
@@ -276,7 +324,8 @@ std::vector<ConformanceResult> decideIso230_2Conformance(
     for (const UncertaintyBudget& b : budgets)
       if (b.quantity == name) found = &b;
     PKM_CHECK(found != nullptr,
-              "conformance: no uncertainty budget for '{}' (E, M, A, B or R of bidirectional data)",
+              "conformance: no uncertainty budget for '{}' (E, M, A, B or R of bidirectional data; "
+              "E_up, A_up, R_up or the _down ones of unidirectional data)",
               name);
     PKM_CHECK(std::isfinite(limit), "conformance: tolerance of {} must be finite", name);
     const double U = found->expandedUncertainty();

@@ -13,6 +13,7 @@
 #include "pkm/core/parallel.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/io/text_table.hpp"
+#include "pkm/metrology/circular_uncertainty.hpp"
 #include "pkm/metrology/profile_uncertainty.hpp"
 
 namespace pkm::workflow {
@@ -173,7 +174,13 @@ io::CircularReport analyzeCircular(const CircularRequest& request) {
   opt.centre = request.centre;
   opt.nominal_center = request.nominal_center;
   opt.nominal_radius = request.nominal_radius;
-  return {metrology::evaluateCircularTest(cw, ccw, opt), cw.size(), ccw.size()};
+  io::CircularReport report;
+  report.result = metrology::evaluateCircularTest(cw, ccw, opt);
+  report.points_cw = cw.size();
+  report.points_ccw = ccw.size();
+  report.uncertainty =
+      metrology::circularTestUncertainty(cw, ccw, report.result, request.uncertainty);
+  return report;
 }
 
 void ProbeOffsetRequest::validate() const {

@@ -79,6 +79,15 @@ TEST_F(AnalyzeCircleCli, CircularGivesGAndH) {
   EXPECT_NEAR(j["G_bidirectional"].get<double>(), 0.007, kTolCli);
   EXPECT_NEAR(j["H"].get<double>(), 0.001, kTolCli);
   EXPECT_NEAR(j["ccw"]["F_mean"].get<double>(), 0.001, kTolCli);
+  // Every reported deviation carries its budget (ISO/TR 230-9), F too with a nominal radius.
+  for (const char* q :
+       {"G_cw", "G_ccw", "G_bidirectional", "H", "F_max_cw", "F_min_cw", "F_max_ccw", "F_min_ccw"})
+    EXPECT_GT(j["uncertainty"][q]["U"].get<double>(), 0.0) << q;
+  EXPECT_EQ(j["uncertainty"]["G_cw"]["value"].get<double>(), j["G_cw"].get<double>());
+  const auto text =
+      pkm({"analyze", "circular", "--data", path("cw.csv"), "--data", path("ccw.csv")});
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_THAT(text.out, HasSubstr("uncertainty (k = 2)"));
 }
 
 TEST_F(AnalyzeCircleCli, ReadsTheSimulatedSeed003FilesAndRecoversTheOffset) {

@@ -79,6 +79,12 @@ TEST_F(AnalyzePositioningCli, Iso230_2UnidirectionalGivesNull) {
   EXPECT_TRUE(j["A"].is_null());
   EXPECT_FALSE(j["A_up"].is_null());
   EXPECT_FALSE(j["bidirectional"].get<bool>());
+  // The direction's own quantities carry their budgets (ISO/TR 230-9), the missing ones none.
+  for (const char* q : {"E_up", "A_up", "R_up"}) {
+    EXPECT_EQ(j["uncertainty"][q]["value"].get<double>(), j[q].get<double>()) << q;
+    EXPECT_GT(j["uncertainty"][q]["U"].get<double>(), 0.0) << q;
+  }
+  EXPECT_FALSE(j["uncertainty"].contains("E"));
 }
 
 TEST_F(AnalyzePositioningCli, Iso230_2DuplicateAcrossFilesNamesFileAndLine) {

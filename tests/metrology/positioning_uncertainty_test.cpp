@@ -91,8 +91,32 @@ TEST(PositioningUncertainty, AirSensorsActThroughTheEdlenSensitivity) {
   EXPECT_THROW(addLaserLengthContributors(b, -1.0, src), InvalidArgument);
 }
 
-TEST(PositioningUncertainty, UnidirectionalDataHaveNoBidirectionalBudgets) {
-  EXPECT_TRUE(iso230_2Uncertainty(evaluateIso230_2(cycle(false)), UncertaintySources{}).empty());
+TEST(PositioningUncertainty, UnidirectionalDataHaveTheirDirectionsBudgets) {
+  // Up only: E↑ from 0 to 8 µm over 400 mm, the same scatter at every target:
+  // s = √(Σ scatter² / 4) = √0.625 µm, n = 5.
+  const Iso230_2Result r = evaluateIso230_2(cycle(false));
+  const std::vector<UncertaintyBudget> budgets = iso230_2Uncertainty(r, UncertaintySources{});
+  ASSERT_EQ(budgets.size(), 3u);
+  EXPECT_EQ(budgets[0].quantity, "E_up");
+  EXPECT_EQ(budgets[1].quantity, "A_up");
+  EXPECT_EQ(budgets[2].quantity, "R_up");
+  EXPECT_EQ(budgets[0].value, r.E_up);
+  const double s = std::sqrt(0.625) * 1e-3;
+  EXPECT_NEAR(find(budgets[0], "laser wavelength (vacuum)")->contribution(),
+              400.0 * 0.05e-6 / std::sqrt(3.0),
+              kTolBudget);
+  EXPECT_NEAR(find(budgets[0], "sampling of the extreme means (s/sqrt(n))")->contribution(),
+              s * std::sqrt(2.0 / 5.0),
+              kTolBudget);
+  // R↑ = 2k s: u(s) = s/√(2(n − 1)) times 2k (k = 2).
+  EXPECT_NEAR(find(budgets[2], "sampling of the standard deviation at the target")->contribution(),
+              4.0 * s / std::sqrt(8.0),
+              kTolBudget);
+  EXPECT_EQ(find(budgets[2], "laser wavelength (vacuum)"), nullptr);  // taken at one target
+  // Their conformance decisions; the bidirectional names have no budget here.
+  EXPECT_EQ(decideIso230_2Conformance(budgets, {{"E_up", 1.0}})[0].decision,
+            ConformanceDecision::kConforms);
+  EXPECT_THROW((void)decideIso230_2Conformance(budgets, {{"E", 1.0}}), InvalidArgument);
 }
 
 TEST(PositioningUncertainty, ConformanceOfEachToleratedQuantity) {

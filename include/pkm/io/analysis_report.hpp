@@ -161,6 +161,9 @@ struct CircleReport {
 struct CircularReport {
   metrology::CircularTestResult result;
   std::size_t points_cw = 0, points_ccw = 0;
+  /// Budgets of G_cw, G_ccw, G_bidirectional, H and, with a nominal radius, F_max_cw, F_min_cw,
+  /// F_max_ccw, F_min_ccw (metrology::circularTestUncertainty).
+  std::vector<metrology::UncertaintyBudget> uncertainty;
 };
 
 /// Seed 003 eqs. 8 and 9 averaged over the runs with all six labelled touches.

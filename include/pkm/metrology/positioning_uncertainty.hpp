@@ -32,7 +32,9 @@ void addLaserLengthContributors(UncertaintyBudget& budget,
                                 const UncertaintySources& sources);
 
 /// Budgets of E, M, A, B and R (in that order; mm) of a bidirectional ISO 230-2 result whose
-/// targets and deviations are in mm; empty for unidirectional data (those quantities are NaN).
+/// targets and deviations are in mm; of unidirectional data, the budgets of the direction's own
+/// E, A and R ("E_up", "A_up", "R_up", or "E_down", "A_down", "R_down"; the bidirectional
+/// quantities are NaN).
 /// `coverage` is the k of ISO 230-2's own A and R (R_i↑ = 2k s_i↑). Each E, M, A budget uses the
 /// distance between the two targets that define the range as the measured length; B and R, taken
 /// at one target, have no length term. Throws pkm::InvalidArgument for invalid sources.

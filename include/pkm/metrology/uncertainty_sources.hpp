@@ -64,6 +64,18 @@ struct LaserTrackerSpec {
   double orientation_accuracy_rad = 1.75e-4;
 };
 
+/// A telescoping ballbar (ISO 230-4 circular tests): a length sensor between two precision balls,
+/// one at the table's pivot, one at the tool. Typical figures of current ballbar datasheets
+/// (e.g. a Renishaw QC20-W: sensor accuracy ±0.5 µm at 20 °C, resolution 0.1 µm).
+struct Ballbar {
+  std::string name = "typical telescoping ballbar";
+  double sensor_accuracy_mm = 0.5e-3;  ///< the length sensor's accuracy over its range, ± mm
+  double resolution_mm = 0.1e-3;       ///< the sensor's resolution, mm (quantisation ±res/2)
+  /// Expanded uncertainty (k = 2) of the bar's absolute length from its calibrator, mm: acts on
+  /// the radius and on the radial deviations F from a nominal radius, not on G or H.
+  double length_uncertainty_mm = 1.0e-3;
+};
+
 /// The environment of a test and the artefact/machine material.
 struct MeasurementEnvironment {
   AirConditions air;                     ///< mean air state in the beam path during the test
@@ -93,6 +105,7 @@ struct UncertaintySources {
   TouchProbe probe;
   DialGauge dial_gauge;
   LaserTrackerSpec tracker;
+  Ballbar ballbar;
   MeasurementEnvironment environment;
   double coverage_factor = 2.0;  ///< k of every expanded uncertainty (ISO/TR 230-9: 2)
 

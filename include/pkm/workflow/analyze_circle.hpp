@@ -36,12 +36,15 @@ struct CircularRequest {
   metrology::CircularCentre centre = metrology::CircularCentre::kLeastSquares;  ///< of G and H
   std::optional<metrology::Point2> nominal_center;  ///< for kNominal and the radial deviations F
   std::optional<double> nominal_radius;             ///< R0 > 0: enables F
+  /// The ballbar and environment of the budgets (metrology::circularTestUncertainty).
+  metrology::UncertaintySources uncertainty{};
   /// Throws pkm::IoError without data or with more than two inputs, pkm::InvalidArgument for a
   /// nominal radius not > 0.
   void validate() const;
 };
 
-/// Validates, reads the runs and evaluates them (metrology::evaluateCircularTest). Throws as
+/// Validates, reads the runs and evaluates them (metrology::evaluateCircularTest) with their
+/// budgets (metrology::circularTestUncertainty). Throws as
 /// validate(), pkm::IoError for a bad input or an unlabelled single input.
 [[nodiscard]] io::CircularReport analyzeCircular(const CircularRequest& request);
 
