@@ -206,6 +206,11 @@ void addCalibrateExechon(CLI::App& calibrate) {
   ex->add_option(
       "--threads", args->request.threads, "Monte Carlo worker threads (default: all cores)");
   args->uncertainty.add(*ex);
+  ex->add_option("--uncertainty-trials",
+                 args->request.uncertainty_trials,
+                 "also propagate the budgets by Monte Carlo (GUM S1): re-fits on perturbed "
+                 "points, adaptive, at most N (>= 20)")
+      ->check(CLI::Range(20, 100000));
   ex->add_flag("--force", args->request.force, "overwrite existing output files");
   ex->add_flag(
       "--allow-large-changes",

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <thread>
 
+#include "detail/exechon_predicted.hpp"
 #include "detail/noise_stream.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/rigid_transform.hpp"
@@ -22,30 +23,6 @@ struct Trial {
   ExechonParameterVector parameters;
   std::optional<geometry::RigidTransform> frame;
 };
-
-/// `data` with every point (and direction) replaced by what `estimate` predicts in the measurement
-/// frame; observations without a converging FK are dropped.
-ExechonCalibrationData predicted(const ExechonModel& estimate,
-                                 const ExechonCalibrationData& data,
-                                 const std::optional<geometry::RigidTransform>& frame,
-                                 const kinematics::FkOptions& fk) {
-  ExechonCalibrationData out = data;
-  out.observations.clear();
-  kinematics::ExechonData work(estimate);
-  for (const ExechonObservation& o : data.observations) {
-    if (!kinematics::toolForwardKinematics(estimate, work, o.joints, estimate.home, fk).ok())
-      continue;
-    ExechonObservation p = o;
-    const Eigen::Vector3d world = work.world_p_tool + work.world_R_tool * data.target_offset;
-    p.point = frame ? Eigen::Vector3d(frame->linear().transpose() * (world - frame->translation()))
-                    : world;
-    if (o.direction)
-      p.direction = frame ? Eigen::Vector3d(frame->linear().transpose() * work.world_u_tool)
-                          : work.world_u_tool;
-    out.observations.push_back(std::move(p));
-  }
-  return out;
-}
 
 /// `base` with Gaussian noise on every point and direction.
 ExechonCalibrationData noisy(const ExechonCalibrationData& base,
@@ -101,6 +78,29 @@ Eigen::VectorXd sampleStd(const Eigen::MatrixXd& samples) {
 
 }  // namespace
 
+ExechonCalibrationData detail::predictedExechonData(
+    const ExechonModel& estimate,
+    const ExechonCalibrationData& data,
+    const std::optional<geometry::RigidTransform>& frame,
+    const kinematics::FkOptions& fk) {
+  ExechonCalibrationData out = data;
+  out.observations.clear();
+  kinematics::ExechonData work(estimate);
+  for (const ExechonObservation& o : data.observations) {
+    if (!kinematics::toolForwardKinematics(estimate, work, o.joints, estimate.home, fk).ok())
+      continue;
+    ExechonObservation p = o;
+    const Eigen::Vector3d world = work.world_p_tool + work.world_R_tool * data.target_offset;
+    p.point = frame ? Eigen::Vector3d(frame->linear().transpose() * (world - frame->translation()))
+                    : world;
+    if (o.direction)
+      p.direction = frame ? Eigen::Vector3d(frame->linear().transpose() * work.world_u_tool)
+                          : work.world_u_tool;
+    out.observations.push_back(std::move(p));
+  }
+  return out;
+}
+
 void ExechonMonteCarloOptions::validate() const {
   PKM_CHECK(trials >= 2, "Monte Carlo: trials must be >= 2, got {}", trials);
   PKM_CHECK(threads >= 0, "Monte Carlo: threads must be >= 0, got {}", threads);
@@ -125,7 +125,8 @@ ExechonMonteCarloSummary monteCarloExechon(const ExechonModel& initial,
             "Monte Carlo: the estimated measurement frame must be given exactly when the data "
             "have a measurement frame");
   const auto t0 = std::chrono::steady_clock::now();
-  const ExechonCalibrationData base = predicted(estimate, data, frame, calibration.fk);
+  const ExechonCalibrationData base =
+      detail::predictedExechonData(estimate, data, frame, calibration.fk);
   const int total = options.trials;
   std::vector<std::optional<Trial>> results(static_cast<std::size_t>(total));
   std::atomic<int> not_converged{0};

@@ -67,7 +67,13 @@ detail::CalibrationUncertaintyView uncertaintyView(const ExechonTripodReport& t,
   const ExechonTripodReport::Uncertainty& u = *t.uncertainty;
   std::size_t parameters = 0;
   for (const int k : u.parameters.parameter_indices) parameters += k >= 0 ? 1 : 0;
-  return {u.sources, u.parameters.linear, nullptr, u.tcp_poses, u.tcp, unit, parameters};
+  return {u.sources,
+          u.parameters.linear,
+          u.monte_carlo ? &*u.monte_carlo : nullptr,
+          u.tcp_poses,
+          u.tcp,
+          unit,
+          parameters};
 }
 
 ordered_json uncertaintyJson(const ExechonTripodReport& t, LengthUnit unit) {

@@ -156,6 +156,14 @@ io::ExechonTripodReport::Uncertainty uncertainty(const ExechonCalibrationRequest
   io::ExechonTripodReport::Uncertainty u;
   u.sources = r.uncertainty_name.empty() ? "typical datasheet values" : r.uncertainty_name;
   u.parameters = cal::exechonParameterUncertainty(initial, data, s, options, r.uncertainty);
+  if (r.uncertainty_trials > 0) {
+    cal::BudgetMonteCarloOptions mc;
+    mc.max_trials = r.uncertainty_trials;
+    mc.batch = std::max(10, std::min(50, r.uncertainty_trials / 4));
+    mc.threads = r.threads;
+    u.monte_carlo =
+        cal::exechonBudgetMonteCarlo(initial, data, s, options, r.uncertainty, u.parameters, mc);
+  }
   const cal::ExechonCalibrationData& at = held.observations.empty() ? data : held;
   u.tcp_poses = held.observations.empty() ? "fitted" : "held-out";
   std::vector<kinematics::ExechonJoints> joints;

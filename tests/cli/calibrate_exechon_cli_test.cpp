@@ -76,6 +76,20 @@ TEST_F(CalibrateExechonCli, TrackerCalibrationMeetsTheTarget) {
                                 write("bad.json", "{\"schema\": \"other/1\"}\n")});
   EXPECT_EQ(bad.code, 2);
   EXPECT_THAT(bad.err, HasSubstr("bad.json:1:"));
+  // --uncertainty-trials: the GUM S1 propagation beside the linear budgets, in the summary.
+  const CliRun mc = calibrate({"--data",
+                               path("sim/tracker-fit.csv"),
+                               "--out",
+                               path("cal3.json"),
+                               "--uncertainty-trials",
+                               "40",
+                               "--json"});
+  ASSERT_EQ(mc.code, 0) << mc.err;
+  const auto jm = nlohmann::json::parse(mc.out);
+  EXPECT_GE(jm["uncertainty"]["monte_carlo"]["trials"].get<int>(), 20);
+  EXPECT_EQ(jm["uncertainty"]["monte_carlo"]["failures"].get<int>(), 0);
+  for (const auto& [name, b] : jm["uncertainty"]["parameters"].items())
+    EXPECT_GT(b["monte_carlo"]["u"].get<double>(), 0.0) << name;
   // The calibrated machine file loads and is a usable Exechon machine.
   const std::string poses = write("poses.csv", "x,y,z,i,j,k\n0,0,0,0,0,-1\n100,-50,200,0,0,-1\n");
   const CliRun ik = pkm({"exechon", "ik", "--machine", path("cal.json"), "--poses", poses});

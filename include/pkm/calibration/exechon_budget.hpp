@@ -3,8 +3,8 @@
 /// budgets"): every estimated parameter with U = k·u_c and its budget (the laser tracker per its
 /// specification on every measured point, set-up repeatability, the fit's residual scatter
 /// beyond the instrument), propagated linearly through the fit's least-squares inverse at the
-/// estimate (parameter_budget.hpp); and the predicted tool-point uncertainty at given joint
-/// configurations (J_tcp·Σ·J_tcpᵀ).
+/// estimate (parameter_budget.hpp) and by a Monte Carlo method per GUM Supplement 1; and the
+/// predicted tool-point uncertainty at given joint configurations (J_tcp·Σ·J_tcpᵀ).
 #pragma once
 
 #include <vector>
@@ -39,6 +39,23 @@ struct ExechonParameterUncertainty {
     const ExechonCalibrationSummary& fit,
     const ExechonCalibrationOptions& calibration,
     const metrology::UncertaintySources& sources);
+
+/// GUM Supplement 1 propagation of the same inputs as `linear` (JCGM 101:2008 §7.9, adaptive, as
+/// hexapodBudgetMonteCarlo): each trial replaces the measured points by what the estimate
+/// predicts for their joints (their residuals zero; observations whose FK fails are left out),
+/// adds to every coordinate one draw of the tracker's ±(a + b·L) (rectangular), of the set-up
+/// repeatability (normal) and of the Type A scatter (normal, σ = linear.linear.fit_sigma), and
+/// re-runs calibrateExechon from `initial`. Tool directions are not perturbed (as in `linear`).
+/// Returns the unknowns' Monte Carlo summaries in the order of linear's budgets and the 26 × 26
+/// sample covariance. Throws pkm::InvalidArgument for invalid options or sources.
+[[nodiscard]] BudgetMonteCarloResult exechonBudgetMonteCarlo(
+    const kinematics::ExechonModel& initial,
+    const ExechonCalibrationData& data,
+    const ExechonCalibrationSummary& fit,
+    const ExechonCalibrationOptions& calibration,
+    const metrology::UncertaintySources& sources,
+    const ExechonParameterUncertainty& linear,
+    const BudgetMonteCarloOptions& options = {});
 
 /// The predicted uncertainty of the tool point (target offset `target_offset`) of the calibrated
 /// model at each joint configuration: k·√λ_max(J·Σ·Jᵀ) with J = exechonTargetJacobian (FK seeded

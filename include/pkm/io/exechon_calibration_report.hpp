@@ -52,6 +52,8 @@ struct ExechonTripodReport {
   struct Uncertainty {
     std::string sources;  ///< the sources file, or "typical datasheet values"
     calibration::ExechonParameterUncertainty parameters;  ///< linear budgets
+    /// --uncertainty-trials: the GUM Supplement 1 propagation of the same inputs.
+    std::optional<calibration::BudgetMonteCarloResult> monte_carlo;
     std::string tcp_poses;            ///< where the tool-point U is predicted: "held-out"
     calibration::TcpUncertainty tcp;  ///< the predicted tool-point U at those configurations
   };

@@ -51,6 +51,9 @@ struct ExechonCalibrationRequest {
   /// typical datasheet values; docs/calibration.md, "Uncertainty budgets").
   metrology::UncertaintySources uncertainty;
   std::string uncertainty_name;  ///< the sources file's name ("" : the typical values)
+  /// GUM Supplement 1 re-fits of the budgets (calibration::exechonBudgetMonteCarlo), the adaptive
+  /// procedure's limit (0: none); workers from `threads`.
+  int uncertainty_trials = 0;
   /// Throws pkm::InvalidArgument naming the option for an unusable setting.
   void validate() const;
 };
