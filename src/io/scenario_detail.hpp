@@ -69,12 +69,20 @@ inline int integer(const JsonDoc& doc,
 [[nodiscard]] std::string tripodErrorsJson(const simulation::ExechonTripodErrors& errors);
 
 /// A scenario's "environment" at `ptr`: a preset name ("ideal", "realistic") or an object
-/// {"preset", "duration_h", "air": {...}, "thermal": {...}, "setup": {...}} whose members override
-/// the preset's (docs/formats.md, "Scenario files"; an object is named "custom"). Fails through
-/// `doc`.
+/// {"preset", "duration_h", "air", "thermal", "setup", "structure", "compliance"} whose members
+/// override the preset's (docs/formats.md, "Scenario files"; an object is named "custom"). Fails
+/// through `doc`.
 [[nodiscard]] simulation::Environment readEnvironment(const JsonDoc& doc,
                                                       const json& obj,
                                                       const std::string& ptr);
+
+/// An environment's "compliance" object at `ptr` (docs/formats.md, "Scenario files"): overrides
+/// the members of `c` it names and switches the source on unless "enabled" is false. Fails
+/// through `doc`.
+void readCompliance(const JsonDoc& doc,
+                    const json& obj,
+                    const std::string& ptr,
+                    simulation::ComplianceEnvironment& c);
 
 /// The built-in scenario texts (generated from data/scenarios/*.json): {file stem, JSON text}.
 const std::vector<std::pair<std::string_view, std::string_view>>& embeddedScenarios();

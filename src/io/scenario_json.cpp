@@ -169,6 +169,7 @@ Scenario parseScenarioJson(const std::string& text,
                "\"touch_probe\"");
   }
   sim::applyProbeEnvironment(out.campaign);
+  sim::applyMachineEnvironment(out.campaign);
   try {
     out.campaign.validate();
     sim::validateTrackers(out.campaign);

@@ -4,6 +4,8 @@
 #include <set>
 
 #include "pkm/core/error.hpp"
+#include "pkm/simulation/cartesian_machine.hpp"
+#include "pkm/simulation/hybrid_virtual_machine.hpp"
 
 namespace pkm::simulation {
 
@@ -70,6 +72,19 @@ void applyProbeEnvironment(Campaign& campaign) {
   for (TouchProbeSetup& p : campaign.probes) {
     p.lobing = set.probe_lobing_mm;
     p.lobes = set.probe_lobes;
+  }
+}
+
+void applyMachineEnvironment(Campaign& campaign) {
+  const ComplianceEnvironment& c = campaign.environment.compliance;
+  const bool on = c.enabled;
+  if (auto* h = dynamic_cast<HexapodVirtualMachine*>(campaign.machine.get()))
+    h->setCompliance(on ? std::optional<HexapodCompliance>(c.hexapod) : std::nullopt);
+  if (auto* m = dynamic_cast<CartesianMachine*>(campaign.machine.get()))
+    m->setSag(on ? c.cartesian : std::array<AxisSag, 3>{});
+  if (auto* y = dynamic_cast<HybridVirtualMachine*>(campaign.machine.get())) {
+    y->setSag(on ? c.x2 : AxisSag{}, on ? c.y2 : AxisSag{});
+    y->setTripodCompliance(on ? std::optional<ExechonCompliance>(c.exechon) : std::nullopt);
   }
 }
 

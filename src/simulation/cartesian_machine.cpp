@@ -6,6 +6,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/error_motion.hpp"
 #include "pkm/geometry/rigid_transform.hpp"
+#include "pkm/simulation/compliance.hpp"
 
 namespace pkm::simulation {
 
@@ -89,7 +90,25 @@ geometry::RigidTransform CartesianMachine::moveTo(const Eigen::VectorXd& command
     if (errors_.axes[ku])
       pose = pose * geometry::errorMotionHtm(errors_.axes[ku]->evaluateMotion(q));
   }
-  return pose * geometry::translationTransform(layout_.tool_offset);
+  pose = pose * geometry::translationTransform(layout_.tool_offset);
+  Eigen::Vector3d pivot = Eigen::Vector3d::Zero();  // the nominal carriage position so far
+  for (const char axis : layout_.order) {
+    const int k = axis - 'X';
+    const AxisSag& s = sag_[static_cast<std::size_t>(k)];
+    pivot[k] = command[k];
+    if (s.kind == AxisSag::Kind::kNone) continue;
+    const Eigen::Vector3d e = s.sense * Eigen::Vector3d::Unit(k);
+    pose = sagCarryingTool(pose, axisDeflection(s, command[k]), e, pivot);
+  }
+  return pose;
+}
+
+void CartesianMachine::setSag(const std::array<AxisSag, 3>& sag) {
+  for (const AxisSag& s : sag) {
+    std::string why;
+    PKM_CHECK(s.isValid(&why), "Cartesian axis sag: {}", why);
+  }
+  sag_ = sag;
 }
 
 }  // namespace pkm::simulation

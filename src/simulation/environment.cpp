@@ -78,7 +78,69 @@ StructureEnvironment realisticStructure() {
   return s;
 }
 
+/// "realistic": a machine that sags under its own weight and whose joints have a little play
+/// (docs/simulation-errors.md, "Structure: compliance (gravity sag) and joint clearance").
+ComplianceEnvironment realisticCompliance() {
+  ComplianceEnvironment c;
+  c.enabled = true;
+  c.hexapod.platform_mass_kg = 150.0;  // platform and motor spindle
+  c.hexapod.platform_com_mm = {0.0, 0.0, -100.0};
+  c.hexapod.strut_mass_kg = 20.0;
+  c.hexapod.strut_com_fraction = 0.5;
+  c.hexapod.strut_stiffness_n_per_um = 50.0;  // screw, nut, bearings and joints in series
+  c.hexapod.joint_clearance_mm = 4e-3;        // 2 µm in each of the two joints
+  c.exechon.head_mass_kg = 250.0;
+  c.exechon.head_com_mm = {0.0, 0.0, 200.0};  // on the tool axis, 200 mm back from the tool point
+  c.exechon.leg_stiffness_n_per_um = 50.0;
+  c.exechon.joint_clearance_mm = 4e-3;
+  // The Cartesian machine's Y slide carries the spindle head on a ram 300..700 mm out.
+  c.cartesian[1] = {AxisSag::Kind::kCantilever, 25e-3, 1000.0, 300.0, 1.0};
+  c.x2 = {AxisSag::Kind::kSpan, 10e-3, 4000.0, 0.0, 1.0};        // the PKM's weight on the X2 bed
+  c.y2 = {AxisSag::Kind::kCantilever, 5e-3, 600.0, 150.0, 1.0};  // the table running off Y2
+  return c;
+}
+
+bool finiteNonNegative(double v) { return std::isfinite(v) && v >= 0.0; }
+
 }  // namespace
+
+bool AxisSag::isValid(std::string* why) const {
+  if (!finiteNonNegative(sag_mm)) return fail(why, "sag_mm must be finite and >= 0");
+  if (!std::isfinite(length_mm) || length_mm <= 0.0)
+    return fail(why, fmt::format("sag length_mm must be > 0, got {}", length_mm));
+  if (!std::isfinite(zero_mm)) return fail(why, "sag zero_mm must be finite");
+  if (sense != 1.0 && sense != -1.0)
+    return fail(why, fmt::format("sag sense must be 1 or -1, got {}", sense));
+  return true;
+}
+
+bool HexapodCompliance::isValid(std::string* why) const {
+  if (!finiteNonNegative(platform_mass_kg) || !finiteNonNegative(strut_mass_kg) ||
+      !finiteNonNegative(joint_clearance_mm) || !platform_com_mm.allFinite())
+    return fail(why, "hexapod masses and clearance must be finite and >= 0");
+  if (!std::isfinite(strut_com_fraction) || strut_com_fraction < 0.0 || strut_com_fraction > 1.0)
+    return fail(why,
+                fmt::format("strut_com_fraction must be in [0, 1], got {}", strut_com_fraction));
+  if (!std::isfinite(strut_stiffness_n_per_um) || strut_stiffness_n_per_um <= 0.0)
+    return fail(why, "strut_stiffness_n_per_um must be > 0");
+  return true;
+}
+
+bool ExechonCompliance::isValid(std::string* why) const {
+  if (!finiteNonNegative(head_mass_kg) || !finiteNonNegative(joint_clearance_mm) ||
+      !head_com_mm.allFinite())
+    return fail(why, "Exechon head mass and clearance must be finite and >= 0");
+  if (!std::isfinite(leg_stiffness_n_per_um) || leg_stiffness_n_per_um <= 0.0)
+    return fail(why, "leg_stiffness_n_per_um must be > 0");
+  return true;
+}
+
+bool ComplianceEnvironment::isValid(std::string* why) const {
+  if (!hexapod.isValid(why) || !exechon.isValid(why)) return false;
+  for (const AxisSag& s : cartesian)
+    if (!s.isValid(why)) return false;
+  return x2.isValid(why) && y2.isValid(why);
+}
 
 bool StructureEnvironment::isValid(std::string* why) const {
   if (!std::isfinite(correlated_sigma_mm) || correlated_sigma_mm < 0.0 ||
@@ -158,7 +220,8 @@ bool Environment::isValid(std::string* why) const {
   if (!std::isfinite(elapsed_h) || elapsed_h < 0.0)
     return fail(why, fmt::format("elapsed_h must be >= 0, got {}", elapsed_h));
   return air.isValid(why) && airInRange(air, 1.0 + elapsed_h / duration_h, why) &&
-         thermal.isValid(why) && setup.isValid(why) && structure.isValid(why);
+         thermal.isValid(why) && setup.isValid(why) && structure.isValid(why) &&
+         compliance.isValid(why);
 }
 
 std::optional<Environment> environmentPreset(std::string_view name) {
@@ -170,6 +233,7 @@ std::optional<Environment> environmentPreset(std::string_view name) {
     e.thermal = realisticThermal();
     e.setup = realisticSetup();
     e.structure = realisticStructure();
+    e.compliance = realisticCompliance();
     return e;
   }
   return std::nullopt;

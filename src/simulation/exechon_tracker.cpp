@@ -8,6 +8,7 @@
 #include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/exechon_checks.hpp"
 #include "pkm/kinematics/exechon_data.hpp"
+#include "pkm/simulation/compliance.hpp"
 
 namespace pkm::simulation {
 namespace {
@@ -52,7 +53,8 @@ std::vector<ExechonTrackerReading> simulateExechonTracker(const kinematics::Exec
                                                           const kinematics::ExechonModel& actual,
                                                           const kinematics::FkOptions& fk,
                                                           const ExechonTrackerSetup& setup,
-                                                          RandomStream& rng) {
+                                                          RandomStream& rng,
+                                                          const ExechonCompliance* compliance) {
   setup.validate();
   nominal.validate();
   actual.validate();
@@ -80,8 +82,12 @@ std::vector<ExechonTrackerReading> simulateExechonTracker(const kinematics::Exec
     ExechonTrackerReading r;
     r.command = command;
     r.joints = kinematics::jointsOf(nom);
-    const kinematics::FkSummary s = kinematics::toolForwardKinematics(
-        actual, act, r.joints, kinematics::configurationOf(nom), fk);
+    const kinematics::ExechonConfiguration seed = kinematics::configurationOf(nom);
+    const kinematics::ExechonJoints reached =
+        compliance != nullptr ? exechonDeflectedJoints(actual, r.joints, seed, fk, *compliance)
+                              : r.joints;
+    const kinematics::FkSummary s =
+        kinematics::toolForwardKinematics(actual, act, reached, seed, fk);
     PKM_CHECK(s.ok(),
               "{}: the true machine's FK does not converge at command {} ({})",
               setup.name,

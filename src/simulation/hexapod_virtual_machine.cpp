@@ -8,6 +8,7 @@
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "pkm/kinematics/pose_rpy.hpp"
+#include "pkm/simulation/compliance.hpp"
 #include "pkm/simulation/noise.hpp"
 
 namespace pkm::simulation {
@@ -69,6 +70,13 @@ void HexapodVirtualMachine::setStrutGrowth(double relative) {
   growth_ = relative;
 }
 
+void HexapodVirtualMachine::setCompliance(std::optional<HexapodCompliance> compliance) {
+  std::string why;
+  PKM_CHECK(!compliance || compliance->isValid(&why), "hexapod compliance: {}", why);
+  compliance_ = std::move(compliance);
+  loads_.setZero();
+}
+
 std::vector<std::string> HexapodVirtualMachine::axisNames() const {
   return {"x", "y", "z", "a", "b", "c"};
 }
@@ -81,6 +89,7 @@ geometry::RigidTransform HexapodVirtualMachine::nominalPose(const Eigen::VectorX
 void HexapodVirtualMachine::reset(std::uint64_t noise_seed) {
   rng_ = RandomStream(noise_seed);
   approach_.fill(1);
+  load_side_.fill(0);
   moved_ = false;
 }
 
@@ -106,6 +115,14 @@ geometry::RigidTransform HexapodVirtualMachine::moveTo(const Eigen::VectorXd& co
   if (growth_ != 0.0)
     for (Eigen::Index i = 0; i < kin::kStruts; ++i)
       actual[i] += growth_ * (actual[i] + true_.struts[static_cast<std::size_t>(i)].length_offset);
+  if (compliance_) {  // the struts' load at the commanded pose (controller_data_ holds its IK)
+    loads_ = hexapodStrutLoads(controller_, controller_data_, *compliance_);
+    for (Eigen::Index i = 0; i < kin::kStruts; ++i)
+      actual[i] += legDeflection(loads_[i],
+                                 compliance_->strut_stiffness_n_per_um,
+                                 compliance_->joint_clearance_mm,
+                                 load_side_[static_cast<std::size_t>(i)]);
+  }
   const kin::PoseRpy seed = moved_ ? last_pose_ : pose;
   last_ = commanded_;
   moved_ = true;

@@ -7,6 +7,7 @@
 #include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/exechon_data.hpp"
 #include "pkm/kinematics/exechon_wrist.hpp"
+#include "pkm/simulation/compliance.hpp"
 
 namespace pkm::simulation {
 
@@ -82,6 +83,12 @@ HybridTripod::HybridTripod(kin::ExechonModel nominal,
   PKM_CHECK(fk_.isValid(&why), "tripod forward-kinematics options: {}", why);
 }
 
+void HybridTripod::setCompliance(std::optional<ExechonCompliance> compliance) {
+  std::string why;
+  PKM_CHECK(!compliance || compliance->isValid(&why), "Exechon compliance: {}", why);
+  compliance_ = std::move(compliance);
+}
+
 geometry::RigidTransform HybridTripod::errorMotion(const Eigen::Vector3d& p) const {
   PKM_CHECK(p.allFinite(), "PKM command is not finite");
   kin::ExechonToolPose target;
@@ -96,8 +103,11 @@ geometry::RigidTransform HybridTripod::errorMotion(const Eigen::Vector3d& p) con
             p.z(),
             kin::toString(ik));
   kin::ExechonData act(actual_);
-  const kin::FkSummary fk =
-      kin::toolForwardKinematics(actual_, act, kin::jointsOf(nom), kin::configurationOf(nom), fk_);
+  const kin::ExechonConfiguration seed = kin::configurationOf(nom);
+  const kin::ExechonJoints joints =
+      compliance_ ? exechonDeflectedJoints(actual_, kin::jointsOf(nom), seed, fk_, *compliance_)
+                  : kin::jointsOf(nom);
+  const kin::FkSummary fk = kin::toolForwardKinematics(actual_, act, joints, seed, fk_);
   PKM_CHECK(fk.status == kin::FkStatus::kOk,
             "true Exechon tool FK at PKM command ({}, {}, {}): {}",
             p.x(),

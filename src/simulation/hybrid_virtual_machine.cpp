@@ -3,6 +3,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/hybrid_chain.hpp"
+#include "pkm/simulation/compliance.hpp"
 
 namespace pkm::simulation {
 
@@ -38,9 +39,32 @@ geometry::RigidTransform HybridVirtualMachine::nominalPose(const Eigen::VectorXd
 
 geometry::RigidTransform HybridVirtualMachine::moveTo(const Eigen::VectorXd& command) {
   const kinematics::HybridCommand c = toCommand(command);
-  const geometry::RigidTransform pose = kinematics::hybridActualPose(model_, errors_, c);
-  if (!tripod_) return pose;
-  return pose * tripod_->errorMotion(c.pkm);  // P_T_t = Trans(q) · E(e_P(p)) · E_tripod
+  geometry::RigidTransform pose = kinematics::hybridActualPose(model_, errors_, c);
+  if (tripod_) pose = pose * tripod_->errorMotion(c.pkm);  // P_T_t = Trans(q)·E(e_P(p))·E_tripod
+  if (sag_x2_.kind != AxisSag::Kind::kNone) {
+    const Eigen::Vector3d pivot =
+        c.x2 * Eigen::Vector3d::UnitX() - c.y2 * Eigen::Vector3d::UnitY() - model_.Y2_p_work;
+    pose = sagCarryingTool(
+        pose, axisDeflection(sag_x2_, c.x2), sag_x2_.sense * Eigen::Vector3d::UnitX(), pivot);
+  }
+  if (sag_y2_.kind != AxisSag::Kind::kNone)
+    pose = sagCarryingWork(pose,
+                           axisDeflection(sag_y2_, c.y2),
+                           sag_y2_.sense * Eigen::Vector3d::UnitY(),
+                           -model_.Y2_p_work);
+  return pose;
+}
+
+void HybridVirtualMachine::setTripodCompliance(const std::optional<ExechonCompliance>& compliance) {
+  if (tripod_) tripod_->setCompliance(compliance);
+}
+
+void HybridVirtualMachine::setSag(const AxisSag& x2, const AxisSag& y2) {
+  std::string why;
+  PKM_CHECK(x2.isValid(&why), "X2 sag: {}", why);
+  PKM_CHECK(y2.isValid(&why), "Y2 sag: {}", why);
+  sag_x2_ = x2;
+  sag_y2_ = y2;
 }
 
 }  // namespace pkm::simulation

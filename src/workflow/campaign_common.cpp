@@ -159,6 +159,7 @@ io::Scenario stepScenario(const StepContext& context, std::uint64_t& seed) {
                                 fmt::join(sim::environmentPresetNames(), ", ")));
     scenario.campaign.environment = *preset;
     sim::applyProbeEnvironment(scenario.campaign);
+    sim::applyMachineEnvironment(scenario.campaign);
   }
   if (context.spec.contains("seed")) {
     if (!context.spec["seed"].is_number_unsigned())

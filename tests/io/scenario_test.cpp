@@ -248,6 +248,31 @@ TEST(Scenario, EnvironmentIsIdealByDefaultAPresetOrAnObject) {
   EXPECT_DOUBLE_EQ(str.correlated_sigma_mm, 2e-3);
   EXPECT_EQ(str.correlation_s, 300.0);
   EXPECT_DOUBLE_EQ(str.white_sigma_mm, 0.5e-3);
+  const io::Scenario co =
+      io::parseScenarioJson(withEnvironment(R"({"compliance": {"hexapod": {"platform_mass_kg": 80,
+        "platform_com_mm": [0, 0, -50], "strut_stiffness_n_per_um": 120, "joint_clearance_um": 3},
+        "exechon": {"head_mass_kg": 300, "leg_stiffness_n_per_um": 70},
+        "cartesian": {"y": {"kind": "cantilever", "sag_um": 30, "length_mm": 800, "zero_mm": 200}},
+        "x2": {"kind": "span", "sag_um": 8, "length_mm": 3000, "sense": -1}}})"),
+                            "s.json");
+  const sim::ComplianceEnvironment& com = co.campaign.environment.compliance;
+  EXPECT_TRUE(com.enabled);
+  EXPECT_EQ(com.hexapod.platform_mass_kg, 80.0);
+  EXPECT_EQ(com.hexapod.platform_com_mm.z(), -50.0);
+  EXPECT_EQ(com.hexapod.strut_stiffness_n_per_um, 120.0);
+  EXPECT_DOUBLE_EQ(com.hexapod.joint_clearance_mm, 3e-3);
+  EXPECT_EQ(com.exechon.head_mass_kg, 300.0);
+  EXPECT_EQ(com.exechon.leg_stiffness_n_per_um, 70.0);
+  EXPECT_EQ(com.cartesian[1].kind, sim::AxisSag::Kind::kCantilever);
+  EXPECT_DOUBLE_EQ(com.cartesian[1].sag_mm, 30e-3);
+  EXPECT_EQ(com.cartesian[1].length_mm, 800.0);
+  EXPECT_EQ(com.cartesian[1].zero_mm, 200.0);
+  EXPECT_EQ(com.cartesian[0].kind, sim::AxisSag::Kind::kNone);
+  EXPECT_EQ(com.x2.kind, sim::AxisSag::Kind::kSpan);
+  EXPECT_EQ(com.x2.sense, -1.0);
+  const io::Scenario rigid = io::parseScenarioJson(
+      withEnvironment(R"({"preset": "realistic", "compliance": {"enabled": false}})"), "s.json");
+  EXPECT_FALSE(rigid.campaign.environment.compliance.enabled);
 }
 
 TEST(Scenario, EnvironmentErrorsNameTheLineAndPointer) {
@@ -278,6 +303,12 @@ TEST(Scenario, EnvironmentErrorsNameTheLineAndPointer) {
               HasSubstr("set-up errors must be finite and >= 0"));
   EXPECT_THAT(message(R"({"structure": {"correlation_s": 0}})"),
               HasSubstr("/environment/structure: structure correlation_s must be > 0"));
+  EXPECT_THAT(message(R"({"compliance": {"x2": {"kind": "arch"}}})"),
+              HasSubstr("/environment/compliance/x2/kind: must be \"none\", \"cantilever\""));
+  EXPECT_THAT(message(R"({"compliance": {"hexapod": {"strut_stiffness_n_per_um": 0}}})"),
+              HasSubstr("/environment/compliance/hexapod: strut_stiffness_n_per_um must be > 0"));
+  EXPECT_THAT(message(R"({"compliance": {"cartesian": {"w": {}}}})"),
+              HasSubstr("/environment/compliance/cartesian/w: unknown key 'w'"));
 }
 
 }  // namespace

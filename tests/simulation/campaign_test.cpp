@@ -208,6 +208,35 @@ TEST(Campaign, NonRepeatableStructureErrorsScatterTheReadings) {
   EXPECT_GT(std::abs(mean), 0.0);
 }
 
+TEST(Campaign, ComplianceShowsTheRamSagInAVerticalStraightnessLine) {
+  // An ideal machine whose Y ram (300 mm out at y = 0) sags 25 µm at 1000 mm: a vertical
+  // straightness line along Y zeroed at y = 0 reads −(δ(300 + y) − δ(300)), δ(L) = 25 µm·(L/1 m)³
+  // (the tool on the ram's axis, so its droop adds no Abbe term), in every run and direction.
+  sim::LineSetup line = setup("y-v", 1);
+  line.noise = {};
+  line.quantity = sim::LineQuantity::kStraightness;
+  line.lateral = Eigen::Vector3d::UnitZ();
+  sim::Campaign c = campaign({line});
+  c.machine =
+      std::make_shared<sim::CartesianMachine>(sim::CartesianLayout{}, sim::CartesianErrors{});
+  c.environment.name = "custom";
+  c.environment.compliance.enabled = true;
+  c.environment.compliance.cartesian[1] = {sim::AxisSag::Kind::kCantilever, 25e-3, 1000, 300, 1};
+  sim::applyMachineEnvironment(c);
+  const auto delta = [](double y) { return 25e-3 * std::pow((300.0 + y) / 1000.0, 3); };
+  const auto result = sim::runCampaign(c, 5);
+  for (const sim::LineRun& run : result[0].runs)
+    for (const sim::LineReading& r : run.readings)
+      EXPECT_NEAR(r.reading, -(delta(r.target) - delta(0.0)), 1e-12) << r.target;
+  EXPECT_EQ(readings(result[0]), readings(sim::runCampaign(c, 5)[0]));
+  // Switching the source off takes the sag away again.
+  c.environment.compliance.enabled = false;
+  sim::applyMachineEnvironment(c);
+  const auto rigid = sim::runCampaign(c, 5);
+  for (const sim::LineRun& run : rigid[0].runs)
+    for (const sim::LineReading& r : run.readings) EXPECT_NEAR(r.reading, 0.0, 1e-12);
+}
+
 TEST(Campaign, AnInvalidEnvironmentIsRejected) {
   sim::Campaign c = campaign({setup("x", 0)});
   c.environment.duration_h = -1.0;

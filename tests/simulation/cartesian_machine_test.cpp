@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -213,6 +214,33 @@ TEST(CartesianMachine, InvalidActuationThrows) {
   a = {};
   a.repeatability_sigma.z() = NAN;
   EXPECT_THROW(CartesianMachine({}, {}, a), pkm::InvalidArgument);
+}
+
+TEST(CartesianMachine, RamSagGrowsWithTheCubeOfTheExtensionAndDroops) {
+  // Y carries the head on a ram 300 mm out at y = 0 that sags 25 µm at 1000 mm (δ = W·L³/(3EI)):
+  // at two extensions the tool drops δ(L) = 25 µm·(L/1000)³ and the head turns nose down by
+  // θ = 1.5·δ/L about −x̂, which swings the tool 100 mm below the ram's carriage by θ·100 towards
+  // −y.
+  CartesianLayout layout;
+  layout.tool_offset = {0, 0, -100};
+  CartesianMachine machine(layout, {});
+  std::array<pkm::simulation::AxisSag, 3> sag{};
+  sag[1] = {pkm::simulation::AxisSag::Kind::kCantilever, 25e-3, 1000.0, 300.0, 1.0};
+  machine.setSag(sag);
+  const double tol_sag = 1e-7;  // mm: the rotation's second order θ²·100 mm/2 (θ ≤ 4e-5 rad)
+  for (const double y : {200.0, 700.0}) {
+    const double L = 300.0 + y;
+    const double delta = 25e-3 * std::pow(L / 1000.0, 3);
+    const double theta = 1.5 * delta / L;
+    const auto pose = machine.moveTo(cmd(50, y, 0));
+    const Eigen::Vector3d nominal(50, y, -100);
+    EXPECT_NEAR(pose.translation().z() - nominal.z(), -delta, tol_sag) << y;
+    EXPECT_NEAR(pose.translation().y() - nominal.y(), -100.0 * theta, tol_sag) << y;
+    EXPECT_NEAR(pose.translation().x() - nominal.x(), 0.0, kTolExact * 1e3) << y;
+    EXPECT_NEAR(Eigen::AngleAxisd(pose.linear()).angle(), theta, kTolExact) << y;
+  }
+  sag[0].sag_mm = -1.0;
+  EXPECT_THROW(machine.setSag(sag), pkm::InvalidArgument);
 }
 
 }  // namespace

@@ -32,6 +32,33 @@ TEST(Environment, RealisticIsValidActiveAndWithinTheSensorSpecification) {
   EXPECT_LE(std::abs(r->air.humidity_sensor.offset), 6.0);
   for (const auto name : sim::environmentPresetNames())
     EXPECT_TRUE(sim::environmentPreset(name).has_value()) << name;
+  // Compliance on, with the magnitudes of docs/simulation-errors.md.
+  EXPECT_TRUE(r->compliance.enabled);
+  EXPECT_EQ(r->compliance.hexapod.strut_stiffness_n_per_um, 50.0);
+  EXPECT_EQ(r->compliance.cartesian[1].kind, sim::AxisSag::Kind::kCantilever);
+  EXPECT_EQ(r->compliance.x2.kind, sim::AxisSag::Kind::kSpan);
+  EXPECT_FALSE(sim::environmentPreset("ideal")->compliance.enabled);
+}
+
+TEST(Environment, InvalidComplianceIsNamed) {
+  sim::Environment e;
+  std::string why;
+  e.compliance.hexapod.strut_stiffness_n_per_um = 0.0;
+  EXPECT_FALSE(e.isValid(&why));
+  EXPECT_NE(why.find("strut_stiffness_n_per_um"), std::string::npos);
+  e.compliance.hexapod.strut_stiffness_n_per_um = 50.0;
+  e.compliance.hexapod.strut_com_fraction = 1.5;
+  EXPECT_FALSE(e.isValid(&why));
+  EXPECT_NE(why.find("strut_com_fraction"), std::string::npos);
+  e.compliance.hexapod.strut_com_fraction = 0.5;
+  e.compliance.y2.sense = 0.0;
+  EXPECT_FALSE(e.isValid(&why));
+  EXPECT_NE(why.find("sense"), std::string::npos);
+  e.compliance.y2.sense = 1.0;
+  e.compliance.exechon.joint_clearance_mm = -1.0;
+  EXPECT_FALSE(e.isValid(&why));
+  e.compliance.exechon.joint_clearance_mm = 0.0;
+  EXPECT_TRUE(e.isValid(&why)) << why;
 }
 
 TEST(Environment, InvalidValuesAreNamed) {

@@ -8,6 +8,7 @@
 #include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
+#include "pkm/simulation/compliance.hpp"
 #include "support/sample_models.hpp"
 #include "support/statistics.hpp"
 #include "support/tolerances.hpp"
@@ -84,6 +85,91 @@ TEST(HexapodVirtualMachine, StrutGrowthLengthensEveryStrutInProportion) {
   m.setStrutGrowth(0.0);
   EXPECT_NEAR((m.moveTo(c).matrix() - m.nominalPose(c).matrix()).norm(), 0.0, kTolRoundTrip);
   EXPECT_THROW(m.setStrutGrowth(std::nan("")), pkm::InvalidArgument);
+}
+
+/// The realistic hexapod compliance without clearance: 150 kg on the axis, 20 kg struts.
+sim::HexapodCompliance gravity() {
+  sim::HexapodCompliance c;
+  c.platform_mass_kg = 150.0;
+  c.platform_com_mm = {0, 0, -100};
+  c.strut_mass_kg = 20.0;
+  c.strut_com_fraction = 0.5;
+  c.strut_stiffness_n_per_um = 50.0;
+  return c;
+}
+
+TEST(HexapodVirtualMachine, GravitySagOfASymmetricPoseIsWeightOver6kCos2) {
+  // Pure z pose of the D3-symmetric machine: every strut carries C = W/(6·u_z), W = (m_p +
+  // 6·η·m_s)·g, and stretches by |C|/k, so the platform drops by W/(6·k·u_z²); the joint clearance
+  // c taken up in tension adds c/|u_z|.
+  sim::HexapodVirtualMachine m(pkm::test::millingModel(), {});
+  sim::HexapodCompliance c = gravity();
+  m.setCompliance(c);
+  const Eigen::VectorXd at = command(0, 0, 250, 0, 0, 0);
+  const pkm::geometry::RigidTransform sagged = m.moveTo(at);
+  kin::HexapodData data(m.truth());
+  (void)kin::inverseKinematics(
+      m.truth(), data, m.nominalPose(at).translation(), Eigen::Matrix3d::Identity());
+  const double uz = data.unit_leg[0].z();
+  const double weight =
+      (c.platform_mass_kg + 6 * c.strut_com_fraction * c.strut_mass_kg) * sim::kStandardGravity;
+  const double drop = weight / (6 * c.strut_stiffness_n_per_um * 1e3 * uz * uz);
+  const Eigen::Vector3d d = sagged.translation() - m.nominalPose(at).translation();
+  EXPECT_NEAR(d.z(), -drop, 1e-3 * drop);  // first order: the drop is µm on struts of 900 mm
+  EXPECT_NEAR(d.head<2>().norm(), 0.0, 1e-9);
+  EXPECT_NEAR(m.strutLoads()[0], weight / (6 * uz), 1e-9);
+  c.joint_clearance_mm = 4e-3;
+  m.setCompliance(c);
+  const double drop_c = drop + c.joint_clearance_mm / std::abs(uz);
+  EXPECT_NEAR(
+      m.moveTo(at).translation().z() - m.nominalPose(at).translation().z(), -drop_c, 1e-3 * drop_c);
+  m.setCompliance(std::nullopt);
+  EXPECT_NEAR((m.moveTo(at).matrix() - m.nominalPose(at).matrix()).norm(), 0.0, kTolRoundTrip);
+  c.strut_stiffness_n_per_um = 0.0;
+  EXPECT_THROW(m.setCompliance(c), pkm::InvalidArgument);
+}
+
+TEST(HexapodVirtualMachine, GravitySagChangesWithThePose) {
+  // Not a constant offset: the drop differs between poses by more than a micrometre.
+  sim::HexapodVirtualMachine m(pkm::test::millingModel(), {});
+  m.setCompliance(gravity());
+  const auto drop = [&](const Eigen::VectorXd& c) {
+    return m.moveTo(c).translation().z() - m.nominalPose(c).translation().z();
+  };
+  EXPECT_GT(std::abs(drop(command(0, 0, 150, 0, 0, 0)) - drop(command(150, 0, 300, 0, 0.1, 0))),
+            1e-3);
+}
+
+TEST(HexapodVirtualMachine, JointClearanceJumpsWhereAStrutsLoadReverses) {
+  // Put the centre of mass where strut 0 carries nothing at x = 0 (its load is linear in the
+  // centre of mass), then step x across 0: strut 0's load changes sign and its joint distance
+  // jumps by 2c (shorter under compression), the other struts' by nothing.
+  const kin::HexapodModel model = pkm::test::millingModel();
+  sim::HexapodCompliance c = gravity();
+  c.strut_mass_kg = 0.0;
+  const auto load0 = [&](double com_x, double x) {
+    c.platform_com_mm.x() = com_x;
+    kin::HexapodData d(model);
+    (void)kin::inverseKinematics(model, d, Eigen::Vector3d(x, 0, 250), Eigen::Matrix3d::Identity());
+    return sim::hexapodStrutLoads(model, d, c)[0];
+  };
+  const double a = load0(0.0, 0.0), b = load0(1000.0, 0.0) - a;
+  const double com_x = -a / b * 1000.0;
+  c.platform_com_mm.x() = com_x;
+  c.joint_clearance_mm = 4e-3;
+  sim::HexapodVirtualMachine m(model, {});
+  m.setCompliance(c);
+  const double step = 1e-5;
+  const kin::StrutVector before = trueReadings(m, m.moveTo(command(-step, 0, 250, 0, 0, 0)));
+  const double load_before = m.strutLoads()[0];
+  const kin::StrutVector after = trueReadings(m, m.moveTo(command(step, 0, 250, 0, 0, 0)));
+  const double load_after = m.strutLoads()[0];
+  ASSERT_LT(load_before * load_after, 0.0);
+  const double jump = load_after > 0.0 ? -2 * c.joint_clearance_mm : 2 * c.joint_clearance_mm;
+  const double travel = 2 * step;  // the command's own change of a strut, at most the step
+  EXPECT_NEAR(after[0] - before[0], jump, travel);
+  for (Eigen::Index i = 1; i < kin::kStruts; ++i)
+    EXPECT_LT(std::abs(after[i] - before[i]), travel) << i;
 }
 
 TEST(HexapodVirtualMachine, BacklashMakesTheApproachDirectionMatter) {

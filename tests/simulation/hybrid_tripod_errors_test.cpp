@@ -13,6 +13,7 @@
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/kinematics/exechon_data.hpp"
 #include "pkm/kinematics/exechon_wrist.hpp"
+#include "pkm/simulation/compliance.hpp"
 #include "support/tolerances.hpp"
 
 namespace {
@@ -185,6 +186,90 @@ TEST(HybridTripod, RejectsBadInput) {
   EXPECT_THROW(HybridTripod(m.model, degenerate, m.fk), pkm::InvalidArgument);
   const HybridTripod tripod(m.model, {}, m.fk);
   EXPECT_THROW((void)tripod.errorMotion(Eigen::Vector3d(0, std::nan(""), 0)), pkm::InvalidArgument);
+}
+
+/// The realistic Exechon head: 250 kg, 200 mm up the tool axis from the tool point.
+pkm::simulation::ExechonCompliance head() {
+  pkm::simulation::ExechonCompliance c;
+  c.head_mass_kg = 250.0;
+  c.head_com_mm = {0, 0, 200};
+  c.leg_stiffness_n_per_um = 50.0;
+  return c;
+}
+
+/// The nominal model's joints for a vertical tool at the PKM command `p`, and its data.
+kin::ExechonJoints jointsAt(const kin::ExechonModel& model,
+                            kin::ExechonData& data,
+                            const Eigen::Vector3d& p) {
+  kin::ExechonToolPose target;
+  target.position = p;
+  target.direction = -Eigen::Vector3d::UnitZ();
+  EXPECT_EQ(kin::toolInverseKinematics(model, data, target), kin::ExechonIkStatus::kOk);
+  return kin::jointsOf(data);
+}
+
+/// Height of the head's centre of mass at the tool FK for `joints`, mm.
+double comHeight(const pkm::io::ExechonMachine& m,
+                 const kin::ExechonJoints& joints,
+                 const kin::ExechonConfiguration& seed,
+                 const Eigen::Vector3d& com) {
+  kin::ExechonData d(m.model);
+  EXPECT_TRUE(kin::toolForwardKinematics(m.model, d, joints, seed, m.fk).ok());
+  return (d.world_p_tool + d.world_R_tool * com).z();
+}
+
+TEST(ExechonCompliance, LegLoadsDoTheVirtualWorkOfTheHeadsWeight) {
+  // Along any leg motion Δq, Σ C_i·Δq_i = m·g·Δz_c (the joints' constraint forces do no work):
+  // checked along a direction that mixes the legs, by central differences of the FK.
+  const pkm::io::ExechonMachine m = machine();
+  const pkm::simulation::ExechonCompliance c = head();
+  kin::ExechonData data(m.model);
+  for (const Eigen::Vector3d& p : commands()) {
+    const kin::ExechonJoints q = jointsAt(m.model, data, p);
+    const kin::ExechonConfiguration seed = kin::configurationOf(data);
+    const Eigen::Vector3d loads = pkm::simulation::exechonLegLoads(m.model, q, seed, m.fk, c);
+    const Eigen::Vector3d dq = Eigen::Vector3d(0.3, -0.5, 0.8).normalized();
+    const double eps = 1e-3;
+    kin::ExechonJoints plus = q, minus = q;
+    plus.readings += eps * dq;
+    minus.readings -= eps * dq;
+    const double work =
+        c.head_mass_kg * pkm::simulation::kStandardGravity *
+        (comHeight(m, plus, seed, c.head_com_mm) - comHeight(m, minus, seed, c.head_com_mm)) /
+        (2 * eps);
+    EXPECT_NEAR(loads.dot(dq), work, 1e-2) << p.transpose();  // N; loads are hundreds of N
+  }
+}
+
+TEST(ExechonCompliance, HeadDropsByTheEnergyOfTheLegsSpringsAndClearance) {
+  // δq_i = −C_i/k − c·sgn(C_i), so to first order Δz_c = Σ (∂z_c/∂q_i)·δq_i
+  // = −Σ C_i²/(k·m·g) − c·Σ|C_i|/(m·g) (∂z_c/∂q_i = C_i/(m·g)).
+  const pkm::io::ExechonMachine m = machine();
+  pkm::simulation::ExechonCompliance c = head();
+  c.joint_clearance_mm = 4e-3;
+  kin::ExechonData data(m.model);
+  const double mg = c.head_mass_kg * pkm::simulation::kStandardGravity;
+  for (const Eigen::Vector3d& p : commands()) {
+    const kin::ExechonJoints q = jointsAt(m.model, data, p);
+    const kin::ExechonConfiguration seed = kin::configurationOf(data);
+    const Eigen::Vector3d loads = pkm::simulation::exechonLegLoads(m.model, q, seed, m.fk, c);
+    const kin::ExechonJoints sagged =
+        pkm::simulation::exechonDeflectedJoints(m.model, q, seed, m.fk, c);
+    const double drop =
+        comHeight(m, sagged, seed, c.head_com_mm) - comHeight(m, q, seed, c.head_com_mm);
+    const double expected = -loads.squaredNorm() / (1e3 * c.leg_stiffness_n_per_um * mg) -
+                            c.joint_clearance_mm * loads.cwiseAbs().sum() / mg;
+    EXPECT_NEAR(drop, expected, 1e-3 * std::abs(expected)) << p.transpose();
+  }
+  // The tripod's error motion sees it: micrometres at the tool.
+  HybridTripod tripod(m.model, {}, m.fk);
+  const Eigen::Vector3d p(100, -50, 120);
+  const pkm::geometry::RigidTransform rigid = tripod.errorMotion(p);
+  tripod.setCompliance(c);
+  ASSERT_TRUE(tripod.compliance().has_value());
+  EXPECT_GT((tripod.errorMotion(p).translation() - rigid.translation()).norm(), 1e-3);
+  c.leg_stiffness_n_per_um = -1.0;
+  EXPECT_THROW(tripod.setCompliance(c), pkm::InvalidArgument);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "pkm/core/error.hpp"
@@ -113,6 +114,44 @@ TEST(HybridVirtualMachine, TripodErrorComposesAtThePkmStage) {
                   .norm(),
               0.0,
               pkm::test::kTolExact);
+}
+
+TEST(HybridVirtualMachine, X2BedSagsUnderThePkmAndTheTableOverhangSags) {
+  // X2: the PKM's weight on a 4000 mm span sagging 10 µm at mid-span (δ(a) = δ_mid·16a²b²/L⁴,
+  // slope δ_mid·16ab(b − a)/L⁴); the X2 carriage turns by θ about ŷ (nose down along +x), so the
+  // tool 200 mm below P's origin moves by θ·ŷ × r − δ·ẑ. Y2: the table 150 + y2 mm out of its
+  // saddle sags 5 µm at 600 mm; the work sags, so the tool seen from it rises by δ and turns by
+  // +θ about x̂ (first order).
+  using pkm::simulation::AxisSag;
+  const kin::HybridMachineModel model = pkm::test::mxt700sLikeModel();
+  HybridVirtualMachine m(model, {});
+  const AxisSag x2{AxisSag::Kind::kSpan, 10e-3, 4000.0, 0.0, 1.0};
+  const AxisSag y2{AxisSag::Kind::kCantilever, 5e-3, 600.0, 150.0, 1.0};
+  constexpr double kTolFirstOrder = 2e-7;  // mm: θ·δ and θ²·|r|/2 stay below 1e-7 mm here
+  for (const double x : {2000.0, 1000.0}) {
+    m.setSag(x2, {});
+    Eigen::VectorXd c(5);
+    c << x, 0, 0, 0, -200;
+    const double a = x, b = 4000.0 - x, L4 = std::pow(4000.0, 4);
+    const double delta = 10e-3 * 16 * a * a * b * b / L4;
+    const double theta = 10e-3 * 16 * a * b * (b - a) / L4;
+    const Eigen::Vector3d r =
+        m.nominalPose(c).translation() - (x * Eigen::Vector3d::UnitX() - model.Y2_p_work);
+    const Eigen::Vector3d expected =
+        theta * Eigen::Vector3d::UnitY().cross(r) - delta * Eigen::Vector3d::UnitZ();
+    const Eigen::Vector3d moved = m.moveTo(c).translation() - m.nominalPose(c).translation();
+    EXPECT_LT((moved - expected).norm(), kTolFirstOrder) << x;
+  }
+  m.setSag({}, y2);
+  Eigen::VectorXd c(5);
+  c << 300, 450, 20, -30, 0;
+  const double delta = 5e-3, theta = 1.5 * delta / 600.0;  // L = 150 + 450 mm
+  const Eigen::Vector3d r = m.nominalPose(c).translation() + model.Y2_p_work;
+  const Eigen::Vector3d expected =
+      theta * Eigen::Vector3d::UnitX().cross(r) + delta * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d moved = m.moveTo(c).translation() - m.nominalPose(c).translation();
+  EXPECT_LT((moved - expected).norm(), kTolFirstOrder);
+  EXPECT_THROW(m.setSag({AxisSag::Kind::kSpan, 1.0, 0.0, 0.0, 1.0}, {}), pkm::InvalidArgument);
 }
 
 }  // namespace

@@ -61,6 +61,13 @@ struct Campaign {
 /// as they are otherwise. Call after setting campaign.environment.
 void applyProbeEnvironment(Campaign& campaign);
 
+/// Gives the campaign's machine the environment's compliance (ComplianceEnvironment,
+/// compliance.hpp) when that source is on, and takes it away when it is off: a hexapod's strut
+/// compliance (HexapodVirtualMachine::setCompliance), a Cartesian machine's axis sag
+/// (CartesianMachine::setSag), a hybrid machine's X2/Y2 sag and its tripod's leg compliance
+/// (HybridVirtualMachine::setSag, setTripodCompliance). Call after setting campaign.environment.
+void applyMachineEnvironment(Campaign& campaign);
+
 /// One measurement's result.
 struct MeasurementResult {
   const LineSetup* setup = nullptr;  ///< points into the campaign

@@ -11,6 +11,7 @@
 
 #include "pkm/geometry/error_table.hpp"
 #include "pkm/geometry/rigid_transform.hpp"
+#include "pkm/simulation/environment.hpp"
 #include "pkm/simulation/random.hpp"
 #include "pkm/simulation/virtual_machine.hpp"
 
@@ -99,6 +100,15 @@ class CartesianMachine final : public VirtualMachine {
   /// Precondition: |xy| < 90° and the three angles describe a real direction (|xy|, |xz|, |yz|
   /// small); throws pkm::InvalidArgument for k outside 0..2.
   [[nodiscard]] Eigen::Vector3d axisDirection(int k) const;
+  /// Gravity sag of the axes X, Y, Z (environment.hpp AxisSag, compliance.hpp): after the
+  /// composition above, for each axis k in `order` whose sag is not kNone, the tool pose becomes
+  /// sagCarryingTool(pose, axisDeflection(sag_k, q_k), sense_k·ê_k, pivot_k) with ê_k the axis's
+  /// nominal unit direction and pivot_k the nominal position of its carriage (the commands of the
+  /// axes up to and including k in `order`, work frame). All kNone (the default) switches it off.
+  /// Throws pkm::InvalidArgument for an invalid sag.
+  void setSag(const std::array<AxisSag, 3>& sag);
+  /// The sag in effect.
+  [[nodiscard]] const std::array<AxisSag, 3>& sag() const { return sag_; }
 
  private:
   CartesianLayout layout_;
@@ -109,6 +119,7 @@ class CartesianMachine final : public VirtualMachine {
   Eigen::Vector3d offset_ = Eigen::Vector3d::Zero();  // actual − commanded axis position
   Eigen::Vector3i approach_ = Eigen::Vector3i::Ones();
   bool moved_ = false;
+  std::array<AxisSag, 3> sag_{};
 };
 
 }  // namespace pkm::simulation

@@ -17,9 +17,13 @@
 /// - Set-up: laser beam misalignment (cosine error), the reflector's unknown offset from the tool
 ///   point (Abbe: the machine's angular errors times it), a touch probe's pre-travel lobing.
 /// - Structure: non-repeatable errors of the tool point with a spectrum (AR(1) plus white).
+/// - Compliance: gravity self-weight deflection that changes with the pose (a hexapod's and an
+///   Exechon's legs under the platform's weight, f = J⁻ᵀ·w, shortening by f/k; the sag of
+///   extending axes) and passive-joint clearance taking up in the direction of each leg's force.
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -129,6 +133,70 @@ struct StructureEnvironment {
   [[nodiscard]] bool isValid(std::string* why = nullptr) const;
 };
 
+/// How a linear axis's structure sags under gravity (compliance.hpp evaluates it). Gravity is −z of
+/// the work frame; only the part of it across the axis bends the structure.
+/// - kCantilever: an overhang (a ram, a table running off its saddle) of length
+///   L(q) = zero_mm + sense·q that sags at its tip by δ(L) = sag_mm·(L/length_mm)³ with the slope
+///   θ(L) = 1.5·δ(L)/L (a cantilever with an end load W: δ = W·L³/(3EI), θ = W·L²/(2EI)).
+/// - kSpan: a carriage of weight W at a = zero_mm + sense·q on a span of length_mm between two
+///   supports (a bed or track): the span sags under it by δ(a) = sag_mm·16·a²·b²/L⁴ (b = L − a;
+///   the simply supported beam's W·a²·b²/(3EIL), sag_mm its value at mid-span W·L³/(48EI)) with
+///   the slope θ(a) = sag_mm·16·a·b·(b − a)/L⁴ under the load; 0 outside the span.
+struct AxisSag {
+  enum class Kind { kNone, kCantilever, kSpan };
+  Kind kind = Kind::kNone;  ///< kNone: the axis does not sag
+  double sag_mm = 0.0;  ///< tip sag at length_mm (cantilever) or mid-span sag (span), mm (≥ 0)
+  double length_mm = 1000.0;  ///< the reference overhang or the span, mm (> 0)
+  double zero_mm = 0.0;       ///< overhang or load position at command 0, mm
+  double sense = 1.0;  ///< +1: the overhang or position grows with the command; −1: shrinks
+  /// True when the values are finite, sag_mm ≥ 0, length_mm > 0 and sense is ±1.
+  [[nodiscard]] bool isValid(std::string* why = nullptr) const;
+};
+
+/// A hexapod's gravity load and the compliance of its struts.
+struct HexapodCompliance {
+  double platform_mass_kg = 0.0;  ///< platform, spindle and payload, kg (≥ 0)
+  /// Their centre of mass in the platform frame (the frame of the platform joints), mm.
+  Eigen::Vector3d platform_com_mm = Eigen::Vector3d::Zero();
+  double strut_mass_kg = 0.0;  ///< one strut's mass, kg (≥ 0)
+  /// The share η of a strut's weight carried by its platform joint (its centre of mass at η of
+  /// the joint distance from the base joint), in [0, 1].
+  double strut_com_fraction = 0.5;
+  double strut_stiffness_n_per_um = 50.0;  ///< a strut's axial stiffness k, N/µm (> 0)
+  /// The radial clearance of a strut's two passive joints together, mm (≥ 0): it takes up in the
+  /// direction of the strut's force, so the joint distance is c shorter under compression and c
+  /// longer under tension.
+  double joint_clearance_mm = 0.0;
+  /// True when every value is finite and in range.
+  [[nodiscard]] bool isValid(std::string* why = nullptr) const;
+};
+
+/// An Exechon's gravity load (the platform, wrist and spindle head) and the compliance of its
+/// three actuated legs.
+struct ExechonCompliance {
+  double head_mass_kg = 0.0;  ///< platform, wrist and spindle head, kg (≥ 0)
+  /// Their centre of mass in the tool frame (platform_R_tool axes, origin at the tool point), mm.
+  Eigen::Vector3d head_com_mm = Eigen::Vector3d::Zero();
+  double leg_stiffness_n_per_um = 50.0;  ///< a leg's axial stiffness, N/µm (> 0)
+  double joint_clearance_mm = 0.0;       ///< a leg's joint clearance, mm (≥ 0), as the hexapod's
+  /// True when every value is finite and in range.
+  [[nodiscard]] bool isValid(std::string* why = nullptr) const;
+};
+
+/// Pose-dependent compliance (gravity self-weight deflection) and passive-joint clearance: the
+/// machine sags by a different amount at every pose, which no constant parameter absorbs
+/// (docs/simulation-errors.md, "Structure: compliance (gravity sag) and joint clearance").
+struct ComplianceEnvironment {
+  bool enabled = false;              ///< false: a rigid machine without joint clearance
+  HexapodCompliance hexapod;         ///< the hexapod's struts
+  ExechonCompliance exechon;         ///< an Exechon tripod's legs (a hybrid machine with a tripod)
+  std::array<AxisSag, 3> cartesian;  ///< the Cartesian machine's X, Y and Z axes
+  AxisSag x2;                        ///< the hybrid machine's X2 (carries the tool)
+  AxisSag y2;                        ///< the hybrid machine's Y2 (carries the work table)
+  /// True when every part is valid.
+  [[nodiscard]] bool isValid(std::string* why = nullptr) const;
+};
+
 /// The environment of a campaign. Default: ideal (every source off).
 struct Environment {
   std::string name = "ideal";  ///< the preset it came from, or "custom"
@@ -137,13 +205,15 @@ struct Environment {
   /// measurements starts, ≥ 0: 0 for the first pass; a campaign's re-measurement after
   /// compensation runs one duration later (the drifts go on linearly, the warm-up nearly done).
   double elapsed_h = 0.0;
-  AirEnvironment air;              ///< the air and the laser's compensation
-  ThermalEnvironment thermal;      ///< the machine's temperature, warm-up, struts
-  SetupEnvironment setup;          ///< the instruments' set-up errors
-  StructureEnvironment structure;  ///< the structure's non-repeatable errors
+  AirEnvironment air;                ///< the air and the laser's compensation
+  ThermalEnvironment thermal;        ///< the machine's temperature, warm-up, struts
+  SetupEnvironment setup;            ///< the instruments' set-up errors
+  StructureEnvironment structure;    ///< the structure's non-repeatable errors
+  ComplianceEnvironment compliance;  ///< gravity deflection and joint clearance
   /// True when any source is on.
   [[nodiscard]] bool active() const {
-    return air.enabled || thermal.enabled || setup.enabled || structure.enabled;
+    return air.enabled || thermal.enabled || setup.enabled || structure.enabled ||
+           compliance.enabled;
   }
   /// The warm-up fraction 1 − exp(−τ/τ_w) at campaign time `time_s` (0 when thermal is off).
   [[nodiscard]] double warmup(double time_s) const;

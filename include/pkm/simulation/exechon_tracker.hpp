@@ -13,6 +13,7 @@
 #include "pkm/kinematics/exechon_model.hpp"
 #include "pkm/kinematics/exechon_wrist.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
+#include "pkm/simulation/environment.hpp"
 #include "pkm/simulation/laser_tracker.hpp"
 #include "pkm/simulation/random.hpp"
 
@@ -53,13 +54,16 @@ struct ExechonTrackerReading {
 /// in the cap) that the NOMINAL model reaches within every limit (checkToolPose; rejected draws are
 /// redrawn, at most 200·count draws in all), moves the TRUE model there by tool FK from the
 /// commanded readings (seeded with the nominal configuration) and reads the SMR with the tracker
-/// noise (range, azimuth, elevation from `rng`). Throws pkm::InvalidArgument for an invalid set-up
-/// or models, too few reachable commands, or a true FK that does not converge.
+/// noise (range, azimuth, elevation from `rng`). With a `compliance`, the true model reaches its
+/// FK at exechonDeflectedJoints of the commanded readings (gravity and joint clearance,
+/// compliance.hpp). Throws pkm::InvalidArgument for an invalid set-up or models, too few reachable
+/// commands, or a true FK that does not converge.
 [[nodiscard]] std::vector<ExechonTrackerReading> simulateExechonTracker(
     const kinematics::ExechonModel& nominal,
     const kinematics::ExechonModel& actual,
     const kinematics::FkOptions& fk,
     const ExechonTrackerSetup& setup,
-    RandomStream& rng);
+    RandomStream& rng,
+    const ExechonCompliance* compliance = nullptr);
 
 }  // namespace pkm::simulation

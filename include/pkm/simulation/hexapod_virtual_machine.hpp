@@ -6,11 +6,13 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 
 #include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/hexapod_data.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_model.hpp"
+#include "pkm/simulation/environment.hpp"
 #include "pkm/simulation/random.hpp"
 #include "pkm/simulation/virtual_machine.hpp"
 
@@ -96,6 +98,17 @@ class HexapodVirtualMachine final : public VirtualMachine {
   void setStrutGrowth(double relative);
   /// The current relative strut growth.
   [[nodiscard]] double strutGrowth() const { return growth_; }
+  /// Gravity compliance and joint clearance (environment.hpp, compliance.hpp): at every move the
+  /// struts' axial forces C under the platform's and struts' weight at the commanded pose
+  /// (hexapodStrutLoads with the controller's model and IK) change each strut's joint distance by
+  /// legDeflection (−C/k, and the joint clearance taken up in the force's direction), and the true
+  /// model's FK places the platform there. std::nullopt (the default) switches it off. Throws
+  /// pkm::InvalidArgument for an invalid compliance.
+  void setCompliance(std::optional<HexapodCompliance> compliance);
+  /// The compliance in effect.
+  [[nodiscard]] const std::optional<HexapodCompliance>& compliance() const { return compliance_; }
+  /// The strut forces of the last move, N, compression positive (zero without compliance).
+  [[nodiscard]] const kinematics::StrutVector& strutLoads() const { return loads_; }
 
  private:
   kinematics::HexapodModel nominal_;
@@ -111,6 +124,9 @@ class HexapodVirtualMachine final : public VirtualMachine {
   bool moved_ = false;
   kinematics::PoseRpy last_pose_;
   double growth_ = 0.0;
+  std::optional<HexapodCompliance> compliance_;
+  kinematics::StrutVector loads_ = kinematics::StrutVector::Zero();
+  std::array<int, kinematics::kStruts> load_side_{};  // side the joint clearance is taken up on
 };
 
 }  // namespace pkm::simulation

@@ -17,10 +17,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 
 #include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/exechon_model.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
+#include "pkm/simulation/environment.hpp"
 
 namespace pkm::simulation {
 
@@ -82,12 +84,19 @@ class HybridTripod {
   [[nodiscard]] const ExechonTripodErrors& errors() const { return errors_; }
   /// The tripod FK settings.
   [[nodiscard]] const kinematics::FkOptions& fkOptions() const { return fk_; }
+  /// Gravity compliance and joint clearance of the true tripod's legs (compliance.hpp): errorMotion
+  /// then takes the true FK at exechonDeflectedJoints of the commanded readings. std::nullopt
+  /// (the default) switches it off. Throws pkm::InvalidArgument for an invalid compliance.
+  void setCompliance(std::optional<ExechonCompliance> compliance);
+  /// The compliance in effect.
+  [[nodiscard]] const std::optional<ExechonCompliance>& compliance() const { return compliance_; }
 
  private:
   kinematics::ExechonModel nominal_;
   kinematics::ExechonModel actual_;
   ExechonTripodErrors errors_;
   kinematics::FkOptions fk_;
+  std::optional<ExechonCompliance> compliance_;
 };
 
 }  // namespace pkm::simulation

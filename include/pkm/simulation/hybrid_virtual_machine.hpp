@@ -9,6 +9,7 @@
 #include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/hybrid_errors.hpp"
 #include "pkm/kinematics/hybrid_model.hpp"
+#include "pkm/simulation/environment.hpp"
 #include "pkm/simulation/hybrid_tripod_errors.hpp"
 #include "pkm/simulation/virtual_machine.hpp"
 
@@ -40,11 +41,27 @@ class HybridVirtualMachine final : public VirtualMachine {
   [[nodiscard]] const kinematics::GeometricErrors& errors() const { return errors_; }
   /// The Exechon PKM with its tripod errors, when given.
   [[nodiscard]] const std::optional<HybridTripod>& tripod() const { return tripod_; }
+  /// Gravity sag of the extending axes (environment.hpp AxisSag, compliance.hpp), applied after
+  /// the chain (and the tripod) in the work frame: X2 carries the tool, so w_T_t →
+  /// sagCarryingTool(w_T_t, axisDeflection(x2, x2), sense·x̂, the X2 carriage's nominal origin
+  /// x2·x̂ − y2·ŷ − Y2_p_work); Y2 carries the table and the work, so w_T_t →
+  /// sagCarryingWork(w_T_t, axisDeflection(y2, y2), sense·ŷ, the Y2 carriage's origin
+  /// −Y2_p_work). Both kNone (the default) switch it off. Throws pkm::InvalidArgument for an
+  /// invalid sag.
+  void setSag(const AxisSag& x2, const AxisSag& y2);
+  /// Gravity compliance of the tripod's legs (HybridTripod::setCompliance); nothing without a
+  /// tripod.
+  void setTripodCompliance(const std::optional<ExechonCompliance>& compliance);
+  /// The sag of X2 and of Y2 in effect.
+  [[nodiscard]] const AxisSag& sagX2() const { return sag_x2_; }
+  [[nodiscard]] const AxisSag& sagY2() const { return sag_y2_; }
 
  private:
   kinematics::HybridMachineModel model_;
   kinematics::GeometricErrors errors_;
   std::optional<HybridTripod> tripod_;
+  AxisSag sag_x2_;
+  AxisSag sag_y2_;
 };
 
 }  // namespace pkm::simulation
