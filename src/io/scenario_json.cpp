@@ -170,6 +170,7 @@ Scenario parseScenarioJson(const std::string& text,
   }
   sim::applyProbeEnvironment(out.campaign);
   try {
+    sim::applyGeometryEnvironment(out.campaign, out.seed);
     out.campaign.validate();
     sim::validateTrackers(out.campaign);
   } catch (const InvalidArgument& e) {

@@ -4,6 +4,9 @@
 #include <set>
 
 #include "pkm/core/error.hpp"
+#include "pkm/simulation/hexapod_virtual_machine.hpp"
+#include "pkm/simulation/hybrid_virtual_machine.hpp"
+#include "pkm/simulation/unmodelled_geometry.hpp"
 
 namespace pkm::simulation {
 
@@ -71,6 +74,16 @@ void applyProbeEnvironment(Campaign& campaign) {
     p.lobing = set.probe_lobing_mm;
     p.lobes = set.probe_lobes;
   }
+}
+
+void applyGeometryEnvironment(Campaign& campaign, std::uint64_t seed) {
+  const GeometryEnvironment& env = campaign.environment.geometry;
+  RandomStream rng(seed, "environment/geometry");
+  if (auto* hexapod = dynamic_cast<HexapodVirtualMachine*>(campaign.machine.get()))
+    hexapod->setUnmodelledGeometry(drawHexapodGeometry(env, hexapod->nominal(), rng));
+  if (auto* hybrid = dynamic_cast<HybridVirtualMachine*>(campaign.machine.get());
+      hybrid != nullptr && hybrid->tripod())
+    hybrid->setTripodLegLeadErrors(drawLegLeadErrors(env, hybrid->tripod()->nominal(), rng));
 }
 
 std::vector<ConstrainedResult> runConstrainedMotion(const Campaign& campaign, std::uint64_t seed) {

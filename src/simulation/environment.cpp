@@ -158,7 +158,8 @@ bool Environment::isValid(std::string* why) const {
   if (!std::isfinite(elapsed_h) || elapsed_h < 0.0)
     return fail(why, fmt::format("elapsed_h must be >= 0, got {}", elapsed_h));
   return air.isValid(why) && airInRange(air, 1.0 + elapsed_h / duration_h, why) &&
-         thermal.isValid(why) && setup.isValid(why) && structure.isValid(why);
+         thermal.isValid(why) && setup.isValid(why) && structure.isValid(why) &&
+         geometry.isValid(why);
 }
 
 std::optional<Environment> environmentPreset(std::string_view name) {
@@ -170,6 +171,7 @@ std::optional<Environment> environmentPreset(std::string_view name) {
     e.thermal = realisticThermal();
     e.setup = realisticSetup();
     e.structure = realisticStructure();
+    e.geometry = realisticGeometry();
     return e;
   }
   return std::nullopt;

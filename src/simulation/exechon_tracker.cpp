@@ -52,7 +52,8 @@ std::vector<ExechonTrackerReading> simulateExechonTracker(const kinematics::Exec
                                                           const kinematics::ExechonModel& actual,
                                                           const kinematics::FkOptions& fk,
                                                           const ExechonTrackerSetup& setup,
-                                                          RandomStream& rng) {
+                                                          RandomStream& rng,
+                                                          const ExechonLegLeadErrors& leg_lead) {
   setup.validate();
   nominal.validate();
   actual.validate();
@@ -81,7 +82,7 @@ std::vector<ExechonTrackerReading> simulateExechonTracker(const kinematics::Exec
     r.command = command;
     r.joints = kinematics::jointsOf(nom);
     const kinematics::FkSummary s = kinematics::toolForwardKinematics(
-        actual, act, r.joints, kinematics::configurationOf(nom), fk);
+        actual, act, withLeadErrors(r.joints, leg_lead), kinematics::configurationOf(nom), fk);
     PKM_CHECK(s.ok(),
               "{}: the true machine's FK does not converge at command {} ({})",
               setup.name,

@@ -96,8 +96,8 @@ geometry::RigidTransform HybridTripod::errorMotion(const Eigen::Vector3d& p) con
             p.z(),
             kin::toString(ik));
   kin::ExechonData act(actual_);
-  const kin::FkSummary fk =
-      kin::toolForwardKinematics(actual_, act, kin::jointsOf(nom), kin::configurationOf(nom), fk_);
+  const kin::FkSummary fk = kin::toolForwardKinematics(
+      actual_, act, withLeadErrors(kin::jointsOf(nom), lead_), kin::configurationOf(nom), fk_);
   PKM_CHECK(fk.status == kin::FkStatus::kOk,
             "true Exechon tool FK at PKM command ({}, {}, {}): {}",
             p.x(),
@@ -108,6 +108,11 @@ geometry::RigidTransform HybridTripod::errorMotion(const Eigen::Vector3d& p) con
   e.linear() = act.world_R_tool * nom.world_R_tool.transpose();
   e.translation() = act.world_p_tool - nom.world_p_tool;
   return e;
+}
+
+void HybridTripod::setLegLeadErrors(const ExechonLegLeadErrors& lead) {
+  for (const ScrewLeadError& e : lead) e.validate();
+  lead_ = lead;
 }
 
 }  // namespace pkm::simulation

@@ -43,4 +43,8 @@ geometry::RigidTransform HybridVirtualMachine::moveTo(const Eigen::VectorXd& com
   return pose * tripod_->errorMotion(c.pkm);  // P_T_t = Trans(q) · E(e_P(p)) · E_tripod
 }
 
+void HybridVirtualMachine::setTripodLegLeadErrors(const ExechonLegLeadErrors& lead) {
+  if (tripod_) tripod_->setLegLeadErrors(lead);
+}
+
 }  // namespace pkm::simulation

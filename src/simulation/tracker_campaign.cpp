@@ -62,8 +62,12 @@ std::vector<ExechonTrackerResult> runExechonTrackers(const Campaign& campaign, s
     const HybridTripod& tripod =
         *dynamic_cast<const HybridVirtualMachine&>(*campaign.machine).tripod();
     results.push_back({&setup,
-                       simulateExechonTracker(
-                           tripod.nominal(), tripod.actual(), tripod.fkOptions(), setup, rng)});
+                       simulateExechonTracker(tripod.nominal(),
+                                              tripod.actual(),
+                                              tripod.fkOptions(),
+                                              setup,
+                                              rng,
+                                              tripod.legLeadErrors())});
   }
   return results;
 }

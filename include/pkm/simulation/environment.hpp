@@ -17,6 +17,9 @@
 /// - Set-up: laser beam misalignment (cosine error), the reflector's unknown offset from the tool
 ///   point (Abbe: the machine's angular errors times it), a touch probe's pre-travel lobing.
 /// - Structure: non-repeatable errors of the tool point with a spectrum (AR(1) plus white).
+/// - Geometry (geometry_environment.hpp): the true machines' geometry beyond their kinematic
+///   models, which no calibration of those models absorbs: ball-screw lead errors of the struts
+///   and legs, U-joints whose axes do not intersect.
 #pragma once
 
 #include <Eigen/Core>
@@ -26,6 +29,7 @@
 #include <vector>
 
 #include "pkm/core/air_refractive_index.hpp"
+#include "pkm/simulation/geometry_environment.hpp"
 
 namespace pkm::simulation {
 
@@ -141,9 +145,12 @@ struct Environment {
   ThermalEnvironment thermal;      ///< the machine's temperature, warm-up, struts
   SetupEnvironment setup;          ///< the instruments' set-up errors
   StructureEnvironment structure;  ///< the structure's non-repeatable errors
+  /// The true machines' geometry beyond their kinematic models (applyGeometryEnvironment puts
+  /// it into a campaign's machine).
+  GeometryEnvironment geometry;
   /// True when any source is on.
   [[nodiscard]] bool active() const {
-    return air.enabled || thermal.enabled || setup.enabled || structure.enabled;
+    return air.enabled || thermal.enabled || setup.enabled || structure.enabled || geometry.enabled;
   }
   /// The warm-up fraction 1 − exp(−τ/τ_w) at campaign time `time_s` (0 when thermal is off).
   [[nodiscard]] double warmup(double time_s) const;

@@ -15,6 +15,7 @@
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/simulation/laser_tracker.hpp"
 #include "pkm/simulation/random.hpp"
+#include "pkm/simulation/unmodelled_geometry.hpp"
 
 namespace pkm::simulation {
 
@@ -53,13 +54,16 @@ struct ExechonTrackerReading {
 /// in the cap) that the NOMINAL model reaches within every limit (checkToolPose; rejected draws are
 /// redrawn, at most 200·count draws in all), moves the TRUE model there by tool FK from the
 /// commanded readings (seeded with the nominal configuration) and reads the SMR with the tracker
-/// noise (range, azimuth, elevation from `rng`). Throws pkm::InvalidArgument for an invalid set-up
-/// or models, too few reachable commands, or a true FK that does not converge.
+/// noise (range, azimuth, elevation from `rng`). With `leg_lead` the true legs travel their
+/// readings plus the screws' lead errors (withLeadErrors; the readings recorded are the commanded
+/// ones). Throws pkm::InvalidArgument for an invalid set-up or models, too few reachable commands,
+/// or a true FK that does not converge.
 [[nodiscard]] std::vector<ExechonTrackerReading> simulateExechonTracker(
     const kinematics::ExechonModel& nominal,
     const kinematics::ExechonModel& actual,
     const kinematics::FkOptions& fk,
     const ExechonTrackerSetup& setup,
-    RandomStream& rng);
+    RandomStream& rng,
+    const ExechonLegLeadErrors& leg_lead = {});
 
 }  // namespace pkm::simulation

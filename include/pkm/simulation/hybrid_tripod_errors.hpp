@@ -21,6 +21,7 @@
 #include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/kinematics/exechon_model.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
+#include "pkm/simulation/unmodelled_geometry.hpp"
 
 namespace pkm::simulation {
 
@@ -82,12 +83,19 @@ class HybridTripod {
   [[nodiscard]] const ExechonTripodErrors& errors() const { return errors_; }
   /// The tripod FK settings.
   [[nodiscard]] const kinematics::FkOptions& fkOptions() const { return fk_; }
+  /// The legs' ball-screw lead errors, beyond the tripod model (unmodelled_geometry.hpp): the true
+  /// FK takes each leg at its reading r plus e(r). All zero (the default) leaves the tripod as it
+  /// was. Throws pkm::InvalidArgument when an error does not validate.
+  void setLegLeadErrors(const ExechonLegLeadErrors& lead);
+  /// The legs' lead errors.
+  [[nodiscard]] const ExechonLegLeadErrors& legLeadErrors() const { return lead_; }
 
  private:
   kinematics::ExechonModel nominal_;
   kinematics::ExechonModel actual_;
   ExechonTripodErrors errors_;
   kinematics::FkOptions fk_;
+  ExechonLegLeadErrors lead_{};
 };
 
 }  // namespace pkm::simulation

@@ -40,6 +40,9 @@ class HybridVirtualMachine final : public VirtualMachine {
   [[nodiscard]] const kinematics::GeometricErrors& errors() const { return errors_; }
   /// The Exechon PKM with its tripod errors, when given.
   [[nodiscard]] const std::optional<HybridTripod>& tripod() const { return tripod_; }
+  /// The tripod's leg lead errors (HybridTripod::setLegLeadErrors); ignored without a tripod.
+  /// Throws pkm::InvalidArgument when an error does not validate.
+  void setTripodLegLeadErrors(const ExechonLegLeadErrors& lead);
 
  private:
   kinematics::HybridMachineModel model_;
