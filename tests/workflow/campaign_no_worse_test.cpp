@@ -1,6 +1,6 @@
 // Compensation must not make a machine worse (issue 24): the built-in "realistic" campaign, every
 // unmodelled error source on at its documented magnitude (docs/simulation-errors.md), run over
-// 30 seeds; every summary row's after-value is at most its before-value within the combined
+// 20 seeds; every summary row's after-value is at most its before-value within the combined
 // expanded uncertainty √(U_before² + U_after²) (0 where a row has no U).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 
 /// Seeds of the runs: the campaign's own (the scenarios' seeds) and a few more.
 constexpr unsigned kFirstSeed = 1;
-constexpr unsigned kSeeds = 30;
+constexpr unsigned kSeeds = 20;
 
 /// The built-in realistic campaign with every step's seed set to `seed`.
 std::string realisticCampaign(unsigned seed) {
