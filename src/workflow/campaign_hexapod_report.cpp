@@ -48,7 +48,8 @@ std::vector<std::string> paragraphs(const io::Scenario& scenario,
         "revolution) and the platform U-joints axis offsets within ±{:g} µm. No parameter of the "
         "42 represents them: part of the residual RMS after calibration ({:.4g} mm) is this "
         "remainder, which more poses do not remove, and it limits the held-out error after "
-        "calibration (the long-wave lead variation most, then the progressive lead error).",
+        "calibration (docs/simulation-errors.md gives each term's share at the realistic "
+        "magnitudes).",
         g.lead_progressive * 1e6,
         g.lead_wave_mm * 1e3,
         g.lead_wave_length_mm,
