@@ -9,6 +9,7 @@
 
 #include "io/detail/error_table_json.hpp"
 #include "io/detail/json_doc.hpp"
+#include "pkm/simulation/campaign.hpp"
 #include "pkm/simulation/dial_gauges.hpp"
 #include "pkm/simulation/environment.hpp"
 #include "pkm/simulation/hybrid_tripod_errors.hpp"
@@ -83,6 +84,17 @@ void readCompliance(const JsonDoc& doc,
                     const json& obj,
                     const std::string& ptr,
                     simulation::ComplianceEnvironment& c);
+/// An environment's "geometry" object (GeometryEnvironment, docs/formats.md): its members override
+/// `g`'s; giving the object switches the source on unless "enabled": false. Fails through `doc`.
+void readGeometry(const JsonDoc& doc,
+                  const json& obj,
+                  const std::string& ptr,
+                  simulation::GeometryEnvironment& g);
+
+/// ",\n  \"unmodelled_geometry\": {...}" with the geometry drawn into the campaign's machine
+/// (a hexapod's strut lead errors and joint offsets, a hybrid tripod's leg lead errors), or ""
+/// when it has none.
+[[nodiscard]] std::string geometryTruthJson(const simulation::Campaign& campaign);
 
 /// The built-in scenario texts (generated from data/scenarios/*.json): {file stem, JSON text}.
 const std::vector<std::pair<std::string_view, std::string_view>>& embeddedScenarios();

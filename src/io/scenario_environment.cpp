@@ -174,7 +174,9 @@ sim::Environment preset(const JsonDoc& doc, const std::string& name, const std::
 sim::Environment readEnvironment(const JsonDoc& doc, const json& obj, const std::string& ptr) {
   if (obj.is_string()) return preset(doc, obj.get<std::string>(), ptr);
   doc.onlyKeys(
-      obj, ptr, {"preset", "duration_h", "air", "thermal", "setup", "structure", "compliance"});
+      obj,
+      ptr,
+      {"preset", "duration_h", "air", "thermal", "setup", "structure", "compliance", "geometry"});
   sim::Environment e = preset(doc, doc.string(obj, ptr, "preset", "ideal"), ptr + "/preset");
   e.name = "custom";
   e.duration_h = doc.number(obj, ptr, "duration_h", e.duration_h);
@@ -185,6 +187,7 @@ sim::Environment readEnvironment(const JsonDoc& doc, const json& obj, const std:
     readStructure(doc, obj["structure"], ptr + "/structure", e.structure);
   if (obj.contains("compliance"))
     readCompliance(doc, obj["compliance"], ptr + "/compliance", e.compliance);
+  if (obj.contains("geometry")) readGeometry(doc, obj["geometry"], ptr + "/geometry", e.geometry);
   std::string why;
   if (!e.isValid(&why)) doc.fail(ptr, why);
   return e;

@@ -167,6 +167,7 @@ std::string truthJson(const Scenario& scenario, std::uint64_t seed) {
   }
   out.insert(out.size() - 3, detail::extraTruthJson(scenario.campaign));  // before "\n}\n"
   out.insert(out.size() - 3, detail::touchProbeTruthJson(scenario.campaign));
+  out.insert(out.size() - 3, detail::geometryTruthJson(scenario.campaign));
   return out;
 }
 

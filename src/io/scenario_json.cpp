@@ -171,6 +171,7 @@ Scenario parseScenarioJson(const std::string& text,
   sim::applyProbeEnvironment(out.campaign);
   sim::applyMachineEnvironment(out.campaign);
   try {
+    sim::applyGeometryEnvironment(out.campaign, out.seed);
     out.campaign.validate();
     sim::validateTrackers(out.campaign);
   } catch (const InvalidArgument& e) {

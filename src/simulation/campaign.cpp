@@ -5,7 +5,9 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/simulation/cartesian_machine.hpp"
+#include "pkm/simulation/hexapod_virtual_machine.hpp"
 #include "pkm/simulation/hybrid_virtual_machine.hpp"
+#include "pkm/simulation/unmodelled_geometry.hpp"
 
 namespace pkm::simulation {
 
@@ -86,6 +88,16 @@ void applyMachineEnvironment(Campaign& campaign) {
     y->setSag(on ? c.x2 : AxisSag{}, on ? c.y2 : AxisSag{});
     y->setTripodCompliance(on ? std::optional<ExechonCompliance>(c.exechon) : std::nullopt);
   }
+}
+
+void applyGeometryEnvironment(Campaign& campaign, std::uint64_t seed) {
+  const GeometryEnvironment& env = campaign.environment.geometry;
+  RandomStream rng(seed, "environment/geometry");
+  if (auto* hexapod = dynamic_cast<HexapodVirtualMachine*>(campaign.machine.get()))
+    hexapod->setUnmodelledGeometry(drawHexapodGeometry(env, hexapod->nominal(), rng));
+  if (auto* hybrid = dynamic_cast<HybridVirtualMachine*>(campaign.machine.get());
+      hybrid != nullptr && hybrid->tripod())
+    hybrid->setTripodLegLeadErrors(drawLegLeadErrors(env, hybrid->tripod()->nominal(), rng));
 }
 
 std::vector<ConstrainedResult> runConstrainedMotion(const Campaign& campaign, std::uint64_t seed) {

@@ -221,7 +221,7 @@ bool Environment::isValid(std::string* why) const {
     return fail(why, fmt::format("elapsed_h must be >= 0, got {}", elapsed_h));
   return air.isValid(why) && airInRange(air, 1.0 + elapsed_h / duration_h, why) &&
          thermal.isValid(why) && setup.isValid(why) && structure.isValid(why) &&
-         compliance.isValid(why);
+         compliance.isValid(why) && geometry.isValid(why);
 }
 
 std::optional<Environment> environmentPreset(std::string_view name) {
@@ -234,6 +234,7 @@ std::optional<Environment> environmentPreset(std::string_view name) {
     e.setup = realisticSetup();
     e.structure = realisticStructure();
     e.compliance = realisticCompliance();
+    e.geometry = realisticGeometry();
     return e;
   }
   return std::nullopt;

@@ -54,7 +54,8 @@ std::vector<ExechonTrackerReading> simulateExechonTracker(const kinematics::Exec
                                                           const kinematics::FkOptions& fk,
                                                           const ExechonTrackerSetup& setup,
                                                           RandomStream& rng,
-                                                          const ExechonCompliance* compliance) {
+                                                          const ExechonCompliance* compliance,
+                                                          const ExechonLegLeadErrors& leg_lead) {
   setup.validate();
   nominal.validate();
   actual.validate();
@@ -83,9 +84,10 @@ std::vector<ExechonTrackerReading> simulateExechonTracker(const kinematics::Exec
     r.command = command;
     r.joints = kinematics::jointsOf(nom);
     const kinematics::ExechonConfiguration seed = kinematics::configurationOf(nom);
+    const kinematics::ExechonJoints travelled = withLeadErrors(r.joints, leg_lead);
     const kinematics::ExechonJoints reached =
-        compliance != nullptr ? exechonDeflectedJoints(actual, r.joints, seed, fk, *compliance)
-                              : r.joints;
+        compliance != nullptr ? exechonDeflectedJoints(actual, travelled, seed, fk, *compliance)
+                              : travelled;
     const kinematics::FkSummary s =
         kinematics::toolForwardKinematics(actual, act, reached, seed, fk);
     PKM_CHECK(s.ok(),

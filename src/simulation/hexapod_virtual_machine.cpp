@@ -1,6 +1,8 @@
 #include "pkm/simulation/hexapod_virtual_machine.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/error_motion.hpp"
@@ -14,6 +16,15 @@
 namespace pkm::simulation {
 
 namespace kin = pkm::kinematics;
+
+namespace {
+
+/// Fixed-point iterations of the U-joint shifts (each changes them by about offset/strut length
+/// times the last change, so two or three suffice) and the change at which they stop, mm.
+constexpr int kMaxShiftIterations = 8;
+constexpr double kShiftTolerance = 1e-12;
+
+}  // namespace
 
 kin::HexapodModel HexapodAssemblyErrors::apply(const kin::HexapodModel& nominal) const {
   kin::HexapodModel m = nominal;
@@ -44,7 +55,8 @@ HexapodVirtualMachine::HexapodVirtualMachine(kin::HexapodModel nominal,
       controller_(nominal_),
       actuation_(std::move(actuation)),
       controller_data_(controller_),
-      true_data_(true_) {
+      true_data_(true_),
+      shifted_(true_) {
   nominal_.validate();
   true_.validate();
   actuation_.validate();
@@ -61,6 +73,38 @@ void HexapodVirtualMachine::setControllerModel(kin::HexapodModel model) {
             model.name);
   controller_ = std::move(model);
   controller_data_ = kin::HexapodData(controller_);
+}
+
+void HexapodVirtualMachine::setUnmodelledGeometry(const HexapodUnmodelledGeometry& geometry) {
+  geometry.validate();
+  geometry_ = geometry;
+  shifted_ = true_;
+}
+
+kin::FkSummary HexapodVirtualMachine::trueForward(const kin::StrutVector& actual,
+                                                  const kin::PoseRpy& seed) {
+  kin::FkSummary fk = kin::forwardKinematics(true_, true_data_, actual, seed);
+  if (!fk.ok() || !geometry_.hasJointOffsets()) return fk;
+  double change = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < kMaxShiftIterations && change > kShiftTolerance; ++k) {
+    change = 0.0;
+    for (std::size_t i = 0; i < kin::kStruts; ++i) {
+      const Eigen::Vector3d& u = true_data_.unit_leg[i];
+      const Eigen::Vector3d b = true_.struts[i].world_p_base + geometry_.base_joint[i].shift(u);
+      const Eigen::Vector3d p =
+          true_.struts[i].platform_p_joint +
+          geometry_.platform_joint[i].shift(true_data_.world_R_platform.transpose() * u);
+      change = std::max({change,
+                         (b - shifted_.struts[i].world_p_base).norm(),
+                         (p - shifted_.struts[i].platform_p_joint).norm()});
+      shifted_.struts[i].world_p_base = b;
+      shifted_.struts[i].platform_p_joint = p;
+    }
+    const kin::PoseRpy last = true_data_.pose;  // a copy: FK writes data.pose
+    fk = kin::forwardKinematics(shifted_, true_data_, actual, last);
+    if (!fk.ok()) return fk;
+  }
+  return fk;
 }
 
 void HexapodVirtualMachine::setStrutGrowth(double relative) {
@@ -112,6 +156,8 @@ geometry::RigidTransform HexapodVirtualMachine::moveTo(const Eigen::VectorXd& co
     actual[i] +=
         -0.5 * actuation_.backlash[i] * approach_[iu] + rng_.normal(actuation_.repeatability_sigma);
   }
+  for (Eigen::Index i = 0; i < kin::kStruts; ++i)
+    actual[i] += geometry_.lead[static_cast<std::size_t>(i)].at(actual[i]);
   if (growth_ != 0.0)
     for (Eigen::Index i = 0; i < kin::kStruts; ++i)
       actual[i] += growth_ * (actual[i] + true_.struts[static_cast<std::size_t>(i)].length_offset);
@@ -126,7 +172,7 @@ geometry::RigidTransform HexapodVirtualMachine::moveTo(const Eigen::VectorXd& co
   const kin::PoseRpy seed = moved_ ? last_pose_ : pose;
   last_ = commanded_;
   moved_ = true;
-  const kin::FkSummary fk = kin::forwardKinematics(true_, true_data_, actual, seed);
+  const kin::FkSummary fk = trueForward(actual, seed);
   PKM_CHECK(fk.ok(),
             "the true hexapod cannot reach the command ({}): forward kinematics {}",
             fmt::join(command, ", "),

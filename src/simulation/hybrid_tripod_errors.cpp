@@ -104,9 +104,9 @@ geometry::RigidTransform HybridTripod::errorMotion(const Eigen::Vector3d& p) con
             kin::toString(ik));
   kin::ExechonData act(actual_);
   const kin::ExechonConfiguration seed = kin::configurationOf(nom);
+  const kin::ExechonJoints travelled = withLeadErrors(kin::jointsOf(nom), lead_);
   const kin::ExechonJoints joints =
-      compliance_ ? exechonDeflectedJoints(actual_, kin::jointsOf(nom), seed, fk_, *compliance_)
-                  : kin::jointsOf(nom);
+      compliance_ ? exechonDeflectedJoints(actual_, travelled, seed, fk_, *compliance_) : travelled;
   const kin::FkSummary fk = kin::toolForwardKinematics(actual_, act, joints, seed, fk_);
   PKM_CHECK(fk.status == kin::FkStatus::kOk,
             "true Exechon tool FK at PKM command ({}, {}, {}): {}",
@@ -118,6 +118,11 @@ geometry::RigidTransform HybridTripod::errorMotion(const Eigen::Vector3d& p) con
   e.linear() = act.world_R_tool * nom.world_R_tool.transpose();
   e.translation() = act.world_p_tool - nom.world_p_tool;
   return e;
+}
+
+void HybridTripod::setLegLeadErrors(const ExechonLegLeadErrors& lead) {
+  for (const ScrewLeadError& e : lead) e.validate();
+  lead_ = lead;
 }
 
 }  // namespace pkm::simulation

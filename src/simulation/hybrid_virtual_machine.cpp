@@ -67,4 +67,8 @@ void HybridVirtualMachine::setSag(const AxisSag& x2, const AxisSag& y2) {
   sag_y2_ = y2;
 }
 
+void HybridVirtualMachine::setTripodLegLeadErrors(const ExechonLegLeadErrors& lead) {
+  if (tripod_) tripod_->setLegLeadErrors(lead);
+}
+
 }  // namespace pkm::simulation

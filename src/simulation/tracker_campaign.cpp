@@ -61,14 +61,14 @@ std::vector<ExechonTrackerResult> runExechonTrackers(const Campaign& campaign, s
     RandomStream rng(seed, setup.name);
     const HybridTripod& tripod =
         *dynamic_cast<const HybridVirtualMachine&>(*campaign.machine).tripod();
-    results.push_back(
-        {&setup,
-         simulateExechonTracker(tripod.nominal(),
-                                tripod.actual(),
-                                tripod.fkOptions(),
-                                setup,
-                                rng,
-                                tripod.compliance() ? &*tripod.compliance() : nullptr)});
+    results.push_back({&setup,
+                       simulateExechonTracker(tripod.nominal(),
+                                              tripod.actual(),
+                                              tripod.fkOptions(),
+                                              setup,
+                                              rng,
+                                              tripod.compliance() ? &*tripod.compliance() : nullptr,
+                                              tripod.legLeadErrors())});
   }
   return results;
 }

@@ -166,6 +166,8 @@ io::Scenario stepScenario(const StepContext& context, std::uint64_t& seed) {
       throw IoError(fmt::format("{}: \"seed\" must be a non-negative integer", context.source));
     seed = context.spec["seed"].get<std::uint64_t>();
   }
+  // The true machine's unmodelled geometry, drawn from the step's seed for its environment.
+  sim::applyGeometryEnvironment(scenario.campaign, seed);
   return scenario;
 }
 

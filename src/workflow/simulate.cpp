@@ -68,6 +68,11 @@ SimulateResult simulate(const io::Scenario& scenario, std::optional<std::uint64_
   SimulateResult result;
   result.scenario = scenario.campaign.name;
   const std::uint64_t seed = result.seed = seed_option.value_or(scenario.seed);
+  {
+    // The machine's unmodelled geometry is drawn from the seed used (the machine is shared).
+    sim::Campaign campaign = scenario.campaign;
+    sim::applyGeometryEnvironment(campaign, seed);
+  }
   std::vector<SimulatedFile>& files = result.files;
   for (const sim::MeasurementResult& r : sim::runCampaign(scenario.campaign, seed))
     for (const sim::LineRun& run : r.runs)

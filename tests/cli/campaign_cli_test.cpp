@@ -286,6 +286,9 @@ TEST_F(CampaignCli, TheRealisticEnvironmentLeavesLargerAfterFigures) {
             2.0 * ideal.at("seed000 parallelism Y2-PY, horizontal (300 mm)"));
   EXPECT_GT(real.at("seed003 roundness of the 40.001 mm ring, 180 touches (LSC)"),
             ideal.at("seed003 roundness of the 40.001 mm ring, 180 touches (LSC)"));
+  // The hexapod's unmodelled geometry (strut lead errors) is what its calibration cannot remove.
+  EXPECT_GT(real.at("seed004 TCP error, held-out poses, RMS"),
+            2.0 * ideal.at("seed004 TCP error, held-out poses, RMS"));
   // Deterministic per seed.
   EXPECT_EQ(real, after("realistic"));
 }

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <numbers>
 
@@ -309,6 +310,64 @@ TEST(Scenario, EnvironmentErrorsNameTheLineAndPointer) {
               HasSubstr("/environment/compliance/hexapod: strut_stiffness_n_per_um must be > 0"));
   EXPECT_THAT(message(R"({"compliance": {"cartesian": {"w": {}}}})"),
               HasSubstr("/environment/compliance/cartesian/w: unknown key 'w'"));
+}
+
+}  // namespace
+
+namespace {
+
+/// The built-in seed 004 scenario with `environment`.
+std::string seed004With(const std::string& environment) {
+  nlohmann::json j = nlohmann::json::parse(io::loadScenario("seed004-hexapod-calibration").text);
+  j["environment"] = nlohmann::json::parse(environment);
+  return j.dump();
+}
+
+TEST(Scenario, EnvironmentGeometryIsReadDrawnIntoTheMachineAndWrittenToTheTruth) {
+  const io::Scenario s = io::parseScenarioJson(
+      seed004With(R"({"geometry": {"lead_progressive_ppm": 50, "lead_wave_um": 5,
+        "lead_wave_length_mm": 200, "lead_periodic_um": 2, "screw_lead_mm": 5,
+        "joint_axis_offset_um": 10}})"),
+      "s.json");
+  const sim::GeometryEnvironment& g = s.campaign.environment.geometry;
+  EXPECT_TRUE(g.enabled);
+  EXPECT_DOUBLE_EQ(g.lead_progressive, 50e-6);
+  EXPECT_DOUBLE_EQ(g.lead_wave_mm, 5e-3);
+  EXPECT_EQ(g.lead_wave_length_mm, 200.0);
+  EXPECT_DOUBLE_EQ(g.lead_periodic_mm, 2e-3);
+  EXPECT_EQ(g.screw_lead_mm, 5.0);
+  EXPECT_DOUBLE_EQ(g.joint_axis_offset_mm, 10e-3);
+  const nlohmann::json t = nlohmann::json::parse(io::truthJson(s, s.seed));
+  const nlohmann::json& u = t["unmodelled_geometry"];
+  ASSERT_EQ(u["strut_lead"].size(), 6U);
+  for (const nlohmann::json& lead : u["strut_lead"]) {
+    EXPECT_LE(std::abs(lead["progressive_ppm"].get<double>()), 50.0);
+    EXPECT_EQ(lead["wave_um"], 5.0);
+    EXPECT_EQ(lead["lead_mm"], 5.0);
+  }
+  for (const nlohmann::json& joint : u["platform_joint"])
+    EXPECT_LE(std::abs(joint["offset_um"].get<double>()), 10.0);
+  // Off (ideal, or "enabled": false): the machine and the truth have none.
+  const io::Scenario off =
+      io::parseScenarioJson(seed004With(R"({"geometry": {"enabled": false}})"), "s.json");
+  EXPECT_FALSE(nlohmann::json::parse(io::truthJson(off, off.seed)).contains("unmodelled_geometry"));
+}
+
+TEST(Scenario, EnvironmentGeometryErrorsNameThePointer) {
+  const auto message = [](const std::string& env) {
+    try {
+      (void)io::parseScenarioJson(withEnvironment(env), "s.json");
+    } catch (const pkm::IoError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(message(R"({"geometry": {"screw_lead_mm": 0}})"),
+              HasSubstr("/environment/geometry: geometry lead_wave_length_mm (300) and "
+                        "screw_lead_mm (0) must be > 0"));
+  EXPECT_THAT(message(R"({"geometry": {"lead_wave_um": -1}})"),
+              HasSubstr("geometry amplitudes and bounds must be finite and >= 0"));
+  EXPECT_THAT(message(R"({"geometry": {"lead_um": 1}})"), HasSubstr("unknown key 'lead_um'"));
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <vector>
 
 #include "pkm/core/error.hpp"
@@ -153,6 +154,30 @@ TEST(HybridTripod, IsDeterministic) {
     EXPECT_TRUE(a.errorMotion(p).matrix() == b.errorMotion(p).matrix());
     EXPECT_TRUE(a.errorMotion(p).matrix() == a.errorMotion(p).matrix());
   }
+}
+
+TEST(HybridTripod, ALegLeadErrorActsAsALengthErrorOfItsValueAtTheReading) {
+  // A lead error that is the same at every reading (a wave 10⁹ mm long at its crest) is a leg that
+  // travels kLegError further than its reading: the tripod with that length offset error.
+  const pkm::io::ExechonMachine m = machine();
+  pkm::simulation::ExechonLegLeadErrors lead{};
+  lead[1].wave_amplitude = kLegError;
+  lead[1].wave_length = 1e9;
+  lead[1].wave_phase = std::numbers::pi / 2;
+  HybridTripod with_lead(m.model, {}, m.fk);
+  with_lead.setLegLeadErrors(lead);
+  ExechonTripodErrors errors;
+  errors.length_offset = {0.0, kLegError, 0.0};
+  const HybridTripod with_offset(m.model, errors, m.fk);
+  for (const Eigen::Vector3d& p : commands()) {
+    const pkm::geometry::RigidTransform a = with_lead.errorMotion(p);
+    const pkm::geometry::RigidTransform b = with_offset.errorMotion(p);
+    EXPECT_GT(b.translation().norm(), 1e-3) << p.transpose();  // the error is visible
+    EXPECT_LT((a.translation() - b.translation()).norm(), kTolFk) << p.transpose();
+    EXPECT_LT(rotationAngle(a.inverse() * b), kTolFk) << p.transpose();
+  }
+  lead[0].lead = 0.0;
+  EXPECT_THROW(with_lead.setLegLeadErrors(lead), pkm::InvalidArgument);
 }
 
 TEST(HybridTripod, PerturbedModelAddsTheErrors) {

@@ -67,6 +67,14 @@ void applyProbeEnvironment(Campaign& campaign);
 /// (CartesianMachine::setSag), a hybrid machine's X2/Y2 sag and its tripod's leg compliance
 /// (HybridVirtualMachine::setSag, setTripodCompliance). Call after setting campaign.environment.
 void applyMachineEnvironment(Campaign& campaign);
+/// Puts the environment's unmodelled geometry (GeometryEnvironment) into the campaign's true
+/// machine, drawn from RandomStream(seed, "environment/geometry"): a hexapod's strut lead errors
+/// and U-joint offsets (drawHexapodGeometry, HexapodVirtualMachine::setUnmodelledGeometry), a
+/// hybrid machine's tripod leg lead errors (drawLegLeadErrors). Replaces what an earlier call put
+/// there, so with the geometry off the machine is as built. The machine keeps it for every pass of
+/// the measurements (it is the machine's, not the measurement's). Call after setting
+/// campaign.environment and the seed. Throws pkm::InvalidArgument for an invalid geometry.
+void applyGeometryEnvironment(Campaign& campaign, std::uint64_t seed);
 
 /// One measurement's result.
 struct MeasurementResult {

@@ -20,6 +20,9 @@
 /// - Compliance: gravity self-weight deflection that changes with the pose (a hexapod's and an
 ///   Exechon's legs under the platform's weight, f = J⁻ᵀ·w, shortening by f/k; the sag of
 ///   extending axes) and passive-joint clearance taking up in the direction of each leg's force.
+/// - Geometry (geometry_environment.hpp): the true machines' geometry beyond their kinematic
+///   models, which no calibration of those models absorbs: ball-screw lead errors of the struts
+///   and legs, U-joints whose axes do not intersect.
 #pragma once
 
 #include <Eigen/Core>
@@ -30,6 +33,7 @@
 #include <vector>
 
 #include "pkm/core/air_refractive_index.hpp"
+#include "pkm/simulation/geometry_environment.hpp"
 
 namespace pkm::simulation {
 
@@ -210,10 +214,13 @@ struct Environment {
   SetupEnvironment setup;            ///< the instruments' set-up errors
   StructureEnvironment structure;    ///< the structure's non-repeatable errors
   ComplianceEnvironment compliance;  ///< gravity deflection and joint clearance
+  /// The true machines' geometry beyond their kinematic models (applyGeometryEnvironment puts
+  /// it into a campaign's machine).
+  GeometryEnvironment geometry;
   /// True when any source is on.
   [[nodiscard]] bool active() const {
     return air.enabled || thermal.enabled || setup.enabled || structure.enabled ||
-           compliance.enabled;
+           compliance.enabled || geometry.enabled;
   }
   /// The warm-up fraction 1 − exp(−τ/τ_w) at campaign time `time_s` (0 when thermal is off).
   [[nodiscard]] double warmup(double time_s) const;

@@ -16,6 +16,7 @@
 #include "pkm/simulation/environment.hpp"
 #include "pkm/simulation/laser_tracker.hpp"
 #include "pkm/simulation/random.hpp"
+#include "pkm/simulation/unmodelled_geometry.hpp"
 
 namespace pkm::simulation {
 
@@ -54,16 +55,18 @@ struct ExechonTrackerReading {
 /// in the cap) that the NOMINAL model reaches within every limit (checkToolPose; rejected draws are
 /// redrawn, at most 200·count draws in all), moves the TRUE model there by tool FK from the
 /// commanded readings (seeded with the nominal configuration) and reads the SMR with the tracker
-/// noise (range, azimuth, elevation from `rng`). With a `compliance`, the true model reaches its
-/// FK at exechonDeflectedJoints of the commanded readings (gravity and joint clearance,
-/// compliance.hpp). Throws pkm::InvalidArgument for an invalid set-up or models, too few reachable
-/// commands, or a true FK that does not converge.
+/// noise (range, azimuth, elevation from `rng`). With `leg_lead` the true legs travel their
+/// readings plus the screws' lead errors (withLeadErrors; the readings recorded are the commanded
+/// ones); with a `compliance`, the true model then reaches its FK at exechonDeflectedJoints of
+/// those (gravity and joint clearance, compliance.hpp). Throws pkm::InvalidArgument for an invalid
+/// set-up or models, too few reachable commands, or a true FK that does not converge.
 [[nodiscard]] std::vector<ExechonTrackerReading> simulateExechonTracker(
     const kinematics::ExechonModel& nominal,
     const kinematics::ExechonModel& actual,
     const kinematics::FkOptions& fk,
     const ExechonTrackerSetup& setup,
     RandomStream& rng,
-    const ExechonCompliance* compliance = nullptr);
+    const ExechonCompliance* compliance = nullptr,
+    const ExechonLegLeadErrors& leg_lead = {});
 
 }  // namespace pkm::simulation

@@ -14,6 +14,7 @@
 #include "pkm/kinematics/hexapod_model.hpp"
 #include "pkm/simulation/environment.hpp"
 #include "pkm/simulation/random.hpp"
+#include "pkm/simulation/unmodelled_geometry.hpp"
 #include "pkm/simulation/virtual_machine.hpp"
 
 namespace pkm::simulation {
@@ -54,7 +55,10 @@ struct StrutActuation {
 /// it into strut readings with the nominal model (inverseKinematics); the struts reach them
 /// through StrutActuation; the platform then sits where the true model's forward kinematics puts
 /// it (seeded with the previous actual pose, or the command for the first move after reset). Poses
-/// are world_T_tool with the world (base) frame as the work frame.
+/// are world_T_tool with the world (base) frame as the work frame. With unmodelled geometry
+/// (setUnmodelledGeometry) each strut travels its reading plus its screw's lead error, and the
+/// struts' lines pass through the U-joints' shifted points (UJointOffset): the platform sits where
+/// those joint distances close the loops.
 class HexapodVirtualMachine final : public VirtualMachine {
  public:
   /// Throws pkm::InvalidArgument when either model does not validate, the unit is not mm, or
@@ -109,6 +113,15 @@ class HexapodVirtualMachine final : public VirtualMachine {
   [[nodiscard]] const std::optional<HexapodCompliance>& compliance() const { return compliance_; }
   /// The strut forces of the last move, N, compression positive (zero without compliance).
   [[nodiscard]] const kinematics::StrutVector& strutLoads() const { return loads_; }
+  /// The geometry beyond the model (unmodelled_geometry.hpp; the truth): strut i's joint distance
+  /// is r + e_i(r) + length offset for the actuated reading r (before thermal growth), between the
+  /// joint centres shifted by base_joint[i].shift(u) (world) and platform_joint[i].shift(Rᵀu)
+  /// (platform frame), u the strut's unit vector from base to platform and R the platform's
+  /// rotation. A zero geometry (the default) leaves the machine as it was. Throws
+  /// pkm::InvalidArgument when `geometry` does not validate.
+  void setUnmodelledGeometry(const HexapodUnmodelledGeometry& geometry);
+  /// The current unmodelled geometry.
+  [[nodiscard]] const HexapodUnmodelledGeometry& unmodelledGeometry() const { return geometry_; }
 
  private:
   kinematics::HexapodModel nominal_;
@@ -127,6 +140,11 @@ class HexapodVirtualMachine final : public VirtualMachine {
   std::optional<HexapodCompliance> compliance_;
   kinematics::StrutVector loads_ = kinematics::StrutVector::Zero();
   std::array<int, kinematics::kStruts> load_side_{};  // side the joint clearance is taken up on
+  HexapodUnmodelledGeometry geometry_;
+  kinematics::HexapodModel shifted_;  ///< true_ with the U-joint shifts of the last pose
+  /// The true FK of `actual` with the U-joint shifts, by fixed-point iteration on the shifts.
+  kinematics::FkSummary trueForward(const kinematics::StrutVector& actual,
+                                    const kinematics::PoseRpy& seed);
 };
 
 }  // namespace pkm::simulation

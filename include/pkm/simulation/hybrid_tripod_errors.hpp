@@ -23,6 +23,7 @@
 #include "pkm/kinematics/exechon_model.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/simulation/environment.hpp"
+#include "pkm/simulation/unmodelled_geometry.hpp"
 
 namespace pkm::simulation {
 
@@ -90,6 +91,12 @@ class HybridTripod {
   void setCompliance(std::optional<ExechonCompliance> compliance);
   /// The compliance in effect.
   [[nodiscard]] const std::optional<ExechonCompliance>& compliance() const { return compliance_; }
+  /// The legs' ball-screw lead errors, beyond the tripod model (unmodelled_geometry.hpp): the true
+  /// FK takes each leg at its reading r plus e(r). All zero (the default) leaves the tripod as it
+  /// was. Throws pkm::InvalidArgument when an error does not validate.
+  void setLegLeadErrors(const ExechonLegLeadErrors& lead);
+  /// The legs' lead errors.
+  [[nodiscard]] const ExechonLegLeadErrors& legLeadErrors() const { return lead_; }
 
  private:
   kinematics::ExechonModel nominal_;
@@ -97,6 +104,7 @@ class HybridTripod {
   ExechonTripodErrors errors_;
   kinematics::FkOptions fk_;
   std::optional<ExechonCompliance> compliance_;
+  ExechonLegLeadErrors lead_{};
 };
 
 }  // namespace pkm::simulation

@@ -55,6 +55,9 @@ class HybridVirtualMachine final : public VirtualMachine {
   /// The sag of X2 and of Y2 in effect.
   [[nodiscard]] const AxisSag& sagX2() const { return sag_x2_; }
   [[nodiscard]] const AxisSag& sagY2() const { return sag_y2_; }
+  /// The tripod's leg lead errors (HybridTripod::setLegLeadErrors); ignored without a tripod.
+  /// Throws pkm::InvalidArgument when an error does not validate.
+  void setTripodLegLeadErrors(const ExechonLegLeadErrors& lead);
 
  private:
   kinematics::HybridMachineModel model_;
