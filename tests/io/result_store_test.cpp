@@ -119,7 +119,6 @@ TEST_F(ResultStoreTest, AFileThatIsNotADatabaseIsAnError) {
   EXPECT_EQ(first, "these are my notes, not a database");
 }
 
-
 TEST_F(ResultStoreTest, StoresTheExpandedUncertaintyOrNull) {
   ResultStore store(db());
   CampaignRecord c = campaign("hx", 13.6, 0.0094);
