@@ -1,7 +1,7 @@
 // `pkm campaign sensitivity CAMPAIGN --source PATH --values V1,V2,... --out DIR [--seed N]
 // [--environment BASE] [--uncertainty FILE] [--force]`: parses the arguments, runs
-// workflow::runSensitivity (docs/campaign.md, "Sensitivity study") and prints its progress and a
-// table of every summary figure after compensation, ± U, per value.
+// workflow::runSensitivity (docs/campaign.md, "Sensitivity study") and prints its progress, a
+// table of every summary figure after compensation, ± U, per value, and the coefficients.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -71,6 +71,31 @@ std::string sensitivityTable(const workflow::SensitivityResult& r) {
   return t;
 }
 
+/// "VALUE" with 4 significant digits, "-" when not finite.
+std::string coefficientText(double v) { return std::isfinite(v) ? fmt::format("{:.4g}", v) : "-"; }
+
+/// The coefficients: one line per summary quantity, d(before)/dx and d(after)/dx.
+std::string coefficientTable(const workflow::SensitivityResult& r) {
+  std::string t = fmt::format(
+      "\nsensitivity coefficients (least-squares slope per {} of {})\n{:<10} {:<52} {:>14} {:>14}  "
+      "unit\n",
+      r.unit,
+      r.source,
+      "step",
+      "quantity",
+      "d(before)",
+      "d(after)");
+  for (const workflow::SensitivityCoefficient& c : r.coefficients)
+    t += fmt::format("{:<10} {:<52} {:>14} {:>14}  {}/{}\n",
+                     c.step,
+                     c.quantity,
+                     coefficientText(c.before),
+                     coefficientText(c.after),
+                     c.unit,
+                     r.unit);
+  return t;
+}
+
 void runSensitivityCommand(SensitivityArgs a) {
   a.options.out = a.out;
   workflow::CampaignOptions settings;
@@ -96,6 +121,7 @@ void runSensitivityCommand(SensitivityArgs a) {
              a.out);
   const workflow::SensitivityResult r = workflow::runSensitivity(a.options, control);
   fmt::print("{}", sensitivityTable(r));
+  fmt::print("{}", coefficientTable(r));
   fmt::print("\n{} runs in {:.2f} s; sensitivity.json, sensitivity.csv; report: {}\n",
              r.values.size(),
              r.seconds,

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <set>
@@ -51,7 +52,52 @@ CampaignOptions runOptions(const SensitivityOptions& o, std::size_t k) {
   return c;
 }
 
+/// The coefficients of every summary quantity, in the order of first appearance.
+std::vector<SensitivityCoefficient> coefficientsOf(const std::vector<SensitivityRow>& rows) {
+  std::vector<SensitivityCoefficient> out;
+  for (const SensitivityRow& row : rows) {
+    const auto same = [&](const auto& x) {
+      return x.step == row.step && x.quantity == row.row.quantity;
+    };
+    if (std::any_of(out.begin(), out.end(), same)) continue;
+    std::vector<double> x, before, after;
+    for (const SensitivityRow& r : rows)
+      if (r.step == row.step && r.row.quantity == row.row.quantity) {
+        x.push_back(r.value);
+        before.push_back(r.row.before);
+        after.push_back(r.row.after);
+      }
+    out.push_back({row.step,
+                   row.row.quantity,
+                   row.row.unit,
+                   leastSquaresSlope(x, before),
+                   leastSquaresSlope(x, after)});
+  }
+  return out;
+}
+
 }  // namespace
+
+double leastSquaresSlope(const std::vector<double>& x, const std::vector<double>& y) {
+  PKM_CHECK(x.size() == y.size(), "leastSquaresSlope: {} x but {} y", x.size(), y.size());
+  double n = 0.0, mx = 0.0, my = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (std::isfinite(y[i])) {
+      n += 1.0;
+      mx += x[i];
+      my += y[i];
+    }
+  if (n < 2.0) return std::nan("");
+  mx /= n;
+  my /= n;
+  double sxy = 0.0, sxx = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (std::isfinite(y[i])) {
+      sxy += (x[i] - mx) * (y[i] - my);
+      sxx += (x[i] - mx) * (x[i] - mx);
+    }
+  return sxx > 0.0 ? sxy / sxx : std::nan("");
+}
 
 void SensitivityOptions::validate() const {
   if (out.empty()) throw IoError("give --out DIR");
@@ -103,6 +149,7 @@ SensitivityResult runSensitivity(const SensitivityOptions& options, const RunCon
     for (const CampaignStepResult& s : run.steps)
       for (const CampaignRow& r : s.rows) result.rows.push_back({options.values[k], s.id, r});
   }
+  result.coefficients = coefficientsOf(result.rows);
   result.json = detail::sensitivityJson(result, options);
   io::writeFileAtomic(options.out / "sensitivity.json", result.json, io::Overwrite::kAllow);
   io::writeFileAtomic(

@@ -11,7 +11,8 @@ namespace pkm::workflow::detail {
 
 /// sensitivity.json (schema pkm.sensitivity/1, docs/campaign.md): campaign, source, unit, base
 /// environment, uncertainty sources, seed, values and one row per value × summary row (value,
-/// step, quantity, unit, before, after, before_U, after_U, target, pass; null where not finite).
+/// step, quantity, unit, before, after, before_U, after_U, target, pass; null where not finite),
+/// then the coefficients (step, quantity, unit, before, after: slopes per unit of the source).
 [[nodiscard]] std::string sensitivityJson(const SensitivityResult& result,
                                           const SensitivityOptions& options);
 
@@ -21,7 +22,8 @@ namespace pkm::workflow::detail {
 [[nodiscard]] std::string sensitivityCsv(const SensitivityResult& result);
 
 /// The report data (pkm.report/1, docs/report.md): a header naming the source and the base, the
-/// summary table of every row, and per campaign step one line plot per summary quantity: the
+/// summary table of every row, a section of the coefficients, and per campaign step one line plot
+/// per summary quantity: the
 /// after-value against the source's value with its ±U band (the before-value where no after-value
 /// exists).
 [[nodiscard]] std::string sensitivityReportData(const SensitivityResult& result,

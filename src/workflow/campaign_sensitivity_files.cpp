@@ -106,6 +106,29 @@ Json summaryTable(const SensitivityResult& r) {
   return t;
 }
 
+/// The report's first section: the coefficients of every quantity.
+Json coefficientSection(const SensitivityResult& r) {
+  Json t{{"title",
+          fmt::format("Sensitivity coefficients: least-squares slope against {} (row unit per {})",
+                      r.source,
+                      r.unit)},
+         {"columns", {"step", "quantity", "unit", "d(before)/d(source)", "d(after)/d(source)"}},
+         {"rows", Json::array()}};
+  const auto cell = [](double v) {
+    return std::isfinite(v) ? Json(std::stod(fmt::format("{:.4g}", v))) : Json(nullptr);
+  };
+  for (const SensitivityCoefficient& c : r.coefficients)
+    t["rows"].push_back({c.step, c.quantity, c.unit, cell(c.before), cell(c.after)});
+  return Json{{"id", "coefficients"},
+              {"title", "Sensitivity coefficients"},
+              {"paragraphs",
+               Json::array({"How much each summary figure moves per unit of the swept source, "
+                            "before and after compensation: a source the compensation cannot see "
+                            "(it acts alike on the measurement it was made from and on the "
+                            "re-measurement) moves the before-value but not the after-value."})},
+              {"tables", Json::array({t})}};
+}
+
 }  // namespace
 
 std::string sensitivityJson(const SensitivityResult& r, const SensitivityOptions& o) {
@@ -129,6 +152,13 @@ std::string sensitivityJson(const SensitivityResult& r, const SensitivityOptions
                          {"after_U", number(row.row.after_U)},
                          {"target", row.row.target ? Json(*row.row.target) : Json(nullptr)},
                          {"pass", row.row.pass()}});
+  j["coefficients"] = Json::array();
+  for (const SensitivityCoefficient& c : r.coefficients)
+    j["coefficients"].push_back({{"step", c.step},
+                                 {"quantity", c.quantity},
+                                 {"unit", c.unit},
+                                 {"before", number(c.before)},
+                                 {"after", number(c.after)}});
   return j.dump(2) + "\n";
 }
 
@@ -194,6 +224,7 @@ std::string sensitivityReportData(const SensitivityResult& r, const SensitivityO
     Json plot = quantityPlot(r, key, id);
     if (!plot.is_null()) sections[step]["plots"].push_back(std::move(plot));
   }
+  doc["sections"].push_back(coefficientSection(r));
   for (const std::string& step : order) doc["sections"].push_back(sections[step]);
   return doc.dump(1) + "\n";
 }

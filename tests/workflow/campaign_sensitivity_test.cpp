@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -99,6 +100,25 @@ TEST_F(SensitivityWorkflow, ASensorOffsetScalesThePositioningErrorAsEdlenSays) {
   const double analytic = kTravelMm * std::abs(edlenSensitivity(air).per_kelvin);
   EXPECT_NEAR(slope, analytic, kSlopeRelativeTol * analytic);
   EXPECT_NEAR(analytic, 4.65e-4, 0.2e-4);
+  // The coefficient (least-squares slope over the three values) is that slope: E is nearly linear.
+  const auto c = std::find_if(r.coefficients.begin(),
+                              r.coefficients.end(),
+                              [](const SensitivityCoefficient& k) { return k.quantity == kXRow; });
+  ASSERT_NE(c, r.coefficients.end());
+  EXPECT_NEAR(c->before, slope, 1e-3 * slope);  // Edlén is nearly linear over 2 K
+  // The compensation is made from readings with the same sensor error as the re-measurement's, so
+  // the after-value cannot see it: d(after)/d(offset) is nil.
+  EXPECT_LT(std::abs(c->after), 1e-3 * analytic);
+}
+
+TEST(LeastSquaresSlope, AgainstAHandCalculation) {
+  // x = 0, 1, 2, 4; y = 1, 3, 5, 9 exactly 1 + 2x: slope 2. A NaN is left out.
+  EXPECT_NEAR(leastSquaresSlope({0, 1, 2, 4, 5}, {1, 3, 5, 9, std::nan("")}), 2.0, 1e-15);
+  // y = 0, 1, 0, 1 at x = 0..3: Σ(x − 1.5)(y − 0.5) = 1, Σ(x − 1.5)² = 5 -> 0.2.
+  EXPECT_NEAR(leastSquaresSlope({0, 1, 2, 3}, {0, 1, 0, 1}), 0.2, 1e-15);
+  EXPECT_TRUE(std::isnan(leastSquaresSlope({1, 2}, {3, std::nan("")})));
+  EXPECT_TRUE(std::isnan(leastSquaresSlope({1, 1}, {3, 4})));
+  EXPECT_THROW((void)leastSquaresSlope({1, 2}, {3}), InvalidArgument);
 }
 
 TEST_F(SensitivityWorkflow, WritesTheTableTheCsvAndTheReport) {
@@ -126,13 +146,15 @@ TEST_F(SensitivityWorkflow, WritesTheTableTheCsvAndTheReport) {
   const nlohmann::json doc = nlohmann::json::parse(data);
   std::size_t plots = 0, bands = 0;
   for (const nlohmann::json& sec : doc["sections"])
-    for (const nlohmann::json& p : sec["plots"]) {
+    for (const nlohmann::json& p : sec.value("plots", nlohmann::json::array())) {
       ++plots;
       EXPECT_EQ(p["kind"], "line");
       EXPECT_EQ(p["series"][0]["x"], nlohmann::json({0.5, 1.0, 2.0}));  // ascending
       bands += p["series"][0].contains("upper") ? 1 : 0;
     }
   EXPECT_EQ(plots, r.rows.size() / 3);
+  EXPECT_EQ(j["coefficients"].size(), r.rows.size() / 3);
+  EXPECT_EQ(doc["sections"][0]["id"], "coefficients");
   EXPECT_GE(bands, plots - 1);
   EXPECT_TRUE(fs::is_regular_file(r.report));
   EXPECT_THAT(slurp(r.report), HasSubstr("Swept error source: air.temperature_sensor.offset"));

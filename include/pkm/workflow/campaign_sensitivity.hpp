@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,6 +55,21 @@ struct SensitivityRow {
   CampaignRow row;     ///< its summary row (before, after, U, ...)
 };
 
+/// The sensitivity coefficient of one summary quantity: the least-squares slope of its before- and
+/// after-value against the source's value, in the row's unit per unit of the source; NaN where
+/// fewer than two values are finite.
+struct SensitivityCoefficient {
+  std::string step;                                          ///< the campaign step's id
+  std::string quantity;                                      ///< the summary row's quantity
+  std::string unit;                                          ///< the row's unit
+  double before = std::numeric_limits<double>::quiet_NaN();  ///< d(before)/d(source)
+  double after = std::numeric_limits<double>::quiet_NaN();   ///< d(after)/d(source)
+};
+
+/// The least-squares slope of y against x over the pairs whose y is finite: Σ(x − x̄)(y − ȳ) /
+/// Σ(x − x̄)²; NaN with fewer than two such pairs.
+[[nodiscard]] double leastSquaresSlope(const std::vector<double>& x, const std::vector<double>& y);
+
 /// What the study produced.
 struct SensitivityResult {
   std::string campaign;  ///< the campaign's name
@@ -61,16 +77,18 @@ struct SensitivityResult {
   std::string unit;      ///< its unit
   std::vector<double> values;
   std::vector<SensitivityRow> rows;  ///< per value (in the given order), the summary rows
-  std::filesystem::path report;      ///< report.html, absolute
-  std::string json;                  ///< the text of sensitivity.json, as written
-  double seconds = 0.0;              ///< wall-clock time
+  /// One per summary quantity, in the order of the rows.
+  std::vector<SensitivityCoefficient> coefficients;
+  std::filesystem::path report;  ///< report.html, absolute
+  std::string json;              ///< the text of sensitivity.json, as written
+  double seconds = 0.0;          ///< wall-clock time
 };
 
 /// Runs the study: for each value k, the campaign with CampaignOptions::environment = base with the
 /// source set (io::setEnvironmentParameter), written to out/runs/value-K/ (no result store); then
 /// out/sensitivity.json (pkm.sensitivity/1), out/sensitivity.csv (value, step, quantity, unit,
-/// before, after, before_U, after_U) and out/report.html. Progress: an event per run (stage
-/// "value-K", message "SOURCE = VALUE") and the campaign's own events. Throws as
+/// before, after, before_U, after_U) and out/report.html, with the coefficients. Progress: an event
+/// per run (stage "value-K", message "SOURCE = VALUE") and the campaign's own events. Throws as
 /// SensitivityOptions::validate and runCampaign; workflow::Cancelled.
 [[nodiscard]] SensitivityResult runSensitivity(const SensitivityOptions& options,
                                                const RunControl& control = {});
