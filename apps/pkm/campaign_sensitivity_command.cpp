@@ -145,8 +145,7 @@ void addCampaignSensitivityCommand(CLI::App& campaign) {
       ->required();
   cmd->add_option("--values",
                   a->options.values,
-                  "the source's values in its unit, comma-separated (--values=-1,0,1 when the "
-                  "first is negative)")
+                  "the source's values in its unit, comma-separated (e.g. -0.2,0,0.2)")
       ->required()
       ->delimiter(',');
   cmd->add_option("--out,-o", a->out, "output directory (sensitivity.json/.csv, report.html)")
