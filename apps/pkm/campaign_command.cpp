@@ -1,6 +1,7 @@
-// `pkm campaign run CAMPAIGN --out DIR [--db FILE | --no-db] [--force]` and `pkm campaign list`:
-// parses the arguments, runs workflow::runCampaign (docs/campaign.md) and prints its progress,
-// summary table and closing lines.
+// `pkm campaign run CAMPAIGN --out DIR [--db FILE | --no-db] [--force] [--environment PRESET|FILE]
+// [--uncertainty FILE] [--seed N]` and `pkm campaign list`: parses the arguments, runs
+// workflow::runCampaign (docs/campaign.md) and prints its progress, summary table and closing
+// lines. `pkm campaign sensitivity` is in campaign_sensitivity_command.cpp.
 #include <fmt/format.h>
 
 #include <chrono>
@@ -9,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "campaign_options.hpp"
 #include "cli_common.hpp"
 #include "pkm/workflow/campaign.hpp"
 
@@ -20,6 +22,7 @@ struct RunArgs {
   std::string out;
   std::string db = "pkm.db";
   bool no_db = false;
+  CampaignSettingArgs settings;  ///< --environment, --uncertainty, --seed
 };
 
 std::string numText(double v) {
@@ -89,6 +92,7 @@ std::string uncertaintyTable(const workflow::CampaignResult& result) {
 bool runCampaign(RunArgs a) {
   a.options.out = a.out;
   a.options.db = a.no_db ? std::string() : a.db;
+  a.settings.apply(a.options);
   workflow::RunControl control;
   control.progress = [&a](const workflow::ProgressEvent& e) {
     if (e.index == 0)
@@ -98,6 +102,11 @@ bool runCampaign(RunArgs a) {
     std::fflush(stdout);
   };
   const workflow::CampaignResult r = workflow::runCampaign(a.options, control);
+  if (!r.environment_source.empty())
+    fmt::print(
+        "environment of every simulated step: {} ({})\n", r.environment_source, r.environment_name);
+  if (!r.uncertainty_source.empty())
+    fmt::print("uncertainty budgets: instruments and environment of {}\n", r.uncertainty_source);
   fmt::print("{}", summaryTable(r));
   fmt::print("{}", uncertaintyTable(r));
   fmt::print("\n{} in {:.2f} s; report: {}\n",
@@ -130,9 +139,13 @@ void addCampaign(CLI::App& app) {
   run->add_option("--db", a->db, "result store (SQLite), default pkm.db");
   run->add_flag("--no-db", a->no_db, "do not store the results");
   run->add_flag("--force", a->options.force, "write into a non-empty output directory");
+  a->settings.add(*run,
+                  "the environment of every simulated step, replacing the steps' own: a preset "
+                  "(ideal, realistic) or an environment file (docs/simulation-errors.md)");
   run->callback([a] {
     if (!runCampaign(*a)) throw ExitCode{kExitCheckFailed};
   });
+  addCampaignSensitivityCommand(*group);
   CLI::App* list = group->add_subcommand("list", "list the built-in campaigns");
   list->callback([] {
     for (const std::string& name : workflow::builtinCampaignNames()) {

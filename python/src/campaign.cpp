@@ -5,12 +5,16 @@
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
+#include <cstdint>
 #include <limits>
 #include <string>
 
 #include "common.hpp"
 #include "paths.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/io/environment_file.hpp"
+#include "pkm/io/named_text.hpp"
+#include "pkm/io/uncertainty_sources.hpp"
 #include "simulation.hpp"
 
 namespace pkm::python {
@@ -74,11 +78,31 @@ struct PythonProgress {
   }
 };
 
+/// The campaign-level settings (docs/campaign.md): environment a preset name or a file,
+/// uncertainty a sources file, seed an int; None keeps each step's own.
+void applySettings(workflow::CampaignOptions& o,
+                   const py::object& environment,
+                   const py::object& uncertainty,
+                   const py::object& seed) {
+  if (!environment.is_none()) {
+    o.environment_source = pathOf(environment, "environment (a preset name or a file)");
+    o.environment = io::loadEnvironment(o.environment_source);
+  }
+  if (!uncertainty.is_none()) {
+    o.uncertainty_source = pathOf(uncertainty, "uncertainty (a sources file)");
+    o.uncertainty = io::readUncertaintySources(io::readNamedText(o.uncertainty_source));
+  }
+  if (!seed.is_none()) o.seed = seed.cast<std::uint64_t>();
+}
+
 CampaignSummary runCampaign(const py::object& campaign,
                             const py::object& out,
                             bool force,
                             const py::object& db,
-                            const py::object& progress) {
+                            const py::object& progress,
+                            const py::object& environment,
+                            const py::object& uncertainty,
+                            const py::object& seed) {
   workflow::CampaignOptions o;
   if (py::isinstance<py::dict>(campaign)) {
     o.campaign = "campaign";  // names the document in messages and summary.json's source
@@ -91,6 +115,7 @@ CampaignSummary runCampaign(const py::object& campaign,
   o.out = pathOf(out, "out");
   o.force = force;
   if (!db.is_none()) o.db = pathOf(db, "db");
+  applySettings(o, environment, uncertainty, seed);
   PythonProgress watcher{progress, {}, py::none()};
   workflow::RunControl control;
   control.progress = [&watcher](const workflow::ProgressEvent& e) { watcher(e); };
@@ -186,6 +211,9 @@ key : str
         py::arg("force") = false,
         py::arg("db") = py::none(),
         py::arg("progress") = py::none(),
+        py::arg("environment") = py::none(),
+        py::arg("uncertainty") = py::none(),
+        py::arg("seed") = py::none(),
         R"doc(Runs a campaign into a folder, as `pkm campaign run CAMPAIGN --out OUT --no-db`.
 
 Each step measures on a virtual machine with known errors (or reads measured files), analyses,
@@ -208,6 +236,14 @@ db : str or os.PathLike, optional
 progress : callable, optional
     Called with a dict (stage, index, count, elapsed in s, message) at every progress report,
     as the command prints them; an exception it raises stops the run and is raised.
+environment : str or os.PathLike, optional
+    The environment of every simulated step (--environment): a preset name ("ideal",
+    "realistic") or an environment file (docs/simulation-errors.md); default each step's own.
+uncertainty : str or os.PathLike, optional
+    The instruments and environment of the uncertainty budgets (--uncertainty): a
+    pkm.uncertainty-sources/1 file; default the typical datasheet values.
+seed : int, optional
+    The random seed of every simulated step (--seed); default each step's own.
 
 Returns
 -------

@@ -168,6 +168,8 @@ std::string renderHtmlReport(std::string_view json_text, const std::string& sour
   if (doc.contains("subtitle"))
     out +=
         fmt::format("<p class=\"subtitle\">{}</p>\n", escaped(doc["subtitle"].get<std::string>()));
+  for (const json& note : doc.value("notes", json::array()))
+    out += fmt::format("<p class=\"subtitle note\">{}</p>\n", escaped(note.get<std::string>()));
   if (doc.contains("generated"))
     out += fmt::format("<p class=\"generated\">Generated {}</p>\n",
                        escaped(doc["generated"].get<std::string>()));

@@ -124,6 +124,13 @@ void series(const json& s, const std::string& path, const std::string& kind, con
     for (std::size_t i = 1; i < nx; ++i)
       if (x[i].get<double>() < x[i - 1].get<double>())
         fail(element(member(path, "x"), i), "x of a line plot must be ascending");
+  if (s.contains("lower") || s.contains("upper")) {
+    if (kind != "line") fail(path, "'lower' and 'upper' (a band) belong to line plots only");
+    for (const char* key : {"lower", "upper"}) {
+      const std::size_t n = numberArray(required(s, path, key), member(path, key));
+      if (n != ny) fail(path, fmt::format("{} has {} values but y has {}", key, n, ny));
+    }
+  }
   if (s.contains("value")) {
     const std::size_t nv = numberArray(s["value"], member(path, "value"));
     if (kind != "scatter") fail(member(path, "value"), "'value' colours only scatter plots");
@@ -184,6 +191,7 @@ json parseReportData(std::string_view json_text, const std::string& source) {
   stringKey(doc, "", "title");
   optionalStringKey(doc, "", "subtitle");
   optionalStringKey(doc, "", "generated");
+  if (const json* notes = optionalArray(doc, "", "notes")) stringArray(*notes, "notes");
   table(required(doc, "", "summary"), "summary");
   const json& sections = required(doc, "", "sections");
   if (!sections.is_array()) fail("sections", "expected an array");

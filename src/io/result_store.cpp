@@ -13,7 +13,9 @@
 namespace pkm::io {
 namespace {
 
-constexpr int kSchemaVersion = 1;
+/// Schema 1: the tables below without results.U; schema 2 adds results.U (the expanded
+/// uncertainty, k = 2, NULL when none).
+constexpr int kSchemaVersion = 2;
 
 constexpr const char* kSchema = R"sql(
 CREATE TABLE IF NOT EXISTS machines (
@@ -35,7 +37,8 @@ CREATE TABLE IF NOT EXISTS measurements (
 CREATE TABLE IF NOT EXISTS results (
   id INTEGER PRIMARY KEY,
   campaign_id INTEGER NOT NULL REFERENCES campaigns(id),
-  quantity TEXT NOT NULL, stage TEXT NOT NULL, value REAL NOT NULL, unit TEXT NOT NULL);
+  quantity TEXT NOT NULL, stage TEXT NOT NULL, value REAL NOT NULL, unit TEXT NOT NULL,
+  U REAL);
 CREATE TABLE IF NOT EXISTS compensations (
   id INTEGER PRIMARY KEY,
   campaign_id INTEGER NOT NULL REFERENCES campaigns(id),
@@ -75,6 +78,11 @@ class Statement {
     check(sqlite3_bind_double(stmt_, i, v));
     return *this;
   }
+  /// `v`, or NULL when it is NaN.
+  Statement& realOrNull(int i, double v) {
+    check(std::isnan(v) ? sqlite3_bind_null(stmt_, i) : sqlite3_bind_double(stmt_, i, v));
+    return *this;
+  }
   /// Steps once: true when a row is available.
   bool step() {
     const int rc = sqlite3_step(stmt_);
@@ -93,6 +101,10 @@ class Statement {
   }
   [[nodiscard]] std::int64_t columnInteger(int i) const { return sqlite3_column_int64(stmt_, i); }
   [[nodiscard]] double columnReal(int i) const { return sqlite3_column_double(stmt_, i); }
+  /// The column's number, NaN when it is NULL.
+  [[nodiscard]] double columnRealOrNan(int i) const {
+    return sqlite3_column_type(stmt_, i) == SQLITE_NULL ? std::nan("") : columnReal(i);
+  }
 
  private:
   void check(int rc) const {
@@ -117,6 +129,40 @@ struct ResultStore::Impl {
       throw IoError(fmt::format("{}: {}", path, what));
     }
   }
+
+  [[nodiscard]] std::int64_t userVersion() const {
+    Statement version(db, path, "PRAGMA user_version");
+    version.step();
+    return version.columnInteger(0);
+  }
+
+  /// Runs `sql` in one immediate transaction (rolled back on error).
+  void transaction(const std::string& sql) const {
+    exec("BEGIN IMMEDIATE");
+    try {
+      exec(sql.c_str());
+      exec("COMMIT");
+    } catch (...) {
+      sqlite3_exec(db, "ROLLBACK", nullptr, nullptr, nullptr);
+      throw;
+    }
+  }
+
+  /// Schema 1 -> 2: results gains the U column (NULL for the rows already stored). The version is
+  /// read again inside the transaction, so that two connections migrating at once add it once.
+  void migrateFrom1() const {
+    exec("BEGIN IMMEDIATE");
+    try {
+      if (userVersion() == 1) {
+        exec("ALTER TABLE results ADD COLUMN U REAL");
+        exec(fmt::format("PRAGMA user_version={}", kSchemaVersion).c_str());
+      }
+      exec("COMMIT");
+    } catch (...) {
+      sqlite3_exec(db, "ROLLBACK", nullptr, nullptr, nullptr);
+      throw;
+    }
+  }
 };
 
 ResultStore::ResultStore(const std::string& path, int busy_timeout_ms)
@@ -133,29 +179,20 @@ ResultStore::ResultStore(const std::string& path, int busy_timeout_ms)
   try {
     sqlite3_busy_timeout(impl_->db, busy_timeout_ms);
     impl_->exec("PRAGMA foreign_keys=ON;");
-    std::int64_t v = 0;
-    {
-      Statement version(impl_->db, path, "PRAGMA user_version");
-      version.step();
-      v = version.columnInteger(0);
-    }
-    if (v != 0 && v != kSchemaVersion)
+    const std::int64_t v = impl_->userVersion();
+    if (v != 0 && v != 1 && v != kSchemaVersion)
       throw IoError(
           fmt::format("{}: result store schema {} (this pkm reads {})", path, v, kSchemaVersion));
     if (v == kSchemaVersion) return;  // an existing store: nothing to write
+    if (v == 1) {
+      impl_->migrateFrom1();
+      return;
+    }
     // A new store: write-ahead journal (persistent; if another connection is creating the store
     // at the same moment the switch may be refused, and the rollback journal is safe as well)
     // and the schema, idempotently, in one immediate transaction.
     sqlite3_exec(impl_->db, "PRAGMA journal_mode=WAL", nullptr, nullptr, nullptr);
-    impl_->exec("BEGIN IMMEDIATE");
-    try {
-      impl_->exec(kSchema);
-      impl_->exec(fmt::format("PRAGMA user_version={}", kSchemaVersion).c_str());
-      impl_->exec("COMMIT");
-    } catch (...) {
-      sqlite3_exec(impl_->db, "ROLLBACK", nullptr, nullptr, nullptr);
-      throw;
-    }
+    impl_->transaction(fmt::format("{}\nPRAGMA user_version={};", kSchema, kSchemaVersion));
   } catch (const IoError& e) {
     sqlite3_close(impl_->db);
     const std::string what = e.what();
@@ -172,8 +209,12 @@ ResultStore::~ResultStore() {
 std::int64_t ResultStore::store(const CampaignRecord& c) {
   PKM_CHECK(!c.machine.empty(), "result store: a campaign needs a machine name");
   PKM_CHECK(!c.name.empty(), "result store: a campaign needs a name");
-  for (const ResultRecord& r : c.results)
+  for (const ResultRecord& r : c.results) {
     PKM_CHECK(std::isfinite(r.value), "result store: result '{}' is not finite", r.quantity);
+    PKM_CHECK(std::isnan(r.U) || (std::isfinite(r.U) && r.U >= 0.0),
+              "result store: the U of result '{}' must be >= 0 and finite, or NaN (none)",
+              r.quantity);
+  }
   sqlite3* db = impl_->db;
   const std::string& path = impl_->path;
   impl_->exec("BEGIN IMMEDIATE");
@@ -203,16 +244,17 @@ std::int64_t ResultStore::store(const CampaignRecord& c) {
         "INSERT INTO measurements(campaign_id, name, kind, file, rows) VALUES(?, ?, ?, ?, ?)");
     for (const MeasurementRecord& r : c.measurements)
       m.integer(1, id).text(2, r.name).text(3, r.kind).text(4, r.file).integer(5, r.rows).run();
-    Statement res(
-        db,
-        path,
-        "INSERT INTO results(campaign_id, quantity, stage, value, unit) VALUES(?, ?, ?, ?, ?)");
+    Statement res(db,
+                  path,
+                  "INSERT INTO results(campaign_id, quantity, stage, value, unit, U) "
+                  "VALUES(?, ?, ?, ?, ?, ?)");
     for (const ResultRecord& r : c.results)
       res.integer(1, id)
           .text(2, r.quantity)
           .text(3, r.stage)
           .real(4, r.value)
           .text(5, r.unit)
+          .realOrNull(6, r.U)
           .run();
     Statement comp(
         db,
@@ -232,7 +274,7 @@ std::vector<HistoryRow> ResultStore::history(const std::string& machine,
                                              const std::optional<std::string>& quantity) {
   Statement q(impl_->db,
               impl_->path,
-              "SELECT c.id, c.time, c.name, r.quantity, r.stage, r.value, r.unit "
+              "SELECT c.id, c.time, c.name, r.quantity, r.stage, r.value, r.unit, r.U "
               "FROM results r JOIN campaigns c ON r.campaign_id = c.id "
               "JOIN machines m ON c.machine_id = m.id "
               "WHERE m.name = ?1 AND (?2 IS NULL OR r.quantity = ?2) ORDER BY c.id, r.id");
@@ -246,7 +288,8 @@ std::vector<HistoryRow> ResultStore::history(const std::string& machine,
                    q.columnText(3),
                    q.columnText(4),
                    q.columnText(6),
-                   q.columnReal(5)});
+                   q.columnReal(5),
+                   q.columnRealOrNan(7)});
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <regex>
+#include <tuple>
 
 #include "campaign_steps.hpp"
 #include "pkm/core/error.hpp"
@@ -130,6 +131,9 @@ campaign::StepOutcome runStep(const Json& step,
   ctx.out = o.out;
   ctx.dir = o.out / id;
   ctx.base_dir = base_dir;
+  ctx.environment = o.environment;
+  ctx.seed = o.seed;
+  ctx.sources = o.uncertainty.value_or(metrology::UncertaintySources{});
   const auto ts = Clock::now();
   ctx.progress = [&, k, id](const std::string& what) {
     control.checkCancelled();
@@ -143,11 +147,13 @@ campaign::StepOutcome runStep(const Json& step,
     throw IoError(fmt::format("{}: {}", ctx.source, e.what()));
   }
   outcome.id = id;
-  // Every summary row goes into the result store (before and after, where measured).
+  // Every summary row goes into the result store (before and after, where measured, with U).
   for (const campaign::SummaryRow& r : outcome.rows)
-    for (const auto& [stage, value] : {std::pair{"before", r.before}, std::pair{"after", r.after}})
+    for (const auto& [stage, value, u] :
+         {std::tuple{"before", r.before, r.before_U}, std::tuple{"after", r.after, r.after_U}})
       if (std::isfinite(value))
-        outcome.record.results.push_back({r.quantity, stage, value, r.unit});
+        outcome.record.results.push_back(
+            {r.quantity, stage, value, r.unit, std::isfinite(u) ? u : std::nan("")});
   ctx.progress(
       fmt::format("done in {:.2f} s", std::chrono::duration<double>(Clock::now() - ts).count()));
   return outcome;
@@ -173,13 +179,29 @@ Json summaryRows(const std::vector<campaign::StepOutcome>& steps) {
   return rows;
 }
 
+/// The campaign-level settings given (environment, uncertainty sources, seed) as report header
+/// notes; empty when none was given.
+std::vector<std::string> settingNotes(const CampaignResult& r) {
+  std::vector<std::string> notes;
+  if (!r.environment_source.empty())
+    notes.push_back(fmt::format(
+        "Environment of every simulated step: {} ({})", r.environment_source, r.environment_name));
+  if (!r.uncertainty_source.empty())
+    notes.push_back(fmt::format("Instruments and environment of the uncertainty budgets: {}",
+                                r.uncertainty_source));
+  if (r.seed) notes.push_back(fmt::format("Seed of every simulated step: {}", *r.seed));
+  return notes;
+}
+
 /// report-data.json (pkm.report/1): the summary table, then each step's section.
-Json reportData(const std::string& name,
+Json reportData(const CampaignResult& result,
                 const Json& spec,
                 const std::vector<campaign::StepOutcome>& outcomes) {
   Json report{{"schema", "pkm.report/1"},
-              {"title", fmt::format("pkm campaign '{}'", name)},
+              {"title", fmt::format("pkm campaign '{}'", result.name)},
               {"subtitle", spec.value("description", std::string())}};
+  if (const std::vector<std::string> notes = settingNotes(result); !notes.empty())
+    report["notes"] = notes;
   Json summary = campaign::table("Before and after compensation, beside the papers' results",
                                  {"step",
                                   "quantity",
@@ -204,25 +226,29 @@ Json reportData(const std::string& name,
   report["summary"] = summary;
   report["sections"] = Json::array();
   for (const campaign::StepOutcome& s : outcomes) report["sections"].push_back(s.section);
-  report["sections"].push_back(campaign::uncertaintySection(outcomes));
+  report["sections"].push_back(campaign::uncertaintySection(outcomes, result.uncertainty_source));
   return report;
 }
 
-/// summary.json, report-data.json, report.html; returns summary.json's text.
+/// summary.json, report-data.json, report.html; returns summary.json's text. The campaign-level
+/// settings appear only when given, so a campaign run without them writes what it always wrote.
 std::string writeCampaignFiles(const fs::path& out,
-                               const std::string& name,
-                               const std::string& source,
+                               const CampaignResult& result,
                                const Json& spec,
                                const std::vector<campaign::StepOutcome>& outcomes) {
-  const std::string report_text = reportData(name, spec, outcomes).dump(1) + "\n";
+  const std::string report_text = reportData(result, spec, outcomes).dump(1) + "\n";
   io::writeFileAtomic(out / "report-data.json", report_text, io::Overwrite::kAllow);
   io::writeFileAtomic(out / "report.html",
                       io::renderHtmlReport(report_text, (out / "report-data.json").string()),
                       io::Overwrite::kAllow);
-  Json sj{{"schema", "pkm.campaign-summary/1"},
-          {"campaign", name},
-          {"source", source},
-          {"rows", summaryRows(outcomes)}};
+  Json sj{
+      {"schema", "pkm.campaign-summary/1"}, {"campaign", result.name}, {"source", result.source}};
+  if (!result.environment_source.empty())
+    sj["environment"] = {{"source", result.environment_source}, {"name", result.environment_name}};
+  if (!result.uncertainty_source.empty())
+    sj["uncertainty"] = {{"source", result.uncertainty_source}};
+  if (result.seed) sj["seed"] = *result.seed;
+  sj["rows"] = summaryRows(outcomes);
   sj["steps"] = Json::array();
   for (const campaign::StepOutcome& s : outcomes)
     sj["steps"].push_back({{"id", s.id}, {"title", s.title}, {"files", s.files}});
@@ -256,6 +282,12 @@ bool CampaignRow::pass() const {
 
 void CampaignOptions::validate() const {
   if (out.empty()) throw IoError("give --out DIR");
+  std::string why;
+  if (environment && !environment->isValid(&why))
+    throw InvalidArgument(fmt::format("campaign environment {}: {}", environment_source, why));
+  if (uncertainty && !uncertainty->isValid(&why))
+    throw InvalidArgument(
+        fmt::format("campaign uncertainty sources {}: {}", uncertainty_source, why));
 }
 
 std::vector<std::string> builtinCampaignNames() {
@@ -287,6 +319,15 @@ CampaignResult runCampaign(const CampaignOptions& options, const RunControl& con
   result.name = spec.value("name", std::string("campaign"));
   result.source = source;
   result.description = spec.value("description", std::string());
+  if (options.environment) {
+    result.environment_source =
+        options.environment_source.empty() ? options.environment->name : options.environment_source;
+    result.environment_name = options.environment->name;
+  }
+  if (options.uncertainty)
+    result.uncertainty_source =
+        options.uncertainty_source.empty() ? "given" : options.uncertainty_source;
+  result.seed = options.seed;
   const std::size_t n = spec["steps"].size();
   const auto t0 = Clock::now();
   control.report({"", 0, n, 0.0, result.name});
@@ -294,7 +335,7 @@ CampaignResult runCampaign(const CampaignOptions& options, const RunControl& con
   for (std::size_t k = 0; k < n; ++k)
     outcomes.push_back(runStep(spec["steps"][k], k, n, source, options, base_dir, control, t0));
   control.checkCancelled();
-  result.summary_json = writeCampaignFiles(options.out, result.name, source, spec, outcomes);
+  result.summary_json = writeCampaignFiles(options.out, result, spec, outcomes);
   if (!options.db.empty()) storeResults(options.db, options.out, result.name, outcomes);
   for (const campaign::StepOutcome& s : outcomes) {
     result.steps.push_back({s.id, s.title, s.rows, s.files});

@@ -34,7 +34,9 @@ struct Analysis {
   met::Iso230_2Result face_pp, face_np, linear_x, linear_y;
 };
 
-Analysis analyse(const LineData& d, const Eigen::Vector3d& size, const std::string& src) {
+/// The analysis of `d`, with the uncertainty budgets of `ctx.sources`.
+Analysis analyse(const LineData& d, const Eigen::Vector3d& size, const StepContext& ctx) {
+  const std::string& src = ctx.source;
   Analysis a;
   std::vector<met::BodyDiagonalSample> samples;
   for (std::size_t k = 0; k < 4; ++k)
@@ -49,9 +51,9 @@ Analysis analyse(const LineData& d, const Eigen::Vector3d& size, const std::stri
     const double e = std::abs(a.body.diagonals[k].length_error);
     if (k > 0 && e <= a.max_length_error) continue;
     a.max_length_error = e;
-    a.max_length_error_U =
-        met::bodyDiagonalLengthErrorUncertainty(samples, a.body, met::kBodyDiagonals[k], {})
-            .expandedUncertainty();
+    a.max_length_error_U = met::bodyDiagonalLengthErrorUncertainty(
+                               samples, a.body, met::kBodyDiagonals[k], ctx.sources)
+                               .expandedUncertainty();
   }
   a.face_pp = iso230_2(d.runs("face-xy-pp", src));
   a.face_np = iso230_2(d.runs("face-xy-np", src));
@@ -144,7 +146,7 @@ StepOutcome fromFiles(const StepContext& ctx) {
   for (const std::string& p : files.paths)
     out.record.measurements.push_back({std::filesystem::path(p).stem().string(), "laser", p, 0});
   ctx.progress(fmt::format("analyse: {} laser files", files.paths.size()));
-  const Analysis ab = analyse(files.data, diagonalBox(files.data, ctx.source), ctx.source);
+  const Analysis ab = analyse(files.data, diagonalBox(files.data, ctx.source), ctx);
   (void)compensate(ctx, out, files.data, layout, ab);
   const std::pair<const char*, double> figures[] = {
       {"body diagonals, max |length error|", ab.max_length_error},
@@ -152,8 +154,9 @@ StepOutcome fromFiles(const StepContext& ctx) {
       {"Y positioning (ISO 230-2 E)", ab.linear_y.E}};
   for (const auto& [quantity, value] : figures)
     out.rows.push_back({quantity, "mm", value, std::nan(""), std::nullopt, "", "as measured"});
-  const double U[] = {
-      ab.max_length_error_U, iso230_2U(ab.linear_x, "E"), iso230_2U(ab.linear_y, "E")};
+  const double U[] = {ab.max_length_error_U,
+                      iso230_2U(ab.linear_x, "E", ctx.sources),
+                      iso230_2U(ab.linear_y, "E", ctx.sources)};
   for (std::size_t k = 0; k < 3; ++k) out.rows[out.rows.size() - 3 + k].before_U = U[k];
   const met::BodyDiagonalSolution& sb = ab.body.solution;
   out.record.results.push_back({"squareness.xy", "estimate", sb.squareness_xy, "rad"});
@@ -190,7 +193,9 @@ void addRows(StepOutcome& out,
              const LineData& before,
              const Analysis& ab,
              const Analysis& aa,
-             const std::string& src) {
+             const StepContext& ctx) {
+  const std::string& src = ctx.source;
+  const metrology::UncertaintySources& u = ctx.sources;
   const sim::LineSetup& li = before.setup("diag-ppp", src);
   const std::string noise =
       fmt::format("laser {:g} µm + {:g} ppm", li.noise.sigma * 1e3, li.noise.sigma_ppm);
@@ -204,10 +209,10 @@ void addRows(StepOutcome& out,
     out.rows.push_back({quantity, "mm", b, a, std::nullopt, "", noise});
   const std::pair<double, double> U[] = {
       {ab.max_length_error_U, aa.max_length_error_U},
-      {iso230_2U(ab.face_pp, "E"), iso230_2U(aa.face_pp, "E")},
-      {iso230_2U(ab.face_np, "E"), iso230_2U(aa.face_np, "E")},
-      {iso230_2U(ab.linear_x, "E"), iso230_2U(aa.linear_x, "E")},
-      {iso230_2U(ab.linear_y, "E"), iso230_2U(aa.linear_y, "E")}};
+      {iso230_2U(ab.face_pp, "E", u), iso230_2U(aa.face_pp, "E", u)},
+      {iso230_2U(ab.face_np, "E", u), iso230_2U(aa.face_np, "E", u)},
+      {iso230_2U(ab.linear_x, "E", u), iso230_2U(aa.linear_x, "E", u)},
+      {iso230_2U(ab.linear_y, "E", u), iso230_2U(aa.linear_y, "E", u)}};
   for (std::size_t k = 0; k < 5; ++k) {
     SummaryRow& row = out.rows[out.rows.size() - 5 + k];
     std::tie(row.before_U, row.after_U) = U[k];
@@ -283,7 +288,7 @@ StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
   const LineData before{sim::runCampaign(scenario.campaign, seed)};
   writeLineFiles(ctx, out, "measured-before", scenario, seed, before);
   ctx.progress("analyse: squareness from the four body diagonals (ISO 230-6)");
-  const Analysis ab = analyse(before, size, src);
+  const Analysis ab = analyse(before, size, ctx);
 
   const std::shared_ptr<sim::CompensationChain> chain =
       compensate(ctx, out, before, vm->layout(), ab);
@@ -293,8 +298,8 @@ StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
   again.campaign.machine = std::make_shared<sim::CompensatedMachine>(vm, chain);
   const LineData after{sim::runCampaign(again.campaign, remeasureSeed(seed))};
   writeLineFiles(ctx, out, "measured-after", scenario, remeasureSeed(seed), after);
-  const Analysis aa = analyse(after, size, src);
-  addRows(out, before, ab, aa, src);
+  const Analysis aa = analyse(after, size, ctx);
+  addRows(out, before, ab, aa, ctx);
 
   Json sec =
       section(out.id,

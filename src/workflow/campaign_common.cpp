@@ -124,8 +124,10 @@ double expandedU(const std::vector<metrology::UncertaintyBudget>& budgets,
   return std::nan("");
 }
 
-double iso230_2U(const metrology::Iso230_2Result& result, const std::string& quantity) {
-  return expandedU(metrology::iso230_2Uncertainty(result, {}), quantity);
+double iso230_2U(const metrology::Iso230_2Result& result,
+                 const std::string& quantity,
+                 const metrology::UncertaintySources& sources) {
+  return expandedU(metrology::iso230_2Uncertainty(result, sources), quantity);
 }
 
 void meanReadings(const std::vector<sim::LineRun>& runs,
@@ -150,6 +152,7 @@ io::Scenario stepScenario(const StepContext& context, std::uint64_t& seed) {
     spec = (context.base_dir / spec).string();
   io::Scenario scenario = io::loadScenario(spec);
   seed = scenario.seed;
+  std::optional<sim::Environment> environment = context.environment;
   if (context.spec.contains("environment")) {
     const Json& e = context.spec["environment"];
     const auto preset = e.is_string() ? sim::environmentPreset(e.get<std::string>()) : std::nullopt;
@@ -157,7 +160,10 @@ io::Scenario stepScenario(const StepContext& context, std::uint64_t& seed) {
       throw IoError(fmt::format("{}: \"environment\" must be a preset name: {}",
                                 context.source,
                                 fmt::join(sim::environmentPresetNames(), ", ")));
-    scenario.campaign.environment = *preset;
+    if (!environment) environment = preset;  // the campaign's environment wins
+  }
+  if (environment) {
+    scenario.campaign.environment = *environment;
     sim::applyProbeEnvironment(scenario.campaign);
     sim::applyMachineEnvironment(scenario.campaign);
   }
@@ -166,6 +172,7 @@ io::Scenario stepScenario(const StepContext& context, std::uint64_t& seed) {
       throw IoError(fmt::format("{}: \"seed\" must be a non-negative integer", context.source));
     seed = context.spec["seed"].get<std::uint64_t>();
   }
+  if (context.seed) seed = *context.seed;
   // The true machine's unmodelled geometry, drawn from the step's seed for its environment.
   sim::applyGeometryEnvironment(scenario.campaign, seed);
   return scenario;

@@ -219,8 +219,8 @@ void addRows(const StepContext& ctx,
        std::nullopt,
        "12 -> < 0.5 mm (540 mm along x)",
        fmt::format("laser {:g} µm + {:g} ppm", ls.noise.sigma * 1e3, ls.noise.sigma_ppm)});
-  out.rows.back().before_U = iso230_2U(pb, "M");
-  out.rows.back().after_U = iso230_2U(pa, "M");
+  out.rows.back().before_U = iso230_2U(pb, "M", ctx.sources);
+  out.rows.back().after_U = iso230_2U(pa, "M", ctx.sources);
   out.record.results.push_back({"calibration.residual_rms", "after", s.after.rms, "mm"});
 }
 
@@ -274,7 +274,7 @@ StepOutcome runHexapodCalibrationStep(const StepContext& ctx) {
   const TcpErrors eb = tcpErrors(hb, *vm, world_T_tracker);
   const TcpErrors ea = tcpErrors(ha, *vm, world_T_tracker);
   const detail::TcpRowUncertainty tcp_u =
-      detail::tcpRowUncertainty(fitted_model, input.data, s, hb, world_T_tracker);
+      detail::tcpRowUncertainty(fitted_model, input.data, s, hb, world_T_tracker, ctx.sources);
   addRows(ctx, out, hb, eb, ea, before, after, linear, s, tcp_u);
 
   // 6. Report section.

@@ -176,7 +176,10 @@ StepOutcome runHexapodCalibrationFiles(const StepContext& ctx) {
                       "as measured"});
   addHeldOutRows(out, machine, input, held, s, unit);
   out.section = filesSection(out, fit.size(), holdout.size(), machine, s);
-  // The budgets (typical instruments) and the predicted TCP U at the held-out configurations.
+  // The budgets (the campaign's instruments) and the predicted TCP U at the held-out
+  // configurations.
+  workflow::detail::CalibrationUncertaintyRequest request;
+  request.sources = ctx.sources;
   kinematics::HexapodModel model = machine.model;
   model.tool_offset += input.target_offset.value_or(Eigen::Vector3d::Zero());
   const bool has_held = !held.data.poses.empty() || !held.data.points.empty();
@@ -186,7 +189,7 @@ StepOutcome runHexapodCalibrationFiles(const StepContext& ctx) {
           input.data,
           s,
           {},
-          {},
+          request,
           has_held
               ? workflow::detail::checkPoses(
                     cal::withHexapodParameters(model, s.parameters), held.data, s.measurement_frame)

@@ -61,8 +61,10 @@ TcpRowUncertainty tcpRowUncertainty(const kinematics::HexapodModel& model,
                                     const cal::HexapodCalibrationData& data,
                                     const cal::HexapodCalibrationSummary& fit,
                                     const sim::TrackerResult& holdout,
-                                    const geometry::RigidTransform& world_T_tracker) {
+                                    const geometry::RigidTransform& world_T_tracker,
+                                    const metrology::UncertaintySources& sources) {
   workflow::detail::CalibrationUncertaintyRequest request;
+  request.sources = sources;
   // The fit's readings are in the machine frame after the registration: the tracker's a + b·L
   // takes the longest range of the held-out readings (the same set-up).
   request.sources.tracker.range_mm = 0.0;

@@ -40,7 +40,7 @@ void recordSquareness(StepOutcome& out, const kinematics::HybridSquareness& e) {
 }
 
 /// The summary rows of the measured files: the figures as measured, no "after".
-void addMeasuredRows(StepOutcome& out, const Analysis& ab) {
+void addMeasuredRows(StepOutcome& out, const Analysis& ab, const met::UncertaintySources& u) {
   const std::pair<const char*, double> figures[] = {
       {"parallelism Y2-PY, horizontal", std::abs(ab.horizontal.parallelism)},
       {"parallelism Y2-PY, vertical", std::abs(ab.vertical.parallelism)},
@@ -49,7 +49,7 @@ void addMeasuredRows(StepOutcome& out, const Analysis& ab) {
   for (const auto& [quantity, value] : figures)
     out.rows.push_back({quantity, "mm", value, std::nan(""), std::nullopt, "", "as measured"});
   const double U[] = {
-      ab.horizontal_U, ab.vertical_U, iso230_2U(ab.diag_xy, "E"), iso230_2U(ab.diag_xz, "E")};
+      ab.horizontal_U, ab.vertical_U, iso230_2U(ab.diag_xy, "E", u), iso230_2U(ab.diag_xz, "E", u)};
   for (std::size_t k = 0; k < 4; ++k) out.rows[out.rows.size() - 4 + k].before_U = U[k];
 }
 
@@ -73,9 +73,9 @@ StepOutcome fromFiles(const StepContext& ctx) {
   for (const std::string& p : files.paths)
     out.record.measurements.push_back({std::filesystem::path(p).stem().string(), "laser", p, 0});
   ctx.progress(fmt::format("analyse: {} laser files", files.paths.size()));
-  const Analysis ab = detail::analyseHybrid(files.data, ctx.source);
+  const Analysis ab = detail::analyseHybrid(files.data, ctx.source, ctx.sources);
   (void)detail::compensateHybrid(ctx, out, files.data, *machine.hybrid, ab);
-  addMeasuredRows(out, ab);
+  addMeasuredRows(out, ab, ctx.sources);
   const kinematics::HybridSquareness& e = ab.squareness;
   recordSquareness(out, e);
   Json sec = section(out.id,
@@ -134,10 +134,11 @@ void addRows(const StepContext& ctx,
                       0.02,
                       "",
                       li_noise});
-  const std::pair<double, double> U[] = {{ab.horizontal_U, aa.horizontal_U},
-                                         {ab.vertical_U, aa.vertical_U},
-                                         {iso230_2U(ab.diag_xy, "E"), iso230_2U(aa.diag_xy, "E")},
-                                         {iso230_2U(ab.diag_xz, "E"), iso230_2U(aa.diag_xz, "E")}};
+  const std::pair<double, double> U[] = {
+      {ab.horizontal_U, aa.horizontal_U},
+      {ab.vertical_U, aa.vertical_U},
+      {iso230_2U(ab.diag_xy, "E", ctx.sources), iso230_2U(aa.diag_xy, "E", ctx.sources)},
+      {iso230_2U(ab.diag_xz, "E", ctx.sources), iso230_2U(aa.diag_xz, "E", ctx.sources)}};
   for (std::size_t k = 0; k < 4; ++k) {
     SummaryRow& row = out.rows[out.rows.size() - 4 + k];
     std::tie(row.before_U, row.after_U) = U[k];
@@ -271,7 +272,7 @@ StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
   const LineData before{sim::runCampaign(scenario.campaign, seed)};
   writeLineFiles(ctx, out, "measured-before", scenario, seed, before);
   ctx.progress("analyse: parallelism (seed 000 §3.1), face-diagonal squareness (§3.2), eq. 11");
-  const Analysis ab = detail::analyseHybrid(before, src);
+  const Analysis ab = detail::analyseHybrid(before, src, ctx.sources);
 
   const std::shared_ptr<sim::CompensationChain> chain =
       detail::compensateHybrid(ctx, out, before, vm->model(), ab);
@@ -281,7 +282,7 @@ StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
   again.campaign.machine = std::make_shared<sim::CompensatedMachine>(vm, chain);
   const LineData after{sim::runCampaign(again.campaign, remeasureSeed(seed))};
   writeLineFiles(ctx, out, "measured-after", scenario, remeasureSeed(seed), after);
-  const Analysis aa = detail::analyseHybrid(after, src);
+  const Analysis aa = detail::analyseHybrid(after, src, ctx.sources);
 
   addRows(ctx, out, before, ab, aa);
   recordSquareness(out, ab.squareness);

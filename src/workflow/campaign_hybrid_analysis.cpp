@@ -141,22 +141,25 @@ void writeCrossTable(const StepContext& ctx,
 
 namespace {
 
-/// U (k = 2, mm) of a parallelism from its two runs (typical instruments); NaN when a run has
-/// fewer than 3 points.
+/// U (k = 2, mm) of a parallelism from its two runs with the instruments of `sources`; NaN when a
+/// run has fewer than 3 points.
 double parallelismU(const met::ParallelismResult& r,
                     const met::BeamRun& reference,
-                    const met::BeamRun& axis) {
+                    const met::BeamRun& axis,
+                    const met::UncertaintySources& sources) {
   if (reference.positions.size() < 3 || axis.positions.size() < 3) return std::nan("");
   return met::parallelismUncertainty(r.parallelism,
                                      {reference.positions, r.reference_straightness.residuals},
                                      {axis.positions, r.axis_straightness.residuals},
-                                     {})
+                                     sources)
       .expandedUncertainty();
 }
 
 }  // namespace
 
-HybridAnalysis analyseHybrid(const LineData& d, const std::string& src) {
+HybridAnalysis analyseHybrid(const LineData& d,
+                             const std::string& src,
+                             const met::UncertaintySources& sources) {
   HybridAnalysis a;
   const met::BeamRun y2h = beam(d, "straightness-y2-h", -1, src);
   const met::BeamRun pyh = beam(d, "straightness-py-h", 1, src);
@@ -164,8 +167,8 @@ HybridAnalysis analyseHybrid(const LineData& d, const std::string& src) {
   const met::BeamRun pyv = beam(d, "straightness-py-v", 1, src);
   a.horizontal = met::evaluateParallelism(y2h, pyh);
   a.vertical = met::evaluateParallelism(y2v, pyv);
-  a.horizontal_U = parallelismU(a.horizontal, y2h, pyh);
-  a.vertical_U = parallelismU(a.vertical, y2v, pyv);
+  a.horizontal_U = parallelismU(a.horizontal, y2h, pyh, sources);
+  a.vertical_U = parallelismU(a.vertical, y2v, pyv, sources);
   met::FaceDiagonalOptions xy_options;
   xy_options.second_moves_work = true;
   const std::vector<met::FaceDiagonal> xy = {diagonal(d, "diagonal-x2-y2", 0, 1, src)};

@@ -20,15 +20,17 @@ struct HybridAnalysis {
   metrology::ParallelismResult horizontal, vertical;  ///< Y2-PY parallelism (seed 000 §3.1)
   kinematics::HybridSquareness squareness;            ///< the four squareness errors
   metrology::Iso230_2Result diag_xy, diag_xz;         ///< the face diagonals X2-Y2 and X2-PZ
-  /// U (k = 2, mm) of |parallelism| (metrology::parallelismUncertainty, typical instruments).
+  /// U (k = 2, mm) of |parallelism| (metrology::parallelismUncertainty).
   double horizontal_U = std::numeric_limits<double>::quiet_NaN();
   double vertical_U = std::numeric_limits<double>::quiet_NaN();
 };
 
-/// Parallelism from the straightness runs, szX2 and syP from the face diagonals with the
-/// positioning and straightness PDGEs removed, sxP and szP from the slope differences. Throws
-/// pkm::IoError naming `source` when a measurement is missing.
-[[nodiscard]] HybridAnalysis analyseHybrid(const LineData& data, const std::string& source);
+/// Parallelism from the straightness runs (its U with the instruments of `sources`), szX2 and syP
+/// from the face diagonals with the positioning and straightness PDGEs removed, sxP and szP from
+/// the slope differences. Throws pkm::IoError naming `source` when a measurement is missing.
+[[nodiscard]] HybridAnalysis analyseHybrid(const LineData& data,
+                                           const std::string& source,
+                                           const metrology::UncertaintySources& sources);
 
 /// Writes the compensation of `analysis` (base frame + X2 correction, the X2→yp cross table, the
 /// axis tables of X2, Y2 and PZ) and returns it as the controller's command compensation.

@@ -130,7 +130,7 @@ struct Analysis {
   std::size_t offset_touches = 0;
   met::ProbeOffsetFit fit;
   /// U (k = 2, mm) bounding any component of the offset (the larger of U(offset_x), U(offset_y),
-  /// metrology::probeOffsetUncertainty with the typical probe).
+  /// metrology::probeOffsetUncertainty with the campaign's probe).
   double offset_U = std::nan("");
   double radius = 0.0;  ///< effective stylus radius
   Roundness before, after;
@@ -145,7 +145,7 @@ Analysis analyse(const StepContext& ctx, StepOutcome& out, const Touches& t) {
   Analysis a;
   a.offset_touches = offset_touches.size();
   a.fit = met::fitProbeOffset(offset_touches);
-  const auto budgets = met::probeOffsetUncertainty(a.fit, offset_touches, {});
+  const auto budgets = met::probeOffsetUncertainty(a.fit, offset_touches, ctx.sources);
   a.offset_U = std::max(expandedU(budgets, "offset_x"), expandedU(budgets, "offset_y"));
   a.radius = met::effectiveStylusRadius(t.setup.ring_diameter, a.fit.ball_path_radius);
   a.before = roundness(t.setup, t.before, a.fit.offset, a.radius, false);
@@ -160,16 +160,17 @@ Analysis analyse(const StepContext& ctx, StepOutcome& out, const Touches& t) {
   return a;
 }
 
-/// U (k = 2, µm) of an LSC roundness (metrology::circleUncertainty, typical probe): the probe's
-/// repeatability and form at the two extreme points; NaN with fewer than 4 points.
-double roundnessU(const met::CircleFit& lsc) {
+/// U (k = 2, µm) of an LSC roundness (metrology::circleUncertainty with the probe of `sources`):
+/// the probe's repeatability and form at the two extreme points; NaN with fewer than 4 points.
+double roundnessU(const met::CircleFit& lsc, const met::UncertaintySources& sources) {
   if (lsc.residuals.size() < 4) return std::nan("");
-  const auto budgets = met::circleUncertainty(lsc, met::MinZoneCircle{}, {});
+  const auto budgets = met::circleUncertainty(lsc, met::MinZoneCircle{}, sources);
   return expandedU(budgets, "roundness_lsc") * 1e3;
 }
 
 /// The summary rows (the offset error only when `simulated`) and the fitted offset for the store.
-void addRows(StepOutcome& out, const Touches& t, const Analysis& a, bool simulated) {
+void addRows(
+    const StepContext& ctx, StepOutcome& out, const Touches& t, const Analysis& a, bool simulated) {
   const double sigma = t.setup.noise.sigma;
   // Noise-only roundness: the peak-to-valley of N normal trigger errors is about 2·Φ⁻¹(1 −
   // 1/(2N))·σ (≈ 5.3σ for 180 touches); the target allows 6σ.
@@ -187,8 +188,8 @@ void addRows(StepOutcome& out, const Touches& t, const Analysis& a, bool simulat
                       target,
                       "65 % lower",
                       noise});
-  out.rows.back().before_U = roundnessU(a.before.fit);
-  out.rows.back().after_U = roundnessU(a.after.fit);
+  out.rows.back().before_U = roundnessU(a.before.fit, ctx.sources);
+  out.rows.back().after_U = roundnessU(a.after.fit, ctx.sources);
   if (simulated)
     out.rows.push_back({"stylus offset error |d_fit - d_true|",
                         "µm",
@@ -250,7 +251,7 @@ StepOutcome runProbeOffsetStep(const StepContext& ctx) {
   const bool simulated = !ctx.spec.contains("data");
   const Touches touches = simulated ? simulatedTouches(ctx, out) : measuredTouches(ctx, out);
   const Analysis a = analyse(ctx, out, touches);
-  addRows(out, touches, a, simulated);
+  addRows(ctx, out, touches, a, simulated);
   out.section = probeSection(out, touches, a, simulated);
   return out;
 }

@@ -25,6 +25,7 @@
 #include "pkm/io/text_table.hpp"
 #include "pkm/metrology/iso230_2.hpp"
 #include "pkm/metrology/uncertainty_budget.hpp"
+#include "pkm/metrology/uncertainty_sources.hpp"
 #include "pkm/simulation/campaign.hpp"
 #include "pkm/simulation/touch_probe.hpp"
 #include "pkm/workflow/campaign.hpp"
@@ -54,6 +55,12 @@ struct StepContext {
   std::filesystem::path out;       ///< the campaign's output directory
   std::filesystem::path dir;       ///< out / id: the step's own directory
   std::filesystem::path base_dir;  ///< the campaign file's directory (relative data paths)
+  /// The campaign-level environment replacing the step's and its scenario's (stepScenario).
+  std::optional<simulation::Environment> environment;
+  /// The campaign-level seed replacing the step's and its scenario's (stepScenario).
+  std::optional<std::uint64_t> seed;
+  /// The instruments and environment of the step's uncertainty budgets.
+  metrology::UncertaintySources sources;
   /// Reports one progress line (and checks for cancellation).
   std::function<void(const std::string&)> progress;
   /// Writes `text` to dir / `name` (creating folders) and records it in `outcome.files`.
@@ -98,8 +105,9 @@ Json section(const std::string& id, const std::string& title, std::vector<std::s
 /// or null.
 Json significantJson(const SummaryRow& row);
 /// The report's last section: every summary row with U (k = 2) before and after and the
-/// improvement, or "not significant" (docs/campaign.md, "Uncertainty").
-Json uncertaintySection(const std::vector<StepOutcome>& outcomes);
+/// improvement, or "not significant" (docs/campaign.md, "Uncertainty"); `sources_file` names the
+/// uncertainty sources given ("": the typical values).
+Json uncertaintySection(const std::vector<StepOutcome>& outcomes, const std::string& sources_file);
 
 }  // namespace pkm::workflow::campaign
 
@@ -132,10 +140,12 @@ void writeLineFiles(const StepContext& context,
 [[nodiscard]] double expandedU(const std::vector<metrology::UncertaintyBudget>& budgets,
                                const std::string& quantity);
 
-/// U (k = 2, mm) of ISO 230-2's `quantity` ("E", "M", "A", "B", "R") of `result` with the typical
-/// instrument and environment (metrology::iso230_2Uncertainty); NaN for unidirectional data.
+/// U (k = 2, mm) of ISO 230-2's `quantity` ("E", "M", "A", "B", "R") of `result` with the
+/// instrument and environment `sources` (metrology::iso230_2Uncertainty); NaN for unidirectional
+/// data.
 [[nodiscard]] double iso230_2U(const metrology::Iso230_2Result& result,
-                               const std::string& quantity);
+                               const std::string& quantity,
+                               const metrology::UncertaintySources& sources);
 
 /// Per target: (target, mean over runs and both directions of the reading), sorted by target.
 void meanReadings(const std::vector<simulation::LineRun>& runs,
@@ -197,8 +207,9 @@ template <class Machine>
 }
 
 /// The scenario named by the step's "scenario" (a file relative to the campaign's folder, or a
-/// built-in name) and the seed ("seed", default the scenario's); the step's "environment" (a preset
-/// name, simulation::environmentPreset) replaces the scenario's environment.
+/// built-in name) and the seed ("seed", default the scenario's; the campaign's seed, when set,
+/// replaces both); the step's "environment" (a preset name, simulation::environmentPreset)
+/// replaces the scenario's environment, and the campaign's environment, when set, replaces both.
 [[nodiscard]] io::Scenario stepScenario(const StepContext& context, std::uint64_t& seed);
 
 }  // namespace pkm::workflow::campaign

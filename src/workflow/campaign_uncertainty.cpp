@@ -39,15 +39,21 @@ Json significantJson(const SummaryRow& row) {
   return s ? Json(*s) : Json(nullptr);
 }
 
-Json uncertaintySection(const std::vector<StepOutcome>& outcomes) {
+Json uncertaintySection(const std::vector<StepOutcome>& outcomes, const std::string& sources_file) {
+  const std::string sources =
+      sources_file.empty()
+          ? std::string("the typical instruments and environment of docs/analysis.md")
+          : fmt::format("the instruments and environment of {}", sources_file);
   Json sec = section(
       "uncertainty",
       "Measurement uncertainty of the summary figures",
-      {"Expanded uncertainties U (k = 2, GUM; ISO/TR 230-9) with the typical instruments and "
-       "environment of docs/analysis.md. An improvement smaller than the combined uncertainty "
-       "sqrt(U_before^2 + U_after^2) is not significant. A TCP error's U before calibration is "
-       "the tracker's reading and registration; after calibration it also carries the "
-       "calibration's predicted TCP uncertainty (the calibration step's budget table)."});
+      {fmt::format(
+          "Expanded uncertainties U (k = 2, GUM; ISO/TR 230-9) with {}. An improvement smaller "
+          "than the combined uncertainty sqrt(U_before^2 + U_after^2) is not significant. A TCP "
+          "error's U before calibration is the tracker's reading and registration; after "
+          "calibration it also carries the calibration's predicted TCP uncertainty (the "
+          "calibration step's budget table).",
+          sources)});
   Json t = table("Before and after with U (k = 2)",
                  {"step",
                   "quantity",

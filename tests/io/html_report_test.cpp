@@ -149,6 +149,22 @@ TEST(HtmlReport, OptionalPartsMayBeAbsent) {
   EXPECT_THAT(renderHtmlReport(doc.dump()), HasSubstr("<p class=\"subtitle\">sub</p>"));
 }
 
+TEST(HtmlReport, HeaderNotesAndBandsAreRendered) {
+  json doc = minimal();
+  doc["notes"] = {"Environment: <realistic>", "Seed 7"};
+  json& series = doc["sections"][0]["plots"][0]["series"][0];
+  series["lower"] = {0.9, 1.8, 2.7};
+  series["upper"] = {1.1, 2.2, 3.3};
+  const std::string html = renderHtmlReport(doc.dump());
+  const std::size_t header_end = html.find("</header>");
+  EXPECT_LT(html.find("<p class=\"subtitle note\">Environment: &lt;realistic&gt;</p>"), header_end);
+  EXPECT_LT(html.find("<p class=\"subtitle note\">Seed 7</p>"), header_end);
+  // The band goes to render.js with its series.
+  const json embedded = json::parse(embeddedData(html));
+  EXPECT_EQ(embedded["plots"][0]["series"][0]["upper"], series["upper"]);
+  EXPECT_THAT(html, HasSubstr("bands.push("));  // render.js draws it
+}
+
 struct BadCase {
   const char* name;
   std::function<void(json&)> mutate;
@@ -216,6 +232,30 @@ TEST(HtmlReport, InvalidDocumentsNameTheJsonPath) {
          d["sections"][0]["plots"][0]["series"][0]["value"] = {1.0};
        },
        "sections[0].plots[0].series[0]: value has 1 entries but x has 3"},
+      {"notes",
+       [](json& d) {
+         d["notes"] = {"a", 1};
+       },
+       "notes[1]: expected a string"},
+      {"band length",
+       [](json& d) {
+         json& s = d["sections"][0]["plots"][0]["series"][0];
+         s["lower"] = {0.0, 1.0, 2.0};
+         s["upper"] = {1.0, 2.0};
+       },
+       "sections[0].plots[0].series[0]: upper has 2 values but y has 3"},
+      {"band half",
+       [](json& d) {
+         d["sections"][0]["plots"][0]["series"][0]["lower"] = {0.0, 1.0, 2.0};
+       },
+       "sections[0].plots[0].series[0]: missing key 'upper'"},
+      {"band kind",
+       [](json& d) {
+         d["sections"][0]["plots"][0]["kind"] = "scatter";
+         d["sections"][0]["plots"][0]["series"][0]["lower"] = {0.0, 1.0, 2.0};
+         d["sections"][0]["plots"][0]["series"][0]["upper"] = {0.0, 1.0, 2.0};
+       },
+       "'lower' and 'upper' (a band) belong to line plots only"},
       {"table",
        [](json& d) {
          d["sections"][0]["tables"] = {{{"title", "t"}}};

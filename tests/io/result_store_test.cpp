@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <thread>
 
 #include "pkm/core/error.hpp"
@@ -116,6 +117,51 @@ TEST_F(ResultStoreTest, AFileThatIsNotADatabaseIsAnError) {
   std::string first;
   std::getline(in, first);
   EXPECT_EQ(first, "these are my notes, not a database");
+}
+
+TEST_F(ResultStoreTest, StoresTheExpandedUncertaintyOrNull) {
+  ResultStore store(db());
+  CampaignRecord c = campaign("hx", 13.6, 0.0094);
+  c.results[0].U = 0.04;  // before ± 0.04 mm; the other two have none (NaN -> NULL)
+  (void)store.store(c);
+  const auto rows = store.history("hx");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].U, 0.04);
+  EXPECT_TRUE(std::isnan(rows[1].U));
+  EXPECT_TRUE(std::isnan(rows[2].U));
+  CampaignRecord bad = campaign("hx", 1.0, 0.5);
+  bad.results[1].U = -1e-3;
+  EXPECT_THROW((void)store.store(bad), InvalidArgument);
+  bad.results[1].U = std::numeric_limits<double>::infinity();
+  EXPECT_THROW((void)store.store(bad), InvalidArgument);
+  EXPECT_EQ(store.history("hx").size(), 3u);  // nothing of the bad campaigns stored
+}
+
+/// A store written by the pkm of schema 1 (tests/data/store/README.md): opening it migrates it in
+/// place; its results keep their values with no U, new campaigns store U beside them.
+TEST_F(ResultStoreTest, AStoreOfSchemaOneIsMigrated) {
+  const std::filesystem::path old = dir_ / "old.db";
+  std::filesystem::copy_file(std::filesystem::path(PKM_SOURCE_DIR) / "tests/data/store/schema1.db",
+                             old);
+  {
+    ResultStore store(old.string());
+    EXPECT_TRUE(store.integrityOk());
+    const auto rows = store.history("pkm-hx1200");
+    ASSERT_EQ(rows.size(), 17u);
+    EXPECT_EQ(rows[0].quantity, "residuals.rms");
+    EXPECT_EQ(rows[0].stage, "before");
+    EXPECT_NEAR(rows[0].value, 29.918307848938056, 1e-12);
+    for (const HistoryRow& r : rows) EXPECT_TRUE(std::isnan(r.U)) << r.quantity;
+    CampaignRecord c = campaign("pkm-hx1200", 0.02, 0.008);
+    c.results[1].U = 0.003;
+    EXPECT_EQ(store.store(c), 2);
+  }
+  ResultStore again(old.string());  // already migrated: opens as it is
+  const auto rows = again.history("pkm-hx1200", std::string("holdout.rms"));
+  ASSERT_GE(rows.size(), 2u);
+  EXPECT_EQ(rows.back().value, 0.008);
+  EXPECT_EQ(rows.back().U, 0.003);
+  EXPECT_TRUE(again.integrityOk());
 }
 
 }  // namespace

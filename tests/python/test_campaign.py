@@ -109,3 +109,21 @@ def test_campaigns_list_the_cli(run_cli):
     lines = run_cli(["campaign", "list"]).stdout.splitlines()
     assert [f"{c['name']}\t{c['steps']} steps\t{c['description']}"
             for c in pkm.campaigns()] == lines
+
+
+def test_campaign_settings_equal_cli(run_cli, tmp_path, campaign_file):
+    """environment, uncertainty and seed as `--environment`, `--uncertainty`, `--seed`."""
+    sources = tmp_path / "sources.json"
+    sources.write_text('{"probe": {"form_2d_mm": 0.001}}')
+    p = run_cli(["campaign", "run", str(campaign_file), "--out", str(tmp_path / "cli"), "--no-db",
+                 "--environment", "realistic", "--uncertainty", str(sources), "--seed", "7"],
+                check=False)
+    assert p.returncode in (0, 1), p.stderr  # 1: a target missed in the realistic environment
+    cli = json.loads((tmp_path / "cli" / "summary.json").read_text())
+    s = pkm.run_campaign(campaign_file, out=tmp_path / "py", environment="realistic",
+                         uncertainty=sources, seed=7)
+    assert s.to_dict() == cli
+    assert s.environment == {"source": "realistic", "name": "realistic"}
+    assert s.uncertainty == {"source": str(sources)} and s.seed == 7
+    with pytest.raises(ValueError, match="not an environment preset"):
+        pkm.run_campaign(campaign_file, out=tmp_path / "e", environment="stormy")

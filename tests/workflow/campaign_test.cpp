@@ -11,10 +11,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "pkm/core/error.hpp"
+#include "pkm/metrology/uncertainty_sources.hpp"
+#include "pkm/simulation/environment.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -129,6 +132,88 @@ TEST_F(CampaignWorkflow, ACampaignGivenAsTextRunsAsItsFile) {
   } catch (const IoError& e) {
     EXPECT_THAT(e.what(), HasSubstr("mine"));
   }
+}
+
+/// The after-roundness row of a probe campaign's result.
+const CampaignRow& roundnessRow(const CampaignResult& r) {
+  for (const CampaignRow& row : r.steps.at(0).rows)
+    if (row.quantity.find("roundness") != std::string::npos) return row;
+  throw std::runtime_error("no roundness row");
+}
+
+TEST_F(CampaignWorkflow, TheCampaignEnvironmentReplacesEveryStepsOwn) {
+  CampaignOptions ideal;
+  ideal.campaign = probeCampaign();
+  ideal.out = dir_ / "ideal";
+  const CampaignResult a = runCampaign(ideal);
+  // The realistic environment's probe lobing (±0.25 µm, 3 lobes) shows in the roundness after
+  // compensation (peak-to-valley 2a = 0.5 µm on top of the trigger noise).
+  CampaignOptions realistic = ideal;
+  realistic.out = dir_ / "realistic";
+  realistic.environment = simulation::environmentPreset("realistic");
+  realistic.environment_source = "realistic";
+  const CampaignResult b = runCampaign(realistic);
+  EXPECT_GT(roundnessRow(b).after, roundnessRow(a).after + 0.2);
+  EXPECT_EQ(b.environment_source, "realistic");
+  EXPECT_EQ(b.environment_name, "realistic");
+  EXPECT_THAT(b.summary_json, HasSubstr("\"environment\": {\n    \"source\": \"realistic\""));
+  EXPECT_THAT(a.summary_json, ::testing::Not(HasSubstr("\"environment\"")));
+  std::ifstream report(realistic.out / "report-data.json");
+  const std::string data{std::istreambuf_iterator<char>(report), {}};
+  EXPECT_THAT(data, HasSubstr("Environment of every simulated step: realistic (realistic)"));
+  // A step's own "environment" gives way to the campaign's: ideal over a realistic step is the
+  // ideal run exactly (the same seed).
+  CampaignOptions over = ideal;
+  over.campaign = write("probe-realistic.json",
+                        R"({"schema": "pkm.campaign/1", "name": "probe", "steps": [{"id": "probe",
+ "kind": "probe-offset", "scenario": "seed003-probe-offset", "environment": "realistic"}]})");
+  over.out = dir_ / "over";
+  over.environment = simulation::environmentPreset("ideal");
+  const CampaignResult c = runCampaign(over);
+  EXPECT_EQ(roundnessRow(c).before, roundnessRow(a).before);
+  EXPECT_EQ(roundnessRow(c).after, roundnessRow(a).after);
+  // An invalid environment is refused before anything runs.
+  CampaignOptions bad = ideal;
+  bad.out = dir_ / "bad";
+  bad.environment = simulation::environmentPreset("ideal");
+  bad.environment->duration_h = -1;
+  EXPECT_THROW((void)runCampaign(bad), InvalidArgument);
+  EXPECT_FALSE(fs::exists(bad.out));
+}
+
+TEST_F(CampaignWorkflow, TheCampaignSeedAndUncertaintySourcesApplyToEveryStep) {
+  CampaignOptions base;
+  base.campaign = probeCampaign();
+  base.out = dir_ / "base";
+  const CampaignResult a = runCampaign(base);
+  // --seed 7 is the step's "seed": 7.
+  CampaignOptions seeded = base;
+  seeded.out = dir_ / "seeded";
+  seeded.seed = 7;
+  const CampaignResult b = runCampaign(seeded);
+  CampaignOptions own = base;
+  own.campaign = write("probe-7.json",
+                       R"({"schema": "pkm.campaign/1", "name": "probe", "steps": [{"id": "probe",
+ "kind": "probe-offset", "scenario": "seed003-probe-offset", "seed": 7}]})");
+  own.out = dir_ / "own";
+  const CampaignResult c = runCampaign(own);
+  EXPECT_NE(roundnessRow(b).after, roundnessRow(a).after);
+  EXPECT_EQ(roundnessRow(b).after, roundnessRow(c).after);
+  EXPECT_THAT(b.summary_json, HasSubstr("\"seed\": 7"));
+  // A probe with 4 times the 2D form error: the roundness U (form at the two extreme points) grows,
+  // the measured values stay.
+  CampaignOptions coarse = base;
+  coarse.out = dir_ / "coarse";
+  coarse.uncertainty = metrology::UncertaintySources{};
+  coarse.uncertainty->probe.form_2d_mm *= 4.0;
+  coarse.uncertainty_source = "coarse-probe.json";
+  const CampaignResult d = runCampaign(coarse);
+  EXPECT_EQ(roundnessRow(d).after, roundnessRow(a).after);
+  EXPECT_GT(roundnessRow(d).after_U, 1.5 * roundnessRow(a).after_U);
+  EXPECT_THAT(d.summary_json, HasSubstr("coarse-probe.json"));
+  std::ifstream report(coarse.out / "report-data.json");
+  const std::string data{std::istreambuf_iterator<char>(report), {}};
+  EXPECT_THAT(data, HasSubstr("with the instruments and environment of coarse-probe.json"));
 }
 
 TEST_F(CampaignWorkflow, CancellationStopsTheRunBeforeTheReport) {

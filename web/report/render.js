@@ -50,9 +50,11 @@
     ];
   }
 
-  // line: x ascending; series with different x are joined on the union of x (gaps spanned).
+  // line: x ascending; series with different x are joined on the union of x (gaps spanned). A
+  // series with "lower" and "upper" gets a shaded band between them (e.g. value -/+ U), drawn as two
+  // thin dashed series after the plain ones.
   function linePlot(plot, el) {
-    const data = uPlot.join(plot.series.map((s) => [s.x, s.y]));
+    const columns = plot.series.map((s) => [s.x, s.y]);
     const series = [{ label: plot.x_label || "x" }].concat(
       plot.series.map((s, i) => ({
         label: s.label,
@@ -62,8 +64,19 @@
         points: { show: true, size: 6, fill: colour(i) },
       }))
     );
+    const bands = [];
+    plot.series.forEach((s, i) => {
+      if (!Array.isArray(s.lower) || !Array.isArray(s.upper)) return;
+      const edge = (label) => ({ label, stroke: colour(i), width: 1, dash: [4, 4], spanGaps: true,
+        points: { show: false } });
+      columns.push([s.x, s.upper], [s.x, s.lower]);
+      series.push(edge(`${s.label} upper`), edge(`${s.label} lower`));
+      bands.push({ series: [series.length - 2, series.length - 1], fill: `${colour(i)}33` });
+    });
+    const data = uPlot.join(columns);
     const opts = { width: chartWidth(el), height: HEIGHT, scales: { x: { time: false } },
       axes: axes(plot), series };
+    if (bands.length > 0) opts.bands = bands;
     return new uPlot(opts, data, el);
   }
 

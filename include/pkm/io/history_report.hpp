@@ -11,11 +11,12 @@
 namespace pkm::io {
 
 /// The rows as a table with a header line: campaign, time, campaign name, quantity, stage,
-/// value (6 significant digits), unit, in aligned columns.
+/// "value ± U" (6 and 2 significant digits; the value alone where there is no U), unit, in
+/// aligned columns.
 [[nodiscard]] std::string historyText(const std::vector<HistoryRow>& rows);
 
 /// The history as one JSON object (two-space indent, closing newline): machine, db and rows
-/// (campaign, time, campaign_name, quantity, stage, value, unit).
+/// (campaign, time, campaign_name, quantity, stage, value, U (k = 2; null when none), unit).
 [[nodiscard]] std::string historyJson(const std::string& machine,
                                       const std::string& db,
                                       const std::vector<HistoryRow>& rows);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -28,6 +29,9 @@ struct ResultRecord {
   std::string stage;     ///< "before", "after", "estimate", ...
   double value = 0.0;
   std::string unit;  ///< "mm", "rad", ...
+  /// Expanded uncertainty of `value` (k = 2, GUM), in `unit`; NaN when it has none (stored as
+  /// NULL).
+  double U = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// A compensation a campaign wrote (the controller file's text).
@@ -56,14 +60,19 @@ struct HistoryRow {
   std::string campaign_name;
   std::string quantity, stage, unit;
   double value = 0.0;
+  /// Expanded uncertainty (k = 2) of `value`, in `unit`; NaN when none was stored (NULL, and every
+  /// row written by a schema-1 store).
+  double U = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// A connection to a result store. Not copyable; one per thread.
 class ResultStore {
  public:
   /// Opens (creating when absent) the database at `path` with the schema (docs/formats.md),
-  /// write-ahead journal and a `busy_timeout_ms` wait for other writers. Throws pkm::IoError
-  /// "PATH: message" when it cannot be opened or is not a pkm result store.
+  /// write-ahead journal and a `busy_timeout_ms` wait for other writers. A store of schema 1 (no
+  /// uncertainty column) is migrated to schema 2 in place: its results keep their values and get
+  /// a NULL U. Throws pkm::IoError "PATH: message" when it cannot be opened, is not a pkm result
+  /// store or has a newer schema.
   explicit ResultStore(const std::string& path, int busy_timeout_ms = 30000);
   ~ResultStore();
   ResultStore(const ResultStore&) = delete;
@@ -71,7 +80,8 @@ class ResultStore {
 
   /// Stores a campaign (the machine is created on first use) in one transaction; returns its id.
   /// Throws pkm::IoError on a database error (nothing of the campaign is stored then) and
-  /// pkm::InvalidArgument for an empty machine or campaign name or a non-finite result.
+  /// pkm::InvalidArgument for an empty machine or campaign name, a non-finite result or a negative
+  /// or infinite U (NaN U is stored as NULL).
   std::int64_t store(const CampaignRecord& campaign);
 
   /// The machine's results in campaign order (then insertion order), optionally of one quantity.

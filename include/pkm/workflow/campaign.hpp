@@ -7,12 +7,15 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "pkm/metrology/uncertainty_sources.hpp"
+#include "pkm/simulation/environment.hpp"
 #include "pkm/workflow/progress.hpp"
 
 namespace pkm::workflow {
@@ -59,12 +62,32 @@ struct CampaignOptions {
   /// instead of reading `campaign` when not empty; `campaign` then names it in messages and in
   /// summary.json's "source", and relative file names in it are taken from the current directory.
   std::string campaign_text;
-  /// Throws pkm::IoError "give --out DIR" when `out` is empty.
+  /// The environment of every simulated step, replacing the step's "environment" and its
+  /// scenario's (docs/simulation-errors.md); nullopt: each step's own. Steps on measured files
+  /// have none.
+  std::optional<simulation::Environment> environment;
+  /// How `environment` was given (a preset name or a file), for summary.json and the report.
+  std::string environment_source;
+  /// The instruments and environment of every step's uncertainty budgets (the U of the summary
+  /// rows, docs/analysis.md); nullopt: the typical datasheet values.
+  std::optional<metrology::UncertaintySources> uncertainty;
+  /// How `uncertainty` was given (its file), for summary.json and the report.
+  std::string uncertainty_source;
+  /// The random seed of every simulated step, replacing the step's "seed" and its scenario's;
+  /// nullopt: each step's own.
+  std::optional<std::uint64_t> seed;
+  /// Throws pkm::IoError "give --out DIR" when `out` is empty, pkm::InvalidArgument for an
+  /// environment or uncertainty sources that are not valid (naming the reason).
   void validate() const;
 };
 
 /// What a campaign run produced.
 struct CampaignResult {
+  /// The campaign-level settings in effect, as recorded in summary.json: the environment's source
+  /// and name ("" when each step keeps its own), the uncertainty sources' file ("" for the typical
+  /// values), the seed (nullopt when each step keeps its own).
+  std::string environment_source, environment_name, uncertainty_source;
+  std::optional<std::uint64_t> seed;
   std::string name;         ///< the campaign's "name"
   std::string source;       ///< the campaign file, or "builtin:NAME"
   std::string description;  ///< the campaign's "description"

@@ -4,6 +4,7 @@
 //
 //   node report_browser_test.mjs REPORT.html
 //   node report_browser_test.mjs --pkm PKM_BINARY --data DATA.json   (renders it first)
+//   ... --screenshot PAGE.png   (also saves a full-page screenshot, to look at the page)
 //
 // Exit codes: 0 pass, 1 fail, 77 skipped (no chromium or no web/report/node_modules).
 import { spawnSync } from "node:child_process";
@@ -20,15 +21,17 @@ const MIN_DATA_PIXELS = 100;
 const SATURATION = 60; // max(r,g,b) - min(r,g,b) of a data pixel
 
 function usage() {
-  console.error("usage: report_browser_test.mjs REPORT.html | --pkm PKM --data DATA.json");
+  console.error(
+    "usage: report_browser_test.mjs REPORT.html | --pkm PKM --data DATA.json [--screenshot PNG]");
   process.exit(1);
 }
 
 function parseArgs(argv) {
-  const a = { report: null, pkm: null, data: null };
+  const a = { report: null, pkm: null, data: null, screenshot: null };
   for (let i = 0; i < argv.length; i++) {
     if (argv[i] === "--pkm") a.pkm = argv[++i];
     else if (argv[i] === "--data") a.data = argv[++i];
+    else if (argv[i] === "--screenshot") a.screenshot = argv[++i];
     else if (!a.report) a.report = argv[i];
     else usage();
   }
@@ -119,6 +122,7 @@ async function main() {
       if ((await over.count()) === 1) await over.hover({ timeout: 5000 }).catch(() => {});
     }
     await page.waitForTimeout(100);
+    if (args.screenshot) await page.screenshot({ path: args.screenshot, fullPage: true });
     for (const p of state.plots)
       console.log(`plot ${p.id} (${p.kind}): ${Math.round(p.width)}x${Math.round(p.height)} px, ` +
         `${p.inked} data-coloured canvas pixels`);
