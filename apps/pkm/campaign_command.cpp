@@ -88,6 +88,25 @@ std::string uncertaintyTable(const workflow::CampaignResult& result) {
   return table;
 }
 
+/// Per row with an after-value and its U: whether the after-value lies within U (then the
+/// measurement limits it) or beyond (the remainder is error the compensation's models do not
+/// represent), and the largest contributors to U.
+std::string limitTable(const workflow::CampaignResult& result) {
+  std::string table = "\nwhat limits the after-values (k = 2):\n";
+  for (const workflow::CampaignStepResult& s : result.steps)
+    for (const workflow::CampaignRow& r : s.rows) {
+      if (!std::isfinite(r.after) || !std::isfinite(r.after_U)) continue;
+      const double beyond = std::abs(r.after) - r.after_U;
+      table += fmt::format("{:<10} {:<52} ", s.id, r.quantity);
+      table += beyond > 0.0
+                   ? fmt::format("{:.2g} {} beyond U: unmodelled remainder", beyond, r.unit)
+                   : std::string("within U: the measurement");
+      if (!r.after_limit.empty()) table += fmt::format("; U from {}", r.after_limit);
+      table += "\n";
+    }
+  return table;
+}
+
 /// Runs the campaign; returns false when a target was missed.
 bool runCampaign(RunArgs a) {
   a.options.out = a.out;
@@ -109,6 +128,7 @@ bool runCampaign(RunArgs a) {
     fmt::print("uncertainty budgets: instruments and environment of {}\n", r.uncertainty_source);
   fmt::print("{}", summaryTable(r));
   fmt::print("{}", uncertaintyTable(r));
+  fmt::print("{}", limitTable(r));
   fmt::print("\n{} in {:.2f} s; report: {}\n",
              r.targets == 0 ? "no targets (nothing measured after compensation)"
              : r.all_pass   ? fmt::format("all targets met ({})", r.targets)

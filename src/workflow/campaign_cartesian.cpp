@@ -217,6 +217,11 @@ void addRows(StepOutcome& out,
     SummaryRow& row = out.rows[out.rows.size() - 5 + k];
     std::tie(row.before_U, row.after_U) = U[k];
   }
+  const std::size_t first = out.rows.size() - 5;
+  setIso230_2AfterU(out.rows[first + 1], aa.face_pp, "E", u);
+  setIso230_2AfterU(out.rows[first + 2], aa.face_np, "E", u);
+  setIso230_2AfterU(out.rows[first + 3], aa.linear_x, "E", u);
+  setIso230_2AfterU(out.rows[first + 4], aa.linear_y, "E", u);
   const met::BodyDiagonalSolution& sb = ab.body.solution;
   out.record.results.push_back({"squareness.xy", "estimate", sb.squareness_xy, "rad"});
   out.record.results.push_back({"squareness.xz", "estimate", sb.squareness_xz, "rad"});

@@ -2,9 +2,12 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <utility>
+#include <vector>
 
 #include "campaign_compensation.hpp"
 #include "campaign_steps.hpp"
@@ -122,6 +125,41 @@ double expandedU(const std::vector<metrology::UncertaintyBudget>& budgets,
   for (const metrology::UncertaintyBudget& b : budgets)
     if (b.quantity == quantity) return b.expandedUncertainty();
   return std::nan("");
+}
+
+std::string largestContributors(const metrology::UncertaintyBudget& budget) {
+  double total = 0.0;
+  std::vector<std::pair<double, std::string>> shares;
+  for (const metrology::UncertaintyContributor& c : budget.contributors) {
+    const double v = c.contribution() * c.contribution();
+    total += v;
+    shares.emplace_back(v, c.name);
+  }
+  if (!(total > 0.0)) return {};
+  std::sort(
+      shares.begin(), shares.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::string out;
+  for (std::size_t k = 0; k < std::min<std::size_t>(2, shares.size()); ++k)
+    out += fmt::format(
+        "{}{} {:.0f} %", k == 0 ? "" : ", ", shares[k].second, 100.0 * shares[k].first / total);
+  return out;
+}
+
+std::string largestContributors(const std::vector<metrology::UncertaintyBudget>& budgets,
+                                const std::string& quantity) {
+  for (const metrology::UncertaintyBudget& b : budgets)
+    if (b.quantity == quantity) return largestContributors(b);
+  return {};
+}
+
+void setIso230_2AfterU(SummaryRow& row,
+                       const metrology::Iso230_2Result& after,
+                       const std::string& quantity,
+                       const metrology::UncertaintySources& sources) {
+  const std::vector<metrology::UncertaintyBudget> b =
+      metrology::iso230_2Uncertainty(after, sources);
+  row.after_U = expandedU(b, quantity);
+  row.after_limit = largestContributors(b, quantity);
 }
 
 double iso230_2U(const metrology::Iso230_2Result& result,

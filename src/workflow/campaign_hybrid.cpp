@@ -98,9 +98,13 @@ StepOutcome fromFiles(const StepContext& ctx) {
 /// The summary rows of the simulated step: before and after compensation.
 void addRows(const StepContext& ctx,
              StepOutcome& out,
+             const io::Scenario& scenario,
              const LineData& before,
              const Analysis& ab,
              const Analysis& aa) {
+  // Seed 000: 0.735 -> 0.022 mm parallelism, 0.082 mm face-diagonal error after compensation.
+  const double parallelism_target = stepTarget(scenario, 0.010, 0.030);
+  const double diagonal_target = stepTarget(scenario, 0.02, 0.082);
   const sim::LineSetup& st = before.setup("straightness-py-h", ctx.source);
   const sim::LineSetup& li = before.setup("diagonal-x2-y2", ctx.source);
   const std::string st_noise = fmt::format("laser straightness {:g} µm", st.noise.sigma * 1e3);
@@ -110,28 +114,28 @@ void addRows(const StepContext& ctx,
                       "mm",
                       std::abs(ab.horizontal.parallelism),
                       std::abs(aa.horizontal.parallelism),
-                      0.010,
+                      parallelism_target,
                       "0.735 -> 0.022 mm",
                       st_noise});
   out.rows.push_back({"parallelism Y2-PY, vertical (300 mm)",
                       "mm",
                       std::abs(ab.vertical.parallelism),
                       std::abs(aa.vertical.parallelism),
-                      0.010,
+                      parallelism_target,
                       "",
                       st_noise});
   out.rows.push_back({"face diagonal X2-Y2 error (ISO 230-2 E)",
                       "mm",
                       ab.diag_xy.E,
                       aa.diag_xy.E,
-                      0.02,
+                      diagonal_target,
                       "-> 0.082 mm",
                       li_noise});
   out.rows.push_back({"face diagonal X2-PZ error (ISO 230-2 E)",
                       "mm",
                       ab.diag_xz.E,
                       aa.diag_xz.E,
-                      0.02,
+                      diagonal_target,
                       "",
                       li_noise});
   const std::pair<double, double> U[] = {
@@ -143,6 +147,11 @@ void addRows(const StepContext& ctx,
     SummaryRow& row = out.rows[out.rows.size() - 4 + k];
     std::tie(row.before_U, row.after_U) = U[k];
   }
+  const std::size_t first = out.rows.size() - 4;
+  out.rows[first].after_limit = aa.horizontal_limit;
+  out.rows[first + 1].after_limit = aa.vertical_limit;
+  setIso230_2AfterU(out.rows[first + 2], aa.diag_xy, "E", ctx.sources);
+  setIso230_2AfterU(out.rows[first + 3], aa.diag_xz, "E", ctx.sources);
 }
 
 /// The report section of the simulated step, without its plots.
@@ -284,7 +293,7 @@ StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
   writeLineFiles(ctx, out, "measured-after", scenario, remeasureSeed(seed), after);
   const Analysis aa = detail::analyseHybrid(after, src, ctx.sources);
 
-  addRows(ctx, out, before, ab, aa);
+  addRows(ctx, out, scenario, before, ab, aa);
   recordSquareness(out, ab.squareness);
   Json sec = simulatedSection(out, scenario, seed, ab.squareness, vm->errors().squareness);
   addPlots(sec, {out.id, src, before, after, ab, aa});

@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <tuple>
+#include <utility>
 
 #include "campaign_compensation.hpp"
 #include "campaign_hybrid_detail.hpp"
@@ -143,16 +146,18 @@ namespace {
 
 /// U (k = 2, mm) of a parallelism from its two runs with the instruments of `sources`; NaN when a
 /// run has fewer than 3 points.
-double parallelismU(const met::ParallelismResult& r,
-                    const met::BeamRun& reference,
-                    const met::BeamRun& axis,
-                    const met::UncertaintySources& sources) {
-  if (reference.positions.size() < 3 || axis.positions.size() < 3) return std::nan("");
-  return met::parallelismUncertainty(r.parallelism,
-                                     {reference.positions, r.reference_straightness.residuals},
-                                     {axis.positions, r.axis_straightness.residuals},
-                                     sources)
-      .expandedUncertainty();
+/// The parallelism's U (k = 2) and its largest contributors.
+std::pair<double, std::string> parallelismU(const met::ParallelismResult& r,
+                                            const met::BeamRun& reference,
+                                            const met::BeamRun& axis,
+                                            const met::UncertaintySources& sources) {
+  if (reference.positions.size() < 3 || axis.positions.size() < 3) return {std::nan(""), ""};
+  const met::UncertaintyBudget b =
+      met::parallelismUncertainty(r.parallelism,
+                                  {reference.positions, r.reference_straightness.residuals},
+                                  {axis.positions, r.axis_straightness.residuals},
+                                  sources);
+  return {b.expandedUncertainty(), campaign::largestContributors(b)};
 }
 
 }  // namespace
@@ -167,8 +172,8 @@ HybridAnalysis analyseHybrid(const LineData& d,
   const met::BeamRun pyv = beam(d, "straightness-py-v", 1, src);
   a.horizontal = met::evaluateParallelism(y2h, pyh);
   a.vertical = met::evaluateParallelism(y2v, pyv);
-  a.horizontal_U = parallelismU(a.horizontal, y2h, pyh, sources);
-  a.vertical_U = parallelismU(a.vertical, y2v, pyv, sources);
+  std::tie(a.horizontal_U, a.horizontal_limit) = parallelismU(a.horizontal, y2h, pyh, sources);
+  std::tie(a.vertical_U, a.vertical_limit) = parallelismU(a.vertical, y2v, pyv, sources);
   met::FaceDiagonalOptions xy_options;
   xy_options.second_moves_work = true;
   const std::vector<met::FaceDiagonal> xy = {diagonal(d, "diagonal-x2-y2", 0, 1, src)};

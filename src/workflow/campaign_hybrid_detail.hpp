@@ -6,6 +6,7 @@
 
 #include <limits>
 #include <memory>
+#include <string>
 
 #include "campaign_steps.hpp"
 #include "pkm/kinematics/hybrid_errors.hpp"
@@ -23,6 +24,8 @@ struct HybridAnalysis {
   /// U (k = 2, mm) of |parallelism| (metrology::parallelismUncertainty).
   double horizontal_U = std::numeric_limits<double>::quiet_NaN();
   double vertical_U = std::numeric_limits<double>::quiet_NaN();
+  /// The largest contributors of horizontal_U and vertical_U (largestContributors).
+  std::string horizontal_limit, vertical_limit;
 };
 
 /// Parallelism from the straightness runs (its U with the instruments of `sources`), szX2 and syP

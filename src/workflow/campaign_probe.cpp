@@ -77,6 +77,8 @@ struct Touches {
   sim::TouchProbeSetup setup;
   std::vector<sim::TouchRecord> offset, before, after;
   std::string description;  ///< the report's first paragraph
+  /// The virtual machine had unmodelled error sources (a non-ideal environment, stepTarget).
+  bool realistic = false;
 };
 
 /// The touches simulated from the step's scenario, their files written into measured/.
@@ -95,6 +97,7 @@ Touches simulatedTouches(const StepContext& ctx, StepOutcome& out) {
   const sim::TouchProbeRun& run = runs.front();
   Touches t;
   t.setup = *run.setup;
+  t.realistic = scenario.campaign.environment.active();
   for (const auto& [name, text] :
        io::touchProbeFiles(scenario.campaign.name, seed, t.setup, run.result))
     ctx.write(out, "measured/" + name, text);
@@ -172,10 +175,13 @@ double roundnessU(const met::CircleFit& lsc, const met::UncertaintySources& sour
 void addRows(
     const StepContext& ctx, StepOutcome& out, const Touches& t, const Analysis& a, bool simulated) {
   const double sigma = t.setup.noise.sigma;
-  // Noise-only roundness: the peak-to-valley of N normal trigger errors is about 2·Φ⁻¹(1 −
-  // 1/(2N))·σ (≈ 5.3σ for 180 touches); the target allows 6σ.
+  // Noise-only roundness (an ideal machine): the peak-to-valley of N normal trigger errors is about
+  // 2·Φ⁻¹(1 − 1/(2N))·σ (≈ 5.3σ for 180 touches); the target allows 6σ. With unmodelled sources
+  // (the probe's lobing, the structure's wander) the paper's figure: 65 % lower than before.
+  const double before_um = a.before.fit.roundness * 1e3;
   const std::optional<double> target =
-      simulated ? std::optional<double>(6.0 * sigma * 1e3) : std::nullopt;
+      simulated ? std::optional<double>(t.realistic ? 0.35 * before_um : 6.0 * sigma * 1e3)
+                : std::nullopt;
   const std::string noise =
       simulated ? fmt::format("probe σ {:g} µm (2σ {:g} µm)", sigma * 1e3, 2 * sigma * 1e3)
                 : "as measured";
@@ -190,6 +196,9 @@ void addRows(
                       noise});
   out.rows.back().before_U = roundnessU(a.before.fit, ctx.sources);
   out.rows.back().after_U = roundnessU(a.after.fit, ctx.sources);
+  if (a.after.fit.residuals.size() >= 4)
+    out.rows.back().after_limit = largestContributors(
+        met::circleUncertainty(a.after.fit, met::MinZoneCircle{}, ctx.sources), "roundness_lsc");
   if (simulated)
     out.rows.push_back({"stylus offset error |d_fit - d_true|",
                         "µm",

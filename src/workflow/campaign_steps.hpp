@@ -135,10 +135,27 @@ void writeLineFiles(const StepContext& context,
 /// ISO 230-2 of line runs (reading − target = deviation), coverage k = 2.
 [[nodiscard]] metrology::Iso230_2Result iso230_2(const std::vector<simulation::LineRun>& runs);
 
+/// A summary row's target (docs/campaign.md, "Targets"): on an ideal virtual machine (every error
+/// one the analysis models) compensation must come down to the instruments' noise, `ideal`; on a
+/// machine with the unmodelled error sources of a non-ideal environment (docs/simulation-errors.md)
+/// it must reach what the paper reached on its real machine, `paper`.
+[[nodiscard]] inline double stepTarget(const io::Scenario& scenario, double ideal, double paper) {
+  return scenario.campaign.environment.active() ? paper : ideal;
+}
+
 /// The expanded uncertainty U (k = 2) of the budget of `quantity` in `budgets`; NaN when there
 /// is none.
 [[nodiscard]] double expandedU(const std::vector<metrology::UncertaintyBudget>& budgets,
                                const std::string& quantity);
+
+/// "NAME SHARE %, NAME SHARE %": the (at most) two largest contributors of `budget` with their
+/// shares of u_c² (correlations left out of the shares); "" for an empty budget.
+[[nodiscard]] std::string largestContributors(const metrology::UncertaintyBudget& budget);
+
+/// The largest contributors (largestContributors) of the budget of `quantity` in `budgets`; ""
+/// when there is none.
+[[nodiscard]] std::string largestContributors(
+    const std::vector<metrology::UncertaintyBudget>& budgets, const std::string& quantity);
 
 /// U (k = 2, mm) of ISO 230-2's `quantity` ("E", "M", "A", "B", "R") of `result` with the
 /// instrument and environment `sources` (metrology::iso230_2Uncertainty); NaN for unidirectional
@@ -146,6 +163,12 @@ void writeLineFiles(const StepContext& context,
 [[nodiscard]] double iso230_2U(const metrology::Iso230_2Result& result,
                                const std::string& quantity,
                                const metrology::UncertaintySources& sources);
+
+/// Sets `row`'s after_U and after_limit from the ISO 230-2 budget of `quantity` of `after`.
+void setIso230_2AfterU(SummaryRow& row,
+                       const metrology::Iso230_2Result& after,
+                       const std::string& quantity,
+                       const metrology::UncertaintySources& sources);
 
 /// Per target: (target, mean over runs and both directions of the reading), sorted by target.
 void meanReadings(const std::vector<simulation::LineRun>& runs,

@@ -74,6 +74,31 @@ Json uncertaintySection(const std::vector<StepOutcome>& outcomes, const std::str
                            cell(r.after_U, 2),
                            improvementJson(r)});
   sec["tables"].push_back(t);
+  // What limits each after-value: within its U the measurement does (its budget's largest
+  // contributors say what would have to improve); beyond it, the rest is error of the machine that
+  // the compensation's models do not represent (the environment's unmodelled sources).
+  Json limits = table(
+      "What limits the after-values: within U the measurement; beyond U, the unmodelled remainder",
+      {"step",
+       "quantity",
+       "unit",
+       "after",
+       "U after",
+       "beyond U (unmodelled remainder)",
+       "largest contributors to U after"});
+  for (const StepOutcome& s : outcomes)
+    for (const SummaryRow& r : s.rows) {
+      if (!std::isfinite(r.after) || !std::isfinite(r.after_U)) continue;
+      const double beyond = std::abs(r.after) - r.after_U;
+      limits["rows"].push_back({s.id,
+                                r.quantity,
+                                r.unit,
+                                cell(r.after),
+                                cell(r.after_U, 2),
+                                beyond > 0.0 ? cell(beyond, 2) : Json("within U"),
+                                r.after_limit.empty() ? Json("-") : Json(r.after_limit)});
+    }
+  sec["tables"].push_back(limits);
   return sec;
 }
 

@@ -36,6 +36,10 @@ struct CampaignRow {
   /// and `after`, in `unit`; NaN where the value has none (not measured, or no budget yet).
   double before_U = std::numeric_limits<double>::quiet_NaN();
   double after_U = std::numeric_limits<double>::quiet_NaN();
+  /// What limits `after`'s U: its budget's largest contributors with their shares of u_c², e.g.
+  /// "laser straightness optics 71 %, fit statistics 24 %" ("" when not known); the report sets it
+  /// beside the part of `after` beyond U (docs/campaign.md, "Uncertainty").
+  std::string after_limit{};
   /// Whether the improvement before − after is significant: |before − after| >= the combined
   /// uncertainty √(U_before² + U_after²) (the two measurements independent). nullopt when a value
   /// or a U is missing.
