@@ -11,6 +11,7 @@
 
 #include "common.hpp"
 #include "gcode_program.hpp"
+#include "machines.hpp"
 #include "paths.hpp"
 #include "pkm/workflow/gcode_compensate.hpp"
 #include "pkm/workflow/gcode_flatten.hpp"
@@ -50,7 +51,12 @@ py::tuple compensate(const py::object& program,
                      bool force,
                      const std::optional<std::string>& name) {
   workflow::GcodeCompensateRequest q;
-  q.machine = optionalPath(machine, "machine");
+  if (py::isinstance<Hexapod>(machine))
+    q.hexapod = machine.cast<const Hexapod&>().machine;
+  else if (py::isinstance<Exechon>(machine))
+    q.exechon = machine.cast<const Exechon&>().machine;
+  else
+    q.machine = optionalPath(machine, "machine (a pkm.Hexapod, a pkm.Exechon, a name or a file)");
   q.nominal = optionalPath(nominal, "nominal");
   q.hybrid_frame = optionalPath(hybrid_frame, "hybrid_frame");
   q.x2 = x2;
@@ -127,8 +133,9 @@ Parameters
 ----------
 program : str or os.PathLike
     A G-code file or the program's text (as pkm.gcode.moves).
-machine : str or os.PathLike, optional
-    The calibrated hexapod or Exechon machine (`pkm calibrate ... --out`, or result.save()).
+machine : Hexapod, Exechon, str or os.PathLike, optional
+    The calibrated hexapod or Exechon machine: a loaded one (a calibration's result.machine,
+    pkm.load_machine), or a file (`pkm calibrate ... --out`, result.save()).
 nominal : str or os.PathLike, optional
     The controller's nominal machine (default: the built-in one the calibrated machine's name
     refers to, its name without "-calibrated").

@@ -94,6 +94,12 @@ def test_hexapod_from_files_equals_the_cli(run_cli, s4, tmp_path):
     with pytest.raises(ValueError, match="exists"):
         r.save(tmp_path / "py.json")
     r.save(tmp_path / "py.json", force=True)
+    # The calibrated machine compensates a program at once, as its file does.
+    program = os.path.join(REPO, "examples", "gcode", "hexapod_contour.ngc")
+    text, rep = pkm.gcode.compensate(program, machine=r.machine)
+    from_file, rep_file = pkm.gcode.compensate(program, machine=tmp_path / "py.json")
+    assert text == from_file and rep["note"] == rep_file["note"]
+    assert rep["max_correction"] > 1.0  # seed 004: millimetres of joint errors
 
 
 def test_hexapod_from_arrays_equals_the_files(run_cli, s4, tmp_path):

@@ -239,6 +239,8 @@ def test_compensate_hexapod_equals_the_cli(run_cli, tmp_path):
                                       {"machine": cal})
     assert "nominal pkm-hx1200 -> calibrated pkm-hx1200-calibrated" in report["note"]
     assert report["motion_lines"] > 0 and report["max_correction"] > 0.1
+    check_compensation(run_cli, HEXAPOD_PROGRAM, ["--machine", cal],
+                       {"machine": pkm.load_machine(cal)})  # a loaded machine, as its file
     check_compensation(run_cli, HEXAPOD_PROGRAM,
                        ["--machine", cal, "--nominal", "hexapod-default", "--tolerance", "0.05"],
                        {"machine": cal, "nominal": "hexapod-default", "tolerance": 0.05})
@@ -260,6 +262,8 @@ def test_compensate_exechon_equals_the_cli(run_cli, tmp_path, orientation):
                                    ["--machine", cal, "--orientation", orientation],
                                    {"machine": cal, "orientation": orientation})
     assert f"--orientation {orientation}" in report["note"]
+    check_compensation(run_cli, EXECHON_PROGRAM, ["--machine", cal, "--orientation", orientation],
+                       {"machine": pkm.load_machine(cal), "orientation": orientation})
 
 
 def test_compensate_hybrid_frame_equals_the_cli(run_cli, tmp_path):
@@ -298,6 +302,10 @@ def test_compensate_errors_raise_with_pkms_message(run_cli, tmp_path):
         pkm.gcode.compensate("G0 X0 Y0 Z200\n", machine="hexapod-default")
     with pytest.raises(ValueError, match="cannot open"):
         pkm.gcode.compensate(tmp_path / "missing.ngc", machine=cal)
+    with pytest.raises(ValueError, match="orientation is for Exechon machines; pkm-hx1200-cal"):
+        pkm.gcode.compensate("G0 X0\n", machine=pkm.load_machine(cal), orientation="axes")
+    with pytest.raises(ValueError, match="machine"):
+        pkm.gcode.compensate("G0 X0\n", machine=3)
 
 
 @pytest.mark.parametrize("program,tools", [("sphere.ngc", "tools.tbl"),
