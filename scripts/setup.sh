@@ -16,7 +16,7 @@ packages=(
   linuxcnc-uspace linuxcnc-uspace-dev
   libcpp-httplib-dev
   python3-numpy python3-scipy
-  python3-dev pybind11-dev python3-pytest
+  python3-dev pybind11-dev python3-pytest python3-matplotlib
 )
 
 missing=()

@@ -1,9 +1,6 @@
 // `pkm calibrate hexapod`: parses the arguments, runs workflow::calibrateHexapod (42 kinematic
 // parameters from laser-tracker and dial-gauge files; docs/calibration.md) and prints its
-// summary.
-#include <fmt/format.h>
-#include <fmt/ranges.h>
-
+// summary (workflow::hexapodCalibrationText).
 #include <cstdio>
 
 #include "analyze_common.hpp"
@@ -12,6 +9,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/workflow/calibrate_hexapod.hpp"
+#include "pkm/workflow/calibration_text.hpp"
 
 namespace pkm::cli {
 namespace {
@@ -23,76 +21,6 @@ struct CalibrateArgs {
   bool json = false;
   UncertaintyArgs uncertainty;  ///< --uncertainty FILE
 };
-
-/// The text summary of a hexapod calibration.
-std::string calibrationText(const workflow::HexapodCalibrationRequest& r,
-                            const io::HexapodCalibrationReport& rep) {
-  const calibration::HexapodCalibrationSummary& s = rep.fit;
-  const std::string unit(toString(rep.unit));
-  std::string t =
-      fmt::format("calibrated {} from {} equations ({} poses, {} points, {} gauge sets)\n",
-                  rep.machine,
-                  rep.equations,
-                  rep.poses,
-                  rep.points,
-                  rep.constrained_sets);
-  t += fmt::format("solver: {} iterations, {:.3f} s, {}\n",
-                   s.iterations,
-                   s.seconds,
-                   s.converged ? "converged" : s.termination);
-  if (!s.converged && rep.constrained_sets > 0 && r.prior_sigma == 0.0)
-    t += "  dial-gauge data see some combinations only weakly: --prior-sigma (with "
-         "--measurement-sigma) keeps them near the machine file (docs/calibration.md)\n";
-  t += fmt::format("identifiable: {} of {} unknowns (condition number {:.4g})\n",
-                   s.identifiability.rank,
-                   s.identifiability.parameters,
-                   s.identifiability.condition_number);
-  for (const auto& c : s.identifiability.combinations) {
-    std::string terms;
-    for (const auto& [name, coef] : c.terms) terms += fmt::format(" {:+.3f}·{}", coef, name);
-    t += fmt::format("  not identifiable:{}\n", terms);
-  }
-  t += fmt::format("fitted residuals ({}): RMS {:.6g} -> {:.6g}, max {:.6g} -> {:.6g}\n",
-                   unit,
-                   s.before.rms,
-                   s.after.rms,
-                   s.before.max,
-                   s.after.max);
-  if (!rep.worst.empty())
-    t += fmt::format("largest residual after the fit: {} ({:.4g})\n",
-                     rep.worst[0].source,
-                     rep.worst[0].residual);
-  if (s.backlash)
-    t += fmt::format(
-        "backlash per strut ({}): {:.4g}\n",
-        unit,
-        fmt::join(std::vector<double>(s.backlash->data(), s.backlash->data() + 6), ", "));
-  if (rep.holdout)
-    t += fmt::format("held-out TCP error: RMS {:.6g} -> {:.6g}, max {:.6g} -> {:.6g}\n",
-                     rep.holdout->before.rms,
-                     rep.holdout->after.rms,
-                     rep.holdout->before.max,
-                     rep.holdout->after.max);
-  t += fmt::format(
-      "workspace TCP error of the nominal controller (what calibration removes): "
-      "mean {:.6g}, 95 % {:.6g}, max {:.6g}\n",
-      rep.tcp_before.mean,
-      rep.tcp_before.p95,
-      rep.tcp_before.max);
-  if (rep.monte_carlo) {
-    const calibration::TcpErrorStatistics& a = rep.monte_carlo->summary.tcp;
-    t += fmt::format(
-        "workspace TCP uncertainty after calibration (Monte Carlo, {} trials): mean "
-        "{:.6g}, 95 % {:.6g}, max {:.6g}\n",
-        r.monte_carlo,
-        a.mean,
-        a.p95,
-        a.max);
-  }
-  t += io::hexapodCalibrationUncertaintyText(rep);
-  t += fmt::format("wrote {}, {}, {}\n", rep.out_machine, rep.out_hal, rep.out_summary);
-  return t;
-}
 
 void runCalibrate(CalibrateArgs args) {
   if (!args.target_offset.empty()) {
@@ -114,7 +42,7 @@ void runCalibrate(CalibrateArgs args) {
     return;
   }
   Output out;
-  out.text() += calibrationText(args.request, result.report);
+  out.text() += workflow::hexapodCalibrationText(args.request, result);
 }
 
 }  // namespace

@@ -1,10 +1,7 @@
 // `pkm calibrate exechon`: parses the arguments, runs workflow::calibrateExechon (26 kinematic
 // parameters of an Exechon and the hybrid machine's squareness from laser-tracker files;
-// docs/calibration.md, "Exechon") and prints its summary.
+// docs/calibration.md, "Exechon") and prints its summary (workflow::exechonCalibrationText).
 #include "pkm/workflow/calibrate_exechon.hpp"
-
-#include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <cstdio>
 
@@ -13,6 +10,7 @@
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
+#include "pkm/workflow/calibration_text.hpp"
 
 namespace pkm::cli {
 namespace {
@@ -24,104 +22,6 @@ struct ExechonArgs {
   bool json = false;
   UncertaintyArgs uncertainty;  ///< --uncertainty FILE
 };
-
-/// The tripod fit's lines of the text summary.
-std::string tripodText(const io::ExechonCalibrationReport& rep, const io::ExechonTripodReport& tr) {
-  const calibration::ExechonCalibrationSummary& s = tr.fit;
-  std::string t = fmt::format("calibrated {} from {} equations ({} tracker points)\n",
-                              rep.machine,
-                              tr.equations,
-                              tr.points);
-  t += fmt::format("solver: {} iterations, {:.3f} s, {}\n",
-                   s.iterations,
-                   s.seconds,
-                   s.converged ? "converged" : s.termination);
-  t += fmt::format("identifiable: {} of {} unknowns (condition number {:.4g})\n",
-                   s.identifiability.rank,
-                   s.identifiability.parameters,
-                   s.identifiability.condition_number);
-  for (const auto& c : s.identifiability.combinations) {
-    std::string terms;
-    for (const auto& [name, coef] : c.terms) terms += fmt::format(" {:+.3f}·{}", coef, name);
-    t += fmt::format("  not identifiable:{}\n", terms);
-  }
-  t += fmt::format("fitted residuals ({}): RMS {:.6g} -> {:.6g}, max {:.6g} -> {:.6g}\n",
-                   toString(rep.unit),
-                   s.before.rms,
-                   s.after.rms,
-                   s.before.max,
-                   s.after.max);
-  if (tr.holdout)
-    t += fmt::format("held-out target error: RMS {:.6g} -> {:.6g}, max {:.6g} -> {:.6g}\n",
-                     tr.holdout->before.rms,
-                     tr.holdout->after.rms,
-                     tr.holdout->before.max,
-                     tr.holdout->after.max);
-  if (!s.worst.empty())
-    t += fmt::format("largest residual after the fit: {} ({:.4g})\n",
-                     s.worst.front().source,
-                     s.worst.front().residual);
-  if (tr.map_before)
-    t += fmt::format(
-        "working-volume tool error of the nominal controller (what calibration removes): mean "
-        "{:.6g}, 95 % {:.6g}, max {:.6g}\n",
-        tr.map_before->mean,
-        tr.map_before->p95,
-        tr.map_before->max);
-  if (tr.map_after)
-    t += fmt::format(
-        "working-volume tool uncertainty after calibration (linearised covariance): mean {:.6g}, "
-        "95 % {:.6g}, max {:.6g}\n",
-        tr.map_after->mean,
-        tr.map_after->p95,
-        tr.map_after->max);
-  if (tr.monte_carlo) {
-    const calibration::ExechonMonteCarloSummary& u = tr.monte_carlo->summary;
-    t += fmt::format(
-        "tool-point spread after calibration (Monte Carlo, {} trials, {} failed, {} "
-        "configurations): mean {:.6g}, 95 % {:.6g}, max {:.6g}\n",
-        u.trials,
-        u.failures,
-        u.configurations,
-        u.tool_sigma.mean,
-        u.tool_sigma.p95,
-        u.tool_sigma.max);
-  }
-  return t;
-}
-
-/// The squareness fit's lines of the text summary.
-std::string hybridText(const io::ExechonCalibrationReport& rep,
-                       const io::HybridSquarenessReport& h) {
-  const calibration::HybridCalibrationSummary& s = h.fit;
-  constexpr double kMrad = 1e3;
-  std::string t = fmt::format(
-      "squareness from {} hybrid observations{}: szX2 {:.4f}, sxP {:.4f}, syP {:.4f}, szP {:.4f} "
-      "mrad (sigma {:.2g}, {:.2g}, {:.2g}, {:.2g})\n",
-      h.observations,
-      h.tripod_error_motion ? " (with the calibrated tripod)" : "",
-      kMrad * s.squareness.sz_x2,
-      kMrad * s.squareness.sx_p,
-      kMrad * s.squareness.sy_p,
-      kMrad * s.squareness.sz_p,
-      kMrad * s.standard_deviation(0),
-      kMrad * s.standard_deviation(1),
-      kMrad * s.standard_deviation(2),
-      kMrad * s.standard_deviation(3));
-  t += fmt::format("hybrid residuals ({}): RMS {:.6g} -> {:.6g}, max {:.6g} -> {:.6g}\n",
-                   toString(rep.unit),
-                   s.before.rms,
-                   s.after.rms,
-                   s.before.max,
-                   s.after.max);
-  if (h.holdout)
-    t += fmt::format("held-out hybrid target error: RMS {:.6g} -> {:.6g}, max {:.6g} -> {:.6g}\n",
-                     h.holdout->before.rms,
-                     h.holdout->after.rms,
-                     h.holdout->before.max,
-                     h.holdout->after.max);
-  return t;
-}
 
 void runExechon(ExechonArgs args) {
   if (!args.target_offset.empty()) {
@@ -143,12 +43,7 @@ void runExechon(ExechonArgs args) {
     return;
   }
   Output out;
-  if (r.report.tripod) {
-    out.text() += tripodText(r.report, *r.report.tripod);
-    out.text() += io::exechonCalibrationUncertaintyText(*r.report.tripod, r.report.unit);
-  }
-  if (r.report.hybrid) out.text() += hybridText(r.report, *r.report.hybrid);
-  out.text() += fmt::format("wrote {}\n", fmt::join(r.written, ", "));
+  out.text() += workflow::exechonCalibrationText(r);
 }
 
 }  // namespace

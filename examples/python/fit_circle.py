@@ -38,6 +38,9 @@ def main(csv_path, out_dir=None):
         ax.plot(fit.center[0] + fit.radius * np.cos(t), fit.center[1] + fit.radius * np.sin(t),
                 label="least-squares circle")
         ax.set_aspect("equal")
+        ax.set_xlabel("x (mm)")
+        ax.set_ylabel("y (mm)")
+        ax.set_title(f"roundness {fit.roundness_lsc * 1e3:.2f} um (least squares)")
         ax.legend()
         fig.savefig(f"{out_dir}/circle.png")
         print(f"plot: {out_dir}/circle.png")

@@ -36,8 +36,8 @@ def main(out_dir=None):
 
         fig, ax = plt.subplots()
         for i in range(6):
-            ax.plot(lengths[:, i], label=f"l{i}")
-        ax.set_xlabel("row")
+            ax.plot(np.degrees(t), lengths[:, i], label=f"l{i}")
+        ax.set_xlabel("helix angle (deg)")
         ax.set_ylabel(f"strut reading ({machine.unit})")
         ax.legend()
         fig.savefig(f"{out_dir}/struts.png")

@@ -1,6 +1,7 @@
-"""G-code programs (docs/gcode.md): ``moves`` as ``pkm gcode moves`` and ``run`` as ``pkm gcode
-run``, on numpy arrays."""
+"""G-code programs (docs/gcode.md): ``moves`` as ``pkm gcode moves``, ``run`` as ``pkm gcode
+run``, ``compensate`` as ``pkm gcode compensate`` and ``flatten`` as ``pkm gcode flatten``, on
+numpy arrays and program texts."""
 
-from ._pkm.gcode import Moves, Run, moves, run  # noqa: F401
+from ._pkm.gcode import Moves, Run, compensate, flatten, moves, run  # noqa: F401
 
-__all__ = ["Moves", "Run", "moves", "run"]
+__all__ = ["Moves", "Run", "compensate", "flatten", "moves", "run"]

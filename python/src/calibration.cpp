@@ -217,7 +217,7 @@ CalibrationResult runHexapodCalibration(const py::object& machine,
   }
   const calibration::HexapodCalibrationSummary& s = result.report.fit;
   if (raise_on_failure) raiseUnconverged(s.converged, s.iterations, s.termination);
-  return hexapodResult(std::move(result));
+  return hexapodResult(std::move(result), r);
 }
 
 CalibrationResult runExechonCalibration(const py::object& machine,

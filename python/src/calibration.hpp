@@ -24,12 +24,20 @@ struct CalibrationResult {
       std::variant<workflow::HexapodCalibrationResult, workflow::ExechonCalibrationResult>>
       result;
   py::dict attributes;
+  /// Hexapod: the request the result came from, without its data files (the text summary,
+  /// workflow::hexapodCalibrationText, needs its settings); null for an Exechon.
+  std::shared_ptr<const workflow::HexapodCalibrationRequest> hexapod_request;
   /// The summary JSON text (CAL.summary.json; --json), current after save().
   [[nodiscard]] const std::string& summaryJson() const;
+  /// The text summary `pkm calibrate KIND` prints (workflow::hexapodCalibrationText,
+  /// exechonCalibrationText), its "wrote" line once save() wrote the files.
+  [[nodiscard]] std::string text() const;
 };
 
-/// The result object of a hexapod calibration (attributes filled from the report).
-[[nodiscard]] CalibrationResult hexapodResult(workflow::HexapodCalibrationResult result);
+/// The result object of a hexapod calibration (attributes filled from the report); `request` is
+/// the one it came from.
+[[nodiscard]] CalibrationResult hexapodResult(workflow::HexapodCalibrationResult result,
+                                              const workflow::HexapodCalibrationRequest& request);
 /// The result object of an Exechon calibration.
 [[nodiscard]] CalibrationResult exechonResult(workflow::ExechonCalibrationResult result);
 

@@ -5,6 +5,8 @@
 #include <optional>
 
 #include "calibration.hpp"
+#include "machines.hpp"
+#include "paths.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/io/pose_plan_report.hpp"
 #include "pkm/workflow/plan_poses.hpp"
@@ -66,7 +68,12 @@ PosePlanResult planPoses(const py::object& machine,
                          const py::object& gcode,
                          bool force) {
   workflow::PlanPosesRequest r;
-  r.machine = py::str(py::module_::import("os").attr("fspath")(machine));
+  if (py::isinstance<Hexapod>(machine))
+    r.hexapod = machine.cast<const Hexapod&>().machine;
+  else if (py::isinstance<Exechon>(machine))
+    r.exechon = machine.cast<const Exechon&>().machine;
+  else
+    r.machine = pathOf(machine, "machine (a pkm.Hexapod, a pkm.Exechon, a name or a file)");
   r.count = count;
   r.index = index;
   r.measurement = measurement.value_or("");
@@ -76,7 +83,7 @@ PosePlanResult planPoses(const py::object& machine,
   r.tilt_deg = tilt;
   r.feed = feed;
   if (target_offset) r.target_offset = *target_offset;
-  if (!gcode.is_none()) r.gcode = py::str(py::module_::import("os").attr("fspath")(gcode));
+  if (!gcode.is_none()) r.gcode = pathOf(gcode, "gcode");
   r.force = force;
   workflow::PlanPosesResult res;
   {
@@ -162,8 +169,10 @@ csv, summary, gcode : str
 
 Parameters
 ----------
-machine : str or os.PathLike, default "default"
-    Built-in name or machine file (hexapod or Exechon: the type chooses the planner).
+machine : Hexapod, Exechon, str or os.PathLike, default "default"
+    A loaded machine (pkm.load_machine, a calibration's result.machine, possibly with a changed
+    geometry), a built-in name or a machine file (hexapod or Exechon: the type chooses the
+    planner).
 count : int
     Poses to choose (>= 1).
 index : {"O1", "O2", "O3", "O4", "O5"}

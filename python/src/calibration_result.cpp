@@ -15,6 +15,7 @@
 #include "pkm/calibration/hexapod_calibration.hpp"
 #include "pkm/calibration/hexapod_parameters.hpp"
 #include "pkm/calibration/hybrid_calibration.hpp"
+#include "pkm/workflow/calibration_text.hpp"
 
 namespace pkm::python {
 namespace {
@@ -194,8 +195,20 @@ const std::string& CalibrationResult::summaryJson() const {
   return std::visit([](const auto& r) -> const std::string& { return r.summary_json; }, *result);
 }
 
-CalibrationResult hexapodResult(workflow::HexapodCalibrationResult result) {
-  CalibrationResult out{"hexapod", {}, {}};
+std::string CalibrationResult::text() const {
+  if (const auto* h = std::get_if<workflow::HexapodCalibrationResult>(result.get()))
+    return workflow::hexapodCalibrationText(*hexapod_request, *h);
+  return workflow::exechonCalibrationText(std::get<workflow::ExechonCalibrationResult>(*result));
+}
+
+CalibrationResult hexapodResult(workflow::HexapodCalibrationResult result,
+                                const workflow::HexapodCalibrationRequest& request) {
+  CalibrationResult out{"hexapod", {}, {}, {}};
+  auto settings = std::make_shared<workflow::HexapodCalibrationRequest>(request);
+  settings->data.clear();  // the text needs the settings only
+  settings->holdout.clear();
+  settings->loaded.reset();
+  out.hexapod_request = std::move(settings);
   const py::dict doc = jsonLoads(result.summary_json);
   const cal::HexapodCalibrationSummary& s = result.report.fit;
   std::vector<std::string> columns;
@@ -221,7 +234,7 @@ CalibrationResult hexapodResult(workflow::HexapodCalibrationResult result) {
 }
 
 CalibrationResult exechonResult(workflow::ExechonCalibrationResult result) {
-  CalibrationResult out{"exechon", {}, {}};
+  CalibrationResult out{"exechon", {}, {}, {}};
   const py::dict doc = jsonLoads(result.summary_json);
   py::dict& a = out.attributes;
   if (result.report.tripod) {
@@ -360,6 +373,10 @@ Raises
 ------
 ValueError
     When a file exists and not `force` (nothing is written then), or cannot be written.)doc")
+      .def("__str__",
+           &CalibrationResult::text,
+           "The text summary `pkm calibrate KIND` prints, line for line (its \"wrote\" line "
+           "once the files are written: out= or save()).")
       .def("__repr__", [](const CalibrationResult& r) {
         const py::dict& a = r.attributes;
         if (a["rank"].is_none())

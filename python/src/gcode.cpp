@@ -20,7 +20,8 @@
 
 namespace pkm::python {
 
-void exposeGcodeRun(py::module_& g);  // gcode_run.cpp
+void exposeGcodeRun(py::module_& g);         // gcode_run.cpp
+void exposeGcodeTransforms(py::module_& g);  // gcode_transform.cpp
 
 namespace {
 
@@ -94,8 +95,9 @@ Moves moves(const py::object& program,
 void exposeGcode(py::module_& m) {
   py::module_ g = m.def_submodule(
       "gcode",
-      "RS274NGC (LinuxCNC 2.9) G-code programs: the interpreted moves and runs on a hexapod or an "
-      "Exechon (`pkm gcode moves|run`, docs/gcode.md).");
+      "RS274NGC (LinuxCNC 2.9) G-code programs: the interpreted moves, runs on a hexapod or an "
+      "Exechon, compensated and flattened programs (`pkm gcode moves|run|compensate|flatten`, "
+      "docs/gcode.md).");
   py::class_<Moves>(g,
                     "Moves",
                     "The motions of a program, one row per motion as `pkm gcode moves` prints "
@@ -179,6 +181,7 @@ ValueError
     A line the interpreter rejects ("NAME:LINE: message", pkm's message), a missing file, or a
     bad option.)doc");
   exposeGcodeRun(g);
+  exposeGcodeTransforms(g);
 }
 
 }  // namespace pkm::python

@@ -46,7 +46,7 @@ Machine nominalFor(const GcodeCompensateRequest& request,
   throw InvalidArgument(
       fmt::format("{}: cannot tell the nominal machine of '{}' (no built-in {} named as it without "
                   "'-calibrated'); pass --nominal MACHINE",
-                  request.machine,
+                  request.machineName(),
                   name,
                   type));
 }
@@ -82,10 +82,12 @@ double toleranceMm(const GcodeCompensateRequest& request, LengthUnit unit) {
 }
 
 GcodeCompensateResult compensateExechon(const GcodeCompensateRequest& request) {
-  const io::ExechonMachine cal = io::loadExechonMachine(request.machine);
+  const io::ExechonMachine cal =
+      request.exechon ? *request.exechon : io::loadExechonMachine(request.machine);
   if (!request.nominal.empty() && io::machineTypeOf(request.nominal) != "exechon")
-    throw InvalidArgument(fmt::format(
-        "--nominal {}: not an Exechon machine, but {} is one", request.nominal, request.machine));
+    throw InvalidArgument(fmt::format("--nominal {}: not an Exechon machine, but {} is one",
+                                      request.nominal,
+                                      request.machineName()));
   const io::ExechonMachine nominal =
       nominalFor(request, cal, "exechon", &io::loadExechonMachine, &io::loadExechonMachine);
   cnc::ExechonProgramCompensationOptions options;
@@ -129,14 +131,15 @@ GcodeInterpreterSettings hexapodSettings(const GcodeCompensateRequest& request,
     throw InvalidArgument(fmt::format("{}: [TRAJ] LINEAR_UNITS is {} but {} is in {}",
                                       request.ini,
                                       toString(under_ini.model.unit),
-                                      request.machine,
+                                      request.machineName(),
                                       toString(cal.model.unit)));
   takeStartupCode(under_ini, settings);
   return settings;
 }
 
 GcodeCompensateResult compensateHexapod(const GcodeCompensateRequest& request) {
-  const io::HexapodMachine cal = io::loadHexapodMachine(request.machine);
+  const io::HexapodMachine cal =
+      request.hexapod ? *request.hexapod : io::loadHexapodMachine(request.machine);
   io::HalReadOptions hal;
   if (!request.ini.empty()) hal.ini_path = request.ini;
   const io::HexapodMachine nominal = nominalFor(
@@ -181,7 +184,9 @@ void GcodeCompensateRequest::validate() const {
             "--tolerance must be > 0");
   PKM_CHECK(max_points > 0, "--max-points must be > 0");
   if (!out.empty()) io::checkOverwrite(out, force ? io::Overwrite::kAllow : io::Overwrite::kRefuse);
-  if (hybrid_frame.empty() == machine.empty())
+  const int machines = int{!machine.empty()} + int{hexapod != nullptr} + int{exechon != nullptr};
+  PKM_CHECK(machines <= 1, "give one calibrated machine: a name or file, or a loaded one");
+  if (hybrid_frame.empty() == (machines == 0))
     throw InvalidArgument(
         "give either --machine CAL.json (hexapod or Exechon) or --hybrid-frame FILE --x2 POS");
   if (!hybrid_frame.empty()) {
@@ -189,19 +194,30 @@ void GcodeCompensateRequest::validate() const {
     if (!ini.empty()) throw InvalidArgument("--ini applies to hexapod machines only");
     return;
   }
-  const bool exechon = io::machineTypeOf(machine) == "exechon";
-  if (orientation && !exechon)
+  const bool is_exechon = onExechon();
+  if (orientation && !is_exechon)
     throw InvalidArgument(
-        fmt::format("--orientation is for Exechon machines; {} is a hexapod", machine));
-  if (!ini.empty() && exechon)
+        fmt::format("--orientation is for Exechon machines; {} is a hexapod", machineName()));
+  if (!ini.empty() && is_exechon)
     throw InvalidArgument(
-        fmt::format("--ini applies to hexapod machines only; {} is an Exechon", machine));
+        fmt::format("--ini applies to hexapod machines only; {} is an Exechon", machineName()));
+}
+
+std::string GcodeCompensateRequest::machineName() const {
+  if (hexapod) return hexapod->model.name;
+  if (exechon) return exechon->model.name;
+  return machine;
+}
+
+bool GcodeCompensateRequest::onExechon() const {
+  if (hexapod || exechon) return exechon != nullptr;
+  return io::machineTypeOf(machine) == "exechon";
 }
 
 GcodeCompensateResult compensateGcode(const GcodeCompensateRequest& request) {
   request.validate();
   if (!request.hybrid_frame.empty()) return detail::compensateHybridGcode(request);
-  if (io::machineTypeOf(request.machine) == "exechon") return compensateExechon(request);
+  if (request.onExechon()) return compensateExechon(request);
   return compensateHexapod(request);
 }
 

@@ -28,6 +28,14 @@ void PlanPosesRequest::validate() const {
             "--measurement '{}': expected pose or point",
             measurement);
   PKM_CHECK(target_offset.empty() || target_offset.size() == 3, "--target-offset: expected x,y,z");
+  PKM_CHECK(!(hexapod && exechon),
+            "plan-poses: give one loaded machine, not a hexapod and an Exechon");
+}
+
+std::string PlanPosesRequest::machineType() const {
+  if (hexapod) return "hexapod";
+  if (exechon) return "exechon";
+  return io::machineTypeOf(machine);
 }
 
 namespace detail {
@@ -67,6 +75,8 @@ double jointSpeedRatio(const PlanPosesRequest& request, io::PosePlanReport repor
   run.program = {"plan-poses program", io::posePlanGcode(report)};
   run.machine = request.machine;
   run.ini = request.ini;
+  run.hexapod = request.hexapod;
+  run.exechon = request.exechon;
   if (report.kind == "exechon") run.orientation = "axes";
   const GcodeRunResult r = runGcode(run);
   for (const io::GcodeCheckSummary& c : r.report.checks)
@@ -151,8 +161,9 @@ PlanPosesResult planHexapodPoses(const PlanPosesRequest& request,
     throw InvalidArgument("--target-offset applies to Exechon machines only");
   io::HalReadOptions hal;
   if (!request.ini.empty()) hal.ini_path = request.ini;
-  const io::HexapodMachine machine = io::loadHexapodMachine(request.machine, hal);
-  stages.control().note(machine.notices);
+  const io::HexapodMachine machine =
+      request.hexapod ? *request.hexapod : io::loadHexapodMachine(request.machine, hal);
+  if (!request.hexapod) stages.control().note(machine.notices);
   const kinematics::HexapodModel& model = machine.model;
   PKM_CHECK(request.tilt_deg >= 0.0 && request.reach >= 0.0, "--reach and --tilt must be >= 0");
   detail::checkProgram(request);
@@ -186,8 +197,7 @@ PlanPosesResult planHexapodPoses(const PlanPosesRequest& request,
 PlanPosesResult planPoses(const PlanPosesRequest& request, const RunControl& control) {
   request.validate();
   const detail::PlanStages stages(control);
-  if (io::machineTypeOf(request.machine) == "exechon")
-    return detail::planExechonPoses(request, stages);
+  if (request.machineType() == "exechon") return detail::planExechonPoses(request, stages);
   return planHexapodPoses(request, stages);
 }
 

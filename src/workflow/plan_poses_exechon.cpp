@@ -64,7 +64,8 @@ io::ExechonPlanMove moveTo(const kin::ExechonModel& model,
 }  // namespace
 
 PlanPosesResult planExechonPoses(const PlanPosesRequest& request, const PlanStages& stages) {
-  const io::ExechonMachine machine = io::loadExechonMachine(request.machine);
+  const io::ExechonMachine machine =
+      request.exechon ? *request.exechon : io::loadExechonMachine(request.machine);
   const kin::ExechonModel& model = machine.model;
   if (request.measurement == "pose")
     throw InvalidArgument(

@@ -17,7 +17,7 @@ def pkm_binary():
     path = os.environ.get("PKM_BINARY")
     if not path or not os.path.exists(path):
         pytest.skip("PKM_BINARY is not set: the CLI comparisons need the pkm program")
-    return path
+    return os.path.abspath(path)
 
 
 @pytest.fixture(scope="session")

@@ -2,7 +2,8 @@
 arrays give the summary `pkm calibrate ... --json` prints (same numbers), the calibrated machine
 file it writes, and the numbers of its text summary to the printed precision; a round trip on
 simulated data with a known truth recovers the geometry within the reported uncertainty; pose
-planning equals `pkm plan-poses`; bad input raises ValueError with pkm's message and
+planning equals `pkm plan-poses` (from a name or a loaded machine); str(result) is the text
+`pkm calibrate` prints; bad input raises ValueError with pkm's message and
 ConvergenceError only on request. The seed 004 example runs headless."""
 
 import json
@@ -17,6 +18,7 @@ import pytest
 
 import pkm
 from conftest import REPO, column, parse_csv
+from test_examples import assert_plot
 
 POSE = ["l0", "l1", "l2", "l3", "l4", "l5", "x", "y", "z", "a", "b", "c"]
 GAUGE = ["station", "x_mm", "y_mm", "z_mm", "a_deg", "b_deg", "c_deg", "l0_mm", "l1_mm",
@@ -92,6 +94,12 @@ def test_hexapod_from_files_equals_the_cli(run_cli, s4, tmp_path):
     with pytest.raises(ValueError, match="exists"):
         r.save(tmp_path / "py.json")
     r.save(tmp_path / "py.json", force=True)
+    # The calibrated machine compensates a program at once, as its file does.
+    program = os.path.join(REPO, "examples", "gcode", "hexapod_contour.ngc")
+    text, rep = pkm.gcode.compensate(program, machine=r.machine)
+    from_file, rep_file = pkm.gcode.compensate(program, machine=tmp_path / "py.json")
+    assert text == from_file and rep["note"] == rep_file["note"]
+    assert rep["max_correction"] > 1.0  # seed 004: millimetres of joint errors
 
 
 def test_hexapod_from_arrays_equals_the_files(run_cli, s4, tmp_path):
@@ -313,6 +321,62 @@ def test_hexapod_errors_raise_value_error_with_pkms_message(s4, tmp_path):
         cal("hexapod-default", files=[str(tmp_path / "no-such-file.csv")])
 
 
+def masked(text):
+    """A text summary with the solver's wall time masked (as tests/golden/normalise.sh does)."""
+    return re.sub(r"(iterations, )[0-9.]+ s", r"\1<T> s", text)
+
+
+def cli_text(pkm_binary, folder, args):
+    """The text `pkm ARGS` prints when run in `folder` (created), which must succeed."""
+    folder.mkdir()
+    p = subprocess.run([os.path.abspath(pkm_binary), *args], cwd=folder, capture_output=True,
+                       text=True)
+    assert p.returncode == 0, p.stderr
+    return p.stdout
+
+
+@pytest.mark.parametrize("options", [[], ["--monte-carlo", "3", "--threads", "1"],
+                                     ["--backlash"]])
+def test_hexapod_str_is_the_cli_text(pkm_binary, s4, tmp_path, monkeypatch, options):
+    pose, hold = str(s4 / "tracker-pose.csv"), str(s4 / "tracker-holdout.csv")
+    cli = cli_text(pkm_binary, tmp_path / "cli", ["calibrate", "hexapod", "--machine",
+                                                  "hexapod-default", "--data", pose,
+                                                  "--holdout", hold, "--out", "cal.json",
+                                                  *options])
+    kw = {"monte_carlo": 3, "threads": 1} if "--monte-carlo" in options else {}
+    if "--backlash" in options:
+        kw["backlash"] = True
+    (tmp_path / "py").mkdir()
+    monkeypatch.chdir(tmp_path / "py")
+    r = pkm.calibration.hexapod("hexapod-default", files=[pose], holdout=[hold], **kw)
+    wrote = "wrote cal.json, cal.hal, cal.summary.json\n"
+    assert masked(str(r)) + wrote == masked(cli)  # nothing written yet: no "wrote" line
+    r.save("cal.json")
+    assert masked(str(r)) == masked(cli)
+    assert masked(str(pkm.calibration.hexapod("hexapod-default", files=[pose], holdout=[hold],
+                                              out="cal.json", force=True, **kw))) == masked(cli)
+
+
+def test_exechon_str_is_the_cli_text(pkm_binary, ex, tmp_path, monkeypatch):
+    fit, hybrid = str(ex / "tracker-fit.csv"), str(ex / "tracker-hybrid.csv")
+    hold, hhold = str(ex / "tracker-holdout.csv"), str(ex / "tracker-hybrid-holdout.csv")
+    cli = cli_text(pkm_binary, tmp_path / "cli", ["calibrate", "exechon", "--machine",
+                                                  "mxt700s-like", "--data", fit, hybrid,
+                                                  "--holdout", hold, hhold, "--errors",
+                                                  "mxt700s-seed000", "--out", "cal.json"])
+    assert "squareness from" in cli and "fitted residuals" in cli
+    (tmp_path / "py").mkdir()
+    monkeypatch.chdir(tmp_path / "py")
+    r = pkm.calibration.exechon("mxt700s-like", files=[fit, hybrid], holdout=[hold, hhold],
+                                errors="mxt700s-seed000", out="cal.json")
+    assert masked(str(r)) == masked(cli)
+    tripod = pkm.calibration.exechon("mxt700s-like", files=[fit])
+    cli = cli_text(pkm_binary, tmp_path / "cli-tripod", ["calibrate", "exechon", "--machine",
+                                                         "mxt700s-like", "--data", fit,
+                                                         "--out", "cal.json"])
+    assert masked(str(tripod)) + "wrote cal.json, cal.summary.json\n" == masked(cli)
+
+
 # --- Exechon -------------------------------------------------------------------------------
 
 
@@ -402,6 +466,10 @@ def test_plan_poses_equals_the_cli(run_cli, tmp_path, machine, args):
     assert plan.csv == cli
     with open(tmp_path / "cli.ngc") as a:
         assert plan.gcode == a.read()
+    # A loaded machine object plans as its name does.
+    loaded = pkm.calibration.plan_poses(pkm.load_machine(machine), count=16, candidates=120,
+                                        seed=3, gcode=tmp_path / "loaded.ngc", **kw)
+    assert loaded.csv == cli and loaded.gcode == plan.gcode
     rows = parse_csv(cli)
     names = ["x", "y", "z", "a", "b", "c"] if plan.kind == "hexapod" else \
         ["x", "y", "z", "i", "j", "k"]
@@ -415,9 +483,24 @@ def test_plan_poses_equals_the_cli(run_cli, tmp_path, machine, args):
         pkm.calibration.plan_poses(machine, count=16, candidates=120, gcode=tmp_path / "py.ngc")
 
 
+def test_plan_poses_of_a_changed_geometry_differ():
+    m = pkm.load_machine("hexapod-default")
+    base = m.base_joints.copy()
+    base[0, 0] += 5.0  # strut 0's base joint 5 mm along x
+    moved = m.with_geometry(base_joints=base)
+    args = dict(count=8, candidates=60, seed=2)
+    # The same candidates, but the index is evaluated on the changed geometry.
+    assert pkm.calibration.plan_poses(moved, **args).index_value != \
+        pkm.calibration.plan_poses(m, **args).index_value
+
+
 def test_plan_poses_errors():
     with pytest.raises(ValueError, match="candidates"):
         pkm.calibration.plan_poses(count=10, candidates=5)
+    with pytest.raises(ValueError, match="target-offset applies to Exechon"):
+        pkm.calibration.plan_poses(pkm.load_machine("hexapod-default"), target_offset=[1, 2, 3])
+    with pytest.raises(ValueError, match="machine"):
+        pkm.calibration.plan_poses(3.5)
     with pytest.raises(ValueError):
         pkm.calibration.plan_poses(index="O9")
 
@@ -440,6 +523,8 @@ def test_calibrate_hexapod_example(s4, tmp_path):
                   out)
     assert float(m.group(1)) > 10 and float(m.group(2)) < 0.5  # seed 004: 12 mm -> < 0.5 mm
     assert os.path.exists(tmp_path / "seed004-calibrated.json")
+    for plot in ("holdout.png", "x_move.png"):
+        assert_plot(tmp_path / plot)
     if hasattr(pkm, "simulate"):
         # Simulated in Python: the same scenario and seed as `pkm simulate`, the same numbers.
         assert run_example(tmp_path) == out

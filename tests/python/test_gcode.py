@@ -1,7 +1,9 @@
-"""pkm.gcode.moves and pkm.gcode.run against `pkm gcode moves|run` on the same program: the moves
-CSV, the joint CSV (--out) and the report (--report), bounded memory, errors."""
+"""pkm.gcode.moves, run, compensate and flatten against `pkm gcode moves|run|compensate|flatten`
+on the same program: the moves CSV, the joint CSV (--out) and the report (--report), the
+compensated and flattened programs byte for byte with their notes, bounded memory, errors."""
 
 import json
+import math
 import os
 
 import numpy as np
@@ -187,3 +189,155 @@ def test_violations_listed_per_check():
     np.testing.assert_array_equal(stroke[0]["position"], first["position"])
     assert all(v["margin"] < 0 for v in r.violations)
     assert pkm.gcode.run("hexapod-default", program).violations == []
+
+
+# --- compensate and flatten ----------------------------------------------------------------
+
+
+def renamed_machine(tmp_path, builtin, swaps):
+    """A built-in machine file with its name + "-calibrated" and text replacements `swaps`, as
+    `pkm calibrate --out` names a result (so the nominal machine is found from the name)."""
+    with open(os.path.join(REPO, "data", "machines", builtin + ".json")) as f:
+        text = f.read()
+    for old, new in swaps:
+        assert old in text, old
+        text = text.replace(old, new, 1)
+    path = tmp_path / (builtin + "-calibrated.json")
+    path.write_text(text)
+    return str(path)
+
+
+def calibrated_hexapod(tmp_path):
+    return renamed_machine(tmp_path, "hexapod-default", [
+        ('"name": "pkm-hx1200"', '"name": "pkm-hx1200-calibrated"'),
+        ('"tool_offset": [0, 0, -200]', '"tool_offset": [0.2, 0, -200.3]')])
+
+
+def calibrated_exechon(tmp_path):
+    return renamed_machine(tmp_path, "mxt700s-like", [
+        ('"name": "mxt700s-like"', '"name": "mxt700s-like-calibrated"'),
+        ('"dA": -443.4', '"dA": -443.1'), ('"tool_length": 200', '"tool_length": 200.2')])
+
+
+def check_compensation(run_cli, program, cli_args, kwargs):
+    """pkm.gcode.compensate(program, **kwargs) against `pkm gcode compensate PROGRAM CLI_ARGS`:
+    the same program text, the note on standard error, and a report that matches it."""
+    p = run_cli(["gcode", "compensate", program, *cli_args])
+    text, report = pkm.gcode.compensate(program, **kwargs)
+    assert text == p.stdout
+    assert p.stderr == f"pkm: note: {report['note']}\n"
+    assert report["desired"].shape == report["command"].shape == (len(report["line"]), 6)
+    assert report["line"].dtype == np.int64
+    xyz = np.linalg.norm(report["command"][:, :3] - report["desired"][:, :3], axis=1)
+    assert math.isclose(xyz.max(), report["max_correction"], rel_tol=1e-12)
+    return text, report
+
+
+def test_compensate_hexapod_equals_the_cli(run_cli, tmp_path):
+    cal = calibrated_hexapod(tmp_path)
+    text, report = check_compensation(run_cli, HEXAPOD_PROGRAM, ["--machine", cal],
+                                      {"machine": cal})
+    assert "nominal pkm-hx1200 -> calibrated pkm-hx1200-calibrated" in report["note"]
+    assert report["motion_lines"] > 0 and report["max_correction"] > 0.1
+    check_compensation(run_cli, HEXAPOD_PROGRAM, ["--machine", cal],
+                       {"machine": pkm.load_machine(cal)})  # a loaded machine, as its file
+    check_compensation(run_cli, HEXAPOD_PROGRAM,
+                       ["--machine", cal, "--nominal", "hexapod-default", "--tolerance", "0.05"],
+                       {"machine": cal, "nominal": "hexapod-default", "tolerance": 0.05})
+    # From the text, written to a file as --out writes it.
+    with open(HEXAPOD_PROGRAM) as f:
+        source = f.read()
+    out = tmp_path / "comp.ngc"
+    mine, _ = pkm.gcode.compensate(source, machine=cal, out=out, name=HEXAPOD_PROGRAM)
+    assert mine == text and out.read_text() == text
+    with pytest.raises(ValueError, match="exists; pass --force"):
+        pkm.gcode.compensate(source, machine=cal, out=out)
+    pkm.gcode.compensate(source, machine=cal, out=out, force=True)
+
+
+@pytest.mark.parametrize("orientation", ["vector", "axes"])
+def test_compensate_exechon_equals_the_cli(run_cli, tmp_path, orientation):
+    cal = calibrated_exechon(tmp_path)
+    _, report = check_compensation(run_cli, EXECHON_PROGRAM,
+                                   ["--machine", cal, "--orientation", orientation],
+                                   {"machine": cal, "orientation": orientation})
+    assert f"--orientation {orientation}" in report["note"]
+    check_compensation(run_cli, EXECHON_PROGRAM, ["--machine", cal, "--orientation", orientation],
+                       {"machine": pkm.load_machine(cal), "orientation": orientation})
+
+
+def test_compensate_hybrid_frame_equals_the_cli(run_cli, tmp_path):
+    frame = tmp_path / "frame.txt"
+    frame.write_text("# pkm-base-frame\nbase_rpy_rad = 0 0 0.003\nbase_offset_mm = 0 0 0\n"
+                     "per_x2 = 0 -4e-05 0\n")
+    program = tmp_path / "p.ngc"
+    program.write_text("G21 G90\nN5 G1 X10 Y20 Z-1 F500 (cut)\nM2\n")
+    for extra, kw in (([], {}), (["--base-frame-not-in-controller"],
+                                 {"base_frame_not_in_controller": True})):
+        text, _ = check_compensation(
+            run_cli, str(program), ["--hybrid-frame", str(frame), "--x2", "1000", *extra],
+            dict(hybrid_frame=frame, x2=1000, **kw))
+        assert "(cut)" in text
+
+
+def test_compensate_errors_raise_with_pkms_message(run_cli, tmp_path):
+    cal = calibrated_hexapod(tmp_path)
+    bad = tmp_path / "b.ngc"
+    bad.write_text("G0 X0 Y0 Z200\nG92 X[#1]\n")  # a non-constant G92 word: refused
+    p = run_cli(["gcode", "compensate", "--machine", cal, str(bad)], check=False)
+    assert p.returncode == 2
+    message = p.stderr.strip().removeprefix("pkm: error: ")
+    with pytest.raises(ValueError) as e:
+        pkm.gcode.compensate(bad, machine=cal)
+    assert str(e.value) == message and "b.ngc:2:" in message
+    with pytest.raises(ValueError, match="--machine CAL.json"):
+        pkm.gcode.compensate("G0 X0\n")
+    with pytest.raises(ValueError, match="--x2"):
+        pkm.gcode.compensate("G0 X0\n", hybrid_frame=bad)
+    with pytest.raises(ValueError, match="--tolerance must be > 0"):
+        pkm.gcode.compensate("G0 X0\n", machine=cal, tolerance=-1)
+    with pytest.raises(ValueError, match="--orientation"):
+        pkm.gcode.compensate("G0 X0\n", machine=cal, orientation="axes")
+    with pytest.raises(ValueError, match="--nominal"):
+        pkm.gcode.compensate("G0 X0 Y0 Z200\n", machine="hexapod-default")
+    with pytest.raises(ValueError, match="cannot open"):
+        pkm.gcode.compensate(tmp_path / "missing.ngc", machine=cal)
+    with pytest.raises(ValueError, match="orientation is for Exechon machines; pkm-hx1200-cal"):
+        pkm.gcode.compensate("G0 X0\n", machine=pkm.load_machine(cal), orientation="axes")
+    with pytest.raises(ValueError, match="machine"):
+        pkm.gcode.compensate("G0 X0\n", machine=3)
+
+
+@pytest.mark.parametrize("program,tools", [("sphere.ngc", "tools.tbl"),
+                                           ("pocket_loops.ngc", None), ("drilling.ngc", None)])
+def test_flatten_equals_the_cli(run_cli, tmp_path, program, tools):
+    path = os.path.join(GCODE, program)
+    options = ["--tool-table", os.path.join(GCODE, tools)] if tools else []
+    p = run_cli(["gcode", "flatten", path, *options])
+    text, report = pkm.gcode.flatten(path, tool_table=os.path.join(GCODE, tools) if tools else None)
+    assert text == p.stdout
+    assert p.stderr == f"pkm: note: {report['note']}\n"
+    assert len(report["source_line"]) == text.count("\n")
+    with open(path) as f:
+        source = f.read().splitlines()
+    assert 1 <= report["source_line"].min() and report["source_line"].max() <= len(source)
+    # Flattening is idempotent, and the flat program makes the same moves.
+    again, _ = pkm.gcode.flatten(text, tool_table=os.path.join(GCODE, tools) if tools else None)
+    assert again == text
+    out = tmp_path / "flat.ngc"
+    pkm.gcode.flatten(path, tool_table=os.path.join(GCODE, tools) if tools else None, out=out)
+    assert out.read_text() == text
+
+
+def test_flatten_options_and_errors(run_cli, tmp_path):
+    program = "o100 repeat [3]\nG1 X[#5420 + 1] F100\n/G0 Y1\no100 endrepeat\nM2\n"
+    text, report = pkm.gcode.flatten(program, block_delete=True)
+    assert text.splitlines() == ["G1 X1 F100", "G1 X2 F100", "G1 X3 F100", "M2"]
+    assert report["had_o_words"] and report["blocks"] == 4
+    (tmp_path / "p.ngc").write_text(program)
+    p = run_cli(["gcode", "flatten", str(tmp_path / "p.ngc"), "--block-delete"])
+    assert pkm.gcode.flatten(tmp_path / "p.ngc", block_delete=True)[0] == p.stdout
+    with pytest.raises(ValueError, match="program:2:"):
+        pkm.gcode.flatten("G0 X0\nG1 X1 Q\n")
+    with pytest.raises(ValueError, match="loop"):
+        pkm.gcode.flatten("o1 while [1]\nG0 X1\no1 endwhile\n", max_iterations=10)

@@ -1,6 +1,6 @@
 // workflow::compensateGcode: the pre-distorted program drives the nominal controller's struts to
-// where the calibrated machine needs them (round trip), the hybrid X2 term, errors named after an
-// upload, bad requests refused, no overwrite without force.
+// where the calibrated machine needs them (round trip), a loaded machine as its file, the hybrid X2
+// term, errors named after an upload, bad requests refused, no overwrite without force.
 #include "pkm/workflow/gcode_compensate.hpp"
 
 #include <fmt/format.h>
@@ -75,6 +75,36 @@ TEST_F(GcodeCompensateWorkflow, TheNominalControllerReachesTheCalibratedStrutLen
     const kinematics::StrutVector needed = machine.solve(p.desired);
     EXPECT_LT((commanded - needed).cwiseAbs().maxCoeff(), 1e-6) << "line " << p.line;
   }
+}
+
+TEST_F(GcodeCompensateWorkflow, ALoadedMachineCompensatesAsItsFileDoes) {
+  const std::string program = "G0 X0 Y0 Z200\nG1 X30 Y10 F600\nG2 X40 Y20 I10 J0\nM2\n";
+  GcodeCompensateRequest from_file = request(program);
+  GcodeCompensateRequest loaded = request(program);
+  loaded.hexapod =
+      std::make_shared<const io::HexapodMachine>(io::loadHexapodMachine(loaded.machine));
+  loaded.machine.clear();
+  EXPECT_EQ(loaded.machineName(), "pkm-hx1200-calibrated");
+  const GcodeCompensateResult a = compensateGcode(from_file), b = compensateGcode(loaded);
+  EXPECT_EQ(b.compensation.text, a.compensation.text);
+  EXPECT_EQ(b.note, a.note);
+  // An Exechon, loaded: the nominal is found from its name as from a file's.
+  std::string j = slurp(std::string(PKM_SOURCE_DIR) + "/data/machines/mxt700s-like.json");
+  const std::string name = "\"name\": \"mxt700s-like\"";
+  j.replace(j.find(name), name.size(), "\"name\": \"mxt700s-like-calibrated\"");
+  GcodeCompensateRequest exechon;
+  exechon.program = {"upload.ngc",
+                     slurp(std::string(PKM_SOURCE_DIR) + "/examples/gcode/exechon_contour.ngc")};
+  exechon.machine = write("ex-cal.json", j);
+  const std::string exechon_text = compensateGcode(exechon).compensation.text;
+  exechon.exechon =
+      std::make_shared<const io::ExechonMachine>(io::loadExechonMachine(exechon.machine));
+  EXPECT_THROW(exechon.validate(), InvalidArgument);  // a file and a loaded machine
+  exechon.machine.clear();
+  EXPECT_TRUE(exechon.onExechon());
+  EXPECT_EQ(compensateGcode(exechon).compensation.text, exechon_text);
+  exechon.hexapod = loaded.hexapod;  // two loaded machines
+  EXPECT_THROW(exechon.validate(), InvalidArgument);
 }
 
 TEST_F(GcodeCompensateWorkflow, TheHybridFrameShiftsByTheX2Term) {

@@ -1,5 +1,6 @@
 // workflow::planPoses: a small plan reaches full identifiability (hexapod 42, Exechon 26), the
-// program is written only when allowed, cancellation stops planning, bad requests are refused.
+// program is written only when allowed, a loaded machine plans as its name does, cancellation
+// stops planning, bad requests are refused.
 #include "pkm/workflow/plan_poses.hpp"
 
 #include <gmock/gmock.h>
@@ -11,6 +12,7 @@
 #include <sstream>
 
 #include "pkm/core/error.hpp"
+#include "pkm/io/machine_loader.hpp"
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
@@ -82,6 +84,36 @@ TEST(PlanPosesWorkflow, WritesTheProgramOnlyWhenAllowed) {
   q.force = true;
   EXPECT_EQ(planPoses(q).gcode, r.gcode);
   fs::remove(program);
+}
+
+TEST(PlanPosesWorkflow, ALoadedMachinePlansAsItsNameDoes) {
+  const fs::path named_program = scratch("named.ngc"), loaded_program = scratch("loaded.ngc");
+  fs::remove(named_program);
+  fs::remove(loaded_program);
+  PlanPosesRequest named = hexapodRequest();
+  named.gcode = named_program.string();
+  PlanPosesRequest loaded = hexapodRequest();
+  loaded.machine = "no-such-machine";  // not read: the loaded machine is used
+  loaded.hexapod =
+      std::make_shared<const io::HexapodMachine>(io::loadHexapodMachine("hexapod-default"));
+  loaded.gcode = loaded_program.string();
+  const PlanPosesResult a = planPoses(named), b = planPoses(loaded);
+  EXPECT_EQ(b.csv, a.csv);
+  EXPECT_EQ(b.gcode, a.gcode);  // the feed checked on the loaded machine: the same
+  PlanPosesRequest exechon;
+  exechon.machine = "mxt700s-like";
+  exechon.count = 8;
+  exechon.candidates = 80;
+  const std::string exechon_csv = planPoses(exechon).csv;
+  exechon.machine = "default";  // a hexapod's name, ignored
+  exechon.exechon =
+      std::make_shared<const io::ExechonMachine>(io::loadExechonMachine("mxt700s-like"));
+  EXPECT_EQ(exechon.machineType(), "exechon");
+  EXPECT_EQ(planPoses(exechon).csv, exechon_csv);
+  exechon.hexapod = loaded.hexapod;  // at most one loaded machine
+  EXPECT_THROW(exechon.validate(), InvalidArgument);
+  fs::remove(named_program);
+  fs::remove(loaded_program);
 }
 
 TEST(PlanPosesWorkflow, CancellationStopsPlanning) {

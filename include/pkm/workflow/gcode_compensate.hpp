@@ -5,10 +5,13 @@
 /// X2–Y2 squareness corrected in a PKM program from a campaign's pkm-base-frame.txt (seed 000).
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "pkm/cnc/program_compensation.hpp"
+#include "pkm/io/exechon_machine.hpp"
+#include "pkm/io/hexapod_machine.hpp"
 #include "pkm/io/named_text.hpp"
 #include "pkm/workflow/gcode_interpreter.hpp"
 
@@ -20,6 +23,11 @@ struct GcodeCompensateRequest {
   /// The calibrated machine: the output of `pkm calibrate hexapod|exechon --out` (a file or a
   /// built-in name).
   std::string machine;
+  /// A calibrated machine a front end has already loaded (e.g. a Python calibration's
+  /// result.machine), used instead of `machine`; at most one of `machine`, `hexapod` and
+  /// `exechon` is set.
+  std::shared_ptr<const io::HexapodMachine> hexapod;
+  std::shared_ptr<const io::ExechonMachine> exechon;
   /// The controller's nominal machine ("" : the built-in machine the calibrated machine's name
   /// refers to, its name without "-calibrated").
   std::string nominal;
@@ -42,11 +50,14 @@ struct GcodeCompensateRequest {
   /// Exechon: what A/C mean, "vector" (default) or "axes", as in `gcode run`.
   std::optional<std::string> orientation;
   GcodeInterpreterSettings interpreter;  ///< the tool table (G43 H)
-  /// Throws pkm::InvalidArgument for a tolerance that is not > 0, neither or both of `machine`
-  /// and `hybrid_frame`, a hybrid frame without `x2`, an orientation for a hexapod or an INI for
-  /// an Exechon or hybrid machine;
-  /// pkm::IoError "OUT exists; pass --force to overwrite it" when `out` exists and `force` is not
-  /// set.
+  /// The calibrated machine's name in messages: `machine`, or the loaded machine's model name.
+  [[nodiscard]] std::string machineName() const;
+  /// Whether the calibrated machine is an Exechon (`exechon` set, or `machine` names one).
+  [[nodiscard]] bool onExechon() const;
+  /// Throws pkm::InvalidArgument for a tolerance that is not > 0, neither or both of a machine
+  /// (`machine`, `hexapod` or `exechon`, at most one) and `hybrid_frame`, a hybrid frame without
+  /// `x2`, an orientation for a hexapod or an INI for an Exechon or hybrid machine; pkm::IoError
+  /// "OUT exists; pass --force to overwrite it" when `out` exists and `force` is not set.
   void validate() const;
 };
 

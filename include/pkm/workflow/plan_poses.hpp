@@ -7,10 +7,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "pkm/io/exechon_machine.hpp"
+#include "pkm/io/hexapod_machine.hpp"
 #include "pkm/io/pose_plan_report.hpp"
 #include "pkm/workflow/progress.hpp"
 
@@ -20,11 +23,16 @@ namespace pkm::workflow {
 struct PlanPosesRequest {
   std::string machine = "default";  ///< machine file, LinuxCNC .hal, or built-in name (any type)
   std::string ini;                  ///< the LinuxCNC INI of a .hal machine ("": found from it)
-  int count = 30;                   ///< poses to choose, ≥ 1
-  std::string index = "O1";         ///< observability index "O1".."O5" (any case)
-  std::string measurement;  ///< "pose" (6-DOF), "point" (tracker SMR) or "" (the machine's own)
-  int candidates = 1000;    ///< random workspace candidates, ≥ count
-  std::uint64_t seed = 1;   ///< random seed of the candidates
+  /// A machine the front end has already loaded (e.g. a Python pkm.Hexapod or pkm.Exechon,
+  /// possibly with a changed geometry), used instead of `machine` and `ini` (its reader's notices
+  /// are not repeated); at most one of the two is set.
+  std::shared_ptr<const io::HexapodMachine> hexapod;
+  std::shared_ptr<const io::ExechonMachine> exechon;
+  int count = 30;            ///< poses to choose, ≥ 1
+  std::string index = "O1";  ///< observability index "O1".."O5" (any case)
+  std::string measurement;   ///< "pose" (6-DOF), "point" (tracker SMR) or "" (the machine's own)
+  int candidates = 1000;     ///< random workspace candidates, ≥ count
+  std::uint64_t seed = 1;    ///< random seed of the candidates
   /// Half-range of x, y, z about home, machine unit (0: 0.4 × the hexapod's platform radius,
   /// 0.3 × the Exechon's largest base dimension).
   double reach = 0.0;
@@ -40,8 +48,11 @@ struct PlanPosesRequest {
   std::string gcode;   ///< the G-code program to write ("": none)
   bool force = false;  ///< replace an existing G-code file
   /// Throws pkm::InvalidArgument naming the option for count < 1, candidates < count, an unknown
-  /// index or measurement, a negative reach or tilt, or a target offset that is not 3 numbers.
+  /// index or measurement, a negative reach or tilt, a target offset that is not 3 numbers, or both
+  /// loaded machines set.
   void validate() const;
+  /// "hexapod" or "exechon": the loaded machine's type, else io::machineTypeOf(machine).
+  [[nodiscard]] std::string machineType() const;
 };
 
 /// What a pose plan produced.
