@@ -135,6 +135,13 @@ void addThermal(std::vector<Entry>& v) {
                   fmt::format("warm-up drift of the tool point, {}", "xyz"[k])},
                  g,
                  [k](Env& e) -> double& { return e.thermal.warmup_drift_mm[k]; }});
+  for (int k = 0; k < 3; ++k)
+    v.push_back({{fmt::format("thermal.warmup_tilt_urad.{}", k),
+                  "µrad",
+                  fmt::format("thermal tilt of a hybrid machine's PKM, about {}", "xyz"[k])},
+                 g,
+                 [k](Env& e) -> double& { return e.thermal.warmup_tilt_rad[k]; },
+                 1e6});
   v.push_back({{"thermal.warmup_time_constant_h", "h", "warm-up time constant"},
                g,
                [](Env& e) -> double& { return e.thermal.warmup_time_constant_h; }});

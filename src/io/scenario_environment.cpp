@@ -99,6 +99,7 @@ void readThermal(const JsonDoc& doc,
                 "assumed_material",
                 "assumed_cte_per_k",
                 "warmup_drift_mm",
+                "warmup_tilt_urad",
                 "warmup_time_constant_h",
                 "strut_warmup_k",
                 "strut_material",
@@ -116,6 +117,8 @@ void readThermal(const JsonDoc& doc,
   t.strut_cte_per_k = cte(doc, obj, ptr, "strut", t.strut_cte_per_k);
   if (obj.contains("warmup_drift_mm"))
     t.warmup_drift_mm = doc.vec3(obj["warmup_drift_mm"], ptr + "/warmup_drift_mm");
+  if (obj.contains("warmup_tilt_urad"))
+    t.warmup_tilt_rad = doc.vec3(obj["warmup_tilt_urad"], ptr + "/warmup_tilt_urad") / 1e6;
   t.warmup_time_constant_h =
       doc.number(obj, ptr, "warmup_time_constant_h", t.warmup_time_constant_h);
   t.strut_warmup_k = doc.number(obj, ptr, "strut_warmup_k", t.strut_warmup_k);

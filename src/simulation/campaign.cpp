@@ -51,6 +51,7 @@ std::vector<MeasurementResult> runCampaign(const Campaign& campaign, std::uint64
   const Environment& env = campaign.environment;
   const double window_s = measurementWindowS(campaign);
   auto* hexapod = dynamic_cast<HexapodVirtualMachine*>(campaign.machine.get());
+  auto* hybrid = dynamic_cast<HybridVirtualMachine*>(campaign.machine.get());
   for (const LineSetup& setup : campaign.measurements) {
     RandomStream rng(seed, setup.name);
     if (!env.active()) {
@@ -60,11 +61,13 @@ std::vector<MeasurementResult> runCampaign(const Campaign& campaign, std::uint64
     const double start_s =
         env.elapsed_h * kSecondsPerHour + static_cast<double>(results.size()) * window_s;
     if (hexapod != nullptr) hexapod->setStrutGrowth(env.strutGrowth(start_s + window_s / 2));
+    if (hybrid != nullptr) hybrid->setPkmTilt(env.pkmTilt(start_s + window_s / 2));
     MeasurementConditions conditions(
         env, start_s, window_s, readingCount(setup), streamSeed(seed, setup.name + "/environment"));
     results.push_back({&setup, simulateLine(*campaign.machine, setup, rng, &conditions)});
   }
   if (hexapod != nullptr) hexapod->setStrutGrowth(0.0);
+  if (hybrid != nullptr) hybrid->setPkmTilt(Eigen::Vector3d::Zero());
   return results;
 }
 

@@ -50,6 +50,7 @@ ThermalEnvironment realisticThermal() {
   t.machine_cte_per_k = 11.0e-6;  // steel screws in a cast-iron and steel structure
   t.assumed_cte_per_k = 11.5e-6;  // the operator enters steel
   t.warmup_drift_mm = {0.005, 0.008, -0.030};
+  t.warmup_tilt_rad = {50e-6, 0.0, 30e-6};  // a PKM head tilting by tens of µrad as it warms
   t.warmup_time_constant_h = 1.0;
   t.strut_warmup_k = 2.0;
   t.strut_cte_per_k = 11.5e-6;
@@ -173,7 +174,7 @@ bool ThermalEnvironment::isValid(std::string* why) const {
     return fail(why, "the material temperature drift or its sensor is invalid");
   if (!std::isfinite(machine_cte_per_k) || !std::isfinite(assumed_cte_per_k) ||
       !std::isfinite(strut_cte_per_k) || !std::isfinite(strut_warmup_k) ||
-      !warmup_drift_mm.allFinite())
+      !warmup_drift_mm.allFinite() || !warmup_tilt_rad.allFinite())
     return fail(why, "thermal values must be finite");
   if (!std::isfinite(warmup_time_constant_h) || warmup_time_constant_h <= 0.0)
     return fail(why,
@@ -184,6 +185,11 @@ bool ThermalEnvironment::isValid(std::string* why) const {
 double Environment::warmup(double time_s) const {
   if (!thermal.enabled) return 0.0;
   return 1.0 - std::exp(-time_s / (thermal.warmup_time_constant_h * 3600.0));
+}
+
+Eigen::Vector3d Environment::pkmTilt(double time_s) const {
+  return thermal.enabled ? Eigen::Vector3d(thermal.warmup_tilt_rad * warmup(time_s))
+                         : Eigen::Vector3d::Zero();
 }
 
 double Environment::strutGrowth(double time_s) const {

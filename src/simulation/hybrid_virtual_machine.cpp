@@ -21,7 +21,10 @@ kinematics::HybridCommand toCommand(const Eigen::VectorXd& c) {
 HybridVirtualMachine::HybridVirtualMachine(kinematics::HybridMachineModel model,
                                            kinematics::GeometricErrors errors,
                                            std::optional<HybridTripod> tripod)
-    : model_(std::move(model)), errors_(std::move(errors)), tripod_(std::move(tripod)) {
+    : model_(std::move(model)),
+      errors_(std::move(errors)),
+      squareness_(errors_.squareness),
+      tripod_(std::move(tripod)) {
   model_.validate();
   errors_.validate();
   PKM_CHECK(model_.unit == LengthUnit::kMillimetre,
@@ -69,6 +72,15 @@ void HybridVirtualMachine::setSag(const AxisSag& x2, const AxisSag& y2) {
 
 void HybridVirtualMachine::setTripodLegLeadErrors(const ExechonLegLeadErrors& lead) {
   if (tripod_) tripod_->setLegLeadErrors(lead);
+}
+
+void HybridVirtualMachine::setPkmTilt(const Eigen::Vector3d& omega) {
+  PKM_CHECK(omega.allFinite(), "PKM tilt must be finite");
+  tilt_ = omega;
+  errors_.squareness = squareness_;
+  errors_.squareness.sx_p += omega.x();
+  errors_.squareness.sy_p -= omega.y();
+  errors_.squareness.sz_p += omega.z();
 }
 
 }  // namespace pkm::simulation

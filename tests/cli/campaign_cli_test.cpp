@@ -263,8 +263,9 @@ TEST_F(CampaignCli, ListNamesTheBuiltInCampaigns) {
 }
 
 TEST_F(CampaignCli, TheRealisticEnvironmentLeavesLargerAfterFigures) {
-  // The same scenarios with every unmodelled source on: compensation still works, but the
-  // figures after it are no longer those of a perfectly modelled machine.
+  // The default campaign runs with every unmodelled source on; the `ideal` campaign, the same
+  // scenarios without them: compensation works in both, but the figures after it are no longer
+  // those of a perfectly modelled machine, and they are what the built-in `realistic` gives.
   const auto after = [&](const std::string& campaign) {
     const CliRun r =
         pkm({"campaign", "run", campaign, "--out", path(campaign), "--no-db", "--force"});
@@ -277,20 +278,24 @@ TEST_F(CampaignCli, TheRealisticEnvironmentLeavesLargerAfterFigures) {
             row["after"].get<double>();
     return v;
   };
-  const std::map<std::string, double> ideal = after("default");
-  const std::map<std::string, double> real = after("realistic");
+  const std::map<std::string, double> ideal = after("ideal");
+  const std::map<std::string, double> real = after("default");
+  EXPECT_EQ(real, after("realistic"));
   ASSERT_EQ(ideal.size(), real.size());
   EXPECT_GT(real.at("seed001 X positioning (ISO 230-2 E)"),
             2.0 * ideal.at("seed001 X positioning (ISO 230-2 E)"));
-  EXPECT_GT(real.at("seed000 parallelism Y2-PY, horizontal (300 mm)"),
-            2.0 * ideal.at("seed000 parallelism Y2-PY, horizontal (300 mm)"));
+  // Seed 000's range of 0.005–0.03 mm after compensation (issue 24): the PKM's thermal tilt.
+  EXPECT_GT(real.at("seed000 parallelism Y2-PY, horizontal (300 mm)"), 0.005);
+  EXPECT_LT(real.at("seed000 parallelism Y2-PY, horizontal (300 mm)"), 0.03);
+  EXPECT_GT(real.at("seed000 parallelism Y2-PY, vertical (300 mm)"), 0.005);
+  EXPECT_LT(real.at("seed000 parallelism Y2-PY, vertical (300 mm)"), 0.03);
   EXPECT_GT(real.at("seed003 roundness of the 40.001 mm ring, 180 touches (LSC)"),
             ideal.at("seed003 roundness of the 40.001 mm ring, 180 touches (LSC)"));
   // The hexapod's unmodelled geometry (strut lead errors) is what its calibration cannot remove.
   EXPECT_GT(real.at("seed004 TCP error, held-out poses, RMS"),
             2.0 * ideal.at("seed004 TCP error, held-out poses, RMS"));
   // Deterministic per seed.
-  EXPECT_EQ(real, after("realistic"));
+  EXPECT_EQ(real, after("default"));
 }
 
 }  // namespace

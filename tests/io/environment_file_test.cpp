@@ -30,8 +30,8 @@ std::vector<double> everything(const sim::Environment& e) {
   return v;
 }
 
-/// {"preset": "ideal", <path as nested keys>: value} (an array element of warmup_drift_mm within
-/// the ideal array).
+/// {"preset": "ideal", <path as nested keys>: value} (an array element of warmup_drift_mm or
+/// warmup_tilt_urad within the ideal array).
 std::string oneKeyDocument(const std::string& path, double value) {
   std::vector<std::string> keys;
   std::stringstream ss(path);
@@ -39,7 +39,7 @@ std::string oneKeyDocument(const std::string& path, double value) {
   nlohmann::json doc = {{"preset", "ideal"}};
   nlohmann::json* at = &doc;
   for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
-    if (keys[i] == "warmup_drift_mm") {
+    if (keys[i] == "warmup_drift_mm" || keys[i] == "warmup_tilt_urad") {
       nlohmann::json drift = {0.0, 0.0, 0.0};
       drift[std::stoul(keys[i + 1])] = value;
       (*at)[keys[i]] = drift;

@@ -37,6 +37,47 @@ TEST(HybridVirtualMachine, MatchesTheHybridChain) {
   EXPECT_THROW((void)m.moveTo(Eigen::VectorXd::Zero(3)), pkm::InvalidArgument);
 }
 
+TEST(HybridVirtualMachine, PkmTiltTurnsThePkmsMotionsNotTheExtendingAxes) {
+  // A thermal tilt ω of the PKM is a change of its squareness (sxP + ω_x, syP − ω_y, szP + ω_z):
+  // the same pose as the chain with those squareness errors; a PKM y move of 300 mm then runs
+  // 300·ω_x up and 300·ω_z sideways (first order) more than before, a Y2 move not at all.
+  kin::GeometricErrors errors;
+  errors.squareness = {-0.034e-3, -14.74e-3, 4.35e-3, -2.85e-3};
+  const kin::HybridMachineModel model = pkm::test::mxt700sLikeModel();
+  HybridVirtualMachine m(model, errors);
+  const Eigen::Vector3d omega(50e-6, 20e-6, 30e-6);
+  m.setPkmTilt(omega);
+  kin::GeometricErrors tilted = errors;
+  tilted.squareness.sx_p += omega.x();
+  tilted.squareness.sy_p -= omega.y();
+  tilted.squareness.sz_p += omega.z();
+  Eigen::VectorXd c(5);
+  c << 400, 100, 10, -50, 30;
+  kin::HybridCommand hc;
+  hc.x2 = 400;
+  hc.y2 = 100;
+  hc.pkm = {10, -50, 30};
+  EXPECT_TRUE(m.moveTo(c).matrix() == kin::hybridActualPose(model, tilted, hc).matrix());
+  // Without other errors the tilt is the rotation exp([ω]×) of the PKM frame alone.
+  HybridVirtualMachine square(model, {});
+  const auto displacement = [&square](const Eigen::VectorXd& from, const Eigen::VectorXd& to) {
+    return Eigen::Vector3d(square.moveTo(to).translation() - square.moveTo(from).translation());
+  };
+  Eigen::VectorXd a(5), py(5), y2(5);
+  a << 400, 100, 0, -150, 30;
+  py << 400, 100, 0, 150, 30;
+  y2 << 400, 400, 0, -150, 30;
+  square.setPkmTilt(omega);
+  const Eigen::Vector3d with_py = displacement(a, py), with_y2 = displacement(a, y2);
+  square.setPkmTilt(Eigen::Vector3d::Zero());
+  const Eigen::Vector3d without_py = displacement(a, py), without_y2 = displacement(a, y2);
+  constexpr double kTolSecondOrder = 2e-6;  // mm: 300 mm × |ω|² and the lever's ω × offset
+  EXPECT_NEAR(with_py.z() - without_py.z(), 300.0 * omega.x(), kTolSecondOrder);
+  EXPECT_NEAR(with_py.x() - without_py.x(), -300.0 * omega.z(), kTolSecondOrder);
+  EXPECT_NEAR((with_y2 - without_y2).norm(), 0.0, pkm::test::kTolExact);
+  EXPECT_THROW(m.setPkmTilt(Eigen::Vector3d(std::nan(""), 0, 0)), pkm::InvalidArgument);
+}
+
 TEST(HybridVirtualMachine, NoErrorsGivesTheNominalPose) {
   HybridVirtualMachine m(pkm::test::mxt700sLikeModel(), {});
   Eigen::VectorXd c(5);

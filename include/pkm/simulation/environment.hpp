@@ -98,6 +98,10 @@ struct ThermalEnvironment {
   Eigen::Vector3d warmup_drift_mm = Eigen::Vector3d::Zero();
   double warmup_time_constant_h = 1.0;  ///< τ_w, h, > 0
   /// Hexapod struts: temperature rise after a long run, K (same time constant), and their α.
+  /// The PKM's tilt relative to its extending axes after a long run (a hybrid machine's head
+  /// turning as its structure warms unevenly), rotation vector in the work frame, rad; reached
+  /// with the warm-up law (HybridVirtualMachine::setPkmTilt).
+  Eigen::Vector3d warmup_tilt_rad = Eigen::Vector3d::Zero();
   double strut_warmup_k = 0.0;
   double strut_cte_per_k = 11.5e-6;
   /// True when every value is finite and the time constant > 0.
@@ -224,6 +228,9 @@ struct Environment {
   }
   /// The warm-up fraction 1 − exp(−τ/τ_w) at campaign time `time_s` (0 when thermal is off).
   [[nodiscard]] double warmup(double time_s) const;
+  /// The PKM's thermal tilt warmup_tilt_rad·warmup(τ) at campaign time `time_s` (zero when
+  /// thermal is off), rad.
+  [[nodiscard]] Eigen::Vector3d pkmTilt(double time_s) const;
   /// The struts' relative thermal growth α_strut·ΔT_strut(τ) at campaign time `time_s`.
   [[nodiscard]] double strutGrowth(double time_s) const;
   /// True when every part is valid and the air stays inside Edlén's range over the pass;

@@ -58,10 +58,20 @@ class HybridVirtualMachine final : public VirtualMachine {
   /// The tripod's leg lead errors (HybridTripod::setLegLeadErrors); ignored without a tripod.
   /// Throws pkm::InvalidArgument when an error does not validate.
   void setTripodLegLeadErrors(const ExechonLegLeadErrors& lead);
+  /// Thermal tilt of the PKM relative to its extending axes (environment.hpp,
+  /// ThermalEnvironment::warmup_tilt_rad): the PKM frame P turns by exp([ω]×) on top of its
+  /// squareness, i.e. sxP, syP, szP change by ω_x, −ω_y, ω_z (squarenessRotationP), so the PKM's
+  /// own motions change direction while X2 and Y2 do not. ω in rad; zero (the default) switches it
+  /// off. Throws pkm::InvalidArgument for a non-finite ω.
+  void setPkmTilt(const Eigen::Vector3d& omega);
+  /// The tilt in effect, rad.
+  [[nodiscard]] const Eigen::Vector3d& pkmTilt() const { return tilt_; }
 
  private:
   kinematics::HybridMachineModel model_;
   kinematics::GeometricErrors errors_;
+  kinematics::HybridSquareness squareness_;  ///< errors_'s own squareness (before any tilt)
+  Eigen::Vector3d tilt_ = Eigen::Vector3d::Zero();
   std::optional<HybridTripod> tripod_;
   AxisSag sag_x2_;
   AxisSag sag_y2_;
