@@ -9,7 +9,7 @@ from . import calibration as calibration
 from . import gcode as gcode
 from . import metrology as metrology
 
-__all__ = ["CampaignSummary", "ConvergenceError", "Exechon", "Hexapod", "LimitError", "Simulation", "builtin_machines", "calibration", "campaigns", "gcode", "load_machine", "metrology", "run_campaign", "scenarios", "simulate"]
+__all__ = ["CampaignSummary", "ConvergenceError", "Exechon", "Hexapod", "LimitError", "Simulation", "builtin_machines", "calibration", "campaign_sensitivity", "campaigns", "gcode", "load_machine", "metrology", "run_campaign", "scenarios", "simulate"]
 
 class CampaignSummary:
     def __dir__(self) -> list: ...
@@ -101,6 +101,8 @@ class Simulation:
     def write(self, out: Any, force: bool = ...) -> None: ...
 
 def builtin_machines(type: str = ...) -> List[str]: ...
+
+def campaign_sensitivity(campaign: Any = ..., *, source: str, values: List[float], out: Any, environment: Any = ..., uncertainty: Any = ..., seed: Any = ..., force: bool = ...) -> dict: ...
 
 def campaigns() -> list: ...
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "common.hpp"
 #include "paths.hpp"
@@ -15,6 +16,7 @@
 #include "pkm/io/environment_file.hpp"
 #include "pkm/io/named_text.hpp"
 #include "pkm/io/uncertainty_sources.hpp"
+#include "pkm/workflow/campaign_sensitivity.hpp"
 #include "simulation.hpp"
 
 namespace pkm::python {
@@ -136,6 +138,38 @@ CampaignSummary runCampaign(const py::object& campaign,
   return s;
 }
 
+/// `pkm campaign sensitivity`: the study's sensitivity.json as a dict.
+py::dict campaignSensitivity(const py::object& campaign,
+                             const std::string& source,
+                             const std::vector<double>& values,
+                             const py::object& out,
+                             const py::object& environment,
+                             const py::object& uncertainty,
+                             const py::object& seed,
+                             bool force) {
+  workflow::SensitivityOptions o;
+  o.campaign = pathOf(campaign, "campaign (a built-in name or a file)");
+  o.source = source;
+  o.values = values;
+  o.out = pathOf(out, "out");
+  o.force = force;
+  if (!environment.is_none()) {
+    o.base_source = pathOf(environment, "environment (a preset name or a file)");
+    o.base = io::loadEnvironment(o.base_source);
+  }
+  if (!uncertainty.is_none()) {
+    o.uncertainty_source = pathOf(uncertainty, "uncertainty (a sources file)");
+    o.uncertainty = io::readUncertaintySources(io::readNamedText(o.uncertainty_source));
+  }
+  if (!seed.is_none()) o.seed = seed.cast<std::uint64_t>();
+  workflow::SensitivityResult r;
+  {
+    py::gil_scoped_release release;
+    r = workflow::runSensitivity(o);
+  }
+  return jsonLoads(r.json);
+}
+
 }  // namespace
 
 void exposeCampaign(py::module_& m) {
@@ -255,6 +289,57 @@ Raises
 ------
 ValueError
     A bad campaign, step or data file (pkm's message, naming it), an unknown name, or an output
+    folder that is not empty without `force`.)doc");
+
+  m.def(
+      "campaign_sensitivity",
+      &campaignSensitivity,
+      py::arg("campaign") = "default",
+      py::kw_only(),
+      py::arg("source"),
+      py::arg("values"),
+      py::arg("out"),
+      py::arg("environment") = py::none(),
+      py::arg("uncertainty") = py::none(),
+      py::arg("seed") = py::none(),
+      py::arg("force") = false,
+      R"doc(A sensitivity study, as `pkm campaign sensitivity CAMPAIGN --source SOURCE --values ...`.
+
+One error source of the simulated environment is set to each value on top of a base
+environment, the campaign runs once per value into OUT/runs/value-K/, and OUT/sensitivity.json,
+sensitivity.csv and report.html (after-value with its ±U band against the source) are written
+(docs/campaign.md, "Sensitivity study"). The GIL is released while it runs.
+
+Parameters
+----------
+campaign : str or os.PathLike, default "default"
+    A built-in campaign's name or a pkm.campaign/1 file.
+source : str
+    The dotted key path of the swept parameter in the environment JSON, in its JSON unit, e.g.
+    "air.temperature_sensor.offset" (K) or "setup.beam_misalignment_urad" (µrad).
+values : sequence of float
+    The values of the source, distinct and finite.
+out : str or os.PathLike
+    The output folder.
+environment : str or os.PathLike, optional
+    The base environment: a preset name or an environment file; default "realistic".
+uncertainty : str or os.PathLike, optional
+    The instruments and environment of the uncertainty budgets (a pkm.uncertainty-sources/1 file).
+seed : int, optional
+    The random seed of every simulated step; default each step's own.
+force : bool, default False
+    Write into a non-empty folder.
+
+Returns
+-------
+dict
+    sensitivity.json (pkm.sensitivity/1): the source, its unit, the values, per value the
+    summary rows (before, after and their U in the row's unit) and the coefficients.
+
+Raises
+------
+ValueError
+    An unknown source (the message lists the valid paths), bad values, a bad file, or an output
     folder that is not empty without `force`.)doc");
 
   m.def(
