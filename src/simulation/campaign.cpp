@@ -72,11 +72,18 @@ std::vector<MeasurementResult> runCampaign(const Campaign& campaign, std::uint64
 }
 
 void applyProbeEnvironment(Campaign& campaign) {
-  const SetupEnvironment& set = campaign.environment.setup;
-  if (!set.enabled) return;
+  const Environment& env = campaign.environment;
+  // The master ring (steel) at the material temperature of the pass's start.
+  const double ring_expansion =
+      env.thermal.enabled
+          ? *expansionCoefficient("steel") *
+                (env.thermal.material_temperature_c.smooth(env.elapsed_h / env.duration_h) - 20.0)
+          : 0.0;
   for (TouchProbeSetup& p : campaign.probes) {
-    p.lobing = set.probe_lobing_mm;
-    p.lobes = set.probe_lobes;
+    p.ring_expansion = ring_expansion;
+    if (!env.setup.enabled) continue;
+    p.lobing = env.setup.probe_lobing_mm;
+    p.lobes = env.setup.probe_lobes;
   }
 }
 

@@ -58,7 +58,7 @@ class Prober {
                 const Eigen::Vector2d& u,
                 const Eigen::Vector3d& centre,
                 Turn turn) {
-    const double rho = s_.ring_diameter / 2.0 - s_.ball_radius;
+    const double rho = s_.ring_diameter * (1.0 + s_.ring_expansion) / 2.0 - s_.ball_radius;
     double t = 0.0;
     for (int it = 0; it < kTouchIterations; ++it) {
       const Eigen::Vector3d p = start + t * Eigen::Vector3d(u.x(), u.y(), 0.0);
@@ -126,6 +126,10 @@ void TouchProbeSetup::validate() const {
                 std::abs(direction.y()) <= 1e-12 * direction.norm(),
             "{}: the tool direction must be +z or -z (the ring lies in the xy plane)",
             name);
+  PKM_CHECK(std::isfinite(ring_expansion) && ring_expansion > -1.0,
+            "{}: ring expansion {} must be finite and > -1",
+            name,
+            ring_expansion);
   PKM_CHECK(ring_diameter > 0.0 && std::isfinite(ring_diameter),
             "{}: the ring diameter must be > 0",
             name);

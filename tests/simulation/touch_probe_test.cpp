@@ -151,6 +151,26 @@ TEST(TouchProbe, DrmCompensationReducesTheRoundness) {
   EXPECT_LT(rw, 2.0 * s.stylus_offset.norm() * (hi - lo) + 10.0 * kRmp600Sigma);
 }
 
+TEST(TouchProbe, AWarmRingIsLargerByItsExpansionAndTheStylusSeemsSmaller) {
+  // A steel ring 0.5 K above 20 °C: the true diameter D(1 + α·0.5 K); the touches lie on it, so
+  // the effective stylus radius from the certified D comes out smaller by D·e/2 (0.115 µm) while
+  // the offset stays exact.
+  TouchProbeSetup s = paperSetup(0.0);
+  s.ring_expansion = 11.5e-6 * 0.5;
+  RandomStream rng(kSeed, s.name);
+  const TouchProbeResult r = simulateTouchProbe(s, rng);
+  const double rho = s.ring_diameter * (1.0 + s.ring_expansion) / 2.0 - s.ball_radius;
+  for (const TouchRecord& t : r.offset)
+    EXPECT_NEAR((t.ball - s.offset_ring_center.head<2>()).norm(), rho, kTolNominal);
+  const metrology::ProbeOffsetFit fit = metrology::fitProbeOffset(probeTouches(s, r.offset));
+  EXPECT_NEAR((fit.offset - s.stylus_offset).norm(), 0.0, kTolNominal);
+  EXPECT_NEAR(metrology::effectiveStylusRadius(s.ring_diameter, fit.ball_path_radius),
+              s.ball_radius - s.ring_diameter * s.ring_expansion / 2.0,
+              kTolNominal);
+  s.ring_expansion = -1.0;
+  EXPECT_THROW(s.validate(), InvalidArgument);
+}
+
 TEST(TouchProbe, PreTravelLobingShiftsEachTouchByItsDirectionalSize) {
   const TouchProbeSetup plain = paperSetup(0.0);
   TouchProbeSetup lobed = plain;

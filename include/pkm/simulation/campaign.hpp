@@ -57,8 +57,10 @@ struct Campaign {
 [[nodiscard]] double measurementWindowS(const Campaign& campaign);
 
 /// Gives every touch probe of the campaign the environment's pre-travel lobing
-/// (SetupEnvironment::probe_lobing_mm and probe_lobes) when the set-up source is on; leaves them
-/// as they are otherwise. Call after setting campaign.environment.
+/// (SetupEnvironment::probe_lobing_mm and probe_lobes) when the set-up source is on (leaves them
+/// as they are otherwise), and its master ring (steel) the expansion of the material temperature
+/// at the pass's start when the thermal source is on (zero otherwise). Call after setting
+/// campaign.environment.
 void applyProbeEnvironment(Campaign& campaign);
 
 /// Gives the campaign's machine the environment's compliance (ComplianceEnvironment,

@@ -49,6 +49,10 @@ struct TouchProbeSetup {
   /// the probe's frame, mm (≥ 0; 0: none). Set from the environment by applyProbeEnvironment.
   double lobing = 0.0;
   int lobes = 3;  ///< number of lobes, ≥ 1 (3: a kinematic probe's three seats)
+  /// The ring's thermal expansion α_ring·(T_ring − 20 °C) (relative, > −1): its true diameter is
+  /// ring_diameter·(1 + ring_expansion) while ring_diameter stays its certified value at 20 °C,
+  /// the one an analysis uses. Set from the environment by applyProbeEnvironment.
+  double ring_expansion = 0.0;
   /// The Exechon whose tool IK gives φ_DRM (the machine of the scenario); required.
   std::shared_ptr<const kinematics::ExechonModel> machine;
   /// Throws pkm::InvalidArgument (naming the measurement) for non-finite values, a direction that
