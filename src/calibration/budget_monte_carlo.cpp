@@ -92,6 +92,33 @@ BudgetSamples runBudgetMonteCarlo(Eigen::Index unknowns,
   return out;
 }
 
+BudgetMonteCarloResult budgetResult(const BudgetSamples& samples,
+                                    double p,
+                                    const std::vector<int>& parameter_of_unknown,
+                                    int parameters) {
+  const Eigen::MatrixXd& x = samples.x;
+  BudgetMonteCarloResult out;
+  out.batches = samples.batches;
+  out.stabilised = samples.stabilised;
+  out.trials = static_cast<int>(x.cols());
+  out.failures = samples.failures;
+  for (Eigen::Index k = 0; k < x.rows(); ++k) out.unknowns.push_back(summariseSamples(x.row(k), p));
+  out.covariance = Eigen::MatrixXd::Zero(parameters, parameters);
+  if (out.trials < 2) return out;
+  const Eigen::MatrixXd c = x.colwise() - x.rowwise().mean();
+  const Eigen::MatrixXd cov = c * c.transpose() / (out.trials - 1.0);
+  const auto n =
+      std::min<std::size_t>(parameter_of_unknown.size(), static_cast<std::size_t>(x.rows()));
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = 0; b < n; ++b) {
+      const int ka = parameter_of_unknown[a];
+      const int kb = parameter_of_unknown[b];
+      if (ka >= 0 && kb >= 0)
+        out.covariance(ka, kb) = cov(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+    }
+  return out;
+}
+
 metrology::MonteCarloResult summariseSamples(const Eigen::RowVectorXd& samples, double p) {
   metrology::MonteCarloResult r;
   r.trials = static_cast<std::size_t>(samples.size());

@@ -104,26 +104,8 @@ BudgetMonteCarloResult exechonBudgetMonteCarlo(const kinematics::ExechonModel& i
           return std::nullopt;  // a failed re-fit: counted as a failure, its column dropped
         }
       });
-  const Eigen::MatrixXd& x = samples.x;
-  BudgetMonteCarloResult out;
-  out.batches = samples.batches;
-  out.stabilised = samples.stabilised;
-  out.trials = static_cast<int>(x.cols());
-  out.failures = samples.failures;
-  for (Eigen::Index k = 0; k < n; ++k)
-    out.unknowns.push_back(detail::summariseSamples(x.row(k), options.coverage_probability));
-  out.covariance = Eigen::MatrixXd::Zero(kExechonParameters, kExechonParameters);
-  if (out.trials > 1) {
-    const Eigen::MatrixXd c = x.colwise() - x.rowwise().mean();
-    const Eigen::MatrixXd cov = c * c.transpose() / (out.trials - 1.0);
-    for (std::size_t a = 0; a < linear.parameter_indices.size(); ++a)
-      for (std::size_t b = 0; b < linear.parameter_indices.size(); ++b) {
-        const int ka = linear.parameter_indices[a];
-        const int kb = linear.parameter_indices[b];
-        if (ka >= 0 && kb >= 0)
-          out.covariance(ka, kb) = cov(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
-      }
-  }
+  BudgetMonteCarloResult out = detail::budgetResult(
+      samples, options.coverage_probability, linear.parameter_indices, kExechonParameters);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

@@ -96,23 +96,8 @@ BudgetMonteCarloResult hexapodBudgetMonteCarlo(const kinematics::HexapodModel& i
           return std::nullopt;  // a failed re-fit: counted as a failure, its column dropped
         }
       });
-  const Eigen::MatrixXd& x = samples.x;
-  BudgetMonteCarloResult out;
-  out.batches = samples.batches;
-  out.stabilised = samples.stabilised;
-  out.trials = static_cast<int>(x.cols());
-  out.failures = samples.failures;
-  for (Eigen::Index k = 0; k < n; ++k)
-    out.unknowns.push_back(detail::summariseSamples(x.row(k), options.coverage_probability));
-  out.covariance = Eigen::MatrixXd::Zero(kHexapodParameters, kHexapodParameters);
-  if (out.trials > 1) {
-    const Eigen::MatrixXd c = x.colwise() - x.rowwise().mean();
-    const Eigen::MatrixXd cov = c * c.transpose() / (out.trials - 1.0);
-    for (std::size_t a = 0; a < fit.free_indices.size(); ++a)
-      for (std::size_t b = 0; b < fit.free_indices.size(); ++b)
-        out.covariance(fit.free_indices[a], fit.free_indices[b]) =
-            cov(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
-  }
+  BudgetMonteCarloResult out = detail::budgetResult(
+      samples, options.coverage_probability, linear.parameter_indices, kHexapodParameters);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

@@ -10,29 +10,13 @@
 #include <tuple>
 #include <utility>
 
+#include "metrology/detail/length_contributor.hpp"
 #include "pkm/core/error.hpp"
 
 namespace pkm::metrology {
 namespace {
 
 const double kSqrt2 = std::sqrt(2.0);
-
-UncertaintyContributor make(std::string name,
-                            double value,
-                            Distribution d,
-                            double sensitivity,
-                            std::string source,
-                            double normal_k = 1.0) {
-  UncertaintyContributor c;
-  c.name = std::move(name);
-  c.value = value;
-  c.unit = "mm";
-  c.distribution = d;
-  c.normal_k = normal_k;
-  c.sensitivity = sensitivity;
-  c.source = std::move(source);
-  return c;
-}
 
 /// One run (or both together) about a centre: radial distances in the order read and the
 /// indices of the largest and smallest.
@@ -85,30 +69,32 @@ void addTwoReadingContributors(UncertaintyBudget& b,
                                const UncertaintySources& src) {
   if (!common_sensor)
     addContributor(b,
-                   make("ballbar sensor accuracy",
-                        src.ballbar.sensor_accuracy_mm,
-                        Distribution::kRectangular,
-                        kSqrt2,
-                        "instrument specification, two readings"));
+                   detail::lengthContributor("ballbar sensor accuracy",
+                                             src.ballbar.sensor_accuracy_mm,
+                                             Distribution::kRectangular,
+                                             kSqrt2,
+                                             "instrument specification, two readings"));
   addContributor(b,
-                 make("ballbar resolution",
-                      src.ballbar.resolution_mm / 2.0,
-                      Distribution::kRectangular,
-                      kSqrt2,
-                      "instrument specification, two readings"));
+                 detail::lengthContributor("ballbar resolution",
+                                           src.ballbar.resolution_mm / 2.0,
+                                           Distribution::kRectangular,
+                                           kSqrt2,
+                                           "instrument specification, two readings"));
   addContributor(b,
-                 make("non-repeatable noise",
-                      sigma,
-                      Distribution::kNormal,
-                      kSqrt2,
-                      fmt::format("data: successive differences of {} readings", points)));
+                 detail::lengthContributor(
+                     "non-repeatable noise",
+                     sigma,
+                     Distribution::kNormal,
+                     kSqrt2,
+                     fmt::format("data: successive differences of {} readings", points)));
   const MeasurementEnvironment& e = src.environment;
   addContributor(b,
-                 make("bar temperature change during the test",
-                      e.expansion_coefficient_per_k * radius * e.air_temperature_variation_k,
-                      Distribution::kRectangular,
-                      1.0,
-                      "environment: alpha x radius x temperature change"));
+                 detail::lengthContributor(
+                     "bar temperature change during the test",
+                     e.expansion_coefficient_per_k * radius * e.air_temperature_variation_k,
+                     Distribution::kRectangular,
+                     1.0,
+                     "environment: alpha x radius x temperature change"));
 }
 
 /// The least-squares centre's covariance σ²(JᵀJ)⁻¹ of the points (rows [u_k, 1]) and the first-
@@ -135,17 +121,17 @@ void addCentreContributors(UncertaintyBudget& b,
   const double sx = std::sqrt(cov(0, 0));
   const double sy = std::sqrt(cov(1, 1));
   addContributor(b,
-                 make("least-squares centre x",
-                      sx,
-                      Distribution::kNormal,
-                      sens.x(),
-                      "data: LSC covariance from the noise"));
+                 detail::lengthContributor("least-squares centre x",
+                                           sx,
+                                           Distribution::kNormal,
+                                           sens.x(),
+                                           "data: LSC covariance from the noise"));
   addContributor(b,
-                 make("least-squares centre y",
-                      sy,
-                      Distribution::kNormal,
-                      sens.y(),
-                      "data: LSC covariance from the noise"));
+                 detail::lengthContributor("least-squares centre y",
+                                           sy,
+                                           Distribution::kNormal,
+                                           sens.y(),
+                                           "data: LSC covariance from the noise"));
   if (b.contributors.size() == first + 2 && sx > 0.0 && sy > 0.0)
     b.correlations.push_back({first, first + 1, std::clamp(cov(0, 1) / (sx * sy), -1.0, 1.0)});
 }
@@ -188,44 +174,45 @@ UncertaintyBudget radialBudget(const std::string& quantity,
   b.value = value;
   b.coverage_factor = src.coverage_factor;
   addContributor(b,
-                 make("ballbar length calibration",
-                      src.ballbar.length_uncertainty_mm,
-                      Distribution::kNormal,
-                      1.0,
-                      "calibrator certificate (k = 2)",
-                      2.0));
+                 detail::lengthContributor("ballbar length calibration",
+                                           src.ballbar.length_uncertainty_mm,
+                                           Distribution::kNormal,
+                                           1.0,
+                                           "calibrator certificate (k = 2)",
+                                           2.0));
   addContributor(b,
-                 make("ballbar sensor accuracy",
-                      src.ballbar.sensor_accuracy_mm,
-                      Distribution::kRectangular,
-                      1.0,
-                      "instrument specification"));
+                 detail::lengthContributor("ballbar sensor accuracy",
+                                           src.ballbar.sensor_accuracy_mm,
+                                           Distribution::kRectangular,
+                                           1.0,
+                                           "instrument specification"));
   addContributor(b,
-                 make("ballbar resolution",
-                      src.ballbar.resolution_mm / 2.0,
-                      Distribution::kRectangular,
-                      1.0,
-                      "instrument specification"));
+                 detail::lengthContributor("ballbar resolution",
+                                           src.ballbar.resolution_mm / 2.0,
+                                           Distribution::kRectangular,
+                                           1.0,
+                                           "instrument specification"));
   addContributor(b,
-                 make("non-repeatable noise",
-                      sigma,
-                      Distribution::kNormal,
-                      1.0,
-                      "data: successive differences"));
+                 detail::lengthContributor("non-repeatable noise",
+                                           sigma,
+                                           Distribution::kNormal,
+                                           1.0,
+                                           "data: successive differences"));
   const MeasurementEnvironment& e = src.environment;
   addContributor(b,
-                 make("expansion coefficient of the bar",
-                      e.expansion_coefficient_accuracy_per_k * radius *
-                          std::abs(e.material_temperature_c - 20.0),
-                      Distribution::kRectangular,
-                      1.0,
-                      "environment: u(alpha) x radius x |t - 20 C|"));
+                 detail::lengthContributor("expansion coefficient of the bar",
+                                           e.expansion_coefficient_accuracy_per_k * radius *
+                                               std::abs(e.material_temperature_c - 20.0),
+                                           Distribution::kRectangular,
+                                           1.0,
+                                           "environment: u(alpha) x radius x |t - 20 C|"));
   addContributor(b,
-                 make("bar temperature change during the test",
-                      e.expansion_coefficient_per_k * radius * e.air_temperature_variation_k,
-                      Distribution::kRectangular,
-                      1.0,
-                      "environment: alpha x radius x temperature change"));
+                 detail::lengthContributor(
+                     "bar temperature change during the test",
+                     e.expansion_coefficient_per_k * radius * e.air_temperature_variation_k,
+                     Distribution::kRectangular,
+                     1.0,
+                     "environment: alpha x radius x temperature change"));
   return b;
 }
 

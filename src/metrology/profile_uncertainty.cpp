@@ -7,6 +7,7 @@
 #include <map>
 #include <string>
 
+#include "metrology/detail/length_contributor.hpp"
 #include "pkm/core/error.hpp"
 
 namespace pkm::metrology {
@@ -24,23 +25,6 @@ UncertaintyBudget newBudget(const char* quantity, double value, const Uncertaint
   b.value = value;
   b.coverage_factor = src.coverage_factor;
   return b;
-}
-
-UncertaintyContributor make(std::string name,
-                            double value,
-                            Distribution d,
-                            double sensitivity,
-                            std::string source,
-                            double normal_k = 1.0) {
-  UncertaintyContributor c;
-  c.name = std::move(name);
-  c.value = value;
-  c.unit = "mm";
-  c.distribution = d;
-  c.normal_k = normal_k;
-  c.sensitivity = sensitivity;
-  c.source = std::move(source);
-  return c;
 }
 
 /// The straightness optics' accuracy a + b·|reading| + c·L² (mm) over a length L (mm).
@@ -107,18 +91,18 @@ UncertaintyBudget straightnessUncertainty(double straightness,
             raw_deviation.size());
   UncertaintyBudget b = newBudget("straightness", straightness, src);
   addContributor(b,
-                 make("straightness optics (two readings)",
-                      opticsAccuracy(src.laser, straightness, span(position)),
-                      Distribution::kRectangular,
-                      std::sqrt(2.0),
-                      "instrument"));
+                 detail::lengthContributor("straightness optics (two readings)",
+                                           opticsAccuracy(src.laser, straightness, span(position)),
+                                           Distribution::kRectangular,
+                                           std::sqrt(2.0),
+                                           "instrument"));
   const auto [s, n] = pooledScatter(raw_position, raw_deviation);
   addContributor(b,
-                 make("sampling of the two extreme means (s/sqrt(n))",
-                      s / std::sqrt(n),
-                      Distribution::kNormal,
-                      std::sqrt(2.0),
-                      "test data"));
+                 detail::lengthContributor("sampling of the two extreme means (s/sqrt(n))",
+                                           s / std::sqrt(n),
+                                           Distribution::kNormal,
+                                           std::sqrt(2.0),
+                                           "test data"));
   return b;
 }
 
@@ -133,26 +117,27 @@ UncertaintyBudget parallelismUncertainty(double parallelism,
   const double l_ref = span(reference.position);
   UncertaintyBudget b = newBudget("parallelism", parallelism, src);
   addContributor(b,
-                 make("reference line slope (least squares)",
-                      u_ref,
-                      Distribution::kNormal,
-                      travel,
-                      "test data"));
+                 detail::lengthContributor("reference line slope (least squares)",
+                                           u_ref,
+                                           Distribution::kNormal,
+                                           travel,
+                                           "test data"));
   addContributor(
       b,
-      make("axis line slope (least squares)", u_axis, Distribution::kNormal, travel, "test data"));
+      detail::lengthContributor(
+          "axis line slope (least squares)", u_axis, Distribution::kNormal, travel, "test data"));
   addContributor(b,
-                 make("straightness optics, reference run",
-                      opticsAccuracy(src.laser, 0.0, l_ref),
-                      Distribution::kRectangular,
-                      std::sqrt(2.0) * travel / l_ref,
-                      "instrument"));
+                 detail::lengthContributor("straightness optics, reference run",
+                                           opticsAccuracy(src.laser, 0.0, l_ref),
+                                           Distribution::kRectangular,
+                                           std::sqrt(2.0) * travel / l_ref,
+                                           "instrument"));
   addContributor(b,
-                 make("straightness optics, axis run",
-                      opticsAccuracy(src.laser, 0.0, travel),
-                      Distribution::kRectangular,
-                      std::sqrt(2.0),
-                      "instrument"));
+                 detail::lengthContributor("straightness optics, axis run",
+                                           opticsAccuracy(src.laser, 0.0, travel),
+                                           Distribution::kRectangular,
+                                           std::sqrt(2.0),
+                                           "instrument"));
   return b;
 }
 
@@ -168,36 +153,38 @@ std::vector<UncertaintyBudget> circleUncertainty(const CircleFit& lsc,
   const double s = lsc.rms * std::sqrt(static_cast<double>(n) / static_cast<double>(n - 3));
   UncertaintyBudget radius = newBudget("radius", R, src);
   addContributor(radius,
-                 make("least-squares fit (s/sqrt(N))",
-                      s / std::sqrt(static_cast<double>(n)),
-                      Distribution::kNormal,
-                      1.0,
-                      "test data"));
+                 detail::lengthContributor("least-squares fit (s/sqrt(N))",
+                                           s / std::sqrt(static_cast<double>(n)),
+                                           Distribution::kNormal,
+                                           1.0,
+                                           "test data"));
   addContributor(radius,
-                 make("stylus radius calibration",
-                      probe.stylus_radius_uncertainty_mm,
-                      Distribution::kNormal,
-                      1.0,
-                      "instrument",
-                      2.0));
+                 detail::lengthContributor("stylus radius calibration",
+                                           probe.stylus_radius_uncertainty_mm,
+                                           Distribution::kNormal,
+                                           1.0,
+                                           "instrument",
+                                           2.0));
   addContributor(radius,
-                 make("probe form error (2D)",
-                      probe.form_2d_mm,
-                      Distribution::kRectangular,
-                      1.0,
-                      "instrument"));
-  UncertaintyContributor temperature = make("ring temperature",
-                                            src.laser.material_temperature_accuracy_k,
-                                            Distribution::kRectangular,
-                                            R * env.expansion_coefficient_per_k,
-                                            "environment");
+                 detail::lengthContributor("probe form error (2D)",
+                                           probe.form_2d_mm,
+                                           Distribution::kRectangular,
+                                           1.0,
+                                           "instrument"));
+  UncertaintyContributor temperature =
+      detail::lengthContributor("ring temperature",
+                                src.laser.material_temperature_accuracy_k,
+                                Distribution::kRectangular,
+                                R * env.expansion_coefficient_per_k,
+                                "environment");
   temperature.unit = "K";
   addContributor(radius, temperature);
-  UncertaintyContributor alpha = make("expansion coefficient",
-                                      env.expansion_coefficient_accuracy_per_k,
-                                      Distribution::kRectangular,
-                                      R * std::abs(env.material_temperature_c - 20.0),
-                                      "environment");
+  UncertaintyContributor alpha =
+      detail::lengthContributor("expansion coefficient",
+                                env.expansion_coefficient_accuracy_per_k,
+                                Distribution::kRectangular,
+                                R * std::abs(env.material_temperature_c - 20.0),
+                                "environment");
   alpha.unit = "1/K";
   addContributor(radius, alpha);
   std::vector<UncertaintyBudget> out{radius};
@@ -205,18 +192,18 @@ std::vector<UncertaintyBudget> circleUncertainty(const CircleFit& lsc,
        {std::pair{"roundness_lsc", lsc.roundness}, std::pair{"roundness_mzc", mzc.roundness}}) {
     UncertaintyBudget b = newBudget(name, value, src);
     addContributor(b,
-                   make("probe repeatability (two points)",
-                        probe.repeatability_2sigma_mm,
-                        Distribution::kNormal,
-                        std::sqrt(2.0),
-                        "instrument",
-                        2.0));
+                   detail::lengthContributor("probe repeatability (two points)",
+                                             probe.repeatability_2sigma_mm,
+                                             Distribution::kNormal,
+                                             std::sqrt(2.0),
+                                             "instrument",
+                                             2.0));
     addContributor(b,
-                   make("probe form error (two points)",
-                        probe.form_2d_mm,
-                        Distribution::kRectangular,
-                        std::sqrt(2.0),
-                        "instrument"));
+                   detail::lengthContributor("probe form error (two points)",
+                                             probe.form_2d_mm,
+                                             Distribution::kRectangular,
+                                             std::sqrt(2.0),
+                                             "instrument"));
     out.push_back(std::move(b));
   }
   return out;
@@ -247,17 +234,17 @@ std::vector<UncertaintyBudget> probeOffsetUncertainty(const ProbeOffsetFit& fit,
   for (int axis = 0; axis < 2; ++axis) {
     UncertaintyBudget b = newBudget(axis == 0 ? "offset_x" : "offset_y", fit.offset[axis], src);
     addContributor(b,
-                   make("least-squares fit (covariance)",
-                        std::sqrt(cov(2 + axis, 2 + axis)),
-                        Distribution::kNormal,
-                        1.0,
-                        "test data"));
+                   detail::lengthContributor("least-squares fit (covariance)",
+                                             std::sqrt(cov(2 + axis, 2 + axis)),
+                                             Distribution::kNormal,
+                                             1.0,
+                                             "test data"));
     addContributor(b,
-                   make("probe form error (reversal)",
-                        src.probe.form_2d_mm,
-                        Distribution::kRectangular,
-                        0.5,
-                        "instrument"));
+                   detail::lengthContributor("probe form error (reversal)",
+                                             src.probe.form_2d_mm,
+                                             Distribution::kRectangular,
+                                             0.5,
+                                             "instrument"));
     out.push_back(std::move(b));
   }
   return out;

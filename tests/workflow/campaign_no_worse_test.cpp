@@ -1,4 +1,4 @@
-// Compensation must not make a machine worse (issue 24): the built-in "realistic" campaign, every
+// Compensation must not make a machine worse: the built-in "realistic" campaign, every
 // unmodelled error source on at its documented magnitude (docs/simulation-errors.md), run over
 // 20 seeds; every summary row's after-value is at most its before-value within the combined
 // expanded uncertainty √(U_before² + U_after²) (0 where a row has no U).

@@ -52,6 +52,14 @@ struct BudgetSamples {
                                                 const BudgetMonteCarloOptions& options,
                                                 const BudgetTrial& trial);
 
+/// The summary of `samples` (all but the wall time): trials, failures, batches, stabilised, per
+/// unknown summariseSamples with coverage probability `p`, and the parameters' sample covariance
+/// (`parameters` × `parameters`; unknown k is parameter parameter_of_unknown[k], −1 for none).
+[[nodiscard]] BudgetMonteCarloResult budgetResult(const BudgetSamples& samples,
+                                                  double p,
+                                                  const std::vector<int>& parameter_of_unknown,
+                                                  int parameters);
+
 /// Mean, standard uncertainty and the probabilistically symmetric coverage interval of
 /// probability p of `samples` (JCGM 101 §7.7).
 [[nodiscard]] metrology::MonteCarloResult summariseSamples(const Eigen::RowVectorXd& samples,

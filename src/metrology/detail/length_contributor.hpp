@@ -1,0 +1,32 @@
+/// @file
+/// @brief Internal: an uncertainty contributor stated in mm (the budgets of straightness,
+/// parallelism, circles and circular tests build theirs this way).
+#pragma once
+
+#include <string>
+#include <utility>
+
+#include "pkm/metrology/uncertainty_budget.hpp"
+
+namespace pkm::metrology::detail {
+
+/// A contributor `name` of `value` mm with `distribution`, sensitivity coefficient `sensitivity`
+/// (result unit per mm) and coverage factor `normal_k` for a normal value, from `source`.
+inline UncertaintyContributor lengthContributor(std::string name,
+                                                double value,
+                                                Distribution distribution,
+                                                double sensitivity,
+                                                std::string source,
+                                                double normal_k = 1.0) {
+  UncertaintyContributor c;
+  c.name = std::move(name);
+  c.value = value;
+  c.unit = "mm";
+  c.distribution = distribution;
+  c.normal_k = normal_k;
+  c.sensitivity = sensitivity;
+  c.source = std::move(source);
+  return c;
+}
+
+}  // namespace pkm::metrology::detail
