@@ -16,14 +16,15 @@
 #include <exception>
 #include <thread>
 
+#include "../pkm/cli_common.hpp"
 #include "../pkm/serve_options.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/server/http_server.hpp"
 
 namespace {
 
-constexpr int kExitUsage = 2;
-constexpr int kExitInternal = 3;
+using pkm::cli::kExitInternal;
+using pkm::cli::kExitUsage;
 
 /// Opens `url` in the desktop's browser, if there is one (best effort, detached).
 void openBrowser(const std::string& url) {
