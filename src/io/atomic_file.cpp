@@ -1,6 +1,8 @@
 // Atomic output files (atomic_file.hpp).
 #include "pkm/io/atomic_file.hpp"
 
+#include <fmt/format.h>
+
 #include <fstream>
 #include <iterator>
 #include <system_error>
@@ -11,6 +13,19 @@
 namespace pkm::io {
 
 namespace fs = std::filesystem;
+
+void prepareOutputDirectory(const fs::path& dir, bool force) {
+  const std::string out = dir.string();
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw IoError(fmt::format("{}: exists and is not a directory", out));
+  if (!force && fs::exists(dir, ec) && !fs::is_empty(dir, ec))
+    throw IoError(
+        fmt::format("{}: exists and is not empty; refusing to overwrite (use --force)", out));
+  fs::create_directories(dir, ec);
+  if (!fs::is_directory(dir, ec))
+    throw IoError(fmt::format("{}: cannot create the directory", out));
+}
 
 void checkOverwrite(const fs::path& path, Overwrite overwrite) {
   std::error_code ec;

@@ -18,6 +18,17 @@ namespace {
 
 const double kSqrt2 = std::sqrt(2.0);
 
+/// The bar's length change by the temperature change during the test, α·R·ΔT (rectangular): it
+/// moves every reading after it, so it acts on a range and on a single reading alike.
+UncertaintyContributor barTemperatureChange(double radius, const MeasurementEnvironment& e) {
+  return detail::lengthContributor(
+      "bar temperature change during the test",
+      e.expansion_coefficient_per_k * radius * e.air_temperature_variation_k,
+      Distribution::kRectangular,
+      1.0,
+      "environment: alpha x radius x temperature change");
+}
+
 /// One run (or both together) about a centre: radial distances in the order read and the
 /// indices of the largest and smallest.
 struct Radii {
@@ -88,13 +99,7 @@ void addTwoReadingContributors(UncertaintyBudget& b,
                      kSqrt2,
                      fmt::format("data: successive differences of {} readings", points)));
   const MeasurementEnvironment& e = src.environment;
-  addContributor(b,
-                 detail::lengthContributor(
-                     "bar temperature change during the test",
-                     e.expansion_coefficient_per_k * radius * e.air_temperature_variation_k,
-                     Distribution::kRectangular,
-                     1.0,
-                     "environment: alpha x radius x temperature change"));
+  addContributor(b, barTemperatureChange(radius, e));
 }
 
 /// The least-squares centre's covariance σ²(JᵀJ)⁻¹ of the points (rows [u_k, 1]) and the first-
@@ -206,13 +211,7 @@ UncertaintyBudget radialBudget(const std::string& quantity,
                                            Distribution::kRectangular,
                                            1.0,
                                            "environment: u(alpha) x radius x |t - 20 C|"));
-  addContributor(b,
-                 detail::lengthContributor(
-                     "bar temperature change during the test",
-                     e.expansion_coefficient_per_k * radius * e.air_temperature_variation_k,
-                     Distribution::kRectangular,
-                     1.0,
-                     "environment: alpha x radius x temperature change"));
+  addContributor(b, barTemperatureChange(radius, e));
   return b;
 }
 

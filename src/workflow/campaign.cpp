@@ -101,20 +101,6 @@ Json parseCampaign(const std::string& text, const std::string& source) {
   return j;
 }
 
-/// The output directory, created; refuses a file or (without force) a non-empty directory.
-void prepareOutput(const CampaignOptions& o) {
-  const std::string out = o.out.string();
-  std::error_code ec;
-  if (fs::exists(o.out, ec) && !fs::is_directory(o.out, ec))
-    throw IoError(fmt::format("{}: exists and is not a directory", out));
-  if (!o.force && fs::exists(o.out, ec) && !fs::is_empty(o.out, ec))
-    throw IoError(
-        fmt::format("{}: exists and is not empty; refusing to overwrite (use --force)", out));
-  fs::create_directories(o.out, ec);
-  if (!fs::is_directory(o.out, ec))
-    throw IoError(fmt::format("{}: cannot create the directory", out));
-}
-
 /// Runs step `k` of `n`.
 campaign::StepOutcome runStep(const Json& step,
                               std::size_t k,
@@ -311,7 +297,7 @@ CampaignResult runCampaign(const CampaignOptions& options, const RunControl& con
   const auto [text, source] =
       given ? std::pair{options.campaign_text, options.campaign} : loadText(options.campaign);
   const Json spec = parseCampaign(text, source);
-  prepareOutput(options);
+  io::prepareOutputDirectory(options.out, options.force);
   const fs::path base_dir = given || source.rfind("builtin:", 0) == 0
                                 ? fs::current_path()
                                 : fs::path(source).parent_path();

@@ -21,20 +21,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-/// The output directory, created; refuses a file or (without force) a non-empty directory.
-void prepareSensitivityOutput(const SensitivityOptions& o) {
-  const std::string out = o.out.string();
-  std::error_code ec;
-  if (fs::exists(o.out, ec) && !fs::is_directory(o.out, ec))
-    throw IoError(fmt::format("{}: exists and is not a directory", out));
-  if (!o.force && fs::exists(o.out, ec) && !fs::is_empty(o.out, ec))
-    throw IoError(
-        fmt::format("{}: exists and is not empty; refusing to overwrite (use --force)", out));
-  fs::create_directories(o.out, ec);
-  if (!fs::is_directory(o.out, ec))
-    throw IoError(fmt::format("{}: cannot create the directory", out));
-}
-
 /// The campaign run of value `k`.
 CampaignOptions runOptions(const SensitivityOptions& o, std::size_t k) {
   CampaignOptions c;
@@ -120,7 +106,7 @@ void SensitivityOptions::validate() const {
 
 SensitivityResult runSensitivity(const SensitivityOptions& options, const RunControl& control) {
   options.validate();
-  prepareSensitivityOutput(options);
+  io::prepareOutputDirectory(options.out, options.force);
   const auto t0 = Clock::now();
   SensitivityResult result;
   result.source = options.source;

@@ -80,5 +80,23 @@ TEST_F(AtomicFileTest, UnwritableDestinationsAndMissingFilesAreIoErrors) {
   EXPECT_EQ(entries(), 0u);
 }
 
+TEST_F(AtomicFileTest, OutputDirectoriesAreCreatedAndNotOverwrittenWithoutForce) {
+  const fs::path out = dir_ / "a" / "b";
+  prepareOutputDirectory(out, false);
+  EXPECT_TRUE(fs::is_directory(out));
+  prepareOutputDirectory(out, false);  // empty: fine
+  writeFileAtomic(out / "x.txt", "x", Overwrite::kRefuse);
+  try {
+    prepareOutputDirectory(out, false);
+    ADD_FAILURE() << "a non-empty directory was accepted";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(),
+                HasSubstr("exists and is not empty; refusing to overwrite (use --force)"));
+  }
+  prepareOutputDirectory(out, true);
+  EXPECT_EQ(readFileText(out / "x.txt"), "x");  // force writes into it, deletes nothing
+  EXPECT_THROW(prepareOutputDirectory(out / "x.txt", true), IoError);  // a file, not a folder
+}
+
 }  // namespace
 }  // namespace pkm::io

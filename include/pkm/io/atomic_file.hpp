@@ -21,6 +21,11 @@ enum class Overwrite {
 /// `overwrite` is kRefuse. For commands that check every output before they start working.
 void checkOverwrite(const std::filesystem::path& path, Overwrite overwrite);
 
+/// Creates the output directory `dir` of a command that writes a folder of files. Throws
+/// pkm::IoError "DIR: exists and is not a directory", "DIR: exists and is not empty; refusing to
+/// overwrite (use --force)" (unless `force`) or "DIR: cannot create the directory".
+void prepareOutputDirectory(const std::filesystem::path& dir, bool force);
+
 /// A file written in pieces and published atomically. The text goes to `PATH.tmp` beside the
 /// destination; commit() renames it into place. Destroyed without commit() (an exception on the
 /// way), the temporary file is removed and the destination is untouched.
