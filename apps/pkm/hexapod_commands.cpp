@@ -3,12 +3,15 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <exception>
 #include <future>
 #include <memory>
+#include <mutex>
 #include <optional>
+#include <semaphore>
 #include <span>
 #include <string_view>
 #include <utility>
@@ -116,8 +119,39 @@ struct FkInputChunk {
   std::exception_ptr error;
 };
 
-FkInputChunk readFkChunk(io::CsvReader& reader, std::size_t rows) {
+/// Vectors handed between the threads and back for reuse: fresh memory for every piece and chunk
+/// would cost a page fault per 4 KiB. Thread-safe.
+template <typename T>
+class VectorPool {
+ public:
+  /// An empty vector, with the capacity of one given back earlier if there is one.
+  std::vector<T> take() {
+    const std::lock_guard lock(mutex_);
+    if (free_.empty()) return {};
+    std::vector<T> v = std::move(free_.back());
+    free_.pop_back();
+    return v;
+  }
+  /// Keeps `v` for a later take() (or frees it, when even that fails: does not throw).
+  void giveBack(std::vector<T>&& v) noexcept {
+    v.clear();
+    try {
+      const std::lock_guard lock(mutex_);
+      free_.push_back(std::move(v));
+    } catch (...) {  // out of memory or a failed lock: v is freed instead of kept
+    }
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::vector<T>> free_;
+};
+
+FkInputChunk readFkChunk(io::CsvReader& reader,
+                         std::size_t rows,
+                         std::vector<kin::StrutVector>&& storage) {
   FkInputChunk chunk;
+  chunk.readings = std::move(storage);
   chunk.readings.reserve(rows);
   std::array<double, 6> row{};
   try {
@@ -139,6 +173,11 @@ FkInputChunk readFkChunk(io::CsvReader& reader, std::size_t rows) {
 /// first chunks are smaller, so that solving starts early).
 constexpr std::size_t kFkPiece = 1024;
 constexpr std::size_t kFkMaxChunk = 8192;
+/// Solved pieces waiting for the printing thread at most (the memory stays bounded when printing
+/// is the slower side).
+constexpr std::ptrdiff_t kFkPiecesQueued = 16;
+/// Pieces waiting for the printing thread from which on this thread converts the angles.
+constexpr int kFkBehind = 2;
 
 void runFk(const MachineOption& machine_opt,
            const std::string& lengths,
@@ -155,13 +194,22 @@ void runFk(const MachineOption& machine_opt,
   out.text() += "x,y,z,a,b,c,iterations,status\n";
   // Rows are solved in order on this thread (each seeds the next, as in a servo loop). A second
   // thread reads the input a chunk ahead and prints the solved rows a piece at a time, in order
-  // (the angles and the reader see their rows in order); `out` is its alone from here.
+  // (the angles and the reader see their rows in order); `out` is its alone from here. Printing
+  // (angles, shortest round-trip text, the writes) may cost more than solving, on long numbers:
+  // then this thread converts the rotations to angles too, and at most kFkPiecesQueued pieces
+  // wait, so that the memory stays bounded.
   auto text = std::make_unique_for_overwrite<char[]>(kFkPiece * kFkRowRoom);
-  SerialWorker printer;
-  auto read_ahead = [&printer, &reader](std::size_t rows) {
+  std::counting_semaphore<kFkPiecesQueued> room(kFkPiecesQueued);
+  std::atomic<int> queued{0};  // pieces posted and not yet printed
+  VectorPool<kin::StrutVector> chunk_pool;
+  VectorPool<workflow::FkStep> piece_pool;
+  SerialWorker printer;  // last: its jobs use the above
+  auto read_ahead = [&printer, &reader, &chunk_pool](std::size_t rows) {
     auto next = std::make_shared<std::promise<FkInputChunk>>();
     std::future<FkInputChunk> result = next->get_future();
-    printer.post([next, &reader, rows] { next->set_value(readFkChunk(reader, rows)); });
+    printer.post([next, &reader, &chunk_pool, rows] {
+      next->set_value(readFkChunk(reader, rows, chunk_pool.take()));
+    });
     return result;
   };
   std::size_t chunk_rows = kFkPiece;
@@ -173,12 +221,21 @@ void runFk(const MachineOption& machine_opt,
       next = read_ahead(chunk_rows);
     }
     for (std::size_t first = 0; first < chunk.readings.size(); first += kFkPiece) {
-      auto piece = std::make_shared<std::vector<workflow::FkStep>>();
+      auto piece = std::make_shared<std::vector<workflow::FkStep>>(piece_pool.take());
       const std::size_t end = std::min(first + kFkPiece, chunk.readings.size());
       piece->reserve(end - first);
-      for (std::size_t i = first; i < end; ++i) piece->push_back(path.solve(chunk.readings[i]));
-      printer.post([piece, &angles, &out, buffer = text.get()] {
+      for (std::size_t i = first; i < end; ++i)
+        path.solve(chunk.readings[i], piece->emplace_back());
+      // When the printing thread falls behind, this one takes the angles' costly share.
+      if (queued.load(std::memory_order_relaxed) >= kFkBehind)
+        for (workflow::FkStep& step : *piece) workflow::HexapodFkAngles::convert(step);
+      queued.fetch_add(1, std::memory_order_relaxed);
+      room.acquire();
+      printer.post([piece, &angles, &out, &room, &queued, &piece_pool, buffer = text.get()] {
         out.write({buffer, formatFkRows(piece->data(), piece->size(), angles, buffer)});
+        piece_pool.giveBack(std::move(*piece));
+        queued.fetch_sub(1, std::memory_order_relaxed);
+        room.release();  // nothing above throws
       });
     }
     if (chunk.last) {
@@ -187,6 +244,7 @@ void runFk(const MachineOption& machine_opt,
       if (chunk.error) std::rethrow_exception(chunk.error);
       return;
     }
+    chunk_pool.giveBack(std::move(chunk.readings));
     chunk = next.get();
   }
 }

@@ -14,6 +14,9 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 /// Shifts `angle` by a multiple of 2·pi to lie within pi of `target`.
 double nearestEquivalent(double angle, double target) {
+  // Within pi already (the common case: a path's next angle) the shift is 0, without a division
+  // (+ 0.0 as below: -0 becomes +0).
+  if (std::abs(target - angle) < std::numbers::pi) return angle + 0.0;
   return angle + kTwoPi * std::round((target - angle) / kTwoPi);
 }
 }  // namespace
@@ -103,7 +106,10 @@ Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& R) {
 }
 
 Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& R, const Eigen::Vector3d& near) {
-  const Eigen::Vector3d first = rpyFromRotation(R);
+  return nearestRpy(rpyFromRotation(R), near);
+}
+
+Eigen::Vector3d nearestRpy(const Eigen::Vector3d& first, const Eigen::Vector3d& near) {
   const Eigen::Vector3d second(
       first.x() + std::numbers::pi, std::numbers::pi - first.y(), first.z() + std::numbers::pi);
   Eigen::Vector3d best;

@@ -16,10 +16,6 @@ namespace pkm::kinematics {
 namespace {
 /// Strut tolerance of the intermediate stages of a continuation, × the characteristic length.
 constexpr double kStageTolerance = 1e-6;
-struct Pose {
-  Eigen::Vector3d p;
-  Eigen::Matrix3d R;
-};
 
 /// Strut-space step δ = (δp, δθ) for the residual r = delta on input, from a factorisation of the
 /// scaled Jacobian, shortened to the options' trust region. Returns whether it was shortened.
@@ -30,6 +26,12 @@ bool scaledStep(const detail::Lu6& lu,
                 StrutVector& delta) {
   detail::substitute6(lu, delta);
   delta.tail<3>() *= inv_length;
+  // Well inside the trust region (the common case) the norms are not needed: squared lengths
+  // with a margin of rounding decide it.
+  constexpr double kInside = 1.0 - 1e-9;
+  if (delta.head<3>().squaredNorm() < kInside * max_translation * max_translation &&
+      delta.tail<3>().squaredNorm() < kInside * max_rotation * max_rotation)
+    return false;
   const double shrink = std::max(
       {1.0, delta.head<3>().norm() / max_translation, delta.tail<3>().norm() / max_rotation});
   if (std::isfinite(shrink)) delta /= shrink;
@@ -52,12 +54,14 @@ StrutVector secondOrderResidual(const HexapodData& data, const StrutVector& delt
     const Eigen::Vector3d w = -dp - c;
     const Eigen::Vector3d& u = data.unit_leg[k];
     const double uw = u.dot(w);
-    s[i] =
-        0.5 * u.dot(dtheta.cross(c)) + (w.squaredNorm() - uw * uw) / (2.0 * data.joint_distance[i]);
+    s[i] = 0.5 * u.dot(dtheta.cross(c)) +
+           (w.squaredNorm() - uw * uw) * (0.5 * data.inverse_joint_distance[i]);
   }
   return s;
 }
 
+/// The pose x − step·δ: p − step·δp, exp(−step·[δθ]×)·R.
+template <typename Pose>
 Pose retract(const Pose& at, const StrutVector& delta, double step) {
   return Pose{at.p - step * delta.head<3>(), geometry::so3Exp(-step * delta.tail<3>()) * at.R};
 }
@@ -108,13 +112,8 @@ FkSummary forwardKinematics(const HexapodModel& model,
                             const StrutVector& readings,
                             const PoseRpy& seed,
                             const FkOptions& options) {
-  return forwardKinematics(model,
-                           data,
-                           readings,
-                           seed.position,
-                           geometry::rotationFromRpy(seed.rpy),
-                           &seed.rpy,
-                           options);
+  return HexapodFkSolver(model, options)
+      .solve(data, readings, seed.position, geometry::rotationFromRpy(seed.rpy), &seed.rpy);
 }
 
 FkSummary forwardKinematics(const HexapodModel& model,
@@ -124,8 +123,24 @@ FkSummary forwardKinematics(const HexapodModel& model,
                             const Eigen::Matrix3d& world_R_seed,
                             const Eigen::Vector3d* rpy_near,
                             const FkOptions& options) {
+  return HexapodFkSolver(model, options)
+      .solve(data, readings, world_p_seed, world_R_seed, rpy_near);
+}
+
+HexapodFkSolver::HexapodFkSolver(const HexapodModel& model, const FkOptions& options)
+    : model_(model), options_(options) {
   std::string why;
   PKM_CHECK(options.isValid(&why), "invalid FkOptions: {}", why);
+  length_ = model.characteristicLength();
+  inv_length_ = 1.0 / length_;
+  max_translation_ = options.max_step_translation * length_;
+}
+
+FkSummary HexapodFkSolver::solve(HexapodData& data,
+                                 const StrutVector& readings,
+                                 const Eigen::Vector3d& world_p_seed,
+                                 const Eigen::Matrix3d& world_R_seed,
+                                 const Eigen::Vector3d* rpy_near) const {
   FkSummary summary;
   if (!readings.allFinite() || !world_p_seed.allFinite() || !world_R_seed.allFinite() ||
       (rpy_near != nullptr && !rpy_near->allFinite())) {
@@ -133,17 +148,86 @@ FkSummary forwardKinematics(const HexapodModel& model,
     summary.max_residual = INFINITY;
     return summary;
   }
-
   Pose x{world_p_seed, world_R_seed};
-  const double length = model.characteristicLength();
-  const double inv_length = 1.0 / length;
-  const double max_translation = options.max_step_translation * length;
+  detail::computeLegs(model_, data, x.p, x.R);
+  if (!solveNear(data, readings, x, summary)) {
+    x = Pose{world_p_seed, world_R_seed};
+    detail::computeLegs(model_, data, x.p, x.R);
+    summary = solveGeneral(data, readings, x);
+  }
+  data.pose.position = x.p;
+  if (rpy_near != nullptr) data.pose.rpy = geometry::rpyFromRotation(x.R, *rpy_near);
+  return summary;
+}
+
+bool HexapodFkSolver::solveNear(HexapodData& data,
+                                const StrutVector& readings,
+                                Pose& x,
+                                FkSummary& out) const {
+  // The steps of solveGeneral's damped Newton iteration for a seed within one continuation stage
+  // whose corrected Newton step is accepted at full length and converges: the same operations in
+  // the same order (bit-identical results), without its bookkeeping. Anything else (a seed that
+  // is already converged or far, a shortened or rejected step, no convergence) returns false.
+  const StrutVector r0 = data.readings - readings;
+  const double gap = r0.cwiseAbs().maxCoeff();
+  if (!(gap > options_.tolerance && gap <= options_.continuation_step * length_) ||
+      options_.max_iterations < 2)
+    return false;
+  detail::Lu6 lu;
+  const double ratio =
+      detail::factor6(computeStrutJacobian(model_, data), lu, nullptr, inv_length_);
+  StrutVector delta = r0;
+  if (!(ratio > options_.singular_pivot_ratio) ||
+      scaledStep(lu, inv_length_, max_translation_, options_.max_step_rotation, delta))
+    return false;
+  StrutVector s = secondOrderResidual(data, delta);
+  if (s.cwiseAbs().maxCoeff() > detail::kPolishFraction * options_.tolerance && s.allFinite()) {
+    detail::substitute6(lu, s);
+    s.tail<3>() *= inv_length_;
+    delta += s;
+  }
+  if (!delta.allFinite()) return false;
+  const Pose x1 = retract<Pose>(x, delta, 1.0);
+  detail::computeLegs(model_, data, x1.p, x1.R);
+  const StrutVector r1 = data.readings - readings;
+  const double max1 = r1.cwiseAbs().maxCoeff();
+  if (!(max1 <= options_.tolerance)) return false;
+  out.status = FkStatus::kOk;
+  out.iterations = 1;
+  out.max_residual = max1;
+  if (max1 <= detail::kPolishFraction * options_.tolerance) {
+    x = x1;
+    return true;
+  }
+  // The polishing step: a chord step with the same factorisation, taken when it reduces |r|.
+  StrutVector chord = r1;
+  scaledStep(lu, inv_length_, max_translation_, options_.max_step_rotation, chord);
+  if (!chord.allFinite()) return false;
+  const Pose x2 = retract<Pose>(x1, chord, 1.0);
+  detail::computeLegs(model_, data, x2.p, x2.R);
+  const StrutVector r2 = data.readings - readings;
+  const double n2 = r2.squaredNorm();
+  if (!(std::isfinite(n2) && n2 < r1.squaredNorm())) return false;  // solveGeneral backtracks
+  out.iterations = 2;
+  out.max_residual = r2.cwiseAbs().maxCoeff();
+  x = x2;
+  return true;
+}
+
+FkSummary HexapodFkSolver::solveGeneral(HexapodData& data,
+                                        const StrutVector& readings,
+                                        Pose& x) const {
+  const FkOptions& options = options_;
+  const double length = length_;
+  const double inv_length = inv_length_;
+  const double max_translation = max_translation_;
+  FkSummary summary;
   int seed_sign = 0;  // sign of det J at a solve's first linearisation, and at its latest
   int last_sign = 0;
   StrutVector target = readings;  // the readings the current stage solves for
   bool legs_at_x = false;         // data holds the legs of x (dampedNewton's first evaluation)
   auto evaluate = [&](const Pose& at, StrutVector& r) {
-    if (!legs_at_x || &at != &x) detail::computeLegs(model, data, at.p, at.R);
+    if (!legs_at_x || &at != &x) detail::computeLegs(model_, data, at.p, at.R);
     legs_at_x = false;
     r = data.readings - target;
     const double n2 = r.squaredNorm();
@@ -157,9 +241,7 @@ FkSummary forwardKinematics(const HexapodModel& model,
     // shrinks the residual as much as a new factorisation would.
     if (!polishing || !lu.valid) {
       // The angular columns × 1/L make the pivot test unit-free; δθ is scaled back after.
-      Matrix6d J = computeStrutJacobian(model, data);
-      J.rightCols<3>() *= inv_length;
-      lu_ratio = detail::factor6(J, lu, &last_sign);
+      lu_ratio = detail::factor6(computeStrutJacobian(model_, data), lu, &last_sign, inv_length);
       if (seed_sign == 0) seed_sign = last_sign;
     }
     if (!lu.valid) return lu_ratio;
@@ -183,7 +265,6 @@ FkSummary forwardKinematics(const HexapodModel& model,
   // lengths, each solved from the previous stage's pose. The answer is then the pose the machine
   // reaches from the seed as its struts move, not whichever root a long Newton step lands near;
   // a determinant sign change between stages means a singularity was crossed (kOtherBranch).
-  detail::computeLegs(model, data, x.p, x.R);
   const StrutVector start = data.readings;
   const double gap = (readings - start).cwiseAbs().maxCoeff();
   const double stage_length = options.continuation_step * length;
@@ -200,9 +281,10 @@ FkSummary forwardKinematics(const HexapodModel& model,
     target =
         k == stages ? readings : StrutVector(start + (readings - start) * (double(k) / stages));
     seed_sign = last_sign = 0;
-    legs_at_x = true;  // computed above, or left by the last stage (dampedNewton's contract)
+    legs_at_x =
+        true;  // computed by the caller, or left by the last stage (dampedNewton's contract)
     summary = detail::dampedNewton<kStruts>(
-        k == stages ? options : intermediate, x, evaluate, solve, retract);
+        k == stages ? options : intermediate, x, evaluate, solve, retract<Pose>);
     total.iterations += summary.iterations;
     total.backtracks += summary.backtracks;
     if (!summary.ok()) break;
@@ -221,8 +303,6 @@ FkSummary forwardKinematics(const HexapodModel& model,
     evaluate(x, r);
     summary.max_residual = r.cwiseAbs().maxCoeff();
   }
-  data.pose.position = x.p;
-  if (rpy_near != nullptr) data.pose.rpy = geometry::rpyFromRotation(x.R, *rpy_near);
   return summary;
 }
 

@@ -34,8 +34,10 @@ void computeLegs(const HexapodModel& model,
     data.world_p_platform_joint[k] = world_p_tcp + data.world_r_joint[k];
     data.leg[k] = data.world_p_platform_joint[k] - model.effectiveBase(i);
     const double len = data.leg[k].norm();
+    const double inverse = len > 0.0 ? 1.0 / len : 0.0;
     data.joint_distance[i] = len;
-    data.unit_leg[k] = len > 0.0 ? Eigen::Vector3d(data.leg[k] / len) : Eigen::Vector3d::Zero();
+    data.inverse_joint_distance[i] = inverse;
+    data.unit_leg[k] = data.leg[k] * inverse;
     data.readings[i] = len - strut.length_offset;
   }
 }

@@ -17,6 +17,8 @@ namespace {
 /// length, and in rad.
 constexpr double kMaxPredictedTranslation = 0.05;
 constexpr double kMaxPredictedRotation = 0.05;
+/// Predicted rotations between two orthonormalisations.
+constexpr int kOrthonormaliseEvery = 64;
 }  // namespace
 
 HexapodFkAngles::HexapodFkAngles(const io::HexapodMachine& machine,
@@ -32,9 +34,16 @@ Eigen::Vector3d HexapodFkAngles::next(const FkStep& step) {
     if (!from_seed_) near_ = machine_.model.home.rpy;  // the path starts again from home
     return Eigen::Vector3d::Zero();
   }
-  const Eigen::Vector3d rpy = geometry::rpyFromRotation(step.world_R_platform, near_);
+  const Eigen::Vector3d rpy = geometry::nearestRpy(
+      step.rpy_converted ? step.pose.rpy : geometry::rpyFromRotation(step.world_R_platform), near_);
   if (!from_seed_) near_ = rpy;
   return rpy;
+}
+
+void HexapodFkAngles::convert(FkStep& step) {
+  if (!step.summary.ok()) return;
+  step.pose.rpy = geometry::rpyFromRotation(step.world_R_platform);
+  step.rpy_converted = true;
 }
 
 HexapodFkPath::HexapodFkPath(const io::HexapodMachine& machine,
@@ -42,44 +51,60 @@ HexapodFkPath::HexapodFkPath(const io::HexapodMachine& machine,
                              bool from_seed,
                              bool angles)
     : machine_(machine),
+      solver_(machine.model, machine.fk),
       data_(machine.model),
       first_seed_(seed.value_or(machine.model.home)),
       from_seed_(from_seed),
       seed_{first_seed_.position, geometry::rotationFromRpy(first_seed_.rpy)},
-      max_predicted_translation_(kMaxPredictedTranslation * machine.model.characteristicLength()) {
+      max_predicted_translation2_(
+          std::pow(kMaxPredictedTranslation * machine.model.characteristicLength(), 2)) {
   if (angles) angles_.emplace(machine, seed, from_seed);
 }
 
 FkStep HexapodFkPath::solve(const kin::StrutVector& readings) {
+  FkStep step;
+  solve(readings, step);
+  return step;
+}
+
+void HexapodFkPath::solve(const kin::StrutVector& readings, FkStep& step) {
   // The servo loop's seed: the last pose moved on by the last step (a path sampled at a steady
   // rate changes little from step to step), unless that step was long. The rotation moves on by
-  // the last step's rotation, R·(R_prevᵀ·R), without any angle conversion.
+  // exp([ω]×), ω the last step's rotation vector.
   Pose start = seed_;
-  if (has_previous_) {
-    const Eigen::Vector3d dp = seed_.p - previous_.p;
-    const Eigen::Matrix3d step = previous_.R.transpose() * seed_.R;
-    // trace = 1 + 2 cos(angle): the last rotation was at most kMaxPredictedRotation
-    static const double kMinTrace = 1.0 + 2.0 * std::cos(kMaxPredictedRotation);
-    if (dp.norm() <= max_predicted_translation_ && step.trace() >= kMinTrace) {
-      start.p += dp;
-      // One Newton–Schulz step, R ← R·(3I − RᵀR)/2, keeps the product orthonormal to rounding
-      // (repeated products of rounded rotations drift from SO(3) geometrically).
-      const Eigen::Matrix3d predicted = seed_.R * step;
-      Eigen::Matrix3d correction = (predicted.transpose() * predicted).eval();
+  if (has_previous_ && last_translation_.squaredNorm() <= max_predicted_translation2_ &&
+      last_rotation_.squaredNorm() <= kMaxPredictedRotation * kMaxPredictedRotation) {
+    start.p += last_translation_;
+    start.R = geometry::so3Exp(last_rotation_) * seed_.R;
+    // A product of rounded rotations is orthonormal to rounding only; the solution inherits the
+    // seed's rounding, so now and then one Newton–Schulz step, R ← R·(3I − RᵀR)/2, takes it back
+    // (the errors of the products add up; they do not grow geometrically).
+    if (++since_orthonormalised_ == kOrthonormaliseEvery) {
+      since_orthonormalised_ = 0;
+      Eigen::Matrix3d correction = (start.R.transpose() * start.R).eval();
       correction *= -0.5;
       correction.diagonal().array() += 1.5;
-      start.R.noalias() = predicted * correction;
+      start.R = (start.R * correction).eval();
     }
   }
-  FkStep step;
-  step.summary = kin::forwardKinematics(
-      machine_.model, data_, readings, start.p, start.R, nullptr, machine_.fk);
+  step.summary = solver_.solve(data_, readings, start.p, start.R);
+  step.rpy_converted = false;
   step.pose.position = data_.world_p_tcp;
   step.world_R_platform = data_.world_R_platform;
   if (angles_) step.pose.rpy = angles_->next(step);
-  if (from_seed_) return step;
+  if (from_seed_) return;
   if (step.summary.ok()) {
-    previous_ = seed_;
+    if (solved_) {
+      // The step from the last solution: its translation, and the rotation vector of
+      // M = R·R_lastᵀ = exp([ω]×) from M's antisymmetric part, (M − Mᵀ)/2 = sin|ω|/|ω|·[ω]×
+      // (first order in |ω|: ample for a prediction; a long step is not repeated anyway).
+      const Eigen::Matrix3d& R = data_.world_R_platform;
+      const Eigen::Matrix3d& L = seed_.R;
+      last_translation_ = data_.world_p_tcp - seed_.p;
+      last_rotation_ = 0.5 * Eigen::Vector3d(R.row(2).dot(L.row(1)) - R.row(1).dot(L.row(2)),
+                                             R.row(0).dot(L.row(2)) - R.row(2).dot(L.row(0)),
+                                             R.row(1).dot(L.row(0)) - R.row(0).dot(L.row(1)));
+    }
     has_previous_ = solved_;  // the seed was a solution too: the last step is known
     seed_ = {data_.world_p_tcp, data_.world_R_platform};
     solved_ = true;
@@ -88,7 +113,6 @@ FkStep HexapodFkPath::solve(const kin::StrutVector& readings) {
     seed_ = {machine_.model.home.position, geometry::rotationFromRpy(machine_.model.home.rpy)};
     has_previous_ = false;  // home again after a failure
   }
-  return step;
 }
 
 ExechonFkPath::ExechonFkPath(const io::ExechonMachine& machine)

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <random>
 
+#include "kinematics/detail/hexapod_legs.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
@@ -297,6 +298,97 @@ TEST(HexapodFk, InvalidOptionsThrow) {
   EXPECT_FALSE(opt.isValid());
   opt = FkOptions{.max_backtracks = -1};
   EXPECT_FALSE(opt.isValid());
+}
+
+}  // namespace
+
+/// The servo-loop path of HexapodFkSolver beside its general solver.
+struct HexapodFkSolverTestPeer {
+  using Pose = HexapodFkSolver::Pose;
+  static bool near(const HexapodFkSolver& solver,
+                   HexapodData& data,
+                   const StrutVector& readings,
+                   Pose& x,
+                   FkSummary& out) {
+    detail::computeLegs(solver.model(), data, x.p, x.R);
+    return solver.solveNear(data, readings, x, out);
+  }
+  static FkSummary general(const HexapodFkSolver& solver,
+                           HexapodData& data,
+                           const StrutVector& readings,
+                           Pose& x) {
+    detail::computeLegs(solver.model(), data, x.p, x.R);
+    return solver.solveGeneral(data, readings, x);
+  }
+};
+
+namespace {
+
+TEST(HexapodFkSolver, ServoLoopPathTakesTheGeneralSolversStepsBitForBit) {
+  // solveNear is solveGeneral's damped Newton iteration without its bookkeeping: on a noisy servo
+  // path (one step, or one step and the polishing step), the same pose, residual and iteration
+  // count, bit for bit, and the same legs in data.
+  for (const HexapodModel& m : {test::linuxcncSimModel(), test::millingModel()}) {
+    const HexapodFkSolver solver(m);
+    HexapodData near_data(m), general_data(m), ik(m);
+    std::mt19937 rng(test::kSeed);
+    std::normal_distribution<double> noise(0.0, 1e-6 * m.characteristicLength());
+    PoseRpy seed = m.home;
+    int taken = 0, polished = 0;
+    for (int k = 0; k <= 1000; ++k) {
+      StrutVector q = inverseKinematics(m, ik, servoPathPose(m, k, 50000));
+      for (int i = 0; i < kStruts; ++i) q[i] += (k % 3 == 0 ? 30.0 : 1.0) * noise(rng);
+      HexapodFkSolverTestPeer::Pose a{seed.position, geometry::rotationFromRpy(seed.rpy)};
+      HexapodFkSolverTestPeer::Pose b = a;
+      FkSummary near;
+      if (!HexapodFkSolverTestPeer::near(solver, near_data, q, a, near)) continue;
+      const FkSummary general = HexapodFkSolverTestPeer::general(solver, general_data, q, b);
+      ++taken;
+      polished += near.iterations == 2 ? 1 : 0;
+      ASSERT_EQ(near.status, general.status) << k;
+      EXPECT_EQ(near.iterations, general.iterations) << k;
+      EXPECT_EQ(near.backtracks, 0) << k;
+      EXPECT_EQ(near.max_residual, general.max_residual) << k;
+      EXPECT_EQ(a.p, b.p) << k;
+      EXPECT_EQ(a.R, b.R) << k;
+      EXPECT_EQ(near_data.readings, general_data.readings) << k;
+      EXPECT_EQ(near_data.unit_leg, general_data.unit_leg) << k;
+      seed.position = a.p;
+      seed.rpy = geometry::rpyFromRotation(a.R, seed.rpy);
+    }
+    EXPECT_GT(taken, 990);
+    EXPECT_GT(polished, 0);  // the noisier rows take the polishing step
+  }
+}
+
+TEST(HexapodFkSolver, SolvesAsTheFreeFunctionsAndLeavesTheSolutionsLegs) {
+  // The solver set up once gives forwardKinematics' results bit for bit, from near seeds (a
+  // servo path) and far ones (cold starts from home); data's legs are those of the returned pose.
+  const HexapodModel m = test::millingModel();
+  const HexapodFkSolver solver(m);
+  HexapodData a(m), b(m), ik(m), check(m);
+  std::mt19937 rng(test::kSeed + 3);
+  for (int k = 0; k < 300; ++k) {
+    const PoseRpy truth =
+        k % 2 == 0 ? servoPathPose(m, k, 300)
+                   : test::randomPose(rng, m.home, 0.3 * m.characteristicLength(), degToRad(15));
+    const StrutVector q = inverseKinematics(m, ik, truth);
+    const PoseRpy seed = k % 2 == 0 ? servoPathPose(m, k - 1, 300) : m.home;
+    const Eigen::Matrix3d R = geometry::rotationFromRpy(seed.rpy);
+    const FkSummary s = solver.solve(a, q, seed.position, R, &seed.rpy);
+    const FkSummary f = forwardKinematics(m, b, q, seed.position, R, &seed.rpy);
+    ASSERT_TRUE(s.ok()) << k;
+    EXPECT_EQ(s.iterations, f.iterations) << k;
+    EXPECT_EQ(s.max_residual, f.max_residual) << k;
+    EXPECT_EQ(a.pose.position, b.pose.position) << k;
+    EXPECT_EQ(a.pose.rpy, b.pose.rpy) << k;
+    EXPECT_EQ(a.world_R_platform, b.world_R_platform) << k;
+    detail::computeLegs(m, check, a.world_p_tcp, a.world_R_platform);
+    EXPECT_EQ(a.readings, check.readings) << k;
+    for (int i = 0; i < kStruts; ++i)
+      EXPECT_DOUBLE_EQ(a.inverse_joint_distance[i], 1.0 / a.joint_distance[i]) << k;
+  }
+  EXPECT_THROW(HexapodFkSolver(m, FkOptions{.tolerance = -1.0}), InvalidArgument);
 }
 
 TEST(HexapodFk, StatusStrings) {

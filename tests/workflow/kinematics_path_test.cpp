@@ -4,11 +4,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <optional>
+#include <random>
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/kinematics/exechon_ik.hpp"
+#include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 
 namespace pkm::workflow {
@@ -64,6 +69,54 @@ TEST(HexapodFkAngles, GiveThePathsAnglesWhenConvertedApart) {
     if (k < 20) EXPECT_NEAR(rpy.z(), pose.rpy.z(), 1e-9) << k;  // continuous past pi
   }
   EXPECT_EQ(ok, 39);
+}
+
+TEST(HexapodFkPath, LongServoPathStaysOnSo3AndAgreesWithSolvesFromTheSeed) {
+  // 20 000 rows of a smooth noisy path, each seeded by the prediction from the last two
+  // solutions: every row converges in one step (or one and the polishing step), the rotations
+  // stay orthonormal to rounding (the prediction's products are taken back to SO(3) now and then),
+  // and every pose is the one a solve from a far seed finds. Solving into a step gives the
+  // same as the returned step, and angles converted apart (HexapodFkAngles::convert on another
+  // step) give next()'s.
+  const io::HexapodMachine machine = io::loadHexapodMachine("hexapod-linuxcnc-sim");
+  kin::HexapodData data(machine.model), cold(machine.model);
+  HexapodFkPath path(machine), twin(machine, std::nullopt, false, /*angles=*/false);
+  HexapodFkAngles angles(machine, std::nullopt, false);
+  std::mt19937 rng(20261127);
+  std::normal_distribution<double> noise(0.0, 2e-5);
+  const int n = 20000;
+  int most_iterations = 0;
+  double worst_orthonormality = 0.0, worst_position = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double t = 2.0 * std::numbers::pi * k / 10000.0;
+    kin::PoseRpy pose = machine.model.home;
+    pose.position += Eigen::Vector3d(3 * std::sin(t), 3 * (1 - std::cos(t)), std::sin(2 * t));
+    pose.rpy += Eigen::Vector3d(0.15 * std::sin(t), 0.12 * std::sin(3 * t), 0.2 * std::sin(t));
+    kin::StrutVector q = kin::inverseKinematics(machine.model, data, pose);
+    for (int i = 0; i < kin::kStruts; ++i) q[i] += noise(rng);
+    const FkStep step = path.solve(q);
+    FkStep in_place;
+    twin.solve(q, in_place);
+    ASSERT_TRUE(step.summary.ok()) << k;
+    most_iterations = std::max(most_iterations, step.summary.iterations);
+    EXPECT_EQ(step.pose.position, in_place.pose.position) << k;
+    EXPECT_EQ(step.world_R_platform, in_place.world_R_platform) << k;
+    FkStep converted = in_place;
+    HexapodFkAngles::convert(converted);
+    EXPECT_EQ(angles.next(converted), step.pose.rpy) << k;
+    worst_orthonormality = std::max(
+        worst_orthonormality,
+        (step.world_R_platform.transpose() * step.world_R_platform - Eigen::Matrix3d::Identity())
+            .cwiseAbs()
+            .maxCoeff());
+    if (k % 500 == 0) {
+      ASSERT_TRUE(kin::forwardKinematics(machine.model, cold, q, machine.model.home).ok()) << k;
+      worst_position = std::max(worst_position, (cold.pose.position - step.pose.position).norm());
+    }
+  }
+  EXPECT_LE(most_iterations, 2);
+  EXPECT_LT(worst_orthonormality, 1e-14);
+  EXPECT_LT(worst_position, 1e-12);
 }
 
 TEST(ExechonPosePath, SplitsAHybridCommandAndRoundTripsThroughFk) {

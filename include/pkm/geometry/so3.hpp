@@ -37,4 +37,9 @@ namespace pkm::geometry {
 [[nodiscard]] Eigen::Vector3d rpyFromRotation(const Eigen::Matrix3d& R,
                                               const Eigen::Vector3d& near);
 
+/// Of the angle triples equivalent to `rpy` (radians: rpyFromRotation's of a rotation, the second
+/// branch (a+pi, pi-b, c+pi) and shifts by 2·pi), the one closest to `near`:
+/// rpyFromRotation(R, near) == nearestRpy(rpyFromRotation(R), near).
+[[nodiscard]] Eigen::Vector3d nearestRpy(const Eigen::Vector3d& rpy, const Eigen::Vector3d& near);
+
 }  // namespace pkm::geometry

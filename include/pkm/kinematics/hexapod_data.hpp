@@ -28,7 +28,9 @@ struct HexapodData {
   std::array<Eigen::Vector3d, kStruts> leg{};        ///< platform joint − base joint, world
   std::array<Eigen::Vector3d, kStruts> unit_leg{};   ///< leg / |leg|
   StrutVector joint_distance = StrutVector::Zero();  ///< |leg|: distance between joint centres
-  StrutVector readings = StrutVector::Zero();        ///< joint_distance − length_offset
+  /// 1 / joint_distance (0 for coincident joints).
+  StrutVector inverse_joint_distance = StrutVector::Zero();
+  StrutVector readings = StrutVector::Zero();  ///< joint_distance − length_offset
   /// J_q_x: d(readings)/d(δp, δθ) with δp the TCP displacement and δθ the rotation vector of the
   /// left (world-frame) perturbation world_R_platform ← exp([δθ]×)·world_R_platform
   /// (docs/conventions.md).

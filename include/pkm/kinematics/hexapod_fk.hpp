@@ -95,4 +95,44 @@ FkSummary forwardKinematics(const HexapodModel& model,
                             const Eigen::Vector3d* rpy_near,
                             const FkOptions& options = {});
 
+/// forwardKinematics for one model and one set of options, set up once: the options are checked
+/// and the model's characteristic length taken at construction, so that a servo loop's solve()
+/// does only the solving (the free functions build one per call). The same algorithm and results
+/// as forwardKinematics. `model` must outlive the solver and stay unchanged while it is used.
+class HexapodFkSolver {
+ public:
+  /// Throws pkm::InvalidArgument if `options` is invalid.
+  explicit HexapodFkSolver(const HexapodModel& model, const FkOptions& options = {});
+
+  /// forwardKinematics(model, data, readings, world_p_seed, world_R_seed, rpy_near, options).
+  FkSummary solve(HexapodData& data,
+                  const StrutVector& readings,
+                  const Eigen::Vector3d& world_p_seed,
+                  const Eigen::Matrix3d& world_R_seed,
+                  const Eigen::Vector3d* rpy_near = nullptr) const;
+
+  [[nodiscard]] const HexapodModel& model() const { return model_; }
+  [[nodiscard]] const FkOptions& options() const { return options_; }
+
+ private:
+  struct Pose {
+    Eigen::Vector3d p;
+    Eigen::Matrix3d R;
+  };
+  /// The common case of a servo loop, a near seed: one corrected Newton step (and the polishing
+  /// step when it is due), with data holding the seed's legs. Returns false, with data and x in
+  /// an unspecified state, whenever the general solver would do anything else.
+  bool solveNear(HexapodData& data, const StrutVector& readings, Pose& x, FkSummary& out) const;
+  /// The general solver (continuation, damped Newton) from x, with data holding x's legs.
+  FkSummary solveGeneral(HexapodData& data, const StrutVector& readings, Pose& x) const;
+
+  friend struct HexapodFkSolverTestPeer;  // tests compare solveNear with solveGeneral
+
+  const HexapodModel& model_;
+  FkOptions options_;
+  double length_ = 1.0;           ///< model_.characteristicLength()
+  double inv_length_ = 1.0;       ///< 1 / length_
+  double max_translation_ = 0.0;  ///< options_.max_step_translation · length_
+};
+
 }  // namespace pkm::kinematics

@@ -28,6 +28,10 @@ struct FkStep {
   /// them (HexapodFkPath's `angles`), else HexapodFkAngles gives them from world_R_platform.
   kinematics::PoseRpy pose;
   Eigen::Matrix3d world_R_platform = Eigen::Matrix3d::Identity();  ///< hexapod: the rotation
+  /// Hexapod: pose.rpy holds geometry::rpyFromRotation(world_R_platform), the angles before
+  /// HexapodFkAngles picks the equivalent triple nearest the path's (set by
+  /// HexapodFkAngles::convert, so that another thread can take that share of the work).
+  bool rpy_converted = false;
   /// Exechon: the tool point (world frame, or the work frame of a hybrid machine given x2, y2)
   /// and the unit tool direction (valid when summary.ok()).
   Eigen::Vector3d tool_point = Eigen::Vector3d::Zero();
@@ -50,6 +54,9 @@ class HexapodFkAngles {
                   bool from_seed);
   /// The angles of the next step (rad; zero for a failed step, which only moves the reference).
   Eigen::Vector3d next(const FkStep& step);
+  /// Converts a solved step's rotation to angles ahead of next() (FkStep::rpy_converted): the
+  /// costly part of next(), which does not depend on the order; any thread may call it.
+  static void convert(FkStep& step);
 
  private:
   const io::HexapodMachine& machine_;
@@ -68,6 +75,8 @@ class HexapodFkPath {
                          bool angles = true);
   /// Solves the next row.
   FkStep solve(const kinematics::StrutVector& readings);
+  /// As above, into `step` (every field the hexapod sets is written; the others are left).
+  void solve(const kinematics::StrutVector& readings, FkStep& step);
 
  private:
   /// A pose as the solver takes it: TCP position, platform rotation (world frame).
@@ -76,15 +85,18 @@ class HexapodFkPath {
     Eigen::Matrix3d R;
   };
   const io::HexapodMachine& machine_;
+  kinematics::HexapodFkSolver solver_;  ///< the machine's model and FkOptions
   kinematics::HexapodData data_;
   kinematics::PoseRpy first_seed_;
   bool from_seed_ = false;
   Pose seed_;  ///< the next solve's seed (the last solution, or the first seed)
   std::optional<HexapodFkAngles> angles_;  ///< when the path computes the angles
   bool solved_ = false;                    ///< seed_ is the last row's solution
-  bool has_previous_ = false;              ///< previous_ is the solution before it
-  Pose previous_;
-  double max_predicted_translation_ = 0.0;  ///< longest last step the prediction repeats
+  bool has_previous_ = false;              ///< the last step is known (two solutions in a row)
+  Eigen::Vector3d last_translation_ = Eigen::Vector3d::Zero();  ///< of the last step
+  Eigen::Vector3d last_rotation_ = Eigen::Vector3d::Zero();  ///< of the last step: rotation vector
+  int since_orthonormalised_ = 0;            ///< predictions since the last orthonormalisation
+  double max_predicted_translation2_ = 0.0;  ///< longest last step the prediction repeats, squared
 };
 
 /// Exechon tool FK along a path of joint readings (kinematics::toolForwardKinematics), seeded as

@@ -11,7 +11,7 @@
 namespace pkm::kinematics::detail {
 
 /// Fills data.world_R_platform, world_p_tcp, world_r_joint, world_p_platform_joint, leg, unit_leg,
-/// joint_distance and readings. data.pose is left unchanged.
+/// joint_distance, inverse_joint_distance and readings. data.pose is left unchanged.
 void computeLegs(const HexapodModel& model,
                  HexapodData& data,
                  const Eigen::Vector3d& world_p_tcp,

@@ -22,13 +22,18 @@ struct Lu6 {
   bool valid = false;                     ///< false until a non-singular matrix was factorised
 };
 
-/// Factorises A into `lu` (partial pivoting by the largest entry of each column). Returns
-/// min|pivot| / max|pivot|, 0 when a pivot is exactly zero (then lu.valid is false). With
-/// `det_sign`, sets it to the sign of det(A) (+1 or −1; 0 when singular).
-inline double factor6(const Eigen::Matrix<double, 6, 6>& A, Lu6& lu, int* det_sign = nullptr) {
+/// Factorises A·diag(1, 1, 1, s, s, s), s = `right_scale` (the last three columns scaled), into
+/// `lu` (partial pivoting by the largest entry of each column). Returns min|pivot| / max|pivot|,
+/// 0 when a pivot is exactly zero (then lu.valid is false). With `det_sign`, sets it to the sign
+/// of the factorised matrix's determinant (+1 or −1; 0 when singular).
+inline double factor6(const Eigen::Matrix<double, 6, 6>& A,
+                      Lu6& lu,
+                      int* det_sign = nullptr,
+                      double right_scale = 1.0) {
   auto& m = lu.m;
   for (int i = 0; i < 6; ++i) {
-    for (int j = 0; j < 6; ++j) m[i][j] = A(i, j);
+    for (int j = 0; j < 3; ++j) m[i][j] = A(i, j);
+    for (int j = 3; j < 6; ++j) m[i][j] = A(i, j) * right_scale;
     lu.row[i] = i;
   }
   lu.valid = false;
