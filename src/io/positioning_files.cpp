@@ -149,7 +149,8 @@ std::vector<metrology::PositioningSample> readPositioningSamples(
       for (const metrology::PositioningSample& s : readRenishawRtl(in)) samples.push_back(s);
       continue;
     }
-    if (readPositioningTable(TextTable::parseData(in.text, in.name), how, samples, seen) && unstated)
+    if (readPositioningTable(TextTable::parseData(in.text, in.name), how, samples, seen) &&
+        unstated)
       unstated->push_back(in.name);
   }
   return samples;

@@ -2,11 +2,10 @@
 // the spindle-/tool-offset semantics, and writing the setp block back.
 #include "pkm/io/linuxcnc_hal.hpp"
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
-
-#include <fmt/format.h>
 
 #include <cstdio>
 #include <filesystem>
