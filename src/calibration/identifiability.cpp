@@ -2,12 +2,54 @@
 
 #include <Eigen/SVD>
 #include <algorithm>
+#include <cassert>
 #include <cctype>
 #include <cmath>
 
 #include "pkm/core/error.hpp"
 
 namespace pkm::calibration {
+namespace {
+
+/// An entry of a null-space basis (unit columns) below this is taken as zero when the pivots of
+/// the canonical basis are chosen: far above rounding (~1e-15), far below a real coefficient.
+constexpr double kCanonicalZero = 1e-6;
+
+/// The canonical orthonormal basis of the subspace spanned by the orthonormal columns of `V`
+/// (n × d): the reduced row echelon form of Vᵀ, whose pivots are the first columns (parameters,
+/// in their order) that the subspace involves, orthonormalised in pivot order (Gram–Schmidt, each
+/// vector's pivot coefficient positive). It depends on the subspace only, not on the basis an SVD
+/// happens to return for a repeated (zero) singular value, which rounding turns at will.
+Eigen::MatrixXd canonicalBasis(const Eigen::MatrixXd& V) {
+  const Eigen::Index n = V.rows(), d = V.cols();
+  Eigen::MatrixXd R = V.transpose();  // d × n, reduced in place
+  std::vector<Eigen::Index> pivots;
+  Eigen::Index row = 0;
+  for (Eigen::Index c = 0; c < n && row < d; ++c) {
+    Eigen::Index best = row;
+    for (Eigen::Index r = row + 1; r < d; ++r)
+      if (std::fabs(R(r, c)) > std::fabs(R(best, c))) best = r;
+    if (std::fabs(R(best, c)) < kCanonicalZero) continue;
+    R.row(row).swap(R.row(best));
+    R.row(row) /= R(row, c);
+    for (Eigen::Index r = 0; r < d; ++r)
+      if (r != row) R.row(r) -= R(r, c) * R.row(row);
+    pivots.push_back(c);
+    ++row;
+  }
+  assert(row == d);  // orthonormal columns have full rank
+  Eigen::MatrixXd basis(n, d);
+  for (Eigen::Index k = 0; k < d; ++k) {
+    Eigen::VectorXd v = R.row(k).transpose();
+    for (Eigen::Index j = 0; j < k; ++j) v -= basis.col(j).dot(v) * basis.col(j);
+    v.normalize();
+    if (v(pivots[static_cast<std::size_t>(k)]) < 0.0) v = -v;
+    basis.col(k) = v;
+  }
+  return basis;
+}
+
+}  // namespace
 
 Identifiability analyseIdentifiability(const Eigen::MatrixXd& J,
                                        const std::vector<std::string>& names,
@@ -38,15 +80,17 @@ Identifiability analyseIdentifiability(const Eigen::MatrixXd& J,
   out.condition_number = rank > 0 ? s_max / out.singular_values(rank - 1) : INFINITY;
   const Eigen::Index nullity = n - rank;
   out.null_space.resize(n, nullity);
+  const Eigen::MatrixXd null_basis =
+      nullity > 0 ? canonicalBasis(svd.matrixV().rightCols(nullity)) : Eigen::MatrixXd(n, 0);
   for (Eigen::Index k = 0; k < nullity; ++k) {
-    const Eigen::VectorXd v = svd.matrixV().col(rank + k);
+    const Eigen::VectorXd v = null_basis.col(k);
     // Back to unscaled parameters: θ = D⁻¹·θ_scaled; a zero column keeps its unit direction.
     Eigen::VectorXd unscaled(n);
     for (Eigen::Index c = 0; c < n; ++c)
       unscaled(c) = out.column_scale(c) > 0.0 ? v(c) / out.column_scale(c) : v(c);
     out.null_space.col(k) = unscaled.normalized();
     UnidentifiableCombination combo;
-    combo.singular_value = s_max > 0.0 ? out.singular_values(rank + k) / s_max : 0.0;
+    combo.singular_value = s_max > 0.0 ? (scaled * v).norm() / s_max : 0.0;
     std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
     for (Eigen::Index c = 0; c < n; ++c) order[static_cast<std::size_t>(c)] = c;
     std::sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {

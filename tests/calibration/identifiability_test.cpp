@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/QR>
 #include <cmath>
 #include <random>
 
@@ -49,6 +50,46 @@ TEST(Identifiability, NamesTheUnidentifiableCombination) {
   }
   EXPECT_TRUE(found_d);
   EXPECT_TRUE(found_ab);
+}
+
+TEST(Identifiability, NullSpaceReportDoesNotTurnWithTheSvdsBasis) {
+  // A three-dimensional null space (e, f, g enter only as e + f, and h, i only as h − 2i in the
+  // other units): J and Q·J (Q orthogonal: the same column norms, the same null space) make the
+  // SVD return different bases for the repeated zero singular value; the reported directions are
+  // the canonical ones, the same for both to rounding, orthonormal and in the null space.
+  std::mt19937 rng(test::kSeed + 2);
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::MatrixXd J(40, 7);
+  for (Eigen::Index r = 0; r < J.rows(); ++r) {
+    const double s = n(rng), t = n(rng);
+    J.row(r) << n(rng), s, s, t, -0.5 * t, n(rng), 0.0;
+  }
+  const std::vector<std::string> names{"a", "e", "f", "h", "i", "c", "z"};
+  const Eigen::MatrixXd Q =
+      Eigen::HouseholderQR<Eigen::MatrixXd>(Eigen::MatrixXd::NullaryExpr(40, 40, [&] {
+        return n(rng);
+      })).householderQ();
+  const Identifiability a = analyseIdentifiability(J, names);
+  const Identifiability b = analyseIdentifiability(Q * J, names);
+  ASSERT_EQ(a.rank, 4);
+  ASSERT_EQ(b.rank, 4);
+  EXPECT_LT((a.null_space - b.null_space).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT((J * a.null_space).cwiseAbs().maxCoeff(), 1e-12);
+  ASSERT_EQ(a.combinations.size(), b.combinations.size());
+  for (std::size_t k = 0; k < a.combinations.size(); ++k) {
+    ASSERT_EQ(a.combinations[k].terms.size(), b.combinations[k].terms.size()) << k;
+    for (std::size_t t = 0; t < a.combinations[k].terms.size(); ++t) {
+      EXPECT_EQ(a.combinations[k].terms[t].first, b.combinations[k].terms[t].first);
+      EXPECT_NEAR(a.combinations[k].terms[t].second, b.combinations[k].terms[t].second, 1e-12);
+    }
+  }
+  // The canonical directions: e − f, h + 2i in the scaled (unit-column) space, and z alone.
+  ASSERT_EQ(a.combinations.size(), 3u);
+  EXPECT_EQ(a.combinations[0].terms.size(), 2u);
+  EXPECT_EQ(a.combinations[0].terms[0].first, "e");
+  EXPECT_NEAR(a.combinations[0].terms[0].second, std::sqrt(0.5), 1e-12);
+  EXPECT_EQ(a.combinations[2].terms.size(), 1u);
+  EXPECT_EQ(a.combinations[2].terms[0].first, "z");
 }
 
 TEST(Identifiability, RejectsBadInput) {

@@ -17,7 +17,8 @@ namespace pkm::calibration {
 /// is at least IdentifiabilityOptions::report_threshold, largest first.
 struct UnidentifiableCombination {
   std::vector<std::pair<std::string, double>> terms;
-  double singular_value = 0.0;  ///< of the scaled Jacobian, relative to the largest
+  /// |J_scaled·v| / the largest singular value: how weakly the data see the direction v.
+  double singular_value = 0.0;
 };
 
 /// Settings of the identifiability analysis.
@@ -44,8 +45,11 @@ struct Identifiability {
 
 /// Analyses `J` (equations × parameters; columns named by `names`): each column is divided by its
 /// norm (a zero column is an unidentifiable parameter by itself), then the SVD gives the rank, the
-/// condition number and the null space. The null-space vectors are returned in the unscaled
-/// parameter space (null_space) and named (combinations). Throws pkm::InvalidArgument when names
+/// condition number and the null space. The null space is given by its canonical orthonormal
+/// basis (the reduced row echelon form of the null-space basis, pivots in parameter order,
+/// orthonormalised): the same vectors whichever basis the SVD returns, so the report does not turn
+/// with rounding. The null-space vectors are returned in the unscaled parameter space
+/// (null_space) and named (combinations). Throws pkm::InvalidArgument when names
 /// and columns differ in number, J is empty or has a non-finite entry.
 [[nodiscard]] Identifiability analyseIdentifiability(const Eigen::MatrixXd& J,
                                                      const std::vector<std::string>& names,
