@@ -60,6 +60,22 @@ StrutVector secondOrderResidual(const HexapodData& data, const StrutVector& delt
   return s;
 }
 
+/// Corrects the full Newton step δ (from the factorisation `lu` of the scaled Jacobian at the
+/// legs in `data`) for its second-order strut residual, with the same factorisation, unless that
+/// residual is below what needs polishing (or not finite).
+void correctSecondOrder(const detail::Lu6& lu,
+                        const HexapodData& data,
+                        double inv_length,
+                        double tolerance,
+                        StrutVector& delta) {
+  StrutVector s = secondOrderResidual(data, delta);
+  if (s.cwiseAbs().maxCoeff() > detail::kPolishFraction * tolerance && s.allFinite()) {
+    detail::substitute6(lu, s);
+    s.tail<3>() *= inv_length;
+    delta += s;
+  }
+}
+
 /// The pose x − step·δ: p − step·δp, exp(−step·[δθ]×)·R.
 template <typename Pose>
 Pose retract(const Pose& at, const StrutVector& delta, double step) {
@@ -180,12 +196,7 @@ bool HexapodFkSolver::solveNear(HexapodData& data,
   if (!(ratio > options_.singular_pivot_ratio) ||
       scaledStep(lu, inv_length_, max_translation_, options_.max_step_rotation, delta))
     return false;
-  StrutVector s = secondOrderResidual(data, delta);
-  if (s.cwiseAbs().maxCoeff() > detail::kPolishFraction * options_.tolerance && s.allFinite()) {
-    detail::substitute6(lu, s);
-    s.tail<3>() *= inv_length_;
-    delta += s;
-  }
+  correctSecondOrder(lu, data, inv_length_, options_.tolerance, delta);
   if (!delta.allFinite()) return false;
   const Pose x1 = retract<Pose>(x, delta, 1.0);
   detail::computeLegs(model_, data, x1.p, x1.R);
@@ -252,12 +263,7 @@ FkSummary HexapodFkSolver::solveGeneral(HexapodData& data,
     // what needs polishing, the step is corrected for it with the same factorisation (one
     // substitution, no new evaluation of the legs): the step then lands within O(|δ|³), which on
     // a path of noisy readings saves the polishing step's evaluation.
-    StrutVector s = secondOrderResidual(data, delta);
-    if (s.cwiseAbs().maxCoeff() > detail::kPolishFraction * options.tolerance && s.allFinite()) {
-      detail::substitute6(lu, s);
-      s.tail<3>() *= inv_length;
-      delta += s;
-    }
+    correctSecondOrder(lu, data, inv_length, options.tolerance, delta);
     return lu_ratio;
   };
   // A far seed (a cold start): continuation along the straight line of strut readings from the
