@@ -13,6 +13,7 @@
 #include "columns.hpp"
 #include "common.hpp"
 #include "gcode_program.hpp"
+#include "pkm/cnc/interpreter.hpp"
 #include "pkm/cnc/move.hpp"
 #include "pkm/io/text_table.hpp"
 #include "pkm/workflow/gcode_moves.hpp"
@@ -149,7 +150,7 @@ void exposeGcode(py::module_& m) {
         py::arg("tool_table") = py::none(),
         py::arg("tool_units") = "mm",
         py::arg("block_delete") = false,
-        py::arg("max_iterations") = std::uint64_t{10'000'000},
+        py::arg("max_iterations") = cnc::InterpreterOptions{}.max_loop_iterations,
         py::arg("name") = py::none(),
         R"doc(Interprets a program with LinuxCNC semantics, as `pkm gcode moves PROGRAM`.
 

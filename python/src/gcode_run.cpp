@@ -15,6 +15,7 @@
 #include "gcode_program.hpp"
 #include "machines.hpp"
 #include "paths.hpp"
+#include "pkm/cnc/interpreter.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/gcode_run_report.hpp"
 
@@ -251,7 +252,7 @@ void exposeGcodeRun(py::module_& g) {
         py::arg("tool_table") = py::none(),
         py::arg("tool_units") = "mm",
         py::arg("block_delete") = false,
-        py::arg("max_iterations") = std::uint64_t{10'000'000},
+        py::arg("max_iterations") = cnc::InterpreterOptions{}.max_loop_iterations,
         py::arg("max_points") = cnc::kDefaultMaxPathPoints,
         py::arg("path_points") = py::none(),
         py::arg("max_violations") = std::size_t{0},

@@ -13,6 +13,7 @@
 #include "gcode_program.hpp"
 #include "machines.hpp"
 #include "paths.hpp"
+#include "pkm/cnc/interpreter.hpp"
 #include "pkm/workflow/gcode_compensate.hpp"
 #include "pkm/workflow/gcode_flatten.hpp"
 
@@ -232,7 +233,7 @@ void exposeGcodeTransforms(py::module_& g) {
         py::arg("tool_table") = py::none(),
         py::arg("tool_units") = "mm",
         py::arg("block_delete") = false,
-        py::arg("max_iterations") = std::uint64_t{10'000'000},
+        py::arg("max_iterations") = cnc::InterpreterOptions{}.max_loop_iterations,
         py::arg("out") = py::none(),
         py::arg("force") = false,
         py::arg("name") = py::none(),
