@@ -37,6 +37,12 @@ awk -F, 'BEGIN { srand(20261126); pi = atan2(0, -1) }
       line = line (i > 1 ? "," : "") sprintf("%.6f", $i + 2e-5 * g) }
     print line }' "$work/exact.csv" > "$work/noisy.csv"
 
+# Each timed run writes a new output file: before it (not timed) the last run's file is removed and
+# the disks are synced, so that neither program pays for the other's (or its own last run's) output
+# (truncating a 12 MB file that was just written costs 2-8 ms on an ext4 VM, and its writeback
+# runs on the CPUs during the next run).
+fresh() { rm -f "$1"; sync; }
+
 # Times are read from bash's $EPOCHREALTIME (no process is started to read the clock, which would
 # add a fork and exec of date(1) to every measured run).
 export LC_ALL=C  # a decimal point in $EPOCHREALTIME
@@ -47,9 +53,11 @@ run_case() {
   local pkm_times=() ref_times=() s e
   for ((i = 0; i < pairs; i++)); do
     if [ -n "$bench" ]; then
+      fresh "$work/ref.csv"
       s=$EPOCHREALTIME; bash "$bench" "$lengths" > "$work/ref.csv"; e=$EPOCHREALTIME
       ref_times+=("$(echo "$e - $s" | bc -l)")
     fi
+    fresh "$work/pkm.csv"
     s=$EPOCHREALTIME
     "$pkm" hexapod fk --machine hexapod-linuxcnc-sim --lengths "$lengths" --seed 0,0,20,0,0,0 > "$work/pkm.csv"
     e=$EPOCHREALTIME

@@ -175,7 +175,7 @@ void addCampaign(CLI::App& app) {
   });
 }
 
-const CommandRegistration kRegisterCampaign{110, &addCampaign};
+const CommandRegistration kRegisterCampaign{110, "campaign", &addCampaign};
 
 }  // namespace
 }  // namespace pkm::cli

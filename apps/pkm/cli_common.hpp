@@ -116,13 +116,16 @@ void addPlanPosesCommand(CLI::App& app);
 /// Adds one top-level command group to the application (for self-registering command files).
 using CommandAdder = void (*)(CLI::App& app);
 /// Registers a top-level command group: a command file defines, in an anonymous namespace,
-/// `const pkm::cli::CommandRegistration kRegisterX{ORDER, &addX};` and main() adds every
-/// registered group after the built-in ones, in increasing ORDER.
+/// `const pkm::cli::CommandRegistration kRegisterX{ORDER, "NAME", &addX};` (NAME: the subcommand
+/// addX adds) and main() adds every registered group after the built-in ones, in increasing ORDER.
 struct CommandRegistration {
-  CommandRegistration(int order, CommandAdder add);
+  CommandRegistration(int order, const char* name, CommandAdder add);
 };
-/// Adds every registered command group to `app` (called once by main()).
-void addRegisteredCommands(CLI::App& app);
+/// Whether a registered command group is named `name`.
+[[nodiscard]] bool isRegisteredCommand(std::string_view name);
+/// Adds the registered command groups to `app` (called once by main()): all of them, or only the
+/// one named `only` when that is given.
+void addRegisteredCommands(CLI::App& app, std::string_view only = {});
 
 /// Sets `footer` on `app` and every subcommand below it (each `--help` ends with it).
 void setFooter(CLI::App& app, const std::string& footer);

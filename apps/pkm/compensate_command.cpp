@@ -74,7 +74,7 @@ void addCompensateCommand(CLI::App& app) {
   cmd->callback([st] { runTable(*st); });
 }
 
-const CommandRegistration kRegisterCompensate{50, &addCompensateCommand};
+const CommandRegistration kRegisterCompensate{50, "compensate", &addCompensateCommand};
 
 }  // namespace
 }  // namespace pkm::cli

@@ -55,7 +55,7 @@ void addGcodeCommand(CLI::App& app) {
   addGcodeFlattenCommand(*g);
 }
 
-const CommandRegistration kRegisterGcode{60, &addGcodeCommand};
+const CommandRegistration kRegisterGcode{60, "gcode", &addGcodeCommand};
 
 }  // namespace
 }  // namespace pkm::cli

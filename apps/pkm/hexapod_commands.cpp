@@ -31,6 +31,7 @@
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "pkm/workflow/kinematics_path.hpp"
 #include "serial_worker.hpp"
+#include "thread_placement.hpp"
 
 namespace pkm::cli {
 
@@ -203,7 +204,8 @@ void runFk(const MachineOption& machine_opt,
   std::atomic<int> queued{0};  // pieces posted and not yet printed
   VectorPool<kin::StrutVector> chunk_pool;
   VectorPool<workflow::FkStep> piece_pool;
-  SerialWorker printer;  // last: its jobs use the above
+  SerialWorker printer;                    // last: its jobs use the above
+  placePipelineThreads(printer.thread());  // each of the two on its own CPU
   auto read_ahead = [&printer, &reader, &chunk_pool](std::size_t rows) {
     auto next = std::make_shared<std::promise<FkInputChunk>>();
     std::future<FkInputChunk> result = next->get_future();

@@ -32,7 +32,7 @@ void addHistory(CLI::App& app) {
   cmd->callback([args] { runHistory(*args); });
 }
 
-const CommandRegistration kRegisterHistory{100, &addHistory};
+const CommandRegistration kRegisterHistory{100, "history", &addHistory};
 
 }  // namespace
 }  // namespace pkm::cli

@@ -125,7 +125,7 @@ void addLinuxcnc(CLI::App& app) {
   addConfig(*group);
 }
 
-const CommandRegistration kRegisterLinuxcnc{110, &addLinuxcnc};
+const CommandRegistration kRegisterLinuxcnc{110, "linuxcnc", &addLinuxcnc};
 
 }  // namespace
 }  // namespace pkm::cli

@@ -37,7 +37,7 @@ void addReport(CLI::App& app) {
   render->callback([args] { runRender(*args); });
 }
 
-const CommandRegistration kRegisterReport{900, &addReport};
+const CommandRegistration kRegisterReport{900, "report", &addReport};
 
 }  // namespace
 }  // namespace pkm::cli

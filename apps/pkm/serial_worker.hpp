@@ -38,6 +38,9 @@ class SerialWorker {
     wake_.notify_all();
   }
 
+  /// The worker thread (for its placement on a CPU: thread_placement.hpp).
+  std::thread& thread() { return thread_; }
+
   /// Waits until every posted job has run; rethrows the exception a job threw (the jobs queued
   /// after it, and any posted before this call, are dropped).
   void drain() {

@@ -51,7 +51,7 @@ void addServe(CLI::App& app) {
   cmd->callback([o] { execServe(*o); });
 }
 
-const CommandRegistration kRegisterServe{120, &addServe};
+const CommandRegistration kRegisterServe{120, "serve", &addServe};
 
 }  // namespace
 }  // namespace pkm::cli

@@ -54,7 +54,7 @@ void addTracker(CLI::App& app) {
   join->callback([a] { runJoin(*a); });
 }
 
-const CommandRegistration kRegisterTracker{105, &addTracker};
+const CommandRegistration kRegisterTracker{105, "tracker", &addTracker};
 
 }  // namespace
 }  // namespace pkm::cli
