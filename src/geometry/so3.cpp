@@ -8,8 +8,6 @@
 namespace pkm::geometry {
 
 namespace {
-/// Below this angle, rad, so3Exp uses its Taylor series.
-constexpr double kSeriesBelow = 1e-3;
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 /// Shifts `angle` by a multiple of 2·pi to lie within pi of `target`.
@@ -27,33 +25,6 @@ Eigen::Matrix3d hat(const Eigen::Vector3d& w) {
   return m;
 }
 
-Eigen::Matrix3d so3Exp(const Eigen::Vector3d& w) {
-  // Rodrigues: R = I + a·[w]× + b·[w]×², with [w]×² = w·wᵀ − θ²·I.
-  const double theta2 = w.squaredNorm();
-  double a;  // sin(theta)/theta
-  double b;  // (1 - cos(theta))/theta^2
-  if (theta2 < kSeriesBelow * kSeriesBelow) {
-    // Taylor series (the next terms, θ⁶/5040 and θ⁶/40320, are below 1e-21 here): exact to
-    // rounding, and no sin/cos for the small steps of the Newton solvers.
-    a = 1.0 - theta2 / 6.0 + theta2 * theta2 / 120.0;
-    b = 0.5 - theta2 / 24.0 + theta2 * theta2 / 720.0;
-  } else {
-    const double theta = std::sqrt(theta2);
-    a = std::sin(theta) / theta;
-    b = (1.0 - std::cos(theta)) / theta2;
-  }
-  Eigen::Matrix3d R = b * (w * w.transpose());
-  R.diagonal().array() += 1.0 - b * theta2;
-  const Eigen::Vector3d aw = a * w;
-  R(0, 1) -= aw.z();
-  R(1, 0) += aw.z();
-  R(0, 2) += aw.y();
-  R(2, 0) -= aw.y();
-  R(1, 2) -= aw.x();
-  R(2, 1) += aw.x();
-  return R;
-}
-
 Eigen::Matrix3d so3LeftJacobian(const Eigen::Vector3d& w) {
   const double theta2 = w.squaredNorm();
   const double theta = std::sqrt(theta2);
@@ -61,7 +32,7 @@ Eigen::Matrix3d so3LeftJacobian(const Eigen::Vector3d& w) {
   double b;  // (1 - cos θ)/θ²
   double c;  // (θ - sin θ)/θ³
   // (θ − sin θ)/θ³ cancels badly for small θ: series below 1e-3 rad (next terms ~1e-18).
-  if (theta < kSeriesBelow) {
+  if (theta < detail::kSo3SeriesBelow) {
     b = 0.5 - theta2 / 24.0 + theta2 * theta2 / 720.0;
     c = 1.0 / 6.0 - theta2 / 120.0 + theta2 * theta2 / 5040.0;
   } else {

@@ -165,8 +165,9 @@ FkSummary HexapodFkSolver::solve(HexapodData& data,
     return summary;
   }
   Pose x{world_p_seed, world_R_seed};
-  detail::computeLegs(model_, data, x.p, x.R);
-  if (!solveNear(data, readings, x, summary)) {
+  StrutVector r0;
+  const double gap = detail::computeLegsResidual(model_, data, x.p, x.R, readings, r0);
+  if (!solveNear(data, readings, r0, gap, x, summary)) {
     x = Pose{world_p_seed, world_R_seed};
     detail::computeLegs(model_, data, x.p, x.R);
     summary = solveGeneral(data, readings, x);
@@ -178,14 +179,14 @@ FkSummary HexapodFkSolver::solve(HexapodData& data,
 
 bool HexapodFkSolver::solveNear(HexapodData& data,
                                 const StrutVector& readings,
+                                const StrutVector& r0,
+                                double gap,
                                 Pose& x,
                                 FkSummary& out) const {
   // The steps of solveGeneral's damped Newton iteration for a seed within one continuation stage
   // whose corrected Newton step is accepted at full length and converges: the same operations in
   // the same order (bit-identical results), without its bookkeeping. Anything else (a seed that
   // is already converged or far, a shortened or rejected step, no convergence) returns false.
-  const StrutVector r0 = data.readings - readings;
-  const double gap = r0.cwiseAbs().maxCoeff();
   if (!(gap > options_.tolerance && gap <= options_.continuation_step * length_) ||
       options_.max_iterations < 2)
     return false;
@@ -199,9 +200,8 @@ bool HexapodFkSolver::solveNear(HexapodData& data,
   correctSecondOrder(lu, data, inv_length_, options_.tolerance, delta);
   if (!delta.allFinite()) return false;
   const Pose x1 = retract<Pose>(x, delta, 1.0);
-  detail::computeLegs(model_, data, x1.p, x1.R);
-  const StrutVector r1 = data.readings - readings;
-  const double max1 = r1.cwiseAbs().maxCoeff();
+  StrutVector r1;
+  const double max1 = detail::computeLegsResidual(model_, data, x1.p, x1.R, readings, r1);
   if (!(max1 <= options_.tolerance)) return false;
   out.status = FkStatus::kOk;
   out.iterations = 1;
@@ -215,12 +215,12 @@ bool HexapodFkSolver::solveNear(HexapodData& data,
   scaledStep(lu, inv_length_, max_translation_, options_.max_step_rotation, chord);
   if (!chord.allFinite()) return false;
   const Pose x2 = retract<Pose>(x1, chord, 1.0);
-  detail::computeLegs(model_, data, x2.p, x2.R);
-  const StrutVector r2 = data.readings - readings;
+  StrutVector r2;
+  const double max2 = detail::computeLegsResidual(model_, data, x2.p, x2.R, readings, r2);
   const double n2 = r2.squaredNorm();
   if (!(std::isfinite(n2) && n2 < r1.squaredNorm())) return false;  // solveGeneral backtracks
   out.iterations = 2;
-  out.max_residual = r2.cwiseAbs().maxCoeff();
+  out.max_residual = max2;
   x = x2;
   return true;
 }

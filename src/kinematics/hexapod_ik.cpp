@@ -21,25 +21,61 @@ const StrutVector& inverseKinematics(const HexapodModel& model,
 }
 
 namespace detail {
-void computeLegs(const HexapodModel& model,
-                 HexapodData& data,
-                 const Eigen::Vector3d& world_p_tcp,
-                 const Eigen::Matrix3d& world_R_platform) {
+namespace {
+/// computeLegs's loop; `each(i, reading)` is called with every strut's reading as it is computed.
+template <typename Each>
+inline void legsLoop(const HexapodModel& model,
+                     HexapodData& data,
+                     const Eigen::Vector3d& world_p_tcp,
+                     const Eigen::Matrix3d& world_R_platform,
+                     Each&& each) {
   data.world_R_platform = world_R_platform;
   data.world_p_tcp = world_p_tcp;
+  // In three passes, so that the square roots and divisions of the middle one run two legs at a
+  // time (packed SSE2 operations: the divider, not the arithmetic, bounds this function).
+  Eigen::Array<double, kStruts, 1> len2;
   for (int i = 0; i < kStruts; ++i) {
-    const Strut& strut = model.struts[static_cast<std::size_t>(i)];
     const auto k = static_cast<std::size_t>(i);
     data.world_r_joint[k] = world_R_platform * model.effectivePlatform(i);
     data.world_p_platform_joint[k] = world_p_tcp + data.world_r_joint[k];
     data.leg[k] = data.world_p_platform_joint[k] - model.effectiveBase(i);
-    const double len = data.leg[k].norm();
-    const double inverse = len > 0.0 ? 1.0 / len : 0.0;
-    data.joint_distance[i] = len;
-    data.inverse_joint_distance[i] = inverse;
-    data.unit_leg[k] = data.leg[k] * inverse;
-    data.readings[i] = len - strut.length_offset;
+    len2[i] = data.leg[k].squaredNorm();
   }
+  const Eigen::Array<double, kStruts, 1> len = len2.sqrt();
+  const Eigen::Array<double, kStruts, 1> inverse = (len > 0.0).select(len.inverse(), 0.0);
+  data.joint_distance = len.matrix();
+  data.inverse_joint_distance = inverse.matrix();
+  for (int i = 0; i < kStruts; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    data.unit_leg[k] = data.leg[k] * inverse[i];
+    const double reading = len[i] - model.struts[k].length_offset;
+    data.readings[i] = reading;
+    each(i, reading);
+  }
+}
+}  // namespace
+
+void computeLegs(const HexapodModel& model,
+                 HexapodData& data,
+                 const Eigen::Vector3d& world_p_tcp,
+                 const Eigen::Matrix3d& world_R_platform) {
+  legsLoop(model, data, world_p_tcp, world_R_platform, [](int, double) {});
+}
+
+double computeLegsResidual(const HexapodModel& model,
+                           HexapodData& data,
+                           const Eigen::Vector3d& world_p_tcp,
+                           const Eigen::Matrix3d& world_R_platform,
+                           const StrutVector& target,
+                           StrutVector& residual) {
+  double worst = 0.0;
+  legsLoop(model, data, world_p_tcp, world_R_platform, [&](int i, double reading) {
+    const double r = reading - target[i];
+    residual[i] = r;
+    const double a = std::abs(r);
+    worst = a > worst || std::isnan(a) ? a : worst;  // a NaN stays
+  });
+  return worst;
 }
 }  // namespace detail
 

@@ -310,8 +310,9 @@ struct HexapodFkSolverTestPeer {
                    const StrutVector& readings,
                    Pose& x,
                    FkSummary& out) {
-    detail::computeLegs(solver.model(), data, x.p, x.R);
-    return solver.solveNear(data, readings, x, out);
+    StrutVector r0;
+    const double gap = detail::computeLegsResidual(solver.model(), data, x.p, x.R, readings, r0);
+    return solver.solveNear(data, readings, r0, gap, x, out);
   }
   static FkSummary general(const HexapodFkSolver& solver,
                            HexapodData& data,

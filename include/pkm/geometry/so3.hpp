@@ -4,15 +4,48 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 
 namespace pkm::geometry {
+
+namespace detail {
+/// Below this angle, rad, so3Exp and so3LeftJacobian use their Taylor series.
+inline constexpr double kSo3SeriesBelow = 1e-3;
+}  // namespace detail
 
 /// Skew-symmetric matrix [w]x such that [w]x·v = w × v.
 [[nodiscard]] Eigen::Matrix3d hat(const Eigen::Vector3d& w);
 
 /// Rotation exp([w]x) for a rotation vector w (axis·angle, radians); exact, with a Taylor
-/// expansion below 1e-8 rad so that exp is smooth at the identity.
-[[nodiscard]] Eigen::Matrix3d so3Exp(const Eigen::Vector3d& w);
+/// expansion below 1e-3 rad (exact to rounding there, and smooth at the identity). Inline: the
+/// forward kinematics calls it once or twice a row, and a result passed back through memory cost
+/// more than the function itself (its element stores, read back as pairs, stall).
+[[nodiscard]] inline Eigen::Matrix3d so3Exp(const Eigen::Vector3d& w) {
+  // Rodrigues: R = I + a·[w]× + b·[w]×², with [w]×² = w·wᵀ − θ²·I.
+  const double theta2 = w.squaredNorm();
+  double a;  // sin(theta)/theta
+  double b;  // (1 - cos(theta))/theta^2
+  if (theta2 < detail::kSo3SeriesBelow * detail::kSo3SeriesBelow) {
+    // Taylor series (the next terms, θ⁶/5040 and θ⁶/40320, are below 1e-21 here): exact to
+    // rounding, and no sin/cos for the small steps of the Newton solvers.
+    a = 1.0 - theta2 / 6.0 + theta2 * theta2 / 120.0;
+    b = 0.5 - theta2 / 24.0 + theta2 * theta2 / 720.0;
+  } else {
+    const double theta = std::sqrt(theta2);
+    a = std::sin(theta) / theta;
+    b = (1.0 - std::cos(theta)) / theta2;
+  }
+  Eigen::Matrix3d R = b * (w * w.transpose());
+  R.diagonal().array() += 1.0 - b * theta2;
+  const Eigen::Vector3d aw = a * w;
+  R(0, 1) -= aw.z();
+  R(1, 0) += aw.z();
+  R(0, 2) += aw.y();
+  R(2, 0) -= aw.y();
+  R(1, 2) -= aw.x();
+  R(2, 1) += aw.x();
+  return R;
+}
 
 /// The left Jacobian J_l(w) of SO(3): so3Exp(w + δ) ≈ so3Exp([J_l(w)·δ]x)·so3Exp(w) to first order,
 /// J_l = I + (1 − cos θ)/θ²·[w]x + (θ − sin θ)/θ³·[w]x², θ = |w| (Taylor expansion near 0).

@@ -120,9 +120,15 @@ class HexapodFkSolver {
     Eigen::Matrix3d R;
   };
   /// The common case of a servo loop, a near seed: one corrected Newton step (and the polishing
-  /// step when it is due), with data holding the seed's legs. Returns false, with data and x in
-  /// an unspecified state, whenever the general solver would do anything else.
-  bool solveNear(HexapodData& data, const StrutVector& readings, Pose& x, FkSummary& out) const;
+  /// step when it is due), with data holding the seed's legs, r0 their residual against the
+  /// readings and gap its largest magnitude (detail::computeLegsResidual). Returns false, with
+  /// data and x in an unspecified state, whenever the general solver would do anything else.
+  bool solveNear(HexapodData& data,
+                 const StrutVector& readings,
+                 const StrutVector& r0,
+                 double gap,
+                 Pose& x,
+                 FkSummary& out) const;
   /// The general solver (continuation, damped Newton) from x, with data holding x's legs.
   FkSummary solveGeneral(HexapodData& data, const StrutVector& readings, Pose& x) const;
 

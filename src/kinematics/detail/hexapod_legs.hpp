@@ -17,4 +17,14 @@ void computeLegs(const HexapodModel& model,
                  const Eigen::Vector3d& world_p_tcp,
                  const Eigen::Matrix3d& world_R_platform);
 
+/// computeLegs, and the strut residuals r = data.readings − target (each computed with its reading,
+/// so that no caller reads back the readings just stored). Returns max_i |r_i| (NaN when a
+/// residual is NaN).
+double computeLegsResidual(const HexapodModel& model,
+                           HexapodData& data,
+                           const Eigen::Vector3d& world_p_tcp,
+                           const Eigen::Matrix3d& world_R_platform,
+                           const StrutVector& target,
+                           StrutVector& residual);
+
 }  // namespace pkm::kinematics::detail
