@@ -31,26 +31,29 @@ inline void legsLoop(const HexapodModel& model,
                      Each&& each) {
   data.world_R_platform = world_R_platform;
   data.world_p_tcp = world_p_tcp;
-  // In three passes, so that the square roots and divisions of the middle one run two legs at a
-  // time (packed SSE2 operations: the divider, not the arithmetic, bounds this function).
-  Eigen::Array<double, kStruts, 1> len2;
-  for (int i = 0; i < kStruts; ++i) {
+  // Two legs at a time, so that their square roots and divisions are packed SSE2 operations (the
+  // divider, not the arithmetic, bounds this function), with the pairs built in registers (a pair
+  // loaded from two separate stores would stall).
+  for (int i = 0; i < kStruts; i += 2) {
     const auto k = static_cast<std::size_t>(i);
-    data.world_r_joint[k] = world_R_platform * model.effectivePlatform(i);
-    data.world_p_platform_joint[k] = world_p_tcp + data.world_r_joint[k];
-    data.leg[k] = data.world_p_platform_joint[k] - model.effectiveBase(i);
-    len2[i] = data.leg[k].squaredNorm();
-  }
-  const Eigen::Array<double, kStruts, 1> len = len2.sqrt();
-  const Eigen::Array<double, kStruts, 1> inverse = (len > 0.0).select(len.inverse(), 0.0);
-  data.joint_distance = len.matrix();
-  data.inverse_joint_distance = inverse.matrix();
-  for (int i = 0; i < kStruts; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    data.unit_leg[k] = data.leg[k] * inverse[i];
-    const double reading = len[i] - model.struts[k].length_offset;
-    data.readings[i] = reading;
-    each(i, reading);
+    for (std::size_t j = k; j < k + 2; ++j) {
+      const int leg = static_cast<int>(j);
+      data.world_r_joint[j] = world_R_platform * model.effectivePlatform(leg);
+      data.world_p_platform_joint[j] = world_p_tcp + data.world_r_joint[j];
+      data.leg[j] = data.world_p_platform_joint[j] - model.effectiveBase(leg);
+    }
+    const Eigen::Array2d len =
+        Eigen::Array2d(data.leg[k].squaredNorm(), data.leg[k + 1].squaredNorm()).sqrt();
+    const Eigen::Array2d inverse = (len > 0.0).select(len.inverse(), 0.0);
+    data.joint_distance.segment<2>(i) = len.matrix();
+    data.inverse_joint_distance.segment<2>(i) = inverse.matrix();
+    for (int j = 0; j < 2; ++j) {
+      const auto leg = k + static_cast<std::size_t>(j);
+      data.unit_leg[leg] = data.leg[leg] * inverse[j];
+      const double reading = len[j] - model.struts[leg].length_offset;
+      data.readings[i + j] = reading;
+      each(i + j, reading);
+    }
   }
 }
 }  // namespace

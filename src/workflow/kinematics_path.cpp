@@ -75,7 +75,7 @@ void HexapodFkPath::solve(const kin::StrutVector& readings, FkStep& step) {
   if (has_previous_ && last_translation_.squaredNorm() <= max_predicted_translation2_ &&
       last_rotation_.squaredNorm() <= kMaxPredictedRotation * kMaxPredictedRotation) {
     start.p += last_translation_;
-    start.R = geometry::so3Exp(last_rotation_) * seed_.R;
+    start.R.noalias() = geometry::so3Exp(last_rotation_) * seed_.R;
     // A product of rounded rotations is orthonormal to rounding only; the solution inherits the
     // seed's rounding, so now and then one Newton–Schulz step, R ← R·(3I − RᵀR)/2, takes it back
     // (the errors of the products add up; they do not grow geometrically).

@@ -74,8 +74,10 @@ inline double factor6(const Eigen::Matrix<double, 6, 6>& A,
   return min_pivot / max_pivot;
 }
 
-/// Replaces b by A⁻¹·b for the A factorised in `lu` (precondition: lu.valid).
-inline void substitute6(const Lu6& lu, Eigen::Matrix<double, 6, 1>& b) {
+/// Replaces b by A⁻¹·b for the A factorised in `lu` (precondition: lu.valid). Always inlined: as
+/// a call, its result went back through memory element by element and the caller read it as pairs
+/// (a store-forwarding stall on the forward kinematics' hot path).
+[[gnu::always_inline]] inline void substitute6(const Lu6& lu, Eigen::Matrix<double, 6, 1>& b) {
   const auto& m = lu.m;
   double y[6];
 #pragma GCC unroll 6
