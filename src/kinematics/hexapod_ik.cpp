@@ -34,6 +34,7 @@ inline void legsLoop(const HexapodModel& model,
   // Two legs at a time, so that their square roots and divisions are packed SSE2 operations (the
   // divider, not the arithmetic, bounds this function), with the pairs built in registers (a pair
   // loaded from two separate stores would stall).
+  static_assert(kStruts % 2 == 0);
   for (int i = 0; i < kStruts; i += 2) {
     const auto k = static_cast<std::size_t>(i);
     for (std::size_t j = k; j < k + 2; ++j) {
