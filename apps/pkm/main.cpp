@@ -41,7 +41,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "pkm 0.1.0");
   // A command line that names its command group gets that group alone: building every group's
   // options costs about 0.5 ms a run, a share of short jobs run once per file. Anything else (no
-  // group, --help, --version, a misspelt group) gets them all, so that help and errors list them.
+  // group, --help, --version, a misspelt group) gets them all, so that help lists them and errors
+  // read as before.
   const std::string_view named = argc > 1 ? std::string_view(argv[1]) : std::string_view();
   const bool known = std::any_of(std::begin(kBuiltInGroups),
                                  std::end(kBuiltInGroups),
