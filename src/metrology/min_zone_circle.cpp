@@ -86,6 +86,50 @@ std::array<std::size_t, 4> initialReference(std::span<const Point2> points, cons
   return ref;
 }
 
+/// The optimality condition of the zone about c: the chord of the outer contacts' unit
+/// directions from c crosses the chord of the inner contacts' (their directions alternate in
+/// angle). For points at nearly one radius this is the crossing of the contacts' own chords; on a
+/// partial arc with a wide zone only the directions tell.
+bool alternate(const Point2& c,
+               const std::array<Point2, 2>& outer,
+               const std::array<Point2, 2>& inner) {
+  const auto unit = [&](const Point2& p) { return Point2((p - c).normalized()); };
+  const Point2 o0 = unit(outer[0]), o1 = unit(outer[1]), i0 = unit(inner[0]), i1 = unit(inner[1]);
+  return orientation(o0, o1, i0) * orientation(o0, o1, i1) < 0 &&
+         orientation(i0, i1, o0) * orientation(i0, i1, o1) < 0;
+}
+
+/// The two farthest and the two nearest points from c as a reference (outer, inner, outer,
+/// inner), when their chords cross (alternation); nullopt otherwise. Near a minimum found by the
+/// global search these are its contacts.
+std::optional<std::array<std::size_t, 4>> activeReference(std::span<const Point2> points,
+                                                          const Point2& c) {
+  std::array<std::size_t, 2> far{0, 0}, near{0, 0};
+  std::array<double, 2> far_d{-1.0, -1.0};
+  std::array<double, 2> near_d{std::numeric_limits<double>::infinity(),
+                               std::numeric_limits<double>::infinity()};
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const double d = (points[k] - c).squaredNorm();
+    if (d > far_d[0]) {
+      far = {k, far[0]};
+      far_d = {d, far_d[0]};
+    } else if (d > far_d[1]) {
+      far[1] = k;
+      far_d[1] = d;
+    }
+    if (d < near_d[0]) {
+      near = {k, near[0]};
+      near_d = {d, near_d[0]};
+    } else if (d < near_d[1]) {
+      near[1] = k;
+      near_d[1] = d;
+    }
+  }
+  if (!alternate(c, {points[far[0]], points[far[1]]}, {points[near[0]], points[near[1]]}))
+    return std::nullopt;
+  return std::array<std::size_t, 4>{far[0], near[0], far[1], near[1]};
+}
+
 /// Sorts the reference counter-clockwise about c, starting from ref[0].
 void sortCyclic(std::span<const Point2> points, const Point2& c, std::array<std::size_t, 4>& ref) {
   const Point2 u0 = points[ref[0]] - c;
@@ -169,11 +213,7 @@ ZoneCertificate certifyMinimumZone(std::span<const Point2> points,
       cert.contact_error = std::max(cert.contact_error, std::abs(r - zone.inner_radius));
     }
   }
-  // Proper crossing of the outer chord and the inner chord.
-  cert.alternating =
-      no == 2 && ni == 2 &&
-      orientation(outer[0], outer[1], inner[0]) * orientation(outer[0], outer[1], inner[1]) < 0 &&
-      orientation(inner[0], inner[1], outer[0]) * orientation(inner[0], inner[1], outer[1]) < 0;
+  cert.alternating = no == 2 && ni == 2 && alternate(zone.center, outer, inner);
   for (const Point2& p : points) {
     const double r = (p - zone.center).norm();
     cert.max_violation =
@@ -184,19 +224,24 @@ ZoneCertificate certifyMinimumZone(std::span<const Point2> points,
   return cert;
 }
 
-MinZoneCircle fitMinimumZoneCircle(std::span<const Point2> points, const MinZoneOptions& options) {
-  PKM_CHECK(options.max_exchanges >= 1, "minimum-zone circle: max_exchanges must be >= 1");
-  PKM_CHECK(options.tolerance > 0.0, "minimum-zone circle: tolerance must be > 0");
-  requirePoints(points, 4, "minimum-zone circle");
-  const Circle lsc = options.start ? Circle{*options.start, 0.0} : fitCircle(points).circle;
-  Point2 c = lsc.center;
-  double scale = lsc.radius;
-  if (!(scale > 0.0)) scale = (points[0] - c).norm();
+namespace {
+
+/// The Remez exchange from `start` (fitMinimumZoneCircle without the global proof); `scale` is
+/// the length the tolerances are relative to. `from_contacts`: the first reference is the two
+/// farthest and two nearest points about `start` when they alternate (a restart at a centre the
+/// global search found), else the sector guess.
+MinZoneCircle localZone(std::span<const Point2> points,
+                        const Point2& start,
+                        double scale,
+                        const MinZoneOptions& options,
+                        bool from_contacts) {
+  Point2 c = start;
   PKM_CHECK(std::isfinite(c.x()) && std::isfinite(c.y()) && scale > 0.0,
             "minimum-zone circle: bad start centre");
   const double tol = options.tolerance * scale;
 
-  std::array<std::size_t, 4> ref = initialReference(points, c);
+  const auto active = from_contacts ? activeReference(points, c) : std::nullopt;
+  std::array<std::size_t, 4> ref = active ? *active : initialReference(points, c);
   sortCyclic(points, c, ref);
   // The exchanges run on candidates, the points near the outer and inner edges of the zone about
   // the start centre; a pass over all points then confirms the result or adds the points that lie
@@ -294,6 +339,33 @@ MinZoneCircle fitMinimumZoneCircle(std::span<const Point2> points, const MinZone
   }
   const double cert_tol = 16.0 * options.tolerance * std::max(scale, c.norm());
   zone.certified = done && certifyMinimumZone(points, zone, cert_tol).optimal;
+  return zone;
+}
+
+}  // namespace
+
+MinZoneCircle fitMinimumZoneCircle(std::span<const Point2> points, const MinZoneOptions& options) {
+  PKM_CHECK(options.max_exchanges >= 1, "minimum-zone circle: max_exchanges must be >= 1");
+  PKM_CHECK(options.tolerance > 0.0, "minimum-zone circle: tolerance must be > 0");
+  PKM_CHECK(options.global_tolerance > 0.0, "minimum-zone circle: global_tolerance must be > 0");
+  requirePoints(points, 4, "minimum-zone circle");
+  const Circle lsc = options.start ? Circle{*options.start, 0.0} : fitCircle(points).circle;
+  double scale = lsc.radius;
+  if (!(scale > 0.0)) scale = (points[0] - lsc.center).norm();
+  MinZoneCircle zone = localZone(points, lsc.center, scale, options, false);
+  ZoneSearchOptions search_options;
+  search_options.tolerance = options.global_tolerance * scale;
+  search_options.max_boxes = options.max_boxes;
+  const ZoneSearch search = searchMinimumZone(points, zone.center, zone.roundness, search_options);
+  if (search.best_width < zone.roundness - search_options.tolerance) {
+    // Another basin is narrower: the exchange again from the best centre the search saw.
+    MinZoneCircle better = localZone(points, search.best_center, scale, options, true);
+    better.exchanges += zone.exchanges;
+    zone = better;
+  }
+  zone.certified = zone.certified && search.proven &&
+                   zone.roundness <= search.best_width + search_options.tolerance;
+  zone.lower_bound = search.proven ? search.lower_bound : 0.0;
   return zone;
 }
 
