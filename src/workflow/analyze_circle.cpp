@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "data_errors.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/parallel.hpp"
 #include "pkm/core/units.hpp"
@@ -116,8 +117,22 @@ constexpr std::size_t kMinTouchesForUncertainty = 6;
 
 void CircleRequest::validate() const { requireData(data); }
 
-io::CircleReport analyzeCircle(CircleRequest request) {
-  request.validate();
+void CircularRequest::validate() const {
+  requireData(data);
+  if (data.size() > 2) throw IoError("circular: give one or two data files");
+  requirePositive(nominal_radius, "the nominal radius");
+}
+
+void ProbeOffsetRequest::validate() const {
+  requireData(data);
+  requirePositive(ring_diameter, "the ring diameter");
+  requirePositive(stylus_diameter, "the stylus diameter");
+}
+
+namespace {
+
+/// analyzeCircle after the request's check; the texts are moved out of `request`, names kept.
+io::CircleReport circle(CircleRequest& request) {
   io::CircleReport report;
   std::vector<Point2> p;
   for (io::NamedText& in : request.data) {
@@ -143,14 +158,7 @@ io::CircleReport analyzeCircle(CircleRequest request) {
   return report;
 }
 
-void CircularRequest::validate() const {
-  requireData(data);
-  if (data.size() > 2) throw IoError("circular: give one or two data files");
-  requirePositive(nominal_radius, "the nominal radius");
-}
-
-io::CircularReport analyzeCircular(const CircularRequest& request) {
-  request.validate();
+io::CircularReport circular(const CircularRequest& request) {
   std::vector<Point2> cw, ccw;
   std::vector<io::TextTable> tables;
   for (const io::NamedText& in : request.data)
@@ -183,14 +191,7 @@ io::CircularReport analyzeCircular(const CircularRequest& request) {
   return report;
 }
 
-void ProbeOffsetRequest::validate() const {
-  requireData(data);
-  requirePositive(ring_diameter, "the ring diameter");
-  requirePositive(stylus_diameter, "the stylus diameter");
-}
-
-io::ProbeOffsetReport analyzeProbeOffset(const ProbeOffsetRequest& request) {
-  request.validate();
+io::ProbeOffsetReport probeOffset(const ProbeOffsetRequest& request) {
   std::vector<metrology::ProbeTouch> touches;
   std::vector<Labelled> labelled;
   for (const io::NamedText& in : request.data)
@@ -215,6 +216,23 @@ io::ProbeOffsetReport analyzeProbeOffset(const ProbeOffsetRequest& request) {
     report.uncertainty =
         metrology::probeOffsetUncertainty(report.fit, touches, request.uncertainty);
   return report;
+}
+
+}  // namespace
+
+io::CircleReport analyzeCircle(CircleRequest request) {
+  request.validate();
+  return detail::namingData({request.data}, [&] { return circle(request); });
+}
+
+io::CircularReport analyzeCircular(const CircularRequest& request) {
+  request.validate();
+  return detail::namingData({request.data}, [&] { return circular(request); });
+}
+
+io::ProbeOffsetReport analyzeProbeOffset(const ProbeOffsetRequest& request) {
+  request.validate();
+  return detail::namingData({request.data}, [&] { return probeOffset(request); });
 }
 
 }  // namespace pkm::workflow

@@ -12,6 +12,7 @@
 
 #include "analyze_diagonal_inputs.hpp"
 #include "analyze_diagonal_uncertainty.hpp"
+#include "data_errors.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/metrology/per_target.hpp"
 #include "pkm/metrology/plane_prediction.hpp"
@@ -174,21 +175,23 @@ void DiagonalsRequest::validate() const {
 
 io::DiagonalsReport analyzeDiagonals(const DiagonalsRequest& request, const RunControl& control) {
   request.validate();
-  io::DiagonalsReport report;
-  report.method = request.method;
-  report.size = request.size;
-  switch (request.method) {
-    case io::DiagonalMethod::kBody:
-      body(request, control, report);
-      break;
-    case io::DiagonalMethod::kStep:
-      step(request, report);
-      break;
-    case io::DiagonalMethod::kShifted:
-      shifted(request, report);
-      break;
-  }
-  return report;
+  return detail::namingData({request.data, request.compare}, [&] {
+    io::DiagonalsReport report;
+    report.method = request.method;
+    report.size = request.size;
+    switch (request.method) {
+      case io::DiagonalMethod::kBody:
+        body(request, control, report);
+        break;
+      case io::DiagonalMethod::kStep:
+        step(request, report);
+        break;
+      case io::DiagonalMethod::kShifted:
+        shifted(request, report);
+        break;
+    }
+    return report;
+  });
 }
 
 }  // namespace pkm::workflow

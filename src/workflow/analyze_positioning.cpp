@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "data_errors.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/positioning_files.hpp"
 #include "pkm/metrology/iso230_2_conformity.hpp"
@@ -31,8 +32,19 @@ void Iso230_2Request::validate() const {
     throw InvalidArgument(fmt::format("ISO 230-2: coverage factor must be > 0, got {}", coverage));
 }
 
-io::Iso230_2Report analyzeIso230_2(const Iso230_2Request& request) {
-  request.validate();
+void StraightnessRequest::validate() const { requireData(data, "data"); }
+
+void ParallelismRequest::validate() const {
+  requireData(reference, "reference");
+  requireData(axis, "axis");
+  for (int sign : {reference_sign, axis_sign})
+    if (sign != 1 && sign != -1)
+      throw InvalidArgument(fmt::format("parallelism: a beam sign must be +1 or -1, got {}", sign));
+}
+
+namespace {
+
+io::Iso230_2Report iso230_2(const Iso230_2Request& request) {
   const std::optional<MachineUnit> unit = machineUnit(request.machine, request.ini);
   std::vector<std::string> unstated;
   const std::vector<metrology::PositioningSample> samples =
@@ -57,10 +69,7 @@ io::Iso230_2Report analyzeIso230_2(const Iso230_2Request& request) {
   return report;
 }
 
-void StraightnessRequest::validate() const { requireData(data, "data"); }
-
-io::StraightnessReport analyzeStraightness(const StraightnessRequest& request) {
-  request.validate();
+io::StraightnessReport straightness(const StraightnessRequest& request) {
   const io::Profile points = io::readStraightnessPoints(request.data);
   io::Profile p = io::perTargetMean(points);
   io::StraightnessReport report;
@@ -78,16 +87,7 @@ io::StraightnessReport analyzeStraightness(const StraightnessRequest& request) {
   return report;
 }
 
-void ParallelismRequest::validate() const {
-  requireData(reference, "reference");
-  requireData(axis, "axis");
-  for (int sign : {reference_sign, axis_sign})
-    if (sign != 1 && sign != -1)
-      throw InvalidArgument(fmt::format("parallelism: a beam sign must be +1 or -1, got {}", sign));
-}
-
-io::ParallelismReport analyzeParallelism(const ParallelismRequest& request) {
-  request.validate();
+io::ParallelismReport parallelism(const ParallelismRequest& request) {
   const io::Profile ref = io::readStraightness(request.reference);
   io::Profile axis = io::readStraightness(request.axis);
   io::ParallelismReport report;
@@ -121,6 +121,24 @@ io::ParallelismReport analyzeParallelism(const ParallelismRequest& request) {
   }
   report.axis_position = std::move(axis.position);
   return report;
+}
+
+}  // namespace
+
+io::Iso230_2Report analyzeIso230_2(const Iso230_2Request& request) {
+  request.validate();
+  return detail::namingData({request.data}, [&] { return iso230_2(request); });
+}
+
+io::StraightnessReport analyzeStraightness(const StraightnessRequest& request) {
+  request.validate();
+  return detail::namingData({request.data}, [&] { return straightness(request); });
+}
+
+io::ParallelismReport analyzeParallelism(const ParallelismRequest& request) {
+  request.validate();
+  return detail::namingData({request.reference, request.axis},
+                            [&] { return parallelism(request); });
 }
 
 }  // namespace pkm::workflow

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "analyze_diagonal_uncertainty.hpp"
+#include "data_errors.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/error_table.hpp"
 #include "pkm/io/positioning_files.hpp"
@@ -192,8 +193,9 @@ void SquarenessRequest::validate() const {
       throw InvalidArgument("--start: the start positions must be finite");
 }
 
-io::SquarenessReport analyzeSquareness(const SquarenessRequest& request) {
-  request.validate();
+namespace {
+
+io::SquarenessReport squareness(const SquarenessRequest& request) {
   const std::vector<metrology::FaceDiagonal> diagonals = readDiagonals(request);
   std::vector<metrology::PdgeTerm> pdge;
   for (const PdgeInput& in : request.pdge) pdge.push_back(readPdge(in));
@@ -209,6 +211,13 @@ io::SquarenessReport analyzeSquareness(const SquarenessRequest& request) {
   report.diagonals = diagonals.size();
   report.pdge_tables = pdge.size();
   return report;
+}
+
+}  // namespace
+
+io::SquarenessReport analyzeSquareness(const SquarenessRequest& request) {
+  request.validate();
+  return detail::namingData({request.data}, [&] { return squareness(request); });
 }
 
 }  // namespace pkm::workflow

@@ -14,22 +14,24 @@ namespace pkm::workflow {
 
 double CampaignRow::combinedU() const { return std::hypot(before_U, after_U); }
 
+double CampaignRow::improvement() const { return std::abs(before) - std::abs(after); }
+
 std::optional<bool> CampaignRow::significant() const {
   const double u = combinedU();
   if (!std::isfinite(before) || !std::isfinite(after) || !std::isfinite(u)) return std::nullopt;
-  return std::abs(before - after) >= u;
+  return improvement() >= u;
 }
 
 namespace campaign {
 namespace {
 
-/// The improvement before − after ± its combined U, "not significant" when smaller than that U,
-/// null without both values and both U.
+/// The improvement |before| − |after| ± its combined U, "not significant" when smaller than
+/// that U (a worsening is never significant), null without both values and both U.
 Json improvementJson(const SummaryRow& r) {
   const std::optional<bool> significant = r.significant();
   if (!significant) return nullptr;
   if (!*significant) return "not significant";
-  return fmt::format("{:.4g} ± {:.2g}", r.before - r.after, r.combinedU());
+  return fmt::format("{:.4g} ± {:.2g}", r.improvement(), r.combinedU());
 }
 
 }  // namespace

@@ -66,6 +66,20 @@ TEST(CampaignRow, AnImprovementSmallerThanTheCombinedUIsNotSignificant) {
   EXPECT_FALSE(row.significant().has_value());
 }
 
+TEST(CampaignRow, AWorseningIsNeverASignificantImprovement) {
+  // before 0.007, after 0.020 ± 0.005 combined: |before − after| = 0.013 > U, but it grew.
+  CampaignRow row{"x", "mm", 0.007, 0.020, std::nullopt, "", ""};
+  row.before_U = 0.003;
+  row.after_U = 0.004;
+  EXPECT_NEAR(row.improvement(), -0.013, 1e-15);
+  EXPECT_EQ(row.significant(), std::optional<bool>(false));
+  // Signed errors are compared by size: −0.042 mm to +0.003 mm is an improvement of 0.039 mm.
+  row.before = -0.042;
+  row.after = 0.003;
+  EXPECT_NEAR(row.improvement(), 0.039, 1e-15);
+  EXPECT_EQ(row.significant(), std::optional<bool>(true));
+}
+
 TEST_F(CampaignWorkflow, OneStepCampaignMeetsItsTargetAndReportsProgressInOrder) {
   CampaignOptions o;
   o.campaign = probeCampaign();

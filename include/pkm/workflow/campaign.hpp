@@ -40,9 +40,11 @@ struct CampaignRow {
   /// "laser straightness optics 71 %, fit statistics 24 %" ("" when not known); the report sets it
   /// beside the part of `after` beyond U (docs/campaign.md, "Uncertainty").
   std::string after_limit{};
-  /// Whether the improvement before − after is significant: |before − after| >= the combined
-  /// uncertainty √(U_before² + U_after²) (the two measurements independent). nullopt when a value
-  /// or a U is missing.
+  /// The improvement |before| − |after| in `unit` (an error's size; negative when it grew).
+  [[nodiscard]] double improvement() const;
+  /// Whether the row shows a significant improvement: improvement() >= the combined uncertainty
+  /// √(U_before² + U_after²) (the two measurements independent). A worsening, however large, is
+  /// not a significant improvement: false. nullopt when a value or a U is missing.
   [[nodiscard]] std::optional<bool> significant() const;
   /// √(U_before² + U_after²), in `unit`; NaN when either is missing.
   [[nodiscard]] double combinedU() const;
