@@ -37,6 +37,8 @@ typedef struct {
   double lu_ratio;
   int seed_sign; /* sign of det J at a stage's first linearisation (0: none yet) */
   int last_sign; /* and at its latest */
+  int budget; /* Newton steps plus step halvings left (options' max_total_iterations); −1: none */
+  int exhausted; /* the budget ran out */
 } solver;
 
 /* b ← A⁻¹·b for the A factorised in lu (precondition: lu->valid). */
@@ -189,6 +191,11 @@ static int newton_step(solver* s,
     }
     step *= 0.5;
     ++summary->backtracks;
+    if (s->budget == 0) { /* no evaluation left: as if no step reduced |r| */
+      s->exhausted = 1;
+      break;
+    }
+    if (s->budget > 0) --s->budget;
   }
   *norm2 = evaluate(s, x, r); /* the legs back to the best iterate */
   return 0;
@@ -214,6 +221,11 @@ static pkm_hex_fk_summary damped_newton(solver* s, const pkm_hex_fk_options* o, 
       polishing = 1;
     }
     if (iter == o->max_iterations) break;
+    if (s->budget == 0) {
+      s->exhausted = 1;
+      break;
+    }
+    if (s->budget > 0) --s->budget;
     const int accepted = newton_step(s, o, x, r, &norm2, polishing, &summary);
     if (accepted < 0) {
       summary.status = PKM_HEX_SINGULAR;
@@ -239,10 +251,12 @@ static int stage_count(const double start[N], const double q[N], double stage_le
 }
 
 /* Solves the stages from x; the summary of the last stage run, with the totals. With a total
- * budget (o->max_total_iterations > 0), each stage gets at most the steps left. */
+ * budget (o->max_total_iterations > 0), every Newton step and every step halving spends one unit
+ * of it, over all stages; none left ends the solve (budget_exhausted). */
 static pkm_hex_fk_summary run_stages(solver* s, const double q[N], pose* x) {
   const pkm_hex_fk_options* o = s->options;
   const int budget = o->max_total_iterations > 0 ? o->max_total_iterations : 0;
+  s->budget = budget > 0 ? budget : -1;
   const double length = 1.0 / s->inv_length;
   double start[N], r[N];
   memcpy(start, s->at.q, sizeof start);
@@ -258,15 +272,10 @@ static pkm_hex_fk_summary run_stages(solver* s, const double q[N], pose* x) {
     for (int i = 0; i < N; ++i)
       s->target[i] = k == stages ? q[i] : start[i] + (q[i] - start[i]) * ((double)k / stages);
     s->seed_sign = s->last_sign = 0;
-    pkm_hex_fk_options stage = k == stages ? *o : intermediate;
-    const int left = budget - iterations;
-    const int capped = budget > 0 && left < stage.max_iterations;
-    if (capped) stage.max_iterations = left;
-    summary = left > 0 || budget == 0 ? damped_newton(s, &stage, x)
-                                      : (pkm_hex_fk_summary){PKM_HEX_BUDGET_EXHAUSTED, 0, 0, 0.0};
+    summary = damped_newton(s, k == stages ? o : &intermediate, x);
     iterations += summary.iterations;
     backtracks += summary.backtracks;
-    if (summary.status == PKM_HEX_NO_CONVERGENCE && capped && summary.iterations == left)
+    if (summary.status == PKM_HEX_NO_CONVERGENCE && s->exhausted)
       summary.status = PKM_HEX_BUDGET_EXHAUSTED;
     if (summary.status != PKM_HEX_OK) break;
     if (s->seed_sign == 0) continue; /* converged without a linearisation */
