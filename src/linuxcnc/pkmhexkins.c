@@ -173,7 +173,7 @@ static pkm_hex_status forward_from(const pkm_hex_geometry* g,
 static void report_forward(pkm_hex_status status, const double* joints) {
   *hal->fwd_status = (hal_s32_t)status;
   *hal->fwd_kins_fail = status != PKM_HEX_OK;
-  *hal->branch_error = status == PKM_HEX_OTHER_BRANCH;
+  if (status == PKM_HEX_OTHER_BRANCH) ++*hal->branch_errors;
   if (status == PKM_HEX_OK) {
     if (failing > 0)
       rtapi_print_msg(RTAPI_MSG_ERR,
@@ -229,7 +229,7 @@ int kinematicsForward(const double* joints,
 static void report_inverse(int branch, const EmcPose* world) {
   const int failed = branch != home_branch;
   *hal->inv_kins_fail = failed;
-  if (failed) *hal->branch_error = 1;
+  if (failed) ++*hal->branch_errors;
   if (failed && !inverse_failing)
     rtapi_print_msg(RTAPI_MSG_ERR,
                     "pkmhexkins: pose X%.4f Y%.4f Z%.4f A%.4f B%.4f C%.4f refused: %s\n",

@@ -25,7 +25,7 @@ typedef struct {
   hal_s32_t* fwd_status;   /* out: pkm_hex_status of the last forward call */
   hal_bit_t* fwd_kins_fail;
   hal_bit_t* inv_kins_fail;
-  hal_bit_t* branch_error; /* out: the last FK or IK met the other assembly branch */
+  hal_u32_t* branch_errors; /* out: FK or IK calls that met the other assembly branch */
   hal_bit_t* geometry_ok;
   hal_bit_t* fault; /* out: net to E-stop (docs/linuxcnc.md) */
   hal_u32_t* fwd_kins_failures;
@@ -108,7 +108,7 @@ static int other_pins(const pkm_hex_params* p) {
   if (r == 0) r = s32_pin(&hal->fwd_status, HAL_OUT, "fwd-status");
   if (r == 0) r = bit_pin(&hal->fwd_kins_fail, HAL_OUT, "fwd-kins-fail");
   if (r == 0) r = bit_pin(&hal->inv_kins_fail, HAL_OUT, "inv-kins-fail");
-  if (r == 0) r = bit_pin(&hal->branch_error, HAL_OUT, "branch-error");
+  if (r == 0) r = u32_pin(&hal->branch_errors, HAL_OUT, 0, "branch-errors");
   if (r == 0) r = bit_pin(&hal->geometry_ok, HAL_OUT, "geometry-ok");
   if (r == 0) r = bit_pin(&hal->fault, HAL_OUT, "fault");
   return r;
