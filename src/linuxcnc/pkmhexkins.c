@@ -39,6 +39,7 @@ static int comp_id;
 static pkm_hex_fk_options file_options; /* the parameter file's solver settings */
 static pkm_hex_geometry validated;      /* the geometry in use (last found valid) */
 static double validated_home[6];
+static double validated_spindle_pin; /* spindle-offset (without tool-offset) of the one in use */
 static int have_validated;
 static int home_branch;      /* sign of det J at home for the geometry in use */
 static int reported_invalid; /* the invalid or refused geometry was reported once */
@@ -64,7 +65,7 @@ static void read_geometry(pkm_hex_geometry* g) {
 /* 1 when the last forward call's joints are still and motion is in position. */
 static int standing_still(const double* joints) {
   if (!*hal->in_position) return 0;
-  if (joints == NULL || !have_last_joints) return 1;
+  if (!have_last_joints) return 1;
   for (int i = 0; i < N; ++i)
     if (!(fabs(joints[i] - last_joints[i]) <= *hal->still_tolerance)) return 0;
   return 1;
@@ -72,12 +73,15 @@ static int standing_still(const double* joints) {
 
 /* Checks a changed geometry as at load (pkm_hex_check_home: no singular or collinear home) and
  * takes it while the machine stands still; otherwise keeps the one in use (a message, once). */
-static void take_geometry(const pkm_hex_geometry* g, const double home[6], const double* joints) {
+static void take_geometry(const pkm_hex_geometry* g,
+                          const double home[6],
+                          const double* joints,
+                          int tool_only) {
   char why[192];
   const double p[3] = {home[0], home[1], home[2]};
   const double rpy[3] = {home[3] / kDegPerRad, home[4] / kDegPerRad, home[5] / kDegPerRad};
   int ok = pkm_hex_check_home(g, p, rpy, file_options.singular_pivot_ratio, why, sizeof why) == 0;
-  if (ok && have_validated && !standing_still(joints)) {
+  if (ok && have_validated && !tool_only && !standing_still(joints)) {
     rtapi_snprintf(why, sizeof why, "changed while the machine moves (kept the geometry in use)");
     ok = 0;
   }
@@ -93,7 +97,10 @@ static void take_geometry(const pkm_hex_geometry* g, const double home[6], const
   pkm_hex_rotation_from_rpy(rpy, R);
   validated = *g;
   memcpy(validated_home, home, sizeof validated_home);
+  validated_spindle_pin = *hal->spindle_offset;
   home_branch = pkm_hex_branch(g, p, R, file_options.singular_pivot_ratio);
+  if (armed && !tool_only)
+    rtapi_print_msg(RTAPI_MSG_ERR, "pkmhexkins: new geometry taken (the machine stands still)\n");
   have_validated = 1;
   reported_invalid = 0;
   *hal->geometry_ok = 1;
@@ -106,10 +113,18 @@ static int current_geometry(pkm_hex_geometry* g, const double* joints) {
   memset(&pinned, 0, sizeof pinned);
   read_geometry(&pinned);
   for (int k = 0; k < 6; ++k) home[k] = *hal->home[k];
-  if (!have_validated || memcmp(&pinned, &validated, sizeof pinned) != 0 ||
-      memcmp(home, validated_home, sizeof home) != 0)
-    take_geometry(&pinned, home, joints);
-  else if (reported_invalid) { /* the pins are back to the geometry in use */
+  const int changed = !have_validated || memcmp(&pinned, &validated, sizeof pinned) != 0 ||
+                      memcmp(home, validated_home, sizeof home) != 0;
+  /* A G43 tool length (tool-offset) alone is taken at once: LinuxCNC changes it itself. */
+  pkm_hex_geometry untooled = pinned;
+  untooled.spindle_offset = validated.spindle_offset;
+  const int tool_only = changed && have_validated &&
+                        *hal->spindle_offset == validated_spindle_pin &&
+                        memcmp(&untooled, &validated, sizeof untooled) == 0 &&
+                        memcmp(home, validated_home, sizeof home) == 0;
+  if (changed && (joints != NULL || !have_validated || tool_only))
+    take_geometry(&pinned, home, joints, tool_only); /* else the forward call (joints) decides */
+  else if (!changed && reported_invalid) {           /* the pins are back to the geometry in use */
     reported_invalid = 0;
     *hal->geometry_ok = 1;
   }

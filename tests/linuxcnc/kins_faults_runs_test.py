@@ -12,6 +12,8 @@ is started headless (lcnc_harness.py), homed and moved. Checked:
     and fwd-kins-fail are set, LinuxCNC's log has the module's message once (not once per servo
     cycle); with the glitch removed the kinematics recover (a message); with the fault wired to
     E-stop, the glitch puts the machine in E-stop;
+  - a geometry pin set during a move is refused (geometry-ok false, fault, a message), and taken
+    once the machine stands still;
   - `G0 Z-3` (through the singular plane z = 0 into the mirror assembly; the Z limit lowered
     here to allow it) is refused with the module's message, and the world Z is never shown as the
     mirror's +3.
@@ -109,8 +111,28 @@ def glitch(cnc, failures):
         failures.append(f"pkmhexkins.fault did not put the machine in E-stop: {estop}")
 
 
+def geometry_while_moving(cnc, failures):
+    """A geometry pin set during a move is refused (the geometry in use kept, fault set, a
+    message); at a standstill it is taken."""
+    cnc.ask("set mode mdi")
+    cnc.ask("set mdi G1 F30 X1.5 Z22")  # about 5 s
+    time.sleep(1.0)
+    cnc.setp("pkmhexkins.length-offset.0", 0.01)
+    time.sleep(0.3)
+    moving = {n: cnc.pin("pkmhexkins." + n) for n in ["geometry-ok", "fault"]}
+    cnc.ask("set wait done")
+    time.sleep(0.3)
+    still = {n: cnc.pin("pkmhexkins." + n) for n in ["geometry-ok", "fault"]}
+    print(f"length-offset.0 set during a move: {moving}; after it: {still}")
+    if moving != {"geometry-ok": False, "fault": True}:
+        failures.append(f"a geometry change during a move was not refused: {moving}")
+    if still != {"geometry-ok": True, "fault": False}:
+        failures.append(f"the geometry change was not taken at a standstill: {still}")
+
+
 def mirror(cnc, failures):
     cnc.home()
+    geometry_while_moving(cnc, failures)
     cnc.ask("set mode mdi")
     reply = cnc.ask("set mdi G0 Z-3")
     cnc.ask("set wait done")
@@ -148,6 +170,8 @@ def main():
     print(f"log: {refusals}")
     if not refusals:
         failures.append("no refusal message in the log")
+    if "pkmhexkins: geometry refused: changed while the machine moves" not in log:
+        failures.append("no message for the geometry change during a move")
     if failures:
         sys.exit("FAIL (mirror):\n" + "\n".join(failures) + "\n--- linuxcnc log ---\n" + log)
     shutil.rmtree(work, ignore_errors=True)
