@@ -80,16 +80,17 @@ static void take_geometry(const pkm_hex_geometry* g,
   char why[192];
   const double p[3] = {home[0], home[1], home[2]};
   const double rpy[3] = {home[3] / kDegPerRad, home[4] / kDegPerRad, home[5] / kDegPerRad};
+  const char* what = "unusable geometry";
   int ok = pkm_hex_check_home(g, p, rpy, file_options.singular_pivot_ratio, why, sizeof why) == 0;
   if (ok && have_validated && !tool_only && !standing_still(joints)) {
+    what = "geometry refused";
     rtapi_snprintf(why, sizeof why, "changed while the machine moves (kept the geometry in use)");
     ok = 0;
   }
   if (!ok) {
     *hal->geometry_ok = 0;
     *hal->fault = 1;
-    if (!reported_invalid)
-      rtapi_print_msg(RTAPI_MSG_ERR, "pkmhexkins: geometry refused: %s\n", why);
+    if (!reported_invalid) rtapi_print_msg(RTAPI_MSG_ERR, "pkmhexkins: %s: %s\n", what, why);
     reported_invalid = 1;
     return;
   }
