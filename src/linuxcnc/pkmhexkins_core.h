@@ -108,8 +108,8 @@ int pkm_hex_check_home(const pkm_hex_geometry* geometry,
                        size_t size);
 
 /// Everything a pkmhexkins parameter file sets (pkm's io::linuxcncHexapodParameters writes it;
-/// docs/linuxcnc.md, "The pkmhexkins parameter file"): the geometry, the home pose (the second
-/// forward-kinematics seed and LinuxCNC's [TRAJ] HOME) and the forward kinematics' settings.
+/// docs/linuxcnc.md, "The pkmhexkins parameter file"): the geometry, the home pose (the branch
+/// reference of the component and LinuxCNC's [TRAJ] HOME) and the forward kinematics' settings.
 typedef struct {
   pkm_hex_geometry geometry;
   double home[6];              ///< x, y, z (machine unit), a, b, c (degrees, as LinuxCNC's world)
