@@ -17,6 +17,7 @@
 #include "kinematics.h"
 #include "rtapi.h"
 #include "rtapi_app.h"
+#include "rtapi_errno.h"
 
 /* One translation unit, as halcompile builds one file. */
 #include "pkmexechonkins_core.c"
@@ -33,14 +34,19 @@ RTAPI_MP_STRING(params, "path of the pkm Exechon parameter file");
 
 /* HAL pins of the component (prefix pkmexechonkins.). */
 typedef struct {
-  hal_float_t* tool_offset;    /* in: G43 tool length, machine unit (motion.tooloffset.z) */
-  hal_float_t* convergence;    /* io: FK tolerance, largest leg residual, machine unit */
-  hal_u32_t* limit_iterations; /* io: FK Newton step cap */
-  hal_u32_t* last_iterations;  /* out: FK Newton steps of the last call */
-  hal_s32_t* inv_status;       /* out: pkm_exechon_status of the last inverse call */
-  hal_s32_t* fwd_status;       /* out: pkm_exechon_status of the last forward call */
-  hal_bit_t* inv_kins_fail;    /* out: the last inverse call failed */
-  hal_bit_t* fwd_kins_fail;    /* out: the last forward call failed */
+  hal_float_t* tool_offset;     /* in: G43 tool length, machine unit (motion.tooloffset.z) */
+  hal_float_t* convergence;     /* io: FK tolerance, largest leg residual, machine unit */
+  hal_u32_t* limit_iterations;  /* io: FK Newton step cap */
+  hal_u32_t* last_iterations;   /* out: FK Newton steps of the last call */
+  hal_s32_t* inv_status;        /* out: pkm_exechon_status of the last inverse call */
+  hal_s32_t* fwd_status;        /* out: pkm_exechon_status of the last forward call */
+  hal_bit_t* inv_kins_fail;     /* out: the last inverse call failed */
+  hal_bit_t* fwd_kins_fail;     /* out: the last forward call failed (held until a success) */
+  hal_bit_t* fault;             /* out: a forward failure after the first success: net to E-stop */
+  hal_u32_t* fwd_kins_failures; /* out: failed forward calls after the first success */
+  hal_u32_t* startup_failures;  /* out: failed forward calls before it (joints before homing) */
+  hal_u32_t* last_call_ns;      /* out: time of the last forward call */
+  hal_u32_t* max_call_ns;       /* out: longest forward call since load */
 } pkx_pins;
 
 #define PKX_DEG_PER_RAD (180.0 / 3.14159265358979323846264338327950288)
@@ -49,6 +55,10 @@ static int comp_id;
 static pkx_pins* pins;
 static pkm_exechon_params machine;
 static pkm_exechon_state inverse_state, forward_state;
+static double last_world[5]; /* the pose of the last successful forward call */
+static int have_last_world;
+static int armed;   /* a forward call has succeeded */
+static int failing; /* failed forward calls in the current episode */
 
 /* Logs a failure once per change of status (the kinematics run at the servo rate). */
 static void pkx_report(const char* which, pkm_exechon_status status, hal_s32_t* last) {
@@ -60,29 +70,89 @@ static void pkx_report(const char* which, pkm_exechon_status status, hal_s32_t* 
   *last = (hal_s32_t)status;
 }
 
+/* The FK seed: the state of our last solution when LinuxCNC passes its pose back (to 1e-6 of
+ * the machine's size), else the configuration of LinuxCNC's pose (its re-seed, e.g. [TRAJ] HOME
+ * after homing). */
+static pkm_exechon_state pkx_seed(const double w[5]) {
+  pkm_exechon_state seed = forward_state;
+  double d = 0.0;
+  for (int i = 0; i < 3; ++i) d = fmax(d, fabs(w[i] - last_world[i]));
+  if (have_last_world && d <= 1e-6 * machine.characteristic_length && w[3] == last_world[3] &&
+      w[4] == last_world[4])
+    return seed;
+  if (pkm_exechon_seed(&machine, w, *pins->tool_offset, &seed) != PKM_EXECHON_OK)
+    seed = forward_state; /* an unusable pose: our own last state */
+  return seed;
+}
+
+/* Pins and one message per failure episode for a forward call. */
+static void pkx_forward_outcome(pkm_exechon_status s, const double* joint) {
+  *pins->fwd_kins_fail = s != PKM_EXECHON_OK;
+  *pins->fwd_status = (hal_s32_t)s;
+  if (s == PKM_EXECHON_OK) {
+    if (failing > 0)
+      rtapi_print_msg(RTAPI_MSG_ERR,
+                      "pkmexechonkins: forward kinematics recovered after %d failed calls\n",
+                      failing);
+    armed = 1, failing = 0;
+    *pins->fault = 0;
+    return;
+  }
+  if (!armed) { /* before the first success: LinuxCNC's calls before homing */
+    ++*pins->startup_failures;
+    return;
+  }
+  ++*pins->fwd_kins_failures;
+  *pins->fault = 1;
+  if (failing++ == 0)
+    rtapi_print_msg(RTAPI_MSG_ERR,
+                    "pkmexechonkins: forward kinematics failed (%s) at joints %.6g %.6g %.6g %.6g "
+                    "%.6g: position feedback invalid, pkmexechonkins.fault set\n",
+                    pkm_exechon_status_name(s),
+                    joint[0],
+                    joint[1],
+                    joint[2],
+                    joint[3],
+                    joint[4]);
+}
+
 int kinematicsForward(const double* joint,
                       struct EmcPose* world,
                       const KINEMATICS_FORWARD_FLAGS* fflags,
                       KINEMATICS_INVERSE_FLAGS* iflags) {
   (void)fflags, (void)iflags;
+  const long long start = rtapi_get_time();
   double q[5] = {
       joint[0], joint[1], joint[2], joint[3] / PKX_DEG_PER_RAD, joint[4] / PKX_DEG_PER_RAD};
+  const double seen[5] = {world->tran.x,
+                          world->tran.y,
+                          world->tran.z,
+                          world->c / PKX_DEG_PER_RAD,
+                          world->a / PKX_DEG_PER_RAD};
   double w[5];
   int iterations = 0;
   if (*pins->convergence > 0.0)
     machine.fk_tolerance = *pins->convergence; /* else keep the file's */
+  if (*pins->limit_iterations > PKM_EXECHON_MAX_ITERATIONS)
+    *pins->limit_iterations = PKM_EXECHON_MAX_ITERATIONS; /* the servo-time budget */
   if (*pins->limit_iterations >= 1) machine.fk_max_iterations = (int)*pins->limit_iterations;
+  pkm_exechon_state state = pkx_seed(seen);
   const pkm_exechon_status s =
-      pkm_exechon_forward(&machine, &forward_state, q, *pins->tool_offset, w, &iterations);
+      pkm_exechon_forward(&machine, &state, q, *pins->tool_offset, w, &iterations);
   *pins->last_iterations = (hal_u32_t)iterations;
-  *pins->fwd_kins_fail = s != PKM_EXECHON_OK;
-  pkx_report("forward", s, pins->fwd_status);
-  if (s != PKM_EXECHON_OK) return -1;
-  inverse_state = forward_state; /* the branch the machine is in now */
-  world->tran.x = w[0], world->tran.y = w[1], world->tran.z = w[2];
-  world->c = w[3] * PKX_DEG_PER_RAD, world->a = w[4] * PKX_DEG_PER_RAD, world->b = 0.0;
-  world->u = world->v = world->w = 0.0;
-  return 0;
+  pkx_forward_outcome(s, joint);
+  if (s == PKM_EXECHON_OK) {
+    forward_state = inverse_state = state; /* the branch the machine is in now */
+    world->tran.x = w[0], world->tran.y = w[1], world->tran.z = w[2];
+    world->c = w[3] * PKX_DEG_PER_RAD, world->a = w[4] * PKX_DEG_PER_RAD, world->b = 0.0;
+    world->u = world->v = world->w = 0.0;
+    for (int i = 0; i < 5; ++i) last_world[i] = w[i];
+    have_last_world = 1;
+  }
+  const long long ns = rtapi_get_time() - start;
+  *pins->last_call_ns = ns > 0 ? (hal_u32_t)ns : 0;
+  if (*pins->last_call_ns > *pins->max_call_ns) *pins->max_call_ns = *pins->last_call_ns;
+  return s == PKM_EXECHON_OK ? 0 : -1;
 }
 
 int kinematicsInverse(const struct EmcPose* world,
@@ -117,6 +187,8 @@ int kinematicsHome(struct EmcPose* world,
   pkm_exechon_home(&machine, *pins->tool_offset, q, w);
   for (int i = 0; i < 3; ++i) inverse_state.e[i] = forward_state.e[i] = machine.home_e[i];
   inverse_state.valid = forward_state.valid = 1;
+  for (int i = 0; i < 5; ++i) last_world[i] = w[i];
+  have_last_world = 1;
   joint[0] = q[0], joint[1] = q[1], joint[2] = q[2];
   joint[3] = q[3] * PKX_DEG_PER_RAD, joint[4] = q[4] * PKX_DEG_PER_RAD;
   world->tran.x = w[0], world->tran.y = w[1], world->tran.z = w[2];
@@ -183,13 +255,22 @@ static int pkx_export_pins(void) {
   r |= hal_pin_s32_new("pkmexechonkins.fwd-status", HAL_OUT, &pins->fwd_status, comp_id);
   r |= hal_pin_bit_new("pkmexechonkins.inv-kins-fail", HAL_OUT, &pins->inv_kins_fail, comp_id);
   r |= hal_pin_bit_new("pkmexechonkins.fwd-kins-fail", HAL_OUT, &pins->fwd_kins_fail, comp_id);
+  r |= hal_pin_bit_new("pkmexechonkins.fault", HAL_OUT, &pins->fault, comp_id);
+  r |= hal_pin_u32_new(
+      "pkmexechonkins.fwd-kins-failures", HAL_OUT, &pins->fwd_kins_failures, comp_id);
+  r |=
+      hal_pin_u32_new("pkmexechonkins.startup-failures", HAL_OUT, &pins->startup_failures, comp_id);
+  r |= hal_pin_u32_new("pkmexechonkins.last-call-ns", HAL_OUT, &pins->last_call_ns, comp_id);
+  r |= hal_pin_u32_new("pkmexechonkins.max-call-ns", HAL_OUT, &pins->max_call_ns, comp_id);
   if (r != 0) return -1;
   *pins->tool_offset = 0.0;
   *pins->convergence = machine.fk_tolerance;
   *pins->limit_iterations = (hal_u32_t)machine.fk_max_iterations;
   *pins->last_iterations = 0;
   *pins->inv_status = *pins->fwd_status = 0;
-  *pins->inv_kins_fail = *pins->fwd_kins_fail = 0;
+  *pins->inv_kins_fail = *pins->fwd_kins_fail = *pins->fault = 0;
+  *pins->fwd_kins_failures = *pins->startup_failures = 0;
+  *pins->last_call_ns = *pins->max_call_ns = 0;
   return 0;
 }
 
@@ -198,7 +279,7 @@ int rtapi_app_main(void) {
   if (comp_id < 0) return comp_id;
   if (pkx_load_params() != 0 || pkx_export_pins() != 0) {
     hal_exit(comp_id);
-    return -1;
+    return -EINVAL; /* rtapi_app then says "Invalid argument", not EPERM's "not permitted" */
   }
   inverse_state.valid = forward_state.valid = 0;
   hal_ready(comp_id);

@@ -28,6 +28,10 @@ const char* pkm_exechon_status_name(pkm_exechon_status status) {
       return "no_convergence";
     case PKM_EXECHON_OUT_OF_RANGE:
       return "out_of_range";
+    case PKM_EXECHON_OTHER_BRANCH:
+      return "other_branch";
+    case PKM_EXECHON_BUDGET_EXHAUSTED:
+      return "budget_exhausted";
   }
   return "unknown";
 }
@@ -201,29 +205,64 @@ static pkm_exechon_status pkx_check(const pkm_exechon_params* p,
   return PKM_EXECHON_OK;
 }
 
-pkm_exechon_status pkm_exechon_inverse(const pkm_exechon_params* p,
-                                       pkm_exechon_state* state,
-                                       const double world[5],
-                                       double extra_tool_length,
-                                       double joints[5]) {
+int pkm_exechon_branch(const pkm_exechon_params* p, const double e[3]) {
+  double lengths[3], J[9];
+  if (pkm_exechon_leg_lengths(p, e, lengths, J) != 0 || !pkx_all_finite(J, 9)) return 0;
+  const double det = J[0] * (J[4] * J[8] - J[5] * J[7]) - J[1] * (J[3] * J[8] - J[5] * J[6]) +
+                     J[2] * (J[3] * J[7] - J[4] * J[6]);
+  return det > 0.0 ? 1 : det < 0.0 ? -1 : 0;
+}
+
+/* e of the tool point `world` (x, y, z, C, A) from `start` (Newton; no limits), wrapped. */
+static pkm_exechon_status pkx_solve_world(const pkm_exechon_params* p,
+                                          const double world[5],
+                                          double extra_tool_length,
+                                          const double start[3],
+                                          double e[3]) {
   if (!pkx_all_finite(world, 5) || !isfinite(extra_tool_length)) return PKM_EXECHON_INVALID_INPUT;
-  double e[3], v[3], target[3], lengths[3], out[5];
-  const double* start = state->valid ? state->e : p->home_e;
+  double v[3], target[3];
   for (int i = 0; i < 3; ++i) e[i] = start[i];
   if (!pkx_all_finite(e, 3)) return PKM_EXECHON_INVALID_INPUT;
   pkx_tool_offset(p, world[3], world[4], p->tool_length + extra_tool_length, v);
   pkx_zoppi_from_world(p, world, target);
   const pkm_exechon_status solved = pkx_solve_point(p, target, v, e);
-  if (solved != PKM_EXECHON_OK) return solved;
   e[0] = remainder(e[0], PKX_TWO_PI);
   e[1] = remainder(e[1], PKX_TWO_PI);
+  return solved;
+}
+
+pkm_exechon_status pkm_exechon_seed(const pkm_exechon_params* p,
+                                    const double world[5],
+                                    double extra_tool_length,
+                                    pkm_exechon_state* state) {
+  double e[3];
+  const pkm_exechon_status s = pkx_solve_world(p, world, extra_tool_length, p->home_e, e);
+  if (s != PKM_EXECHON_OK) return s;
+  if (pkm_exechon_branch(p, e) != p->branch) return PKM_EXECHON_OTHER_BRANCH;
+  for (int i = 0; i < 3; ++i) state->e[i] = e[i];
+  state->valid = 1;
+  return PKM_EXECHON_OK;
+}
+
+pkm_exechon_status pkm_exechon_inverse(const pkm_exechon_params* p,
+                                       pkm_exechon_state* state,
+                                       const double world[5],
+                                       double extra_tool_length,
+                                       double joints[5]) {
+  double e[3], lengths[3], out[5];
+  const double* start = state->valid ? state->e : p->home_e;
+  const pkm_exechon_status solved = pkx_solve_world(p, world, extra_tool_length, start, e);
+  if (solved != PKM_EXECHON_OK) return solved;
   if (pkm_exechon_leg_lengths(p, e, lengths, NULL) != 0 || !pkx_all_finite(lengths, 3))
     return PKM_EXECHON_SINGULAR;
+  if (pkm_exechon_branch(p, e) != p->branch) return PKM_EXECHON_OTHER_BRANCH;
   for (int i = 0; i < 3; ++i) out[i] = lengths[i] - p->length_offset[i];
   out[3] = world[3];
   out[4] = world[4];
   for (int i = 0; i < 5; ++i) joints[i] = out[i];
+  const pkm_exechon_status checked = pkx_check(p, e, lengths, out);
+  if (checked != PKM_EXECHON_OK) return checked; /* a rejected pose does not move the seed */
   for (int i = 0; i < 3; ++i) state->e[i] = e[i];
   state->valid = 1;
-  return pkx_check(p, e, lengths, out);
+  return PKM_EXECHON_OK;
 }

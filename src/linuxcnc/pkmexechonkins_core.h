@@ -23,6 +23,12 @@ extern "C" {
 /// Number of joints: legs A, B, C, wrist C, wrist A.
 #define PKM_EXECHON_JOINTS 5
 
+/// Most forward-kinematics Newton steps and step halvings per step a parameter file may ask for
+/// (the component clamps its limit-iterations pin to the first): the servo-time budget of one
+/// call is at most 120 × 31 evaluations of the legs (docs/linuxcnc.md).
+#define PKM_EXECHON_MAX_ITERATIONS 120
+#define PKM_EXECHON_MAX_BACKTRACKS 30
+
 /// Outcome of a solve. Expected failures are statuses; nothing is clamped.
 typedef enum {
   PKM_EXECHON_OK = 0,
@@ -30,9 +36,12 @@ typedef enum {
   PKM_EXECHON_SINGULAR,       ///< a singular Jacobian, or condition number of dq/dS > max_condition
   PKM_EXECHON_NO_CONVERGENCE,  ///< Newton did not converge (IK: typically a point out of reach)
   PKM_EXECHON_OUT_OF_RANGE,  ///< solved, but a leg stroke or an alpha, beta, C, A range is violated
+  PKM_EXECHON_OTHER_BRANCH,  ///< solved, but on another assembly branch than home's (see branch)
+  PKM_EXECHON_BUDGET_EXHAUSTED,  ///< FK: fk_max_iterations Newton steps were not enough
 } pkm_exechon_status;
 
-/// "ok", "invalid_input", "singular", "no_convergence", "out_of_range".
+/// "ok", "invalid_input", "singular", "no_convergence", "out_of_range", "other_branch",
+/// "budget_exhausted".
 const char* pkm_exechon_status_name(pkm_exechon_status status);
 
 /// The machine: ExechonModel's fields as plain numbers. Lengths in the machine's unit, angles in
@@ -62,6 +71,9 @@ typedef struct {
   /* Derived by pkm_exechon_prepare: W = [a, c × a, c] (row-major) and max(|dA|, |dB|, |dC|). */
   double wrist_frame[9];
   double characteristic_length;
+  /* Derived: the assembly branch of home, the sign (±1) of det d(lengths)/de there; it changes
+   * only through a singular configuration. */
+  int branch;
 } pkm_exechon_params;
 
 /// The previous solution, for continuity: e = (alpha, beta, h) of the last IK or FK.
@@ -94,8 +106,11 @@ double pkm_exechon_condition(const pkm_exechon_params* p, const double e[3]);
 /// wrist readings (rad); extra_tool_length adds to the model's tool length along the tool
 /// direction (the G43 offset). Newton's method on e from state->e (home when !state->valid), so
 /// the tripod stays on the previous solution's branch; converged when |F| <= 1e-14·L (or <= 1e-12·L
-/// and no longer falling). On OK and OUT_OF_RANGE, joints = (q1, q2, q3, C, A) and state->e is
-/// updated; otherwise neither is touched.
+/// and no longer falling). On OK, joints = (q1, q2, q3, C, A) and state->e is updated (the branch
+/// state is committed on success only); on OUT_OF_RANGE and SINGULAR (condition limit) the joints
+/// are set (the true readings, not clamped) but state->e is not; a solution on another branch
+/// than home's (det d(lengths)/de of the other sign) is OTHER_BRANCH; otherwise nothing is
+/// touched.
 pkm_exechon_status pkm_exechon_inverse(const pkm_exechon_params* p,
                                        pkm_exechon_state* state,
                                        const double world[5],
@@ -104,15 +119,28 @@ pkm_exechon_status pkm_exechon_inverse(const pkm_exechon_params* p,
 
 /// Forward kinematics: joints (q1, q2, q3, C, A) -> world (x, y, z, C, A). Damped Newton on e for
 /// the leg readings (pkm's stopping rule: largest leg residual <= fk_tolerance, one polishing
-/// step), seeded by state->e (home when !state->valid). Applies no limits (as pkm's FK). On OK,
-/// world and state->e are set; otherwise neither is touched. *iterations (may be NULL) receives the
-/// Newton steps.
+/// step), seeded by state->e (home when !state->valid). Applies no limits (as pkm's FK), but a
+/// solution on another branch than home's is OTHER_BRANCH, and a solve stopped by
+/// fk_max_iterations is BUDGET_EXHAUSTED (at most fk_max_iterations × (fk_max_backtracks + 1)
+/// evaluations of the legs). On OK, world and state->e are set; otherwise neither is touched.
+/// *iterations (may be NULL) receives the Newton steps.
 pkm_exechon_status pkm_exechon_forward(const pkm_exechon_params* p,
                                        pkm_exechon_state* state,
                                        const double joints[5],
                                        double extra_tool_length,
                                        double world[5],
                                        int* iterations);
+
+/// The tripod configuration e of the world pose (x, y, z, C, A) by the inverse's Newton from home,
+/// no limits applied: a forward-kinematics seed from a pose (LinuxCNC's). On OK, state->e is set
+/// and state->valid = 1; otherwise state is untouched.
+pkm_exechon_status pkm_exechon_seed(const pkm_exechon_params* p,
+                                    const double world[5],
+                                    double extra_tool_length,
+                                    pkm_exechon_state* state);
+
+/// +1 or −1: the branch of e (sign of det d(lengths)/de), 0 when singular or not computable.
+int pkm_exechon_branch(const pkm_exechon_params* p, const double e[3]);
 
 /// The joints at the home configuration (q1, q2, q3, home C, home A) and its world pose.
 void pkm_exechon_home(const pkm_exechon_params* p,

@@ -81,7 +81,7 @@ static pkm_exechon_status pkx_fk_newton(const pkm_exechon_params* p,
         return status;
       polishing = 1;
     }
-    if (iter == p->fk_max_iterations) return status;
+    if (iter == p->fk_max_iterations) return polishing ? status : PKM_EXECHON_BUDGET_EXHAUSTED;
     for (int i = 0; i < 3; ++i) delta[i] = r[i];
     const double ratio = pkx_fk_solve(J, p->characteristic_length, delta);
     if (!(ratio > p->fk_singular_pivot_ratio) || !pkx_all_finite(delta, 3))
@@ -136,6 +136,7 @@ pkm_exechon_status pkm_exechon_forward(const pkm_exechon_params* p,
   if (status != PKM_EXECHON_OK) return status;
   e[0] = remainder(e[0], PKX_FK_TWO_PI);
   e[1] = remainder(e[1], PKX_FK_TWO_PI);
+  if (pkm_exechon_branch(p, e) != p->branch) return PKM_EXECHON_OTHER_BRANCH;
   if (pkx_tool_pose(p, e, joints[3], joints[4], p->tool_length + extra_tool_length, out) != 0)
     return PKM_EXECHON_SINGULAR;
   for (int i = 0; i < 5; ++i) world[i] = out[i];

@@ -85,6 +85,11 @@ static int pkx_check_numbers(const pkm_exechon_params* p, char* why, int why_siz
   if (!(p->fk_tolerance > 0.0) || p->fk_max_iterations < 1 || p->fk_max_backtracks < 0 ||
       !(p->fk_singular_pivot_ratio >= 0.0))
     return pkx_fail(why, why_size, "fk_tolerance > 0, fk_max_iterations >= 1 and so on");
+  if (p->fk_max_iterations > PKM_EXECHON_MAX_ITERATIONS ||
+      p->fk_max_backtracks > PKM_EXECHON_MAX_BACKTRACKS)
+    return pkx_fail(why,
+                    why_size,
+                    "fk_max_iterations <= 120 and fk_max_backtracks <= 30 (the servo-time budget)");
   return 0;
 }
 
@@ -108,5 +113,7 @@ int pkm_exechon_prepare(pkm_exechon_params* p, char* why, int why_size) {
       return pkx_fail(why, why_size, "a leg has zero length at the home configuration");
   const double cond = pkm_exechon_condition(p, p->home_e);
   if (!(cond < 1e12)) return pkx_fail(why, why_size, "the tripod is singular at home");
+  p->branch = pkm_exechon_branch(p, p->home_e);
+  if (p->branch == 0) return pkx_fail(why, why_size, "the tripod is singular at home");
   return 0;
 }

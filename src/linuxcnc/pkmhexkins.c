@@ -6,7 +6,8 @@
  * Load: `loadrt pkmhexkins` (pins with the hexapod-sim defaults, set by `setp`), or
  * `loadrt pkmhexkins params=FILE` (the file pkm writes: the pins' initial values, read and checked
  * at load, so that a missing parameter or a geometry that does not assemble at home fails the
- * loadrt with the reason in LinuxCNC's log). The pins still take live changes. */
+ * loadrt with the reason in LinuxCNC's log). The pins take live changes while the machine stands
+ * still (checked as at load); a change while it moves is refused (docs/linuxcnc.md, "Pins"). */
 #include <math.h>
 #include <string.h>
 
@@ -15,6 +16,7 @@
 #include "pkmhexkins_core.h"
 #include "rtapi.h"
 #include "rtapi_app.h"
+#include "rtapi_errno.h"
 
 MODULE_LICENSE("Dual MIT/GPL");
 MODULE_AUTHOR("pkm");
@@ -27,30 +29,25 @@ RTAPI_MP_STRING(params, "pkm's pkmhexkins parameter file (geometry, tool, home, 
 
 static const double kDegPerRad = 180.0 / 3.14159265358979323846;
 
-/* The HAL pins (in: geometry and solver settings; out: what the last FK did). */
-typedef struct {
-  hal_float_t* base[N][3];
-  hal_float_t* platform[N][3];
-  hal_float_t* length_offset[N];
-  hal_float_t* tool[3];
-  hal_float_t* spindle_offset;
-  hal_float_t* tool_offset; /* G43 length, net to motion.tooloffset.z */
-  hal_float_t* home[6];     /* the second FK seed: X Y Z A B C (degrees) */
-  hal_float_t* convergence_criterion;
-  hal_u32_t* limit_iterations;
-  hal_float_t* max_error;
-  hal_u32_t* last_iterations;
-  hal_u32_t* max_iterations;
-  hal_bit_t* fwd_kins_fail;
-  hal_bit_t* geometry_ok;
-  hal_u32_t* fwd_kins_failures;
-} pins;
+/* Most Newton steps one forward-kinematics call may take (limit-iterations is clamped to it):
+ * the servo-time budget of docs/linuxcnc.md. */
+#define PKM_HEX_MAX_LIMIT_ITERATIONS 120
 
-static pins* hal;
 static int comp_id;
-static pkm_hex_geometry validated; /* the geometry last found valid */
+#include "pkmhexkins_pins.h"
+
+static pkm_hex_fk_options file_options; /* the parameter file's solver settings */
+static pkm_hex_geometry validated;      /* the geometry in use (last found valid) */
+static double validated_home[6];
+static double validated_spindle_pin; /* spindle-offset (without tool-offset) of the one in use */
 static int have_validated;
-static int reported_invalid; /* the invalid geometry was reported once */
+static int home_branch;      /* sign of det J at home for the geometry in use */
+static int reported_invalid; /* the invalid or refused geometry was reported once */
+static int armed;            /* a forward call has succeeded (LinuxCNC is past homing) */
+static int failing;          /* failed forward calls in the current episode */
+static int inverse_failing;  /* the inverse is in a reported failure episode */
+static double last_joints[N];
+static int have_last_joints;
 
 /* The geometry from the pins. */
 static void read_geometry(pkm_hex_geometry* g) {
@@ -65,23 +62,75 @@ static void read_geometry(pkm_hex_geometry* g) {
   g->spindle_offset = *hal->spindle_offset + *hal->tool_offset;
 }
 
-/* 0 when the pins' geometry is usable (validated when it changed; an error logged once). */
-static int current_geometry(pkm_hex_geometry* g) {
-  memset(g, 0, sizeof *g);
-  read_geometry(g);
-  if (have_validated && memcmp(g, &validated, sizeof *g) == 0) return 0;
-  char why[128];
-  if (pkm_hex_validate(g, why, sizeof why) != 0) {
-    *hal->geometry_ok = 0;
-    if (!reported_invalid)
-      rtapi_print_msg(RTAPI_MSG_ERR, "pkmhexkins: unusable geometry: %s\n", why);
-    reported_invalid = 1;
-    return -1;
+/* 1 when the last forward call's joints are still and motion is in position. */
+static int standing_still(const double* joints) {
+  if (!*hal->in_position) return 0;
+  if (!have_last_joints) return 1;
+  for (int i = 0; i < N; ++i)
+    if (!(fabs(joints[i] - last_joints[i]) <= *hal->still_tolerance)) return 0;
+  return 1;
+}
+
+/* Checks a changed geometry as at load (pkm_hex_check_home: no singular or collinear home) and
+ * takes it while the machine stands still; otherwise keeps the one in use (a message, once). */
+static void take_geometry(const pkm_hex_geometry* g,
+                          const double home[6],
+                          const double* joints,
+                          int tool_only) {
+  char why[192];
+  const double p[3] = {home[0], home[1], home[2]};
+  const double rpy[3] = {home[3] / kDegPerRad, home[4] / kDegPerRad, home[5] / kDegPerRad};
+  const char* what = "unusable geometry";
+  int ok = pkm_hex_check_home(g, p, rpy, file_options.singular_pivot_ratio, why, sizeof why) == 0;
+  if (ok && have_validated && !tool_only && !standing_still(joints)) {
+    what = "geometry refused";
+    rtapi_snprintf(why, sizeof why, "changed while the machine moves (kept the geometry in use)");
+    ok = 0;
   }
+  if (!ok) {
+    *hal->geometry_ok = 0;
+    *hal->fault = 1;
+    if (!reported_invalid) rtapi_print_msg(RTAPI_MSG_ERR, "pkmhexkins: %s: %s\n", what, why);
+    reported_invalid = 1;
+    return;
+  }
+  double R[3][3];
+  pkm_hex_rotation_from_rpy(rpy, R);
   validated = *g;
+  memcpy(validated_home, home, sizeof validated_home);
+  validated_spindle_pin = *hal->spindle_offset;
+  home_branch = pkm_hex_branch(g, p, R, file_options.singular_pivot_ratio);
+  if (armed && !tool_only)
+    rtapi_print_msg(RTAPI_MSG_ERR, "pkmhexkins: new geometry taken (the machine stands still)\n");
   have_validated = 1;
   reported_invalid = 0;
   *hal->geometry_ok = 1;
+}
+
+/* 0 with the geometry in use in *g; −1 when there is none. Pin changes are checked first. */
+static int current_geometry(pkm_hex_geometry* g, const double* joints) {
+  pkm_hex_geometry pinned;
+  double home[6];
+  memset(&pinned, 0, sizeof pinned);
+  read_geometry(&pinned);
+  for (int k = 0; k < 6; ++k) home[k] = *hal->home[k];
+  const int changed = !have_validated || memcmp(&pinned, &validated, sizeof pinned) != 0 ||
+                      memcmp(home, validated_home, sizeof home) != 0;
+  /* A G43 tool length (tool-offset) alone is taken at once: LinuxCNC changes it itself. */
+  pkm_hex_geometry untooled = pinned;
+  untooled.spindle_offset = validated.spindle_offset;
+  const int tool_only = changed && have_validated &&
+                        *hal->spindle_offset == validated_spindle_pin &&
+                        memcmp(&untooled, &validated, sizeof untooled) == 0 &&
+                        memcmp(home, validated_home, sizeof home) == 0;
+  if (changed && (joints != NULL || !have_validated || tool_only))
+    take_geometry(&pinned, home, joints, tool_only); /* else the forward call (joints) decides */
+  else if (!changed && reported_invalid) {           /* the pins are back to the geometry in use */
+    reported_invalid = 0;
+    *hal->geometry_ok = 1;
+  }
+  if (!have_validated) return -1;
+  *g = validated;
   return 0;
 }
 
@@ -100,17 +149,31 @@ static void pose_to_world(const double p[3],
   world->c = rpy[2] * kDegPerRad;
 }
 
-/* FK from the seed (x y z a b c, degrees); 0 and the world pose on success. */
-static int forward_from(const pkm_hex_geometry* g,
-                        const double* joints,
-                        const double seed[6],
-                        EmcPose* world) {
-  pkm_hex_fk_options o;
-  pkm_hex_default_fk_options(&o);
+/* The solver's options from the parameter file and the pins: a hard budget of
+ * limit-iterations Newton steps over the whole call (at most PKM_HEX_MAX_LIMIT_ITERATIONS), and
+ * the home branch required. */
+static pkm_hex_fk_options solver_options(void) {
+  pkm_hex_fk_options o = file_options;
+  hal_u32_t limit = *hal->limit_iterations;
+  if (limit > PKM_HEX_MAX_LIMIT_ITERATIONS)
+    *hal->limit_iterations = limit = PKM_HEX_MAX_LIMIT_ITERATIONS;
   o.tolerance = *hal->convergence_criterion;
-  o.max_iterations = (int)*hal->limit_iterations;
+  o.max_iterations = (int)limit;
+  o.max_total_iterations = (int)limit;
   o.max_error = *hal->max_error > 0.0 ? *hal->max_error : INFINITY;
-  if (!(o.tolerance > 0.0) || o.max_iterations < 1) return -1;
+  o.branch = home_branch;
+  return o;
+}
+
+/* FK from LinuxCNC's pose (the previous one, or its re-seed after homing): 0 and the world pose,
+ * or the status. */
+static pkm_hex_status forward_from(const pkm_hex_geometry* g,
+                                   const double* joints,
+                                   EmcPose* world) {
+  const pkm_hex_fk_options o = solver_options();
+  if (!(o.tolerance > 0.0) || o.max_iterations < 1) return PKM_HEX_INVALID_INPUT;
+  const double seed[6] = {
+      world->tran.x, world->tran.y, world->tran.z, world->a, world->b, world->c};
   double p[3] = {seed[0], seed[1], seed[2]}, rpy[3], R[3][3];
   for (int k = 0; k < 3; ++k) rpy[k] = seed[3 + k] / kDegPerRad;
   pkm_hex_rotation_from_rpy(rpy, R);
@@ -118,9 +181,43 @@ static int forward_from(const pkm_hex_geometry* g,
   *hal->last_iterations = (hal_u32_t)s.iterations;
   if ((hal_u32_t)s.iterations > *hal->max_iterations)
     *hal->max_iterations = (hal_u32_t)s.iterations;
-  if (s.status != PKM_HEX_OK) return -1;
-  pose_to_world(p, R, seed + 3, world);
-  return 0;
+  if (s.status == PKM_HEX_OK) pose_to_world(p, R, seed + 3, world);
+  return s.status;
+}
+
+/* Records a forward call's outcome: pins, and one message per failure episode. */
+static void report_forward(pkm_hex_status status, const double* joints) {
+  *hal->fwd_status = (hal_s32_t)status;
+  *hal->fwd_kins_fail = status != PKM_HEX_OK;
+  if (status == PKM_HEX_OTHER_BRANCH) ++*hal->branch_errors;
+  if (status == PKM_HEX_OK) {
+    if (failing > 0)
+      rtapi_print_msg(RTAPI_MSG_ERR,
+                      "pkmhexkins: forward kinematics recovered after %d failed calls\n",
+                      failing);
+    armed = 1;
+    failing = 0;
+    *hal->fault = !*hal->geometry_ok;
+    return;
+  }
+  if (!armed) { /* before the first success: LinuxCNC's calls before homing */
+    ++*hal->startup_failures;
+    return;
+  }
+  ++*hal->fwd_kins_failures;
+  *hal->fault = 1;
+  if (failing++ == 0)
+    rtapi_print_msg(RTAPI_MSG_ERR,
+                    "pkmhexkins: forward kinematics failed (%s%s) at joints %.6g %.6g %.6g %.6g "
+                    "%.6g %.6g: position feedback invalid, pkmhexkins.fault set\n",
+                    pkm_hex_status_name(status),
+                    status == PKM_HEX_OTHER_BRANCH ? ": the mirror or another assembly" : "",
+                    joints[0],
+                    joints[1],
+                    joints[2],
+                    joints[3],
+                    joints[4],
+                    joints[5]);
 }
 
 int kinematicsForward(const double* joints,
@@ -129,24 +226,38 @@ int kinematicsForward(const double* joints,
                       KINEMATICS_INVERSE_FLAGS* iflags) {
   (void)fflags;
   (void)iflags;
+  const long long start = rtapi_get_time();
   pkm_hex_geometry g;
-  if (current_geometry(&g) != 0) {
-    *hal->fwd_kins_fail = 1;
-    return -1;
-  }
-  const double previous[6] = {
-      world->tran.x, world->tran.y, world->tran.z, world->a, world->b, world->c};
-  double home[6];
-  for (int k = 0; k < 6; ++k) home[k] = *hal->home[k];
-  /* Seeded from the previous pose; after a failure from home, as pkm's kinematics paths do. */
-  if (forward_from(&g, joints, previous, world) == 0 ||
-      (memcmp(previous, home, sizeof home) != 0 && forward_from(&g, joints, home, world) == 0)) {
-    *hal->fwd_kins_fail = 0;
-    return 0;
-  }
-  *hal->fwd_kins_fail = 1;
-  ++*hal->fwd_kins_failures;
-  return -1;
+  /* Seeded from LinuxCNC's pose only: no retry from home within the servo period (LinuxCNC
+   * re-seeds from [TRAJ] HOME itself after homing). */
+  const pkm_hex_status status =
+      current_geometry(&g, joints) != 0 ? PKM_HEX_INVALID_INPUT : forward_from(&g, joints, world);
+  report_forward(status, joints);
+  memcpy(last_joints, joints, sizeof last_joints);
+  have_last_joints = 1;
+  const long long ns = rtapi_get_time() - start;
+  *hal->last_call_ns = ns > 0 ? (hal_u32_t)ns : 0;
+  if (*hal->last_call_ns > *hal->max_call_ns) *hal->max_call_ns = *hal->last_call_ns;
+  return status == PKM_HEX_OK ? 0 : -1;
+}
+
+/* Records an inverse call's outcome: the pin, and one message per failure episode. */
+static void report_inverse(int branch, const EmcPose* world) {
+  const int failed = branch != home_branch;
+  *hal->inv_kins_fail = failed;
+  if (failed) ++*hal->branch_errors;
+  if (failed && !inverse_failing)
+    rtapi_print_msg(RTAPI_MSG_ERR,
+                    "pkmhexkins: pose X%.4f Y%.4f Z%.4f A%.4f B%.4f C%.4f refused: %s\n",
+                    world->tran.x,
+                    world->tran.y,
+                    world->tran.z,
+                    world->a,
+                    world->b,
+                    world->c,
+                    branch == 0 ? "singular (e.g. the platform in the base plane)"
+                                : "beyond a singular configuration (the mirror assembly)");
+  inverse_failing = failed;
 }
 
 int kinematicsInverse(const EmcPose* world,
@@ -156,12 +267,16 @@ int kinematicsInverse(const EmcPose* world,
   (void)iflags;
   (void)fflags;
   pkm_hex_geometry g;
-  if (current_geometry(&g) != 0) return -1;
+  if (current_geometry(&g, NULL) != 0) return -1;
   const double p[3] = {world->tran.x, world->tran.y, world->tran.z};
   const double rpy[3] = {world->a / kDegPerRad, world->b / kDegPerRad, world->c / kDegPerRad};
   double R[3][3], q[N];
   pkm_hex_rotation_from_rpy(rpy, R);
   if (pkm_hex_inverse(&g, p, R, q) != 0) return -1;
+  /* Only poses on home's assembly branch: the mirror pose has the same strut lengths. */
+  const int branch = pkm_hex_branch(&g, p, R, file_options.singular_pivot_ratio);
+  report_inverse(branch, world);
+  if (branch != home_branch) return -1;
   for (int i = 0; i < N; ++i) joints[i] = q[i];
   return 0;
 }
@@ -181,68 +296,6 @@ EXPORT_SYMBOL(kinematicsInverse);
 EXPORT_SYMBOL(kinematicsSwitchable);
 EXPORT_SYMBOL(kinematicsSwitch);
 
-/* A float pin named pkmhexkins.<name> with its default; 0 or a HAL error. */
-static int float_pin(hal_float_t** pin, hal_pin_dir_t dir, double value, const char* name) {
-  const int r = hal_pin_float_newf(dir, pin, comp_id, "pkmhexkins.%s", name);
-  if (r == 0) **pin = value;
-  return r;
-}
-
-static int u32_pin(hal_u32_t** pin, hal_pin_dir_t dir, hal_u32_t value, const char* name) {
-  const int r = hal_pin_u32_newf(dir, pin, comp_id, "pkmhexkins.%s", name);
-  if (r == 0) **pin = value;
-  return r;
-}
-
-static int bit_pin(hal_bit_t** pin, hal_pin_dir_t dir, const char* name) {
-  const int r = hal_pin_bit_newf(dir, pin, comp_id, "pkmhexkins.%s", name);
-  if (r == 0) **pin = 0;
-  return r;
-}
-
-/* base.N.x|y|z, platform.N.x|y|z, length-offset.N and tool.x|y|z, with the values of g. */
-static int geometry_pins(const pkm_hex_geometry* g) {
-  static const char axis[3] = {'x', 'y', 'z'};
-  char name[48];
-  int r = 0;
-  for (int i = 0; i < N && r == 0; ++i) {
-    for (int k = 0; k < 3 && r == 0; ++k) {
-      rtapi_snprintf(name, sizeof name, "base.%d.%c", i, axis[k]);
-      r = float_pin(&hal->base[i][k], HAL_IN, g->base[i][k], name);
-      rtapi_snprintf(name, sizeof name, "platform.%d.%c", i, axis[k]);
-      if (r == 0) r = float_pin(&hal->platform[i][k], HAL_IN, g->platform[i][k], name);
-    }
-    rtapi_snprintf(name, sizeof name, "length-offset.%d", i);
-    if (r == 0) r = float_pin(&hal->length_offset[i], HAL_IN, g->length_offset[i], name);
-  }
-  for (int k = 0; k < 3 && r == 0; ++k) {
-    rtapi_snprintf(name, sizeof name, "tool.%c", axis[k]);
-    r = float_pin(&hal->tool[k], HAL_IN, g->tool[k], name);
-  }
-  return r;
-}
-
-/* Offsets, the home seed, the solver's settings (initial values from p) and its outputs. */
-static int other_pins(const pkm_hex_params* p) {
-  static const char* const home[6] = {"home.x", "home.y", "home.z", "home.a", "home.b", "home.c"};
-  const pkm_hex_fk_options* o = &p->options;
-  int r = float_pin(&hal->spindle_offset, HAL_IN, p->geometry.spindle_offset, "spindle-offset");
-  if (r == 0) r = float_pin(&hal->tool_offset, HAL_IN, 0.0, "tool-offset");
-  for (int k = 0; k < 6 && r == 0; ++k) r = float_pin(&hal->home[k], HAL_IN, p->home[k], home[k]);
-  if (r == 0)
-    r = float_pin(&hal->convergence_criterion, HAL_IN, o->tolerance, "convergence-criterion");
-  if (r == 0)
-    r = u32_pin(&hal->limit_iterations, HAL_IN, (hal_u32_t)o->max_iterations, "limit-iterations");
-  if (r == 0)
-    r = float_pin(&hal->max_error, HAL_IN, isinf(o->max_error) ? 0.0 : o->max_error, "max-error");
-  if (r == 0) r = u32_pin(&hal->last_iterations, HAL_OUT, 0, "last-iterations");
-  if (r == 0) r = u32_pin(&hal->max_iterations, HAL_OUT, 0, "max-iterations");
-  if (r == 0) r = u32_pin(&hal->fwd_kins_failures, HAL_OUT, 0, "fwd-kins-failures");
-  if (r == 0) r = bit_pin(&hal->fwd_kins_fail, HAL_OUT, "fwd-kins-fail");
-  if (r == 0) r = bit_pin(&hal->geometry_ok, HAL_OUT, "geometry-ok");
-  return r;
-}
-
 /* The pins' initial values: the parameter file's (read and checked here), or the hexapod-sim
  * defaults without one. 0, or −1 with the reason logged. */
 static int initial_values(pkm_hex_params* p) {
@@ -250,6 +303,8 @@ static int initial_values(pkm_hex_params* p) {
   if (params == NULL || params[0] == '\0') {
     pkm_hex_sim_geometry(&p->geometry);
     pkm_hex_default_fk_options(&p->options);
+    p->home[2] = 20.0; /* the sample's home: platform 20 in above the base */
+    file_options = p->options;
     return 0;
   }
   char why[256];
@@ -258,12 +313,15 @@ static int initial_values(pkm_hex_params* p) {
     return -1;
   }
   rtapi_print_msg(RTAPI_MSG_INFO, "pkmhexkins: parameters from %s\n", params);
+  file_options = p->options;
   return 0;
 }
 
 int rtapi_app_main(void) {
   pkm_hex_params p;
-  if (initial_values(&p) != 0) return -1;
+  /* -EINVAL: rtapi_app then reports "Invalid argument" after the reason (not -1, EPERM's
+   * "Operation not permitted"). */
+  if (initial_values(&p) != 0) return -EINVAL;
   comp_id = hal_init("pkmhexkins");
   if (comp_id < 0) return comp_id;
   hal = hal_malloc(sizeof(pins));
@@ -273,7 +331,7 @@ int rtapi_app_main(void) {
   if (r != 0) {
     rtapi_print_msg(RTAPI_MSG_ERR, "pkmhexkins: cannot create the HAL pins (%d)\n", r);
     hal_exit(comp_id);
-    return -1;
+    return r < 0 ? r : -EINVAL;
   }
   hal_ready(comp_id);
   return 0;

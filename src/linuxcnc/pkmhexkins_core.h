@@ -45,15 +45,27 @@ typedef struct {
   double max_step_rotation;     ///< trust region: rad per step
   double continuation_step;     ///< stage size of a far seed, characteristic lengths of readings
   double max_error;  ///< a residual above this (machine unit) stops the solve (no convergence)
+  /// Hard budget of one solve: at most this many Newton steps over all continuation stages
+  /// (each with at most max_backtracks step halvings), and at most this many stages; 0: no
+  /// budget (pkm's library: max_iterations per stage, up to 1000 stages). A solve that runs out
+  /// returns PKM_HEX_BUDGET_EXHAUSTED. Worst-case cost: max_total_iterations × (one LU of the
+  /// 6×6 Jacobian + max_backtracks + 2 evaluations of the six legs).
+  int max_total_iterations;
+  /// The assembly branch the solution must be on: +1 or −1, the sign of the determinant of the
+  /// scaled strut Jacobian at the solution (pkm_hex_branch; it changes sign only through a
+  /// singular configuration, e.g. the platform crossing the base plane into the mirror assembly);
+  /// a solution on the other side gives PKM_HEX_OTHER_BRANCH. 0: no check (pkm's library).
+  int branch;
 } pkm_hex_fk_options;
 
 /// Outcome of a forward-kinematics solve (pkm's FkStatus).
 typedef enum {
   PKM_HEX_OK = 0,
-  PKM_HEX_NO_CONVERGENCE,  ///< iteration cap, max_error, or no step reduced the residual
-  PKM_HEX_SINGULAR,        ///< the strut Jacobian is numerically singular at an iterate
-  PKM_HEX_INVALID_INPUT,   ///< a non-finite reading or seed
-  PKM_HEX_OTHER_BRANCH,    ///< converged to another assembly mode than the seed's
+  PKM_HEX_NO_CONVERGENCE,    ///< iteration cap, max_error, or no step reduced the residual
+  PKM_HEX_SINGULAR,          ///< the strut Jacobian is numerically singular at an iterate
+  PKM_HEX_INVALID_INPUT,     ///< a non-finite reading or seed
+  PKM_HEX_OTHER_BRANCH,      ///< converged to another assembly mode than the seed's (or `branch`)
+  PKM_HEX_BUDGET_EXHAUSTED,  ///< max_total_iterations Newton steps were not enough
 } pkm_hex_status;
 
 /// What a forward-kinematics solve did.
@@ -64,11 +76,12 @@ typedef struct {
   double max_residual;  ///< max_i |residual_i| at the returned iterate (machine unit)
 } pkm_hex_fk_summary;
 
-/// "ok", "no_convergence", "singular", "invalid_input", "other_branch".
+/// "ok", "no_convergence", "singular", "invalid_input", "other_branch", "budget_exhausted".
 const char* pkm_hex_status_name(pkm_hex_status status);
 
 /// pkm's FkOptions defaults: tolerance 1e-9, 120 iterations, 12 backtracks, pivot ratio 1e-12,
-/// trust region 0.5 L and 0.25 rad, continuation stages of 0.3 L; max_error +infinity.
+/// trust region 0.5 L and 0.25 rad, continuation stages of 0.3 L; max_error +infinity; no total
+/// budget and no branch check (max_total_iterations = branch = 0).
 void pkm_hex_default_fk_options(pkm_hex_fk_options* options);
 
 /// The LinuxCNC hexapod-sim sample geometry (inch; genhexkins' published defaults), no offsets.
@@ -95,8 +108,8 @@ int pkm_hex_check_home(const pkm_hex_geometry* geometry,
                        size_t size);
 
 /// Everything a pkmhexkins parameter file sets (pkm's io::linuxcncHexapodParameters writes it;
-/// docs/linuxcnc.md, "The pkmhexkins parameter file"): the geometry, the home pose (the second
-/// forward-kinematics seed and LinuxCNC's [TRAJ] HOME) and the forward kinematics' settings.
+/// docs/linuxcnc.md, "The pkmhexkins parameter file"): the geometry, the home pose (the branch
+/// reference of the component and LinuxCNC's [TRAJ] HOME) and the forward kinematics' settings.
 typedef struct {
   pkm_hex_geometry geometry;
   double home[6];              ///< x, y, z (machine unit), a, b, c (degrees, as LinuxCNC's world)
@@ -134,10 +147,21 @@ int pkm_hex_inverse(const pkm_hex_geometry* geometry,
                     const double R[3][3],
                     double q[PKM_HEX_STRUTS]);
 
+/// The assembly branch of the TCP pose (p, R): the sign (+1, −1) of the determinant of the scaled
+/// strut Jacobian there, or 0 when it is numerically singular (its LU's min/max pivot ratio at or
+/// below `singular_pivot_ratio`) or an input is not finite. The mirror assembly of a planar
+/// platform and base (platform reflected through the base plane) has the opposite sign.
+int pkm_hex_branch(const pkm_hex_geometry* geometry,
+                   const double p[3],
+                   const double R[3][3],
+                   double singular_pivot_ratio);
+
 /// Forward kinematics: the TCP pose (p, R) whose readings are q, by pkm's damped Newton on SO(3)
 /// (left update R ← exp(−δθ)·R, LU with partial pivoting, step halving, trust region,
 /// continuation from a far seed, one polishing step). (p, R) hold the seed on entry (the
 /// previous pose) and the solution on PKM_HEX_OK; on any other status they are left unchanged.
+/// Readings that give a strut of zero or negative length (q_i + length_offset_i <= 0, e.g. all
+/// joints at 0 before homing) are PKM_HEX_INVALID_INPUT at once.
 /// Precondition: `options` valid (tolerance > 0, max_iterations >= 1, ...).
 pkm_hex_fk_summary pkm_hex_forward(const pkm_hex_geometry* geometry,
                                    const double q[PKM_HEX_STRUTS],

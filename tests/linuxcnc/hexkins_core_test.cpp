@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -236,6 +237,43 @@ TEST(HexkinsCore, FailuresLeaveTheSeedAndSayWhy) {
   double far[3] = {0, 0, 22};
   s = pkm_hex_forward(&g, home_q, &o, far, R);
   EXPECT_EQ(s.status, PKM_HEX_NO_CONVERGENCE);
+}
+
+/// Residual-evaluation units of a budget: a Newton step or a step halving each.
+constexpr int kBudget = 120;
+
+// With a total budget and the home branch required, a solve on the normal path gives the same
+// pose, bit for bit, as without them (the component's settings change failures only).
+TEST(HexkinsCore, BudgetAndBranchLeaveTheNormalPathBitForBit) {
+  std::mt19937 rng(kSeed);
+  for (const Case& c : cases()) {
+    const pkm_hex_geometry g = toC(c.model);
+    kinematics::HexapodData data(c.model);
+    pkm_hex_fk_options plain, bounded;
+    pkm_hex_default_fk_options(&plain);
+    bounded = plain;
+    bounded.max_total_iterations = kBudget;
+    double Rh[3][3];
+    toC(geometry::rotationFromRpy(c.model.home.rpy), Rh);
+    bounded.branch =
+        pkm_hex_branch(&g, c.model.home.position.data(), Rh, plain.singular_pivot_ratio);
+    ASSERT_NE(bounded.branch, 0) << c.name;
+    for (int n = 0; n < 100; ++n) {
+      const PoseRpy pose = randomPose(rng, c.model.home, c.reach, c.tilt);
+      const kinematics::StrutVector q = kinematics::inverseKinematics(c.model, data, pose);
+      double p1[3], p2[3], R1[3][3], R2[3][3];
+      for (int k = 0; k < 3; ++k) p1[k] = p2[k] = c.model.home.position[k];
+      memcpy(R1, Rh, sizeof R1);
+      memcpy(R2, Rh, sizeof R2);
+      const pkm_hex_fk_summary a = pkm_hex_forward(&g, q.data(), &plain, p1, R1);
+      const pkm_hex_fk_summary b = pkm_hex_forward(&g, q.data(), &bounded, p2, R2);
+      ASSERT_EQ(a.status, PKM_HEX_OK) << c.name << " " << n;
+      ASSERT_EQ(b.status, PKM_HEX_OK) << c.name << " " << n;
+      EXPECT_EQ(a.iterations, b.iterations);
+      EXPECT_EQ(std::memcmp(p1, p2, sizeof p1), 0) << c.name << " " << n;
+      EXPECT_EQ(std::memcmp(R1, R2, sizeof R1), 0) << c.name << " " << n;
+    }
+  }
 }
 
 TEST(HexkinsCore, ValidationNamesTheProblem) {

@@ -33,6 +33,7 @@ API (everything a test needs; the rest of the module is private):
                                                HAL pins and parameters read with full precision
                                                (float, bool or int), through python3's `hal`
         cnc.pin(name)                          one of them
+        cnc.setp(name, value)                  sets a HAL pin or parameter (python3's `hal`)
         cnc.ask("get program_status")          one raw linuxcncrsh command; its reply line
     cnc.log                                    LinuxCNC's whole output (after the `with`)
     cnc.leftovers                              what cleanup could not remove (should be [])
@@ -589,6 +590,18 @@ class LinuxCNC:
 
     def pin(self, name):
         return self.pins([name])[name]
+
+    def setp(self, name, value):
+        """Sets the HAL pin or parameter `name` (an unconnected input pin, or a parameter) to
+        `value`, as `halcmd setp` does (python3's `hal` module)."""
+        code = ("import hal, os, sys\n"
+                "c = hal.component('pkm-set-%d' % os.getpid())\n"
+                "try: hal.set_p(sys.argv[1], sys.argv[2])\n"
+                "finally: c.exit()\n")
+        r = subprocess.run(_user_prefix() + ["/usr/bin/python3", "-c", code, name, str(value)],
+                           capture_output=True, text=True, timeout=20)
+        if r.returncode != 0:
+            raise RuntimeError(f"setting HAL pin {name} failed: {r.stderr.strip()}")
 
 
 class StartResult:

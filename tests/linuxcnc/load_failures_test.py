@@ -13,7 +13,8 @@ of failing at the first move). For each module:
     [TRAJ] HOME;
   - a missing parameter, an unknown name, a geometry that does not assemble (pkmhexkins: one strut
     twice, platform joints on one line; pkmexechonkins: dB = 0, singular at home (h = 0)):
-    LinuxCNC does not start, its log has `<module>: FILE: <reason>`, and nothing is left behind.
+    LinuxCNC does not start, its log has `<module>: FILE: <reason>` and no misleading
+    "Operation not permitted" after it, and nothing is left behind.
 LinuxCNC is run by lcnc_harness.py (exit 77 when it cannot run here).
 
 Usage: load_failures_test.py PKM_BINARY HEXKINS_SO EXECHON_SO SOURCE_DIR
@@ -81,6 +82,9 @@ def refused(failures, what, ini, module, work, name, want):
         failures.append(f"{what}: LinuxCNC started")
     if want not in r.log:
         failures.append(f"{what}: the log does not say '{want}':\n{r.log}")
+    # The module's reason is the last word: no misleading EPERM from rtapi_app after it.
+    if "Operation not permitted" in r.log:
+        failures.append(f"{what}: the log says 'Operation not permitted':\n{r.log}")
     if r.leftovers:
         failures.append(f"{what}: left behind: {r.leftovers}")
 
