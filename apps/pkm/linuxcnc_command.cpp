@@ -102,6 +102,11 @@ void addConfig(CLI::App& group) {
                    "port 5007)")
       ->capture_default_str();
   config->add_flag("--force", st->request.force, "replace files of the same names in the folder");
+  config->add_flag_callback(
+      "--no-comp-check",
+      [st] { st->request.check_comp_files = false; },
+      "use the --comp-file tables even when a correction is larger than 1 % of the joint's travel "
+      "(a table of the wrong type or unit is refused without it); their format is still checked");
   config->callback([st] { runConfig(st->request, st->comp); });
 }
 
