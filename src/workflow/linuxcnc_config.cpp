@@ -68,7 +68,8 @@ void checkCompPlausible(const compensation::LinuxcncCompFile& file,
                 "{} table ({}), give --comp-file-type {}",
                 other.type,
                 other.type,
-                other.type == 0 ? "nominal, actual positions" : "nominal, forward and reverse trims",
+                other.type == 0 ? "nominal, actual positions"
+                                : "nominal, forward and reverse trims",
                 other.type)
           : "";
   throw InvalidArgument(fmt::format(
@@ -103,8 +104,7 @@ std::vector<io::NamedText> compTables(const LinuxcncConfigRequest& request,
         compensation::parseLinuxcncComp(table.text, table.name, request.comp_file_type);
     if (c.joint >= 0 && static_cast<std::size_t>(c.joint) < ranges.size()) {
       if (request.check_comp_files)
-        checkCompPlausible(
-            file, table.name, c.joint, ranges[static_cast<std::size_t>(c.joint)]);
+        checkCompPlausible(file, table.name, c.joint, ranges[static_cast<std::size_t>(c.joint)]);
       else
         notices.push_back(fmt::format(
             "{}: --no-comp-check: the size of its corrections was not checked", table.name));
@@ -114,6 +114,15 @@ std::vector<io::NamedText> compTables(const LinuxcncConfigRequest& request,
     tables.push_back({name, std::move(table.text)});
   }
   return tables;
+}
+
+/// The name of the configuration of machine `spec` whose model is called `name`: a genhexkins
+/// `.hal` file's model is named after the file ("kinematics" for every LinuxCNC hexapod), so its
+/// configuration is named after the folder that holds it (LinuxCNC's sample: "hexapod-sim").
+std::string configurationName(const std::string& spec, const std::string& name) {
+  if (!spec.ends_with(".hal")) return name;
+  const std::string folder = fs::absolute(fs::path(spec)).parent_path().filename().string();
+  return folder.empty() ? name : folder;
 }
 
 double orOpen(double v, double open) { return std::isfinite(v) ? v : open; }
@@ -146,7 +155,8 @@ std::vector<io::NamedText> configFiles(const LinuxcncConfigRequest& request,
   } else {
     io::HalReadOptions hal;
     if (!request.ini.empty()) hal.ini_path = request.ini;
-    const io::HexapodMachine m = io::loadHexapodMachine(request.machine, hal);
+    io::HexapodMachine m = io::loadHexapodMachine(request.machine, hal);
+    m.model.name = configurationName(request.machine, m.model.name);
     notices.insert(notices.end(), m.notices.begin(), m.notices.end());
     JointRanges ranges;
     for (const io::PkmhexkinsJointValues& j : io::pkmhexkinsJointValues(m))

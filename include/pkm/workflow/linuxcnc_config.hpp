@@ -69,8 +69,8 @@ struct LinuxcncConfigResult {
 /// The configuration's files (names inside the folder and texts) without writing anything; the
 /// compensation tables are read and checked (compensation::parseLinuxcncComp, and
 /// checkCompPlausible against the joint's range unless request.check_comp_files is false) and
-/// included as `jointN.comp`. `notices` receives the machine reader's notices. Throws pkm::IoError for an
-/// unreadable or malformed machine or table (FILE:LINE), pkm::InvalidArgument as
+/// included as `jointN.comp`. `notices` receives the machine reader's notices. Throws pkm::IoError
+/// for an unreadable or malformed machine or table (FILE:LINE), pkm::InvalidArgument as
 /// request.validate() and the io::hexapodLinuxcncConfig / io::exechonLinuxcncConfig checks.
 [[nodiscard]] std::vector<io::NamedText> linuxcncConfigFiles(const LinuxcncConfigRequest& request,
                                                              std::vector<std::string>& notices);
