@@ -3,10 +3,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <span>
 #include <system_error>
 
 #include "pkm/compensation/linuxcnc_comp.hpp"
@@ -16,6 +18,7 @@
 #include "pkm/io/linuxcnc_hal.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/number_format.hpp"
+#include "pkm/io/positioning_files.hpp"
 
 namespace pkm::workflow {
 
@@ -29,6 +32,12 @@ void LinuxcncConfigRequest::validate() const {
     throw InvalidArgument(
         "--comp-file-type: give 0 or 1, the --format the tables were written with "
         "(linuxcnc0 or linuxcnc1)");
+  for (const LinuxcncCompInput& d : comp_data)
+    if (std::none_of(comp_files.begin(), comp_files.end(), [&](const LinuxcncCompInput& c) {
+          return c.joint == d.joint;
+        }))
+      throw InvalidArgument(fmt::format(
+          "--comp-data {}={}: no --comp-file for joint {} to check", d.joint, d.path, d.joint));
 }
 
 namespace {
@@ -89,12 +98,47 @@ void checkCompPlausible(const compensation::LinuxcncCompFile& file,
       hint));
 }
 
+void checkCompSign(const compensation::LinuxcncCompFile& file,
+                   const std::string& source,
+                   int joint,
+                   std::span<const metrology::PositioningSample> errors,
+                   const std::string& errors_source) {
+  double agree = 0.0, size = 0.0;
+  for (const metrology::PositioningSample& e : errors) {
+    const double wanted = -(e.measured - e.target);  // the correction that cancels the error
+    const double trim = compensation::applyLinuxcncComp(file, e.target, e.direction) - e.target;
+    agree += trim * wanted;
+    size += wanted * wanted;
+  }
+  if (size > 0.0 && agree < 0.0)
+    throw InvalidArgument(fmt::format(
+        "{}:1: joint {}'s corrections have the sign of the errors measured in {} (correction = "
+        "error instead of -error: the table would double them, not cancel them); write it again "
+        "with `pkm compensate table` (pass --no-comp-check to use it anyway)",
+        source,
+        joint,
+        errors_source));
+}
+
 namespace {
+
+/// The errors of `path` (ISO 230-2 positioning data, mm) in the machine's length unit.
+std::vector<metrology::PositioningSample> readErrors(const std::string& path, LengthUnit unit) {
+  const std::vector<io::NamedText> data{io::readNamedText(path)};
+  std::vector<metrology::PositioningSample> samples = io::readPositioningSamples(data);
+  const double per_mm = unit == LengthUnit::kInch ? 1.0 / 25.4 : 1.0;
+  for (metrology::PositioningSample& s : samples) {
+    s.target *= per_mm;
+    s.measured *= per_mm;
+  }
+  return samples;
+}
 
 /// The tables of the request, read, checked against the joints' ranges (unless skipped) and
 /// named jointN.comp, with their INI references in `options`.
 std::vector<io::NamedText> compTables(const LinuxcncConfigRequest& request,
                                       const JointRanges& ranges,
+                                      LengthUnit unit,
                                       io::LinuxcncConfigOptions& options,
                                       std::vector<std::string>& notices) {
   std::vector<io::NamedText> tables;
@@ -103,11 +147,15 @@ std::vector<io::NamedText> compTables(const LinuxcncConfigRequest& request,
     const compensation::LinuxcncCompFile file =
         compensation::parseLinuxcncComp(table.text, table.name, request.comp_file_type);
     if (c.joint >= 0 && static_cast<std::size_t>(c.joint) < ranges.size()) {
-      if (request.check_comp_files)
+      if (request.check_comp_files) {
         checkCompPlausible(file, table.name, c.joint, ranges[static_cast<std::size_t>(c.joint)]);
-      else
+        for (const LinuxcncCompInput& d : request.comp_data)
+          if (d.joint == c.joint)
+            checkCompSign(file, table.name, c.joint, readErrors(d.path, unit), d.path);
+      } else {
         notices.push_back(fmt::format(
-            "{}: --no-comp-check: the size of its corrections was not checked", table.name));
+            "{}: --no-comp-check: its corrections were not checked for size or sign", table.name));
+      }
     }
     const std::string name = fmt::format("joint{}.comp", c.joint);
     options.comp_files.push_back({c.joint, name, request.comp_file_type});
@@ -150,7 +198,7 @@ std::vector<io::NamedText> configFiles(const LinuxcncConfigRequest& request,
     for (const kinematics::AngleRange* r : {&m.model.limits.c, &m.model.limits.a})
       ranges.push_back({std::isfinite(r->min) ? radToDeg(r->min) : -kOpen,
                         std::isfinite(r->max) ? radToDeg(r->max) : kOpen});
-    tables = compTables(request, ranges, options, notices);
+    tables = compTables(request, ranges, m.model.unit, options, notices);
     files = io::exechonLinuxcncConfig(m, options);
   } else {
     io::HalReadOptions hal;
@@ -161,7 +209,7 @@ std::vector<io::NamedText> configFiles(const LinuxcncConfigRequest& request,
     JointRanges ranges;
     for (const io::PkmhexkinsJointValues& j : io::pkmhexkinsJointValues(m))
       ranges.push_back({j.min_limit.value_or(-kOpen), j.max_limit.value_or(kOpen)});
-    tables = compTables(request, ranges, options, notices);
+    tables = compTables(request, ranges, m.model.unit, options, notices);
     files = io::hexapodLinuxcncConfig(m, options, &notices);
   }
   files.insert(files.end(), tables.begin(), tables.end());
