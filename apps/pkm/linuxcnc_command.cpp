@@ -46,12 +46,15 @@ workflow::LinuxcncCompInput parseCompFile(const std::string& text) {
   }
   if (joint < 0)
     throw InvalidArgument(
-        fmt::format("--comp-file '{}': give JOINT=FILE, e.g. 0=strut0.comp", text));
+        fmt::format("--comp-file/--comp-data '{}': give JOINT=FILE, e.g. 0=strut0.comp", text));
   return {joint, text.substr(eq + 1)};
 }
 
-void runConfig(workflow::LinuxcncConfigRequest request, const std::vector<std::string>& comp) {
+void runConfig(workflow::LinuxcncConfigRequest request,
+               const std::vector<std::string>& comp,
+               const std::vector<std::string>& data) {
   for (const std::string& c : comp) request.comp_files.push_back(parseCompFile(c));
+  for (const std::string& d : data) request.comp_data.push_back(parseCompFile(d));
   const workflow::LinuxcncConfigResult r = workflow::writeLinuxcncConfig(request);
   printNotices(r.notices);
   std::string text = fmt::format("wrote a LinuxCNC {} configuration:\n", r.kind);
@@ -68,6 +71,7 @@ void addConfig(CLI::App& group) {
   struct State {
     workflow::LinuxcncConfigRequest request;
     std::vector<std::string> comp;
+    std::vector<std::string> data;
   };
   auto st = std::make_shared<State>();
   CLI::App* config = group.add_subcommand(
@@ -90,6 +94,10 @@ void addConfig(CLI::App& group) {
                      st->comp,
                      "JOINT=FILE: a compensation table of that joint (pkm compensate table "
                      "--format linuxcnc0|linuxcnc1), copied as jointN.comp; repeat per joint");
+  config->add_option("--comp-data",
+                     st->data,
+                     "JOINT=FILE: the ISO 230-2 positioning data (mm) that joint's table was made "
+                     "from: a table whose corrections have the errors' sign is refused");
   config
       ->add_option("--comp-file-type",
                    st->request.comp_file_type,
@@ -102,7 +110,12 @@ void addConfig(CLI::App& group) {
                    "port 5007)")
       ->capture_default_str();
   config->add_flag("--force", st->request.force, "replace files of the same names in the folder");
-  config->callback([st] { runConfig(st->request, st->comp); });
+  config->add_flag_callback(
+      "--no-comp-check",
+      [st] { st->request.check_comp_files = false; },
+      "use the --comp-file tables even when a correction is larger than 1 % of the joint's travel "
+      "(a table of the wrong type or unit is refused without it); their format is still checked");
+  config->callback([st] { runConfig(st->request, st->comp, st->data); });
 }
 
 void addLinuxcnc(CLI::App& app) {

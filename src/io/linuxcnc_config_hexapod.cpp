@@ -1,6 +1,7 @@
 // The LinuxCNC configuration of a hexapod with pkmhexkins (io/linuxcnc_config.hpp).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "detail/linuxcnc_config_detail.hpp"
@@ -10,6 +11,7 @@
 #include "pkm/io/linuxcnc_hexapod_params.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/kinematics/hexapod_checks.hpp"
+#include "pkm/kinematics/hexapod_clearance.hpp"
 #include "pkm/kinematics/hexapod_data.hpp"
 
 namespace pkm::io {
@@ -23,13 +25,62 @@ constexpr double kTranslationCap = 2.0;
 constexpr std::array<double, 3> kRotationCapDeg{90.0, 90.0, 180.0};
 constexpr double kAngleStepDeg = 0.01;
 
-/// The world axes: how far the machine reaches from home along each coordinate.
-std::vector<detail::IniAxis> hexapodAxes(const kin::HexapodModel& model,
-                                         const std::array<double, 6>& home,
-                                         double velocity,
-                                         double acceleration) {
+/// A pose the axis limits may reach: every limit `pkm hexapod check` applies holds and every
+/// platform joint stays kClearanceFraction characteristic lengths above the base plane (the
+/// singular plane, beyond which lies the mirror assembly).
+struct PoseAdmissible {
+  const kin::HexapodModel& model;
+  kin::HexapodData& data;
+  kin::BasePlane plane;
+  double margin;
+  bool operator()(const kin::PoseRpy& pose) const {
+    return kin::platformClearance(model, plane, pose) >= margin &&
+           kin::checkPose(model, data, pose).ok();
+  }
+};
+
+/// The pose of world coordinates X Y Z A B C (degrees).
+kin::PoseRpy poseOf(const std::array<double, 6>& w) {
+  kin::PoseRpy pose;
+  pose.position = {w[0], w[1], w[2]};
+  pose.rpy = {degToRad(w[3]), degToRad(w[4]), degToRad(w[5])};
+  return pose;
+}
+
+/// The box's 64 corners all admissible.
+bool cornersAdmissible(const PoseAdmissible& ok, const std::vector<detail::IniAxis>& axes) {
+  for (int mask = 0; mask < 64; ++mask) {
+    std::array<double, 6> w{};
+    for (std::size_t k = 0; k < 6; ++k) w[k] = (mask >> k) & 1 ? axes[k].max : axes[k].min;
+    if (!ok(poseOf(w))) return false;
+  }
+  return true;
+}
+
+/// The axes with each side's reach scaled by `s` and rounded towards home.
+std::vector<detail::IniAxis> scaledAxes(const std::vector<detail::IniAxis>& reach,
+                                        const std::array<double, 6>& home,
+                                        double length,
+                                        double s) {
+  std::vector<detail::IniAxis> axes = reach;
+  for (std::size_t k = 0; k < 6; ++k) {
+    const double step = k >= 3 ? kAngleStepDeg : detail::limitStep(length);
+    const std::array<double, 2> lim = detail::axisLimits(
+        home[k], s * (home[k] - reach[k].min), s * (reach[k].max - home[k]), step);
+    axes[k].min = lim[0];
+    axes[k].max = lim[1];
+  }
+  return axes;
+}
+
+/// The world axes: how far the machine reaches from home along each coordinate (min/max = home ∓
+/// the reach, unrounded), every limit of PoseAdmissible held.
+std::vector<detail::IniAxis> hexapodReach(const kin::HexapodModel& model,
+                                          const PoseAdmissible& ok,
+                                          const std::array<double, 6>& home,
+                                          double velocity,
+                                          double acceleration) {
   const double length = model.characteristicLength();
-  kin::HexapodData data(model);
   std::vector<detail::IniAxis> axes;
   for (int k = 0; k < 6; ++k) {
     const bool angular = k >= 3;
@@ -45,23 +96,63 @@ std::vector<detail::IniAxis> hexapodAxes(const kin::HexapodModel& model,
               pose.rpy[k - 3] += degToRad(sign * t);
             else
               pose.position[k] += sign * t;
-            return kin::checkPose(model, data, pose).ok();
+            return ok(pose);
           },
           cap);
     }
-    const double step = angular ? kAngleStepDeg : detail::limitStep(length);
-    const std::array<double, 2> lim =
-        detail::axisLimits(home[static_cast<std::size_t>(k)], side[0], side[1], step);
+    const double h = home[static_cast<std::size_t>(k)];
     const double rate = angular ? radToDeg(1.0 / length) : 1.0;
-    axes.push_back({"XYZABC"[k], lim[0], lim[1], velocity * rate, acceleration * rate});
+    axes.push_back({"XYZABC"[k], h - side[0], h + side[1], velocity * rate, acceleration * rate});
   }
   return axes;
 }
 
+/// The axis limits: each axis's reach alone, rounded towards home, then all six shrunk together
+/// (the largest common fraction of the reach, found by bisection to 1/1024) until every corner of
+/// the box is admissible; a notice says by how much when they shrank.
+std::vector<detail::IniAxis> hexapodAxes(const kin::HexapodModel& model,
+                                         const std::array<double, 6>& home,
+                                         double velocity,
+                                         double acceleration,
+                                         std::vector<std::string>* notices) {
+  const double length = model.characteristicLength();
+  kin::HexapodData data(model);
+  const kin::BasePlane plane = kin::basePlane(model);
+  const double at_home = kin::platformClearance(model, plane, model.home);
+  if (!(at_home > 0.0))
+    throw InvalidArgument(fmt::format(
+        "{}: the home pose puts a platform joint {} {} from the base plane: a singular or mirror "
+        "pose, LinuxCNC could not home the machine",
+        model.name,
+        formatNumber(at_home),
+        toString(model.unit)));
+  // The margin: a tenth of the characteristic length, less for a home closer to the plane.
+  const PoseAdmissible ok{
+      model, data, plane, std::min(kin::kMirrorClearanceFraction * length, 0.5 * at_home)};
+  const std::vector<detail::IniAxis> reach = hexapodReach(model, ok, home, velocity, acceleration);
+  std::vector<detail::IniAxis> axes = scaledAxes(reach, home, length, 1.0);
+  if (cornersAdmissible(ok, axes)) return axes;
+  double good = 0.0, bad = 1.0;
+  while (bad - good > 1.0 / 1024.0) {
+    const double mid = 0.5 * (good + bad);
+    (cornersAdmissible(ok, scaledAxes(reach, home, length, mid)) ? good : bad) = mid;
+  }
+  axes = scaledAxes(reach, home, length, good);
+  if (notices != nullptr)
+    notices->push_back(fmt::format(
+        "axis limits shrunk to {:.1f} % of each axis's reach from home, so that every corner of "
+        "the X Y Z A B C limit box is within the strokes, joint cones, interference and "
+        "conditioning limits and {} {} above the base plane (no singular or mirror pose)",
+        100.0 * good,
+        formatNumber(ok.margin),
+        toString(model.unit)));
+  return axes;
+}
 }  // namespace
 
 std::vector<NamedText> hexapodLinuxcncConfig(const HexapodMachine& machine,
-                                             const LinuxcncConfigOptions& options) {
+                                             const LinuxcncConfigOptions& options,
+                                             std::vector<std::string>* notices) {
   options.validate(kin::kStruts);
   const kin::HexapodModel& model = machine.model;
   kin::HexapodData data(model);
@@ -106,7 +197,7 @@ std::vector<NamedText> hexapodLinuxcncConfig(const HexapodMachine& machine,
                radToDeg(model.home.rpy.x()),
                radToDeg(model.home.rpy.y()),
                radToDeg(model.home.rpy.z())};
-  spec.axes = hexapodAxes(model, spec.home, velocity, acceleration);
+  spec.axes = hexapodAxes(model, spec.home, velocity, acceleration, notices);
   const double open = 1e9 * model.characteristicLength();
   for (const PkmhexkinsJointValues& j : pkmhexkinsJointValues(machine))
     spec.joints.push_back({false,

@@ -7,6 +7,7 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <optional>
 #include <string_view>
@@ -182,6 +183,21 @@ TextPatch patchKinematicsHal(const NamedText& hal, const HexapodMachine& machine
   return patch;
 }
 
+namespace {
+
+/// A joint limit without the float noise of its sum (stroke + length offset): the shortest decimal
+/// of at most 12 significant digits within 1e-12 (relative) of `v`, else `v`. Round limits
+/// (±1000) then print round instead of -999.9999999999973.
+double roundLimit(double v) {
+  for (int digits = 1; digits <= 12; ++digits) {
+    const double r = std::strtod(fmt::format("{:.{}e}", v, digits - 1).c_str(), nullptr);
+    if (std::abs(r - v) <= 1e-12 * std::max(1.0, std::abs(v))) return r;
+  }
+  return v;
+}
+
+}  // namespace
+
 std::array<LinuxcncJointValues, 6> linuxcncJointValues(const HexapodMachine& machine) {
   const kin::HexapodModel& m = machine.model;
   kin::HexapodData data(m);
@@ -190,8 +206,10 @@ std::array<LinuxcncJointValues, 6> linuxcncJointValues(const HexapodMachine& mac
   for (std::size_t i = 0; i < out.size(); ++i) {
     const kin::Strut& s = m.struts[i];
     out[i].home = data.joint_distance[static_cast<Eigen::Index>(i)];
-    if (std::isfinite(s.min_reading)) out[i].min_limit = s.min_reading + s.length_offset;
-    if (std::isfinite(s.max_reading)) out[i].max_limit = s.max_reading + s.length_offset;
+    if (std::isfinite(s.min_reading))
+      out[i].min_limit = roundLimit(s.min_reading + s.length_offset);
+    if (std::isfinite(s.max_reading))
+      out[i].max_limit = roundLimit(s.max_reading + s.length_offset);
   }
   return out;
 }

@@ -43,6 +43,18 @@ bool isFile(const std::string& spec) {
   return true;
 }
 
+/// A kinematics component's parameter file is not a machine description: says what to pass.
+void refuseParameterFile(const std::string& spec) {
+  if (!spec.ends_with(".params") || !isFile(spec)) return;
+  throw IoError(locate(
+      spec,
+      0,
+      "a LinuxCNC kinematics parameter file (pkmhexkins/pkmexechonkins params=, written by `pkm "
+      "hexapod|exechon linuxcnc-params` and `pkm linuxcnc config`), not a machine description: "
+      "pass the machine it was written from (a pkm machine JSON, a CAL.json, a built-in name) or "
+      "a genhexkins .hal file with its --ini"));
+}
+
 }  // namespace
 
 std::string machineType(const std::string& text) {
@@ -75,11 +87,13 @@ HexapodMachine builtinMachine(const std::string& name) {
 
 HexapodMachine loadHexapodMachine(const std::string& spec, const HalReadOptions& hal) {
   if (spec.ends_with(".hal")) return readLinuxcncHal(spec, hal);
+  refuseParameterFile(spec);
   if (isFile(spec)) return readHexapodJson(spec);
   return builtinMachine(spec);
 }
 
 ExechonMachine loadExechonMachine(const std::string& spec) {
+  refuseParameterFile(spec);
   if (isFile(spec)) return readExechonJson(spec);
   const std::string wanted = spec == "default" ? kDefaultExechonMachine : spec;
   if (const auto text = builtinText(wanted, "exechon"))

@@ -3,14 +3,22 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <filesystem>
+#include <limits>
+#include <span>
 #include <system_error>
 
 #include "pkm/compensation/linuxcnc_comp.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/atomic_file.hpp"
 #include "pkm/io/linuxcnc_config.hpp"
+#include "pkm/io/linuxcnc_hal.hpp"
 #include "pkm/io/machine_loader.hpp"
+#include "pkm/io/number_format.hpp"
+#include "pkm/io/positioning_files.hpp"
 
 namespace pkm::workflow {
 
@@ -24,9 +32,148 @@ void LinuxcncConfigRequest::validate() const {
     throw InvalidArgument(
         "--comp-file-type: give 0 or 1, the --format the tables were written with "
         "(linuxcnc0 or linuxcnc1)");
+  for (const LinuxcncCompInput& d : comp_data)
+    if (std::none_of(comp_files.begin(), comp_files.end(), [&](const LinuxcncCompInput& c) {
+          return c.joint == d.joint;
+        }))
+      throw InvalidArgument(fmt::format(
+          "--comp-data {}={}: no --comp-file for joint {} to check", d.joint, d.path, d.joint));
 }
 
 namespace {
+
+/// The [min, max] joint positions of every joint of the machine (±infinity for an open side).
+using JointRanges = std::vector<std::array<double, 2>>;
+
+/// Row `row` (0-based) of `file`'s first correction beyond `limit`, or -1.
+long firstBeyond(const compensation::LinuxcncCompFile& file, double limit) {
+  for (std::size_t i = 0; i < file.nominal.size(); ++i)
+    if (std::abs(file.trim(i, 1)) > limit || std::abs(file.trim(i, -1)) > limit)
+      return static_cast<long>(i);
+  return -1;
+}
+
+}  // namespace
+
+void checkCompPlausible(const compensation::LinuxcncCompFile& file,
+                        const std::string& source,
+                        int joint,
+                        std::array<double, 2> range) {
+  const double span = file.nominal.back() - file.nominal.front();
+  const double travel =
+      span > 0.0 ? span : (std::isfinite(range[1] - range[0]) ? range[1] - range[0] : 0.0);
+  if (!(travel > 0.0)) return;
+  const double limit = kCompMaxFractionOfTravel * travel;
+  const long row = firstBeyond(file, limit);
+  if (row < 0) return;
+  const auto i = static_cast<std::size_t>(row);
+  const double trim = std::abs(file.trim(i, 1)) > limit ? file.trim(i, 1) : file.trim(i, -1);
+  compensation::LinuxcncCompFile other = file;
+  other.type = 1 - file.type;
+  const std::string hint =
+      firstBeyond(other, limit) < 0
+          ? fmt::format(
+                "; read as COMP_FILE_TYPE {} its corrections are plausible: it looks like a type "
+                "{} table ({}), give --comp-file-type {}",
+                other.type,
+                other.type,
+                other.type == 0 ? "nominal, actual positions"
+                                : "nominal, forward and reverse trims",
+                other.type)
+          : "";
+  throw InvalidArgument(fmt::format(
+      "{}:{}: joint {}'s correction at {} would be {} as COMP_FILE_TYPE {}, more than {} % of the "
+      "joint's travel ({}, {} to {}){}; a wrong table would move the machine by that much (pass "
+      "--no-comp-check to use it anyway)",
+      source,
+      row + 1,
+      joint,
+      io::formatNumber(file.nominal[i]),
+      io::formatNumber(trim),
+      file.type,
+      io::formatNumber(100.0 * kCompMaxFractionOfTravel),
+      io::formatNumber(travel),
+      io::formatNumber(span > 0.0 ? file.nominal.front() : range[0]),
+      io::formatNumber(span > 0.0 ? file.nominal.back() : range[1]),
+      hint));
+}
+
+void checkCompSign(const compensation::LinuxcncCompFile& file,
+                   const std::string& source,
+                   int joint,
+                   std::span<const metrology::PositioningSample> errors,
+                   const std::string& errors_source) {
+  double agree = 0.0, size = 0.0;
+  for (const metrology::PositioningSample& e : errors) {
+    const double wanted = -(e.measured - e.target);  // the correction that cancels the error
+    const double trim = compensation::applyLinuxcncComp(file, e.target, e.direction) - e.target;
+    agree += trim * wanted;
+    size += wanted * wanted;
+  }
+  if (size > 0.0 && agree < 0.0)
+    throw InvalidArgument(fmt::format(
+        "{}:1: joint {}'s corrections have the sign of the errors measured in {} (correction = "
+        "error instead of -error: the table would double them, not cancel them); write it again "
+        "with `pkm compensate table` (pass --no-comp-check to use it anyway)",
+        source,
+        joint,
+        errors_source));
+}
+
+namespace {
+
+/// The errors of `path` (ISO 230-2 positioning data, mm) in the machine's length unit.
+std::vector<metrology::PositioningSample> readErrors(const std::string& path, LengthUnit unit) {
+  const std::vector<io::NamedText> data{io::readNamedText(path)};
+  std::vector<metrology::PositioningSample> samples = io::readPositioningSamples(data);
+  const double per_mm = unit == LengthUnit::kInch ? 1.0 / 25.4 : 1.0;
+  for (metrology::PositioningSample& s : samples) {
+    s.target *= per_mm;
+    s.measured *= per_mm;
+  }
+  return samples;
+}
+
+/// The tables of the request, read, checked against the joints' ranges (unless skipped) and
+/// named jointN.comp, with their INI references in `options`.
+std::vector<io::NamedText> compTables(const LinuxcncConfigRequest& request,
+                                      const JointRanges& ranges,
+                                      LengthUnit unit,
+                                      io::LinuxcncConfigOptions& options,
+                                      std::vector<std::string>& notices) {
+  std::vector<io::NamedText> tables;
+  for (const LinuxcncCompInput& c : request.comp_files) {
+    io::NamedText table = io::readNamedText(c.path);
+    const compensation::LinuxcncCompFile file =
+        compensation::parseLinuxcncComp(table.text, table.name, request.comp_file_type);
+    if (c.joint >= 0 && static_cast<std::size_t>(c.joint) < ranges.size()) {
+      if (request.check_comp_files) {
+        checkCompPlausible(file, table.name, c.joint, ranges[static_cast<std::size_t>(c.joint)]);
+        for (const LinuxcncCompInput& d : request.comp_data)
+          if (d.joint == c.joint)
+            checkCompSign(file, table.name, c.joint, readErrors(d.path, unit), d.path);
+      } else {
+        notices.push_back(fmt::format(
+            "{}: --no-comp-check: its corrections were not checked for size or sign", table.name));
+      }
+    }
+    const std::string name = fmt::format("joint{}.comp", c.joint);
+    options.comp_files.push_back({c.joint, name, request.comp_file_type});
+    tables.push_back({name, std::move(table.text)});
+  }
+  return tables;
+}
+
+/// The name of the configuration of machine `spec` whose model is called `name`: a genhexkins
+/// `.hal` file's model is named after the file ("kinematics" for every LinuxCNC hexapod), so its
+/// configuration is named after the folder that holds it (LinuxCNC's sample: "hexapod-sim").
+std::string configurationName(const std::string& spec, const std::string& name) {
+  if (!spec.ends_with(".hal")) return name;
+  const std::string folder = fs::absolute(fs::path(spec)).parent_path().filename().string();
+  return folder.empty() ? name : folder;
+}
+
+double orOpen(double v, double open) { return std::isfinite(v) ? v : open; }
 
 /// linuxcncConfigFiles, also saying which kind of machine it was.
 std::vector<io::NamedText> configFiles(const LinuxcncConfigRequest& request,
@@ -35,15 +182,8 @@ std::vector<io::NamedText> configFiles(const LinuxcncConfigRequest& request,
   request.validate();
   io::LinuxcncConfigOptions options;
   options.display = request.display;
-  std::vector<io::NamedText> tables;
-  for (const LinuxcncCompInput& c : request.comp_files) {
-    io::NamedText table = io::readNamedText(c.path);
-    (void)compensation::parseLinuxcncComp(table.text, table.name, request.comp_file_type);
-    const std::string name = fmt::format("joint{}.comp", c.joint);
-    options.comp_files.push_back({c.joint, name, request.comp_file_type});
-    tables.push_back({name, std::move(table.text)});
-  }
-  std::vector<io::NamedText> files;
+  constexpr double kOpen = std::numeric_limits<double>::infinity();
+  std::vector<io::NamedText> files, tables;
   kind = io::machineTypeOf(request.machine) == "exechon" ? "exechon" : "hexapod";
   if (kind == "exechon") {
     const io::ExechonMachine m = io::loadExechonMachine(request.machine);
@@ -52,13 +192,25 @@ std::vector<io::NamedText> configFiles(const LinuxcncConfigRequest& request,
       notices.push_back(
           "the machine's extending axes X2/Y2 are not part of this configuration: its world "
           "frame is the PKM frame P");
+    JointRanges ranges;
+    for (const kinematics::ExechonLeg& leg : m.model.legs)
+      ranges.push_back({orOpen(leg.min_reading, -kOpen), orOpen(leg.max_reading, kOpen)});
+    for (const kinematics::AngleRange* r : {&m.model.limits.c, &m.model.limits.a})
+      ranges.push_back({std::isfinite(r->min) ? radToDeg(r->min) : -kOpen,
+                        std::isfinite(r->max) ? radToDeg(r->max) : kOpen});
+    tables = compTables(request, ranges, m.model.unit, options, notices);
     files = io::exechonLinuxcncConfig(m, options);
   } else {
     io::HalReadOptions hal;
     if (!request.ini.empty()) hal.ini_path = request.ini;
-    const io::HexapodMachine m = io::loadHexapodMachine(request.machine, hal);
+    io::HexapodMachine m = io::loadHexapodMachine(request.machine, hal);
+    m.model.name = configurationName(request.machine, m.model.name);
     notices.insert(notices.end(), m.notices.begin(), m.notices.end());
-    files = io::hexapodLinuxcncConfig(m, options);
+    JointRanges ranges;
+    for (const io::PkmhexkinsJointValues& j : io::pkmhexkinsJointValues(m))
+      ranges.push_back({j.min_limit.value_or(-kOpen), j.max_limit.value_or(kOpen)});
+    tables = compTables(request, ranges, m.model.unit, options, notices);
+    files = io::hexapodLinuxcncConfig(m, options, &notices);
   }
   files.insert(files.end(), tables.begin(), tables.end());
   return files;

@@ -30,6 +30,9 @@ TEST_F(CliTest, LinuxcncInstallShowsThenPatches) {
   EXPECT_THAT(preview.out,
               HasSubstr("-setp genhexkins.base.0.y  13.250\n+setp genhexkins.base.0.y  13.3\n"));
   EXPECT_THAT(preview.err, HasSubstr("nothing written"));
+  // Round joint limits stay round (no -999.9999999999973 from stroke + length offset).
+  EXPECT_THAT(preview.out, ::testing::Not(HasSubstr("99999999")));
+  EXPECT_THAT(preview.out, ::testing::Not(HasSubstr("00000000")));
   EXPECT_FALSE(fs::exists(path("cfg/kinematics.hal.pkm-backup")));
   std::vector<std::string> forced = args;
   forced.push_back("--force");
@@ -56,7 +59,7 @@ TEST_F(CliTest, LinuxcncConfigWritesRefusesAndForces) {
 }
 
 TEST_F(CliTest, LinuxcncConfigExechonWithCompensationTable) {
-  const std::string table = write("legB.txt", "0 0.001 0.002\n700 -0.001 0\n");
+  const std::string table = write("legB.txt", "0 0.001 0.002\n700 699.999 700\n");
   const CliRun r = pkm({"linuxcnc",
                         "config",
                         "--machine",
@@ -88,6 +91,70 @@ TEST_F(CliTest, LinuxcncConfigBadCompFile) {
   EXPECT_EQ(untyped.code, 2);
   EXPECT_THAT(untyped.err, HasSubstr("--comp-file-type"));
   EXPECT_FALSE(fs::exists(path("bad")));
+}
+
+TEST_F(CliTest, LinuxcncConfigRefusesWrongTypeAndFlippedTables) {
+  // Joint 2 of hexapod-default: a type 0 table (actual positions) declared as type 1 would add
+  // 300 mm corrections; a type 1 table with the errors' sign would double them.
+  const std::string type0 = write("t0.comp", "100 100.02 100.01\n300 299.99 300\n");
+  const std::vector<std::string> base{
+      "linuxcnc", "config", "--machine", "hexapod-default", "--comp-file-type", "1"};
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> a = base;
+    a.insert(a.end(), extra.begin(), extra.end());
+    return pkm(a);
+  };
+  const CliRun wrong = with({"--out", path("w"), "--comp-file", "2=" + type0});
+  EXPECT_EQ(wrong.code, 2);
+  EXPECT_THAT(wrong.err, HasSubstr("t0.comp:1: joint 2's correction at 100 would be 100.02"));
+  EXPECT_THAT(wrong.err, HasSubstr("give --comp-file-type 0"));
+  EXPECT_FALSE(fs::exists(path("w")));
+  const std::string data = write("strut2.csv",
+                                 "target,direction,run,measured\n100,+,1,100.02\n100,-,1,100.01\n"
+                                 "300,+,1,299.99\n300,-,1,300\n");
+  const std::string flipped = write("t1.comp", "100 0.02 0.01\n300 -0.01 0\n");
+  const CliRun flip =
+      with({"--out", path("f"), "--comp-file", "2=" + flipped, "--comp-data", "2=" + data});
+  EXPECT_EQ(flip.code, 2);
+  EXPECT_THAT(flip.err, HasSubstr("t1.comp:1: joint 2's corrections have the sign of the errors"));
+  EXPECT_FALSE(fs::exists(path("f")));
+  const std::string good = write("t1good.comp", "100 -0.02 -0.01\n300 0.01 0\n");
+  const CliRun ok =
+      with({"--out", path("g"), "--comp-file", "2=" + good, "--comp-data", "2=" + data});
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  const CliRun forced = with({"--out", path("o"), "--comp-file", "2=" + type0, "--no-comp-check"});
+  EXPECT_EQ(forced.code, 0) << forced.err;
+  EXPECT_THAT(forced.err, HasSubstr("--no-comp-check"));
+}
+
+TEST_F(CliTest, ParamsFileAsMachineSaysWhatItIs) {
+  const std::string params =
+      write("m.params",
+            slurp(fs::path(PKM_SOURCE_DIR) / "data/linuxcnc/hexapod-default/pkm-hx1200.params"));
+  const CliRun r = pkm({"linuxcnc", "config", "--machine", params, "--out", path("p")});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.err, HasSubstr("a LinuxCNC kinematics parameter file"));
+  EXPECT_THAT(r.err, HasSubstr("pass the machine it was written from"));
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("JSON:")));
+}
+
+TEST_F(CliTest, LinuxcncConfigOfAHalMachineIsNamedAfterItsFolder) {
+  const fs::path sample = pkm::test::linuxcncHexapodSim();
+  if (!fs::is_directory(sample))
+    GTEST_SKIP() << sample << " not found (run scripts/fetch-linuxcnc.sh)";
+  fs::copy(sample, path("hexapod-sim"), fs::copy_options::recursive);
+  const CliRun r = pkm({"linuxcnc",
+                        "config",
+                        "--machine",
+                        path("hexapod-sim/kinematics.hal"),
+                        "--ini",
+                        path("hexapod-sim/hexapod.ini"),
+                        "--out",
+                        path("out")});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::is_regular_file(path("out/hexapod-sim.ini")));
+  EXPECT_TRUE(fs::is_regular_file(path("out/hexapod-sim.params")));
+  EXPECT_FALSE(fs::exists(path("out/kinematics.ini")));
 }
 
 TEST_F(CliTest, HexapodHalWritesEitherBlock) {

@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -23,6 +24,7 @@
 #include "pkm/kinematics/exechon_ik.hpp"
 #include "pkm/kinematics/exechon_wrist.hpp"
 #include "pkm/kinematics/hexapod_checks.hpp"
+#include "pkm/kinematics/hexapod_clearance.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 
 namespace {
@@ -101,32 +103,80 @@ TEST(LinuxcncConfig, HexapodFilesJointsAndHome) {
   EXPECT_THAT(files[2].text, HasSubstr("motion.tooloffset.z => pkmhexkins.tool-offset\n"));
 }
 
-TEST(LinuxcncConfig, HexapodAxisLimitsAreTheReachFromHome) {
+/// The pose of world coordinates X Y Z A B C (degrees).
+kin::PoseRpy poseOf(const std::array<double, 6>& w) {
+  kin::PoseRpy p;
+  p.position = {w[0], w[1], w[2]};
+  p.rpy = {pkm::degToRad(w[3]), pkm::degToRad(w[4]), pkm::degToRad(w[5])};
+  return p;
+}
+
+/// Every corner of the INI's axis-limit box passes `pkm hexapod check` and keeps the platform
+/// joints `margin` above the base plane.
+void expectCornersAdmissible(const io::HexapodMachine& m, const Ini& ini, double margin) {
+  kin::HexapodData data(m.model);
+  const kin::BasePlane plane = kin::basePlane(m.model);
+  const std::string letters = "XYZABC";
+  for (int mask = 0; mask < 64; ++mask) {
+    std::array<double, 6> w{};
+    for (std::size_t k = 0; k < 6; ++k)
+      w[k] = number(
+          ini, std::string("AXIS_") + letters[k], (mask >> k) & 1 ? "MAX_LIMIT" : "MIN_LIMIT");
+    const kin::PoseRpy pose = poseOf(w);
+    EXPECT_TRUE(kin::checkPose(m.model, data, pose).ok()) << m.model.name << " corner " << mask;
+    EXPECT_GE(kin::platformClearance(m.model, plane, pose), margin)
+        << m.model.name << " corner " << mask;
+  }
+}
+
+TEST(LinuxcncConfig, HexapodAxisLimitsBoxIsAdmissibleAtEveryCorner) {
+  for (const char* name : {"hexapod-default", "hexapod-linuxcnc-sim", "mxt700s-like"}) {
+    if (io::machineTypeOf(name) != "hexapod") continue;
+    const io::HexapodMachine m = io::builtinMachine(name);
+    std::vector<std::string> notices;
+    const Ini ini = parseIni(io::hexapodLinuxcncConfig(m, {}, &notices)[0].text);
+    const double margin = kin::kMirrorClearanceFraction * m.model.characteristicLength();
+    expectCornersAdmissible(m, ini, margin);
+    // A box shrunk from the reach is announced, and nothing else is.
+    EXPECT_LE(notices.size(), 1U) << name;
+    for (const std::string& n : notices) EXPECT_THAT(n, HasSubstr("axis limits shrunk to")) << name;
+    // Home inside, and not a box collapsed onto it.
+    for (const std::string s : {"AXIS_X", "AXIS_Y", "AXIS_Z", "AXIS_A", "AXIS_B", "AXIS_C"})
+      EXPECT_LT(number(ini, s, "MIN_LIMIT"), number(ini, s, "MAX_LIMIT")) << name << " " << s;
+  }
+}
+
+TEST(LinuxcncConfig, HexapodSimZLimitStaysAboveTheBasePlane) {
+  // LinuxCNC's hexapod-sim: base joints at z = 0, platform joints in the platform's z = 0 plane,
+  // home z = 20 in. A Z limit at or below 0 would let G0 reach the singular plane and the mirror
+  // assembly beyond (same strut lengths, z negated).
+  const io::HexapodMachine m = io::builtinMachine("hexapod-linuxcnc-sim");
+  const Ini ini = parseIni(io::hexapodLinuxcncConfig(m, {})[0].text);
+  const double margin = kin::kMirrorClearanceFraction * m.model.characteristicLength();
+  EXPECT_GE(number(ini, "AXIS_Z", "MIN_LIMIT"), margin);
+  EXPECT_GT(margin, 1.0);  // inch: the characteristic length is about 11.5 in
+  EXPECT_LE(number(ini, "AXIS_Z", "MAX_LIMIT"), 20.0 + 2.0 * m.model.characteristicLength());
+}
+
+TEST(LinuxcncConfig, HexapodAxisLimitsAreAdmissibleAlongEachAxis) {
+  // One axis at its limit, the others at home.
   const io::HexapodMachine m = io::builtinMachine("hexapod-default");
   const Ini ini = parseIni(io::hexapodLinuxcncConfig(m, {})[0].text);
   kin::HexapodData data(m.model);
+  const kin::BasePlane plane = kin::basePlane(m.model);
+  const double margin = kin::kMirrorClearanceFraction * m.model.characteristicLength();
   const std::string letters = "XYZABC";
   for (int k = 0; k < 6; ++k) {
     const std::string s = std::string("AXIS_") + letters[static_cast<std::size_t>(k)];
-    const double step = k < 3 ? 0.1 : 0.01;  // characteristic length 100..1000 mm; degrees
     for (const char* key : {"MIN_LIMIT", "MAX_LIMIT"}) {
+      kin::PoseRpy p = m.model.home;
       const double limit = number(ini, s, key);
-      auto poseAt = [&](double v) {
-        kin::PoseRpy p = m.model.home;
-        if (k < 3)
-          p.position[k] = v;
-        else
-          p.rpy[k - 3] = pkm::degToRad(v);
-        return p;
-      };
-      EXPECT_TRUE(kin::checkPose(m.model, data, poseAt(limit)).ok()) << s << " " << key;
-      // Not 2 steps further, unless the search stopped at its cap (2 characteristic lengths,
-      // 90 degrees for A and B, 180 for C).
-      const double cap = k < 3 ? 2.0 * m.model.characteristicLength() : k < 5 ? 90.0 : 180.0;
-      const double home = k < 3 ? m.model.home.position[k] : 0.0;
-      if (std::abs(limit - home) >= cap - step) continue;
-      const double beyond = limit + (key[1] == 'I' ? -2.0 : 2.0) * step;
-      EXPECT_FALSE(kin::checkPose(m.model, data, poseAt(beyond)).ok()) << s << " " << key;
+      if (k < 3)
+        p.position[k] = limit;
+      else
+        p.rpy[k - 3] = pkm::degToRad(limit);
+      EXPECT_TRUE(kin::checkPose(m.model, data, p).ok()) << s << " " << key;
+      EXPECT_GE(kin::platformClearance(m.model, plane, p), margin) << s << " " << key;
     }
   }
 }

@@ -99,5 +99,21 @@ TEST(LinuxcncPatch, IniHomeAndLimitsFromTheCalibratedGeometry) {
   EXPECT_THROW((void)patchHexapodIni({"five.ini", five}, cal), IoError);
 }
 
+TEST(LinuxcncPatch, RoundLimitsStayRound) {
+  // A calibration whose stroke and length offset sum to ±1000 up to rounding: the INI's limits
+  // are left as they are, not rewritten as -999.9999999999973.
+  HexapodMachine cal = loadHexapodMachine("hexapod-linuxcnc-sim");
+  for (double offset : {0.0123456789, 0.3, 1.0 / 3.0}) {
+    kinematics::Strut& s = cal.model.struts[3];
+    s.length_offset = offset;
+    s.min_reading = -1000.0 - offset;
+    s.max_reading = 1000.0 - offset;
+    const TextPatch p = patchHexapodIni({"m.ini", iniOf("inch")}, cal);
+    for (const PatchedValue& v : p.changes)
+      EXPECT_THAT(v.key, ::testing::Not(HasSubstr("LIMIT"))) << offset << " " << v.after;
+    EXPECT_THAT(p.after, HasSubstr("[JOINT_3]\nMIN_LIMIT = -1000\nMAX_LIMIT = 1000\n"));
+  }
+}
+
 }  // namespace
 }  // namespace pkm::io

@@ -16,7 +16,10 @@ equal it), started headless with this build's kinematics modules, and checked:
     examples/gcode/exechon_contour.ngc read as wrist readings), stopped by M0 at the end of every
     motion: the joints equal the joints of `pkm gcode run` at that end point and the world
     position equals the program's pose;
-  - Exechon: with a G43 tool length, the joints equal pkm's for the machine with the longer tool.
+  - Exechon: with a G43 tool length, the joints equal pkm's for the machine with the longer tool;
+  - hexapod-sim: G0 to each of the 64 corners of the axis limits (A, B, C at theirs too): the
+    world position is the commanded pose (no mirror pose through the base plane) and the joints
+    equal `pkm hexapod ik`.
 Joints are read from HAL at full precision; world positions through linuxcncrsh (6 decimals).
 Tolerance 1e-6 of the machine unit (and degree).
 
@@ -62,6 +65,38 @@ def hexapod_body(pkm, machine, work, ini, poses, program, joints=6):
 
         ch.run_program(cnc, stopped, len(ends), at_stop)
         print(f"{os.path.basename(program)}: {len(ends)} end points checked")
+
+    return body
+
+
+def corners(values):
+    """The 64 corners of the INI's X Y Z A B C limit box, in Gray-code order (one axis changes
+    from one corner to the next)."""
+    lim = [(float(values[f"AXIS_{a}"]["MIN_LIMIT"]), float(values[f"AXIS_{a}"]["MAX_LIMIT"]))
+           for a in "XYZABC"]
+    out = []
+    for n in range(64):
+        g = n ^ (n >> 1)
+        out.append(tuple(lim[k][(g >> k) & 1] for k in range(6)))
+    return out
+
+
+def corners_body(pkm, machine, work, ini):
+    """G0 to every corner of the axis limits: LinuxCNC's world pose is the commanded one (a mirror
+    pose through the base plane would show z negated) and the joints are `pkm hexapod ik`'s."""
+    values = ch.ini_values(ini)
+    home = [float(v) for v in values["TRAJ"]["HOME"].split()]
+    box = corners(values)
+    expected = ch.hexapod_ik(pkm, machine, box, work)
+
+    def body(cnc, failures):
+        cnc.home()
+        for pose, want in zip(box, expected):
+            cnc.mdi("G0 X{} Y{} Z{} A{} B{} C{}".format(*pose))
+            ch.check(failures, f"world at corner {pose}", cnc.world(6), pose)
+            ch.check(failures, f"joints at corner {pose}", ch.joint_pins(cnc, 6), want)
+        cnc.mdi("G0 X{} Y{} Z{} A{} B{} C{}".format(*home))
+        print(f"{len(box)} corners of the axis limits checked")
 
     return body
 
@@ -135,7 +170,7 @@ def exechon_body(pkm, machine, work, ini, poses, program, source_dir):
 def main():
     pkm, hexkins, exechonkins, source_dir = (os.path.abspath(a) for a in sys.argv[1:5])
     modules = [hexkins, exechonkins]
-    lh.require(modules=modules, deadline=280)
+    lh.require(modules=modules, deadline=400)
     work = lh.workdir("pkm-config-runs-")
     examples = os.path.join(source_dir, "examples/gcode")
     all_failures = []
@@ -157,6 +192,10 @@ def main():
     body = hexapod_body(pkm, "hexapod-linuxcnc-sim", work, ini, poses, plan)
     failures, log2 = lh.session(ini, modules, "hexapod-linuxcnc-sim", work, body)
     all_failures += [f"hexapod-linuxcnc-sim: {f}" for f in failures]
+    # The corners of its axis limits (the Z limit once reached across the base plane, z = 0).
+    body = corners_body(pkm, "hexapod-linuxcnc-sim", work, ini)
+    failures, _ = lh.session(ini, modules, "hexapod-linuxcnc-sim corners", work, body)
+    all_failures += [f"hexapod-linuxcnc-sim corners: {f}" for f in failures]
 
     # The Exechon (mm): MDI tool points with wrist readings, the contour example, G43.
     ini = ch.config(pkm, "mxt700s-like", work, "exechon-mxt700s")

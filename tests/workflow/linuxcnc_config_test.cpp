@@ -120,6 +120,90 @@ TEST(LinuxcncConfigWorkflow, BadTablesAndRequests) {
   EXPECT_THROW(empty.validate(), InvalidArgument);  // no --out
 }
 
+/// A request for hexapod-default with one type-`type` table of joint 0 holding `rows`.
+LinuxcncConfigRequest tableRequest(const fs::path& dir, const std::string& rows, int type) {
+  fs::create_directories(dir);
+  io::writeFileAtomic(dir / "t.comp", rows, io::Overwrite::kAllow);
+  LinuxcncConfigRequest r;
+  r.machine = "hexapod-default";
+  r.out = (dir / "cfg").string();
+  r.comp_files = {{0, (dir / "t.comp").string()}};
+  r.comp_file_type = type;
+  return r;
+}
+
+/// The message of the InvalidArgument `r` throws ("" when none).
+std::string refusal(const LinuxcncConfigRequest& r) {
+  try {
+    (void)writeLinuxcncConfig(r);
+  } catch (const InvalidArgument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A type 0 table (nominal, actual positions; errors of a few µm over 500 mm) and the type 1 table
+// of the same errors (nominal, trims = -error).
+constexpr const char* kType0 = "0 0.01 0.012\n250 250.004 250.003\n500 500 500.001\n";
+constexpr const char* kType1 = "0 -0.01 -0.012\n250 -0.004 -0.003\n500 0 -0.001\n";
+
+TEST(LinuxcncConfigWorkflow, CompTablesOfTheirDeclaredTypePass) {
+  EXPECT_EQ(refusal(tableRequest(freshDir("type0"), kType0, 0)), "");
+  EXPECT_EQ(refusal(tableRequest(freshDir("type1"), kType1, 1)), "");
+}
+
+TEST(LinuxcncConfigWorkflow, CompTableOfTheOtherTypeIsRefused) {
+  // Type 0 read as type 1: corrections of 250 mm (the positions), 1 % of 500 mm allowed.
+  const std::string as1 = refusal(tableRequest(freshDir("0as1"), kType0, 1));
+  EXPECT_THAT(as1, HasSubstr("t.comp:2: joint 0's correction at 250 would be 250.004"));
+  EXPECT_THAT(as1, HasSubstr("more than 1 % of the joint's travel (500, 0 to 500)"));
+  EXPECT_THAT(as1, HasSubstr("looks like a type 0 table"));
+  EXPECT_THAT(as1, HasSubstr("--no-comp-check"));
+  const std::string as0 = refusal(tableRequest(freshDir("1as0"), kType1, 0));
+  EXPECT_THAT(as0, HasSubstr("t.comp:2:"));
+  EXPECT_THAT(as0, HasSubstr("looks like a type 1 table"));
+  EXPECT_FALSE(fs::exists(freshDir("1as0") / "cfg"));
+}
+
+TEST(LinuxcncConfigWorkflow, CompTableTooLargeForTheTravel) {
+  // 6 mm over 500 mm: more than 1 %, and implausible as type 0 too (no hint then).
+  const std::string big = refusal(tableRequest(freshDir("big"), "0 6 6\n500 0 0\n", 1));
+  EXPECT_THAT(big, HasSubstr("t.comp:1: joint 0's correction at 0 would be 6"));
+  EXPECT_THAT(big, ::testing::Not(HasSubstr("looks like")));
+  EXPECT_EQ(refusal(tableRequest(freshDir("fine"), "0 4.9 4.9\n500 0 0\n", 1)), "");
+}
+
+TEST(LinuxcncConfigWorkflow, NoCompCheckOverridesWithANotice) {
+  LinuxcncConfigRequest r = tableRequest(freshDir("override"), kType0, 1);
+  r.check_comp_files = false;
+  const LinuxcncConfigResult res = writeLinuxcncConfig(r);
+  EXPECT_THAT(res.notices, ::testing::Contains(HasSubstr("--no-comp-check")));
+}
+
+TEST(LinuxcncConfigWorkflow, FlippedCompTableIsRefusedAgainstItsData) {
+  const fs::path dir = freshDir("flipped");
+  fs::create_directories(dir);
+  // The errors kType1 cancels: measured − target = +0.01 at 0 (+), ... (mm).
+  io::writeFileAtomic(dir / "strut0.csv",
+                      "target,direction,run,measured\n0,+,1,0.01\n0,-,1,0.012\n250,+,1,250.004\n"
+                      "250,-,1,250.003\n500,+,1,500\n500,-,1,500.001\n",
+                      io::Overwrite::kAllow);
+  LinuxcncConfigRequest good = tableRequest(dir / "good", kType1, 1);
+  good.comp_data = {{0, (dir / "strut0.csv").string()}};
+  EXPECT_EQ(refusal(good), "");
+  LinuxcncConfigRequest flipped =
+      tableRequest(dir / "bad", "0 0.01 0.012\n250 0.004 0.003\n500 0 0.001\n", 1);
+  flipped.comp_data = good.comp_data;
+  const std::string why = refusal(flipped);
+  EXPECT_THAT(why, HasSubstr("t.comp:1: joint 0's corrections have the sign of the errors"));
+  EXPECT_THAT(why, HasSubstr("strut0.csv"));
+  EXPECT_FALSE(fs::exists(dir / "bad/cfg"));
+  // Data for a joint without a table is a usage error.
+  LinuxcncConfigRequest stray = good;
+  stray.comp_data = {{3, (dir / "strut0.csv").string()}};
+  EXPECT_THAT(refusal(stray), HasSubstr("--comp-data 3="));
+}
+
 TEST(LinuxcncConfigWorkflow, Exechon) {
   const fs::path dir = freshDir("exechon");
   LinuxcncConfigRequest r;

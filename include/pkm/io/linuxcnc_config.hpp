@@ -54,13 +54,21 @@ struct LinuxcncConfigNames {
 /// readings, with HOME = HOME_OFFSET = the reading at the home pose and MIN/MAX_LIMIT = the stroke;
 /// world X Y Z A B C (degrees), [TRAJ] HOME = the home pose; the axis limits are how far the
 /// machine reaches along each world coordinate from home within every limit `pkm hexapod check`
-/// applies (stroke, joint cones, interference, conditioning), rounded towards home. Velocities and
+/// applies (stroke, joint cones, interference, conditioning) with every platform joint at least
+/// kinematics::kMirrorClearanceFraction characteristic lengths (at most half its home height) above
+/// the base plane (kinematics/hexapod_clearance.hpp: never the singular plane or the mirror
+/// assembly beyond it), rounded towards home; then, unless every one of the 64 corners of that box
+/// passes the same test, all six ranges shrunk by a common fraction until they do (a line in
+/// `notices` says so when it is given). Velocities and
 /// accelerations: the machine's joint_rates, else `pkm gcode run`'s defaults (200 unit/s,
 /// 2000 unit/s²); a rotation's rate is the joint rate over the characteristic length. Files in the
 /// order of LinuxcncConfigNames. Throws pkm::InvalidArgument naming the machine's source when the
-/// home pose puts a strut outside its stroke, and as options.validate(6).
-[[nodiscard]] std::vector<NamedText> hexapodLinuxcncConfig(const HexapodMachine& machine,
-                                                           const LinuxcncConfigOptions& options);
+/// home pose puts a strut outside its stroke or a platform joint on or below the base plane, and as
+/// options.validate(6).
+[[nodiscard]] std::vector<NamedText> hexapodLinuxcncConfig(
+    const HexapodMachine& machine,
+    const LinuxcncConfigOptions& options,
+    std::vector<std::string>* notices = nullptr);
 
 /// The configuration of an Exechon with pkmexechonkins (docs/linuxcnc.md, "Exechon kinematics in
 /// LinuxCNC"): the parameter file linuxcncExechonParameters writes, loaded by

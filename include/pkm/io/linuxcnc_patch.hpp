@@ -45,7 +45,8 @@ struct TextPatch {
 
 /// A joint's INI values for LinuxCNC, whose joint position is the joint-centre distance: HOME =
 /// HOME_OFFSET = the distance at the home pose; the limits = the strut's stroke plus its length
-/// offset (none when the stroke is unbounded).
+/// offset (none when the stroke is unbounded), rounded to at most 12 significant digits when that
+/// is within 1e-12 (relative) of the sum, so that a round limit stays round.
 struct LinuxcncJointValues {
   double home = 0.0;
   std::optional<double> min_limit, max_limit;
