@@ -57,6 +57,7 @@ std::vector<io::NamedText> configFiles(const LinuxcncConfigRequest& request,
     io::HalReadOptions hal;
     if (!request.ini.empty()) hal.ini_path = request.ini;
     const io::HexapodMachine m = io::loadHexapodMachine(request.machine, hal);
+    io::requireRegisteredFrame(m, "pkm linuxcnc config");
     notices.insert(notices.end(), m.notices.begin(), m.notices.end());
     files = io::hexapodLinuxcncConfig(m, options);
   }
