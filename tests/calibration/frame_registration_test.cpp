@@ -15,9 +15,9 @@
 namespace pkm::calibration {
 namespace {
 
-constexpr double kExact = 1e-9;          // mm, exact data
-constexpr double kSigma = 0.005;         // mm, reference noise of the Monte Carlo check
-constexpr int kTrials = 2000;            // noisy fits
+constexpr double kExact = 1e-9;            // mm, exact data
+constexpr double kSigma = 0.005;           // mm, reference noise of the Monte Carlo check
+constexpr int kTrials = 2000;              // noisy fits
 constexpr double kScatterTolerance = 0.1;  // relative, of a σ from 2000 trials (≈ 1.6 % σ of σ)
 
 const std::vector<Eigen::Vector3d> kNests = {
@@ -43,7 +43,8 @@ TEST(FrameRegistration, ExactReferencesGiveThePlacement) {
   const FrameRegistration stated = registerMeasurementFrame(kNests, readings(placement()), 0.01);
   EXPECT_DOUBLE_EQ(stated.sigma, 0.01);
   // At the nests' centroid (0, -33.3, 0) a translation σ of 0.01/√6 in each direction.
-  EXPECT_NEAR(stated.uncertaintyAt(Eigen::Vector3d(0, -700.0 / 6.0, 0)), 0.01 / std::sqrt(6.0),
+  EXPECT_NEAR(stated.uncertaintyAt(Eigen::Vector3d(0, -700.0 / 6.0, 0)),
+              0.01 / std::sqrt(6.0),
               1e-3 * 0.01);
 }
 
@@ -89,8 +90,7 @@ TEST(FrameRegistration, ExpressInWorldMovesPosesAndPointsAndDropsTheFrame) {
   data.measurement_frame = geometry::RigidTransform::Identity();
   expressInWorld(data, placement());
   EXPECT_FALSE(data.measurement_frame.has_value());
-  const geometry::RigidTransform want =
-      placement() * kinematics::toRigidTransform(pose.pose);
+  const geometry::RigidTransform want = placement() * kinematics::toRigidTransform(pose.pose);
   EXPECT_LT((kinematics::toRigidTransform(data.poses[0].pose).matrix() - want.matrix()).norm(),
             kExact);
   EXPECT_LT((data.points[0].point - placement() * Eigen::Vector3d(1, 2, 3)).norm(), kExact);

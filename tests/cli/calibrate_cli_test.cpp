@@ -88,13 +88,26 @@ TEST_F(CalibrateCli, AnUnregisteredTrackerFrameGoesIntoNoController) {
       pkm({"linuxcnc", "config", "--machine", path("unreg.json"), "--out", path("unreg-cfg")});
   EXPECT_EQ(config.code, 2);
   EXPECT_THAT(config.err, HasSubstr("--registration FILE"));
-  const CliRun install = pkm({"linuxcnc", "install", "--calibration", path("unreg.json"), "--ini",
+  const CliRun install = pkm({"linuxcnc",
+                              "install",
+                              "--calibration",
+                              path("unreg.json"),
+                              "--ini",
                               path("sim/truth.json")});
   EXPECT_EQ(install.code, 2);
   EXPECT_THAT(install.err, HasSubstr("pkm linuxcnc install: refused"));
-  const CliRun world = pkm({"calibrate", "hexapod", "--machine", "hexapod-default", "--data",
-                            path("sim/tracker-pose.csv"), "--frame", "world", "--registration",
-                            path("sim/tracker-pose-registration.csv"), "--out", path("w.json")});
+  const CliRun world = pkm({"calibrate",
+                            "hexapod",
+                            "--machine",
+                            "hexapod-default",
+                            "--data",
+                            path("sim/tracker-pose.csv"),
+                            "--frame",
+                            "world",
+                            "--registration",
+                            path("sim/tracker-pose-registration.csv"),
+                            "--out",
+                            path("w.json")});
   EXPECT_EQ(world.code, 2);
   EXPECT_THAT(world.err, HasSubstr("a registration places readings taken in the tracker's"));
 }

@@ -238,7 +238,8 @@ TEST_F(CalibrateHexapodWorkflow, RegisteredTrackerDataReachTheTrueMachinesWorldF
   // within the calibration's own held-out residual. Without the registration the fit holds the
   // base at its nominal placement, and the machine misses by the base's rigid assembly error.
   const io::Scenario scenario = io::loadScenario("seed004-hexapod-calibration");
-  const auto& vm = dynamic_cast<const simulation::HexapodVirtualMachine&>(*scenario.campaign.machine);
+  const auto& vm =
+      dynamic_cast<const simulation::HexapodVirtualMachine&>(*scenario.campaign.machine);
   std::vector<kinematics::PoseRpy> poses;
   for (const double x : {-150.0, 0.0, 150.0})
     for (const double y : {-150.0, 0.0, 150.0})
@@ -258,8 +259,9 @@ TEST_F(CalibrateHexapodWorkflow, RegisteredTrackerDataReachTheTrueMachinesWorldF
   r.registration.reset();
   const HexapodCalibrationResult unregistered = calibrateHexapod(r);
   EXPECT_EQ(unregistered.report.world_frame, "unregistered");
-  EXPECT_GT(calibration::tcpErrorOverWorkspace(unregistered.calibrated.model, vm.truth(), poses).max,
-            100.0 * residual);
+  EXPECT_GT(
+      calibration::tcpErrorOverWorkspace(unregistered.calibrated.model, vm.truth(), poses).max,
+      100.0 * residual);
 }
 
 TEST_F(CalibrateHexapodWorkflow, WithoutARegistrationNothingForAControllerIsWritten) {
