@@ -17,6 +17,7 @@ namespace {
 struct CalibrateArgs {
   workflow::HexapodCalibrationRequest request;
   std::vector<std::string> data, holdout;  ///< --data, --holdout paths (read into the request)
+  std::string registration;                ///< --registration path
   std::vector<double> target_offset;
   bool json = false;
   UncertaintyArgs uncertainty;  ///< --uncertainty FILE
@@ -32,6 +33,7 @@ void runCalibrate(CalibrateArgs args) {
   args.request.uncertainty_name = args.uncertainty.file;
   args.request.data = io::readNamedTexts(args.data);
   args.request.holdout = io::readNamedTexts(args.holdout);
+  if (!args.registration.empty()) args.request.registration = io::readNamedText(args.registration);
   CliRunControl run;
   const workflow::HexapodCalibrationResult result =
       workflow::calibrateHexapod(args.request, run.control());
@@ -70,6 +72,12 @@ void addCalibrateCommand(CLI::App& app) {
                   args->request.frame,
                   "where tracker readings are: auto (from the files' metadata), world, tracker")
       ->check(CLI::IsMember({"auto", "world", "tracker"}));
+  hex->add_option(
+         "--registration",
+         args->registration,
+         "the tracker's readings of the table's fiducial nests (pkm.tracker-registration/1): "
+         "puts tracker-frame readings in the machine's world frame")
+      ->check(CLI::ExistingFile);
   hex->add_option("--target-offset",
                   args->target_offset,
                   "the tracker target in the tool frame x,y,z (default: the files' smr offset)")

@@ -59,6 +59,9 @@ bool calibrateHexapod(const fs::path& out) {
   request.machine = "hexapod-default";
   request.data = {pkm::io::readNamedText((sim.out / "tracker-pose.csv").string())};
   request.holdout = {pkm::io::readNamedText((sim.out / "tracker-holdout.csv").string())};
+  // The tracker's readings of the table's nests: the calibrated machine in the table's frame.
+  request.registration =
+      pkm::io::readNamedText((sim.out / "tracker-pose-registration.csv").string());
   request.out = (out / "cal.json").string();
   request.force = true;
   const wf::HexapodCalibrationResult r = wf::calibrateHexapod(request);

@@ -210,6 +210,8 @@ CalibrationResult runHexapodCalibration(const py::object& machine,
   r.sigma_gauge = options.sigma_gauge;
   setUncertainty(r, options.uncertainty);
   r.uncertainty_trials = options.uncertainty_trials;
+  if (!options.registration.is_none())
+    r.registration = io::readNamedText(fspath(options.registration));
   workflow::HexapodCalibrationResult result;
   {
     py::gil_scoped_release release;

@@ -63,6 +63,7 @@ struct HexapodOptions {
   double prior_sigma, measurement_sigma, sigma_gauge;
   py::object uncertainty;  ///< the sources file of the uncertainty budgets, or None
   int uncertainty_trials;
+  py::object registration;  ///< the tracker's readings of the table's nests (a path), or None
 };
 
 /// `pkm calibrate hexapod` on the tables of the arguments (calibration.cpp; pkm.calibration.hexapod

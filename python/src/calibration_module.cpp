@@ -40,9 +40,15 @@ void defHexapod(py::module_& c) {
          const py::object& db,
          const py::object& uncertainty,
          int uncertainty_trials,
+         const py::object& registration,
          bool raise_on_failure) {
-        const HexapodOptions options{
-            backlash, prior_sigma, measurement_sigma, sigma_gauge, uncertainty, uncertainty_trials};
+        const HexapodOptions options{backlash,
+                                     prior_sigma,
+                                     measurement_sigma,
+                                     sigma_gauge,
+                                     uncertainty,
+                                     uncertainty_trials,
+                                     registration};
         const CommonOptions common{frame,
                                    target_offset,
                                    fix,
@@ -100,6 +106,7 @@ void defHexapod(py::module_& c) {
       py::arg("db") = py::none(),
       py::arg("uncertainty") = py::none(),
       py::arg("uncertainty_trials") = 0,
+      py::arg("registration") = py::none(),
       py::arg("raise_on_failure") = false,
       R"doc(Calibrates a hexapod's 42 kinematic parameters: `pkm calibrate hexapod`.
 
@@ -143,6 +150,11 @@ loss, loss_scale : str, float
     Robust loss "none", "huber" or "cauchy" and its scale (length unit).
 backlash : bool
     Also estimate a per-strut backlash.
+registration : str or path
+    The tracker's readings of fiducial nests on the table (a pkm.tracker-registration/1 file,
+    `pkm calibrate hexapod --registration`): puts tracker-frame readings in the machine's world
+    frame. Without it, tracker-frame data give a machine marked "world_frame": "unregistered"
+    that no controller command accepts (docs/calibration.md, "Frames").
 prior_sigma, measurement_sigma : float
     Tikhonov prior toward the machine file (length unit; needs measurement_sigma) and the
     residual sigma for the prior and the covariance (0: estimated).

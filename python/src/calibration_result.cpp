@@ -346,7 +346,10 @@ hybrid_holdout_errors_before, hybrid_holdout_errors_after : ndarray or None
                     if constexpr (std::is_same_v<T, workflow::HexapodCalibrationResult>) {
                       workflow::writeHexapodCalibration(res, path, force);
                       const workflow::CalibrationOutputs o = workflow::calibrationOutputs(path);
-                      written = {o.machine, o.hal, o.pkmhexkins, o.summary};
+                      written =
+                          res.calibrated.world_frame_unregistered
+                              ? std::vector<std::string>{o.machine, o.summary}
+                              : std::vector<std::string>{o.machine, o.hal, o.pkmhexkins, o.summary};
                     } else {
                       workflow::writeExechonCalibration(res, path, force);
                       written = res.written;

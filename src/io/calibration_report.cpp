@@ -109,6 +109,18 @@ std::string hexapodCalibrationJson(const HexapodCalibrationReport& r) {
     j["measurement_frame"] = frameJson(*s.measurement_frame);
     j["measurement_frame"]["sigma"] = vectorJson(s.frame_standard_deviation.data(), 6);
   }
+  j["world_frame"] = r.world_frame;
+  if (r.registration) {
+    const cal::FrameRegistration& f = r.registration->fit;
+    j["registration"] = frameJson(f.world_T_measurement);
+    j["registration"]["file"] = r.registration->file;
+    j["registration"]["references"] = f.references;
+    j["registration"]["residuals"] = {{"rms", f.rms}, {"max", f.max}};
+    j["registration"]["reference_sigma"] = f.sigma;
+    Eigen::Matrix<double, 6, 1> sd = f.covariance.diagonal().cwiseSqrt();
+    j["registration"]["sigma"] = vectorJson(sd.data(), 6);
+    j["registration"]["tcp_U"] = r.registration->tcp_U;
+  }
   j["sigma"] = s.sigma;
   if (s.backlash)
     j["backlash"] = {{"values", vectorJson(s.backlash->data(), 6)},

@@ -168,12 +168,17 @@ HexapodMachine parseHexapodJson(const std::string& text, const std::string& sour
                 "max_condition",
                 "forward_kinematics",
                 "joint_rates",
+                "world_frame",
                 "struts"});
   HexapodMachine m;
   m.source = source;
   kin::HexapodModel& model = m.model;
   model.name = doc.string(root, "", "name", "hexapod");
   m.description = doc.string(root, "", "description", "");
+  const std::string frame = doc.string(root, "", "world_frame", "machine");
+  if (frame != "machine" && frame != "unregistered")
+    doc.fail("/world_frame", "expected \"machine\" or \"unregistered\"");
+  m.world_frame_unregistered = frame == "unregistered";
   model.unit = detail::readSchemaAndUnits(doc, root, "pkm.machine/1");
   readHome(doc, root, model);
   readSettings(doc, root, m);
@@ -205,6 +210,7 @@ std::string writeHexapodJson(const HexapodMachine& machine) {
   out += fmt::format("  \"name\": {},\n", json(model.name).dump());
   out += fmt::format("  \"description\": {},\n", json(machine.description).dump());
   out += fmt::format("  \"units\": \"{}\",\n", toString(model.unit));
+  if (machine.world_frame_unregistered) out += "  \"world_frame\": \"unregistered\",\n";
   out += "  \"home\": {";
   const char* names[] = {"x", "y", "z", "a", "b", "c"};
   for (int i = 0; i < 6; ++i) {
@@ -244,6 +250,20 @@ std::string writeHexapodJson(const HexapodMachine& machine) {
   }
   out += "  ]\n}\n";
   return out;
+}
+
+void requireRegisteredFrame(const HexapodMachine& machine, const std::string& what) {
+  if (!machine.world_frame_unregistered) return;
+  throw InvalidArgument(fmt::format(
+      "{}: refused: {} is a calibration from laser-tracker readings in the tracker's own frame "
+      "without a registration (\"world_frame\": \"unregistered\"): its geometry is right but "
+      "its world frame is where the fit put it, tilted and shifted against the machine's table "
+      "(G54 cannot correct a tilt). Measure fiducial nests on the table with the tracker from "
+      "the same placement (their table coordinates and the tracker's readings: a "
+      "pkm.tracker-registration/1 file, docs/formats.md) and calibrate again with "
+      "--registration FILE; nothing was written",
+      what,
+      machine.source));
 }
 
 }  // namespace pkm::io

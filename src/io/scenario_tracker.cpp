@@ -137,6 +137,7 @@ sim::TrackerSetup readTracker(const JsonDoc& doc, const json& obj, const std::st
                 "random_poses",
                 "smr_offset",
                 "tracker_frame",
+                "registration_nests",
                 "noise"});
   sim::TrackerSetup s;
   s.name = measurementName(doc, obj, ptr);
@@ -176,6 +177,14 @@ sim::TrackerSetup readTracker(const JsonDoc& doc, const json& obj, const std::st
   if (obj.contains("smr_offset")) s.smr_offset = doc.vec3(obj["smr_offset"], ptr + "/smr_offset");
   if (obj.contains("tracker_frame"))
     s.world_T_tracker = trackerFrame(doc, obj["tracker_frame"], ptr + "/tracker_frame");
+  if (obj.contains("registration_nests")) {
+    const json& n = obj["registration_nests"];
+    const std::string np = ptr + "/registration_nests";
+    if (!n.is_array()) doc.fail(np, "expected an array of [x, y, z] (mm, world frame)");
+    s.registration_nests.clear();
+    for (std::size_t j = 0; j < n.size(); ++j)
+      s.registration_nests.push_back(doc.vec3(n[j], fmt::format("{}/{}", np, j)));
+  }
   if (obj.contains("noise")) s.noise = trackerNoise(doc, obj["noise"], ptr + "/noise");
   try {
     s.validate();

@@ -104,7 +104,10 @@ Metadata trackerMetadata(const std::string& scenario,
             : "laser tracker with a spherically mounted retroreflector (simulated)"},
       {"mode", sim::toString(setup.mode)},
       {"frame",
-       "tracker (x, y, z, a, b, c in the tracker's own frame; its placement is not known)"},
+       setup.placed()
+           ? "tracker (x, y, z, a, b, c in the tracker's own frame; its placement is not known)"
+           : "world (x, y, z, a, b, c in the machine's world frame: the tracker was aligned to "
+             "it)"},
       {"target",
        pose ? "6-DOF probe at the smr offset, axes parallel to the tool frame"
             : "SMR centre at the smr offset"},

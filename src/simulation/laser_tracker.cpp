@@ -62,6 +62,14 @@ std::optional<TrackerNoise> trackerNoise(std::string_view name) {
 
 std::vector<std::string_view> trackerNoiseNames() { return {"ideal", "laser-tracker"}; }
 
+const std::vector<Eigen::Vector3d>& defaultRegistrationNests() {
+  static const std::vector<Eigen::Vector3d> nests = {
+      {-500, -500, 0}, {500, -500, 0}, {500, 500, 0}, {-500, 500, 0}, {0, 0, 0}, {0, -700, 0}};
+  return nests;
+}
+
+bool TrackerSetup::placed() const { return !world_T_tracker.matrix().isIdentity(0.0); }
+
 void TrackerSetup::validate() const {
   PKM_CHECK(!name.empty(), "a tracker measurement needs a name");
   PKM_CHECK(random_count >= 0, "{}: random pose count {} must be >= 0", name, random_count);
@@ -76,7 +84,19 @@ void TrackerSetup::validate() const {
                 R.determinant() > 0.0,
             "{}: the tracker placement is not a rigid transform",
             name);
+  for (const Eigen::Vector3d& n : registration_nests)
+    PKM_CHECK(n.allFinite(), "{}: a registration nest is not finite", name);
   noise.validate();
+}
+
+std::vector<NestReading> simulateTrackerRegistration(const TrackerSetup& setup, RandomStream& rng) {
+  setup.validate();
+  const geometry::RigidTransform tracker_T_world = setup.world_T_tracker.inverse();
+  std::vector<NestReading> out;
+  out.reserve(setup.registration_nests.size());
+  for (const Eigen::Vector3d& nest : setup.registration_nests)
+    out.push_back({nest, setup.noise.point(tracker_T_world * nest, rng)});
+  return out;
 }
 
 std::vector<TrackerReading> simulateLaserTracker(HexapodVirtualMachine& machine,

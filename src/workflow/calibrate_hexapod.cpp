@@ -8,7 +8,9 @@
 
 #include "calibration_common.hpp"
 #include "calibration_uncertainty.hpp"
+#include "frame_registration.hpp"
 #include "pkm/calibration/acceptance.hpp"
+#include "pkm/calibration/frame_registration.hpp"
 #include "pkm/calibration/hexapod_calibration.hpp"
 #include "pkm/calibration/holdout.hpp"
 #include "pkm/calibration/uncertainty.hpp"
@@ -217,14 +219,27 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
       r.target_offset.value_or(input.target_offset.value_or(Eigen::Vector3d::Zero()));
   kinematics::HexapodModel model = machine.model;
   model.tool_offset += target;
-  const bool use_frame = r.frame == "tracker" || (r.frame == "auto" && input.tracker_frame);
-  if (use_frame && input.data.poses.empty() && input.data.points.empty())
+  const bool tracker_frame = r.frame == "tracker" || (r.frame == "auto" && input.tracker_frame);
+  if (tracker_frame && input.data.poses.empty() && input.data.points.empty())
     throw InvalidArgument("--frame tracker needs tracker pose or point data");
+  detail::refuseRegistrationOfWorldData(r.registration, tracker_frame);
+  HexapodCalibrationResult result;
+  io::HexapodCalibrationReport& rep = result.report;
+  rep.world_frame = detail::worldFrameKind(tracker_frame, r.registration.has_value());
+  if (r.registration) {
+    // The tracker's placement from the table's nests: every reading into the world frame.
+    rep.registration = {
+        r.registration->name,
+        detail::registerTrackerFrame(
+            *r.registration, model.unit, model.characteristicLength(), r.uncertainty),
+        0.0};
+    cal::expressInWorld(input.data, rep.registration->fit.world_T_measurement);
+    cal::expressInWorld(held.data, rep.registration->fit.world_T_measurement);
+  }
+  const bool use_frame = tracker_frame && !r.registration;
   if (use_frame) input.data.measurement_frame = cal::initialMeasurementFrame(model, input.data);
   const cal::HexapodCalibrationOptions options = fitOptions(r);
 
-  HexapodCalibrationResult result;
-  io::HexapodCalibrationReport& rep = result.report;
   rep.fit = cal::calibrateHexapod(model, input.data, options);
   const cal::HexapodCalibrationSummary& s = rep.fit;
   // Plausibility: a model that cannot explain the data is not written.
@@ -244,6 +259,7 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   result.calibrated.model = cal::withHexapodParameters(machine.model, s.parameters);
   result.calibrated.model.name = machine.model.name + "-calibrated";
   result.calibrated.notices.clear();
+  result.calibrated.world_frame_unregistered = rep.world_frame == "unregistered";
   describe(rep, machine, model, input, target, options);
   if (!held.data.poses.empty() || !held.data.points.empty())
     rep.holdout = holdout(machine, result.calibrated, model, input, held, s, use_frame, target);
@@ -252,6 +268,10 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   // calibration removes), and with Monte Carlo the spread the calibration itself leaves.
   const std::vector<kinematics::PoseRpy> workspace = workspacePoses(machine.model);
   rep.workspace_poses = static_cast<int>(workspace.size());
+  if (rep.registration)
+    for (const kinematics::PoseRpy& p : workspace)
+      rep.registration->tcp_U =
+          std::max(rep.registration->tcp_U, 2.0 * rep.registration->fit.uncertaintyAt(p.position));
   rep.tcp_before = cal::tcpErrorOverWorkspace(machine.model, result.calibrated.model, workspace);
   if (r.monte_carlo > 0)
     rep.monte_carlo = monteCarlo(r, model, input, s, workspace, options, control);
@@ -259,18 +279,29 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   result.summary_json = io::hexapodCalibrationJson(rep);
   result.notices = machine.notices;
   result.notices.insert(result.notices.end(), input.notes.begin(), input.notes.end());
+  if (rep.world_frame == "unregistered")
+    result.notices.push_back(
+        "the readings are in the tracker's own frame and no --registration was given: the "
+        "calibrated geometry is right, but its world frame is where the fit put it (tilted and "
+        "shifted against the table by the base's assembly errors); the machine file is marked "
+        "\"world_frame\": \"unregistered\" and no LinuxCNC block is written (measure the "
+        "table's fiducial nests and pass --registration FILE)");
   if (r.out.empty()) return result;
   writeHexapodCalibration(result, r.out, r.force);
   const CalibrationOutputs paths = calibrationOutputs(r.out);
   if (!r.db.empty())
-    recordCalibration(r.db,
-                      {machine.model.name,
-                       "hexapod",
-                       "calibrate hexapod",
-                       detail::inputNames(r.data),
-                       result.summary_json,
-                       std::string(toString(model.unit)),
-                       {{"linuxcnc-hal", paths.hal}, {"machine-json", paths.machine}}});
+    recordCalibration(
+        r.db,
+        {machine.model.name,
+         "hexapod",
+         "calibrate hexapod",
+         detail::inputNames(r.data),
+         result.summary_json,
+         std::string(toString(model.unit)),
+         rep.out_hal.empty()
+             ? std::vector<std::pair<std::string, std::string>>{{"machine-json", paths.machine}}
+             : std::vector<std::pair<std::string, std::string>>{{"linuxcnc-hal", paths.hal},
+                                                                {"machine-json", paths.machine}}});
   return result;
 }
 
@@ -284,9 +315,15 @@ void writeHexapodCalibration(HexapodCalibrationResult& result, const std::string
   rep.out_summary = paths.summary;
   result.summary_json = io::hexapodCalibrationJson(rep);
   const io::Overwrite overwrite = force ? io::Overwrite::kAllow : io::Overwrite::kRefuse;
+  // A model whose world frame is not the machine's goes into no controller: no setp blocks.
+  const bool controller_blocks = !result.calibrated.world_frame_unregistered;
+  if (!controller_blocks) rep.out_hal.clear();
+  result.summary_json = io::hexapodCalibrationJson(rep);
   io::writeFileAtomic(paths.machine, io::writeHexapodJson(result.calibrated), overwrite);
-  io::writeFileAtomic(paths.hal, io::writeLinuxcncSetp(result.calibrated), overwrite);
-  io::writeFileAtomic(paths.pkmhexkins, io::writePkmhexkinsSetp(result.calibrated), overwrite);
+  if (controller_blocks) {
+    io::writeFileAtomic(paths.hal, io::writeLinuxcncSetp(result.calibrated), overwrite);
+    io::writeFileAtomic(paths.pkmhexkins, io::writePkmhexkinsSetp(result.calibrated), overwrite);
+  }
   io::writeFileAtomic(paths.summary, result.summary_json, overwrite);
 }
 

@@ -168,7 +168,25 @@ std::string hexapodCalibrationText(const HexapodCalibrationRequest& request,
         a.max);
   }
   t += io::hexapodCalibrationUncertaintyText(rep);
-  if (!rep.out_machine.empty())
+  if (rep.registration) {
+    const cal::FrameRegistration& f = rep.registration->fit;
+    t += fmt::format(
+        "world frame registered on {} nests of {}: residual RMS {:.4g}, max {:.4g} {}; its "
+        "uncertainty at the TCP (k = 2, worst workspace pose) {:.4g} {}\n",
+        f.references,
+        rep.registration->file,
+        f.rms,
+        f.max,
+        unit,
+        rep.registration->tcp_U,
+        unit);
+  } else if (rep.world_frame == "unregistered") {
+    t += "world frame NOT registered: tracker-frame readings without --registration; the "
+         "machine file is marked \"world_frame\": \"unregistered\" and goes into no controller\n";
+  }
+  if (!rep.out_machine.empty() && rep.out_hal.empty())
+    t += fmt::format("wrote {}, {}\n", rep.out_machine, rep.out_summary);
+  else if (!rep.out_machine.empty())
     t += fmt::format("wrote {}, {}, {}\n", rep.out_machine, rep.out_hal, rep.out_summary);
   return t;
 }

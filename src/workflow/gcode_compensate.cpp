@@ -140,6 +140,7 @@ GcodeInterpreterSettings hexapodSettings(const GcodeCompensateRequest& request,
 GcodeCompensateResult compensateHexapod(const GcodeCompensateRequest& request) {
   const io::HexapodMachine cal =
       request.hexapod ? *request.hexapod : io::loadHexapodMachine(request.machine);
+  io::requireRegisteredFrame(cal, "pkm gcode compensate");  // its output runs on the controller
   io::HalReadOptions hal;
   if (!request.ini.empty()) hal.ini_path = request.ini;
   const io::HexapodMachine nominal = nominalFor(

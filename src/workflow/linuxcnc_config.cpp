@@ -204,6 +204,7 @@ std::vector<io::NamedText> configFiles(const LinuxcncConfigRequest& request,
     io::HalReadOptions hal;
     if (!request.ini.empty()) hal.ini_path = request.ini;
     io::HexapodMachine m = io::loadHexapodMachine(request.machine, hal);
+    io::requireRegisteredFrame(m, "pkm linuxcnc config");
     m.model.name = configurationName(request.machine, m.model.name);
     notices.insert(notices.end(), m.notices.begin(), m.notices.end());
     JointRanges ranges;

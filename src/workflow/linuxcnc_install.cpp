@@ -51,6 +51,7 @@ LinuxcncInstallResult installIntoLinuxcnc(const LinuxcncInstallRequest& request)
         fmt::format("{}: not a hexapod: LinuxCNC has hexapod kinematics (genhexkins) only",
                     request.calibration));
   const io::HexapodMachine machine = io::loadHexapodMachine(request.calibration);
+  io::requireRegisteredFrame(machine, "pkm linuxcnc install");
   const io::NamedText ini = io::readNamedText(request.ini);
   const io::NamedText hal = kinematicsHal(ini);
   LinuxcncInstallResult result;

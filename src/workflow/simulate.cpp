@@ -8,6 +8,7 @@
 #include "pkm/io/exechon_tracker_files.hpp"
 #include "pkm/io/measurement_files.hpp"
 #include "pkm/io/probe_files.hpp"
+#include "pkm/io/registration_files.hpp"
 #include "pkm/io/scenario.hpp"
 #include "pkm/io/simulation_metadata.hpp"
 #include "pkm/io/tracker_files.hpp"
@@ -24,11 +25,19 @@ void addTrackerFiles(const io::Scenario& scenario,
                      std::uint64_t seed,
                      std::vector<SimulatedFile>& files) {
   const sim::Campaign& c = scenario.campaign;
-  for (const sim::TrackerResult& r : sim::runLaserTrackers(c, seed))
+  for (const sim::TrackerResult& r : sim::runLaserTrackers(c, seed)) {
     files.push_back({fmt::format("{}.csv", r.setup->name),
                      io::trackerCsv(io::trackerMetadata(c.name, seed, *r.setup, r.readings.size()),
                                     r.setup->mode,
                                     r.readings)});
+    // A placed tracker also reads the table's fiducial nests (its own stream, so the readings
+    // above do not depend on it): the references that register its frame.
+    if (!r.setup->placed() || r.setup->registration_nests.empty()) continue;
+    sim::RandomStream rng(seed, r.setup->name + "-registration");
+    files.push_back({fmt::format("{}-registration.csv", r.setup->name),
+                     io::registrationCsv(io::registrationMetadata(c.name, seed, *r.setup),
+                                         sim::simulateTrackerRegistration(*r.setup, rng))});
+  }
   for (const sim::HybridTrackerResult& r : sim::runHybridTrackers(c, seed))
     files.push_back(
         {fmt::format("{}.csv", r.setup->name),

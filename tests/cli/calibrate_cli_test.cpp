@@ -39,15 +39,20 @@ TEST_F(CalibrateCli, FullPoseTrackerCalibrationMeetsTheTarget) {
                         path("sim/tracker-pose.csv"),
                         "--holdout",
                         path("sim/tracker-holdout.csv"),
+                        "--registration",
+                        path("sim/tracker-pose-registration.csv"),
                         "--out",
                         path("cal.json"),
                         "--json"});
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_TRUE(j["solver"]["converged"].get<bool>());
-  EXPECT_EQ(j["identifiability"]["parameters"], 48);  // 42 + the tracker frame
-  EXPECT_EQ(j["identifiability"]["rank"], 42);        // the base frame's 6 rigid-motion freedoms
-  EXPECT_EQ(j["identifiability"]["unidentifiable"].size(), 6u);
+  // Registered on the table's nests: world data, all 42 parameters.
+  EXPECT_EQ(j["identifiability"]["parameters"], 42);
+  EXPECT_EQ(j["identifiability"]["rank"], 42);
+  EXPECT_EQ(j["world_frame"], "registered");
+  EXPECT_EQ(j["registration"]["references"], 6);
+  EXPECT_LT(j["registration"]["residuals"]["max"].get<double>(), kHeldOutRmsLimit);
   EXPECT_GT(j["holdout"]["before"]["rms"].get<double>(), kBeforeAtLeast);
   EXPECT_LT(j["holdout"]["after"]["rms"].get<double>(), kHeldOutRmsLimit);
   ASSERT_EQ(j["worst_observations"].size(), 5u);
@@ -59,6 +64,52 @@ TEST_F(CalibrateCli, FullPoseTrackerCalibrationMeetsTheTarget) {
   EXPECT_THAT(slurp(path("cal.hal")), HasSubstr("setp genhexkins.base.0.x"));
   EXPECT_THAT(slurp(path("cal.pkmhexkins.hal")), HasSubstr("setp pkmhexkins.length-offset.5 "));
   EXPECT_TRUE(nlohmann::json::parse(slurp(path("cal.summary.json"))).contains("parameters"));
+}
+
+TEST_F(CalibrateCli, AnUnregisteredTrackerFrameGoesIntoNoController) {
+  const CliRun r = pkm({"calibrate",
+                        "hexapod",
+                        "--machine",
+                        "hexapod-default",
+                        "--data",
+                        path("sim/tracker-pose.csv"),
+                        "--out",
+                        path("unreg.json"),
+                        "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["identifiability"]["parameters"], 48);  // 42 + the tracker frame
+  EXPECT_EQ(j["identifiability"]["rank"], 42);        // the base frame's 6 rigid-motion freedoms
+  EXPECT_EQ(j["identifiability"]["unidentifiable"].size(), 6u);
+  EXPECT_EQ(j["world_frame"], "unregistered");
+  EXPECT_EQ(j["outputs"]["hal"], "");
+  EXPECT_EQ(slurp(path("unreg.hal")), "");
+  const CliRun config =
+      pkm({"linuxcnc", "config", "--machine", path("unreg.json"), "--out", path("unreg-cfg")});
+  EXPECT_EQ(config.code, 2);
+  EXPECT_THAT(config.err, HasSubstr("--registration FILE"));
+  const CliRun install = pkm({"linuxcnc",
+                              "install",
+                              "--calibration",
+                              path("unreg.json"),
+                              "--ini",
+                              path("sim/truth.json")});
+  EXPECT_EQ(install.code, 2);
+  EXPECT_THAT(install.err, HasSubstr("pkm linuxcnc install: refused"));
+  const CliRun world = pkm({"calibrate",
+                            "hexapod",
+                            "--machine",
+                            "hexapod-default",
+                            "--data",
+                            path("sim/tracker-pose.csv"),
+                            "--frame",
+                            "world",
+                            "--registration",
+                            path("sim/tracker-pose-registration.csv"),
+                            "--out",
+                            path("w.json")});
+  EXPECT_EQ(world.code, 2);
+  EXPECT_THAT(world.err, HasSubstr("a registration places readings taken in the tracker's"));
 }
 
 /// The scenario's struts have 5 µm backlash; the 200 poses are taken in file order.

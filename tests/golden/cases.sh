@@ -73,9 +73,13 @@ done
 
 # Both calibrations, as text and as JSON (with the files they write).
 run calibrate-hexapod calibrate hexapod --machine hexapod-default --data "$s4/tracker-pose.csv" \
-  --holdout "$s4/tracker-holdout.csv" --out cal.json
+  --holdout "$s4/tracker-holdout.csv" --frame tracker \
+  --registration "$s4/tracker-pose-registration.csv" --out cal.json
 run calibrate-hexapod-json calibrate hexapod --machine hexapod-default \
-  --data "$s4/tracker-pose.csv" --holdout "$s4/tracker-holdout.csv" --out cal.json --backlash --json
+  --data "$s4/tracker-pose.csv" --holdout "$s4/tracker-holdout.csv" \
+  --registration "$s4/tracker-pose-registration.csv" --out cal.json --backlash --json
+run calibrate-hexapod-unregistered calibrate hexapod --machine hexapod-default \
+  --data "$s4/tracker-pose.csv" --holdout "$s4/tracker-holdout.csv" --out cal.json
 run calibrate-exechon calibrate exechon --machine mxt700s-like --data "$se/tracker-fit.csv" \
   --holdout "$se/tracker-holdout.csv" --out cal.json
 run calibrate-exechon-json calibrate exechon --machine mxt700s-like --data "$se/tracker-fit.csv" \

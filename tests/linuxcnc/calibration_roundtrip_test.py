@@ -17,12 +17,19 @@ a running machine", calibrated hexapod).
    would miss by more than 100 times that. The joints must also equal `pkm gcode run`'s on the
    calibrated machine to 1e-6 mm.
 
-Usage: calibration_roundtrip_test.py PKM_BINARY PKMHEXKINS_SO SOURCE_DIR
+With --tracker-route, the README's tracker-frame route instead: the scenario as built in (the
+tracker 1.7 m from the machine, readings in its own frame), `pkm calibrate hexapod --frame tracker
+--registration tracker-pose-registration.csv` (the tracker's readings of six fiducial nests on the
+table), then the same LinuxCNC run; the tolerance is the held-out residual and at most 10 um. The
+same calibration without --registration must be refused by `pkm linuxcnc config` (exit 2).
+
+Usage: calibration_roundtrip_test.py PKM_BINARY PKMHEXKINS_SO SOURCE_DIR [--tracker-route]
 """
 import json
 import math
 import os
 import shutil
+import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -31,9 +38,25 @@ import lcnc_harness as lh  # noqa: E402
 
 SCENARIO = "seed004-hexapod-calibration"
 SENSITIVITY = 100  # the nominal machine must miss by this many times the tolerance
+TRACKER_ROUTE_LIMIT = 0.010  # mm: the tracker-frame route must end this close to the program
 
 
-def simulate_and_calibrate(pkm, source_dir, work):
+def refuses_unregistered(pkm, sim, work):
+    """The tracker-frame calibration without a registration: marked, and refused by config."""
+    cal = os.path.join(work, "unregistered", "cal.json")
+    os.makedirs(os.path.dirname(cal))
+    ch.run([pkm, "calibrate", "hexapod", "--machine", "hexapod-default", "--data",
+            os.path.join(sim, "tracker-pose.csv"), "--frame", "tracker", "--out", cal])
+    r = subprocess.run([pkm, "linuxcnc", "config", "--machine", cal, "--out",
+                        os.path.join(work, "refused")], capture_output=True, text=True)
+    if r.returncode != 2 or "--registration" not in r.stderr or os.path.exists(
+            os.path.join(work, "refused")):
+        sys.exit(f"FAIL: linuxcnc config of an unregistered calibration: exit {r.returncode}\n"
+                 f"{r.stderr}")
+    print("an unregistered tracker-frame calibration is refused by pkm linuxcnc config")
+
+
+def simulate_and_calibrate(pkm, source_dir, work, tracker_route=False):
     """(CAL.json, the true machine's JSON, the held-out max TCP error in mm)."""
     ch.run([pkm, "simulate", SCENARIO, "--out", os.path.join(work, "scenario")])
     with open(os.path.join(work, "scenario", "scenario.json")) as f:
@@ -42,16 +65,22 @@ def simulate_and_calibrate(pkm, source_dir, work):
     scenario["measurements"] = [m for m in scenario["measurements"]
                                 if m["name"] in ("tracker-pose", "tracker-holdout")]
     for m in scenario["measurements"]:
-        m.pop("tracker_frame", None)  # the tracker at the machine's origin
+        if not tracker_route:
+            m.pop("tracker_frame", None)  # the tracker at the machine's origin
     path = os.path.join(work, "roundtrip.json")
     with open(path, "w") as f:
         json.dump(scenario, f)
     sim = os.path.join(work, "sim")
     ch.run([pkm, "simulate", path, "--out", sim])
     cal = os.path.join(work, "cal.json")
+    frame = ["--frame", "world"]
+    if tracker_route:
+        refuses_unregistered(pkm, sim, work)
+        frame = ["--frame", "tracker", "--registration",
+                 os.path.join(sim, "tracker-pose-registration.csv")]
     ch.run([pkm, "calibrate", "hexapod", "--machine", "hexapod-default", "--data",
             os.path.join(sim, "tracker-pose.csv"), "--holdout",
-            os.path.join(sim, "tracker-holdout.csv"), "--frame", "world", "--out", cal])
+            os.path.join(sim, "tracker-holdout.csv"), *frame, "--out", cal])
     with open(os.path.join(work, "cal.summary.json")) as f:
         summary = json.load(f)
     residual = summary["holdout"]["after"]["max"]
@@ -78,9 +107,12 @@ def pose_error(got, want, length):
 
 def main():
     pkm, hexkins, source_dir = (os.path.abspath(a) for a in sys.argv[1:4])
+    tracker_route = "--tracker-route" in sys.argv[4:]
     lh.require(modules=[hexkins], deadline=170)
     work = lh.workdir("pkm-roundtrip-")
-    cal, true_machine, residual = simulate_and_calibrate(pkm, source_dir, work)
+    cal, true_machine, residual = simulate_and_calibrate(pkm, source_dir, work, tracker_route)
+    if tracker_route:
+        residual = min(residual, TRACKER_ROUTE_LIMIT)
     with open(cal) as f:  # the characteristic length: the platform joints' mean distance
         platform = [s["platform"] for s in json.load(f)["struts"]]
     length = sum(math.sqrt(sum(v * v for v in p)) for p in platform) / len(platform)

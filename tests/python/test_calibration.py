@@ -76,10 +76,12 @@ def ex(run_cli, tmp_path_factory):
 
 def test_hexapod_from_files_equals_the_cli(run_cli, s4, tmp_path):
     pose, hold = str(s4 / "tracker-pose.csv"), str(s4 / "tracker-holdout.csv")
+    reg = str(s4 / "tracker-pose-registration.csv")
     cli = json.loads(run_cli(["calibrate", "hexapod", "--machine", "hexapod-default", "--data",
-                              pose, "--holdout", hold, "--out", str(tmp_path / "cli.json"),
-                              "--json"]).stdout)
-    r = pkm.calibration.hexapod("hexapod-default", files=[pose], holdout=[hold])
+                              pose, "--holdout", hold, "--registration", reg, "--out",
+                              str(tmp_path / "cli.json"), "--json"]).stdout)
+    r = pkm.calibration.hexapod("hexapod-default", files=[pose], holdout=[hold], registration=reg)
+    assert r.to_dict()["world_frame"] == "registered"
     assert r.to_dict()["outputs"] == {"machine": "", "hal": "", "summary": ""}
     written = r.save(tmp_path / "py.json")
     assert written == [str(tmp_path / n) for n in

@@ -1,7 +1,9 @@
 // workflow::calibrateHexapod from the library: on the simulator's tracker files of a machine with
 // known errors it meets the held-out target and writes its three files; it passes the data
 // files' notes on; refuses to overwrite; and a fit that cannot explain the data (readings in the
-// wrong unit) writes nothing.
+// wrong unit) writes nothing. Tracker-frame readings with the registration on the table's nests
+// reach the true machine's world frame with no alignment; without it the result is marked
+// unregistered and nothing that feeds a controller accepts it.
 #include "pkm/workflow/calibrate_hexapod.hpp"
 
 #include <gmock/gmock.h>
@@ -14,8 +16,13 @@
 #include <string>
 #include <vector>
 
+#include "pkm/calibration/uncertainty.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/atomic_file.hpp"
+#include "pkm/io/scenario.hpp"
+#include "pkm/simulation/hexapod_virtual_machine.hpp"
+#include "pkm/workflow/linuxcnc_config.hpp"
+#include "pkm/workflow/linuxcnc_install.hpp"
 #include "pkm/workflow/simulate.hpp"
 
 namespace pkm::workflow {
@@ -47,6 +54,7 @@ class CalibrateHexapodWorkflow : public ::testing::Test {
     r.machine = "hexapod-default";
     r.data = {io::readNamedText((dir_ / "sim/tracker-pose.csv").string())};
     r.holdout = {io::readNamedText((dir_ / "sim/tracker-holdout.csv").string())};
+    r.registration = io::readNamedText((dir_ / "sim/tracker-pose-registration.csv").string());
     r.out = (dir_ / out).string();
     return r;
   }
@@ -71,10 +79,13 @@ TEST_F(CalibrateHexapodWorkflow, MeetsTheHeldOutTargetAndWritesItsFiles) {
   ASSERT_TRUE(rep.holdout.has_value());
   EXPECT_LT(rep.holdout->after.rms, kHeldOutRmsLimit);
   EXPECT_GT(rep.holdout->before.rms, kImprovementAtLeast * rep.holdout->after.rms);
-  // 42 parameters and the tracker's 6-DOF placement: the base frame's rigid motion is the one
-  // thing tracker data cannot see.
-  EXPECT_EQ(rep.fit.identifiability.parameters, 48);
+  // Registered on the table's nests, the readings are world data: all 42 parameters.
+  EXPECT_EQ(rep.fit.identifiability.parameters, 42);
   EXPECT_EQ(rep.fit.identifiability.rank, 42);
+  EXPECT_EQ(rep.world_frame, "registered");
+  ASSERT_TRUE(rep.registration.has_value());
+  EXPECT_EQ(rep.registration->fit.references, 6);
+  EXPECT_FALSE(r.calibrated.world_frame_unregistered);
   EXPECT_EQ(rep.worst.size(), 5u);
   EXPECT_THAT(rep.worst[0].source, HasSubstr("tracker-pose.csv:"));
   EXPECT_EQ(rep.workspace_poses, 200);
@@ -199,6 +210,8 @@ TEST_F(CalibrateHexapodWorkflow, ATrackerFrameTakenAsTheMachinesIsRefusedByName)
   // placement into the joint positions, explains the data, and would move the machine.
   HexapodCalibrationRequest r = request("asworld.json");
   r.frame = "world";
+  EXPECT_THROW((void)calibrateHexapod(r), InvalidArgument);  // a registration of world data
+  r.registration.reset();
   try {
     (void)calibrateHexapod(r);
     FAIL() << "wrote a geometry that absorbed the tracker's placement";
@@ -218,6 +231,101 @@ TEST_F(CalibrateHexapodWorkflow, ATrackerFrameTakenAsTheMachinesIsRefusedByName)
   EXPECT_FALSE(allowed.report.fit.large_changes.empty());
   EXPECT_TRUE(fs::exists(dir_ / "asworld.hal"));
   EXPECT_THAT(notices, ::testing::Contains(HasSubstr("--allow-large-changes")));
+}
+
+TEST_F(CalibrateHexapodWorkflow, RegisteredTrackerDataReachTheTrueMachinesWorldFrame) {
+  // The calibrated controller on the TRUE machine over the workspace, no alignment of any kind:
+  // within the calibration's own held-out residual. Without the registration the fit holds the
+  // base at its nominal placement, and the machine misses by the base's rigid assembly error.
+  const io::Scenario scenario = io::loadScenario("seed004-hexapod-calibration");
+  const auto& vm =
+      dynamic_cast<const simulation::HexapodVirtualMachine&>(*scenario.campaign.machine);
+  std::vector<kinematics::PoseRpy> poses;
+  for (const double x : {-150.0, 0.0, 150.0})
+    for (const double y : {-150.0, 0.0, 150.0})
+      for (const double z : {150.0, 300.0}) {
+        kinematics::PoseRpy p;
+        p.position = Eigen::Vector3d(x, y, z);
+        p.rpy = Eigen::Vector3d(0.05 * x / 150.0, -0.05 * y / 150.0, 0.1);
+        poses.push_back(p);
+      }
+  const HexapodCalibrationResult registered = calibrateHexapod(request("registered.json"));
+  const double residual = registered.report.holdout->after.max;
+  const calibration::TcpErrorStatistics reached =
+      calibration::tcpErrorOverWorkspace(registered.calibrated.model, vm.truth(), poses);
+  EXPECT_EQ(reached.samples, static_cast<int>(poses.size()));
+  EXPECT_LT(reached.max, residual);
+  HexapodCalibrationRequest r = request("unregistered-fit.json");
+  r.registration.reset();
+  const HexapodCalibrationResult unregistered = calibrateHexapod(r);
+  EXPECT_EQ(unregistered.report.world_frame, "unregistered");
+  EXPECT_GT(
+      calibration::tcpErrorOverWorkspace(unregistered.calibrated.model, vm.truth(), poses).max,
+      100.0 * residual);
+}
+
+TEST_F(CalibrateHexapodWorkflow, WithoutARegistrationNothingForAControllerIsWritten) {
+  HexapodCalibrationRequest r = request("unregistered.json");
+  r.registration.reset();
+  std::vector<std::string> notices;
+  RunControl control;
+  control.notice = [&](const std::string& n) { notices.push_back(n); };
+  const HexapodCalibrationResult result = calibrateHexapod(r, control);
+  // 42 parameters and the tracker's 6-DOF placement: the base frame's rigid motion is the one
+  // thing tracker data cannot see.
+  EXPECT_EQ(result.report.fit.identifiability.parameters, 48);
+  EXPECT_EQ(result.report.fit.identifiability.rank, 42);
+  EXPECT_TRUE(result.calibrated.world_frame_unregistered);
+  EXPECT_THAT(result.summary_json, HasSubstr("\"world_frame\": \"unregistered\""));
+  EXPECT_THAT(io::readFileText(dir_ / "unregistered.json"),
+              HasSubstr("\"world_frame\": \"unregistered\""));
+  EXPECT_FALSE(fs::exists(dir_ / "unregistered.hal"));
+  EXPECT_FALSE(fs::exists(dir_ / "unregistered.pkmhexkins.hal"));
+  EXPECT_THAT(result.notices, ::testing::Contains(HasSubstr("--registration FILE")));
+  LinuxcncConfigRequest config;
+  config.machine = (dir_ / "unregistered.json").string();
+  config.out = (dir_ / "unregistered-cfg").string();
+  try {
+    (void)writeLinuxcncConfig(config);
+    FAIL() << "configured a controller with an unregistered world frame";
+  } catch (const InvalidArgument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("pkm linuxcnc config: refused"));
+    EXPECT_THAT(e.what(), HasSubstr("fiducial nests"));
+    EXPECT_THAT(e.what(), HasSubstr("--registration FILE"));
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "unregistered-cfg"));
+  LinuxcncInstallRequest install;
+  install.calibration = config.machine;
+  install.ini = (dir_ / "no-such.ini").string();
+  try {
+    (void)installIntoLinuxcnc(install);
+    FAIL() << "installed an unregistered world frame";
+  } catch (const InvalidArgument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("pkm linuxcnc install: refused"));
+  }
+}
+
+TEST_F(CalibrateHexapodWorkflow, ARegistrationThatIsNotRigidIsRefusedWithItsLine) {
+  HexapodCalibrationRequest r = request("badreg.json");
+  r.registration = io::NamedText{"reg.csv",
+                                 "nest,x_table,y_table,z_table,x,y,z\n"
+                                 "a,0,0,0,0,0,0\nb,500,0,0,500,0,0\nc,0,500,0,0,500,0\n"
+                                 "d,500,500,0,500,520,0\n"};
+  try {
+    (void)calibrateHexapod(r);
+    FAIL() << "accepted nests that do not fit one rigid placement";
+  } catch (const InvalidArgument& e) {
+    EXPECT_THAT(e.what(), HasSubstr("reg.csv:"));
+    EXPECT_THAT(e.what(), HasSubstr("do not describe one rigid placement"));
+  }
+  r.registration = io::NamedText{"reg.csv", "nest,x_table,y_table,z_table,x,y,z\na,0,0,0,0,0,x\n"};
+  try {
+    (void)calibrateHexapod(r);
+    FAIL() << "accepted a field that is not a number";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("reg.csv:2:"));
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "badreg.json"));
 }
 
 TEST_F(CalibrateHexapodWorkflow, RequestsAreChecked) {

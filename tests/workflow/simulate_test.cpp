@@ -99,6 +99,49 @@ TEST(SimulateWorkflow, AScenarioGivenAsTextGivesTheFilesOfItsFile) {
   }
 }
 
+/// The text of the file `name` of `r`, or "" when there is none.
+std::string fileText(const SimulateResult& r, const std::string& name) {
+  for (const SimulatedFile& f : r.files)
+    if (f.name == name) return f.text;
+  return {};
+}
+
+TEST(SimulateWorkflow, TheFrameLineSaysWhereTheTrackerWasAndAPlacedTrackerReadsTheNests) {
+  const std::string tracker =
+      R"({"name": "t", "instrument": "laser_tracker", "mode": "point",
+          "poses": [[0, 0, 200, 0, 0, 0], [100, 0, 200, 0, 0, 0], [0, 100, 250, 0, 0, 0]],
+          "noise": {"range_sigma": 0.003}PLACE})";
+  const auto scenario = [&](const std::string& place) {
+    std::string t = tracker;
+    t.replace(t.find("PLACE"), 5, place);
+    return R"({"schema": "pkm.scenario/1", "type": "simulation_scenario", "name": "frames",
+               "machine": {"kind": "hexapod", "machine": "hexapod-default"},
+               "measurements": [)" +
+           t + "]}";
+  };
+  // Without a placement the tracker stands at the world frame: its readings are world data.
+  const SimulateResult at_origin = simulateScenarioText({"o.json", scenario("")}, std::nullopt);
+  EXPECT_THAT(fileText(at_origin, "t.csv"), HasSubstr("# frame: world ("));
+  EXPECT_EQ(fileText(at_origin, "t-registration.csv"), "");
+  const SimulateResult placed = simulateScenarioText(
+      {"p.json",
+       scenario(R"(, "tracker_frame": {"position": [1500, -900, 350], "rpy_deg": [0, 0, 150]})")},
+      std::nullopt);
+  EXPECT_THAT(fileText(placed, "t.csv"), HasSubstr("# frame: tracker ("));
+  const std::string reg = fileText(placed, "t-registration.csv");
+  EXPECT_THAT(reg, HasSubstr("# format: pkm.tracker-registration/1\n"));
+  EXPECT_THAT(reg, HasSubstr("nest,x_table,y_table,z_table,x,y,z\n1,-500,-500,0,"));
+  // The nests' readings have their own stream: the tracker file is the one at the origin's
+  // neighbour with the same draws (only the frame differs), and a scenario's own nests are used.
+  const SimulateResult own = simulateScenarioText(
+      {"n.json",
+       scenario(R"(, "tracker_frame": {"position": [1500, -900, 350], "rpy_deg": [0, 0, 150]},
+                   "registration_nests": [[0, 0, 0], [300, 0, 0], [0, 300, 10]])")},
+      std::nullopt);
+  EXPECT_EQ(fileText(own, "t.csv"), fileText(placed, "t.csv"));
+  EXPECT_THAT(fileText(own, "t-registration.csv"), HasSubstr("\n3,0,300,10,"));
+}
+
 TEST(SimulateWorkflow, WriteSimulationCreatesTheFolder) {
   const fs::path dir =
       fs::temp_directory_path() / ("pkm_workflow_write_sim_" + std::to_string(::getpid())) / "a";

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/calibration/frame_registration.hpp"
 #include "pkm/calibration/hexapod_budget.hpp"
 #include "pkm/calibration/hexapod_calibration.hpp"
 #include "pkm/calibration/holdout.hpp"
@@ -61,6 +62,18 @@ struct HexapodCalibrationReport {
     calibration::TcpUncertainty tcp;  ///< the predicted TCP U at those poses (k)
   };
   std::optional<Uncertainty> uncertainty;
+  /// Where the calibrated model's world frame comes from (docs/calibration.md, "Frames"):
+  /// "machine" (readings in the machine's world frame), "registered" (tracker-frame readings
+  /// moved into world by a registration on fiducial nests), "unregistered" (tracker-frame
+  /// readings without one: the frame is where the fit put it; nothing for a controller).
+  std::string world_frame = "machine";
+  /// The registration of the tracker frame (`--registration FILE`).
+  struct Registration {
+    std::string file;                    ///< the registration file
+    calibration::FrameRegistration fit;  ///< world_T_tracker, residuals, covariance
+    double tcp_U = 0.0;  ///< its expanded uncertainty (k = 2) at the TCP, worst workspace pose
+  };
+  std::optional<Registration> registration;
 };
 
 /// The report as JSON text (two-space indent, closing newline): the exact document

@@ -25,7 +25,17 @@ struct HexapodMachine {
   /// RS274NGC_STARTUP_CODE (e.g. "G20 G17 G40 G90"); "" when none. Not written to machine JSON.
   std::string startup_code;
   std::string startup_code_source;  ///< "INI:LINE" of the startup code, for messages
+  /// True for a calibration from laser-tracker readings in the tracker's own frame without a
+  /// registration (machine file `"world_frame": "unregistered"`): its geometry is right, but its
+  /// world frame is where the fit put it, not the machine's table (docs/calibration.md,
+  /// "Frames"). Nothing that goes into a controller is written from it (requireRegisteredFrame).
+  bool world_frame_unregistered = false;
 };
+
+/// Throws pkm::InvalidArgument, saying what to measure and pass, when `machine` is a calibration
+/// whose world frame is not registered (HexapodMachine::world_frame_unregistered); `what` names
+/// the refused action (e.g. "pkm linuxcnc install").
+void requireRegisteredFrame(const HexapodMachine& machine, const std::string& what);
 
 /// Parses a hexapod machine JSON text. `source` names it in messages. Cone axes left out of the
 /// file default to the strut direction at the home pose. Throws pkm::IoError "SOURCE:LINE:

@@ -26,7 +26,8 @@ namespace pkm::io {
 
 /// The metadata `pkm simulate` writes for a tracker measurement of scenario `scenario` with
 /// `seed`: format, scenario, seed, measurement, instrument, mode, frame, target, smr offset mm,
-/// noise, poses, columns.
+/// noise, poses, columns. The frame is "tracker (...)" when the set-up places the tracker
+/// (TrackerSetup::placed), else "world (...)": the readings are then in the machine's frame.
 [[nodiscard]] Metadata trackerMetadata(const std::string& scenario,
                                        std::uint64_t seed,
                                        const simulation::TrackerSetup& setup,

@@ -68,6 +68,11 @@ struct TrackerNoise {
 /// The names trackerNoise knows.
 [[nodiscard]] std::vector<std::string_view> trackerNoiseNames();
 
+/// Six fiducial nests on the table plane z = 0 of the world frame (mm): a 1000 mm square's
+/// corners, its centre and a sixth off the square's edge (the set the campaign's hexapod step
+/// reads; hexapod-default's table is its world z = 0 plane, 1200 mm below the base joints).
+[[nodiscard]] const std::vector<Eigen::Vector3d>& defaultRegistrationNests();
+
 /// The set-up of a tracker measurement on a hexapod.
 struct TrackerSetup {
   std::string name = "laser-tracker";  ///< names the random stream and the file
@@ -85,10 +90,32 @@ struct TrackerSetup {
   /// the readings are in the tracker frame.
   geometry::RigidTransform world_T_tracker = geometry::RigidTransform::Identity();
   TrackerNoise noise;  ///< the instrument noise
+  /// Fiducial nests on the machine's table, world frame (mm): their world coordinates define the
+  /// frame a part program uses, and the tracker reads them (an SMR in each nest) to register its
+  /// placement (simulateTrackerRegistration; docs/calibration.md, "Frames"). Default
+  /// defaultRegistrationNests(); empty: no registration.
+  std::vector<Eigen::Vector3d> registration_nests = defaultRegistrationNests();
+  /// True when the tracker is not placed at the world frame (world_T_tracker is not the identity):
+  /// its readings are in its own frame.
+  [[nodiscard]] bool placed() const;
   /// Throws pkm::InvalidArgument for an empty name, no poses at all, a command that is not six
-  /// finite values, an invalid box or noise, a non-finite offset, or a placement that is not rigid.
+  /// finite values, an invalid box or noise, a non-finite offset or nest, or a placement that is
+  /// not rigid.
   void validate() const;
 };
+
+/// One tracker reading of a fiducial nest.
+struct NestReading {
+  Eigen::Vector3d world = Eigen::Vector3d::Zero();     ///< the nest's world coordinates, mm
+  Eigen::Vector3d measured = Eigen::Vector3d::Zero();  ///< the SMR centre read, tracker frame, mm
+};
+
+/// The registration readings of `setup`: each nest of setup.registration_nests read from the
+/// tracker's placement, world_T_tracker⁻¹·nest plus the tracker's noise (TrackerNoise::point, in
+/// nest order, from `rng`). Throws pkm::InvalidArgument for an invalid set-up or a nest at the
+/// tracker's centre.
+[[nodiscard]] std::vector<NestReading> simulateTrackerRegistration(const TrackerSetup& setup,
+                                                                   RandomStream& rng);
 
 /// One tracker reading.
 struct TrackerReading {

@@ -31,6 +31,11 @@ struct HexapodCalibrationRequest {
   /// keeps the result; writeHexapodCalibration writes it later); needs `db` empty.
   std::string out;
   std::string frame = "auto";  ///< tracker readings: "auto" (files' metadata), "world", "tracker"
+  /// The tracker's readings of fiducial nests on the table from the placement of the --data and
+  /// --holdout files (io::parseRegistrationCsv): fixes world_T_tracker, so the calibrated model is
+  /// in the machine's world frame. Without it, tracker-frame data give a model marked
+  /// "world_frame": "unregistered", which nothing that feeds a controller accepts.
+  std::optional<io::NamedText> registration;
   /// The tracker target in the tool frame; default the files' `smr offset mm`.
   std::optional<Eigen::Vector3d> target_offset;
   std::vector<std::string> fix;  ///< parameters held at their initial value (e.g. "offset0")
