@@ -58,6 +58,18 @@ TEST(GcodeRunWorkflow, AShortProgramPassesEveryCheck) {
   EXPECT_EQ(rep.tolerance_mm, 0.01);
 }
 
+TEST(GcodeRunWorkflow, ARotaryOnlyMoveTakesAsLongUnderG20AsUnderG21) {
+  // F300 on a rotary-only move is 300 deg/min under G20 too (LinuxCNC's feed rule): 15 deg take
+  // at least 3 s, and the inch program times exactly as its millimetre twin.
+  const GcodeRunResult mm = runGcode(request("G21 G0 X0 Y0 Z200\nG1 A15 F300\nM2\n"));
+  const GcodeRunResult in = runGcode(request("G20 G0 X0 Y0 Z[200/25.4]\nG1 A15 F300\nM2\n"));
+  EXPECT_TRUE(in.ok());
+  EXPECT_EQ(check(in.report, "joint_velocity").violations, 0u);
+  EXPECT_GE(in.report.cycle_time_s, 15.0 / 300.0 * 60.0);
+  constexpr double kSameTime = 1e-9;  // s: the same path, up to the rounding of Z
+  EXPECT_NEAR(in.report.cycle_time_s, mm.report.cycle_time_s, kSameTime);
+}
+
 TEST(GcodeRunWorkflow, AStrokeViolationIsFoundAtItsLine) {
   GcodeRunRequest q = request("G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\n");
   q.max_joint_velocity = 150.0;
