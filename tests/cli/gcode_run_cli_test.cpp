@@ -251,7 +251,13 @@ TEST_F(GcodeRunCli, AnInchConfigurationIsCheckedInInchesWithItsStartupCode) {
   EXPECT_EQ(r.code, kExitViolation) << r.err;
   EXPECT_THAT(r.err, HasSubstr("RS274NGC_STARTUP_CODE \"G20"));
   EXPECT_THAT(r.out, HasSubstr("interpolation: tolerance 0.001 inch, max step "));
-  EXPECT_THAT(r.out, HasSubstr("rapid 393.701 inch/min"));
+  // The rapid rate is the INI's [TRAJ] MAX_LINEAR_VELOCITY (10 in/s), lowered along each move to
+  // the axes' MAX_VELOCITY (20 in/s, 20 deg/s) and rotary-only moves to MAX_ANGULAR_VELOCITY.
+  EXPECT_THAT(r.out, HasSubstr("rapid 600 inch/min ("));
+  EXPECT_THAT(r.out, HasSubstr("rapid rate from the machine file)"));
+  EXPECT_THAT(r.out, HasSubstr("rapid limits: each G0 at most X 20 inch/s, Y 20 inch/s"));
+  EXPECT_THAT(
+      r.out, HasSubstr("rotary-only 6 deg/s along the move (" + (sample / "hexapod.ini").string()));
   // X2000 inches leaves the 1000-inch stroke (2000 mm would not): reported in inches.
   EXPECT_THAT(r.out, HasSubstr("far.ngc:3: stroke violated first at X977."));
   EXPECT_THAT(r.out, HasSubstr(" Y3 Z22 A0 B0 C0: strut 0 value 1000."));

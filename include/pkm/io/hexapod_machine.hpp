@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/io/ini_velocity_limits.hpp"
 #include "pkm/io/joint_rates.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_model.hpp"
@@ -25,6 +26,9 @@ struct HexapodMachine {
   /// RS274NGC_STARTUP_CODE (e.g. "G20 G17 G40 G90"); "" when none. Not written to machine JSON.
   std::string startup_code;
   std::string startup_code_source;  ///< "INI:LINE" of the startup code, for messages
+  /// A LinuxCNC INI's velocity limits ([TRAJ] and [AXIS_L] MAX_VELOCITY), which bound the rapid
+  /// rate of `pkm gcode run`; unset without an INI. Not written to machine JSON.
+  std::optional<IniVelocityLimits> ini_velocity;
 };
 
 /// Parses a hexapod machine JSON text. `source` names it in messages. Cone axes left out of the
