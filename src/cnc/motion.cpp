@@ -63,6 +63,7 @@ void Interpreter::Impl::emitLine(
   st.machine = to;
   sink.onMove(m);
   ++summary.moves;
+  if (st.inch) ++summary.inch_moves;
 }
 
 void Interpreter::Impl::straight(const ResolvedBlock& rb, bool rapid, bool g53, MoveSink& sink) {
@@ -173,6 +174,7 @@ void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& s
   st.machine = to;
   sink.onMove(m);
   ++summary.moves;
+  if (st.inch) ++summary.inch_moves;
 }
 
 void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink) {
