@@ -65,7 +65,10 @@ void addRateOptions(CLI::App& r, RunArgs& a) {
       "--max-wrist-acceleration",
       a.wrist_acceleration.value,
       "Exechon wrist C/A acceleration limit, deg/s^2 (default: the machine file's, else 1800)");
-  r.add_option("--rapid-rate", a.request.rapid_rate, "G0 path speed, mm/min (default 10000)");
+  r.add_option("--rapid-rate",
+               a.request.rapid_rate,
+               "G0 path speed, mm/min (default: a LinuxCNC INI's [TRAJ] MAX_LINEAR_VELOCITY, else "
+               "10000)");
 }
 
 }  // namespace

@@ -123,7 +123,7 @@ Run run(const py::object& machine,
         std::optional<double> max_joint_acceleration,
         std::optional<double> max_wrist_velocity,
         std::optional<double> max_wrist_acceleration,
-        double rapid_rate,
+        std::optional<double> rapid_rate,
         const std::string& orientation,
         const py::object& tool_table,
         const std::string& tool_units,
@@ -247,7 +247,7 @@ void exposeGcodeRun(py::module_& g) {
         py::arg("max_joint_acceleration") = py::none(),
         py::arg("max_wrist_velocity") = py::none(),
         py::arg("max_wrist_acceleration") = py::none(),
-        py::arg("rapid_rate") = 10000.0,
+        py::arg("rapid_rate") = py::none(),
         py::arg("orientation") = "vector",
         py::arg("tool_table") = py::none(),
         py::arg("tool_units") = "mm",
@@ -286,8 +286,8 @@ max_joint_velocity, max_joint_acceleration : float, optional
     else 200 and 2000).
 max_wrist_velocity, max_wrist_acceleration : float, optional
     Exechon wrist C/A limits, deg/s and deg/s² (default: the machine file's, else 180 and 1800).
-rapid_rate : float, default 10000
-    G0 path speed, mm/min.
+rapid_rate : float, optional
+    G0 path speed, mm/min (default: a LinuxCNC INI's [TRAJ] MAX_LINEAR_VELOCITY, else 10000).
 orientation : {"vector", "axes"}, default "vector"
     Exechon: A/C words are the tool vector's angles in the world frame or the wrist readings.
 tool_table, tool_units, block_delete, max_iterations

@@ -124,13 +124,16 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   checkWords(rb, c);
   if (c.feed_mode >= 0) {
     const bool inv = c.feed_mode == 930;
-    if (inv != st.inverse_time) st.feed = 0.0;  // LinuxCNC zeroes F on a feed-mode change
+    if (inv != st.inverse_time) st.feed = st.angular_feed = 0.0;  // LinuxCNC zeroes F then
     st.inverse_time = inv;
   }
   if (rb.hasWord('f')) {
     const double f = rb.word('f');
     if (f < 0.0) throw GcodeError("negative F word");
-    if (!st.inverse_time) st.feed = f * st.scale();
+    if (!st.inverse_time) {
+      st.feed = f * st.scale();
+      st.angular_feed = f;
+    }
   }
   if (rb.hasWord('s')) {
     if (rb.word('s') < 0.0) throw GcodeError("negative spindle speed");

@@ -16,6 +16,33 @@ double reach(double v, double a, double ds) {
 }
 }  // namespace
 
+bool RapidAxisLimits::any() const {
+  return std::isfinite(angular_rate) ||
+         std::any_of(
+             axis_velocity.begin(), axis_velocity.end(), [](double v) { return std::isfinite(v); });
+}
+
+void RapidAxisLimits::validate() const {
+  for (std::size_t i = 0; i < axis_velocity.size(); ++i)
+    PKM_CHECK(axis_velocity[i] > 0.0,
+              "axis {} rapid velocity limit must be > 0 (got {})",
+              "XYZABC"[i],
+              axis_velocity[i]);
+  PKM_CHECK(angular_rate > 0.0, "angular rapid rate must be > 0 (got {})", angular_rate);
+}
+
+double rapidSpeedCap(const Axes& a, const Axes& b, const RapidAxisLimits& limits) {
+  const double l = segmentLength(a, b);
+  if (!(l > 0.0)) return kInf;
+  const bool rotary_only = !(std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]) > 0.0);
+  double cap = rotary_only ? limits.angular_rate / 60.0 : kInf;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double d = std::abs(b[i] - a[i]);
+    if (d > 0.0) cap = std::min(cap, limits.axis_velocity[i] * l / d);
+  }
+  return cap;
+}
+
 void MotionLimits::validate() const {
   PKM_CHECK(std::isfinite(max_joint_velocity) && max_joint_velocity > 0.0,
             "max joint velocity must be > 0 (got {})",
@@ -25,6 +52,7 @@ void MotionLimits::validate() const {
             max_joint_acceleration);
   PKM_CHECK(
       std::isfinite(rapid_rate) && rapid_rate > 0.0, "rapid rate must be > 0 (got {})", rapid_rate);
+  rapid_axes.validate();
 }
 
 JointRateLimits JointRateLimits::uniform(const MotionLimits& limits) {
@@ -32,6 +60,7 @@ JointRateLimits JointRateLimits::uniform(const MotionLimits& limits) {
   r.max_velocity.setConstant(limits.max_joint_velocity);
   r.max_acceleration.setConstant(limits.max_joint_acceleration);
   r.rapid_rate = limits.rapid_rate;
+  r.rapid_axes = limits.rapid_axes;
   return r;
 }
 
@@ -46,6 +75,7 @@ void JointRateLimits::validate() const {
   }
   PKM_CHECK(
       std::isfinite(rapid_rate) && rapid_rate > 0.0, "rapid rate must be > 0 (got {})", rapid_rate);
+  rapid_axes.validate();
 }
 
 double segmentLength(const Axes& a, const Axes& b) {
@@ -125,6 +155,9 @@ CycleTime estimateCycleTime(const std::vector<PathPoint>& points,
   for (std::size_t k = 1; k < n; ++k) {
     ds[k] = segmentLength(points[k - 1].pos, points[k].pos);
     vcap[k] = programmedSpeed(points[k], path);
+    if (points[k].kind == MoveKind::kRapid)
+      vcap[k] =
+          std::min(vcap[k], rapidSpeedCap(points[k - 1].pos, points[k].pos, limits.rapid_axes));
     if (ds[k] <= 0.0) continue;
     dqds[k] = (q[k] - q[k - 1]) / ds[k];
     const double gv = dqds[k].cwiseAbs().cwiseProduct(inv_v).maxCoeff();  // per path unit

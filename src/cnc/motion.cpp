@@ -50,12 +50,20 @@ void Interpreter::Impl::emitLine(
     if (st.inverse_time) {
       m.feed = pathLength(st.machine, to) * inverse_f;
     } else {
-      m.feed = st.feed;
+      // LinuxCNC's feed rule: a move of X, Y or Z is fed along its XYZ length in length units a
+      // minute; a rotary-only move in degrees a minute, F unscaled by G20 (LinuxCNC 2.9 G-code
+      // overview, "Feed Rate").
+      const bool linear =
+          to[0] != st.machine[0] || to[1] != st.machine[1] || to[2] != st.machine[2];
+      const bool rotary =
+          to[3] != st.machine[3] || to[4] != st.machine[4] || to[5] != st.machine[5];
+      m.feed = !linear && rotary ? st.angular_feed : st.feed;
     }
   }
   st.machine = to;
   sink.onMove(m);
   ++summary.moves;
+  if (st.inch) ++summary.inch_moves;
 }
 
 void Interpreter::Impl::straight(const ResolvedBlock& rb, bool rapid, bool g53, MoveSink& sink) {
@@ -166,6 +174,7 @@ void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& s
   st.machine = to;
   sink.onMove(m);
   ++summary.moves;
+  if (st.inch) ++summary.inch_moves;
 }
 
 void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink) {

@@ -80,6 +80,7 @@ void appendSettings(const GcodeRunReport& r, std::string& s) {
                   r.units,
                   from.empty() ? std::string()
                                : fmt::format(" ({} from the machine file)", fmt::join(from, ", ")));
+  if (!r.rapid_limits.empty()) s += fmt::format("rapid limits: {}\n", r.rapid_limits);
   s += fmt::format(
       "cycle time: {:.3f} s{}\n",
       r.cycle_time_s,
@@ -165,6 +166,7 @@ std::string gcodeRunJson(const GcodeRunReport& r) {
   }
   j["rapid_rate_mm_per_min"] = r.rapid_rate_mm_per_min;
   j["limits_from_machine_file"] = r.limits_from_machine_file;
+  if (!r.rapid_limits.empty()) j["rapid_limits"] = r.rapid_limits;
   j["motions"] = r.motions;
   j["points"] = r.points;
   j["cycle_time_s"] = r.cycle_time_s;

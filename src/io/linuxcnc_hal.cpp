@@ -267,6 +267,7 @@ void applyLinuxcncIni(const std::string& ini_path, HexapodMachine& machine) {
 }
 
 void applyLinuxcncIni(const NamedText& ini, HexapodMachine& machine) {
+  machine.ini_velocity = readIniVelocityLimits(ini);  // the rapid rate's limits (gcode run)
   const std::string& ini_path = ini.name;
   std::string section;
   const auto lines = splitLines(ini.text);

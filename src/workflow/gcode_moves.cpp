@@ -91,6 +91,12 @@ GcodeMovesResult runGcodeMoves(const GcodeMovesRequest& request,
                             s.blocks,
                             s.moves,
                             s.ended_by_m2 ? "" : " (no M2/M30 at the end)");
+  if (s.inch_moves > 0)
+    result.note += fmt::format(
+        "; {} of them programmed in inches (G20): the CSV is in mm and degrees, machine "
+        "coordinates whatever G20/G21 says (divide x, y, z, cx, cy, cz and a linear feed by 25.4 "
+        "for inches)",
+        s.inch_moves);
   return result;
 }
 

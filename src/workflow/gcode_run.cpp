@@ -110,6 +110,7 @@ io::GcodeRunReport runReport(const GcodeRunRequest& request,
   r.max_wrist_acceleration_deg_per_s2 = run.wrist_acceleration;
   r.rapid_rate_mm_per_min = run.limits.rapid_rate;
   r.limits_from_machine_file = run.from_file;
+  r.rapid_limits = run.rapid_limits;
   r.cycle_time_s = run.time.total;
   r.dwell_time_s = run.time.dwell;
   r.ok = run.report.ok();
@@ -130,9 +131,11 @@ io::GcodeRunReport runReport(const GcodeRunRequest& request,
 }  // namespace detail
 
 void GcodeRunRequest::validate() const {
-  cnc::MotionLimits{
-      max_joint_velocity.value_or(200.0), max_joint_acceleration.value_or(2000.0), rapid_rate}
-      .validate();
+  cnc::MotionLimits limits;
+  limits.max_joint_velocity = max_joint_velocity.value_or(200.0);
+  limits.max_joint_acceleration = max_joint_acceleration.value_or(2000.0);
+  limits.rapid_rate = rapid_rate.value_or(detail::kDefaultRapidRate);
+  limits.validate();
   PKM_CHECK(!tolerance || (*tolerance > 0.0 && std::isfinite(*tolerance)),
             "--tolerance must be > 0");
   PKM_CHECK(max_points > 0, "--max-points must be > 0");

@@ -20,6 +20,9 @@ namespace pkm::workflow::detail {
 /// Stages of a run, for the progress reports: interpreting, interpolating, converting.
 inline constexpr std::size_t kRunStages = 3;
 
+/// G0 path speed without --rapid-rate or an INI, mm/min.
+inline constexpr double kDefaultRapidRate = 10000.0;
+
 /// A program converted to joint space on one machine, timed and checked. Not copied or moved:
 /// `csv_row` refers to it.
 struct JointRun {
@@ -35,6 +38,7 @@ struct JointRun {
   cnc::MotionLimits limits;  ///< in effect: request, else the machine file, else defaults
   double wrist_velocity = 0.0, wrist_acceleration = 0.0;  ///< deg/s, deg/s² (Exechon)
   std::vector<std::string> from_file;         ///< the limits taken from the machine file
+  std::string rapid_limits;                   ///< io::GcodeRunReport::rapid_limits
   double tolerance_mm = kDefaultToleranceMm;  ///< the chordal tolerance in effect
   /// Why each disabled check is off, by check index ("" for the others).
   std::array<std::string, cnc::kPathChecks> off_reason;

@@ -1,6 +1,7 @@
 // `gcode run` on a hexapod or an Exechon: the program interpolated, converted to joints, timed
 // and checked (workflow/gcode_run.hpp).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <memory>
@@ -42,7 +43,7 @@ void effectiveLimits(const GcodeRunRequest& r,
                      JointRun& run) {
   using S = io::JointRateSpec;
   std::vector<std::string>& from = run.from_file;
-  run.limits.rapid_rate = r.rapid_rate;
+  run.limits.rapid_rate = r.rapid_rate.value_or(kDefaultRapidRate);
   run.limits.max_joint_velocity =
       pick(r.max_joint_velocity, 200.0, file, &S::velocity, "velocity", from);
   run.limits.max_joint_acceleration =
@@ -58,6 +59,39 @@ void effectiveLimits(const GcodeRunRequest& r,
                                 &S::wrist_acceleration_deg,
                                 "wrist acceleration",
                                 from);
+}
+
+/// A limit of the INI in mm (or deg) per second, +inf when not given.
+double orNoLimit(double v, double scale) {
+  return std::isnan(v) ? cnc::RapidAxisLimits::kNoLimit : v * scale;
+}
+
+/// An INI's velocity limits on rapids (LinuxCNC: a G0 runs at [TRAJ] MAX_LINEAR_VELOCITY, lowered
+/// so that no axis exceeds its [AXIS_L] MAX_VELOCITY along the move): the rapid rate unless the
+/// request gives one, and the axis limits.
+void iniRapidLimits(const GcodeRunRequest& r,
+                    const io::IniVelocityLimits& ini,
+                    LengthUnit unit,
+                    JointRun& run) {
+  const double mm = millimetresPer(unit);
+  if (!r.rapid_rate && !std::isnan(ini.linear)) {
+    run.limits.rapid_rate = ini.linear * 60.0 * mm;
+    run.from_file.emplace_back("rapid rate");
+  }
+  cnc::RapidAxisLimits& axes = run.limits.rapid_axes;
+  std::vector<std::string> words;
+  for (std::size_t i = 0; i < 6; ++i) {
+    axes.axis_velocity[i] = orNoLimit(ini.axis[i], i < 3 ? mm : 1.0);
+    if (!std::isnan(ini.axis[i]))
+      words.push_back(
+          fmt::format("{} {:.6g} {}/s", "XYZABC"[i], ini.axis[i], i < 3 ? toString(unit) : "deg"));
+  }
+  axes.angular_rate = orNoLimit(ini.angular, 60.0);
+  if (!std::isnan(ini.angular))
+    words.push_back(fmt::format("rotary-only {:.6g} deg/s", ini.angular));
+  if (!words.empty())
+    run.rapid_limits =
+        fmt::format("each G0 at most {} along the move ({})", fmt::join(words, ", "), ini.source);
 }
 
 /// The interpreted program's motions cut into points for joint-space conversion.
@@ -133,6 +167,7 @@ void runHexapod(const GcodeRunRequest& request,
   run.machine_name = model->name;
   run.len = std::string(toString(model->unit));
   effectiveLimits(request, machine.joint_rates, false, run);
+  if (machine.ini_velocity) iniRapidLimits(request, *machine.ini_velocity, model->unit, run);
   run.tolerance_mm = toleranceMm(request, model->unit);
   run.interpolation = cnc::jointSpaceInterpolation(*model, run.tolerance_mm);
   run.points = interpolate(request, program.moves, run.interpolation, progress);

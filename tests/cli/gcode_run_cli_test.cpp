@@ -1,6 +1,7 @@
 // `pkm gcode run`: joint CSV format and rows, the report (text and JSON), exit codes 0/1/2,
 // Exechon machines (tool-vector and wrist-axes modes, the B word refused), no overwrite without
 // --force.
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "support/cli_fixture.hpp"
@@ -119,6 +120,34 @@ TEST_F(GcodeRunCli, UsageAndInputErrors) {
   expectUsageError(pkm({"gcode", "run"}), "program");
 }
 
+TEST_F(GcodeRunCli, ExechonLegsAreNamedAsInExechonIk) {
+  // One naming of an Exechon's legs, q1, q2, q3 (legs A, B, C; docs/conventions.md), in every
+  // command that prints joints; the same tool pose gives the same readings under the same names.
+  const std::string prog = write("v.ngc", "G21 G90\nG0 X0 Y0 Z50 A0 C0\nM2\n");
+  ASSERT_EQ(pkm({"gcode", "run", "--machine", "mxt700s-like", prog, "--out", path("v.csv")}).code,
+            0);
+  const auto run = splitLines(slurp(path("v.csv")));
+  ASSERT_GE(run.size(), 2u);
+  const auto run_names = splitFields(run[0]), run_row = splitFields(run[1]);
+  const std::string poses = write("p.csv", "x,y,z,i,j,k\n0,0,50,0,0,-1\n");
+  const auto ik = pkm({"exechon", "ik", "--machine", "mxt700s-like", "--poses", poses});
+  ASSERT_EQ(ik.code, 0) << ik.err;
+  const auto ik_lines = splitLines(ik.out);
+  ASSERT_GE(ik_lines.size(), 2u);
+  const auto ik_names = splitFields(ik_lines[0]), ik_row = splitFields(ik_lines[1]);
+  constexpr double kSameReading = 1e-9;  // mm: both solve the same pose from home
+  for (const std::string leg : {"q1", "q2", "q3"}) {
+    const auto at = [&leg](const std::vector<std::string>& names) {
+      return static_cast<std::size_t>(std::find(names.begin(), names.end(), leg) - names.begin());
+    };
+    ASSERT_LT(at(run_names), run_names.size()) << leg << " missing in gcode run's CSV";
+    ASSERT_LT(at(ik_names), ik_names.size()) << leg << " missing in exechon ik's output";
+    EXPECT_NEAR(std::stod(run_row[at(run_names)]), std::stod(ik_row[at(ik_names)]), kSameReading)
+        << leg;
+  }
+  EXPECT_EQ(std::find(run_names.begin(), run_names.end(), "q0"), run_names.end());
+}
+
 // The built-in Exechon (PKM frame: z up, origin at the home tool point of a vertical tool).
 TEST_F(GcodeRunCli, ExechonToolVectorProgram) {
   const std::string prog = write("e.ngc",
@@ -137,7 +166,7 @@ TEST_F(GcodeRunCli, ExechonToolVectorProgram) {
   EXPECT_THAT(r.out, ::testing::HasSubstr("orientation: vector"));
   const auto lines = splitLines(slurp(path("e.csv")));
   ASSERT_GT(lines.size(), 10u);
-  EXPECT_EQ(lines[0], "line,t,x,y,z,a,b,c,q0,q1,q2,wrist_c,wrist_a,ux,uy,uz,drm");
+  EXPECT_EQ(lines[0], "line,t,x,y,z,a,b,c,q1,q2,q3,wrist_c,wrist_a,ux,uy,uz,drm");
   const auto first = splitFields(lines[1]);
   ASSERT_EQ(first.size(), 17u);
   EXPECT_EQ(first[16], "0");  // the DRM is relative to the first point
@@ -251,7 +280,13 @@ TEST_F(GcodeRunCli, AnInchConfigurationIsCheckedInInchesWithItsStartupCode) {
   EXPECT_EQ(r.code, kExitViolation) << r.err;
   EXPECT_THAT(r.err, HasSubstr("RS274NGC_STARTUP_CODE \"G20"));
   EXPECT_THAT(r.out, HasSubstr("interpolation: tolerance 0.001 inch, max step "));
-  EXPECT_THAT(r.out, HasSubstr("rapid 393.701 inch/min"));
+  // The rapid rate is the INI's [TRAJ] MAX_LINEAR_VELOCITY (10 in/s), lowered along each move to
+  // the axes' MAX_VELOCITY (20 in/s, 20 deg/s) and rotary-only moves to MAX_ANGULAR_VELOCITY.
+  EXPECT_THAT(r.out, HasSubstr("rapid 600 inch/min ("));
+  EXPECT_THAT(r.out, HasSubstr("rapid rate from the machine file)"));
+  EXPECT_THAT(r.out, HasSubstr("rapid limits: each G0 at most X 20 inch/s, Y 20 inch/s"));
+  EXPECT_THAT(
+      r.out, HasSubstr("rotary-only 6 deg/s along the move (" + (sample / "hexapod.ini").string()));
   // X2000 inches leaves the 1000-inch stroke (2000 mm would not): reported in inches.
   EXPECT_THAT(r.out, HasSubstr("far.ngc:3: stroke violated first at X977."));
   EXPECT_THAT(r.out, HasSubstr(" Y3 Z22 A0 B0 C0: strut 0 value 1000."));

@@ -73,6 +73,43 @@ TEST(CycleTime, SingleLineJointVelocityLimited) {
   EXPECT_NEAR(t.total, kLength / v + v / a, kTolRoundTrip);
 }
 
+TEST(RapidSpeedCap, TheSlowestAxisAlongTheMoveSetsTheRapidSpeed) {
+  RapidAxisLimits lim;
+  EXPECT_TRUE(std::isinf(rapidSpeedCap({0, 0, 0, 0, 0, 0}, {3, 4, 0, 0, 0, 0}, lim)));
+  lim.axis_velocity = {10, 2, 50, 5, 5, 5};
+  // 3-4-5 move: X needs 0.3 s, Y 2 s: the path (5 mm) takes 2 s, 2.5 mm/s.
+  EXPECT_NEAR(rapidSpeedCap({0, 0, 0, 0, 0, 0}, {3, 4, 0, 0, 0, 0}, lim), 2.5, kTolRoundTrip);
+  // X with A: A's 10 deg take 2 s, the 10 mm of X no less.
+  EXPECT_NEAR(rapidSpeedCap({0, 0, 0, 0, 0, 0}, {10, 0, 0, 10, 0, 0}, lim), 5.0, kTolRoundTrip);
+  // Rotary only: deg/s, and the angular rate (deg/min) on top.
+  EXPECT_NEAR(rapidSpeedCap({0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 3}, lim), 5.0, kTolRoundTrip);
+  lim.angular_rate = 120.0;
+  EXPECT_NEAR(rapidSpeedCap({0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 3}, lim), 2.0, kTolRoundTrip);
+  EXPECT_TRUE(std::isinf(rapidSpeedCap({1, 0, 0, 0, 0, 0}, {1, 0, 0, 0, 0, 0}, lim)));
+  lim.axis_velocity[1] = 0.0;
+  EXPECT_THROW(lim.validate(), pkm::InvalidArgument);
+}
+
+TEST(CycleTime, ARapidRunsAtTheSlowestAxisAlongIt) {
+  const kin::HexapodModel model = pkm::test::millingModel();
+  HexapodJointConverter conv(model);
+  auto pts = singleLine();
+  pts[1].kind = MoveKind::kRapid;
+  pts[1].feed = NAN;
+  std::vector<kin::StrutVector> q;
+  conv.solveAll(pts, q);
+  MotionLimits lim;
+  lim.max_joint_velocity = 1e6;  // not limiting
+  lim.max_joint_acceleration = 1e9;
+  lim.rapid_rate = 1200.0;  // 20 mm/s
+  const double unbounded = estimateCycleTime(pts, q, lim).total;
+  EXPECT_NEAR(unbounded, kLength / 20.0, 1e-3);  // the acceleration phases take microseconds
+  lim.rapid_axes.axis_velocity[0] = 4.0;         // X at most 4 mm/s
+  EXPECT_NEAR(estimateCycleTime(pts, q, lim).total, kLength / 4.0, 1e-3);
+  lim.rapid_axes.axis_velocity[0] = 400.0;  // faster than the rate: the rate holds
+  EXPECT_NEAR(estimateCycleTime(pts, q, lim).total, unbounded, kTolRoundTrip);
+}
+
 TEST(CycleTime, RotaryOnlyLengthIsDegrees) {
   Axes a{0, 0, 0, 0, 0, 0}, b{0, 0, 0, 3, 4, 0};
   EXPECT_NEAR(segmentLength(a, b), 5.0, kTolRoundTrip);

@@ -63,6 +63,23 @@ TEST(Interpreter, InchAndFeedUnits) {
   EXPECT_NEAR(m[1].feed, 254.0, kTolRoundTrip);  // switching units does not rescale F
 }
 
+TEST(Interpreter, RotaryOnlyMovesAreFedInDegreesAMinuteWhateverTheLengthUnit) {
+  // LinuxCNC: F of a move of X, Y or Z is a length a minute (inch under G20); of a rotary-only
+  // move, degrees a minute, unscaled (rs274 prints SET_FEED_RATE(300) either way). A move of
+  // XYZ and A together is fed along XYZ.
+  const auto m = run("G20\nF300\nG1 A90\nG1 X1 C10\nG1 C40\nG21\nG1 A0\nG1 X0\nM2\n");
+  ASSERT_EQ(m.size(), 5u);
+  EXPECT_EQ(m[0].feed, 300.0);                    // deg/min
+  EXPECT_NEAR(m[1].feed, 7620.0, kTolRoundTrip);  // mm/min
+  EXPECT_EQ(m[2].feed, 300.0);                    // rotary only again
+  EXPECT_EQ(m[3].feed, 300.0);                    // G21 rescales neither
+  EXPECT_NEAR(m[4].feed, 7620.0, kTolRoundTrip);
+  // Inverse time: the rotary-only move's length is its angle either way.
+  const auto g93 = run("G20\nG93 G1 A90 F2\nM2\n");
+  ASSERT_EQ(g93.size(), 1u);
+  EXPECT_NEAR(g93[0].feed, 180.0, kTolRoundTrip);  // 90 deg in 1/2 min
+}
+
 TEST(Interpreter, StartupCodeSetsTheModesTheProgramStartsIn) {
   InterpreterOptions o;
   o.startup_code = "G20 G91";

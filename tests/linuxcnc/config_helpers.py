@@ -80,7 +80,7 @@ def joint_ends(pkm, machine, program, work, exechon=False, inch=False):
     if exechon:
         cmd += ["--orientation", "axes"]
     run(cmd)
-    cols = ["q0", "q1", "q2", "wrist_c", "wrist_a"] if exechon else [f"q{i}" for i in range(6)]
+    cols = ["q1", "q2", "q3", "wrist_c", "wrist_a"] if exechon else [f"q{i}" for i in range(6)]
     ends = []
     with open(out) as f:
         for row in csv.DictReader(f):

@@ -84,7 +84,7 @@ def joint_csv_and_report(run_cli, tmp_path, program, *args):
 
 @pytest.mark.parametrize("machine,program,joints", [
     ("hexapod-default", HEXAPOD_PROGRAM, [f"q{i}" for i in range(6)]),
-    ("mxt700s-like", EXECHON_PROGRAM, ["q0", "q1", "q2", "wrist_c", "wrist_a"]),
+    ("mxt700s-like", EXECHON_PROGRAM, ["q1", "q2", "q3", "wrist_c", "wrist_a"]),
 ])
 def test_run_equals_cli(run_cli, tmp_path, machine, program, joints):
     p, rows, report = joint_csv_and_report(run_cli, tmp_path, program, "--machine", machine)

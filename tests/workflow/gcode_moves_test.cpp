@@ -20,6 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using ::testing::StartsWith;
 
 using test::slurp;
@@ -44,6 +45,19 @@ TEST(GcodeMovesWorkflow, OneRowPerMotion) {
   EXPECT_EQ(std::count(r.csv.begin(), r.csv.end(), '\n'), 4);
   EXPECT_THAT(r.note, HasSubstr("3 moves"));
   EXPECT_THAT(runGcodeMoves(request("G0 X1\n")).note, HasSubstr("(no M2/M30 at the end)"));
+}
+
+TEST(GcodeMovesWorkflow, AnInchProgramIsToldItsCsvIsInMillimetres) {
+  // rs274 prints canonical calls in program units; the CSV keeps machine mm (its documented
+  // contract, byte for byte for every program), and the note says so for moves under G20.
+  const GcodeMovesResult in = runGcodeMoves(request("G20\nG0 X1\nG1 A15 F300\nG21 G0 X0\nM2\n"));
+  EXPECT_EQ(in.csv,
+            std::string(cnc::kMoveCsvHeader) +
+                "\n2,rapid,25.4,0,0,0,0,0,,,,0,XY,\n3,linear,25.4,0,0,15,0,0,,,,0,XY,300\n"
+                "4,rapid,0,0,0,15,0,0,,,,0,XY,\n");
+  EXPECT_THAT(in.note,
+              HasSubstr("3 moves; 2 of them programmed in inches (G20): the CSV is in mm"));
+  EXPECT_THAT(runGcodeMoves(request("G21 G0 X1\nM2\n")).note, Not(HasSubstr("inch")));
 }
 
 TEST(GcodeMovesWorkflow, ProgramTextHeldElsewhereIsReadInsteadOfTheRequestsText) {

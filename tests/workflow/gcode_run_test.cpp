@@ -13,7 +13,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "pkm/cnc/exechon_path.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/core/units.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "support/scratch_files.hpp"
 
@@ -56,6 +58,44 @@ TEST(GcodeRunWorkflow, AShortProgramPassesEveryCheck) {
   EXPECT_GT(rep.cycle_time_s, 0.0);
   EXPECT_EQ(rep.max_joint_velocity, 200.0);  // the built-in machine has no joint_rates
   EXPECT_EQ(rep.tolerance_mm, 0.01);
+}
+
+TEST(GcodeRunWorkflow, ARotaryOnlyMoveTakesAsLongUnderG20AsUnderG21) {
+  // F300 on a rotary-only move is 300 deg/min under G20 too (LinuxCNC's feed rule): 15 deg take
+  // at least 3 s, and the inch program times exactly as its millimetre twin.
+  const GcodeRunResult mm = runGcode(request("G21 G0 X0 Y0 Z200\nG1 A15 F300\nM2\n"));
+  const GcodeRunResult in = runGcode(request("G20 G0 X0 Y0 Z[200/25.4]\nG1 A15 F300\nM2\n"));
+  EXPECT_TRUE(in.ok());
+  EXPECT_EQ(check(in.report, "joint_velocity").violations, 0u);
+  EXPECT_GE(in.report.cycle_time_s, 15.0 / 300.0 * 60.0);
+  constexpr double kSameTime = 1e-9;  // s: the same path, up to the rounding of Z
+  EXPECT_NEAR(in.report.cycle_time_s, mm.report.cycle_time_s, kSameTime);
+}
+
+TEST(GcodeRunWorkflow, TheExechonsAEqualsCEqualsZeroConvention) {
+  // docs/conventions.md "A = C = 0 on an Exechon": with --orientation vector (the default) A = C
+  // = 0 is a vertical tool; with --orientation axes (the wrist readings, what LinuxCNC's
+  // pkmexechonkins reads) it is the tool along the tripod axis, which mxt700s-like's rpy_deg
+  // (200, 0, 0) tilts 20 deg from the vertical about x; a vertical tool there needs A of about -20
+  // deg.
+  const io::ExechonMachine machine = io::loadExechonMachine("mxt700s-like");
+  const cnc::Axes home{0.0, 68.404, 12.061, 0.0, 0.0, 0.0};  // the home tool point, mm
+  const Eigen::Vector3d down(0.0, 0.0, -1.0);
+  constexpr double kAngleTol = 0.01;  // deg: the home point is rounded to the micrometre
+  cnc::ExechonJointConverter vector(machine.model, cnc::ExechonOrientation::kToolVector);
+  const cnc::ExechonPathSample v = vector.solve(home);
+  ASSERT_TRUE(v.ok());
+  EXPECT_NEAR(
+      pkm::radToDeg(std::acos(std::clamp(v.direction.dot(down), -1.0, 1.0))), 0.0, kAngleTol);
+  cnc::ExechonJointConverter axes(machine.model, cnc::ExechonOrientation::kWristAxes);
+  const cnc::ExechonPathSample w = axes.solve(home);
+  ASSERT_TRUE(w.ok());
+  EXPECT_NEAR(
+      pkm::radToDeg(std::acos(std::clamp(w.direction.dot(down), -1.0, 1.0))), 20.0, kAngleTol);
+  EXPECT_NEAR(w.direction.x(), 0.0, 1e-3);  // tilted about x only
+  // The vertical tool's wrist A: about -20 deg, -23.10 here (the platform tilts a further 3 deg
+  // when the wrist point S moves to keep the tool point).
+  EXPECT_NEAR(v.joints(4), -23.102, kAngleTol);
 }
 
 TEST(GcodeRunWorkflow, AStrokeViolationIsFoundAtItsLine) {

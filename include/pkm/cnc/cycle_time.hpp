@@ -16,11 +16,33 @@
 
 namespace pkm::cnc {
 
+/// The controller's limits on a rapid besides its rate (LinuxCNC: a G0 runs at [TRAJ]
+/// MAX_LINEAR_VELOCITY, lowered so that no axis exceeds its [AXIS_L] MAX_VELOCITY along the move,
+/// and a rotary-only G0 at most at [TRAJ] MAX_ANGULAR_VELOCITY; LinuxCNC 2.9 "INI
+/// Configuration", [TRAJ] and [AXIS_<letter>] sections). +infinity: no limit.
+struct RapidAxisLimits {
+  /// Largest speed of each axis X, Y, Z (mm/s), A, B, C (deg/s); > 0.
+  Axes axis_velocity{kNoLimit, kNoLimit, kNoLimit, kNoLimit, kNoLimit, kNoLimit};
+  double angular_rate = kNoLimit;  ///< rotary-only G0 path speed, deg/min; > 0
+  static constexpr double kNoLimit = std::numeric_limits<double>::infinity();
+  /// Whether any limit is finite.
+  [[nodiscard]] bool any() const;
+  /// Throws pkm::InvalidArgument when a limit is not > 0 (NaN included).
+  void validate() const;
+};
+
+/// The path speed cap of a rapid from `a` to `b` (mm/s along XYZ, deg/s for a rotary-only
+/// move, as segmentLength): the largest v with v·|b_i − a_i|/L <= axis_velocity_i for every axis
+/// (L the segment's length), and for a rotary-only move v <= angular_rate/60. +inf without a
+/// finite limit or for a segment of length 0.
+[[nodiscard]] double rapidSpeedCap(const Axes& a, const Axes& b, const RapidAxisLimits& limits);
+
 /// Joint and rapid limits (the same for all six struts).
 struct MotionLimits {
   double max_joint_velocity = 100.0;       ///< model length unit per second; > 0
   double max_joint_acceleration = 1000.0;  ///< model length unit per second²; > 0
   double rapid_rate = 10000.0;             ///< G0 path speed, mm/min (or deg/min); > 0
+  RapidAxisLimits rapid_axes;              ///< axis limits that lower a G0 (none by default)
   /// Throws pkm::InvalidArgument naming the field when one is not > 0 and finite.
   void validate() const;
 };
@@ -33,6 +55,7 @@ struct JointRateLimits {
   kinematics::StrutVector max_velocity = kinematics::StrutVector::Constant(100.0);
   kinematics::StrutVector max_acceleration = kinematics::StrutVector::Constant(1000.0);
   double rapid_rate = 10000.0;  ///< G0 path speed, mm/min (or deg/min); > 0
+  RapidAxisLimits rapid_axes;   ///< axis limits that lower a G0 (none by default)
 
   /// The same limits for all six joints (a hexapod's struts).
   [[nodiscard]] static JointRateLimits uniform(const MotionLimits& limits);
@@ -46,7 +69,7 @@ struct JointRateLimits {
 [[nodiscard]] double segmentLength(const Axes& a, const Axes& b);
 
 /// The programmed path speed of a point's sub-segment: feed/60 (mm/s), or rapid_rate/60 for a
-/// rapid (or a move without a feed).
+/// rapid (or a move without a feed). The cycle time lowers a rapid further by rapidSpeedCap.
 [[nodiscard]] double programmedSpeed(const PathPoint& p, const MotionLimits& limits);
 
 /// Time of a sub-segment of length `ds` entered at speed `v0`, left at `v1`, cruising at most at

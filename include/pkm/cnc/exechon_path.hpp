@@ -97,7 +97,7 @@ class ExechonJointConverter {
 
 /// Header of the Exechon joint CSV.
 inline constexpr const char* kExechonJointCsvHeader =
-    "line,t,x,y,z,a,b,c,q0,q1,q2,wrist_c,wrist_a,ux,uy,uz,drm";
+    "line,t,x,y,z,a,b,c,q1,q2,q3,wrist_c,wrist_a,ux,uy,uz,drm";
 
 /// Appends one Exechon joint CSV row with its newline: line, t (s), position (mm, degrees), leg
 /// readings (model length unit), wrist C and A (degrees), the world tool direction and φ_DRM

@@ -37,8 +37,10 @@ struct InterpreterOptions {
 
 /// What a run did.
 struct RunSummary {
-  std::size_t blocks = 0;    ///< blocks executed (loops counted per pass)
-  std::size_t moves = 0;     ///< motions sent to the sink
+  std::size_t blocks = 0;  ///< blocks executed (loops counted per pass)
+  std::size_t moves = 0;   ///< motions sent to the sink
+  /// Of which made under G20: their program said inches, the moves are in mm all the same.
+  std::size_t inch_moves = 0;
   bool ended_by_m2 = false;  ///< the program ended with M2 or M30
 };
 

@@ -18,16 +18,19 @@ using Axes = std::array<double, 6>;
 
 /// The interpreter's modal state. G-codes are stored times ten (G92.1 -> 921).
 struct MachineState {
-  bool inch = false;              ///< G20 (true) / G21
-  Plane plane = Plane::kXY;       ///< G17 / G18 / G19
-  bool incremental = false;       ///< G91 / G90
-  bool ijk_absolute = false;      ///< G90.1 / G91.1
-  bool inverse_time = false;      ///< G93 / G94
-  bool retract_to_r = true;       ///< G99 / G98 (rs274's start-up mode is G99)
-  int motion = 800;               ///< active motion mode x10 (0, 10, 20, 30, 730, 740, 800..890)
-  int coordinate_system = 1;      ///< 1 = G54 .. 9 = G59.3
-  int path_mode = 640;            ///< G61 / G61.1 / G64, recorded only
-  double feed = 0.0;              ///< feed rate, mm/min (units-per-minute mode)
+  bool inch = false;          ///< G20 (true) / G21
+  Plane plane = Plane::kXY;   ///< G17 / G18 / G19
+  bool incremental = false;   ///< G91 / G90
+  bool ijk_absolute = false;  ///< G90.1 / G91.1
+  bool inverse_time = false;  ///< G93 / G94
+  bool retract_to_r = true;   ///< G99 / G98 (rs274's start-up mode is G99)
+  int motion = 800;           ///< active motion mode x10 (0, 10, 20, 30, 730, 740, 800..890)
+  int coordinate_system = 1;  ///< 1 = G54 .. 9 = G59.3
+  int path_mode = 640;        ///< G61 / G61.1 / G64, recorded only
+  double feed = 0.0;          ///< feed rate, mm/min (units-per-minute mode)
+  /// The F number as written (units-per-minute mode): the feed of a rotary-only move in deg/min,
+  /// whatever G20/G21 said (LinuxCNC converts F's length rate only; angles have no inch).
+  double angular_feed = 0.0;
   double spindle_speed = 0.0;     ///< S
   int spindle_direction = 0;      ///< M3 (+1, clockwise), M4 (-1), M5 (0; stopped at start-up)
   bool overrides_enabled = true;  ///< M48 (true) / M49: feed and speed overrides

@@ -55,9 +55,12 @@ struct GcodeRunReport {
   double max_wrist_acceleration_deg_per_s2 = 0.0;     ///< Exechon wrist acceleration limit
   double rapid_rate_mm_per_min = 0.0;                 ///< G0 path speed
   std::vector<std::string> limits_from_machine_file;  ///< limits the machine file set
-  double cycle_time_s = 0.0;                          ///< estimated cycle time, dwells included
-  double dwell_time_s = 0.0;                          ///< of which dwells
-  bool ok = true;                                     ///< no check violated
+  /// The limits that lower a rapid along each move (a LinuxCNC INI's axis maxima), in words;
+  /// "" when none.
+  std::string rapid_limits;
+  double cycle_time_s = 0.0;              ///< estimated cycle time, dwells included
+  double dwell_time_s = 0.0;              ///< of which dwells
+  bool ok = true;                         ///< no check violated
   std::vector<GcodeCheckSummary> checks;  ///< every check, in the order of docs/gcode.md
 
   [[nodiscard]] bool exechon() const { return machine_type == "exechon"; }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/io/ini_velocity_limits.hpp"
 #include "pkm/io/joint_rates.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_model.hpp"
@@ -30,6 +31,9 @@ struct HexapodMachine {
   /// world frame is where the fit put it, not the machine's table (docs/calibration.md,
   /// "Frames"). Nothing that goes into a controller is written from it (requireRegisteredFrame).
   bool world_frame_unregistered = false;
+  /// A LinuxCNC INI's velocity limits ([TRAJ] and [AXIS_L] MAX_VELOCITY), which bound the rapid
+  /// rate of `pkm gcode run`; unset without an INI. Not written to machine JSON.
+  std::optional<IniVelocityLimits> ini_velocity;
 };
 
 /// Throws pkm::InvalidArgument, saying what to measure and pass, when `machine` is a calibration

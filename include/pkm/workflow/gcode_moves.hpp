@@ -41,7 +41,8 @@ struct GcodeMovesResult {
   bool ended_by_m2 = false;  ///< the program ended with M2 or M30
   /// The CSV when neither `out` nor an output callback was given, else empty.
   std::string csv;
-  /// One line summing up the run ("N lines, B blocks executed, M moves ..."), no newline.
+  /// One line summing up the run ("N lines, B blocks executed, M moves ..."), no newline; for a
+  /// program with moves under G20 it says that the CSV is in mm all the same.
   std::string note;
 };
 

@@ -44,7 +44,10 @@ struct GcodeRunRequest {
   std::optional<double> max_joint_acceleration;  ///< machine unit/s² (2000)
   std::optional<double> max_wrist_velocity;      ///< Exechon wrist C/A speed, deg/s (180)
   std::optional<double> max_wrist_acceleration;  ///< Exechon wrist, deg/s² (1800)
-  double rapid_rate = 10000.0;                   ///< G0 path speed, mm/min
+  /// G0 path speed, mm/min. Unset: a LinuxCNC INI's [TRAJ] MAX_LINEAR_VELOCITY (hexapod read
+  /// from a .hal with its INI), else 10000. An INI's [AXIS_L] MAX_VELOCITY and [TRAJ]
+  /// MAX_ANGULAR_VELOCITY lower rapids along each move either way.
+  std::optional<double> rapid_rate;
   /// Exechon: A/C words are the tool vector's angles in the world frame ("vector") or the wrist
   /// axes' readings ("axes").
   std::string orientation = "vector";
