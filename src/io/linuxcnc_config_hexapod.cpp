@@ -144,7 +144,7 @@ std::vector<detail::IniAxis> hexapodAxes(const kin::HexapodModel& model,
         "the X Y Z A B C limit box is within the strokes, joint cones, interference and "
         "conditioning limits and {} {} above the base plane (no singular or mirror pose)",
         100.0 * good,
-        formatNumber(ok.margin),
+        fmt::format("{:.3g}", ok.margin),
         toString(model.unit)));
   return axes;
 }
