@@ -341,11 +341,13 @@ def cli_text(pkm_binary, folder, args):
                                      ["--backlash"]])
 def test_hexapod_str_is_the_cli_text(pkm_binary, s4, tmp_path, monkeypatch, options):
     pose, hold = str(s4 / "tracker-pose.csv"), str(s4 / "tracker-holdout.csv")
+    reg = str(s4 / "tracker-pose-registration.csv")
     cli = cli_text(pkm_binary, tmp_path / "cli", ["calibrate", "hexapod", "--machine",
                                                   "hexapod-default", "--data", pose,
-                                                  "--holdout", hold, "--out", "cal.json",
-                                                  *options])
+                                                  "--holdout", hold, "--registration", reg,
+                                                  "--out", "cal.json", *options])
     kw = {"monte_carlo": 3, "threads": 1} if "--monte-carlo" in options else {}
+    kw["registration"] = reg
     if "--backlash" in options:
         kw["backlash"] = True
     (tmp_path / "py").mkdir()
@@ -530,3 +532,13 @@ def test_calibrate_hexapod_example(s4, tmp_path):
     if hasattr(pkm, "simulate"):
         # Simulated in Python: the same scenario and seed as `pkm simulate`, the same numbers.
         assert run_example(tmp_path) == out
+
+
+def test_hexapod_without_registration_is_marked_and_writes_no_setp_block(s4, tmp_path):
+    r = pkm.calibration.hexapod("hexapod-default", files=[str(s4 / "tracker-pose.csv")])
+    assert r.to_dict()["world_frame"] == "unregistered"
+    assert r.save(tmp_path / "u.json") == [str(tmp_path / "u.json"),
+                                           str(tmp_path / "u.summary.json")]
+    assert not (tmp_path / "u.hal").exists()
+    with open(tmp_path / "u.json") as f:
+        assert json.load(f)["world_frame"] == "unregistered"
