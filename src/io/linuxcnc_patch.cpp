@@ -186,12 +186,12 @@ TextPatch patchKinematicsHal(const NamedText& hal, const HexapodMachine& machine
 namespace {
 
 /// A joint limit without the float noise of its sum (stroke + length offset): the shortest decimal
-/// of at most 12 significant digits within 1e-12 (relative) of `v`, else `v`. Round limits
-/// (±1000) then print round instead of -999.9999999999973.
+/// of at most 12 significant digits within 1e-14 (relative: float noise, not a real digit) of `v`,
+/// else `v`. Round limits (±1000) then print round instead of -999.9999999999973.
 double roundLimit(double v) {
   for (int digits = 1; digits <= 12; ++digits) {
     const double r = std::strtod(fmt::format("{:.{}e}", v, digits - 1).c_str(), nullptr);
-    if (std::abs(r - v) <= 1e-12 * std::max(1.0, std::abs(v))) return r;
+    if (std::abs(r - v) <= 1e-14 * std::max(1.0, std::abs(v))) return r;
   }
   return v;
 }
