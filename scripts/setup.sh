@@ -11,7 +11,7 @@ packages=(
   libunwind-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang-format bc
-  libboost-python1.74.0 libsqlite3-dev
+  libboost-python1.74.0 libboost1.74-dev libsqlite3-dev
   chromium
   linuxcnc-uspace linuxcnc-uspace-dev
   libcpp-httplib-dev

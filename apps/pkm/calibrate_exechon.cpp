@@ -56,7 +56,7 @@ void addCalibrateExechon(CLI::App& calibrate) {
       ->capture_default_str();
   ex->add_option("--data",
                  args->data,
-                 "Exechon tracker files (q0,q1,q2,c,a,x,y,z[,i,j,k]) and hybrid tracker files "
+                 "Exechon tracker files (q1,q2,q3,c,a,x,y,z[,i,j,k]) and hybrid tracker files "
                  "(x2,y2,xp,yp,zp,x,y,z)")
       ->required()
       ->check(CLI::ExistingFile);

@@ -25,9 +25,9 @@ const std::vector<std::string> kPointColumns{"l0", "l1", "l2", "l3", "l4", "l5",
 const std::vector<std::string> kGaugeColumns{
     "station", "x", "y", "z", "a", "b", "c", "l0", "l1", "l2", "l3", "l4", "l5", "g0", "g1", "g2"};
 const std::vector<std::string> kDistanceColumns{"l0", "l1", "l2", "l3", "l4", "l5", "distance"};
-const std::vector<std::string> kExechonColumns{"q0", "q1", "q2", "c", "a", "x", "y", "z"};
+const std::vector<std::string> kExechonColumns{"q1", "q2", "q3", "c", "a", "x", "y", "z"};
 const std::vector<std::string> kExechonDirectionColumns{
-    "q0", "q1", "q2", "c", "a", "x", "y", "z", "i", "j", "k"};
+    "q1", "q2", "q3", "c", "a", "x", "y", "z", "i", "j", "k"};
 const std::vector<std::string> kHybridColumns{"x2", "y2", "xp", "yp", "zp", "x", "y", "z"};
 
 bool isPath(py::handle obj) {

@@ -271,7 +271,7 @@ Parameters
 ----------
 machine : str, os.PathLike or Exechon, default "mxt700s-like"
 points : array_like (N, 8) or (N, 11)
-    Exechon tracker readings: q0, q1, q2 (leg readings), c, a (wrist readings, degrees), x, y, z
+    Exechon tracker readings: q1, q2, q3 (leg readings A, B, C), c, a (wrist readings, degrees), x, y, z
     (measured SMR), optionally i, j, k (a measured unit tool direction).
 hybrid : array_like (N, 8)
     Hybrid tracker readings: x2, y2, xp, yp, zp (axis commands), x, y, z (measured target).

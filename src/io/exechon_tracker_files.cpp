@@ -26,7 +26,7 @@ std::string exechonTrackerCsv(const Metadata& metadata,
                               const std::vector<simulation::ExechonTrackerReading>& readings) {
   std::string out;
   for (const auto& [key, value] : metadata) out += fmt::format("# {}: {}\n", key, value);
-  out += "q0,q1,q2,c,a,x,y,z\n";
+  out += "q1,q2,q3,c,a,x,y,z\n";
   for (const simulation::ExechonTrackerReading& r : readings)
     out += fmt::format("{},{},{},{},{},{},{},{}\n",
                        formatNumber(r.joints.readings[0]),
@@ -62,7 +62,7 @@ Metadata exechonTrackerMetadata(const std::string& scenario,
                    formatNumber(n.angle_sigma * kUradPerRad))},
       {"poses", std::to_string(poses)},
       {"columns",
-       "q0,q1,q2 commanded leg readings A, B, C mm (nominal IK); c,a wrist readings deg; x,y,z mm"},
+       "q1,q2,q3 commanded leg readings A, B, C mm (nominal IK); c,a wrist readings deg; x,y,z mm"},
   };
 }
 
@@ -151,7 +151,11 @@ void addExechonCalibrationFile(const NamedText& file, ExechonCalibrationInput& i
     addHybridFile(t, path, input);
     return;
   }
-  const std::size_t q0 = t.column({"q0"}), q1 = t.column({"q1"}), q2 = t.column({"q2"});
+  // Legs A, B, C are q1,q2,q3 as in `pkm exechon ik/fk`; files written before that used q0,q1,q2.
+  const bool from_zero = t.findColumn({"q0"}).has_value();
+  const std::size_t q0 = t.column({from_zero ? "q0" : "q1"}),
+                    q1 = t.column({from_zero ? "q1" : "q2"}),
+                    q2 = t.column({from_zero ? "q2" : "q3"});
   const std::size_t cc = t.column({"c", "c_deg"}), ca = t.column({"a", "a_deg"});
   const std::size_t x = t.column({"x"}), y = t.column({"y"}), z = t.column({"z"});
   const auto i = t.findColumn({"i"}), j = t.findColumn({"j"}), k = t.findColumn({"k"});

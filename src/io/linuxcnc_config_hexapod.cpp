@@ -25,16 +25,20 @@ constexpr double kTranslationCap = 2.0;
 constexpr std::array<double, 3> kRotationCapDeg{90.0, 90.0, 180.0};
 constexpr double kAngleStepDeg = 0.01;
 
-/// A pose the axis limits may reach: every limit `pkm hexapod check` applies holds and every
+/// A pose the axis limits may reach: every limit `pkm hexapod check` applies holds, every
 /// platform joint stays kClearanceFraction characteristic lengths above the base plane (the
-/// singular plane, beyond which lies the mirror assembly).
+/// singular plane, beyond which lies the mirror assembly), and the strut Jacobian's determinant
+/// has home's sign (no singular configuration lies between home and the pose on that count;
+/// pkmhexkins refuses a pose of the other sign).
 struct PoseAdmissible {
   const kin::HexapodModel& model;
   kin::HexapodData& data;
   kin::BasePlane plane;
   double margin;
+  int home_branch;
   bool operator()(const kin::PoseRpy& pose) const {
     return kin::platformClearance(model, plane, pose) >= margin &&
+           kin::assemblyBranch(model, data, pose) == home_branch &&
            kin::checkPose(model, data, pose).ok();
   }
 };
@@ -127,8 +131,17 @@ std::vector<detail::IniAxis> hexapodAxes(const kin::HexapodModel& model,
         formatNumber(at_home),
         toString(model.unit)));
   // The margin: a tenth of the characteristic length, less for a home closer to the plane.
-  const PoseAdmissible ok{
-      model, data, plane, std::min(kin::kMirrorClearanceFraction * length, 0.5 * at_home)};
+  const int home_branch = kin::assemblyBranch(model, data, model.home);
+  if (home_branch == 0)
+    throw InvalidArgument(fmt::format(
+        "{}: the home pose is singular (strut Jacobian of rank < 6): LinuxCNC could not home "
+        "the machine",
+        model.name));
+  const PoseAdmissible ok{model,
+                          data,
+                          plane,
+                          std::min(kin::kMirrorClearanceFraction * length, 0.5 * at_home),
+                          home_branch};
   const std::vector<detail::IniAxis> reach = hexapodReach(model, ok, home, velocity, acceleration);
   std::vector<detail::IniAxis> axes = scaledAxes(reach, home, length, 1.0);
   if (cornersAdmissible(ok, axes)) return axes;
@@ -142,7 +155,8 @@ std::vector<detail::IniAxis> hexapodAxes(const kin::HexapodModel& model,
     notices->push_back(fmt::format(
         "axis limits shrunk to {:.1f} % of each axis's reach from home, so that every corner of "
         "the X Y Z A B C limit box is within the strokes, joint cones, interference and "
-        "conditioning limits and {} {} above the base plane (no singular or mirror pose)",
+        "conditioning limits, on home's assembly branch and {} {} above the base plane (no "
+        "singular or mirror pose)",
         100.0 * good,
         fmt::format("{:.3g}", ok.margin),
         toString(model.unit)));

@@ -3,11 +3,19 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <string>
 
 namespace pkm::io::detail {
 
 using Json = nlohmann::ordered_json;
+
+namespace {
+
+/// Degrees of freedom as JSON: null for infinite (a Type B value taken as exact).
+Json dofJson(double nu) { return std::isfinite(nu) ? Json(nu) : Json(nullptr); }
+
+}  // namespace
 
 Json budgetJson(const metrology::UncertaintyBudget& budget) {
   Json rows = Json::array();
@@ -20,13 +28,15 @@ Json budgetJson(const metrology::UncertaintyBudget& budget) {
                         {"standard_uncertainty", c.standardUncertainty()},
                         {"sensitivity", c.sensitivity},
                         {"contribution", c.contribution()},
+                        {"degrees_of_freedom", dofJson(c.degrees_of_freedom)},
                         {"source", c.source}});
   }
   return Json{{"value", budget.value},
               {"unit", budget.unit},
               {"U", budget.expandedUncertainty()},
               {"u_c", budget.combinedStandardUncertainty()},
-              {"k", budget.coverage_factor},
+              {"k", budget.coverageFactor()},
+              {"nu_eff", dofJson(budget.effectiveDegreesOfFreedom())},
               {"budget", std::move(rows)}};
 }
 
@@ -68,14 +78,20 @@ Json conformanceJson(const std::vector<metrology::ConformanceResult>& results) {
 
 std::string uncertaintyText(const std::vector<metrology::UncertaintyBudget>& budgets) {
   if (budgets.empty()) return {};
+  // k of the header holds at infinite degrees of freedom; a line with a finite ν_eff prints the
+  // Student's t factor it used.
   std::string out = fmt::format("uncertainty (k = {})\n", budgets.front().coverage_factor);
   for (const metrology::UncertaintyBudget& b : budgets) {
     const auto largest = b.largestContributor();
-    out += fmt::format("{}\t{:.6g} ± {:.2g} {}\tlargest: {}\n",
+    const double nu = b.effectiveDegreesOfFreedom();
+    const std::string k =
+        std::isfinite(nu) ? fmt::format(" (nu_eff {:.3g}, k {:.3g})", nu, b.coverageFactor()) : "";
+    out += fmt::format("{}\t{:.6g} ± {:.2g} {}{}\tlargest: {}\n",
                        b.quantity,
                        b.value,
                        b.expandedUncertainty(),
                        b.unit,
+                       k,
                        largest ? b.contributors[*largest].name : "-");
   }
   return out;

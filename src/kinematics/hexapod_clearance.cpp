@@ -2,8 +2,11 @@
 #include "pkm/kinematics/hexapod_clearance.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <algorithm>
 #include <limits>
+
+#include "pkm/kinematics/hexapod_ik.hpp"
 
 namespace pkm::kinematics {
 
@@ -47,6 +50,17 @@ double platformClearance(const HexapodModel& model, const BasePlane& plane, cons
   for (const Eigen::Vector3d& p : platformJoints(model, pose))
     lowest = std::min(lowest, plane.world_n.dot(p - plane.world_p_centre));
   return lowest;
+}
+
+int assemblyBranch(const HexapodModel& model, HexapodData& data, const PoseRpy& pose) {
+  constexpr double kSingularPivotRatio = 1e-12;
+  inverseKinematics(model, data, pose);
+  Matrix6d J = computeStrutJacobian(model, data);
+  J.rightCols<3>() /= model.characteristicLength();
+  const Eigen::FullPivLU<Matrix6d> lu(J);
+  const Eigen::VectorXd pivots = lu.matrixLU().diagonal().cwiseAbs();
+  if (!(pivots.minCoeff() > kSingularPivotRatio * pivots.maxCoeff())) return 0;
+  return lu.determinant() > 0.0 ? 1 : -1;
 }
 
 }  // namespace pkm::kinematics

@@ -2,6 +2,7 @@
 #include "pkm/metrology/positioning_uncertainty.hpp"
 
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "pkm/core/error.hpp"
@@ -11,37 +12,73 @@ namespace {
 
 constexpr double kPpm = 1e-6;
 
-/// One directional mean of a target: x̄, s and n (a candidate extreme of a range).
+/// One directional mean of a target: x̄, s and n (a candidate extreme of a range), and the
+/// degrees of freedom of its variance (n − 1; Welch–Satterthwaite for a bidirectional mean).
 struct Mean {
   double target = 0.0;
   double mean = 0.0;
   double s = 0.0;
   int n = 0;
+  double dof = 0.0;
+};
+
+/// A variance with its degrees of freedom: one term of a Type A contributor.
+struct Part {
+  double variance = 0.0;
+  double dof = 0.0;
 };
 
 std::vector<Mean> directionalMeans(const Iso230_2Result& r) {
   std::vector<Mean> out;
   for (const TargetStatistics& t : r.targets) {
-    out.push_back({t.target, t.mean_up, t.s_up, t.runs_up});
-    out.push_back({t.target, t.mean_down, t.s_down, t.runs_down});
+    out.push_back({t.target, t.mean_up, t.s_up, t.runs_up, t.runs_up - 1.0});
+    out.push_back({t.target, t.mean_down, t.s_down, t.runs_down, t.runs_down - 1.0});
   }
   return out;
 }
 
-/// Variance of a mean of n readings with standard deviation s: s²/n.
-double meanVariance(const Mean& m) { return m.s * m.s / m.n; }
-/// Variance of the estimate s itself (normal readings): s²/(2(n − 1)).
-double sVariance(double s, int n) { return s * s / (2.0 * (n - 1)); }
+/// Variance of a mean of n readings with standard deviation s: s²/n, with ν = n − 1.
+Part meanVariance(const Mean& m) { return {m.s * m.s / m.n, m.dof}; }
+/// Variance of the estimate s itself (normal readings): s²/(2(n − 1)), with ν = n − 1 (GUM G.4.2:
+/// the relative uncertainty of s is 1/√(2(n − 1))).
+Part sVariance(double s, int n, double scale = 1.0) {
+  return {scale * scale * s * s / (2.0 * (n - 1)), n - 1.0};
+}
 
-UncertaintyContributor statistic(std::string name, double u, std::string source) {
+/// A Type A contributor (normal, k = 1) whose variance is the sum of `parts`, each with its
+/// degrees of freedom: u = √Σv, ν by Welch–Satterthwaite (GUM G.4.1).
+UncertaintyContributor statistic(std::string name,
+                                 const std::vector<Part>& parts,
+                                 std::string source) {
+  std::vector<double> v, dof;
+  for (const Part& p : parts) {
+    v.push_back(p.variance);
+    dof.push_back(p.dof);
+  }
+  double sum = 0.0;
+  for (const double x : v) sum += x;
   UncertaintyContributor c;
   c.name = std::move(name);
-  c.value = u;
+  c.value = std::sqrt(sum);
   c.unit = "mm";
   c.distribution = Distribution::kNormal;
   c.normal_k = 1.0;
   c.source = std::move(source);
+  c.degrees_of_freedom = welchSatterthwaite(v, dof);
   return c;
+}
+
+/// A Type B contributor known as a standard uncertainty (ν = ∞).
+UncertaintyContributor standard(std::string name, double u, std::string source) {
+  return statistic(
+      std::move(name), {{u * u, std::numeric_limits<double>::infinity()}}, std::move(source));
+}
+
+Part scaled(Part p, double scale) { return {scale * p.variance, p.dof}; }
+/// The variance of x̄↑ (or x̄↓) at a target, s²/n with ν = n − 1.
+Part upMean(const TargetStatistics& t) { return {t.s_up * t.s_up / t.runs_up, t.runs_up - 1.0}; }
+Part downMean(const TargetStatistics& t) {
+  return {t.s_down * t.s_down / t.runs_down, t.runs_down - 1.0};
 }
 
 UncertaintyContributor bounded(
@@ -103,7 +140,8 @@ UncertaintyBudget rangeBudget(const char* quantity,
   addLaserLengthContributors(b, std::abs(hi->target - lo->target), src);
   addContributor(b,
                  statistic("sampling of the extreme means (s/sqrt(n))",
-                           std::sqrt(mean_variance_scale * (meanVariance(*hi) + meanVariance(*lo))),
+                           {scaled(meanVariance(*hi), mean_variance_scale),
+                            scaled(meanVariance(*lo), mean_variance_scale)},
                            "test data"));
   addResolutionContributor(b, src);
   return b;
@@ -124,11 +162,11 @@ UncertaintyBudget accuracyBudget(const char* quantity,
   addLaserLengthContributors(b, std::abs(hi->target - lo->target), src);
   addContributor(b,
                  statistic("sampling of the extreme means (s/sqrt(n))",
-                           std::sqrt(meanVariance(*hi) + meanVariance(*lo)),
+                           {meanVariance(*hi), meanVariance(*lo)},
                            "test data"));
   addContributor(b,
                  statistic("sampling of the extreme standard deviations (k s)",
-                           k * std::sqrt(sVariance(hi->s, hi->n) + sVariance(lo->s, lo->n)),
+                           {sVariance(hi->s, hi->n, k), sVariance(lo->s, lo->n, k)},
                            "test data"));
   addResolutionContributor(b, src);
   return b;
@@ -139,9 +177,10 @@ UncertaintyBudget reversalBudget(const Iso230_2Result& r, const UncertaintySourc
   for (const TargetStatistics& t : r.targets)
     if (std::abs(t.reversal) > std::abs(c->reversal)) c = &t;
   UncertaintyBudget b = newBudget("B", r.B, src);
-  const double u = std::sqrt(c->s_up * c->s_up / c->runs_up + c->s_down * c->s_down / c->runs_down);
   addContributor(b,
-                 statistic("sampling of the two means at the target (s/sqrt(n))", u, "test data"));
+                 statistic("sampling of the two means at the target (s/sqrt(n))",
+                           {upMean(*c), downMean(*c)},
+                           "test data"));
   addReadingContributors(b, src);
   return b;
 }
@@ -154,17 +193,19 @@ UncertaintyBudget repeatabilityBudget(const Iso230_2Result& r,
     if (t.repeatability > c->repeatability) c = &t;
   UncertaintyBudget b = newBudget("R", r.R, src);
   const double bidirectional = k * c->s_up + k * c->s_down + std::abs(c->reversal);
-  double u = 0.0;
+  std::vector<Part> parts;
   if (c->repeatability == bidirectional) {
-    const double u_b = c->s_up * c->s_up / c->runs_up + c->s_down * c->s_down / c->runs_down;
-    u = std::sqrt(k * k * (sVariance(c->s_up, c->runs_up) + sVariance(c->s_down, c->runs_down)) +
-                  u_b);
+    parts = {sVariance(c->s_up, c->runs_up, k),
+             sVariance(c->s_down, c->runs_down, k),
+             upMean(*c),
+             downMean(*c)};
   } else if (c->repeatability == 2.0 * k * c->s_up) {
-    u = 2.0 * k * std::sqrt(sVariance(c->s_up, c->runs_up));
+    parts = {sVariance(c->s_up, c->runs_up, 2.0 * k)};
   } else {
-    u = 2.0 * k * std::sqrt(sVariance(c->s_down, c->runs_down));
+    parts = {sVariance(c->s_down, c->runs_down, 2.0 * k)};
   }
-  addContributor(b, statistic("sampling of the standard deviations at the target", u, "test data"));
+  addContributor(
+      b, statistic("sampling of the standard deviations at the target", parts, "test data"));
   addReadingContributors(b, src);
   return b;
 }
@@ -173,8 +214,8 @@ UncertaintyBudget repeatabilityBudget(const Iso230_2Result& r,
 std::vector<Mean> oneDirection(const Iso230_2Result& r, bool up) {
   std::vector<Mean> out;
   for (const TargetStatistics& t : r.targets)
-    out.push_back(up ? Mean{t.target, t.mean_up, t.s_up, t.runs_up}
-                     : Mean{t.target, t.mean_down, t.s_down, t.runs_down});
+    out.push_back(up ? Mean{t.target, t.mean_up, t.s_up, t.runs_up, t.runs_up - 1.0}
+                     : Mean{t.target, t.mean_down, t.s_down, t.runs_down, t.runs_down - 1.0});
   return out;
 }
 
@@ -190,7 +231,7 @@ UncertaintyBudget unidirectionalRepeatabilityBudget(const char* quantity,
   UncertaintyBudget b = newBudget(quantity, value, src);
   addContributor(b,
                  statistic("sampling of the standard deviation at the target",
-                           2.0 * k * std::sqrt(sVariance(c->s, c->n)),
+                           {sVariance(c->s, c->n, 2.0 * k)},
                            "test data"));
   addReadingContributors(b, src);
   return b;
@@ -283,7 +324,7 @@ void addLaserLengthContributors(UncertaintyBudget& b,
                          "mm",
                          1.0,
                          "set-up"));
-  addContributor(b, statistic("set-up repeatability", env.setup_repeatability_mm, "set-up"));
+  addContributor(b, standard("set-up repeatability", env.setup_repeatability_mm, "set-up"));
   addContributor(b,
                  bounded("environmental variation error E_VE",
                          env.environmental_variation_mm / 2.0,
@@ -302,9 +343,15 @@ std::vector<UncertaintyBudget> iso230_2Uncertainty(const Iso230_2Result& result,
   const std::vector<Mean> directional = directionalMeans(result);
   std::vector<Mean> bidirectional;
   for (const TargetStatistics& t : result.targets) {
-    // x̄i = (x̄i↑ + x̄i↓)/2: its variance is (s↑²/n↑ + s↓²/n↓)/4; carried as s²/n with n = 1.
-    const double var = (t.s_up * t.s_up / t.runs_up + t.s_down * t.s_down / t.runs_down) / 4.0;
-    bidirectional.push_back({t.target, t.mean, std::sqrt(var), 1});
+    // x̄i = (x̄i↑ + x̄i↓)/2: its variance is (s↑²/n↑ + s↓²/n↓)/4; carried as s²/n with n = 1,
+    // its degrees of freedom by Welch–Satterthwaite.
+    const Part up = upMean(t), down = downMean(t);
+    const double var = (up.variance + down.variance) / 4.0;
+    bidirectional.push_back({t.target,
+                             t.mean,
+                             std::sqrt(var),
+                             1,
+                             welchSatterthwaite({up.variance, down.variance}, {up.dof, down.dof})});
   }
   std::vector<UncertaintyBudget> out;
   out.push_back(rangeBudget("E", result.E, directional, 1.0, sources));

@@ -1,6 +1,8 @@
 // Uncertainty budgets of straightness, parallelism and circles (metrology/profile_uncertainty.hpp).
 #include "pkm/metrology/profile_uncertainty.hpp"
 
+#include <fmt/format.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -32,6 +34,13 @@ double opticsAccuracy(const LaserInterferometer& laser, double reading_mm, doubl
   const double length_m = length_mm / 1000.0;
   return laser.straightness_accuracy_mm + laser.straightness_relative * std::abs(reading_mm) +
          laser.straightness_length_mm_per_m2 * length_m * length_m;
+}
+
+/// The largest |x| (0 for none): where the optics' %-of-reading term is evaluated.
+double largestMagnitude(std::span<const double> x) {
+  double m = 0.0;
+  for (const double v : x) m = std::max(m, std::abs(v));
+  return m;
 }
 
 double span(std::span<const double> x) {
@@ -116,28 +125,28 @@ UncertaintyBudget parallelismUncertainty(double parallelism,
   const double travel = span(axis.position);
   const double l_ref = span(reference.position);
   UncertaintyBudget b = newBudget("parallelism", parallelism, src);
+  UncertaintyContributor slope_ref = detail::lengthContributor(
+      "reference line slope (least squares)", u_ref, Distribution::kNormal, travel, "test data");
+  slope_ref.degrees_of_freedom = static_cast<double>(reference.position.size()) - 2.0;
+  addContributor(b, slope_ref);
+  UncertaintyContributor slope_axis = detail::lengthContributor(
+      "axis line slope (least squares)", u_axis, Distribution::kNormal, travel, "test data");
+  slope_axis.degrees_of_freedom = static_cast<double>(axis.position.size()) - 2.0;
+  addContributor(b, slope_axis);
   addContributor(b,
-                 detail::lengthContributor("reference line slope (least squares)",
-                                           u_ref,
-                                           Distribution::kNormal,
-                                           travel,
-                                           "test data"));
+                 detail::lengthContributor(
+                     "straightness optics, reference run",
+                     opticsAccuracy(src.laser, largestMagnitude(reference.reading), l_ref),
+                     Distribution::kRectangular,
+                     std::sqrt(2.0) * travel / l_ref,
+                     "instrument"));
   addContributor(
       b,
-      detail::lengthContributor(
-          "axis line slope (least squares)", u_axis, Distribution::kNormal, travel, "test data"));
-  addContributor(b,
-                 detail::lengthContributor("straightness optics, reference run",
-                                           opticsAccuracy(src.laser, 0.0, l_ref),
-                                           Distribution::kRectangular,
-                                           std::sqrt(2.0) * travel / l_ref,
-                                           "instrument"));
-  addContributor(b,
-                 detail::lengthContributor("straightness optics, axis run",
-                                           opticsAccuracy(src.laser, 0.0, travel),
-                                           Distribution::kRectangular,
-                                           std::sqrt(2.0),
-                                           "instrument"));
+      detail::lengthContributor("straightness optics, axis run",
+                                opticsAccuracy(src.laser, largestMagnitude(axis.reading), travel),
+                                Distribution::kRectangular,
+                                std::sqrt(2.0),
+                                "instrument"));
   return b;
 }
 
@@ -204,6 +213,23 @@ std::vector<UncertaintyBudget> circleUncertainty(const CircleFit& lsc,
                                              Distribution::kRectangular,
                                              std::sqrt(2.0),
                                              "instrument"));
+    addContributor(b,
+                   detail::lengthContributor("master ring form (certificate)",
+                                             probe.ring_form_mm,
+                                             Distribution::kRectangular,
+                                             1.0,
+                                             "artefact certificate"));
+    // A roundness is a range of the residuals: the probe's noise raises it by up to the
+    // expected range of N noise values, d2(N)·σ (0.68 µm for 180 points at σ = 0.125 µm). The
+    // bias is one-sided and shrinks as the form grows against the noise; it is budgeted as a
+    // rectangular half-width (GUM F.2.4.4) rather than subtracted.
+    addContributor(b,
+                   detail::lengthContributor(
+                       fmt::format("probe noise raising a range of {} points (d2(N) sigma)", n),
+                       expectedNormalRange(n) * probe.repeatability_2sigma_mm / 2.0,
+                       Distribution::kRectangular,
+                       1.0,
+                       "instrument repeatability, expected range of N normal values"));
     out.push_back(std::move(b));
   }
   return out;
@@ -239,11 +265,14 @@ std::vector<UncertaintyBudget> probeOffsetUncertainty(const ProbeOffsetFit& fit,
                                              Distribution::kNormal,
                                              1.0,
                                              "test data"));
+    // The probe's lobing turns with the spindle: with four touches per turn an odd lobe count
+    // (3 on a strain-gauge probe) aliases to a centre shift of the full amplitude, which the
+    // 180° reversal flips, so it lands whole in the offset (it cancels only for even counts).
     addContributor(b,
-                   detail::lengthContributor("probe form error (reversal)",
+                   detail::lengthContributor("probe form error (odd lobes survive the reversal)",
                                              src.probe.form_2d_mm,
                                              Distribution::kRectangular,
-                                             0.5,
+                                             1.0,
                                              "instrument"));
     out.push_back(std::move(b));
   }

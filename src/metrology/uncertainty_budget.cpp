@@ -1,7 +1,10 @@
 // Uncertainty budgets (metrology/uncertainty_budget.hpp): the law of propagation of uncertainty.
 #include "pkm/metrology/uncertainty_budget.hpp"
 
+#include <boost/math/distributions/normal.hpp>
+#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
+#include <limits>
 
 #include "pkm/core/error.hpp"
 
@@ -68,6 +71,11 @@ void UncertaintyBudget::validate() const {
               "uncertainty budget '{}': contributor '{}' has a non-finite sensitivity",
               quantity,
               c.name);
+    PKM_CHECK(c.degrees_of_freedom > 0.0,
+              "uncertainty budget '{}': contributor '{}' needs degrees of freedom > 0, got {}",
+              quantity,
+              c.name,
+              c.degrees_of_freedom);
   }
   for (const Correlation& r : correlations) {
     PKM_CHECK(r.i < contributors.size() && r.j < contributors.size() && r.i != r.j,
@@ -103,8 +111,72 @@ double UncertaintyBudget::combinedStandardUncertainty() const {
   return std::sqrt(std::max(variance, 0.0));
 }
 
+double UncertaintyBudget::effectiveDegreesOfFreedom() const {
+  validate();
+  std::vector<double> variance, dof;
+  for (const UncertaintyContributor& c : contributors) {
+    const double u = c.contribution();
+    variance.push_back(u * u);
+    dof.push_back(c.degrees_of_freedom);
+  }
+  return welchSatterthwaite(variance, dof);
+}
+
+double UncertaintyBudget::coverageFactor() const {
+  validate();
+  const double nu = effectiveDegreesOfFreedom();
+  if (std::isinf(nu)) return coverage_factor;
+  const double p =
+      2.0 * boost::math::cdf(boost::math::normal_distribution<double>(), coverage_factor) - 1.0;
+  return studentT(p, nu);
+}
+
 double UncertaintyBudget::expandedUncertainty() const {
-  return coverage_factor * combinedStandardUncertainty();
+  return coverageFactor() * combinedStandardUncertainty();
+}
+
+double studentT(double p, double degrees_of_freedom) {
+  PKM_CHECK(p > 0.0 && p < 1.0, "Student's t: coverage probability {} outside (0, 1)", p);
+  PKM_CHECK(degrees_of_freedom > 0.0,
+            "Student's t: degrees of freedom must be > 0, got {}",
+            degrees_of_freedom);
+  const double q = 0.5 + p / 2.0;
+  if (std::isinf(degrees_of_freedom))
+    return boost::math::quantile(boost::math::normal_distribution<double>(), q);
+  return boost::math::quantile(boost::math::students_t_distribution<double>(degrees_of_freedom), q);
+}
+
+double expectedNormalRange(std::size_t n) {
+  PKM_CHECK(n >= 2, "expected range: needs n >= 2 values, got {}", n);
+  // Simpson's rule on [-12, 12] (beyond it the integrand is below 1e-30 for n up to 1e9).
+  constexpr int kIntervals = 4800;
+  constexpr double kHalfWidth = 12.0;
+  const double h = 2.0 * kHalfWidth / kIntervals;
+  const double count = static_cast<double>(n);
+  const auto f = [count](double x) {
+    const double below = 0.5 * std::erfc(-x / std::sqrt(2.0));
+    const double above = 0.5 * std::erfc(x / std::sqrt(2.0));
+    return 1.0 - std::pow(below, count) - std::pow(above, count);
+  };
+  double sum = f(-kHalfWidth) + f(kHalfWidth);
+  for (int i = 1; i < kIntervals; ++i) sum += (i % 2 == 1 ? 4.0 : 2.0) * f(-kHalfWidth + i * h);
+  return sum * h / 3.0;
+}
+
+double welchSatterthwaite(const std::vector<double>& variance,
+                          const std::vector<double>& degrees_of_freedom) {
+  PKM_CHECK(variance.size() == degrees_of_freedom.size(),
+            "Welch-Satterthwaite: {} variances and {} degrees of freedom",
+            variance.size(),
+            degrees_of_freedom.size());
+  double total = 0.0, denominator = 0.0;
+  for (std::size_t i = 0; i < variance.size(); ++i) {
+    total += variance[i];
+    if (std::isfinite(degrees_of_freedom[i]))
+      denominator += variance[i] * variance[i] / degrees_of_freedom[i];
+  }
+  if (!(denominator > 0.0) || !(total > 0.0)) return std::numeric_limits<double>::infinity();
+  return total * total / denominator;
 }
 
 std::optional<std::size_t> UncertaintyBudget::largestContributor() const {

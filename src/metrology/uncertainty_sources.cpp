@@ -31,6 +31,7 @@ bool UncertaintySources::isValid(std::string* why) const {
       {"probe form_2d_mm", probe.form_2d_mm},
       {"probe stylus_radius_uncertainty_mm", probe.stylus_radius_uncertainty_mm},
       {"probe ring_diameter_uncertainty_mm", probe.ring_diameter_uncertainty_mm},
+      {"probe ring_form_mm", probe.ring_form_mm},
       {"dial_gauge accuracy_mm", dial_gauge.accuracy_mm},
       {"dial_gauge resolution_mm", dial_gauge.resolution_mm},
       {"tracker accuracy_mm", tracker.accuracy_mm},

@@ -52,10 +52,13 @@ std::vector<MeasurementResult> runCampaign(const Campaign& campaign, std::uint64
   const double window_s = measurementWindowS(campaign);
   auto* hexapod = dynamic_cast<HexapodVirtualMachine*>(campaign.machine.get());
   auto* hybrid = dynamic_cast<HybridVirtualMachine*>(campaign.machine.get());
+  // The laser's ppm accuracy (its environmental compensation) holds over the session: one scale
+  // error, in standard deviations, for every line (NoiseModel::scaleFor).
+  const double scale_z = RandomStream(seed, "instrument-scale").normal();
   for (const LineSetup& setup : campaign.measurements) {
     RandomStream rng(seed, setup.name);
     if (!env.active()) {
-      results.push_back({&setup, simulateLine(*campaign.machine, setup, rng)});
+      results.push_back({&setup, simulateLine(*campaign.machine, setup, rng, nullptr, scale_z)});
       continue;
     }
     const double start_s =
@@ -64,7 +67,7 @@ std::vector<MeasurementResult> runCampaign(const Campaign& campaign, std::uint64
     if (hybrid != nullptr) hybrid->setPkmTilt(env.pkmTilt(start_s + window_s / 2));
     MeasurementConditions conditions(
         env, start_s, window_s, readingCount(setup), streamSeed(seed, setup.name + "/environment"));
-    results.push_back({&setup, simulateLine(*campaign.machine, setup, rng, &conditions)});
+    results.push_back({&setup, simulateLine(*campaign.machine, setup, rng, &conditions, scale_z)});
   }
   if (hexapod != nullptr) hexapod->setStrutGrowth(0.0);
   if (hybrid != nullptr) hybrid->setPkmTilt(Eigen::Vector3d::Zero());

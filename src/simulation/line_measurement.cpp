@@ -1,6 +1,7 @@
 #include "pkm/simulation/line_measurement.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/rigid_transform.hpp"
@@ -136,10 +137,14 @@ std::vector<LineRun> simulateLine(VirtualMachine& machine,
   return simulateLine(machine, setup, rng, nullptr);
 }
 
-std::vector<LineRun> simulateLine(VirtualMachine& machine,
-                                  const LineSetup& setup,
-                                  RandomStream& rng,
-                                  MeasurementConditions* conditions) {
+namespace {
+
+/// simulateLine's body; `scale_z` nullopt: the line draws its own scale error.
+std::vector<LineRun> simulate(VirtualMachine& machine,
+                              const LineSetup& setup,
+                              RandomStream& rng,
+                              MeasurementConditions* conditions,
+                              std::optional<double> scale_z) {
   setup.validate();
   const std::vector<double> targets = cycleTargets(setup.cycle, rng);
   const Eigen::Vector3d beam = machine.nominalPose(setup.line.at(1.0)).translation() -
@@ -163,6 +168,9 @@ std::vector<LineRun> simulateLine(VirtualMachine& machine,
       setup, beam, actual(machine.moveTo(setup.line.at(s0))), conditions);
 
   const Eigen::Vector3d datum_nominal = machine.nominalPose(setup.line.at(s0)).translation();
+  // The instrument's ppm accuracy (its environmental compensation) holds over the test: one scale
+  // error for the line, not a draw per reading that would show as the machine's scatter.
+  const double scale = scale_z ? setup.noise.scaleFor(*scale_z) : setup.noise.drawScale(rng);
   const auto moving_axes = static_cast<int>((setup.line.direction.array() != 0.0).count());
   std::vector<LineRun> runs;
   for (int r = 1; r <= setup.cycle.runs; ++r) {
@@ -173,7 +181,7 @@ std::vector<LineRun> simulateLine(VirtualMachine& machine,
       if (conditions != nullptr) conditions->next();
       const double truth = instrument.truth(actual(machine.moveTo(at)), s0);
       run.readings.push_back(
-          {target, direction, setup.noise.apply(truth, target - s0, rng), sub_step});
+          {target, direction, setup.noise.apply(truth, target - s0, scale, rng), sub_step});
     };
     const auto read = [&](double s, int direction) {
       const Eigen::VectorXd goal = setup.line.at(s);
@@ -205,6 +213,23 @@ std::vector<LineRun> simulateLine(VirtualMachine& machine,
     runs.push_back(std::move(run));
   }
   return runs;
+}
+
+}  // namespace
+
+std::vector<LineRun> simulateLine(VirtualMachine& machine,
+                                  const LineSetup& setup,
+                                  RandomStream& rng,
+                                  MeasurementConditions* conditions) {
+  return simulate(machine, setup, rng, conditions, std::nullopt);
+}
+
+std::vector<LineRun> simulateLine(VirtualMachine& machine,
+                                  const LineSetup& setup,
+                                  RandomStream& rng,
+                                  MeasurementConditions* conditions,
+                                  double scale_z) {
+  return simulate(machine, setup, rng, conditions, scale_z);
 }
 
 }  // namespace pkm::simulation

@@ -45,12 +45,13 @@ MeasurementConditions::MeasurementConditions(const Environment& environment,
     tilt_azimuth_ = rng_.uniform(0.0, 2.0 * std::numbers::pi);
     for (Eigen::Index k = 0; k < 3; ++k)
       reflector_offset_[k] = rng_.normal(set.reflector_offset_mm);
+    if (environment.perfect_instrument) reflector_offset_.setZero();  // drawn, not applied
   }
 }
 
 Eigen::Vector3d MeasurementConditions::laserBeam(const Eigen::Vector3d& beam) const {
   const SetupEnvironment& set = env_.setup;
-  if (!set.enabled || set.beam_misalignment_rad == 0.0) return beam;
+  if (!set.enabled || set.beam_misalignment_rad == 0.0 || env_.perfect_instrument) return beam;
   // Two unit vectors across the beam, then the tilt towards the drawn azimuth.
   const Eigen::Vector3d helper =
       std::abs(beam.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
@@ -117,6 +118,7 @@ void MeasurementConditions::next() {
   if (t.enabled) {
     x_m_ = ar1(x_m_, t.material_temperature_c, step_s_, rng_);
     sensed_material_ = sense(materialTemperature(), t.material_sensor, rng_);
+    if (env_.perfect_instrument) sensed_material_ = materialTemperature();
   }
   advanceStructure(false);
 }
@@ -133,17 +135,24 @@ void MeasurementConditions::advanceAir() {
              sense(t.relative_humidity, a.humidity_sensor, rng_)};
   // A sensor cannot read outside its range: a humidity sensor reads 0..100 %.
   sensed_.relative_humidity = std::fmin(100.0, std::fmax(0.0, sensed_.relative_humidity));
+  if (env_.perfect_instrument) sensed_ = t;  // drawn above, so later draws stay aligned
 }
 
 double MeasurementConditions::laserDisplacement(double displacement_mm) const {
   const AirEnvironment& a = env_.air;
   double reading = displacement_mm;
+  const ThermalEnvironment& t = env_.thermal;
+  if (env_.perfect_instrument) {
+    // Compensated with the true index (no dead-path error) and normalised to 20 °C with the
+    // machine's true expansion at its true temperature.
+    if (t.enabled) reading /= 1.0 + t.machine_cte_per_k * (materialTemperature() - kReferenceC);
+    return reading;
+  }
   if (a.enabled) {
     const double n_t = trueIndex();
     const double n_s = refractiveIndexEdlen(sensed_, a.vacuum_wavelength_um);
     reading = (n_t * (a.dead_path_mm + displacement_mm) - n_datum_ * a.dead_path_mm) / n_s;
   }
-  const ThermalEnvironment& t = env_.thermal;
   if (t.enabled) reading /= 1.0 + t.assumed_cte_per_k * (sensed_material_ - kReferenceC);
   return reading;
 }

@@ -21,18 +21,41 @@ double NoiseModel::totalSigma(double length) const {
   return std::hypot(sigma, sigma_ppm * kPpm * length);
 }
 
+namespace {
+
+/// `value` rounded to `resolution` (0: unchanged).
+double rounded(double value, double resolution) {
+  if (!(resolution > 0.0)) return value;
+  // Divide by the integer 1/resolution when there is one (1 nm = 1e-6 mm), so that the result is
+  // the double nearest the decimal reading and prints in its shortest form.
+  const double per_unit = std::round(1.0 / resolution);
+  const bool decimal = per_unit >= 1.0 && std::abs(per_unit * resolution - 1.0) < 1e-12;
+  return decimal ? std::round(value * per_unit) / per_unit
+                 : std::round(value / resolution) * resolution;
+}
+
+}  // namespace
+
 double NoiseModel::apply(double truth, double length, RandomStream& rng) const {
   const double s = totalSigma(length);
-  double value = truth + (s > 0.0 ? rng.normal(s) : 0.0);
-  if (resolution > 0.0) {
-    // Divide by the integer 1/resolution when there is one (1 nm = 1e-6 mm), so that the result is
-    // the double nearest the decimal reading and prints in its shortest form.
-    const double per_unit = std::round(1.0 / resolution);
-    const bool decimal = per_unit >= 1.0 && std::abs(per_unit * resolution - 1.0) < 1e-12;
-    value = decimal ? std::round(value * per_unit) / per_unit
-                    : std::round(value / resolution) * resolution;
-  }
-  return value;
+  const double value = truth + (s > 0.0 ? rng.normal(s) : 0.0);
+  return perfect ? truth : rounded(value, resolution);
+}
+
+double NoiseModel::drawScale(RandomStream& rng) const {
+  constexpr double kPpm = 1e-6;
+  const double scale = sigma_ppm > 0.0 ? rng.normal(sigma_ppm * kPpm) : 0.0;
+  return perfect ? 0.0 : scale;
+}
+
+double NoiseModel::scaleFor(double z) const {
+  constexpr double kPpm = 1e-6;
+  return perfect ? 0.0 : z * sigma_ppm * kPpm;
+}
+
+double NoiseModel::apply(double truth, double length, double scale, RandomStream& rng) const {
+  const double value = truth + scale * length + (sigma > 0.0 ? rng.normal(sigma) : 0.0);
+  return perfect ? truth : rounded(value, resolution);
 }
 
 std::optional<NoiseModel> instrumentNoise(std::string_view name) {

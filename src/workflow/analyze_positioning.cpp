@@ -108,8 +108,8 @@ io::ParallelismReport parallelism(const ParallelismRequest& request) {
     const std::vector<double> axis_r =
         metrology::evaluateStraightness(axis.position, axis.value, lsq).residuals;
     report.uncertainty = {metrology::parallelismUncertainty(report.result.parallelism,
-                                                            {ref.position, ref_r},
-                                                            {axis.position, axis_r},
+                                                            {ref.position, ref_r, ref.value},
+                                                            {axis.position, axis_r, axis.value},
                                                             request.uncertainty)};
     const auto [lo, hi] = std::minmax_element(axis.position.begin(), axis.position.end());
     const metrology::UncertaintyBudget& p = report.uncertainty.front();

@@ -152,11 +152,11 @@ std::pair<double, std::string> parallelismU(const met::ParallelismResult& r,
                                             const met::BeamRun& axis,
                                             const met::UncertaintySources& sources) {
   if (reference.positions.size() < 3 || axis.positions.size() < 3) return {std::nan(""), ""};
-  const met::UncertaintyBudget b =
-      met::parallelismUncertainty(r.parallelism,
-                                  {reference.positions, r.reference_straightness.residuals},
-                                  {axis.positions, r.axis_straightness.residuals},
-                                  sources);
+  const met::UncertaintyBudget b = met::parallelismUncertainty(
+      r.parallelism,
+      {reference.positions, r.reference_straightness.residuals, reference.deviations},
+      {axis.positions, r.axis_straightness.residuals, axis.deviations},
+      sources);
   return {b.expandedUncertainty(), campaign::largestContributors(b)};
 }
 

@@ -108,6 +108,10 @@ SimulateResult simulateScenario(const std::string& spec, std::optional<std::uint
   return simulate(io::loadScenario(spec), seed_option);
 }
 
+SimulateResult simulateLoadedScenario(const io::Scenario& scenario, std::uint64_t seed) {
+  return simulate(scenario, seed);
+}
+
 SimulateResult simulateScenarioText(const io::NamedText& scenario,
                                     std::optional<std::uint64_t> seed,
                                     const std::string& base_dir) {

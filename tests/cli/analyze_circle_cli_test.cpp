@@ -56,6 +56,21 @@ TEST_F(AnalyzeCircleCli, CircleJsonHasTheContractKeys) {
   EXPECT_THAT(t.out, HasSubstr("roundness MZC"));
 }
 
+TEST_F(AnalyzeCircleCli, GanderPointsGiveTheGlobalMinimumZone) {
+  // Gander, Golub and Strebel, BIT 34 (1994): the global minimum zone of these six points is
+  // 1.353615 wide about (105/22, 9/22); a local search stops at 1.387853 about (4.6, 4.4).
+  const std::string f = write("gander.csv", "x,y\n1,7\n2,6\n5,8\n7,7\n9,5\n3,7\n");
+  const auto r = pkm({"analyze", "circle", "--data", f, "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  constexpr double kTolPublished = 5e-7;  // the width as printed to 6 decimals
+  EXPECT_NEAR(j["roundness_mzc"].get<double>(), 1.353615, kTolPublished);
+  constexpr double kTolCentre = 1e-6;  // the zone's width is flat to second order at its centre
+  EXPECT_NEAR(j["mzc_center"][0].get<double>(), 105.0 / 22.0, kTolCentre);
+  EXPECT_NEAR(j["mzc_center"][1].get<double>(), 9.0 / 22.0, kTolCentre);
+  EXPECT_TRUE(j["mzc_certified"].get<bool>());
+}
+
 TEST_F(AnalyzeCircleCli, CircularGivesGAndH) {
   std::string cw = "x,y\n", ccw = "x,y\n";
   for (int k = 0; k < 72; ++k) {

@@ -54,12 +54,14 @@ TEST(HexapodCalibrationJson, MinimalReportHasTheRequiredMembersInOrder) {
                                       "solver",
                                       "residuals",
                                       "identifiability",
+                                      "world_frame",
                                       "sigma",
                                       "worst_observations",
                                       "tcp_error_map",
                                       "parameters",
                                       "outputs"}));
   EXPECT_EQ(j["units"], "mm");
+  EXPECT_EQ(j["world_frame"], "machine");
   EXPECT_EQ(j["observations"]["equations"], 60);
   EXPECT_EQ(j["solver"]["iterations"], 7);
   EXPECT_EQ(j["residuals"]["after"]["rms"].get<double>(), 0.00123);

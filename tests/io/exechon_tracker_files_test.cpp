@@ -47,7 +47,7 @@ TEST_F(ExechonTrackerFiles, SimulatedFileRoundTrips) {
   const std::string text =
       exechonTrackerCsv(exechonTrackerMetadata("sc", 3, s, readings.size()), readings);
   EXPECT_THAT(text, HasSubstr("# smr offset mm: (40, 0, 0)\n"));
-  EXPECT_THAT(text, HasSubstr("\nq0,q1,q2,c,a,x,y,z\n"));
+  EXPECT_THAT(text, HasSubstr("\nq1,q2,q3,c,a,x,y,z\n"));
   ExechonCalibrationInput in;
   const std::string path = write("fit.csv", text);
   addExechonCalibrationFile(path, in);
@@ -64,6 +64,15 @@ TEST_F(ExechonTrackerFiles, SimulatedFileRoundTrips) {
     EXPECT_FALSE(o.direction.has_value());
   }
   EXPECT_EQ(in.data.observations[2].source, path + ":15");
+}
+
+TEST_F(ExechonTrackerFiles, LegsAreQ1ToQ3OrQ0ToQ2InOlderFiles) {
+  ExechonCalibrationInput in;
+  addExechonCalibrationFile(write("new.csv", "q1,q2,q3,c,a,x,y,z\n1,2,3,0,90,4,5,6\n"), in);
+  addExechonCalibrationFile(write("old.csv", "q0,q1,q2,c,a,x,y,z\n1,2,3,0,90,4,5,6\n"), in);
+  ASSERT_EQ(in.data.observations.size(), 2u);
+  EXPECT_EQ(in.data.observations[0].joints.readings, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(in.data.observations[1].joints.readings, Eigen::Vector3d(1, 2, 3));
 }
 
 TEST_F(ExechonTrackerFiles, DirectionsAndErrors) {

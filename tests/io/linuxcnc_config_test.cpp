@@ -111,11 +111,12 @@ kin::PoseRpy poseOf(const std::array<double, 6>& w) {
   return p;
 }
 
-/// Every corner of the INI's axis-limit box passes `pkm hexapod check` and keeps the platform
-/// joints `margin` above the base plane.
+/// Every corner of the INI's axis-limit box passes `pkm hexapod check`, keeps the platform
+/// joints `margin` above the base plane and is on home's assembly branch.
 void expectCornersAdmissible(const io::HexapodMachine& m, const Ini& ini, double margin) {
   kin::HexapodData data(m.model);
   const kin::BasePlane plane = kin::basePlane(m.model);
+  const int home_branch = kin::assemblyBranch(m.model, data, m.model.home);
   const std::string letters = "XYZABC";
   for (int mask = 0; mask < 64; ++mask) {
     std::array<double, 6> w{};
@@ -125,6 +126,8 @@ void expectCornersAdmissible(const io::HexapodMachine& m, const Ini& ini, double
     const kin::PoseRpy pose = poseOf(w);
     EXPECT_TRUE(kin::checkPose(m.model, data, pose).ok()) << m.model.name << " corner " << mask;
     EXPECT_GE(kin::platformClearance(m.model, plane, pose), margin)
+        << m.model.name << " corner " << mask;
+    EXPECT_EQ(kin::assemblyBranch(m.model, data, pose), home_branch)
         << m.model.name << " corner " << mask;
   }
 }

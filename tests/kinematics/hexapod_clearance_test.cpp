@@ -75,4 +75,25 @@ TEST(HexapodClearance, NormalFollowsTheHomeSide) {
   EXPECT_NEAR(kin::platformClearance(m, plane, m.home), 20.0, kTol);
 }
 
+TEST(HexapodClearance, AssemblyBranchFlipsAtTheMirrorAndBeyondATiltedSingularity) {
+  // Home and a small move share a branch; the mirror pose and the sim's corner (X11.09 Y-11.09
+  // Z10.95 A43.24 B-43.24 C43.19), which pkmhexkins refused in LinuxCNC (its sign is not home's),
+  // do not; in the base plane the Jacobian is singular (0).
+  const kin::HexapodModel m = pkm::test::linuxcncSimModel();
+  kin::HexapodData data(m);
+  const int home = kin::assemblyBranch(m, data, m.home);
+  EXPECT_NE(home, 0);
+  kin::PoseRpy near = m.home, mirror = m.home, flat = m.home, corner;
+  near.position = {1.0, -2.0, 18.0};
+  near.rpy = {0.1, -0.05, 0.2};
+  mirror.position.z() = -20.0;
+  flat.position.z() = 0.0;
+  corner.position = {11.09, -11.09, 10.95};
+  corner.rpy = {pkm::degToRad(43.24), pkm::degToRad(-43.24), pkm::degToRad(43.19)};
+  EXPECT_EQ(kin::assemblyBranch(m, data, near), home);
+  EXPECT_EQ(kin::assemblyBranch(m, data, mirror), -home);
+  EXPECT_EQ(kin::assemblyBranch(m, data, flat), 0);
+  EXPECT_EQ(kin::assemblyBranch(m, data, corner), -home);
+}
+
 }  // namespace

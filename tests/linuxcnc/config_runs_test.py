@@ -17,7 +17,7 @@ equal it), started headless with this build's kinematics modules, and checked:
     motion: the joints equal the joints of `pkm gcode run` at that end point and the world
     position equals the program's pose;
   - Exechon: with a G43 tool length, the joints equal pkm's for the machine with the longer tool;
-  - hexapod-sim: G0 to each of the 64 corners of the axis limits (A, B, C at theirs too): the
+  - hexapod-sim: G0 from home to each of the 64 corners of the axis limits (A, B, C at theirs too): the
     world position is the commanded pose (no mirror pose through the base plane) and the joints
     equal `pkm hexapod ik`.
 Joints are read from HAL at full precision; world positions through linuxcncrsh (6 decimals).
@@ -70,20 +70,22 @@ def hexapod_body(pkm, machine, work, ini, poses, program, joints=6):
 
 
 def corners(values):
-    """The 64 corners of the INI's X Y Z A B C limit box, in Gray-code order (one axis changes
-    from one corner to the next)."""
+    """The 64 corners of the INI's X Y Z A B C limit box."""
     lim = [(float(values[f"AXIS_{a}"]["MIN_LIMIT"]), float(values[f"AXIS_{a}"]["MAX_LIMIT"]))
            for a in "XYZABC"]
     out = []
     for n in range(64):
-        g = n ^ (n >> 1)
-        out.append(tuple(lim[k][(g >> k) & 1] for k in range(6)))
+        out.append(tuple(lim[k][(n >> k) & 1] for k in range(6)))
     return out
 
 
 def corners_body(pkm, machine, work, ini):
-    """G0 to every corner of the axis limits: LinuxCNC's world pose is the commanded one (a mirror
-    pose through the base plane would show z negated) and the joints are `pkm hexapod ik`'s."""
+    """G0 from home to every corner of the axis limits and back: LinuxCNC's world pose is the
+    commanded one (a mirror pose through the base plane would show z negated) and the joints are
+    `pkm hexapod ik`'s. From home, not corner to corner: the limit box is checked at its corners
+    (`pkm linuxcnc config`), and a straight move between two corners that differ by 86 degrees
+    in C at A, B = -43, +43 degrees crosses a singular configuration, which pkmhexkins refuses
+    (an error, the move stopped) as it should."""
     values = ch.ini_values(ini)
     home = [float(v) for v in values["TRAJ"]["HOME"].split()]
     box = corners(values)
@@ -95,7 +97,7 @@ def corners_body(pkm, machine, work, ini):
             cnc.mdi("G0 X{} Y{} Z{} A{} B{} C{}".format(*pose))
             ch.check(failures, f"world at corner {pose}", cnc.world(6), pose)
             ch.check(failures, f"joints at corner {pose}", ch.joint_pins(cnc, 6), want)
-        cnc.mdi("G0 X{} Y{} Z{} A{} B{} C{}".format(*home))
+            cnc.mdi("G0 X{} Y{} Z{} A{} B{} C{}".format(*home))
         print(f"{len(box)} corners of the axis limits checked")
 
     return body

@@ -76,6 +76,41 @@ TEST(PositioningUncertainty, BudgetsOfEMABR) {
   EXPECT_NEAR(budgets[3].contributors[0].contribution(), std::sqrt(2.0 * s * s / 5.0), kTolBudget);
 }
 
+TEST(PositioningUncertainty, FewRunsGiveStudentsTFactorsFromWelchSatterthwaite) {
+  // Three runs per direction, scatter (0, +1, −1) µm: s = 1 µm, each mean's variance s²/3 with
+  // ν = 2. B's statistic adds two of them: ν = 4 (Welch–Satterthwaite); the Type B terms
+  // (resolution, E_VE) raise the budget's ν_eff above that. GUM G.4.1, Table G.2.
+  const double scatter[] = {0.0, 1e-3, -1e-3};
+  std::vector<PositioningSample> samples;
+  for (int i = 0; i < 5; ++i)
+    for (int run = 1; run <= 3; ++run) {
+      const double target = 100.0 * i;
+      samples.push_back({target, 1, run, target + 2e-3 * i + scatter[run - 1]});
+      samples.push_back({target, -1, run, target + 2e-3 * i + scatter[run - 1] - 3e-3});
+    }
+  const Iso230_2Result r = evaluateIso230_2(samples);
+  const std::vector<UncertaintyBudget> budgets = iso230_2Uncertainty(r, UncertaintySources{});
+  const UncertaintyBudget& B = budgets[3];
+  ASSERT_EQ(B.quantity, "B");
+  const UncertaintyContributor* stat =
+      find(B, "sampling of the two means at the target (s/sqrt(n))");
+  ASSERT_NE(stat, nullptr);
+  EXPECT_NEAR(stat->degrees_of_freedom, 4.0, test::kTolExact);
+  const double u_stat = stat->contribution(), u_c = B.combinedStandardUncertainty();
+  EXPECT_NEAR(u_stat, std::sqrt(2.0 / 3.0) * 1e-3, kTolBudget);
+  const double nu = std::pow(u_c, 4) / (std::pow(u_stat, 4) / 4.0);
+  EXPECT_NEAR(B.effectiveDegreesOfFreedom() / nu, 1.0, test::kTolExact);
+  const double p9545 = std::erf(std::sqrt(2.0));
+  EXPECT_NEAR(B.coverageFactor(), studentT(p9545, nu), test::kTolExact);
+  EXPECT_GT(B.coverageFactor(), 2.5);  // not the large-sample 2
+  EXPECT_NEAR(B.expandedUncertainty() / (B.coverageFactor() * u_c), 1.0, test::kTolExact);
+  // R = 2k s at one direction or the bidirectional sum: its s terms have ν = 2 each, the Type B
+  // terms raise ν_eff to about 6 (k ≈ 2.5 rather than 2).
+  const UncertaintyBudget& R = budgets[4];
+  EXPECT_LT(R.effectiveDegreesOfFreedom(), 10.0);
+  EXPECT_GT(R.coverageFactor(), 2.3);
+}
+
 TEST(PositioningUncertainty, AirSensorsActThroughTheEdlenSensitivity) {
   UncertaintyBudget b;
   const UncertaintySources src;

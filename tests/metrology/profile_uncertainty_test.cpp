@@ -50,6 +50,29 @@ TEST(ProfileUncertainty, ParallelismFromTheSlopesStandardErrors) {
                InvalidArgument);
 }
 
+TEST(ProfileUncertainty, ParallelismOpticsTermActsAtTheLargestReading) {
+  // seed 000's worst case before compensation: the axis run's readings reach 4.40 mm over 300 mm.
+  // The optics' accuracy there is 0.5 µm + 0.5 % · 4.40 mm + 0.15 µm/m² · 0.09 m² = 22.51 µm
+  // (rectangular, two readings: ×√2/√3), so U is about 37 µm, not the 1.3 µm of a zero reading.
+  const std::vector<double> u{0, 100, 200, 300};
+  const std::vector<double> r{0.0, 0.0, 0.0, 0.0};
+  const std::vector<double> flat{0.0, 0.0, 0.0, 0.0};
+  const std::vector<double> rising{0.0, 4.40 / 3, 2 * 4.40 / 3, 4.40};
+  const UncertaintyBudget b =
+      parallelismUncertainty(4.40, {u, r, flat}, {u, r, rising}, UncertaintySources{});
+  const double optics = 0.5e-3 + 0.005 * 4.40 + 0.15e-3 * 0.3 * 0.3;
+  bool found = false;
+  for (const UncertaintyContributor& c : b.contributors)
+    if (c.name == "straightness optics, axis run") {
+      found = true;
+      EXPECT_NEAR(c.contribution(), optics * std::sqrt(2.0) / std::sqrt(3.0), kTolBudget);
+    }
+  EXPECT_TRUE(found);
+  constexpr double kReportedU = 0.037;    // mm, the figure of the trial (two digits)
+  constexpr double kTolReported = 0.001;  // mm: its rounding
+  EXPECT_NEAR(b.expandedUncertainty(), kReportedU, kTolReported);
+}
+
 TEST(ProfileUncertainty, CircleRadiusStatisticIsSigmaOverRootN) {
   std::mt19937 rng{test::kSeed};
   std::normal_distribution<double> noise(0.0, 1e-3);
@@ -68,6 +91,37 @@ TEST(ProfileUncertainty, CircleRadiusStatisticIsSigmaOverRootN) {
       b[0].contributors[0].contribution() / (1e-3 / std::sqrt(kPoints)), 1.0, kTolStatistic);
   EXPECT_EQ(b[2].quantity, "roundness_mzc");
   EXPECT_GT(b[2].expandedUncertainty(), 0.0);
+}
+
+TEST(ProfileUncertainty, RoundnessOfPureProbeNoiseIsCoveredByItsBias) {
+  // A perfect 40 mm ring probed at 180 points with the stated probe noise (σ = 0.125 µm): the
+  // least-squares roundness reads about d2(180)·σ ≈ 0.68 µm where the truth is 0. The budget
+  // carries that one-sided bias (expectedNormalRange), so U covers the truth in nearly every trial
+  // (it did not before: U was 0.54 µm).
+  const UncertaintySources src{};
+  const double sigma = src.probe.repeatability_2sigma_mm / 2.0;
+  std::mt19937 rng{test::kSeed};
+  std::normal_distribution<double> noise(0.0, sigma);
+  constexpr int kTrials = 100, kPoints = 180;
+  int lsc_covered = 0, mzc_covered = 0;
+  double mean_lsc = 0.0;
+  for (int t = 0; t < kTrials; ++t) {
+    std::vector<Point2> p;
+    for (int k = 0; k < kPoints; ++k) {
+      const double a = 2 * std::numbers::pi * k / kPoints;
+      const double r = 20.0 + noise(rng);
+      p.emplace_back(r * std::cos(a), r * std::sin(a));
+    }
+    const CircleFit lsc = fitCircle(p);
+    const MinZoneCircle mzc = fitMinimumZoneCircle(p);
+    const std::vector<UncertaintyBudget> b = circleUncertainty(lsc, mzc, src);
+    mean_lsc += lsc.roundness / kTrials;
+    if (lsc.roundness <= b[1].expandedUncertainty()) ++lsc_covered;
+    if (mzc.roundness <= b[2].expandedUncertainty()) ++mzc_covered;
+  }
+  EXPECT_NEAR(mean_lsc / (expectedNormalRange(kPoints) * sigma), 1.0, 0.05);
+  EXPECT_GE(lsc_covered, 92);  // ≥ 92 % (the coverage criterion of docs/coverage.md)
+  EXPECT_GE(mzc_covered, 92);
 }
 
 TEST(ProfileUncertainty, ProbeOffsetCovarianceShrinksWithTouches) {

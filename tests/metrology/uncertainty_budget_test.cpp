@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <numbers>
 
 #include "pkm/core/error.hpp"
 #include "support/tolerances.hpp"
@@ -98,6 +100,55 @@ TEST(UncertaintyBudget, RejectsInvalidBudgets) {
   EXPECT_THROW(b.validate(), InvalidArgument);
 }
 
+// GUM Table G.2 prints t_p(ν) to 2 decimals.
+constexpr double kTolTableG2 = 0.005;
+
+TEST(UncertaintyBudget, StudentTAgreesWithGumTableG2) {
+  const double p9545 = std::erf(2.0 / std::sqrt(2.0));  // the coverage of k = 2 at ν = ∞
+  EXPECT_NEAR(studentT(p9545, 1.0), 13.97, kTolTableG2);
+  EXPECT_NEAR(studentT(p9545, 2.0), 4.53, kTolTableG2);
+  EXPECT_NEAR(studentT(p9545, 3.0), 3.31, kTolTableG2);
+  EXPECT_NEAR(studentT(p9545, 10.0), 2.28, kTolTableG2);
+  EXPECT_NEAR(studentT(p9545, 50.0), 2.05, kTolTableG2);
+  EXPECT_NEAR(studentT(0.95, 2.0), 4.30, kTolTableG2);
+  EXPECT_NEAR(studentT(0.95, 10.0), 2.23, kTolTableG2);
+  EXPECT_NEAR(studentT(p9545, std::numeric_limits<double>::infinity()), 2.0, test::kTolExact);
+  EXPECT_THROW((void)studentT(1.0, 3.0), InvalidArgument);
+  EXPECT_THROW((void)studentT(0.95, 0.0), InvalidArgument);
+}
+
+TEST(UncertaintyBudget, WelchSatterthwaiteOfTwoTypeATerms) {
+  const double inf = std::numeric_limits<double>::infinity();
+  // Two equal variances with ν = 2 each: (2v)² / (2 v²/2) = 4.
+  EXPECT_NEAR(welchSatterthwaite({1.0, 1.0}, {2.0, 2.0}), 4.0, test::kTolExact);
+  // A Type B term adds variance, no denominator: (1 + 3)² / (1/2) = 32.
+  EXPECT_NEAR(welchSatterthwaite({1.0, 3.0}, {2.0, inf}), 32.0, test::kTolExact);
+  EXPECT_TRUE(std::isinf(welchSatterthwaite({1.0, 3.0}, {inf, inf})));
+  EXPECT_TRUE(std::isinf(welchSatterthwaite({}, {})));
+}
+
+TEST(UncertaintyBudget, FiniteDegreesOfFreedomWidenTheCoverageFactor) {
+  UncertaintyBudget b;
+  b.quantity = "B";
+  b.unit = "mm";
+  UncertaintyContributor a{.name = "repeatability", .value = 0.4e-3, .unit = "mm"};
+  a.degrees_of_freedom = 2.0;
+  b.contributors.push_back(a);
+  b.contributors.push_back(rect("resolution", 0.3e-3, "mm", 1.0));
+  const double ua = 0.4e-3, ub = 0.3e-3 / std::sqrt(3.0);
+  const double uc = std::hypot(ua, ub);
+  const double nu = std::pow(uc, 4) / (std::pow(ua, 4) / 2.0);
+  EXPECT_NEAR(b.effectiveDegreesOfFreedom() / nu, 1.0, test::kTolExact);
+  const double p9545 = std::erf(2.0 / std::sqrt(2.0));
+  EXPECT_NEAR(b.coverageFactor(), studentT(p9545, nu), test::kTolExact);
+  EXPECT_GT(b.coverageFactor(), 3.0);
+  EXPECT_NEAR(b.expandedUncertainty() / (b.coverageFactor() * uc), 1.0, test::kTolExact);
+  b.contributors[0].degrees_of_freedom = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(b.coverageFactor(), 2.0);
+  b.contributors[0].degrees_of_freedom = 0.0;
+  EXPECT_THROW((void)b.expandedUncertainty(), InvalidArgument);
+}
+
 TEST(UncertaintyBudget, AddContributorLeavesOutSourcesThatDoNotApply) {
   UncertaintyBudget b;
   addContributor(b, {.name = "dead path", .value = 0.5, .sensitivity = 0.0});
@@ -109,4 +160,15 @@ TEST(UncertaintyBudget, AddContributorLeavesOutSourcesThatDoNotApply) {
 }
 
 }  // namespace
+TEST(UncertaintyBudget, ExpectedNormalRangeMatchesTheControlChartTable) {
+  // d2(2) = 2/√π exactly; d2(10) = 3.078 (control-chart tables, 3 decimals); d2(180) = 5.421858
+  // (scipy.integrate.quad of the same integral).
+  constexpr double kTolQuadrature = 1e-9;
+  constexpr double kTolTable = 5e-4;
+  EXPECT_NEAR(expectedNormalRange(2), 2.0 / std::sqrt(std::numbers::pi), kTolQuadrature);
+  EXPECT_NEAR(expectedNormalRange(10), 3.078, kTolTable);
+  EXPECT_NEAR(expectedNormalRange(180), 5.421858078682337, 1e-7);
+  EXPECT_THROW((void)expectedNormalRange(1), InvalidArgument);
+}
+
 }  // namespace pkm::metrology

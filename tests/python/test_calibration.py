@@ -23,7 +23,7 @@ from test_examples import assert_plot
 POSE = ["l0", "l1", "l2", "l3", "l4", "l5", "x", "y", "z", "a", "b", "c"]
 GAUGE = ["station", "x_mm", "y_mm", "z_mm", "a_deg", "b_deg", "c_deg", "l0_mm", "l1_mm",
          "l2_mm", "l3_mm", "l4_mm", "l5_mm", "g0_mm", "g1_mm", "g2_mm"]
-EXECHON = ["q0", "q1", "q2", "c", "a", "x", "y", "z"]
+EXECHON = ["q1", "q2", "q3", "c", "a", "x", "y", "z"]
 HYBRID = ["x2", "y2", "xp", "yp", "zp", "x", "y", "z"]
 
 

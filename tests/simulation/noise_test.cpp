@@ -32,6 +32,16 @@ TEST(Noise, IdealInstrumentIsExactAndDrawsNothing) {
   EXPECT_EQ(a.normal(), b.normal());
 }
 
+TEST(Noise, PerfectInstrumentReadsTheTruthAndKeepsTheStreamAligned) {
+  NoiseModel noisy{.sigma = 1e-3, .resolution = 1e-6};
+  NoiseModel perfect = noisy;
+  perfect.perfect = true;
+  RandomStream a(pkm::test::kSeed, "line"), b(pkm::test::kSeed, "line");
+  EXPECT_NE(noisy.apply(10.0, 0.0, a), 10.0);
+  EXPECT_EQ(perfect.apply(10.0, 0.0, b), 10.0);
+  EXPECT_EQ(a.bits(), b.bits());  // one variate drawn by each: the next draws agree
+}
+
 TEST(Noise, ConstantSigmaGivesThatSpread) {
   const NoiseModel n{2e-5, 0.0, 0.0};
   const std::vector<double> v = residuals(n, 100.0, 100.0);
@@ -65,6 +75,35 @@ TEST(Noise, ResolutionQuantisesToTheNearestStep) {
   const double expected = std::sqrt(1e-6 + 1e-6 / 12.0);
   EXPECT_NEAR(
       pkm::test::sampleSigma(v) / expected, 1.0, 2 * pkm::test::sigmaRatioTolerance(kSamples));
+}
+
+TEST(Noise, LineScaleErrorIsOneDrawPerLineAndScalesWithLength) {
+  // A line's ppm term is one scale error (drawScale), the per-reading term sigma only: two
+  // readings of the same line differ by sigma's noise, not by the ppm term's.
+  const NoiseModel n{1e-5, 0.25, 0.0};
+  RandomStream r(7);
+  std::vector<double> scales;
+  for (std::size_t k = 0; k < kSamples; ++k) scales.push_back(n.drawScale(r));
+  EXPECT_NEAR(
+      pkm::test::sampleSigma(scales) / 0.25e-6, 1.0, pkm::test::sigmaRatioTolerance(kSamples));
+  RandomStream a(3), b(3);
+  const double scale = 0.4e-6;
+  const double reading = n.apply(10.0, 1000.0, scale, a);
+  EXPECT_NEAR(reading, 10.0 + scale * 1000.0 + b.normal(1e-5), 1e-15);
+  // No ppm term: nothing drawn, as before (the streams of straightness and angular lines keep).
+  RandomStream c(5), d(5);
+  const NoiseModel no_ppm{1e-5, 0.0, 0.0};
+  EXPECT_EQ(no_ppm.drawScale(c), 0.0);
+  EXPECT_EQ(c.bits(), d.bits());
+  // A perfect instrument draws the scale too but returns 0, and reads the truth.
+  NoiseModel perfect = n;
+  perfect.perfect = true;
+  RandomStream e(9), f(9);
+  EXPECT_EQ(perfect.drawScale(e), 0.0);
+  (void)n.drawScale(f);
+  EXPECT_EQ(perfect.apply(10.0, 1000.0, 0.0, e), 10.0);
+  (void)n.apply(10.0, 1000.0, 0.0, f);
+  EXPECT_EQ(e.bits(), f.bits());
 }
 
 TEST(Noise, ValidateRejectsNegativeAndNonFinite) {

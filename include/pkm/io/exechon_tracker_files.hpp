@@ -1,8 +1,8 @@
 /// @file
 /// @brief Exechon tracker files (docs/formats.md, "Exechon tracker files"): "# key: value"
-/// metadata, the header `q0,q1,q2,c,a,x,y,z` (optionally `i,j,k`, a measured unit tool
-/// direction), one row per measured pose: the leg readings A, B, C (mm) and wrist readings C, A
-/// (degrees) the controller reported, the measured target (mm). Read into
+/// metadata, the header `q1,q2,q3,c,a,x,y,z` (`q0,q1,q2` in older files; optionally `i,j,k`, a
+/// measured unit tool direction), one row per measured pose: the leg readings A, B, C (mm) and
+/// wrist readings C, A (degrees) the controller reported, the measured target (mm). Read into
 /// calibration::ExechonCalibrationData.
 #pragma once
 

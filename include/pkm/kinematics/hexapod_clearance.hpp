@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "pkm/kinematics/hexapod_data.hpp"
 #include "pkm/kinematics/hexapod_model.hpp"
 #include "pkm/kinematics/pose_rpy.hpp"
 
@@ -35,5 +36,14 @@ inline constexpr double kMirrorClearanceFraction = 0.1;
 [[nodiscard]] double platformClearance(const HexapodModel& model,
                                        const BasePlane& plane,
                                        const PoseRpy& pose);
+
+/// The assembly branch at `pose`: the sign of the determinant of the strut Jacobian J_q_x (+1 or
+/// −1), 0 when it is singular (smallest to largest pivot of its LU factorisation, angular columns
+/// divided by the characteristic length, at most 1e-12). Two poses of one branch can be joined
+/// without crossing a singular configuration only if their signs agree (Gosselin and Angeles,
+/// "Singularity analysis of closed-loop kinematic chains", IEEE TRA 6(3), 1990: the type II
+/// singularities are det J = 0); pkmhexkins refuses a pose whose sign is not home's. Computes the
+/// inverse kinematics and Jacobian into `data`.
+[[nodiscard]] int assemblyBranch(const HexapodModel& model, HexapodData& data, const PoseRpy& pose);
 
 }  // namespace pkm::kinematics

@@ -2,11 +2,15 @@
 /// @brief Uncertainty budgets of the GUM (JCGM 100:2008) as ISO/TR 230-9:2005 applies them to
 /// machine-tool tests: contributors with a distribution and a sensitivity coefficient, the law of
 /// propagation of uncertainty (GUM §5.1.2 eq. 10, uncorrelated; §5.2.2 eq. 13/16, correlated), the
-/// combined standard uncertainty u_c and the expanded uncertainty U = k u_c (GUM §6.2.1 eq. 18;
-/// k = 2 as ISO/TR 230-9 and ISO 230-2 state it). docs/analysis.md, "Measurement uncertainty".
+/// combined standard uncertainty u_c, its effective degrees of freedom ν_eff (Welch–Satterthwaite,
+/// GUM G.4.1 eq. G.2b) and the expanded uncertainty U = k u_c (GUM §6.2.1 eq. 18), k from
+/// Student's t at ν_eff for the coverage probability that k = 2 has at ν = ∞ (95.45 %, GUM G.3.4
+/// and Table G.2; k = 2 as ISO/TR 230-9 and ISO 230-2 state it for large samples).
+/// docs/analysis.md, "Measurement uncertainty".
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -43,6 +47,9 @@ struct UncertaintyContributor {
   double sensitivity = 1.0;
   double estimate = 0.0;  ///< best estimate x_i in `unit` (used by the Monte Carlo model)
   std::string source;     ///< where the value comes from (datasheet, data, assumption)
+  /// Degrees of freedom ν_i of u(x_i) (GUM G.3.3): n − 1 for a Type A standard deviation of n
+  /// readings, +∞ (the default) for a Type B value taken as exactly known. > 0.
+  double degrees_of_freedom = std::numeric_limits<double>::infinity();
 
   /// The divisor that turns `value` into a standard uncertainty: normal_k, √3, √6 or √2.
   [[nodiscard]] double divisor() const;
@@ -67,19 +74,45 @@ struct UncertaintyBudget {
   double value = 0.0;    ///< the result y
   std::vector<UncertaintyContributor> contributors;
   std::vector<Correlation> correlations;  ///< pairs not listed are uncorrelated
-  double coverage_factor = 2.0;           ///< k of U = k u_c (ISO/TR 230-9 §5.4: k = 2)
+  /// k of U = k u_c at infinite degrees of freedom (ISO/TR 230-9 §5.4: k = 2); with a finite
+  /// ν_eff, coverageFactor() widens it by Student's t at the same coverage probability.
+  double coverage_factor = 2.0;
 
   /// Throws pkm::InvalidArgument for a negative or non-finite value, normal_k <= 0, a
-  /// non-finite sensitivity, a correlation index out of range or i == j, |r| > 1, or k <= 0.
+  /// non-finite sensitivity, degrees of freedom <= 0 or NaN, a correlation index out of range or
+  /// i == j, |r| > 1, or k <= 0.
   void validate() const;
   /// u_c(y): the square root of Σ c_i² u_i² + 2 Σ_{i<j} c_i c_j u_i u_j r_ij (GUM eq. 16; eq. 10
   /// without correlations). Throws as validate().
   [[nodiscard]] double combinedStandardUncertainty() const;
-  /// U = k u_c (GUM eq. 18). Throws as validate().
+  /// ν_eff = u_c⁴ / Σ (c_i u_i)⁴ / ν_i (Welch–Satterthwaite, GUM G.4.1 eq. G.2b; correlations
+  /// do not enter ν); +∞ when every contributor's ν_i is infinite or u_c = 0. Throws as validate().
+  [[nodiscard]] double effectiveDegreesOfFreedom() const;
+  /// k = t_p(ν_eff), the two-sided Student's t quantile for p = 2Φ(coverage_factor) − 1 (95.45 %
+  /// for k = 2; GUM G.3.4, Table G.2), not interpolated or truncated: coverage_factor itself for
+  /// ν_eff = ∞. E.g. ν_eff = 2 gives 4.53, ν_eff = 10 gives 2.28. Throws as validate().
+  [[nodiscard]] double coverageFactor() const;
+  /// U = k u_c with k = coverageFactor() (GUM eq. 18). Throws as validate().
   [[nodiscard]] double expandedUncertainty() const;
   /// Index of the contributor with the largest contribution |c_i| u_i; nullopt when empty.
   [[nodiscard]] std::optional<std::size_t> largestContributor() const;
 };
+
+/// The two-sided Student's t quantile t_p(ν) for coverage probability p in (0, 1) and ν > 0
+/// (ν = +∞: the normal quantile). Throws pkm::InvalidArgument outside those ranges.
+[[nodiscard]] double studentT(double p, double degrees_of_freedom);
+
+/// d2(n): the expected range (largest − smallest) of n independent standard normal values,
+/// ∫ 1 − Φ(x)ⁿ − (1 − Φ(x))ⁿ dx (Tippett, Biometrika 17, 1925; the control-chart constant d2:
+/// 1.128 for n = 2, 3.078 for n = 10). The noise bias of a range statistic such as a roundness
+/// is about d2(n)·σ. Throws pkm::InvalidArgument for n < 2.
+[[nodiscard]] double expectedNormalRange(std::size_t n);
+
+/// The Welch–Satterthwaite degrees of freedom of a sum of independent variances `variance[i]`
+/// with `degrees_of_freedom[i]` each (GUM eq. G.2b): (Σ v)² / Σ v²/ν; +∞ when all are infinite or
+/// the sum is 0. The vectors have the same size.
+[[nodiscard]] double welchSatterthwaite(const std::vector<double>& variance,
+                                        const std::vector<double>& degrees_of_freedom);
 
 /// Appends `c` to `budget` unless its contribution is exactly zero (a source that does not apply,
 /// e.g. no dead path): budgets list only what contributes.

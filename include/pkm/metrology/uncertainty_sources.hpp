@@ -43,6 +43,10 @@ struct TouchProbe {
   double stylus_radius_uncertainty_mm = 0.5e-3;
   /// Expanded uncertainty (k = 2) of the master ring's certified diameter, mm.
   double ring_diameter_uncertainty_mm = 1.0e-3;
+  /// The master ring's certified roundness (peak to valley), mm: it adds to or hides a measured
+  /// roundness by up to itself. Typical of a certified 40 mm setting ring; seed 003's paper lists
+  /// 2 µm for its ring (Table 4).
+  double ring_form_mm = 0.5e-3;
 };
 
 /// A dial gauge or digital indicator (constrained-motion calibration, seed 004).

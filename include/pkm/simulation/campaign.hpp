@@ -88,7 +88,10 @@ struct MeasurementResult {
 /// numbers of one measurement do not depend on which others exist. Identical results for the same
 /// seed on every platform. In an active environment, line measurement k of N occupies the campaign
 /// time [k·T/N, (k+1)·T/N) (T = environment.duration_h) and its environment draws from
-/// RandomStream(seed, setup.name + "/environment"). Throws pkm::InvalidArgument
+/// RandomStream(seed, setup.name + "/environment"). The lasers' ppm scale error is one standard
+/// normal draw of RandomStream(seed, "instrument-scale") for the whole session (simulateLine with
+/// a scale_z): a laser's environmental compensation holds over a test. Throws
+/// pkm::InvalidArgument
 /// (Campaign::validate, simulateLine).
 [[nodiscard]] std::vector<MeasurementResult> runCampaign(const Campaign& campaign,
                                                          std::uint64_t seed);

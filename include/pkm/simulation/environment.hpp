@@ -221,6 +221,13 @@ struct Environment {
   /// The true machines' geometry beyond their kinematic models (applyGeometryEnvironment puts
   /// it into a campaign's machine).
   GeometryEnvironment geometry;
+  /// The truth runs of `pkm validate coverage` (workflow/coverage.hpp): every source draws as
+  /// usual, so the machine's thermal and structural state is the measured run's, but the
+  /// instrument is perfect — its air and material sensors read the truth, the laser's
+  /// compensation uses the true refractive index (no dead-path error) and the machine's true
+  /// expansion coefficient, and the set-up errors (beam misalignment, reflector offsets) are
+  /// zero. Not a setting of environment files.
+  bool perfect_instrument = false;
   /// True when any source is on.
   [[nodiscard]] bool active() const {
     return air.enabled || thermal.enabled || setup.enabled || structure.enabled ||

@@ -83,8 +83,9 @@ struct LineSetup {
   /// kStraightness: the beam misalignment, rad: the beam line is tilted towards `lateral` so that
   /// the reading gains the slope `misalignment` (reading ≈ deviation + misalignment·(s − s₀)).
   double misalignment = 0.0;
-  /// The instrument noise, in the reading's unit (mm, or rad for kAngular); its ppm term is taken
-  /// of the travel from the datum |s − s₀|.
+  /// The instrument noise, in the reading's unit (mm, or rad for kAngular); its ppm term is a
+  /// scale error of the line (NoiseModel::drawScale, once per line) times the travel from the
+  /// datum s − s₀.
   NoiseModel noise;
   /// Throws pkm::InvalidArgument when a part is invalid or the name is empty.
   void validate() const;
@@ -123,9 +124,11 @@ struct LineRun {
 /// - kAngular: reading = lateral·so3Log(R(s)·R(s₀)ᵀ), R the actual tool rotation.
 /// Step-diagonal lines read after every sub-move (LineProcedure::kStepDiagonal, LineReading::
 /// sub_step): the − pass moves the axes in the same order as the + pass.
-/// Noise is added per reading (none at the zeroing). The random target offsets come first from
-/// `rng`, then the machine's seed, then the noise in reading order. Throws pkm::InvalidArgument for
-/// an invalid set-up or a line whose nominal tool displacement per unit s does not have length 1.
+/// Noise is added per reading (none at the zeroing), the ppm term as one scale error of the line.
+/// The random target offsets come first from `rng`, then the machine's seed, then the line's
+/// scale error (when sigma_ppm > 0), then the noise in reading order. Throws pkm::InvalidArgument
+/// for an invalid set-up or a line whose nominal tool displacement per unit s does not have
+/// length 1.
 [[nodiscard]] std::vector<LineRun> simulateLine(VirtualMachine& machine,
                                                 const LineSetup& setup,
                                                 RandomStream& rng);
@@ -142,6 +145,16 @@ struct LineRun {
                                                 const LineSetup& setup,
                                                 RandomStream& rng,
                                                 MeasurementConditions* conditions);
+
+/// As above, with the instrument's ppm scale error given for the session instead of drawn for the
+/// line: `scale_z` standard deviations of the noise's sigma_ppm (NoiseModel::scaleFor), the same
+/// for every line a campaign measures with one laser (its environmental compensation holds over
+/// the session). Nothing is drawn from `rng` for it.
+[[nodiscard]] std::vector<LineRun> simulateLine(VirtualMachine& machine,
+                                                const LineSetup& setup,
+                                                RandomStream& rng,
+                                                MeasurementConditions* conditions,
+                                                double scale_z);
 
 /// The number of readings simulateLine takes (runs × targets × passes × sub-moves per target).
 [[nodiscard]] int readingCount(const LineSetup& setup);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "pkm/io/named_text.hpp"
+#include "pkm/io/scenario.hpp"
 
 namespace pkm::workflow {
 
@@ -52,6 +53,12 @@ struct ScenarioInfo {
 /// Throws pkm::IoError for a scenario that cannot be loaded (naming it and the line).
 [[nodiscard]] SimulateResult simulateScenario(const std::string& scenario,
                                               std::optional<std::uint64_t> seed);
+
+/// Simulates every measurement of a loaded (and possibly modified) scenario with `seed`; as
+/// simulateScenario. The scenario's machine is shared: its unmodelled geometry is set from
+/// `seed` (simulation::applyGeometryEnvironment).
+[[nodiscard]] SimulateResult simulateLoadedScenario(const io::Scenario& scenario,
+                                                    std::uint64_t seed);
 
 /// Simulates the scenario given as JSON text (a front end's document, e.g. a Python dict; the
 /// format of a scenario file, docs/formats.md "Scenario files"), named `scenario.name` in

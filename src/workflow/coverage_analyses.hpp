@@ -1,0 +1,42 @@
+// The analyses of `pkm validate coverage` (workflow/coverage.hpp): every quantity with a U that
+// pkm's analyses report on one simulation's files.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pkm/io/scenario.hpp"
+#include "pkm/metrology/uncertainty_sources.hpp"
+#include "pkm/workflow/simulate.hpp"
+
+namespace pkm::workflow::detail {
+
+/// One quantity an analysis reported, with its budget's figures.
+struct CoverageReading {
+  std::string group;     ///< the measurement or analysis, e.g. "linear-x", "body diagonals"
+  std::string quantity;  ///< the budget's quantity, e.g. "E", "squareness_xy"
+  std::string unit;
+  double value = 0.0;
+  double U = 0.0;
+  double u_c = 0.0;
+  double k = 2.0;
+};
+
+/// Runs the analyses a user would run on the files of `simulation` (a simulation of `scenario`),
+/// with the instruments of `sources`, through the same workflow functions as `pkm analyze`: ISO
+/// 230-2 of every continuous linear measurement, the straightness of every straightness
+/// measurement, the body, step and shifted diagonals when the scenario has them (diag-*, step-*,
+/// shift-*), seed 000's parallelism pairs (straightness-y2-h/-py-h, -v) and every touch probe's
+/// circles and stylus offset. Returns every budget's value and U. Throws as the analyses
+/// (naming the file).
+[[nodiscard]] std::vector<CoverageReading> coverageReadings(
+    const io::Scenario& scenario,
+    const SimulateResult& simulation,
+    const metrology::UncertaintySources& sources);
+
+/// The injected squareness of the scenario's Cartesian machine as readings "squareness_xy",
+/// "squareness_xz", "squareness_yz" (rad) of `group`; empty for another machine.
+[[nodiscard]] std::vector<CoverageReading> injectedSquareness(const io::Scenario& scenario,
+                                                              const std::string& group);
+
+}  // namespace pkm::workflow::detail

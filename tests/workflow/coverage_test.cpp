@@ -1,0 +1,111 @@
+// workflow::validateCoverage (workflow/coverage.hpp): the statistics on constructed trials, the
+// perfect-instrument truth of a short run, and the outputs.
+#include "pkm/workflow/coverage.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "pkm/core/error.hpp"
+#include "support/tolerances.hpp"
+
+namespace pkm::workflow {
+namespace {
+
+using ::testing::HasSubstr;
+
+/// A quantity whose errors are −2, −1, 0, 1, 2 with U = 1.5 and u_c = 1 (three of five covered).
+CoverageQuantity constructed() {
+  CoverageQuantity q{"s", "g", "E", "mm", "perfect instrument", {}};
+  for (int k = -2; k <= 2; ++k)
+    q.trials.push_back({static_cast<std::uint64_t>(k + 3), 10.0 + k, 10.0, 1.5, 1.0, 1.5});
+  return q;
+}
+
+TEST(Coverage, StatisticsOfConstructedTrials) {
+  const CoverageQuantity q = constructed();
+  EXPECT_NEAR(q.coverage(), 0.6, test::kTolExact);
+  EXPECT_NEAR(q.bias(), 0.0, test::kTolExact);
+  EXPECT_NEAR(q.errorRms(), std::sqrt(2.0), test::kTolExact);
+  EXPECT_NEAR(q.meanU(), 1.5, test::kTolExact);
+  EXPECT_NEAR(q.meanZ(), 0.0, test::kTolExact);
+  EXPECT_NEAR(q.spreadZ(), std::sqrt(10.0 / 4.0), test::kTolExact);
+  EXPECT_FALSE(q.holds());
+  EXPECT_FALSE(q.wide());
+  CoverageQuantity wide = q;
+  for (CoverageTrial& t : wide.trials) t.U = 5.0;
+  EXPECT_TRUE(wide.holds());
+  EXPECT_TRUE(wide.wide());  // 5 > 3 √2
+}
+
+TEST(Coverage, AcceptableCoverageIsNinetyTwoPercentAtTwoHundredSeeds) {
+  CoverageQuantity q = constructed();
+  q.trials.resize(200, q.trials.front());
+  // 0.95 − 2 √(0.95 · 0.05 / 200) = 0.9192
+  EXPECT_NEAR(q.acceptableCoverage(), 0.95 - 2.0 * std::sqrt(0.0475 / 200.0), test::kTolExact);
+  EXPECT_GT(q.acceptableCoverage(), 0.919);
+}
+
+TEST(Coverage, ShortRunComparesWithThePerfectInstrument) {
+  CoverageOptions o;
+  o.scenarios = {"seed001-diagonals"};
+  o.seeds = 3;
+  o.only = {"linear-x "};
+  const CoverageResult r = validateCoverage(o);
+  ASSERT_EQ(r.quantities.size(), 5u);  // E, M, A, B, R of linear-x
+  for (const CoverageQuantity& q : r.quantities) {
+    EXPECT_EQ(q.group, "linear-x");
+    EXPECT_EQ(q.truth_kind, "perfect instrument");
+    ASSERT_EQ(q.trials.size(), 3u);
+    for (const CoverageTrial& t : q.trials) {
+      EXPECT_GT(t.U, 0.0) << q.quantity;
+      EXPECT_TRUE(std::isfinite(t.truth)) << q.quantity;
+    }
+  }
+  // The perfect instrument changes the reading of E, not the machine: the true E is the same
+  // machine's, so it is close to the measured one (the XL-80's noise is a few tenths of a µm).
+  const CoverageQuantity& E = r.quantities.front();
+  EXPECT_EQ(E.quantity, "E");
+  constexpr double kNoiseBound = 5e-3;  // mm: far above the instrument's noise, far below E
+  for (const CoverageTrial& t : E.trials) EXPECT_NEAR(t.value, t.truth, kNoiseBound);
+  EXPECT_THAT(coverageText(r), HasSubstr("linear-x\tE\t3\t"));
+  const auto j = nlohmann::json::parse(coverageJson(r));
+  EXPECT_EQ(j["schema"], "pkm.coverage/1");
+  EXPECT_EQ(j["quantities"].size(), 5u);
+  EXPECT_EQ(j["quantities"][0]["trials"].size(), 3u);
+}
+
+TEST(Coverage, SquarenessIsAlsoComparedWithTheInjectedOne) {
+  CoverageOptions o;
+  o.scenarios = {"seed001-diagonals"};
+  o.seeds = 2;
+  o.only = {"body diagonals squareness_xy"};
+  const CoverageResult r = validateCoverage(o);
+  ASSERT_EQ(r.quantities.size(), 2u);
+  EXPECT_EQ(r.quantities[0].quantity, "squareness_xy");
+  EXPECT_EQ(r.quantities[1].quantity, "squareness_xy vs injected");
+  EXPECT_EQ(r.quantities[1].truth_kind, "injected");
+  constexpr double kInjectedXy = 50e-6;  // rad, data/scenarios/seed001-diagonals.json
+  EXPECT_NEAR(r.quantities[1].trials[0].truth, kInjectedXy, test::kTolExact);
+}
+
+TEST(Coverage, RejectsFewSeedsAndWritesOnlyWithForce) {
+  CoverageOptions o;
+  o.seeds = 1;
+  EXPECT_THROW(o.validate(), InvalidArgument);
+  const CoverageResult r{.seeds = 2, .quantities = {constructed()}};
+  const auto dir = std::filesystem::temp_directory_path() / "pkm-coverage-test";
+  std::filesystem::remove_all(dir);
+  writeCoverage(r, dir, false);
+  EXPECT_TRUE(std::filesystem::exists(dir / "coverage.json"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "report.html"));
+  EXPECT_THROW(writeCoverage(r, dir, false), IoError);
+  writeCoverage(r, dir, true);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace pkm::workflow
