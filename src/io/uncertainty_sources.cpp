@@ -35,6 +35,7 @@ std::vector<Section> sections(metrology::UncertaintySources& s) {
        {{"vacuum_wavelength_um", &l.vacuum_wavelength_um},
         {"wavelength_accuracy_ppm", &l.wavelength_accuracy_ppm},
         {"resolution_mm", &l.resolution_mm},
+        {"reading_noise_mm", &l.reading_noise_mm},
         {"air_temperature_accuracy_k", &l.air_temperature_accuracy_k},
         {"air_pressure_accuracy_pa", &l.air_pressure_accuracy_pa},
         {"air_humidity_accuracy_percent", &l.air_humidity_accuracy_percent},

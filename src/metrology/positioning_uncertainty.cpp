@@ -1,6 +1,8 @@
 // Uncertainty budgets of ISO 230-2 results (metrology/positioning_uncertainty.hpp).
 #include "pkm/metrology/positioning_uncertainty.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -115,6 +117,26 @@ void addReadingContributors(UncertaintyBudget& b, const UncertaintySources& src)
                          "drift test (ISO 230-2 Annex A)"));
 }
 
+/// The instrument's reading noise σ raises a largest-of-targets statistic even on a machine that
+/// repeats perfectly: by up to `half_width` (its expected value when every target's true value is
+/// the same; expectedMaxAbsNormal, expectedMaxSampleSigma). One-sided, budgeted as a rectangular
+/// half-width (GUM F.2.4.4), as the roundness's noise bias.
+void addNoiseFloor(UncertaintyBudget& b, double half_width, std::size_t targets) {
+  addContributor(
+      b,
+      bounded(fmt::format("laser reading noise raising the largest of {} targets", targets),
+              half_width,
+              "mm",
+              1.0,
+              "instrument reading noise, expected maximum over the targets"));
+}
+
+/// E[max over the targets] of a reversal's noise, σ·√(1/n↑ + 1/n↓)·E max|Z| (mm).
+double reversalNoise(const Iso230_2Result& r, const TargetStatistics& t, double sigma) {
+  return sigma * std::sqrt(1.0 / t.runs_up + 1.0 / t.runs_down) *
+         expectedMaxAbsNormal(r.targets.size());
+}
+
 UncertaintyBudget newBudget(const char* quantity, double value, const UncertaintySources& src) {
   UncertaintyBudget b;
   b.quantity = quantity;
@@ -182,6 +204,7 @@ UncertaintyBudget reversalBudget(const Iso230_2Result& r, const UncertaintySourc
                            {upMean(*c), downMean(*c)},
                            "test data"));
   addReadingContributors(b, src);
+  addNoiseFloor(b, reversalNoise(r, *c, src.laser.reading_noise_mm), r.targets.size());
   return b;
 }
 
@@ -194,19 +217,28 @@ UncertaintyBudget repeatabilityBudget(const Iso230_2Result& r,
   UncertaintyBudget b = newBudget("R", r.R, src);
   const double bidirectional = k * c->s_up + k * c->s_down + std::abs(c->reversal);
   std::vector<Part> parts;
+  const double sigma = src.laser.reading_noise_mm;
+  const std::size_t m = r.targets.size();
+  double noise = 0.0;
   if (c->repeatability == bidirectional) {
     parts = {sVariance(c->s_up, c->runs_up, k),
              sVariance(c->s_down, c->runs_down, k),
              upMean(*c),
              downMean(*c)};
+    noise = k * sigma *
+                (expectedMaxSampleSigma(m, c->runs_up) + expectedMaxSampleSigma(m, c->runs_down)) +
+            reversalNoise(r, *c, sigma);
   } else if (c->repeatability == 2.0 * k * c->s_up) {
     parts = {sVariance(c->s_up, c->runs_up, 2.0 * k)};
+    noise = 2.0 * k * sigma * expectedMaxSampleSigma(m, c->runs_up);
   } else {
     parts = {sVariance(c->s_down, c->runs_down, 2.0 * k)};
+    noise = 2.0 * k * sigma * expectedMaxSampleSigma(m, c->runs_down);
   }
   addContributor(
       b, statistic("sampling of the standard deviations at the target", parts, "test data"));
   addReadingContributors(b, src);
+  addNoiseFloor(b, noise, m);
   return b;
 }
 
@@ -234,6 +266,9 @@ UncertaintyBudget unidirectionalRepeatabilityBudget(const char* quantity,
                            {sVariance(c->s, c->n, 2.0 * k)},
                            "test data"));
   addReadingContributors(b, src);
+  addNoiseFloor(b,
+                2.0 * k * src.laser.reading_noise_mm * expectedMaxSampleSigma(means.size(), c->n),
+                means.size());
   return b;
 }
 

@@ -1,10 +1,14 @@
 // Uncertainty budgets (metrology/uncertainty_budget.hpp): the law of propagation of uncertainty.
 #include "pkm/metrology/uncertainty_budget.hpp"
 
+#include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <mutex>
+#include <utility>
 
 #include "pkm/core/error.hpp"
 
@@ -161,6 +165,61 @@ double expectedNormalRange(std::size_t n) {
   double sum = f(-kHalfWidth) + f(kHalfWidth);
   for (int i = 1; i < kIntervals; ++i) sum += (i % 2 == 1 ? 4.0 : 2.0) * f(-kHalfWidth + i * h);
   return sum * h / 3.0;
+}
+
+namespace {
+
+/// ∫₀^hi f by Simpson's rule with `intervals` (even) intervals.
+template <class F>
+double simpson(F f, double hi, int intervals) {
+  const double h = hi / intervals;
+  double sum = f(0.0) + f(hi);
+  for (int i = 1; i < intervals; ++i) sum += (i % 2 == 1 ? 4.0 : 2.0) * f(i * h);
+  return sum * h / 3.0;
+}
+
+/// `compute()` once per key: the integrals are pure and the budgets ask for the same few (targets,
+/// runs) over and over (a coverage run evaluates thousands of budgets).
+template <class Key, class F>
+double memoised(const Key& key, F compute) {
+  static std::mutex mutex;
+  static std::map<Key, double> cache;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    const auto it = cache.find(key);
+    if (it != cache.end()) return it->second;
+  }
+  const double value = compute();
+  const std::lock_guard<std::mutex> lock(mutex);
+  cache.emplace(key, value);
+  return value;
+}
+
+}  // namespace
+
+double expectedMaxAbsNormal(std::size_t m) {
+  PKM_CHECK(m >= 1, "expected maximum: needs m >= 1 values, got {}", m);
+  const double count = static_cast<double>(m);
+  return memoised(std::pair<std::size_t, int>{m, 0}, [count] {
+    return simpson(
+        [count](double x) { return 1.0 - std::pow(std::erf(x / std::sqrt(2.0)), count); },
+        12.0,
+        4800);
+  });
+}
+
+double expectedMaxSampleSigma(std::size_t m, int n) {
+  PKM_CHECK(
+      m >= 1 && n >= 2, "expected maximum of s/sigma: needs m >= 1 and n >= 2, got {}, {}", m, n);
+  return memoised(std::pair<std::size_t, int>{m, n}, [m, n] {
+    const double dof = n - 1.0, count = static_cast<double>(m);
+    const boost::math::chi_squared_distribution<double> chi2(dof);
+    // s/σ = √(χ²/ν): P(s/σ ≤ x) = P(χ² ≤ ν x²). Beyond x = 12 (ν ≥ 1) the tail is below 1e-30.
+    return simpson(
+        [&](double x) { return 1.0 - std::pow(boost::math::cdf(chi2, dof * x * x), count); },
+        12.0,
+        4800);
+  });
 }
 
 double welchSatterthwaite(const std::vector<double>& variance,

@@ -18,6 +18,7 @@ bool UncertaintySources::isValid(std::string* why) const {
   const std::initializer_list<std::pair<const char*, double>> non_negative{
       {"laser wavelength_accuracy_ppm", laser.wavelength_accuracy_ppm},
       {"laser resolution_mm", laser.resolution_mm},
+      {"laser reading_noise_mm", laser.reading_noise_mm},
       {"laser air_temperature_accuracy_k", laser.air_temperature_accuracy_k},
       {"laser air_pressure_accuracy_pa", laser.air_pressure_accuracy_pa},
       {"laser air_humidity_accuracy_percent", laser.air_humidity_accuracy_percent},

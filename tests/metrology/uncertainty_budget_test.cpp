@@ -171,4 +171,17 @@ TEST(UncertaintyBudget, ExpectedNormalRangeMatchesTheControlChartTable) {
   EXPECT_THROW((void)expectedNormalRange(1), InvalidArgument);
 }
 
+TEST(UncertaintyBudget, ExpectedMaximaMatchTheirClosedFormsAndScipy) {
+  // E|Z| = √(2/π); E[s/σ] for n = 3 is c4(3) = √π/2 (the control-chart constant); for 15
+  // targets: 2.0508974 and 1.7914200 (scipy.integrate.quad of the same integrals).
+  constexpr double kTolQuadrature = 1e-9;
+  EXPECT_NEAR(expectedMaxAbsNormal(1), std::sqrt(2.0 / std::numbers::pi), kTolQuadrature);
+  EXPECT_NEAR(expectedMaxSampleSigma(1, 3), std::sqrt(std::numbers::pi) / 2.0, kTolQuadrature);
+  EXPECT_NEAR(expectedMaxAbsNormal(15), 2.0508974035321548, 1e-7);
+  EXPECT_NEAR(expectedMaxSampleSigma(15, 3), 1.7914199700771325, 1e-6);
+  EXPECT_NEAR(expectedMaxSampleSigma(11, 5), 1.520741554968009, 1e-6);
+  EXPECT_THROW((void)expectedMaxAbsNormal(0), InvalidArgument);
+  EXPECT_THROW((void)expectedMaxSampleSigma(3, 1), InvalidArgument);
+}
+
 }  // namespace pkm::metrology

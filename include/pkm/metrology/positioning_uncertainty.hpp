@@ -37,7 +37,10 @@ void addLaserLengthContributors(UncertaintyBudget& budget,
 /// quantities are NaN).
 /// `coverage` is the k of ISO 230-2's own A and R (R_i↑ = 2k s_i↑). Each E, M, A budget uses the
 /// distance between the two targets that define the range as the measured length; B and R, taken
-/// at one target, have no length term. Throws pkm::InvalidArgument for invalid sources.
+/// at one target, have no length term, but a noise floor: the laser's reading noise σ raises the
+/// largest |B_i| by up to σ·√(1/n↑ + 1/n↓)·E[max of m |Z|] and the largest R_i by up to
+/// 2k·σ·E[max of m s/σ] (m targets; expectedMaxAbsNormal, expectedMaxSampleSigma), a rectangular
+/// half-width. Throws pkm::InvalidArgument for invalid sources.
 [[nodiscard]] std::vector<UncertaintyBudget> iso230_2Uncertainty(const Iso230_2Result& result,
                                                                  const UncertaintySources& sources,
                                                                  double coverage = 2.0);

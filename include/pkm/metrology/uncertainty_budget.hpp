@@ -108,6 +108,17 @@ struct UncertaintyBudget {
 /// is about d2(n)·σ. Throws pkm::InvalidArgument for n < 2.
 [[nodiscard]] double expectedNormalRange(std::size_t n);
 
+/// E[max of m |Z|], Z standard normal: ∫₀^∞ 1 − (2Φ(x) − 1)^m dx (0.798 for m = 1). The noise
+/// bias of the largest of m reversals |B_i| whose true values are equal. Throws
+/// pkm::InvalidArgument for m < 1.
+[[nodiscard]] double expectedMaxAbsNormal(std::size_t m);
+
+/// E[max of m values s/σ], s the standard deviation of n normal readings (s/σ = χ_{n−1}/√(n−1)):
+/// ∫₀^∞ 1 − F(x)^m dx with F the distribution of χ_{n−1}/√(n−1). The noise bias of the largest of
+/// m repeatabilities 4s_i whose true values are equal, over 4σ. Throws pkm::InvalidArgument for
+/// m < 1 or n < 2.
+[[nodiscard]] double expectedMaxSampleSigma(std::size_t m, int n);
+
 /// The Welch–Satterthwaite degrees of freedom of a sum of independent variances `variance[i]`
 /// with `degrees_of_freedom[i]` each (GUM eq. G.2b): (Σ v)² / Σ v²/ν; +∞ when all are infinite or
 /// the sum is 0. The vectors have the same size.
