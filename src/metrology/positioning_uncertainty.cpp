@@ -7,12 +7,11 @@
 #include <limits>
 #include <optional>
 
+#include "metrology/detail/length_contributor.hpp"
 #include "pkm/core/error.hpp"
 
 namespace pkm::metrology {
 namespace {
-
-constexpr double kPpm = 1e-6;
 
 /// One directional mean of a target: x̄, s and n (a candidate extreme of a range), and the
 /// degrees of freedom of its variance (n − 1; Welch–Satterthwaite for a bidirectional mean).
@@ -70,12 +69,6 @@ UncertaintyContributor statistic(std::string name,
   return c;
 }
 
-/// A Type B contributor known as a standard uncertainty (ν = ∞).
-UncertaintyContributor standard(std::string name, double u, std::string source) {
-  return statistic(
-      std::move(name), {{u * u, std::numeric_limits<double>::infinity()}}, std::move(source));
-}
-
 Part scaled(Part p, double scale) { return {scale * p.variance, p.dof}; }
 /// The variance of x̄↑ (or x̄↓) at a target, s²/n with ν = n − 1.
 Part upMean(const TargetStatistics& t) { return {t.s_up * t.s_up / t.runs_up, t.runs_up - 1.0}; }
@@ -83,38 +76,26 @@ Part downMean(const TargetStatistics& t) {
   return {t.s_down * t.s_down / t.runs_down, t.runs_down - 1.0};
 }
 
-UncertaintyContributor bounded(
-    std::string name, double half_width, std::string unit, double sensitivity, std::string source) {
-  UncertaintyContributor c;
-  c.name = std::move(name);
-  c.value = half_width;
-  c.unit = std::move(unit);
-  c.distribution = Distribution::kRectangular;
-  c.sensitivity = sensitivity;
-  c.source = std::move(source);
-  return c;
-}
-
 /// The laser's resolution in a difference of two readings (rectangular, half the resolution,
 /// sensitivity √2).
 void addResolutionContributor(UncertaintyBudget& b, const UncertaintySources& src) {
   addContributor(b,
-                 bounded("laser resolution (two readings)",
-                         src.laser.resolution_mm / 2.0,
-                         "mm",
-                         std::sqrt(2.0),
-                         "instrument"));
+                 detail::boundedContributor("laser resolution (two readings)",
+                                            src.laser.resolution_mm / 2.0,
+                                            "mm",
+                                            std::sqrt(2.0),
+                                            "instrument"));
 }
 
 /// The resolution of two readings (a difference) and E_VE: the terms of B and R.
 void addReadingContributors(UncertaintyBudget& b, const UncertaintySources& src) {
   addResolutionContributor(b, src);
   addContributor(b,
-                 bounded("environmental variation error E_VE",
-                         src.environment.environmental_variation_mm / 2.0,
-                         "mm",
-                         1.0,
-                         "drift test (ISO 230-2 Annex A)"));
+                 detail::boundedContributor("environmental variation error E_VE",
+                                            src.environment.environmental_variation_mm / 2.0,
+                                            "mm",
+                                            1.0,
+                                            "drift test (ISO 230-2 Annex A)"));
 }
 
 /// The instrument's reading noise σ raises a largest-of-targets statistic even on a machine that
@@ -122,13 +103,13 @@ void addReadingContributors(UncertaintyBudget& b, const UncertaintySources& src)
 /// the same; expectedMaxAbsNormal, expectedMaxSampleSigma). One-sided, budgeted as a rectangular
 /// half-width (GUM F.2.4.4), as the roundness's noise bias.
 void addNoiseFloor(UncertaintyBudget& b, double half_width, std::size_t targets) {
-  addContributor(
-      b,
-      bounded(fmt::format("laser reading noise raising the largest of {} targets", targets),
-              half_width,
-              "mm",
-              1.0,
-              "instrument reading noise, expected maximum over the targets"));
+  addContributor(b,
+                 detail::boundedContributor(
+                     fmt::format("laser reading noise raising the largest of {} targets", targets),
+                     half_width,
+                     "mm",
+                     1.0,
+                     "instrument reading noise, expected maximum over the targets"));
 }
 
 /// E[max over the targets] of a reversal's noise, σ·√(1/n↑ + 1/n↓)·E max|Z| (mm).
@@ -292,81 +273,6 @@ std::vector<UncertaintyBudget> unidirectionalBudgets(const Iso230_2Result& resul
 }
 
 }  // namespace
-
-void addLaserLengthContributors(UncertaintyBudget& b,
-                                double length_mm,
-                                const UncertaintySources& src) {
-  std::string why;
-  PKM_CHECK(src.isValid(&why), "uncertainty sources: {}", why);
-  PKM_CHECK(std::isfinite(length_mm) && length_mm >= 0.0,
-            "uncertainty: measured length must be >= 0, got {}",
-            length_mm);
-  const LaserInterferometer& laser = src.laser;
-  const MeasurementEnvironment& env = src.environment;
-  const double L = length_mm;
-  const AirIndexSensitivity dn = edlenSensitivity(env.air, laser.vacuum_wavelength_um);
-  addContributor(b,
-                 bounded("laser wavelength (vacuum)",
-                         laser.wavelength_accuracy_ppm,
-                         "ppm",
-                         L * kPpm,
-                         "instrument"));
-  addContributor(b,
-                 bounded("air temperature sensor",
-                         laser.air_temperature_accuracy_k,
-                         "K",
-                         L * dn.per_kelvin,
-                         "instrument; Edlen sensitivity"));
-  addContributor(b,
-                 bounded("air pressure sensor",
-                         laser.air_pressure_accuracy_pa,
-                         "Pa",
-                         L * dn.per_pascal,
-                         "instrument; Edlen sensitivity"));
-  addContributor(b,
-                 bounded("air humidity sensor",
-                         laser.air_humidity_accuracy_percent,
-                         "%RH",
-                         L * dn.per_percent_rh,
-                         "instrument; Edlen sensitivity"));
-  addContributor(b,
-                 bounded("material temperature sensor",
-                         laser.material_temperature_accuracy_k,
-                         "K",
-                         L * env.expansion_coefficient_per_k,
-                         "instrument"));
-  addContributor(b,
-                 bounded("expansion coefficient",
-                         env.expansion_coefficient_accuracy_per_k,
-                         "1/K",
-                         L * std::abs(env.material_temperature_c - 20.0),
-                         "environment"));
-  addContributor(b,
-                 bounded("dead path (air change during the test)",
-                         env.air_temperature_variation_k,
-                         "K",
-                         env.dead_path_mm * dn.per_kelvin,
-                         "environment; Edlen sensitivity"));
-  addContributor(b,
-                 bounded("cosine error (beam misalignment)",
-                         L * env.misalignment_rad * env.misalignment_rad / 2.0,
-                         "mm",
-                         1.0,
-                         "set-up"));
-  addContributor(b,
-                 bounded("Abbe error",
-                         env.abbe_offset_mm * env.angular_error_range_rad / 2.0,
-                         "mm",
-                         1.0,
-                         "set-up"));
-  addContributor(b, standard("set-up repeatability", env.setup_repeatability_mm, "set-up"));
-  addContributor(b,
-                 bounded("environmental variation error E_VE",
-                         env.environmental_variation_mm / 2.0,
-                         "mm",
-                         1.0,
-                         "drift test (ISO 230-2 Annex A)"));
-}
 
 std::vector<UncertaintyBudget> iso230_2Uncertainty(const Iso230_2Result& result,
                                                    const UncertaintySources& sources,

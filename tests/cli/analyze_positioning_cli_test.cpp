@@ -373,51 +373,5 @@ TEST_F(AnalyzePositioningCli, HelpStatesTheExitCodes) {
   EXPECT_THAT(r.out, HasSubstr("--error-unit"));
 }
 
-TEST_F(AnalyzePositioningCli, UncertaintyBudgetsToleranceDecisionsAndSourcesFile) {
-  // Five targets over 400 mm, two runs per direction (deviations in mm); a reversal of 8 µm,
-  // larger than U(B) with its Student's t factor for so few runs.
-  std::string csv = "target,direction,run,measured\n";
-  for (int i = 0; i < 5; ++i) {
-    const double t = 100.0 * i;
-    for (int run = 1; run <= 2; ++run) {
-      const double d = 1e-3 * i + (run == 1 ? 0.5e-3 : -0.5e-3);
-      csv += fmt::format("{},+,{},{}\n{},-,{},{}\n", t, run, t + d, t, run, t + d - 8e-3);
-    }
-  }
-  const std::string f = write("pos.csv", csv);
-  const CliRun r = pkm({"analyze", "iso230-2", "--data", f, "--json", "--tolerance", "E=1,B=1e-6"});
-  ASSERT_EQ(r.code, 0) << r.err;
-  const Json j = Json::parse(r.out);
-  for (const char* q : {"E", "M", "A", "B", "R"}) {
-    ASSERT_TRUE(j["uncertainty"].contains(q)) << q;
-    EXPECT_EQ(j["uncertainty"][q]["value"].get<double>(), j[q].get<double>()) << q;
-    EXPECT_GT(j["uncertainty"][q]["U"].get<double>(), 0.0) << q;
-    // U = k u_c, k Student's t at ν_eff (Welch–Satterthwaite): above 2 for two runs.
-    EXPECT_NEAR(j["uncertainty"][q]["U"].get<double>(),
-                j["uncertainty"][q]["k"].get<double>() * j["uncertainty"][q]["u_c"].get<double>(),
-                kTolJson);
-    EXPECT_GE(j["uncertainty"][q]["k"].get<double>(), 2.0);
-    EXPECT_FALSE(j["uncertainty"][q]["budget"].empty());
-  }
-  EXPECT_EQ(j["conformance"][0]["decision"], "conforms");
-  EXPECT_EQ(j["conformance"][1]["decision"], "does not conform");
-  // The table shows value ± U.
-  const CliRun t = pkm({"analyze", "iso230-2", "--data", f});
-  EXPECT_THAT(t.out, HasSubstr("uncertainty (k = 2)\nE\t"));
-  EXPECT_THAT(t.out, HasSubstr(" ± "));
-  // A larger material temperature error widens U(E); a bad file stops with FILE:LINE.
-  const std::string hot = write("hot.json", R"({"laser": {"material_temperature_accuracy_k": 1}})");
-  const Json h =
-      Json::parse(pkm({"analyze", "iso230-2", "--data", f, "--json", "--uncertainty", hot}).out);
-  EXPECT_GT(h["uncertainty"]["E"]["U"].get<double>(), j["uncertainty"]["E"]["U"].get<double>());
-  const std::string bad = write("bad.json", "{\n  \"laser\": {\"x\": 1}\n}\n");
-  const CliRun b = pkm({"analyze", "iso230-2", "--data", f, "--uncertainty", bad});
-  EXPECT_EQ(b.code, 2);
-  EXPECT_THAT(b.err, HasSubstr("bad.json:2: /laser/x: unknown key"));
-  const CliRun tol = pkm({"analyze", "iso230-2", "--data", f, "--tolerance", "Q=1"});
-  EXPECT_EQ(tol.code, 2);
-  EXPECT_THAT(tol.err, HasSubstr("'Q'"));
-}
-
 }  // namespace
 }  // namespace pkm::test

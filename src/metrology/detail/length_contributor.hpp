@@ -29,4 +29,18 @@ inline UncertaintyContributor lengthContributor(std::string name,
   return c;
 }
 
+/// A rectangular contributor `name` of half-width `half_width` in `unit` (a datasheet's ±),
+/// sensitivity `sensitivity` (result unit per `unit`), from `source`.
+inline UncertaintyContributor boundedContributor(
+    std::string name, double half_width, std::string unit, double sensitivity, std::string source) {
+  UncertaintyContributor c;
+  c.name = std::move(name);
+  c.value = half_width;
+  c.unit = std::move(unit);
+  c.distribution = Distribution::kRectangular;
+  c.sensitivity = sensitivity;
+  c.source = std::move(source);
+  return c;
+}
+
 }  // namespace pkm::metrology::detail
