@@ -33,6 +33,95 @@ SquarenessBudgets propagateThree(const ThreeModel& model,
   return out;
 }
 
+/// Name prefix of the per-reading inputs of the step-diagonal model (collapsed after propagation).
+constexpr const char* kReadingNoise = "laser reading noise";
+
+/// `inputs` with one normal input of standard uncertainty `sigma_mm` per reading of `passes`.
+metrology::UncertaintyBudget withReadingInputs(metrology::UncertaintyBudget inputs,
+                                               std::span<const metrology::StepDiagonalPass> passes,
+                                               double sigma_mm) {
+  for (const metrology::StepDiagonalPass& p : passes)
+    for (std::size_t s = 0; s < p.steps.size(); ++s)
+      for (int m = 0; m < 3; ++m) {
+        metrology::UncertaintyContributor c;
+        c.name =
+            fmt::format("{} {} step {} sub-move {}", kReadingNoise, toString(p.diagonal), s, m);
+        c.value = sigma_mm;
+        c.unit = "mm";
+        c.distribution = metrology::Distribution::kNormal;
+        c.normal_k = 1.0;
+        c.source = "instrument reading noise and resolution";
+        metrology::addContributor(inputs, c);
+      }
+  return inputs;
+}
+
+/// `inputs` with two beam-alignment angles per diagonal (rad, rectangular ± misalignment_rad): the
+/// tilt of the beam in the two directions across it, set up once per diagonal.
+metrology::UncertaintyBudget withAlignmentInputs(metrology::UncertaintyBudget inputs,
+                                                 double misalignment_rad) {
+  for (metrology::BodyDiagonal d : metrology::kBodyDiagonals)
+    for (int k = 1; k <= 2; ++k) {
+      metrology::UncertaintyContributor c;
+      c.name = fmt::format("beam alignment {} (across the beam, {})", toString(d), k);
+      c.value = misalignment_rad;
+      c.unit = "rad";
+      c.distribution = metrology::Distribution::kRectangular;
+      c.source = "set-up: beam-to-diagonal misalignment";
+      metrology::addContributor(inputs, c);
+    }
+  return inputs;
+}
+
+/// A tilt θ of the beam across a diagonal reads θ·w, w the reflector's offset from the diagonal:
+/// zero on it, but not after the X and Y sub-moves of a step (Chapman, Precision Engineering
+/// 27(4), 2003). Adds that error to the X and Y sub-move readings of `pass` for the angles
+/// (t1, t2) along two unit vectors across the beam.
+void addAlignmentError(metrology::StepDiagonalPass& pass,
+                       const Eigen::Vector3d& size,
+                       double t1,
+                       double t2) {
+  const Eigen::Vector3d u = metrology::diagonalTravel(pass.diagonal, size).normalized();
+  const Eigen::Vector3d e1 = u.cross(Eigen::Vector3d::UnitZ()).normalized();
+  const Eigen::Vector3d theta = t1 * e1 + t2 * u.cross(e1);
+  double previous = pass.steps.front().target;
+  for (metrology::StepDiagonalStep& s : pass.steps) {
+    const double step = s.target - previous;
+    const Eigen::Vector3d after_x = step * Eigen::Vector3d(u.x(), 0.0, 0.0);
+    const Eigen::Vector3d after_y = step * Eigen::Vector3d(u.x(), u.y(), 0.0);
+    s.deviation[0] += theta.dot(after_x - u.dot(after_x) * u);
+    s.deviation[1] += theta.dot(after_y - u.dot(after_y) * u);
+    previous = s.target;
+  }
+}
+
+/// The per-reading rows of a linear budget (of `readings` inputs) replaced by one row: their
+/// quadrature sum (they are independent), as a standard uncertainty in the budget's unit.
+void collapseReadingRows(metrology::UncertaintyBudget& b, double sigma_mm, std::size_t readings) {
+  double sum2 = 0.0;
+  std::size_t n = 0;
+  std::vector<metrology::UncertaintyContributor> kept;
+  for (const metrology::UncertaintyContributor& c : b.contributors) {
+    if (c.name.rfind(kReadingNoise, 0) == 0) {
+      sum2 += c.contribution() * c.contribution();
+      ++n;
+    } else {
+      kept.push_back(c);
+    }
+  }
+  if (n == 0) return;
+  metrology::UncertaintyContributor all;
+  all.name =
+      fmt::format("{} ({} readings, {:.3g} um each)", kReadingNoise, readings, sigma_mm * 1e3);
+  all.value = std::sqrt(sum2);
+  all.unit = b.unit;
+  all.distribution = metrology::Distribution::kNormal;
+  all.normal_k = 1.0;
+  all.source = "instrument reading noise and resolution, through the step extraction";
+  kept.push_back(all);
+  b.contributors = std::move(kept);
+}
+
 }  // namespace
 
 SquarenessBudgets bodySquarenessBudgets(std::span<const metrology::BodyDiagonalSample> samples,
@@ -128,13 +217,30 @@ SquarenessBudgets stepSquarenessBudgets(std::span<const metrology::StepDiagonalP
   std::vector<metrology::DiagonalLineInput> lines;
   for (metrology::BodyDiagonal d : metrology::kBodyDiagonals)
     lines.push_back({metrology::toString(d), D, statistics});
-  const metrology::UncertaintyBudget inputs = metrology::diagonalLineInputs(lines, sources);
+  // Every reading's own noise (and resolution) enters the increments the extraction sums, a
+  // random walk along each function, which a per-line length error cannot represent.
+  const double sigma =
+      std::hypot(sources.laser.reading_noise_mm, sources.laser.resolution_mm / std::sqrt(12.0));
+  const std::size_t first_reading = 1 + 3 * lines.size();
+  const metrology::UncertaintyBudget with_readings =
+      withReadingInputs(metrology::diagonalLineInputs(lines, sources), passes, sigma);
+  const std::size_t first_alignment = with_readings.contributors.size();
+  const metrology::UncertaintyBudget inputs =
+      withAlignmentInputs(with_readings, sources.environment.misalignment_rad);
   // The share of a step's travel along the beam after the X and the Y sub-move: a², a² + b².
   const Eigen::Vector3d c2 = (size / D).cwiseAbs2();
   const std::array<double, 3> share{c2.x(), c2.x() + c2.y(), 1.0};
   const std::vector<metrology::StepDiagonalPass> base(passes.begin(), passes.end());
   const ThreeModel model = [&](std::span<const double> x) {
     std::vector<metrology::StepDiagonalPass> perturbed = base;
+    std::size_t reading = first_reading;
+    for (metrology::StepDiagonalPass& p : perturbed)
+      for (metrology::StepDiagonalStep& s : p.steps)
+        for (std::size_t m = 0; m < 3; ++m) s.deviation[m] += x[reading++];
+    for (metrology::StepDiagonalPass& p : perturbed) {
+      const std::size_t k = first_alignment + 2 * static_cast<std::size_t>(p.diagonal);
+      addAlignmentError(p, size, x[k], x[k + 1]);
+    }
     for (metrology::StepDiagonalPass& p : perturbed) {
       const double per_mm =
           metrology::lineLengthError(x, static_cast<std::size_t>(p.diagonal), D) / D;
@@ -148,8 +254,11 @@ SquarenessBudgets stepSquarenessBudgets(std::span<const metrology::StepDiagonalP
     const metrology::StepDiagonalResult r = metrology::extractStepDiagonal(perturbed, size);
     return std::array<double, 3>{r.squareness_xy, r.squareness_xz, r.squareness_yz};
   };
-  return propagateThree(
+  SquarenessBudgets out = propagateThree(
       model, {result.squareness_xy, result.squareness_xz, result.squareness_yz}, inputs, options);
+  const std::size_t readings = first_alignment - first_reading;
+  for (metrology::UncertaintyBudget& b : out.linear) collapseReadingRows(b, sigma, readings);
+  return out;
 }
 
 SquarenessBudgets faceSquarenessBudget(std::span<const metrology::FaceDiagonal> diagonals,

@@ -45,7 +45,9 @@ struct SquarenessBudgets {
 
 /// Step diagonals: each diagonal's readings perturbed in proportion to the beam position after
 /// every sub-move; the statistics are RMS(Q)/2 (Q = R1 − R2 − R3 + R4 of four independent sums
-/// has 4 times the variance of one).
+/// has 4 times the variance of one); and every reading by its own noise, σ = √(reading_noise² +
+/// resolution²/12) of the laser (the extraction sums the increments: a random walk), reported as
+/// one row "laser reading noise (N readings, ...)".
 [[nodiscard]] SquarenessBudgets stepSquarenessBudgets(
     std::span<const metrology::StepDiagonalPass> passes,
     const metrology::StepDiagonalResult& result,

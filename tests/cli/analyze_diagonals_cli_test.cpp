@@ -199,5 +199,33 @@ TEST_F(AnalyzeDiagonalsCli, SquarenessCarriesUWithItsMonteCarloCheck) {
   EXPECT_THAT(b.err, ::testing::HasSubstr("bad.json:2: /laser/x: unknown key"));
 }
 
+TEST_F(AnalyzeDiagonalsCli, StepBudgetCarriesEachReadingAndTheBeamAlignment) {
+  // Wang's extraction sums the sub-move increments (each reading's noise walks along the
+  // functions) and a beam tilted across a diagonal reads the reflector's offset after the X and Y
+  // sub-moves: both are in the step budget, and the alignment scales U (docs/coverage.md: with
+  // the workshop's alignment stated, the step squareness covers the truth).
+  ASSERT_EQ(pkm({"simulate", "seed001-diagonals", "--out", path("D")}).code, 0);
+  std::vector<std::string> args = {
+      "analyze", "diagonals", "--size", "500,400,300", "--method", "step", "--json", "--data"};
+  for (const auto& f : files(path("D"), "step-")) args.push_back(f);
+  const nlohmann::json j = nlohmann::json::parse(pkm(args).out);
+  const nlohmann::json& b = j["uncertainty"]["squareness_xy"]["budget"];
+  bool reading = false, alignment = false;
+  for (const auto& row : b) {
+    const std::string name = row["name"];
+    reading = reading || name.rfind("laser reading noise (", 0) == 0;
+    alignment = alignment || name.rfind("beam alignment PPP", 0) == 0;
+  }
+  EXPECT_TRUE(reading);
+  EXPECT_TRUE(alignment);
+  const double U = j["uncertainty"]["squareness_xy"]["U"].get<double>();
+  args.insert(
+      args.end(),
+      {"--uncertainty", write("tilt.json", R"({"environment": {"misalignment_rad": 2e-4}})")});
+  const nlohmann::json t = nlohmann::json::parse(pkm(args).out);
+  // The alignment term dominates: four times the tilt, nearly four times U.
+  EXPECT_GT(t["uncertainty"]["squareness_xy"]["U"].get<double>(), 3.5 * U);
+}
+
 }  // namespace
 }  // namespace pkm::test
