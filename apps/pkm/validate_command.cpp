@@ -39,12 +39,12 @@ void runCoverage(CoverageArgs& a) {
   writeTextOutput("", a.json ? workflow::coverageJson(r) : workflow::coverageText(r));
   if (!a.out.empty() && !a.json)
     fmt::print("wrote coverage.json, report-data.json and report.html to {}\n", a.out);
-  if (a.check && r.holding() < r.quantities.size()) {
+  if (a.check && r.holding() < r.claims()) {
     std::fflush(stdout);
     fmt::print(stderr,
                "pkm: {} of {} quantities below the acceptable coverage\n",
-               r.quantities.size() - r.holding(),
-               r.quantities.size());
+               r.claims() - r.holding(),
+               r.claims());
     throw ExitCode{kExitCheckFailed};
   }
 }

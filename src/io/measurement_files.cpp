@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
@@ -49,13 +50,27 @@ std::string lineRunCsv(sim::LineQuantity quantity,
   const bool angular = quantity == sim::LineQuantity::kAngular;
   bool steps = false;
   for (const sim::LineReading& r : run.readings) steps = steps || r.sub_step != 0;
+  const bool sensed = std::any_of(
+      run.readings.begin(), run.readings.end(), [](const auto& r) { return r.sensed.recorded; });
   out += angular ? "target_mm,run,direction,reading_urad" : "target_mm,run,direction,reading_mm";
-  out += steps ? ",sub_step\n" : "\n";
+  if (steps) out += ",sub_step";
+  if (sensed) out += ",air_temperature_c,air_pressure_pa,air_humidity_rh,material_temperature_c";
+  out += '\n';
   for (const sim::LineReading& r : run.readings) {
     appendNumber(out, r.target);
     out += fmt::format(",{},{},", run.run, r.direction > 0 ? '+' : '-');
     appendNumber(out, angular ? r.reading * kUradPerRad : r.reading);
-    out += steps ? fmt::format(",{}\n", r.sub_step) : "\n";
+    if (steps) out += fmt::format(",{}", r.sub_step);
+    if (sensed) {
+      const sim::SensedConditions& c = r.sensed;
+      // The compensation unit's display resolution: 0.01 °C, 1 Pa, 0.1 %RH.
+      out += fmt::format(",{:.3f},{:.1f},{:.2f},{:.3f}",
+                         c.air_temperature_c,
+                         c.air_pressure_pa,
+                         c.air_humidity_rh,
+                         c.material_temperature_c);
+    }
+    out += '\n';
   }
   return out;
 }

@@ -74,6 +74,12 @@ Metadata lineRunMetadata(const Scenario& s, std::uint64_t seed, const sim::LineS
   if (m.quantity != sim::LineQuantity::kLinear) md.emplace_back("lateral", vectorText(m.lateral));
   if (m.quantity == sim::LineQuantity::kStraightness)
     md.emplace_back("misalignment urad", formatNumber(m.misalignment * 1e6));
+  // The set-up a laser's budget needs (docs/formats.md, "Environment records").
+  const sim::Environment& env = s.campaign.environment;
+  if (m.quantity == sim::LineQuantity::kLinear && env.air.enabled)
+    md.emplace_back("dead path mm", formatNumber(env.air.dead_path_mm));
+  if (m.quantity == sim::LineQuantity::kLinear && env.setup.enabled)
+    md.emplace_back("beam alignment urad", formatNumber(env.setup.beam_misalignment_rad * 1e6));
   return md;
 }
 

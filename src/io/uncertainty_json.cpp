@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -31,13 +32,24 @@ Json budgetJson(const metrology::UncertaintyBudget& budget) {
                         {"degrees_of_freedom", dofJson(c.degrees_of_freedom)},
                         {"source", c.source}});
   }
-  return Json{{"value", budget.value},
-              {"unit", budget.unit},
-              {"U", budget.expandedUncertainty()},
-              {"u_c", budget.combinedStandardUncertainty()},
-              {"k", budget.coverageFactor()},
-              {"nu_eff", dofJson(budget.effectiveDegreesOfFreedom())},
-              {"budget", std::move(rows)}};
+  Json out{{"value", budget.value},
+           {"unit", budget.unit},
+           {"U", budget.expandedUncertainty()},
+           {"u_c", budget.combinedStandardUncertainty()},
+           {"k", budget.coverageFactor()},
+           {"nu_eff", dofJson(budget.effectiveDegreesOfFreedom())},
+           {"budget", std::move(rows)}};
+  if (!budget.conditions.empty()) {
+    Json conditions = Json::array();
+    for (const metrology::BudgetCondition& c : budget.conditions)
+      conditions.push_back(Json{{"name", c.name},
+                                {"value", c.value},
+                                {"unit", c.unit},
+                                {"origin", c.origin},
+                                {"note", c.note}});
+    out["conditions"] = std::move(conditions);
+  }
+  return out;
 }
 
 Json uncertaintyJson(const std::vector<metrology::UncertaintyBudget>& budgets) {
@@ -93,6 +105,24 @@ std::string uncertaintyText(const std::vector<metrology::UncertaintyBudget>& bud
                        b.unit,
                        k,
                        largest ? b.contributors[*largest].name : "-");
+  }
+  out += conditionsText(budgets);
+  return out;
+}
+
+std::string conditionsText(const std::vector<metrology::UncertaintyBudget>& budgets) {
+  const auto with = std::find_if(
+      budgets.begin(), budgets.end(), [](const auto& b) { return !b.conditions.empty(); });
+  if (with == budgets.end()) return {};
+  std::string out;
+  for (const metrology::BudgetCondition& c : with->conditions) {
+    const std::string origin = c.origin == "recorded" ? "recorded" : "assumed (" + c.origin + ")";
+    out += fmt::format("condition\t{}\t{:.6g} {}\t{}{}\n",
+                       c.name,
+                       c.value,
+                       c.unit,
+                       origin,
+                       c.note.empty() ? "" : ": " + c.note);
   }
   return out;
 }

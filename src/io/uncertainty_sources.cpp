@@ -103,6 +103,21 @@ void readFields(const JsonDoc& doc,
   for (const Field& f : fields) *f.value = doc.number(obj, ptr, f.key, *f.value);
 }
 
+/// The conditions `env` (the file's "environment" object, checked) states, marked kStated.
+void markStated(const detail::json& env, metrology::ConditionOrigins& o) {
+  constexpr auto kStated = metrology::ConditionOrigin::kStated;
+  const auto has = [&](const char* key) { return env.contains(key); };
+  if (has("material_temperature_c")) o.material_temperature = kStated;
+  if (has("air_temperature_variation_k")) o.air_temperature_variation = kStated;
+  if (has("dead_path_mm")) o.dead_path = kStated;
+  if (has("misalignment_rad")) o.misalignment = kStated;
+  if (!has("air")) return;
+  const detail::json& air = env["air"];
+  if (air.contains("temperature_c")) o.air_temperature = kStated;
+  if (air.contains("pressure_pa")) o.air_pressure = kStated;
+  if (air.contains("relative_humidity")) o.air_humidity = kStated;
+}
+
 }  // namespace
 
 metrology::UncertaintySources readUncertaintySources(const NamedText& text) {
@@ -138,6 +153,7 @@ metrology::UncertaintySources readUncertaintySources(const NamedText& text) {
       readFields(doc, obj["air"], ptr + "/air", airFields(out.environment.air), {});
   }
   out.coverage_factor = doc.number(root, "", "coverage_factor", out.coverage_factor);
+  if (root.contains("environment")) markStated(root["environment"], out.environment.origin);
   std::string why;
   if (!out.isValid(&why)) doc.fail("", why);
   return out;

@@ -6,6 +6,7 @@
 #include "metrology/detail/length_contributor.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/metrology/positioning_uncertainty.hpp"
+#include "pkm/metrology/recorded_conditions.hpp"
 
 namespace pkm::metrology {
 
@@ -91,6 +92,7 @@ void addLaserLengthContributors(UncertaintyBudget& b,
                                             "mm",
                                             1.0,
                                             "drift test (ISO 230-2 Annex A)"));
+  b.conditions = laserConditions(src);
 }
 
 }  // namespace pkm::metrology

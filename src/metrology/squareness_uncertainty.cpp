@@ -7,6 +7,7 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/metrology/positioning_uncertainty.hpp"
+#include "pkm/metrology/recorded_conditions.hpp"
 
 namespace pkm::metrology {
 namespace {
@@ -86,6 +87,7 @@ UncertaintyBudget diagonalLineInputs(std::span<const DiagonalLineInput> lines,
                                    Distribution::kRectangular,
                                    "set-up"));
   }
+  b.conditions = laserConditions(src);
   return b;
 }
 
@@ -143,6 +145,7 @@ NonlinearBudget propagateBothWays(const std::string& quantity,
   out.linear.unit = unit;
   out.linear.value = value;
   out.linear.coverage_factor = inputs.coverage_factor;
+  out.linear.conditions = inputs.conditions;
   for (const UncertaintyContributor& c : linear.contributors) addContributor(out.linear, c);
   out.monte_carlo = propagateMonteCarlo(model, inputs, options);
   return out;

@@ -9,6 +9,18 @@
 
 namespace pkm::metrology {
 
+const char* toString(ConditionOrigin origin) {
+  switch (origin) {
+    case ConditionOrigin::kStated:
+      return "stated";
+    case ConditionOrigin::kRecorded:
+      return "recorded";
+    case ConditionOrigin::kDefault:
+      break;
+  }
+  return "default";
+}
+
 bool UncertaintySources::isValid(std::string* why) const {
   const auto fail = [&](std::string reason) {
     if (why) *why = std::move(reason);

@@ -181,7 +181,15 @@ std::vector<LineRun> simulate(VirtualMachine& machine,
       if (conditions != nullptr) conditions->next();
       const double truth = instrument.truth(actual(machine.moveTo(at)), s0);
       run.readings.push_back(
-          {target, direction, setup.noise.apply(truth, target - s0, scale, rng), sub_step});
+          {target, direction, setup.noise.apply(truth, target - s0, scale, rng), sub_step, {}});
+      if (conditions != nullptr && setup.quantity == LineQuantity::kLinear) {
+        const AirConditions air = conditions->sensedAir();
+        run.readings.back().sensed = {true,
+                                      air.temperature_c,
+                                      air.pressure_pa,
+                                      air.relative_humidity,
+                                      conditions->sensedMaterialTemperature()};
+      }
     };
     const auto read = [&](double s, int direction) {
       const Eigen::VectorXd goal = setup.line.at(s);

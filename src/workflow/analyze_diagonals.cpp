@@ -14,6 +14,7 @@
 #include "analyze_diagonal_uncertainty.hpp"
 #include "data_errors.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/io/environment_records.hpp"
 #include "pkm/metrology/per_target.hpp"
 #include "pkm/metrology/plane_prediction.hpp"
 
@@ -176,18 +177,22 @@ void DiagonalsRequest::validate() const {
 io::DiagonalsReport analyzeDiagonals(const DiagonalsRequest& request, const RunControl& control) {
   request.validate();
   return detail::namingData({request.data, request.compare}, [&] {
+    // The budgets at the conditions the files record (docs/analysis.md, "Measurement conditions").
+    DiagonalsRequest r = request;
+    r.uncertainty = metrology::withRecordedConditions(request.uncertainty,
+                                                      io::readEnvironmentRecords(request.data));
     io::DiagonalsReport report;
-    report.method = request.method;
-    report.size = request.size;
-    switch (request.method) {
+    report.method = r.method;
+    report.size = r.size;
+    switch (r.method) {
       case io::DiagonalMethod::kBody:
-        body(request, control, report);
+        body(r, control, report);
         break;
       case io::DiagonalMethod::kStep:
-        step(request, report);
+        step(r, report);
         break;
       case io::DiagonalMethod::kShifted:
-        shifted(request, report);
+        shifted(r, report);
         break;
     }
     return report;

@@ -10,6 +10,7 @@
 
 #include "data_errors.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/io/environment_records.hpp"
 #include "pkm/io/positioning_files.hpp"
 #include "pkm/metrology/iso230_2_conformity.hpp"
 #include "pkm/metrology/positioning_uncertainty.hpp"
@@ -63,8 +64,11 @@ io::Iso230_2Report iso230_2(const Iso230_2Request& request) {
     all.insert(all.end(), report.warnings.begin(), report.warnings.end());
     throw InvalidArgument(fmt::format("--strict: {}", fmt::join(all, "; ")));
   }
-  report.uncertainty =
-      metrology::iso230_2Uncertainty(report.result, request.uncertainty, request.coverage);
+  report.uncertainty = metrology::iso230_2Uncertainty(
+      report.result,
+      metrology::withRecordedConditions(request.uncertainty,
+                                        io::readEnvironmentRecords(request.data)),
+      request.coverage);
   report.conformance = metrology::decideIso230_2Conformance(report.uncertainty, request.tolerances);
   return report;
 }

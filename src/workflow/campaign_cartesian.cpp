@@ -32,12 +32,16 @@ struct Analysis {
   double max_length_error = 0.0;             ///< max |ΔD| of the four diagonals, mm
   double max_length_error_U = std::nan("");  ///< its U (k = 2), mm
   met::Iso230_2Result face_pp, face_np, linear_x, linear_y;
+  /// The budgets' sources at the conditions the data recorded (sourcesAt).
+  met::UncertaintySources sources;
 };
 
-/// The analysis of `d`, with the uncertainty budgets of `ctx.sources`.
+/// The analysis of `d`, with the uncertainty budgets of `ctx.sources` at the conditions `d`
+/// recorded.
 Analysis analyse(const LineData& d, const Eigen::Vector3d& size, const StepContext& ctx) {
   const std::string& src = ctx.source;
   Analysis a;
+  a.sources = sourcesAt(ctx.sources, d);
   std::vector<met::BodyDiagonalSample> samples;
   for (std::size_t k = 0; k < 4; ++k)
     for (const sim::LineRun& run : d.runs(kDiagonals[k], src))
@@ -51,9 +55,9 @@ Analysis analyse(const LineData& d, const Eigen::Vector3d& size, const StepConte
     const double e = std::abs(a.body.diagonals[k].length_error);
     if (k > 0 && e <= a.max_length_error) continue;
     a.max_length_error = e;
-    a.max_length_error_U = met::bodyDiagonalLengthErrorUncertainty(
-                               samples, a.body, met::kBodyDiagonals[k], ctx.sources)
-                               .expandedUncertainty();
+    a.max_length_error_U =
+        met::bodyDiagonalLengthErrorUncertainty(samples, a.body, met::kBodyDiagonals[k], a.sources)
+            .expandedUncertainty();
   }
   a.face_pp = iso230_2(d.runs("face-xy-pp", src));
   a.face_np = iso230_2(d.runs("face-xy-np", src));
@@ -155,8 +159,8 @@ StepOutcome fromFiles(const StepContext& ctx) {
   for (const auto& [quantity, value] : figures)
     out.rows.push_back({quantity, "mm", value, std::nan(""), std::nullopt, "", "as measured"});
   const double U[] = {ab.max_length_error_U,
-                      iso230_2U(ab.linear_x, "E", ctx.sources),
-                      iso230_2U(ab.linear_y, "E", ctx.sources)};
+                      iso230_2U(ab.linear_x, "E", ab.sources),
+                      iso230_2U(ab.linear_y, "E", ab.sources)};
   for (std::size_t k = 0; k < 3; ++k) out.rows[out.rows.size() - 3 + k].before_U = U[k];
   const met::BodyDiagonalSolution& sb = ab.body.solution;
   out.record.results.push_back({"squareness.xy", "estimate", sb.squareness_xy, "rad"});
@@ -195,7 +199,8 @@ void addRows(StepOutcome& out,
              const Analysis& aa,
              const StepContext& ctx) {
   const std::string& src = ctx.source;
-  const metrology::UncertaintySources& u = ctx.sources;
+  const metrology::UncertaintySources& u = ab.sources;
+  const metrology::UncertaintySources& ua = aa.sources;
   const sim::LineSetup& li = before.setup("diag-ppp", src);
   const std::string noise =
       fmt::format("laser {:g} µm + {:g} ppm", li.noise.sigma * 1e3, li.noise.sigma_ppm);
@@ -209,19 +214,19 @@ void addRows(StepOutcome& out,
     out.rows.push_back({quantity, "mm", b, a, std::nullopt, "", noise});
   const std::pair<double, double> U[] = {
       {ab.max_length_error_U, aa.max_length_error_U},
-      {iso230_2U(ab.face_pp, "E", u), iso230_2U(aa.face_pp, "E", u)},
-      {iso230_2U(ab.face_np, "E", u), iso230_2U(aa.face_np, "E", u)},
-      {iso230_2U(ab.linear_x, "E", u), iso230_2U(aa.linear_x, "E", u)},
-      {iso230_2U(ab.linear_y, "E", u), iso230_2U(aa.linear_y, "E", u)}};
+      {iso230_2U(ab.face_pp, "E", u), iso230_2U(aa.face_pp, "E", ua)},
+      {iso230_2U(ab.face_np, "E", u), iso230_2U(aa.face_np, "E", ua)},
+      {iso230_2U(ab.linear_x, "E", u), iso230_2U(aa.linear_x, "E", ua)},
+      {iso230_2U(ab.linear_y, "E", u), iso230_2U(aa.linear_y, "E", ua)}};
   for (std::size_t k = 0; k < 5; ++k) {
     SummaryRow& row = out.rows[out.rows.size() - 5 + k];
     std::tie(row.before_U, row.after_U) = U[k];
   }
   const std::size_t first = out.rows.size() - 5;
-  setIso230_2AfterU(out.rows[first + 1], aa.face_pp, "E", u);
-  setIso230_2AfterU(out.rows[first + 2], aa.face_np, "E", u);
-  setIso230_2AfterU(out.rows[first + 3], aa.linear_x, "E", u);
-  setIso230_2AfterU(out.rows[first + 4], aa.linear_y, "E", u);
+  setIso230_2AfterU(out.rows[first + 1], aa.face_pp, "E", ua);
+  setIso230_2AfterU(out.rows[first + 2], aa.face_np, "E", ua);
+  setIso230_2AfterU(out.rows[first + 3], aa.linear_x, "E", ua);
+  setIso230_2AfterU(out.rows[first + 4], aa.linear_y, "E", ua);
   const met::BodyDiagonalSolution& sb = ab.body.solution;
   out.record.results.push_back({"squareness.xy", "estimate", sb.squareness_xy, "rad"});
   out.record.results.push_back({"squareness.xz", "estimate", sb.squareness_xz, "rad"});
@@ -290,7 +295,8 @@ StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
   const Eigen::Vector3d size = scenarioBox(scenario, src);
 
   ctx.progress("measure: body, face and shifted diagonals, positioning and straightness");
-  const LineData before{sim::runCampaign(scenario.campaign, seed)};
+  const LineData before{sim::runCampaign(scenario.campaign, seed),
+                        setupRecords(scenario.campaign.environment)};
   writeLineFiles(ctx, out, "measured-before", scenario, seed, before);
   ctx.progress("analyse: squareness from the four body diagonals (ISO 230-6)");
   const Analysis ab = analyse(before, size, ctx);
@@ -301,7 +307,8 @@ StepOutcome runCartesianDiagonalsStep(const StepContext& ctx) {
   ctx.progress("re-measure: the same lines through the compensating controller");
   io::Scenario again = remeasureScenario(scenario);
   again.campaign.machine = std::make_shared<sim::CompensatedMachine>(vm, chain);
-  const LineData after{sim::runCampaign(again.campaign, remeasureSeed(seed))};
+  const LineData after{sim::runCampaign(again.campaign, remeasureSeed(seed)),
+                       setupRecords(again.campaign.environment)};
   writeLineFiles(ctx, out, "measured-after", scenario, remeasureSeed(seed), after);
   const Analysis aa = analyse(after, size, ctx);
   addRows(out, before, ab, aa, ctx);

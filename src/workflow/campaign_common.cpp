@@ -24,6 +24,7 @@ namespace pkm::workflow::campaign {
 
 namespace fs = std::filesystem;
 namespace sim = pkm::simulation;
+namespace met = pkm::metrology;
 
 void StepContext::write(StepOutcome& outcome,
                         const std::string& name,
@@ -241,6 +242,39 @@ void writeAxisTables(const StepContext& ctx,
                   comp::fitToTarget(table, eec, eec.default_max_points))));
     controller.set(axis, file);
   }
+}
+
+met::RecordedConditions setupRecords(const sim::Environment& environment) {
+  met::RecordedConditions out;
+  if (environment.air.enabled) out.dead_path_mm = environment.air.dead_path_mm;
+  if (environment.setup.enabled) out.misalignment_rad = environment.setup.beam_misalignment_rad;
+  return out;
+}
+
+met::RecordedConditions recordedConditions(const LineData& data) {
+  met::RecordedConditions out = data.records;
+  met::RecordedSeries t, p, h, m;
+  for (const sim::MeasurementResult& r : data.results)
+    for (const sim::LineRun& run : r.runs)
+      for (const sim::LineReading& x : run.readings) {
+        if (!x.sensed.recorded) continue;
+        t.add(x.sensed.air_temperature_c);
+        p.add(x.sensed.air_pressure_pa);
+        h.add(x.sensed.air_humidity_rh);
+        m.add(x.sensed.material_temperature_c);
+      }
+  if (t.count == 0) return out;
+  met::RecordedConditions sensed;
+  sensed.air_temperature_c = t;
+  sensed.air_pressure_pa = p;
+  sensed.air_humidity_rh = h;
+  sensed.material_temperature_c = m;
+  out.merge(sensed);
+  return out;
+}
+
+met::UncertaintySources sourcesAt(const met::UncertaintySources& sources, const LineData& data) {
+  return met::withRecordedConditions(sources, recordedConditions(data));
 }
 
 }  // namespace pkm::workflow::campaign

@@ -122,7 +122,8 @@ Pass measure(const StepContext& ctx,
              const std::string& folder,
              const io::Scenario& scenario,
              std::uint64_t seed) {
-  Pass p{LineData{sim::runCampaign(scenario.campaign, seed)},
+  Pass p{LineData{sim::runCampaign(scenario.campaign, seed),
+                  setupRecords(scenario.campaign.environment)},
          sim::runLaserTrackers(scenario.campaign, seed)};
   writeLineFiles(ctx, out, folder, scenario, seed, p.lines);
   for (const sim::TrackerResult& r : p.trackers)
@@ -236,8 +237,8 @@ void addRows(const StepContext& ctx,
        std::nullopt,
        "12 -> < 0.5 mm (540 mm along x)",
        fmt::format("laser {:g} µm + {:g} ppm", ls.noise.sigma * 1e3, ls.noise.sigma_ppm)});
-  out.rows.back().before_U = iso230_2U(pb, "M", ctx.sources);
-  setIso230_2AfterU(out.rows.back(), pa, "M", ctx.sources);
+  out.rows.back().before_U = iso230_2U(pb, "M", sourcesAt(ctx.sources, before.lines));
+  setIso230_2AfterU(out.rows.back(), pa, "M", sourcesAt(ctx.sources, after.lines));
   out.record.results.push_back({"calibration.residual_rms", "after", s.after.rms, "mm"});
 }
 

@@ -75,7 +75,7 @@ StepOutcome fromFiles(const StepContext& ctx) {
   ctx.progress(fmt::format("analyse: {} laser files", files.paths.size()));
   const Analysis ab = detail::analyseHybrid(files.data, ctx.source, ctx.sources);
   (void)detail::compensateHybrid(ctx, out, files.data, *machine.hybrid, ab);
-  addMeasuredRows(out, ab, ctx.sources);
+  addMeasuredRows(out, ab, ab.sources);
   const kinematics::HybridSquareness& e = ab.squareness;
   recordSquareness(out, e);
   Json sec = section(out.id,
@@ -143,8 +143,8 @@ void addRows(const StepContext& ctx,
   const std::pair<double, double> U[] = {
       {ab.horizontal_U, aa.horizontal_U},
       {ab.vertical_U, aa.vertical_U},
-      {iso230_2U(ab.diag_xy, "E", ctx.sources), iso230_2U(aa.diag_xy, "E", ctx.sources)},
-      {iso230_2U(ab.diag_xz, "E", ctx.sources), iso230_2U(aa.diag_xz, "E", ctx.sources)}};
+      {iso230_2U(ab.diag_xy, "E", ab.sources), iso230_2U(aa.diag_xy, "E", aa.sources)},
+      {iso230_2U(ab.diag_xz, "E", ab.sources), iso230_2U(aa.diag_xz, "E", aa.sources)}};
   for (std::size_t k = 0; k < 4; ++k) {
     SummaryRow& row = out.rows[out.rows.size() - 4 + k];
     std::tie(row.before_U, row.after_U) = U[k];
@@ -152,8 +152,8 @@ void addRows(const StepContext& ctx,
   const std::size_t first = out.rows.size() - 4;
   out.rows[first].after_limit = aa.horizontal_limit;
   out.rows[first + 1].after_limit = aa.vertical_limit;
-  setIso230_2AfterU(out.rows[first + 2], aa.diag_xy, "E", ctx.sources);
-  setIso230_2AfterU(out.rows[first + 3], aa.diag_xz, "E", ctx.sources);
+  setIso230_2AfterU(out.rows[first + 2], aa.diag_xy, "E", aa.sources);
+  setIso230_2AfterU(out.rows[first + 3], aa.diag_xz, "E", aa.sources);
 }
 
 /// The report section of the simulated step, without its plots.
@@ -280,7 +280,8 @@ StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
   out.record.source = scenario.source;
 
   ctx.progress("measure: straightness, positioning and face diagonals with the laser");
-  const LineData before{sim::runCampaign(scenario.campaign, seed)};
+  const LineData before{sim::runCampaign(scenario.campaign, seed),
+                        setupRecords(scenario.campaign.environment)};
   writeLineFiles(ctx, out, "measured-before", scenario, seed, before);
   ctx.progress("analyse: parallelism (seed 000 §3.1), face-diagonal squareness (§3.2), eq. 11");
   const Analysis ab = detail::analyseHybrid(before, src, ctx.sources);
@@ -291,7 +292,8 @@ StepOutcome runHybridSquarenessStep(const StepContext& ctx) {
   ctx.progress("re-measure: the same lines through the compensating controller");
   io::Scenario again = remeasureScenario(scenario);
   again.campaign.machine = std::make_shared<sim::CompensatedMachine>(vm, chain);
-  const LineData after{sim::runCampaign(again.campaign, remeasureSeed(seed))};
+  const LineData after{sim::runCampaign(again.campaign, remeasureSeed(seed)),
+                       setupRecords(again.campaign.environment)};
   writeLineFiles(ctx, out, "measured-after", scenario, remeasureSeed(seed), after);
   const Analysis aa = detail::analyseHybrid(after, src, ctx.sources);
 

@@ -164,8 +164,10 @@ std::pair<double, std::string> parallelismU(const met::ParallelismResult& r,
 
 HybridAnalysis analyseHybrid(const LineData& d,
                              const std::string& src,
-                             const met::UncertaintySources& sources) {
+                             const met::UncertaintySources& base) {
   HybridAnalysis a;
+  a.sources = sourcesAt(base, d);
+  const met::UncertaintySources& sources = a.sources;
   const met::BeamRun y2h = beam(d, "straightness-y2-h", -1, src);
   const met::BeamRun pyh = beam(d, "straightness-py-h", 1, src);
   const met::BeamRun y2v = beam(d, "straightness-y2-v", -1, src);

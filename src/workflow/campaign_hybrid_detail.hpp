@@ -26,9 +26,12 @@ struct HybridAnalysis {
   double vertical_U = std::numeric_limits<double>::quiet_NaN();
   /// The largest contributors of horizontal_U and vertical_U (largestContributors).
   std::string horizontal_limit, vertical_limit;
+  /// The budgets' sources at the conditions the data recorded (sourcesAt).
+  metrology::UncertaintySources sources;
 };
 
-/// Parallelism from the straightness runs (its U with the instruments of `sources`), szX2 and syP
+/// Parallelism from the straightness runs (its U with the instruments of `sources` at the
+/// conditions `data` recorded, kept in HybridAnalysis::sources), szX2 and syP
 /// from the face diagonals with the positioning and straightness PDGEs removed, sxP and szP from
 /// the slope differences. Throws pkm::IoError naming `source` when a measurement is missing.
 [[nodiscard]] HybridAnalysis analyseHybrid(const LineData& data,

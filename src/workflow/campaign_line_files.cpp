@@ -9,6 +9,7 @@
 
 #include "campaign_steps.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/io/environment_records.hpp"
 #include "pkm/io/measurement_files.hpp"
 #include "pkm/io/text_table.hpp"
 
@@ -78,7 +79,10 @@ LineFiles readLineFolder(const StepContext& ctx, const std::string& folder) {
   LineFiles out;
   std::map<std::string, std::size_t> index;  // measurement -> position in results
   for (const std::string& path : paths) {
-    if (io::TextTable::read(path).meta("format").value_or("") != "pkm.measurement/1") continue;
+    const io::TextTable table = io::TextTable::read(path);
+    if (table.meta("format").value_or("") != "pkm.measurement/1") continue;
+    // The files' environment records and set-up metadata (docs/formats.md).
+    out.data.records.merge(io::environmentRecords(table));
     const io::LineRunFile f = io::readLineRunCsv(path);
     const std::string name = metaOf(f.metadata, "measurement");
     if (name.empty()) throw IoError(fmt::format("{}: metadata 'measurement' is missing", path));

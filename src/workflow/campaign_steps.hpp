@@ -24,6 +24,7 @@
 #include "pkm/io/scenario.hpp"
 #include "pkm/io/text_table.hpp"
 #include "pkm/metrology/iso230_2.hpp"
+#include "pkm/metrology/recorded_conditions.hpp"
 #include "pkm/metrology/uncertainty_budget.hpp"
 #include "pkm/metrology/uncertainty_sources.hpp"
 #include "pkm/simulation/campaign.hpp"
@@ -116,6 +117,9 @@ namespace pkm::workflow::campaign {
 /// The line measurements of a scenario by name, with their results.
 struct LineData {
   std::vector<simulation::MeasurementResult> results;
+  /// Records not in the readings: the set-up's (dead path, beam alignment) from the environment of
+  /// a simulated step (setupRecords); a measured step's files' environment columns and metadata.
+  metrology::RecordedConditions records;
   /// The runs of measurement `name`; throws pkm::IoError naming `source` when there is none.
   [[nodiscard]] const std::vector<simulation::LineRun>& runs(const std::string& name,
                                                              const std::string& source) const;
@@ -123,6 +127,21 @@ struct LineData {
   [[nodiscard]] const simulation::LineSetup& setup(const std::string& name,
                                                    const std::string& source) const;
 };
+
+/// The set-up records of a simulated measurement in `environment`: its dead path when the air
+/// source is on, its beam alignment bound when the set-up source is on (docs/formats.md,
+/// "Environment records"); empty otherwise.
+[[nodiscard]] metrology::RecordedConditions setupRecords(
+    const simulation::Environment& environment);
+
+/// What the linear readings of `data` recorded (their compensation unit's sensors,
+/// simulation::SensedConditions) with `data.records`.
+[[nodiscard]] metrology::RecordedConditions recordedConditions(const LineData& data);
+
+/// `sources` at the conditions `data` recorded (metrology::withRecordedConditions): the budgets
+/// of a campaign's laser rows use the measurement's own conditions.
+[[nodiscard]] metrology::UncertaintySources sourcesAt(const metrology::UncertaintySources& sources,
+                                                      const LineData& data);
 
 /// Writes every run of `data` into `folder` of the step (`name_runK.csv`, the simulator format).
 void writeLineFiles(const StepContext& context,

@@ -172,9 +172,18 @@ bool CoverageQuantity::wide() const {
   return rms > 0.0 && meanU() > kWideFactor * rms;
 }
 
+bool CoverageQuantity::claimed() const { return truth_kind != "injected"; }
+
 std::size_t CoverageResult::holding() const {
+  return static_cast<std::size_t>(
+      std::count_if(quantities.begin(), quantities.end(), [](const CoverageQuantity& q) {
+        return q.claimed() && q.holds();
+      }));
+}
+
+std::size_t CoverageResult::claims() const {
   return static_cast<std::size_t>(std::count_if(
-      quantities.begin(), quantities.end(), [](const CoverageQuantity& q) { return q.holds(); }));
+      quantities.begin(), quantities.end(), [](const CoverageQuantity& q) { return q.claimed(); }));
 }
 
 CoverageResult validateCoverage(const CoverageOptions& options, const RunControl& control) {

@@ -50,8 +50,32 @@ TEST_F(CliTest, ValidateCoverageWritesItsTableAndFiles) {
 }
 
 TEST_F(CliTest, ValidateCoverageCheckFailsWhereTheBudgetMissesTheTruth) {
-  // Body-diagonal squareness against the injected squareness: the diagonal method confounds
-  // the other geometric errors (docs/coverage.md), so --check reports it and exits 1.
+  // A probe stated perfect (no form error, no repeatability) in the realistic workshop, whose
+  // probe has a 3-lobe form: the offset's U misses the truth and --check exits 1.
+  const std::string perfect = write(
+      "perfect-probe.json", R"({"probe": {"form_2d_mm": 0, "repeatability_2sigma_mm": 1e-6}})");
+  const CliRun r = pkm({"validate",
+                        "coverage",
+                        "--seeds",
+                        "3",
+                        "--scenario",
+                        "seed003-probe-offset",
+                        "--environment",
+                        "realistic",
+                        "--only",
+                        "probe offset",
+                        "--uncertainty",
+                        perfect,
+                        "--check"});
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("LOW"));
+  EXPECT_THAT(r.err, HasSubstr("below the acceptable coverage"));
+}
+
+TEST_F(CliTest, ValidateCoverageReportsTheDiagonalMethodsBiasWithoutClaimingIt) {
+  // Body-diagonal squareness against the injected squareness: the diagonal method confounds the
+  // other geometric errors (ISO 230-6; docs/coverage.md). pkm's U is not a claim about that
+  // truth: the row shows the bias (BIAS), and --check judges the claims only.
   const CliRun r = pkm({"validate",
                         "coverage",
                         "--seeds",
@@ -61,9 +85,11 @@ TEST_F(CliTest, ValidateCoverageCheckFailsWhereTheBudgetMissesTheTruth) {
                         "--only",
                         "body diagonals squareness_xy",
                         "--check"});
-  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("squareness_xy vs injected"));
-  EXPECT_THAT(r.err, HasSubstr("below the acceptable coverage"));
+  EXPECT_THAT(r.out, HasSubstr("BIAS"));
+  EXPECT_THAT(r.out, HasSubstr("1 of 1 quantities reach the acceptable coverage"));
+  EXPECT_THAT(r.out, HasSubstr("1 rows compare a squareness with the injected one"));
 }
 
 TEST_F(CliTest, ValidateCoverageHoldsForSeed000AndSeed003) {

@@ -65,6 +65,19 @@ TEST(MeasurementFiles, StepDiagonalRunsCarryTheSubStep) {
                pkm::IoError);
 }
 
+TEST(MeasurementFiles, RecordedConditionsBecomeColumnsAtTheUnitsResolution) {
+  sim::LineRun run;
+  run.readings = {{0.0, 1, 0.0, 0, {true, 20.4567, 101012.34, 45.678, 21.0004}},
+                  {10.0, 1, 10.001, 0, {true, 20.5, 101000.0, 46.0, 21.0}}};
+  const std::string text = io::lineRunCsv(sim::LineQuantity::kLinear, {}, run);
+  EXPECT_EQ(text,
+            "target_mm,run,direction,reading_mm,air_temperature_c,air_pressure_pa,air_humidity_rh,"
+            "material_temperature_c\n0,1,+,0,20.457,101012.3,45.68,21.000\n10,1,+,10.001,20.500,"
+            "101000.0,46.00,21.000\n");
+  // The reader of measurement files ignores them; the environment reader takes them.
+  EXPECT_EQ(io::parseLineRunCsv(text, "e.csv").readings.size(), 2U);
+}
+
 TEST(MeasurementFiles, ConstrainedMotionFileIsAllNumbers) {
   sim::DialGaugeStation st;
   st.station = 2;

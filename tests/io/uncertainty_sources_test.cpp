@@ -58,6 +58,17 @@ TEST(UncertaintySourcesJson, MissingMembersKeepTheDefaults) {
             uncertaintySourcesJson(metrology::UncertaintySources{}));
 }
 
+TEST(UncertaintySourcesJson, ConditionsTheFileStatesAreMarkedStated) {
+  const metrology::UncertaintySources s = readUncertaintySources(
+      {"p.json", R"({"environment": {"dead_path_mm": 200, "air": {"temperature_c": 21}}})"});
+  const metrology::ConditionOrigins& o = s.environment.origin;
+  EXPECT_EQ(o.dead_path, metrology::ConditionOrigin::kStated);
+  EXPECT_EQ(o.air_temperature, metrology::ConditionOrigin::kStated);
+  EXPECT_EQ(o.air_pressure, metrology::ConditionOrigin::kDefault);
+  EXPECT_EQ(o.material_temperature, metrology::ConditionOrigin::kDefault);
+  EXPECT_STREQ(metrology::toString(o.dead_path), "stated");
+}
+
 TEST(UncertaintySourcesJson, BadInputNamesFileAndLine) {
   EXPECT_THAT(errorOf("{\n  \"laser\": {\n    \"bogus\": 1\n  }\n}\n"),
               HasSubstr("src.json:3: /laser/bogus: unknown key 'bogus'"));

@@ -102,6 +102,29 @@ TEST(Campaign, TheEnvironmentActsOnLinearReadingsWithItsAnalyticSize) {
   EXPECT_EQ(readings(air[0]), readings(sim::runCampaign(c, 3)[0]));
 }
 
+TEST(Campaign, LinearReadingsRecordWhatTheCompensationUnitRead) {
+  // The records a measurement file carries (docs/formats.md, "Environment records"): the
+  // sensors' readings, with their offsets, on linear lines only; none without an environment.
+  sim::Campaign c = campaign({setup("x", 0), setup("x-h", 0)});
+  c.measurements[1].quantity = sim::LineQuantity::kStraightness;
+  c.measurements[1].lateral = Eigen::Vector3d::UnitY();
+  EXPECT_FALSE(sim::runCampaign(c, 3)[0].runs[0].readings[0].sensed.recorded);
+  c.environment.name = "custom";
+  c.environment.air.enabled = true;
+  c.environment.air.temperature_sensor.offset = -0.3;  // K: the sensor reads cold
+  c.environment.thermal.enabled = true;
+  c.environment.thermal.material_temperature_c.start = 21.0;
+  const auto r = sim::runCampaign(c, 3);
+  for (const sim::LineRun& run : r[0].runs)
+    for (const sim::LineReading& x : run.readings) {
+      ASSERT_TRUE(x.sensed.recorded);
+      EXPECT_NEAR(x.sensed.air_temperature_c, 19.7, 1e-9);
+      EXPECT_NEAR(x.sensed.air_pressure_pa, 101325.0, 1e-9);
+      EXPECT_NEAR(x.sensed.material_temperature_c, 21.0, 1e-9);
+    }
+  EXPECT_FALSE(r[1].runs[0].readings[0].sensed.recorded);  // straightness: not a laser's record
+}
+
 TEST(Campaign, ThermalSourcesAppearInTheLinesWithTheirAnalyticSize) {
   sim::Campaign c = campaign({setup("x", 0), setup("x-v", 0)});
   c.machine =

@@ -88,6 +88,9 @@ TEST(Coverage, SquarenessIsAlsoComparedWithTheInjectedOne) {
   EXPECT_EQ(r.quantities[0].quantity, "squareness_xy");
   EXPECT_EQ(r.quantities[1].quantity, "squareness_xy vs injected");
   EXPECT_EQ(r.quantities[1].truth_kind, "injected");
+  EXPECT_TRUE(r.quantities[0].claimed());
+  EXPECT_FALSE(r.quantities[1].claimed());  // the method's bias, not a claim of U
+  EXPECT_EQ(r.claims(), 1u);
   constexpr double kInjectedXy = 50e-6;  // rad, data/scenarios/seed001-diagonals.json
   EXPECT_NEAR(r.quantities[1].trials[0].truth, kInjectedXy, test::kTolExact);
 }

@@ -18,7 +18,9 @@ namespace pkm::io {
 
 /// The CSV text of one run: `metadata` as "# key: value" lines, the header, the readings. The
 /// reading column is reading_mm for kLinear and kStraightness and reading_urad (the reading × 1e6)
-/// for kAngular; a step-diagonal run (a reading with sub_step ≠ 0) adds the column sub_step.
+/// for kAngular; a step-diagonal run (a reading with sub_step ≠ 0) adds the column sub_step, a
+/// run whose readings recorded their conditions (LineReading::sensed) the columns
+/// air_temperature_c, air_pressure_pa, air_humidity_rh and material_temperature_c.
 /// Numbers in shortest round-trip form.
 [[nodiscard]] std::string lineRunCsv(simulation::LineQuantity quantity,
                                      const Metadata& metadata,

@@ -67,6 +67,16 @@ struct Correlation {
   double r = 0.0;
 };
 
+/// A measurement condition a budget was evaluated at (docs/analysis.md, "Measurement
+/// conditions"): shown with the budget so that an assumed condition is never silently zero.
+struct BudgetCondition {
+  std::string name;    ///< e.g. "material temperature"
+  double value = 0.0;  ///< in `unit`
+  std::string unit;    ///< e.g. "degC"
+  std::string origin;  ///< "recorded", "stated" or "default" (toString(ConditionOrigin))
+  std::string note;    ///< how a recorded value was formed; may be empty
+};
+
 /// The uncertainty budget of one result y = f(x_1 ... x_N).
 struct UncertaintyBudget {
   std::string quantity;  ///< the result's name ("E", "straightness", "radius", ...)
@@ -77,6 +87,9 @@ struct UncertaintyBudget {
   /// k of U = k u_c at infinite degrees of freedom (ISO/TR 230-9 §5.4: k = 2); with a finite
   /// ν_eff, coverageFactor() widens it by Student's t at the same coverage probability.
   double coverage_factor = 2.0;
+  /// The conditions the budget assumed (laser budgets: air, material temperature, dead path,
+  /// alignment); empty for budgets that depend on none.
+  std::vector<BudgetCondition> conditions;
 
   /// Throws pkm::InvalidArgument for a negative or non-finite value, normal_k <= 0, a
   /// non-finite sensitivity, degrees of freedom <= 0 or NaN, a correlation index out of range or

@@ -83,6 +83,28 @@ struct Ballbar {
   double length_uncertainty_mm = 1.0e-3;
 };
 
+/// Where a condition of a budget came from (docs/analysis.md, "Measurement conditions"):
+/// pkm's typical value, a value the user stated (`--uncertainty FILE`), or the measurement's own
+/// records (the readings' environment columns or its set-up metadata).
+enum class ConditionOrigin { kDefault, kStated, kRecorded };
+
+/// "default", "stated" or "recorded".
+[[nodiscard]] const char* toString(ConditionOrigin origin);
+
+/// The origin of each condition of MeasurementEnvironment that a laser budget depends on, with a
+/// note on how a recorded value was formed (e.g. "mean of 66 readings, 20.41..20.62 °C").
+struct ConditionOrigins {
+  ConditionOrigin air_temperature = ConditionOrigin::kDefault;
+  ConditionOrigin air_pressure = ConditionOrigin::kDefault;
+  ConditionOrigin air_humidity = ConditionOrigin::kDefault;
+  ConditionOrigin material_temperature = ConditionOrigin::kDefault;
+  ConditionOrigin air_temperature_variation = ConditionOrigin::kDefault;
+  ConditionOrigin dead_path = ConditionOrigin::kDefault;
+  ConditionOrigin misalignment = ConditionOrigin::kDefault;
+  std::string air_temperature_note, air_pressure_note, air_humidity_note, material_temperature_note,
+      air_temperature_variation_note, dead_path_note, misalignment_note;
+};
+
 /// The environment of a test and the artefact/machine material.
 struct MeasurementEnvironment {
   AirConditions air;                     ///< mean air state in the beam path during the test
@@ -104,6 +126,9 @@ struct MeasurementEnvironment {
   /// Environmental variation error E_VE of a drift test (ISO 230-2:2014 Annex A), mm: the range
   /// of the reading of a stationary axis over the test duration.
   double environmental_variation_mm = 0.0;
+  /// Where the air state, material temperature, air temperature variation, dead path and
+  /// misalignment above came from (all defaults unless a reader or the records say otherwise).
+  ConditionOrigins origin;
 };
 
 /// Everything an uncertainty budget of `pkm analyze` reads: instruments and environment.

@@ -91,6 +91,16 @@ struct LineSetup {
   void validate() const;
 };
 
+/// What a laser's environmental compensation unit read at one reading (its sensors, with their
+/// errors): the records a measurement file carries (docs/formats.md, "Environment records").
+struct SensedConditions {
+  bool recorded = false;                 ///< false: no records (no environment, or not a laser)
+  double air_temperature_c = 20.0;       ///< °C
+  double air_pressure_pa = 101325.0;     ///< Pa
+  double air_humidity_rh = 50.0;         ///< %RH
+  double material_temperature_c = 20.0;  ///< °C
+};
+
 /// One reading: the target (line coordinate, mm), the approach direction (+1 or −1) and the reading
 /// (mm, or rad for kAngular).
 struct LineReading {
@@ -101,6 +111,9 @@ struct LineReading {
   /// the k-th single-axis sub-move of a step (the last one is at the target); `target` is then the
   /// nominal position of the commanded point along the beam, s₀ + b·(p̄(command) − p̄(s₀)).
   int sub_step = 0;
+  /// kLinear readings taken in an environment (simulateLine with conditions): what the
+  /// compensation unit's sensors read at this reading.
+  SensedConditions sensed = {};
 };
 
 /// The readings of one run, in the order taken.

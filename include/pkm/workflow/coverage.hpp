@@ -78,6 +78,11 @@ struct CoverageQuantity {
   [[nodiscard]] double acceptableCoverage() const;
   /// coverage() >= acceptableCoverage().
   [[nodiscard]] bool holds() const;
+  /// Whether pkm's U claims to cover this truth: every quantity against the perfect instrument.
+  /// Not a squareness against the injected one: the diagonal methods cannot separate squareness
+  /// from the machine's other geometric errors (ISO 230-6:2002 §1; docs/coverage.md), so those
+  /// rows measure the method's bias on the virtual machine.
+  [[nodiscard]] bool claimed() const;
   /// meanU() > 3 × errorRms() (and errorRms() > 0): a U that covers by width, not by
   /// knowledge; a finding to explain (docs/coverage.md).
   [[nodiscard]] bool wide() const;
@@ -92,8 +97,10 @@ struct CoverageResult {
   std::string uncertainty;  ///< the uncertainty sources' file ("" : typical values)
   std::vector<CoverageQuantity> quantities;
   double seconds = 0.0;
-  /// Quantities that hold (holds()).
+  /// Claimed quantities (CoverageQuantity::claimed) that hold (holds()).
   [[nodiscard]] std::size_t holding() const;
+  /// The number of claimed quantities.
+  [[nodiscard]] std::size_t claims() const;
 };
 
 /// Runs the scenarios over the seeds. Progress: one event per scenario and seed (stage = the

@@ -30,8 +30,13 @@ nlohmann::ordered_json uncertaintyJson(const std::vector<metrology::UncertaintyB
 nlohmann::ordered_json conformanceJson(const std::vector<metrology::ConformanceResult>& results);
 
 /// The lines of the tables: "uncertainty (k = K)", then per budget "NAME<TAB>VALUE ± U UNIT<TAB>
-/// largest: CONTRIBUTOR" (6 significant digits); "" when there are no budgets.
+/// largest: CONTRIBUTOR" (6 significant digits), then conditionsText; "" when there are no
+/// budgets.
 std::string uncertaintyText(const std::vector<metrology::UncertaintyBudget>& budgets);
+
+/// The conditions of the first budget that has any, one line each: "condition<TAB>NAME<TAB>VALUE
+/// UNIT<TAB>recorded: NOTE" or "…<TAB>assumed (default)" / "assumed (stated)"; "" when none has.
+std::string conditionsText(const std::vector<metrology::UncertaintyBudget>& budgets);
 
 /// One line per Monte Carlo propagation: "monte carlo<TAB>NAME<TAB>U = U UNIT<TAB>95 % interval
 /// [LOW, HIGH], M trials"; "" when there are none.
