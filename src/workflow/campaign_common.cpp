@@ -92,6 +92,12 @@ const std::vector<sim::LineRun>& LineData::runs(const std::string& name,
   throw IoError(fmt::format("{}: the scenario has no measurement '{}'", source, name));
 }
 
+bool LineData::has(const std::string& name) const {
+  return std::any_of(results.begin(), results.end(), [&](const sim::MeasurementResult& r) {
+    return r.setup->name == name;
+  });
+}
+
 const sim::LineSetup& LineData::setup(const std::string& name, const std::string& source) const {
   for (const sim::MeasurementResult& r : results)
     if (r.setup->name == name) return *r.setup;

@@ -176,6 +176,18 @@ HybridAnalysis analyseHybrid(const LineData& d,
   a.vertical = met::evaluateParallelism(y2v, pyv);
   std::tie(a.horizontal_U, a.horizontal_limit) = parallelismU(a.horizontal, y2h, pyh, sources);
   std::tie(a.vertical_U, a.vertical_limit) = parallelismU(a.vertical, y2v, pyv, sources);
+  if (d.has("straightness-y2-h-50") && d.has("straightness-py-h-50")) {
+    const met::BeamRun r = beam(d, "straightness-y2-h-50", -1, src);
+    const met::BeamRun x = beam(d, "straightness-py-h-50", 1, src);
+    a.horizontal_50 = met::evaluateParallelism(r, x);
+    a.horizontal_50_U = parallelismU(*a.horizontal_50, r, x, sources).first;
+  }
+  if (d.has("straightness-y2-v-50") && d.has("straightness-py-v-50")) {
+    const met::BeamRun r = beam(d, "straightness-y2-v-50", -1, src);
+    const met::BeamRun x = beam(d, "straightness-py-v-50", 1, src);
+    a.vertical_50 = met::evaluateParallelism(r, x);
+    a.vertical_50_U = parallelismU(*a.vertical_50, r, x, sources).first;
+  }
   met::FaceDiagonalOptions xy_options;
   xy_options.second_moves_work = true;
   const std::vector<met::FaceDiagonal> xy = {diagonal(d, "diagonal-x2-y2", 0, 1, src)};

@@ -6,6 +6,7 @@
 
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "campaign_steps.hpp"
@@ -26,6 +27,11 @@ struct HybridAnalysis {
   double vertical_U = std::numeric_limits<double>::quiet_NaN();
   /// The largest contributors of horizontal_U and vertical_U (largestContributors).
   std::string horizontal_limit, vertical_limit;
+  /// The same over the paper's 50 mm (the pairs straightness-{y2,py}-{h,v}-50), when measured:
+  /// seed 000 Table 3 states its parallelism over that range.
+  std::optional<metrology::ParallelismResult> horizontal_50, vertical_50;
+  double horizontal_50_U = std::numeric_limits<double>::quiet_NaN();
+  double vertical_50_U = std::numeric_limits<double>::quiet_NaN();
   /// The budgets' sources at the conditions the data recorded (sourcesAt).
   metrology::UncertaintySources sources;
 };

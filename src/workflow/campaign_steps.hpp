@@ -123,6 +123,8 @@ struct LineData {
   /// The runs of measurement `name`; throws pkm::IoError naming `source` when there is none.
   [[nodiscard]] const std::vector<simulation::LineRun>& runs(const std::string& name,
                                                              const std::string& source) const;
+  /// Whether measurement `name` is there.
+  [[nodiscard]] bool has(const std::string& name) const;
   /// The set-up of measurement `name` (throws as runs).
   [[nodiscard]] const simulation::LineSetup& setup(const std::string& name,
                                                    const std::string& source) const;

@@ -100,7 +100,8 @@ void diagonals(const io::Scenario& scenario,
 }
 
 /// seed 000's parallelism: the axis PY against the reference Y2 along one beam (their positions
-/// run against and along the beam, as the campaign's hybrid step reads them).
+/// run against and along the beam, as the campaign's hybrid step reads them), over 300 mm and
+/// over the paper's 50 mm (the "-50" pairs).
 void parallelism(const io::Scenario& scenario,
                  const Files& files,
                  const met::UncertaintySources& sources,
@@ -108,7 +109,9 @@ void parallelism(const io::Scenario& scenario,
   std::map<std::string, const sim::LineSetup*> by_name;
   for (const sim::LineSetup& m : scenario.campaign.measurements) by_name[m.name] = &m;
   for (const auto& [plane, suffix] : {std::pair{io::ParallelismPlane::kHorizontal, "h"},
-                                      std::pair{io::ParallelismPlane::kVertical, "v"}}) {
+                                      std::pair{io::ParallelismPlane::kVertical, "v"},
+                                      std::pair{io::ParallelismPlane::kHorizontal, "h-50"},
+                                      std::pair{io::ParallelismPlane::kVertical, "v-50"}}) {
     const auto ref = by_name.find(fmt::format("straightness-y2-{}", suffix));
     const auto axis = by_name.find(fmt::format("straightness-py-{}", suffix));
     if (ref == by_name.end() || axis == by_name.end()) continue;

@@ -34,7 +34,7 @@ TEST_F(CampaignCli, DefaultCampaignMeetsTheTargetsAndWritesEverything) {
       EXPECT_GT(std::abs(row["before"].get<double>()), row["target"].get<double>()) << row.dump();
     }
   }
-  EXPECT_EQ(targets["seed000"], 4);
+  EXPECT_EQ(targets["seed000"], 6);
   EXPECT_EQ(targets["seed003"], 1);
   EXPECT_EQ(targets["seed004"], 1);
   // Expanded uncertainties (k = 2) where a budget exists, null elsewhere; the parallelism's
@@ -50,8 +50,20 @@ TEST_F(CampaignCli, DefaultCampaignMeetsTheTargetsAndWritesEverything) {
   EXPECT_TRUE(parallelism["significant"].get<bool>());
   // The hexapod's TCP error: U from the tracker and registration before, plus the calibration's
   // predicted TCP U after (tens of µm with a typical tracker and 6-DOF probe).
-  const Json& tcp = s["rows"][11];
-  ASSERT_THAT(tcp["quantity"].get<std::string>(), HasSubstr("TCP error"));
+  std::map<std::string, Json> by_quantity;
+  for (const Json& row : s["rows"])
+    by_quantity[row["step"].get<std::string>() + " " + row["quantity"].get<std::string>()] = row;
+  const Json& tcp = by_quantity.at("seed004 TCP error, 50 held-out poses, max");
+  // Seed 000 over the paper's 50 mm (its Table 3: 0.134 and 0.735 mm before): the virtual
+  // machine's injected squareness gives the paper's before-values, the after-values are the
+  // compensation's (docs/campaign.md explains the gap to the paper's 0.015 and 0.022 mm).
+  const Json& h50 = by_quantity.at("seed000 parallelism Y2-PY, horizontal (50 mm)");
+  const Json& v50 = by_quantity.at("seed000 parallelism Y2-PY, vertical (50 mm)");
+  EXPECT_NEAR(h50["before"].get<double>(), 0.134, 0.134 * 0.1);
+  EXPECT_NEAR(v50["before"].get<double>(), 0.735, 0.735 * 0.05);
+  EXPECT_EQ(h50["paper"], "0.134 -> 0.015 mm");
+  EXPECT_LT(v50["after"].get<double>(), 0.022);
+  EXPECT_TRUE(by_quantity.at("seed000 parallelism Y2-PY, horizontal (300 mm)")["paper"] == "");
   EXPECT_GT(tcp["before_U"].get<double>(), 0.01);
   EXPECT_LT(tcp["before_U"].get<double>(), 0.1);
   EXPECT_GT(tcp["after_U"].get<double>(), tcp["before_U"].get<double>());

@@ -106,7 +106,7 @@ TEST_F(CliTest, ValidateCoverageHoldsForSeed000AndSeed003) {
                         "seed003-probe-offset",
                         "--check"});
   EXPECT_EQ(r.code, 0) << r.out << r.err;
-  EXPECT_THAT(r.out, HasSubstr("42 of 42 quantities reach the acceptable coverage"));
+  EXPECT_THAT(r.out, HasSubstr("49 of 49 quantities reach the acceptable coverage"));
 }
 
 TEST_F(CliTest, ValidateCoverageBadInputExitsTwo) {

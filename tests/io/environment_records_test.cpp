@@ -49,8 +49,10 @@ TEST(EnvironmentRecords, ExportNamesWithUnitsAndSeveralMaterialSensors) {
   // A laser software's export: pressure in hPa, temperatures with a degree sign, one of them in
   // kelvin, three material sensors averaged per reading.
   const auto r = records(
-      "Target (mm),Error (um),Air Temp (\xC2\xB0" "C),Pressure [hPa],Humidity (%RH),"
-      "Mat Temp 1 (\xC2\xB0" "C),Mat Temp 2 (K),Mat Temp 3 (degC)\n"
+      "Target (mm),Error (um),Air Temp (\xC2\xB0"
+      "C),Pressure [hPa],Humidity (%RH),"
+      "Mat Temp 1 (\xC2\xB0"
+      "C),Mat Temp 2 (K),Mat Temp 3 (degC)\n"
       "0,0.0,20.1,1012.5,40,20.0,293.75,21.0\n");
   ASSERT_TRUE(r.air_pressure_pa && r.material_temperature_c && r.air_temperature_c);
   EXPECT_NEAR(r.air_pressure_pa->mean, 101250.0, kTolConversion);
@@ -87,10 +89,10 @@ TEST(EnvironmentRecords, BadRecordsNameTheFileAndLine) {
 }
 
 TEST(EnvironmentRecords, FilesMergeAndARenishawFileRecordsNothing) {
-  const auto r = readEnvironmentRecords(
-      {{"a.csv", "# dead path mm: 80\ntarget,air temp\n0,20.2\n"},
-       {"b.csv", "# dead path mm: 100\ntarget,air temp\n0,20.6\n"},
-       {"c.rtl", "HEADER::\nDEVIATIONS::\n"}});
+  const auto r =
+      readEnvironmentRecords({{"a.csv", "# dead path mm: 80\ntarget,air temp\n0,20.2\n"},
+                              {"b.csv", "# dead path mm: 100\ntarget,air temp\n0,20.6\n"},
+                              {"c.rtl", "HEADER::\nDEVIATIONS::\n"}});
   ASSERT_TRUE(r.air_temperature_c);
   EXPECT_EQ(r.air_temperature_c->count, 2u);
   EXPECT_EQ(*r.dead_path_mm, 100.0);

@@ -107,7 +107,8 @@ TEST(RecordedConditions, LaserBudgetCarriesItsConditionsAndGrowsWithTheRecordedO
   r.material_temperature_c = series({21.5});
   r.air_temperature_c = series({20.5, 20.9});
   r.dead_path_mm = 100.0;
-  addLaserLengthContributors(at_records, kLengthMm, withRecordedConditions(UncertaintySources{}, r));
+  addLaserLengthContributors(
+      at_records, kLengthMm, withRecordedConditions(UncertaintySources{}, r));
   EXPECT_EQ(contribution(at_default, "expansion coefficient"), 0.0);
   EXPECT_NEAR(contribution(at_records, "expansion coefficient"),
               kLengthMm * 1.5 * 1e-6 / std::sqrt(3.0),

@@ -31,9 +31,9 @@ struct RecordedSeries {
 
 /// What the files of one measurement recorded; a member is empty when nothing recorded it.
 struct RecordedConditions {
-  std::optional<RecordedSeries> air_temperature_c;   ///< °C
-  std::optional<RecordedSeries> air_pressure_pa;     ///< Pa
-  std::optional<RecordedSeries> air_humidity_rh;     ///< %RH
+  std::optional<RecordedSeries> air_temperature_c;       ///< °C
+  std::optional<RecordedSeries> air_pressure_pa;         ///< Pa
+  std::optional<RecordedSeries> air_humidity_rh;         ///< %RH
   std::optional<RecordedSeries> material_temperature_c;  ///< °C (mean of a reading's sensors)
   std::optional<double> dead_path_mm;      ///< the set-up's dead path, mm (largest recorded)
   std::optional<double> misalignment_rad;  ///< the set-up's beam alignment bound, rad (largest)
