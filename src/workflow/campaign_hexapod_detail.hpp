@@ -28,7 +28,8 @@ struct TcpErrors {
 struct HexapodSectionData {
   const io::Scenario& scenario;
   std::uint64_t seed;
-  std::size_t poses;  ///< pose observations fitted
+  std::size_t poses;             ///< pose observations fitted
+  std::size_t constrained_sets;  ///< constrained-motion (dial-gauge) sets fitted
   const calibration::HexapodCalibrationSummary& summary;
   const simulation::HexapodVirtualMachine& vm;
   const TcpErrors& tcp_before;     ///< at the held-out poses, before calibration
@@ -52,18 +53,20 @@ struct TcpRowUncertainty {
   io::HexapodCalibrationReport::Uncertainty budget;  ///< the calibration's budgets
 };
 
-/// The budgets of the campaign's calibration `fit` = calibrateHexapod(model, data) with the
-/// instruments of `sources` (the tracker's range taken as the longest of the held-out readings)
+/// The budgets of the campaign's calibration `fit` = calibrateHexapod(model, data, options) with
+/// the instruments of `sources` (the tracker's range taken as the longest of the held-out readings)
 /// and the U of the TCP error rows at the held-out readings of `holdout`
 /// (docs/campaign.md, "Uncertainty"): one reading's U from the tracker's a + b·L at its range and
 /// the registration on the fiducial nests (u·√(1/n + d²/Σ|r_i|²), d the target's distance from
 /// the nests' centroid), and the predicted TCP U at the held-out commands.
-[[nodiscard]] TcpRowUncertainty tcpRowUncertainty(const kinematics::HexapodModel& model,
-                                                  const calibration::HexapodCalibrationData& data,
-                                                  const calibration::HexapodCalibrationSummary& fit,
-                                                  const simulation::TrackerResult& holdout,
-                                                  const geometry::RigidTransform& world_T_tracker,
-                                                  const metrology::UncertaintySources& sources);
+[[nodiscard]] TcpRowUncertainty tcpRowUncertainty(
+    const kinematics::HexapodModel& model,
+    const calibration::HexapodCalibrationData& data,
+    const calibration::HexapodCalibrationSummary& fit,
+    const calibration::HexapodCalibrationOptions& options,
+    const simulation::TrackerResult& holdout,
+    const geometry::RigidTransform& world_T_tracker,
+    const metrology::UncertaintySources& sources);
 
 /// The report table of the calibration budget: the parameters with the largest U, each with its
 /// two largest contributors and their shares of u_c².

@@ -60,6 +60,7 @@ double measurementU(const metrology::LaserTrackerSpec& t,
 TcpRowUncertainty tcpRowUncertainty(const kinematics::HexapodModel& model,
                                     const cal::HexapodCalibrationData& data,
                                     const cal::HexapodCalibrationSummary& fit,
+                                    const cal::HexapodCalibrationOptions& options,
                                     const sim::TrackerResult& holdout,
                                     const geometry::RigidTransform& world_T_tracker,
                                     const metrology::UncertaintySources& sources) {
@@ -80,7 +81,7 @@ TcpRowUncertainty tcpRowUncertainty(const kinematics::HexapodModel& model,
   }
   TcpRowUncertainty out;
   out.budget = workflow::detail::hexapodCalibrationUncertainty(
-      model, data, fit, {}, request, check, "held-out");
+      model, data, fit, options, request, check, "held-out");
   const double k = request.sources.coverage_factor;
   out.measurement = k * measurementU(request.sources.tracker, holdout, world_T_tracker);
   out.predicted = out.budget.tcp.max;

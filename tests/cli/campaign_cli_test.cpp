@@ -37,6 +37,7 @@ TEST_F(CampaignCli, DefaultCampaignMeetsTheTargetsAndWritesEverything) {
   EXPECT_EQ(targets["seed000"], 6);
   EXPECT_EQ(targets["seed003"], 1);
   EXPECT_EQ(targets["seed004"], 1);
+  EXPECT_EQ(targets["seed004-gauges"], 1);
   // Expanded uncertainties (k = 2) where a budget exists, null elsewhere; the parallelism's
   // improvement is far larger than its combined U.
   for (const Json& row : s["rows"]) {
@@ -64,6 +65,19 @@ TEST_F(CampaignCli, DefaultCampaignMeetsTheTargetsAndWritesEverything) {
   EXPECT_EQ(h50["paper"], "0.134 -> 0.015 mm");
   EXPECT_LT(v50["after"].get<double>(), 0.022);
   EXPECT_TRUE(by_quantity.at("seed000 parallelism Y2-PY, horizontal (300 mm)")["paper"] == "");
+  // Seed 004 by the paper's method, dial gauges in constrained motion (its §4): x over 540 mm
+  // from about 10.5 mm to below the paper's 0.5 mm; across the work volume, which the gauges do
+  // not see, the TCP error still improves (no target), far from the tracker calibration's.
+  const Json& gx = by_quantity.at("seed004-gauges linear-x positioning (ISO 230-2 M over 540 mm)");
+  const Json& gt = by_quantity.at("seed004-gauges TCP error, 50 held-out poses, max");
+  EXPECT_EQ(gx["paper"], "12 -> < 0.5 mm (540 mm along x)");
+  EXPECT_GT(gx["before"].get<double>(), 9.0);
+  EXPECT_LT(gx["after"].get<double>(), 0.5);
+  EXPECT_TRUE(gt["target"].is_null());
+  EXPECT_LT(gt["after"].get<double>(), gt["before"].get<double>());
+  EXPECT_GT(gt["after"].get<double>(), 10 * tcp["after"].get<double>());
+  EXPECT_TRUE(std::filesystem::is_regular_file(
+      dir_ / "out/seed004-gauges/measured-before/constrained-motion.csv"));
   EXPECT_GT(tcp["before_U"].get<double>(), 0.01);
   EXPECT_LT(tcp["before_U"].get<double>(), 0.1);
   EXPECT_GT(tcp["after_U"].get<double>(), tcp["before_U"].get<double>());
@@ -270,8 +284,8 @@ TEST_F(CampaignCli, MeasuredCartesianFilesGiveTheSameCompensationAsTheSimulation
 TEST_F(CampaignCli, ListNamesTheBuiltInCampaigns) {
   const CliRun r = pkm({"campaign", "list"});
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("default\t4 steps"));
-  EXPECT_THAT(r.out, HasSubstr("realistic\t4 steps"));
+  EXPECT_THAT(r.out, HasSubstr("default\t5 steps"));
+  EXPECT_THAT(r.out, HasSubstr("realistic\t5 steps"));
 }
 
 TEST_F(CampaignCli, TheRealisticEnvironmentLeavesLargerAfterFigures) {

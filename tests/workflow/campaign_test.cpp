@@ -330,7 +330,7 @@ TEST_F(CampaignWorkflow, BuiltInCampaignsAreListedAndDescribed) {
   EXPECT_EQ(names.front(), "default");
   const CampaignInfo info = describeCampaign("default");
   EXPECT_EQ(info.name, "default");
-  EXPECT_EQ(info.steps, 4u);
+  EXPECT_EQ(info.steps, 5u);
   EXPECT_FALSE(info.description.empty());
 }
 
