@@ -41,11 +41,16 @@ std::vector<std::string> paragraphs(const io::Scenario& scenario,
                   s.iterations,
                   s.before.rms,
                   s.after.rms),
-      "The tracker is registered to the table by six fiducial nests "
-      "(measured-before/tracker-registration.csv), so its readings are in the "
-      "machine frame and all 42 parameters, the base placement included, are "
-      "identifiable. TCP error: a held-out tracker reading in the machine frame "
-      "minus the commanded target position."};
+      constrained_sets > 0
+          ? "The tracker, registered to the table by six fiducial nests "
+            "(measured-before/tracker-registration.csv), reads only the held-out poses. TCP "
+            "error: a held-out tracker reading in the machine frame minus the commanded target "
+            "position."
+          : "The tracker is registered to the table by six fiducial nests "
+            "(measured-before/tracker-registration.csv), so its readings are in the "
+            "machine frame and all 42 parameters, the base placement included, are "
+            "identifiable. TCP error: a held-out tracker reading in the machine frame "
+            "minus the commanded target position."};
   if (constrained_sets > 0)
     out.push_back(
         "The dial gauges see only the platform's height and tilt over the table: the fit holds "
