@@ -19,6 +19,7 @@
 #include "../pkm/cli_common.hpp"
 #include "../pkm/serve_options.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/core/reproducible.hpp"
 #include "pkm/server/http_server.hpp"
 
 namespace {
@@ -72,6 +73,7 @@ void runServe(const pkm::cli::ServeOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  pkm::useReproducibleEigenBlocking();
   CLI::App app{pkm::cli::kServeDescription, "pkm serve"};
   pkm::cli::ServeOptions options;
   pkm::cli::addServeOptions(app, options);
