@@ -109,11 +109,6 @@ void machineOf(const py::object& machine, workflow::GcodeRunRequest& q) {
     q.machine = pathOf(machine, "machine (a pkm.Hexapod, a pkm.Exechon, a name or a file)");
 }
 
-/// The optional path arguments as strings ("" : not given).
-std::string optionalPath(const py::object& obj, const char* what) {
-  return obj.is_none() ? std::string() : pathOf(obj, what);
-}
-
 Run run(const py::object& machine,
         const py::object& program,
         std::optional<double> tolerance,

@@ -20,11 +20,6 @@
 namespace pkm::python {
 namespace {
 
-/// The optional path arguments as strings ("" : not given).
-std::string optionalPath(const py::object& obj, const char* what) {
-  return obj.is_none() ? std::string() : pathOf(obj, what);
-}
-
 /// (N, 6) x, y, z (mm), a, b, c (degrees) of the compensated points, `desired` or command.
 py::array_t<double> pointsArray(const cnc::ProgramCompensation& c, bool desired) {
   py::array_t<double> out = newArray(static_cast<py::ssize_t>(c.points.size()), 6);

@@ -13,4 +13,9 @@ namespace pkm::python {
 /// os.PathLike) is required, got TYPE" for another type.
 [[nodiscard]] std::string pathOf(py::handle obj, const char* what);
 
+/// pathOf(obj, what), or "" for None (an optional file argument not given).
+[[nodiscard]] inline std::string optionalPath(const py::object& obj, const char* what) {
+  return obj.is_none() ? std::string() : pathOf(obj, what);
+}
+
 }  // namespace pkm::python

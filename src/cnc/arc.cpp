@@ -9,11 +9,11 @@
 #include <numbers>
 
 #include "pkm/cnc/gcode_error.hpp"
+#include "pkm/cnc/modal_state.hpp"
 
 namespace pkm::cnc {
 
 namespace {
-constexpr double kMmPerInch = 25.4;
 double smallTolerance(bool inch) { return inch ? 0.0005 * kMmPerInch : 0.005; }
 double bigTolerance(bool inch) { return inch ? 0.05 * kMmPerInch : 0.5; }
 constexpr double kRelativeTolerance = 0.001;  // 0.1 %

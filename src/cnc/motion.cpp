@@ -17,19 +17,6 @@ namespace {
 constexpr std::array<char, 6> kAxes{'x', 'y', 'z', 'a', 'b', 'c'};
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// Axes (indices into X Y Z) of a plane: first, second, normal.
-std::array<std::size_t, 3> planeAxes(Plane p) {
-  switch (p) {
-    case Plane::kXY:
-      return {0, 1, 2};
-    case Plane::kXZ:
-      return {2, 0, 1};  // LinuxCNC's G18 orientation: first axis Z, second X (normal Y)
-    case Plane::kYZ:
-      return {1, 2, 0};
-  }
-  return {0, 1, 2};
-}
-
 /// Length of a line (mm, or degrees for a rotary-only move) for inverse-time feed.
 double pathLength(const Axes& from, const Axes& to) {
   const double l = std::hypot(to[0] - from[0], to[1] - from[1], to[2] - from[2]);

@@ -34,6 +34,18 @@ const char* toString(Plane plane) {
   return "?";
 }
 
+std::array<std::size_t, 3> planeAxes(Plane plane) {
+  switch (plane) {
+    case Plane::kXY:
+      return {0, 1, 2};
+    case Plane::kXZ:
+      return {2, 0, 1};  // LinuxCNC's G18: first axis Z, second X (normal Y)
+    case Plane::kYZ:
+      return {1, 2, 0};
+  }
+  return {0, 1, 2};
+}
+
 namespace {
 
 char* writeField(char* out, double value) {

@@ -15,19 +15,6 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 /// Sweeps closer to zero than this (radians) count as a full circle (end equals start).
 constexpr double kFullCircleEps = 1e-12;
 
-/// Axis indices (first, second, normal) of the arc plane: G17 (X,Y,Z), G18 (Z,X,Y), G19 (Y,Z,X).
-std::array<std::size_t, 3> planeAxes(Plane p) {
-  switch (p) {
-    case Plane::kXY:
-      return {0, 1, 2};
-    case Plane::kXZ:
-      return {2, 0, 1};
-    case Plane::kYZ:
-      return {1, 2, 0};
-  }
-  return {0, 1, 2};
-}
-
 /// ceil(x) as a count, at least 1; saturated far below the largest size_t (a count that large is
 /// refused by the point limit anyway), so that no conversion overflows.
 std::size_t saturatedCount(double x) {

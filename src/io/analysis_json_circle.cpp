@@ -16,8 +16,6 @@ using metrology::Point2;
 
 Json pair(const Point2& p) { return Json::array({p.x(), p.y()}); }
 
-std::string dump(const Json& j) { return j.dump(2) + "\n"; }
-
 Json runJson(const metrology::CircularRun& r) {
   Json j{{"center", pair(r.center)}, {"radius", r.radius}, {"G", r.circular_deviation}};
   if (r.radial_deviation_max) {
@@ -53,37 +51,37 @@ std::string analysisJson(const CircleReport& report) {
                             {"index", c.index},
                             {"file", report.sources[c.index].name},
                             {"line", report.sources[c.index].line}});
-  return dump(Json{{"center", pair(lsc.circle.center)},
-                   {"radius", lsc.circle.radius},
-                   {"diameter", 2.0 * lsc.circle.radius},
-                   {"roundness_lsc", lsc.roundness},
-                   {"roundness_mzc", mzc.roundness},
-                   {"mzc_center", pair(mzc.center)},
-                   {"mzc_inner_radius", mzc.inner_radius},
-                   {"mzc_outer_radius", mzc.outer_radius},
-                   {"mzc_contacts", std::move(contacts)},
-                   {"mzc_certified", mzc.certified},
-                   {"rms", lsc.rms},
-                   {"iterations", lsc.iterations},
-                   {"converged", lsc.converged},
-                   {"points", report.sources.size()},
-                   {"uncertainty", detail::uncertaintyJson(report.uncertainty)}});
+  return detail::documentText(Json{{"center", pair(lsc.circle.center)},
+                                   {"radius", lsc.circle.radius},
+                                   {"diameter", 2.0 * lsc.circle.radius},
+                                   {"roundness_lsc", lsc.roundness},
+                                   {"roundness_mzc", mzc.roundness},
+                                   {"mzc_center", pair(mzc.center)},
+                                   {"mzc_inner_radius", mzc.inner_radius},
+                                   {"mzc_outer_radius", mzc.outer_radius},
+                                   {"mzc_contacts", std::move(contacts)},
+                                   {"mzc_certified", mzc.certified},
+                                   {"rms", lsc.rms},
+                                   {"iterations", lsc.iterations},
+                                   {"converged", lsc.converged},
+                                   {"points", report.sources.size()},
+                                   {"uncertainty", detail::uncertaintyJson(report.uncertainty)}});
 }
 
 std::string analysisJson(const CircularReport& report) {
   const metrology::CircularTestResult& r = report.result;
-  return dump(Json{{"centre", centreName(r.centre)},
-                   {"G_cw", r.cw.circular_deviation},
-                   {"G_ccw", r.ccw.circular_deviation},
-                   {"G_bidirectional", r.bidirectional_deviation},
-                   {"H", r.hysteresis},
-                   {"H_angle_deg", radToDeg(r.hysteresis_angle)},
-                   {"common_center", pair(r.common_center)},
-                   {"cw", runJson(r.cw)},
-                   {"ccw", runJson(r.ccw)},
-                   {"points_cw", report.points_cw},
-                   {"points_ccw", report.points_ccw},
-                   {"uncertainty", detail::uncertaintyJson(report.uncertainty)}});
+  return detail::documentText(Json{{"centre", centreName(r.centre)},
+                                   {"G_cw", r.cw.circular_deviation},
+                                   {"G_ccw", r.ccw.circular_deviation},
+                                   {"G_bidirectional", r.bidirectional_deviation},
+                                   {"H", r.hysteresis},
+                                   {"H_angle_deg", radToDeg(r.hysteresis_angle)},
+                                   {"common_center", pair(r.common_center)},
+                                   {"cw", runJson(r.cw)},
+                                   {"ccw", runJson(r.ccw)},
+                                   {"points_cw", report.points_cw},
+                                   {"points_ccw", report.points_ccw},
+                                   {"uncertainty", detail::uncertaintyJson(report.uncertainty)}});
 }
 
 std::string analysisJson(const ProbeOffsetReport& report) {
@@ -107,7 +105,7 @@ std::string analysisJson(const ProbeOffsetReport& report) {
     j["eq_runs"] = report.paper->runs;
   }
   j["uncertainty"] = detail::uncertaintyJson(report.uncertainty);
-  return dump(j);
+  return detail::documentText(j);
 }
 
 }  // namespace pkm::io

@@ -12,8 +12,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-std::string dump(const Json& j) { return j.dump(2) + "\n"; }
-
 Json targetJson(const metrology::TargetStatistics& t) {
   return Json{{"target", t.target},
               {"mean_up", t.mean_up},
@@ -59,7 +57,7 @@ std::string analysisJson(const Iso230_2Report& report) {
   if (!report.warnings.empty()) j["warnings"] = report.warnings;
   j["uncertainty"] = detail::uncertaintyJson(report.uncertainty);
   if (!report.conformance.empty()) j["conformance"] = detail::conformanceJson(report.conformance);
-  return dump(j);
+  return detail::documentText(j);
 }
 
 std::string analysisJson(const StraightnessReport& report) {
@@ -87,7 +85,7 @@ std::string analysisJson(const StraightnessReport& report) {
   }
   j["residuals"] = std::move(residuals);
   j["uncertainty"] = detail::uncertaintyJson(report.uncertainty);
-  return dump(j);
+  return detail::documentText(j);
 }
 
 std::string analysisJson(const ParallelismReport& report) {
@@ -109,7 +107,7 @@ std::string analysisJson(const ParallelismReport& report) {
   }
   j["deviations"] = std::move(profile);
   j["uncertainty"] = detail::uncertaintyJson(report.uncertainty);
-  return dump(j);
+  return detail::documentText(j);
 }
 
 std::string analysisJson(const SquarenessReport& report) {
@@ -123,7 +121,7 @@ std::string analysisJson(const SquarenessReport& report) {
     j["scale_model"] = r.scale_per_axis ? "per_axis" : "common";
   }
   j["uncertainty"] = detail::uncertaintyJson(report.uncertainty, report.monte_carlo);
-  return dump(j);
+  return detail::documentText(j);
 }
 
 }  // namespace pkm::io

@@ -14,7 +14,7 @@ namespace pkm::io {
 namespace {
 
 /// 6 significant digits, "-" when not finite.
-std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : "-"; }
+std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : "-"; }
 
 }  // namespace
 
@@ -25,15 +25,15 @@ std::string analysisText(const Iso230_2Report& report) {
   out += "target\tmean_up\tmean_down\treversal\ts_up\ts_down\tR_up\tR_down\tR\n";
   for (const auto& t : r.targets) {
     out += fmt::format("{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\t{}\n",
-                       num(t.target),
-                       num(t.mean_up),
-                       num(t.mean_down),
-                       num(t.reversal),
-                       num(t.s_up),
-                       num(t.s_down),
-                       num(t.repeatability_up),
-                       num(t.repeatability_down),
-                       num(t.repeatability));
+                       cell(t.target),
+                       cell(t.mean_up),
+                       cell(t.mean_down),
+                       cell(t.reversal),
+                       cell(t.s_up),
+                       cell(t.s_down),
+                       cell(t.repeatability_up),
+                       cell(t.repeatability_down),
+                       cell(t.repeatability));
   }
   const std::vector<std::pair<const char*, double>> summary{{"B", r.B},
                                                             {"B_mean", r.B_mean},
@@ -47,7 +47,7 @@ std::string analysisText(const Iso230_2Report& report) {
                                                             {"A_up", r.A_up},
                                                             {"A_down", r.A_down},
                                                             {"A", r.A}};
-  for (const auto& [name, v] : summary) out += fmt::format("{}\t{}\n", name, num(v));
+  for (const auto& [name, v] : summary) out += fmt::format("{}\t{}\n", name, cell(v));
   if (report.nonconformities.empty()) out += "conditions\tISO 230-2 test conditions met\n";
   for (const std::string& n : report.nonconformities) out += fmt::format("nonconforming\t{}\n", n);
   for (const std::string& w : report.warnings) out += fmt::format("warning\t{}\n", w);
@@ -62,16 +62,16 @@ std::string analysisText(const StraightnessReport& report) {
                                 metrology::toString(report.reference),
                                 report.position.size());
   out += fmt::format("slope\t{}\nintercept\t{}\nstraightness\t{}\n",
-                     num(r.line.slope),
-                     num(r.line.intercept),
-                     num(r.straightness));
+                     cell(r.line.slope),
+                     cell(r.line.intercept),
+                     cell(r.straightness));
   for (std::size_t k : r.contact_points) {
-    out += fmt::format("contact\t{}\t{}\n", num(report.position[k]), num(r.residuals[k]));
+    out += fmt::format("contact\t{}\t{}\n", cell(report.position[k]), cell(r.residuals[k]));
   }
   if (report.raw)
     out += fmt::format("raw_points\t{}\nraw_straightness\t{}\n",
                        report.raw->points,
-                       num(report.raw->straightness));
+                       cell(report.raw->straightness));
   out += detail::uncertaintyText(report.uncertainty);
   return out;
 }
@@ -84,14 +84,14 @@ std::string analysisText(const ParallelismReport& report) {
   out += fmt::format(
       "reference_slope\t{}\naxis_slope\t{}\n{}\t{}\nparallelism\t{}\n"
       "max_deviation\t{}\n",
-      num(r.reference_slope),
-      num(r.axis_slope),
+      cell(r.reference_slope),
+      cell(r.axis_slope),
       report.plane == ParallelismPlane::kHorizontal ? "dgamma" : "dalpha",
-      num(r.slope_difference),
-      num(r.parallelism),
-      num(r.max_deviation));
-  if (report.sxP) out += fmt::format("sxP\t{}\n", num(*report.sxP));
-  if (report.szP) out += fmt::format("szP\t{}\n", num(*report.szP));
+      cell(r.slope_difference),
+      cell(r.parallelism),
+      cell(r.max_deviation));
+  if (report.sxP) out += fmt::format("sxP\t{}\n", cell(*report.sxP));
+  if (report.szP) out += fmt::format("szP\t{}\n", cell(*report.szP));
   out += detail::uncertaintyText(report.uncertainty);
   return out;
 }
@@ -103,12 +103,12 @@ std::string analysisText(const SquarenessReport& report) {
                   report.diagonals,
                   r.points_used,
                   report.pdge_tables);
-  out +=
-      fmt::format("squareness\t{} rad\nresidual_rms\t{}\n", num(r.squareness), num(r.residual_rms));
+  out += fmt::format(
+      "squareness\t{} rad\nresidual_rms\t{}\n", cell(r.squareness), cell(r.residual_rms));
   if (r.scale) {
     out += fmt::format("scale\t{}\t{}\t({})\n",
-                       num((*r.scale)[0]),
-                       num((*r.scale)[1]),
+                       cell((*r.scale)[0]),
+                       cell((*r.scale)[1]),
                        r.scale_per_axis ? "per axis" : "common");
   }
   out += detail::uncertaintyText(report.uncertainty);

@@ -17,13 +17,17 @@ namespace pkm::io {
 namespace {
 constexpr std::size_t kChunk = 1 << 16;
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
 }  // namespace
+
+std::vector<std::string_view> splitFields(std::string_view line) {
+  std::vector<std::string_view> fields;
+  while (true) {
+    const std::size_t comma = line.find(',');
+    fields.push_back(trimBlanks(line.substr(0, comma)));
+    if (comma == std::string_view::npos) return fields;
+    line.remove_prefix(comma + 1);
+  }
+}
 
 std::string_view trimBlanks(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
@@ -46,7 +50,7 @@ std::vector<std::string_view> splitWords(std::string_view line) {
 }
 
 bool parseFiniteDouble(std::string_view text, double& value) {
-  text = trim(text);
+  text = trimBlanks(text);
   if (!text.empty() && text.front() == '+') {
     text.remove_prefix(1);
     if (!text.empty() && text.front() == '-') return false;  // "+-1"
@@ -82,7 +86,7 @@ void CsvReader::readHeader(const std::vector<std::string>& required_columns) {
   bool got = false;
   while (readLine(text)) {
     if (line_ == 1 && text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
-    const std::string_view t = trim(text);
+    const std::string_view t = trimBlanks(text);
     if (t.empty() || t.front() == '#') continue;
     got = true;
     break;
@@ -91,7 +95,7 @@ void CsvReader::readHeader(const std::vector<std::string>& required_columns) {
   std::size_t pos = 0;
   while (true) {
     const std::size_t comma = text.find(',', pos);
-    header_.emplace_back(trim(
+    header_.emplace_back(trimBlanks(
         text.substr(pos, comma == std::string_view::npos ? std::string_view::npos : comma - pos)));
     if (comma == std::string_view::npos) break;
     pos = comma + 1;
@@ -211,7 +215,7 @@ bool CsvReader::next(std::span<double> values) {
   std::string_view text;
   while (readLine(text)) {
     if (readPlainRow(text, values)) return true;
-    const std::string_view t = trim(text);
+    const std::string_view t = trimBlanks(text);
     if (t.empty() || t.front() == '#') continue;
     std::size_t pos = 0;
     std::size_t field = 0;
@@ -223,7 +227,8 @@ bool CsvReader::next(std::span<double> values) {
         fail(fmt::format("too many fields: the header has {}", header_.size()));
       const int column = column_of_field_[field];
       if (column >= 0 && !parseFiniteDouble(cell, values[static_cast<std::size_t>(column)]))
-        fail(fmt::format("column '{}': '{}' is not a finite number", header_[field], trim(cell)));
+        fail(fmt::format(
+            "column '{}': '{}' is not a finite number", header_[field], trimBlanks(cell)));
       ++field;
       if (comma == std::string_view::npos) break;
       pos = comma + 1;

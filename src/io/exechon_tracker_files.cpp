@@ -13,7 +13,6 @@
 namespace pkm::io {
 namespace {
 
-constexpr double kUradPerRad = 1e6;
 constexpr double kUnitTolerance = 1e-6;  // |1 − |u|| of a direction in a file
 
 std::string vectorText(const Eigen::Vector3d& v) {

@@ -29,8 +29,6 @@ std::string stem(const std::string& name) {
   return s.empty() ? "machine" : s;
 }
 
-std::string num(double v) { return formatNumber(v); }
-
 }  // namespace
 
 void LinuxcncConfigOptions::validate(int joints) const {
@@ -85,21 +83,21 @@ std::string linuxcncIni(const IniSpec& spec,
                    coordinates,
                    inch ? "inch" : "mm");
   o += fmt::format("HOME = {} {} {} {} {} {}\n",
-                   num(spec.home[0]),
-                   num(spec.home[1]),
-                   num(spec.home[2]),
-                   num(spec.home[3]),
-                   num(spec.home[4]),
-                   num(spec.home[5]));
+                   formatNumber(spec.home[0]),
+                   formatNumber(spec.home[1]),
+                   formatNumber(spec.home[2]),
+                   formatNumber(spec.home[3]),
+                   formatNumber(spec.home[4]),
+                   formatNumber(spec.home[5]));
   o += fmt::format(
       "DEFAULT_LINEAR_VELOCITY = {}\nMAX_LINEAR_VELOCITY = {}\nDEFAULT_LINEAR_ACCELERATION = {}\n"
       "MAX_LINEAR_ACCELERATION = {}\nDEFAULT_ANGULAR_VELOCITY = {}\nMAX_ANGULAR_VELOCITY = {}\n",
-      num(spec.linear_velocity / 10.0),
-      num(spec.linear_velocity),
-      num(spec.linear_acceleration),
-      num(spec.linear_acceleration),
-      num(spec.angular_velocity / 10.0),
-      num(spec.angular_velocity));
+      formatNumber(spec.linear_velocity / 10.0),
+      formatNumber(spec.linear_velocity),
+      formatNumber(spec.linear_acceleration),
+      formatNumber(spec.linear_acceleration),
+      formatNumber(spec.angular_velocity / 10.0),
+      formatNumber(spec.angular_velocity));
   o +=
       fmt::format("\n[EMCIO]\nEMCIO = io\nCYCLE_TIME = 0.100\nTOOL_TABLE = {}\n", names.tool_table);
   o += fmt::format("\n[KINS]\nKINEMATICS = {}\nJOINTS = {}\n", spec.kinematics, spec.joints.size());
@@ -107,10 +105,10 @@ std::string linuxcncIni(const IniSpec& spec,
     o += fmt::format(
         "\n[AXIS_{}]\nMIN_LIMIT = {}\nMAX_LIMIT = {}\nMAX_VELOCITY = {}\nMAX_ACCELERATION = {}\n",
         a.letter,
-        num(a.min),
-        num(a.max),
-        num(a.velocity),
-        num(a.acceleration));
+        formatNumber(a.min),
+        formatNumber(a.max),
+        formatNumber(a.velocity),
+        formatNumber(a.acceleration));
   for (std::size_t i = 0; i < spec.joints.size(); ++i) {
     const IniJoint& j = spec.joints[i];
     o += fmt::format(
@@ -118,12 +116,12 @@ std::string linuxcncIni(const IniSpec& spec,
         "MAX_LIMIT = {}\nMAX_VELOCITY = {}\nMAX_ACCELERATION = {}\n",
         i,
         j.angular ? "ANGULAR" : "LINEAR",
-        num(j.home),
-        num(j.home),
-        num(j.min),
-        num(j.max),
-        num(j.velocity),
-        num(j.acceleration));
+        formatNumber(j.home),
+        formatNumber(j.home),
+        formatNumber(j.min),
+        formatNumber(j.max),
+        formatNumber(j.velocity),
+        formatNumber(j.acceleration));
     for (const LinuxcncCompReference& c : options.comp_files)
       if (c.joint == static_cast<int>(i))
         o += fmt::format("COMP_FILE = {}\nCOMP_FILE_TYPE = {}\n", c.file, c.type);

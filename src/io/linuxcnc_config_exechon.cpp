@@ -19,9 +19,6 @@ namespace kin = pkm::kinematics;
 
 namespace {
 
-/// Largest translation the axis limits search, in characteristic lengths.
-constexpr double kTranslationCap = 2.0;
-
 /// An angle range's ends in degrees, an open side as ±kOpenAngleLimit.
 std::array<double, 2> degrees(const kin::AngleRange& r) {
   return {std::isfinite(r.min) ? radToDeg(r.min) : -detail::kOpenAngleLimit,
@@ -54,7 +51,7 @@ std::vector<detail::IniAxis> toolPointAxes(const kin::ExechonModel& model,
             if (t > t_last) t_last = t, e_last = data.e;
             return true;
           },
-          kTranslationCap * length);
+          detail::kTranslationCap * length);
     }
     const std::array<double, 2> lim =
         detail::axisLimits(home.world_p_tool[k], side[0], side[1], detail::limitStep(length));

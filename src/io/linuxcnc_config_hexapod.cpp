@@ -20,8 +20,7 @@ namespace kin = pkm::kinematics;
 
 namespace {
 
-/// Largest translation (characteristic lengths) and rotations (degrees) the axis limits search.
-constexpr double kTranslationCap = 2.0;
+/// Largest rotations (degrees) the axis limits search (translations: detail::kTranslationCap).
 constexpr std::array<double, 3> kRotationCapDeg{90.0, 90.0, 180.0};
 constexpr double kAngleStepDeg = 0.01;
 
@@ -88,8 +87,8 @@ std::vector<detail::IniAxis> hexapodReach(const kin::HexapodModel& model,
   std::vector<detail::IniAxis> axes;
   for (int k = 0; k < 6; ++k) {
     const bool angular = k >= 3;
-    const double cap =
-        angular ? kRotationCapDeg[static_cast<std::size_t>(k - 3)] : kTranslationCap * length;
+    const double cap = angular ? kRotationCapDeg[static_cast<std::size_t>(k - 3)]
+                               : detail::kTranslationCap * length;
     std::array<double, 2> side{};
     for (int s = 0; s < 2; ++s) {
       const double sign = s == 0 ? -1.0 : 1.0;

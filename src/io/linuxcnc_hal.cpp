@@ -27,7 +27,7 @@ constexpr std::string_view kPrefix = "genhexkins.";
 constexpr std::size_t kMaxConfigBytes = 16u << 20;
 
 /// The lines of `text`, without their '\n' and a trailing '\r'.
-std::vector<std::string> splitLines(const std::string& text) {
+std::vector<std::string> halLines(const std::string& text) {
   std::vector<std::string> lines;
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) {
@@ -209,7 +209,7 @@ HexapodMachine halMachine(const NamedText& hal, HalPins& pins) {
   m.source = hal.name;
   m.model.name = fs::path(hal.name).stem().string();
   m.description = fmt::format("Imported from LinuxCNC genhexkins configuration {}", hal.name);
-  const auto lines = splitLines(hal.text);
+  const auto lines = halLines(hal.text);
   for (std::size_t n = 0; n < lines.size(); ++n)
     parseHalLine(m, pins, lines[n], HalLine{hal.name, n + 1});
   checkJointsSet(hal.name, pins);
@@ -270,7 +270,7 @@ void applyLinuxcncIni(const NamedText& ini, HexapodMachine& machine) {
   machine.ini_velocity = readIniVelocityLimits(ini);  // the rapid rate's limits (gcode run)
   const std::string& ini_path = ini.name;
   std::string section;
-  const auto lines = splitLines(ini.text);
+  const auto lines = halLines(ini.text);
   for (std::size_t n = 0; n < lines.size(); ++n) {
     const std::size_t line_no = n + 1;
     auto fail = [&](const std::string& what) { throw IoError(locate(ini_path, line_no, what)); };

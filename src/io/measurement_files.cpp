@@ -19,26 +19,8 @@ namespace sim = pkm::simulation;
 
 namespace {
 
-constexpr double kUradPerRad = 1e6;
 /// The largest run number a measurement file may give (an int; no instrument numbers more).
 constexpr int kMaxRun = 1'000'000'000;
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-
-std::vector<std::string_view> split(std::string_view line) {
-  std::vector<std::string_view> fields;
-  while (true) {
-    const std::size_t comma = line.find(',');
-    fields.push_back(trim(line.substr(0, comma)));
-    if (comma == std::string_view::npos) return fields;
-    line.remove_prefix(comma + 1);
-  }
-}
 
 }  // namespace
 
@@ -111,20 +93,21 @@ LineRunFile parseLineRunCsv(const std::string& text, const std::string& source) 
   bool header = false;
   for (std::string raw; std::getline(in, raw);) {
     ++line_no;
-    std::string_view line = trim(raw);
+    std::string_view line = trimBlanks(raw);
     if (line_no == 1 && line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);
     if (line.empty()) continue;
     const auto fail = [&](const std::string& what) {
       throw IoError(locate(source, line_no, what));
     };
     if (line.front() == '#') {
-      const std::string_view body = trim(line.substr(1));
+      const std::string_view body = trimBlanks(line.substr(1));
       const std::size_t colon = body.find(':');
       if (!header && colon != std::string_view::npos)
-        file.metadata.emplace_back(trim(body.substr(0, colon)), trim(body.substr(colon + 1)));
+        file.metadata.emplace_back(trimBlanks(body.substr(0, colon)),
+                                   trimBlanks(body.substr(colon + 1)));
       continue;
     }
-    const std::vector<std::string_view> fields = split(line);
+    const std::vector<std::string_view> fields = splitFields(line);
     if (!header) {
       for (std::size_t i = 0; i < fields.size(); ++i) {
         const std::string_view f = fields[i];

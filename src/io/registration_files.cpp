@@ -6,6 +6,7 @@
 #include <set>
 
 #include "pkm/core/error.hpp"
+#include "pkm/core/units.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/io/text_table.hpp"
 
@@ -15,7 +16,6 @@ namespace sim = pkm::simulation;
 
 namespace {
 
-constexpr double kUradPerRad = 1e6;
 constexpr std::size_t kMinNests = 3;  // a rigid fit needs three points off one line
 
 void appendVector(std::string& out, const Eigen::Vector3d& v) {

@@ -20,7 +20,7 @@ namespace {
 constexpr double kMillimetresPerMicrometre = 1e-3;
 
 /// The lines of `text` (without line ends), 1-based numbering by index + 1.
-std::vector<std::string_view> splitLines(std::string_view text) {
+std::vector<std::string_view> rtlLines(std::string_view text) {
   std::vector<std::string_view> lines;
   std::size_t pos = 0;
   while (pos <= text.size()) {
@@ -140,7 +140,7 @@ std::map<int, int> runDirections(const std::vector<Reading>& rows, const std::st
 }  // namespace
 
 bool isRenishawRtl(std::string_view text) {
-  for (const std::string_view line : splitLines(text)) {
+  for (const std::string_view line : rtlLines(text)) {
     if (line.empty()) continue;
     return isSection(line) && text.find("DEVIATIONS::") != std::string_view::npos;
   }
@@ -148,7 +148,7 @@ bool isRenishawRtl(std::string_view text) {
 }
 
 std::vector<metrology::PositioningSample> readRenishawRtl(const NamedText& input) {
-  const std::vector<std::string_view> lines = splitLines(input.text);
+  const std::vector<std::string_view> lines = rtlLines(input.text);
   const std::vector<double> targets = readTargets(lines, input.name);
   for (std::size_t k = 0; k < lines.size(); ++k)
     if (const auto count = keyValue(lines[k], "Target-count")) {

@@ -10,6 +10,7 @@
 #include "io/scenario_probe.hpp"
 #include "io/scenario_tracker.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/core/units.hpp"
 #include "pkm/io/geometric_errors.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/io/scenario.hpp"
@@ -21,8 +22,6 @@ namespace pkm::io {
 namespace sim = pkm::simulation;
 
 namespace {
-
-constexpr double kUradPerRad = 1e6;
 
 std::string array(const std::vector<double>& v) {
   std::string out = "[";

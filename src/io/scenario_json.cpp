@@ -9,6 +9,7 @@
 #include "io/scenario_probe.hpp"
 #include "io/scenario_tracker.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/core/units.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/scenario.hpp"
 #include "pkm/simulation/hybrid_virtual_machine.hpp"
@@ -22,7 +23,6 @@ using detail::JsonDoc;
 
 namespace {
 
-constexpr double kUradPerRad = 1e6;
 constexpr double kMaxSeed = 9007199254740992.0;  // 2^53: every integer below is exact in JSON
 
 using detail::numbers;

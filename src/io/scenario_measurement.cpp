@@ -11,8 +11,6 @@ namespace sim = pkm::simulation;
 
 namespace {
 
-constexpr double kUradPerRad = 1e6;
-
 /// A command: one value per axis, angular axes in degrees (converted to radians).
 Eigen::VectorXd command(const JsonDoc& doc,
                         const json& v,

@@ -19,7 +19,6 @@ namespace sim = pkm::simulation;
 
 namespace {
 
-constexpr double kUradPerRad = 1e6;
 constexpr int kMaxPoses = 1000000;
 
 /// [x, y, z, a, b, c] in mm and degrees, as a command in mm and radians.

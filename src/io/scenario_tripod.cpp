@@ -6,13 +6,12 @@
 
 #include "io/detail/json_doc.hpp"
 #include "io/scenario_detail.hpp"
+#include "pkm/core/units.hpp"
 #include "pkm/simulation/hybrid_tripod_errors.hpp"
 
 namespace pkm::io::detail {
 
 namespace {
-
-constexpr double kUradPerRad = 1e6;
 
 /// The length errors (mm) by key, in the order truth.json writes them.
 std::array<std::pair<const char*, double simulation::ExechonTripodErrors::*>, 15> lengthKeys() {

@@ -16,7 +16,7 @@ namespace sim = pkm::simulation;
 
 namespace {
 
-std::string vectorText(const Eigen::VectorXd& v) {
+std::string valuesText(const Eigen::VectorXd& v) {
   std::string out = "(";
   for (Eigen::Index i = 0; i < v.size(); ++i) out += (i ? ", " : "") + formatNumber(v[i]);
   return out + ")";
@@ -27,7 +27,7 @@ std::string commandText(const Eigen::VectorXd& v, const std::vector<bool>& angul
   Eigen::VectorXd w = v;
   for (Eigen::Index i = 0; i < w.size(); ++i)
     if (angular[static_cast<std::size_t>(i)]) w[i] = radToDeg(w[i]);
-  return vectorText(w);
+  return valuesText(w);
 }
 
 const char* instrumentName(sim::LineQuantity q) {
@@ -62,7 +62,7 @@ Metadata lineRunMetadata(const Scenario& s, std::uint64_t seed, const sim::LineS
       {"axes", fmt::format("{}", fmt::join(axes, ","))},
       {"line start", commandText(m.line.start, angular_axes)},
       {"line direction", commandText(m.line.direction, angular_axes)},
-      {"reflector offset mm", vectorText(m.reflector_offset)},
+      {"reflector offset mm", valuesText(m.reflector_offset)},
       {"noise",
        fmt::format("sigma {} {}, {} ppm, resolution {} {}",
                    formatNumber(m.noise.sigma * scale),
@@ -71,7 +71,7 @@ Metadata lineRunMetadata(const Scenario& s, std::uint64_t seed, const sim::LineS
                    formatNumber(m.noise.resolution * scale),
                    unit)},
   };
-  if (m.quantity != sim::LineQuantity::kLinear) md.emplace_back("lateral", vectorText(m.lateral));
+  if (m.quantity != sim::LineQuantity::kLinear) md.emplace_back("lateral", valuesText(m.lateral));
   if (m.quantity == sim::LineQuantity::kStraightness)
     md.emplace_back("misalignment urad", formatNumber(m.misalignment * 1e6));
   // The set-up a laser's budget needs (docs/formats.md, "Environment records").
@@ -87,7 +87,7 @@ namespace {
 
 std::string pointsText(const std::array<Eigen::Vector3d, 3>& points) {
   std::string out;
-  for (const Eigen::Vector3d& p : points) out += (out.empty() ? "" : ", ") + vectorText(p);
+  for (const Eigen::Vector3d& p : points) out += (out.empty() ? "" : ", ") + valuesText(p);
   return out;
 }
 
@@ -101,7 +101,7 @@ Metadata dialGaugeMetadata(const Scenario& s, std::uint64_t seed, const sim::Dia
       {"measurement", d.name},
       {"instrument", "three dial gauges on the platform, tips on the table (simulated)"},
       {"gauge points mm", pointsText(d.gauge_points)},
-      {"table normal", vectorText(d.table_normal)},
+      {"table normal", valuesText(d.table_normal)},
       {"tolerance mm", formatNumber(d.tolerance)},
       {"noise",
        fmt::format("sigma {} mm, resolution {} mm",

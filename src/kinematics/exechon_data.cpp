@@ -1,15 +1,13 @@
 #include "pkm/kinematics/exechon_data.hpp"
 
+#include "kinematics/exechon_tripod_math.hpp"
 #include "pkm/core/error.hpp"
 
 namespace pkm::kinematics {
 
-namespace {
-bool isSign(int s) { return s == 1 || s == -1; }
-}  // namespace
-
 bool ExechonBranch::isValid() const {
-  return isSign(delta1B) && isSign(delta2B) && isSign(deltaA) && isSign(deltaC);
+  return detail::isUnitSign(delta1B) && detail::isUnitSign(delta2B) && detail::isUnitSign(deltaA) &&
+         detail::isUnitSign(deltaC);
 }
 
 int ExechonBranch::index() const {

@@ -21,8 +21,6 @@ constexpr int kMaxRefineIterations = 20;
 /// products of unit-circle coordinates, exact to a few ulps).
 constexpr double kChordRounding = 1e-12;
 
-bool isSign(int s) { return s == 1 || s == -1; }
-
 }  // namespace
 
 std::string_view toString(ExechonIkStatus status) {
@@ -199,7 +197,10 @@ void fillTripod(const ExechonModel& model,
 
 ExechonIkStatus parametersFromWristPoint(
     const ExechonTripodGeometry& g, const Eigen::Vector3d& S, int d1, int d2, Eigen::Vector3d* e) {
-  PKM_CHECK(isSign(d1) && isSign(d2), "delta1B and delta2B must be +1 or -1 (got {}, {})", d1, d2);
+  PKM_CHECK(detail::isUnitSign(d1) && detail::isUnitSign(d2),
+            "delta1B and delta2B must be +1 or -1 (got {}, {})",
+            d1,
+            d2);
   detail::ExechonTrig t{};
   const ExechonIkStatus status = solveTrig(g, S, d1, d2, &t);
   if (status == ExechonIkStatus::kOk) *e = anglesOf(t);
@@ -211,7 +212,7 @@ void evaluateTripod(const ExechonModel& model,
                     const Eigen::Vector3d& e,
                     int deltaA,
                     int deltaC) {
-  PKM_CHECK(isSign(deltaA) && isSign(deltaC),
+  PKM_CHECK(detail::isUnitSign(deltaA) && detail::isUnitSign(deltaC),
             "deltaA and deltaC must be +1 or -1 (got {}, {})",
             deltaA,
             deltaC);

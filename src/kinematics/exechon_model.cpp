@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kinematics/exechon_tripod_math.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/kinematics/exechon_data.hpp"
 #include "pkm/kinematics/exechon_ik.hpp"
@@ -17,8 +18,6 @@ double ExechonModel::characteristicLength() const {
 }
 
 namespace {
-
-bool isSign(int s) { return s == 1 || s == -1; }
 
 void validateRange(const AngleRange& r, const char* name) {
   PKM_CHECK(!std::isnan(r.min) && !std::isnan(r.max) && r.min <= r.max,
@@ -42,7 +41,8 @@ void ExechonModel::validate() const {
             "tripod: dB must be != 0 (leg B's base joint is on the base axis)");
   PKM_CHECK(std::abs(g.dA - g.dC) > 1e-9 * scale,
             "tripod: dA and dC must differ (legs A and C share a base joint)");
-  PKM_CHECK(isSign(g.delta1B) && isSign(g.delta2B) && isSign(g.deltaA) && isSign(g.deltaC),
+  PKM_CHECK(detail::isUnitSign(g.delta1B) && detail::isUnitSign(g.delta2B) &&
+                detail::isUnitSign(g.deltaA) && detail::isUnitSign(g.deltaC),
             "tripod: branch signs delta1B, delta2B, deltaA, deltaC must be +1 or -1");
   const char* leg_names[] = {"A", "B", "C"};
   for (int i = 0; i < kExechonLegs; ++i) {
@@ -69,7 +69,8 @@ void ExechonModel::validate() const {
             "wrist: c_axis and a_axis must be non-zero");
   PKM_CHECK(std::abs(w.c_axis.normalized().dot(w.a_axis.normalized())) < 1e-9,
             "wrist: a_axis must be perpendicular to c_axis");
-  PKM_CHECK(isSign(w.c_sign) && isSign(w.a_sign), "wrist: c_sign and a_sign must be +1 or -1");
+  PKM_CHECK(detail::isUnitSign(w.c_sign) && detail::isUnitSign(w.a_sign),
+            "wrist: c_sign and a_sign must be +1 or -1");
   PKM_CHECK(max_condition > 1.0, "max_condition must be > 1 (got {})", max_condition);
   PKM_CHECK(world_T_zoppi.matrix().allFinite(), "world_T_zoppi is not finite");
   const Eigen::Matrix3d R = world_T_zoppi.linear();

@@ -9,6 +9,9 @@
 
 namespace pkm::kinematics::detail {
 
+/// True for the branch signs of the Exechon model (+1 or -1).
+inline bool isUnitSign(int s) { return s == 1 || s == -1; }
+
 /// sin/cos of alpha and beta, and h.
 struct ExechonTrig {
   double sa, ca, sb, cb, h;

@@ -10,7 +10,7 @@ namespace pkm::kinematics {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+constexpr double kFullTurn = 2.0 * std::numbers::pi;
 /// toolPointInverseKinematics: Newton iterations, step halvings per iteration, and the
 /// convergence thresholds relative to the characteristic length (tolerance; rounding floor).
 constexpr int kMaxToolPointIterations = 50;
@@ -21,8 +21,8 @@ constexpr double kToolPointFloor = 1e-12;
 /// x + 2·pi·k nearest `near` (x itself, bit for bit, when k = 0).
 double nearestTurn(double x, double near) {
   if (std::abs(near - x) < std::numbers::pi) return x;  // k = 0 (the common case on a path)
-  const double k = std::round((near - x) / kTwoPi);
-  return k == 0.0 ? x : x + k * kTwoPi;
+  const double k = std::round((near - x) / kFullTurn);
+  return k == 0.0 ? x : x + k * kFullTurn;
 }
 
 /// Rz(θC)·Rx(θA) from the sines and cosines of θC and θA.
@@ -225,7 +225,7 @@ ExechonIkStatus toolPointInverseKinematics(const ExechonModel& model,
     }
     last = err;
   }
-  for (int i = 0; i < 2; ++i) e[i] = std::remainder(e[i], kTwoPi);
+  for (int i = 0; i < 2; ++i) e[i] = std::remainder(e[i], kFullTurn);
   evaluateTripod(model, data, e, g.deltaA, g.deltaC);
   setWristReadings(model, data, c, a);
   return ExechonIkStatus::kOk;

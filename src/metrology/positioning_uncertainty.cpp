@@ -118,15 +118,6 @@ double reversalNoise(const Iso230_2Result& r, const TargetStatistics& t, double 
          expectedMaxAbsNormal(r.targets.size());
 }
 
-UncertaintyBudget newBudget(const char* quantity, double value, const UncertaintySources& src) {
-  UncertaintyBudget b;
-  b.quantity = quantity;
-  b.unit = "mm";
-  b.value = value;
-  b.coverage_factor = src.coverage_factor;
-  return b;
-}
-
 /// E or M: a range between the largest and the smallest of `means`.
 UncertaintyBudget rangeBudget(const char* quantity,
                               double value,
@@ -139,7 +130,7 @@ UncertaintyBudget rangeBudget(const char* quantity,
     if (m.mean > hi->mean) hi = &m;
     if (m.mean < lo->mean) lo = &m;
   }
-  UncertaintyBudget b = newBudget(quantity, value, src);
+  UncertaintyBudget b = detail::lengthBudget(quantity, value, src.coverage_factor);
   addLaserLengthContributors(b, std::abs(hi->target - lo->target), src);
   addContributor(b,
                  statistic("sampling of the extreme means (s/sqrt(n))",
@@ -161,7 +152,7 @@ UncertaintyBudget accuracyBudget(const char* quantity,
     if (m.mean + k * m.s > hi->mean + k * hi->s) hi = &m;
     if (m.mean - k * m.s < lo->mean - k * lo->s) lo = &m;
   }
-  UncertaintyBudget b = newBudget(quantity, value, src);
+  UncertaintyBudget b = detail::lengthBudget(quantity, value, src.coverage_factor);
   addLaserLengthContributors(b, std::abs(hi->target - lo->target), src);
   addContributor(b,
                  statistic("sampling of the extreme means (s/sqrt(n))",
@@ -179,7 +170,7 @@ UncertaintyBudget reversalBudget(const Iso230_2Result& r, const UncertaintySourc
   const TargetStatistics* c = &r.targets.front();
   for (const TargetStatistics& t : r.targets)
     if (std::abs(t.reversal) > std::abs(c->reversal)) c = &t;
-  UncertaintyBudget b = newBudget("B", r.B, src);
+  UncertaintyBudget b = detail::lengthBudget("B", r.B, src.coverage_factor);
   addContributor(b,
                  statistic("sampling of the two means at the target (s/sqrt(n))",
                            {upMean(*c), downMean(*c)},
@@ -195,7 +186,7 @@ UncertaintyBudget repeatabilityBudget(const Iso230_2Result& r,
   const TargetStatistics* c = &r.targets.front();
   for (const TargetStatistics& t : r.targets)
     if (t.repeatability > c->repeatability) c = &t;
-  UncertaintyBudget b = newBudget("R", r.R, src);
+  UncertaintyBudget b = detail::lengthBudget("R", r.R, src.coverage_factor);
   const double bidirectional = k * c->s_up + k * c->s_down + std::abs(c->reversal);
   std::vector<Part> parts;
   const double sigma = src.laser.reading_noise_mm;
@@ -241,7 +232,7 @@ UncertaintyBudget unidirectionalRepeatabilityBudget(const char* quantity,
   const Mean* c = &means.front();
   for (const Mean& m : means)
     if (m.s > c->s) c = &m;
-  UncertaintyBudget b = newBudget(quantity, value, src);
+  UncertaintyBudget b = detail::lengthBudget(quantity, value, src.coverage_factor);
   addContributor(b,
                  statistic("sampling of the standard deviation at the target",
                            {sVariance(c->s, c->n, 2.0 * k)},

@@ -20,15 +20,6 @@ void checkSources(const UncertaintySources& sources) {
   PKM_CHECK(sources.isValid(&why), "uncertainty sources: {}", why);
 }
 
-UncertaintyBudget newBudget(const char* quantity, double value, const UncertaintySources& src) {
-  UncertaintyBudget b;
-  b.quantity = quantity;
-  b.unit = "mm";
-  b.value = value;
-  b.coverage_factor = src.coverage_factor;
-  return b;
-}
-
 /// The straightness optics' accuracy a + b·|reading| + c·L² (mm) over a length L (mm).
 double opticsAccuracy(const LaserInterferometer& laser, double reading_mm, double length_mm) {
   const double length_m = length_mm / 1000.0;
@@ -98,7 +89,7 @@ UncertaintyBudget straightnessUncertainty(double straightness,
             "straightness uncertainty: {} raw positions but {} deviations",
             raw_position.size(),
             raw_deviation.size());
-  UncertaintyBudget b = newBudget("straightness", straightness, src);
+  UncertaintyBudget b = detail::lengthBudget("straightness", straightness, src.coverage_factor);
   addContributor(b,
                  detail::lengthContributor("straightness optics (two readings)",
                                            opticsAccuracy(src.laser, straightness, span(position)),
@@ -124,7 +115,7 @@ UncertaintyBudget parallelismUncertainty(double parallelism,
   const double u_axis = slopeStandardError(axis);
   const double travel = span(axis.position);
   const double l_ref = span(reference.position);
-  UncertaintyBudget b = newBudget("parallelism", parallelism, src);
+  UncertaintyBudget b = detail::lengthBudget("parallelism", parallelism, src.coverage_factor);
   UncertaintyContributor slope_ref = detail::lengthContributor(
       "reference line slope (least squares)", u_ref, Distribution::kNormal, travel, "test data");
   slope_ref.degrees_of_freedom = static_cast<double>(reference.position.size()) - 2.0;
@@ -160,7 +151,7 @@ std::vector<UncertaintyBudget> circleUncertainty(const CircleFit& lsc,
   const MeasurementEnvironment& env = src.environment;
   const double R = lsc.circle.radius;
   const double s = lsc.rms * std::sqrt(static_cast<double>(n) / static_cast<double>(n - 3));
-  UncertaintyBudget radius = newBudget("radius", R, src);
+  UncertaintyBudget radius = detail::lengthBudget("radius", R, src.coverage_factor);
   addContributor(radius,
                  detail::lengthContributor("least-squares fit (s/sqrt(N))",
                                            s / std::sqrt(static_cast<double>(n)),
@@ -199,7 +190,7 @@ std::vector<UncertaintyBudget> circleUncertainty(const CircleFit& lsc,
   std::vector<UncertaintyBudget> out{radius};
   for (const auto& [name, value] :
        {std::pair{"roundness_lsc", lsc.roundness}, std::pair{"roundness_mzc", mzc.roundness}}) {
-    UncertaintyBudget b = newBudget(name, value, src);
+    UncertaintyBudget b = detail::lengthBudget(name, value, src.coverage_factor);
     addContributor(b,
                    detail::lengthContributor("probe repeatability (two points)",
                                              probe.repeatability_2sigma_mm,
@@ -258,7 +249,8 @@ std::vector<UncertaintyBudget> probeOffsetUncertainty(const ProbeOffsetFit& fit,
   const Eigen::Matrix<double, 5, 5> cov = squares / static_cast<double>(n - 5) * lu.inverse();
   std::vector<UncertaintyBudget> out;
   for (int axis = 0; axis < 2; ++axis) {
-    UncertaintyBudget b = newBudget(axis == 0 ? "offset_x" : "offset_y", fit.offset[axis], src);
+    UncertaintyBudget b = detail::lengthBudget(
+        axis == 0 ? "offset_x" : "offset_y", fit.offset[axis], src.coverage_factor);
     addContributor(b,
                    detail::lengthContributor("least-squares fit (covariance)",
                                              std::sqrt(cov(2 + axis, 2 + axis)),

@@ -8,7 +8,7 @@ namespace pkm::simulation {
 
 namespace {
 
-bool fail(std::string* why, const std::string& message) {
+bool refuse(std::string* why, const std::string& message) {
   if (why != nullptr) *why = message;
   return false;
 }
@@ -18,13 +18,14 @@ bool fail(std::string* why, const std::string& message) {
 bool GeometryEnvironment::isValid(std::string* why) const {
   for (const double v : {lead_progressive, lead_wave_mm, lead_periodic_mm, joint_axis_offset_mm})
     if (!std::isfinite(v) || v < 0.0)
-      return fail(why, "geometry amplitudes and bounds must be finite and >= 0");
+      return refuse(why, "geometry amplitudes and bounds must be finite and >= 0");
   if (!std::isfinite(lead_wave_length_mm) || lead_wave_length_mm <= 0.0 ||
       !std::isfinite(screw_lead_mm) || screw_lead_mm <= 0.0)
-    return fail(why,
-                fmt::format("geometry lead_wave_length_mm ({}) and screw_lead_mm ({}) must be > 0",
-                            lead_wave_length_mm,
-                            screw_lead_mm));
+    return refuse(
+        why,
+        fmt::format("geometry lead_wave_length_mm ({}) and screw_lead_mm ({}) must be > 0",
+                    lead_wave_length_mm,
+                    screw_lead_mm));
   return true;
 }
 

@@ -129,7 +129,7 @@ Touches measuredTouches(const StepContext& ctx, StepOutcome& out) {
 
 /// The stylus offset fitted to the offset touches and the ring's roundness without and with the
 /// DRM compensation.
-struct Analysis {
+struct ProbeAnalysis {
   std::size_t offset_touches = 0;
   met::ProbeOffsetFit fit;
   /// U (k = 2, mm) bounding any component of the offset (the larger of U(offset_x), U(offset_y),
@@ -140,12 +140,12 @@ struct Analysis {
 };
 
 /// Analyses `t` and writes the fitted offset as compensation/probe-offset.txt.
-Analysis analyse(const StepContext& ctx, StepOutcome& out, const Touches& t) {
+ProbeAnalysis analyse(const StepContext& ctx, StepOutcome& out, const Touches& t) {
   ctx.progress("analyse: stylus offset (least squares over both spindle angles), roundness");
   std::vector<met::ProbeTouch> offset_touches;
   for (const sim::TouchRecord& r : t.offset)
     offset_touches.push_back({sim::planeTurn(t.setup, r), r.position.head<2>()});
-  Analysis a;
+  ProbeAnalysis a;
   a.offset_touches = offset_touches.size();
   a.fit = met::fitProbeOffset(offset_touches);
   const auto budgets = met::probeOffsetUncertainty(a.fit, offset_touches, ctx.sources);
@@ -172,8 +172,11 @@ double roundnessU(const met::CircleFit& lsc, const met::UncertaintySources& sour
 }
 
 /// The summary rows (the offset error only when `simulated`) and the fitted offset for the store.
-void addRows(
-    const StepContext& ctx, StepOutcome& out, const Touches& t, const Analysis& a, bool simulated) {
+void addRows(const StepContext& ctx,
+             StepOutcome& out,
+             const Touches& t,
+             const ProbeAnalysis& a,
+             bool simulated) {
   const double sigma = t.setup.noise.sigma;
   // Noise-only roundness (an ideal machine): the peak-to-valley of N normal trigger errors is about
   // 2·Φ⁻¹(1 − 1/(2N))·σ (≈ 5.3σ for 180 touches); the target allows 6σ. With unmodelled sources
@@ -214,7 +217,10 @@ void addRows(
 
 /// The report section: paragraphs, the offset table (the true offset only when `simulated`) and
 /// the polar roundness plot.
-Json probeSection(const StepOutcome& out, const Touches& tc, const Analysis& a, bool simulated) {
+Json probeSection(const StepOutcome& out,
+                  const Touches& tc,
+                  const ProbeAnalysis& a,
+                  bool simulated) {
   const double reduction = 100.0 * (1.0 - a.after.fit.roundness / a.before.fit.roundness);
   Json sec = section(
       out.id,
@@ -259,7 +265,7 @@ StepOutcome runProbeOffsetStep(const StepContext& ctx) {
   out.record.machine_type = "hybrid";
   const bool simulated = !ctx.spec.contains("data");
   const Touches touches = simulated ? simulatedTouches(ctx, out) : measuredTouches(ctx, out);
-  const Analysis a = analyse(ctx, out, touches);
+  const ProbeAnalysis a = analyse(ctx, out, touches);
   addRows(ctx, out, touches, a, simulated);
   out.section = probeSection(out, touches, a, simulated);
   return out;

@@ -22,6 +22,10 @@ enum class Plane { kXY, kXZ, kYZ };
 [[nodiscard]] const char* toString(MoveKind kind);
 /// "XY", "XZ" or "YZ".
 [[nodiscard]] const char* toString(Plane plane);
+/// Indices into (X, Y, Z) of a plane's first axis, second axis and normal, in LinuxCNC's
+/// orientation (the G2/G3 sense and canned-cycle axes follow it): G17 (X, Y, Z), G18 (Z, X, Y),
+/// G19 (Y, Z, X).
+[[nodiscard]] std::array<std::size_t, 3> planeAxes(Plane plane);
 
 /// One motion, everything in machine coordinates: G5x, G92 and tool length offsets applied,
 /// lengths in mm and angles in degrees whatever G20/G21 said (LinuxCNC's machine position).

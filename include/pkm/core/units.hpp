@@ -24,5 +24,7 @@ enum class LengthUnit { kMillimetre, kInch };
 [[nodiscard]] constexpr double degToRad(double deg) { return deg * (std::numbers::pi / 180.0); }
 /// Radians to degrees.
 [[nodiscard]] constexpr double radToDeg(double rad) { return rad * (180.0 / std::numbers::pi); }
+/// Microradians per radian (angular readings in measurement files are in µrad).
+inline constexpr double kUradPerRad = 1e6;
 
 }  // namespace pkm

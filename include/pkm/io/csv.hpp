@@ -86,6 +86,10 @@ class CsvReader {
 /// `s` without leading and trailing spaces, tabs and carriage returns.
 [[nodiscard]] std::string_view trimBlanks(std::string_view s);
 
+/// The comma-separated fields of `line` (views into it, each trimmed as by trimBlanks), in
+/// order; an empty line gives one empty field.
+[[nodiscard]] std::vector<std::string_view> splitFields(std::string_view line);
+
 /// The whitespace-separated words of `line` (views into it), in order.
 [[nodiscard]] std::vector<std::string_view> splitWords(std::string_view line);
 

@@ -14,6 +14,10 @@
 
 namespace pkm::io::detail {
 
+/// Largest translation the axis-limit search of a configuration reaches, in the machine's
+/// characteristic lengths.
+inline constexpr double kTranslationCap = 2.0;
+
 /// One [AXIS_L] section: world limits and rates (machine unit or degrees).
 struct IniAxis {
   char letter = 'X';

@@ -13,6 +13,11 @@
 
 namespace pkm::io::detail {
 
+/// An analysis document as the files hold it: two-space indented, one final newline.
+inline std::string documentText(const nlohmann::ordered_json& document) {
+  return document.dump(2) + "\n";
+}
+
 /// {"value", "unit", "U", "u_c", "k", "budget": [{"name", "value", "unit", "distribution",
 /// "divisor", "standard_uncertainty", "sensitivity", "contribution", "source"}, ...]}.
 nlohmann::ordered_json budgetJson(const metrology::UncertaintyBudget& budget);

@@ -1,6 +1,6 @@
 /// @file
-/// @brief Internal: an uncertainty contributor stated in mm (the budgets of straightness,
-/// parallelism, circles and circular tests build theirs this way).
+/// @brief Internal: an uncertainty contributor, and an empty budget, stated in mm (the budgets of
+/// straightness, parallelism, circles and circular tests build theirs this way).
 #pragma once
 
 #include <string>
@@ -41,6 +41,17 @@ inline UncertaintyContributor boundedContributor(
   c.sensitivity = sensitivity;
   c.source = std::move(source);
   return c;
+}
+
+/// An empty budget of a result `quantity` = `value` mm, expanded with `coverage_factor` (the
+/// sources' k at infinite degrees of freedom).
+inline UncertaintyBudget lengthBudget(std::string quantity, double value, double coverage_factor) {
+  UncertaintyBudget b;
+  b.quantity = std::move(quantity);
+  b.unit = "mm";
+  b.value = value;
+  b.coverage_factor = coverage_factor;
+  return b;
 }
 
 }  // namespace pkm::metrology::detail
