@@ -10,7 +10,7 @@ CMAKE_FLAGS ?=
 # CI builds treat warnings as errors.
 WERROR := $(if $(CI),-DPKM_WARNINGS_AS_ERRORS=ON,)
 
-.PHONY: all setup build build-asan demo test test-release test-asan bench fuzz format clean
+.PHONY: all setup build build-asan demo test test-release test-asan check-size bench fuzz format clean
 
 all: build
 
