@@ -19,7 +19,6 @@
 #include "../pkm/cli_common.hpp"
 #include "../pkm/serve_options.hpp"
 #include "pkm/core/error.hpp"
-#include "pkm/core/reproducible.hpp"
 #include "pkm/server/http_server.hpp"
 
 namespace {
@@ -73,7 +72,6 @@ void runServe(const pkm::cli::ServeOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  pkm::useReproducibleEigenBlocking();
   CLI::App app{pkm::cli::kServeDescription, "pkm serve"};
   pkm::cli::ServeOptions options;
   pkm::cli::addServeOptions(app, options);

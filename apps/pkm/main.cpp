@@ -12,7 +12,6 @@
 #include "analyze_common.hpp"
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
-#include "pkm/core/reproducible.hpp"
 
 namespace {
 
@@ -35,7 +34,6 @@ constexpr BuiltInGroup kBuiltInGroups[] = {{"hexapod", &pkm::cli::addHexapodComm
 }  // namespace
 
 int main(int argc, char** argv) {
-  pkm::useReproducibleEigenBlocking();
   CLI::App app{
       "pkm: kinematics, measurement analysis, calibration and compensation for parallel "
       "kinematic machine tools"};

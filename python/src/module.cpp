@@ -1,6 +1,5 @@
 // The extension module pkm._pkm (docs/python.md): each area registers its bindings.
 #include "common.hpp"
-#include "pkm/core/reproducible.hpp"
 #include "simulation.hpp"
 
 PYBIND11_MODULE(_pkm, m) {
@@ -8,7 +7,6 @@ PYBIND11_MODULE(_pkm, m) {
       "pkm: kinematics, metrology and calibration of parallel kinematic machine tools "
       "(hexapods, Exechon tripods). Lengths are in the machine's unit (mm or inch), angles in "
       "degrees at this boundary, as in the pkm command line.";
-  pkm::useReproducibleEigenBlocking();  // the same digits as the pkm command line
   namespace p = pkm::python;
   p::exposeErrors(m);
   p::exposeMachines(m);
