@@ -43,7 +43,7 @@ py::array_t<double> posesOf(const io::PosePlanReport& r) {
 }
 
 /// Exechon: the program's moves (home first) as (N + 1, 5) x, y, z, a, c (a, c in degrees).
-py::object movesOf(const io::PosePlanReport& r) {
+py::object planMovesOf(const io::PosePlanReport& r) {
   if (r.kind == "hexapod") return py::none();
   py::array_t<double> out = newArray(static_cast<py::ssize_t>(r.moves.size()), 5);
   double* p = out.mutable_data();
@@ -96,7 +96,7 @@ PosePlanResult planPoses(const py::object& machine,
   a["kind"] = rep.kind;
   a["machine"] = rep.machine;
   a["poses"] = posesOf(rep);
-  a["moves"] = movesOf(rep);
+  a["moves"] = planMovesOf(rep);
   a["chosen"] =
       py::array_t<int>(static_cast<py::ssize_t>(rep.plan.chosen.size()), rep.plan.chosen.data());
   a["index"] = rep.index_label;
@@ -113,9 +113,8 @@ PosePlanResult planPoses(const py::object& machine,
   return out;
 }
 
-}  // namespace
-
-void exposePosePlanning(py::module_& m) {
+/// Registers pkm.calibration.PosePlan in `m`.
+void defPosePlanClass(py::module_& m) {
   py::class_<PosePlanResult>(m, "PosePlan", R"doc(A calibration pose plan (`pkm plan-poses`).
 
 Attributes
@@ -150,6 +149,12 @@ csv, summary, gcode : str
           "The plan as the JSON document of io::posePlanJson.")
       .def("__repr__",
            [](const PosePlanResult& r) { return "<pkm.calibration.PosePlan " + r.summary + ">"; });
+}
+
+}  // namespace
+
+void exposePosePlanning(py::module_& m) {
+  defPosePlanClass(m);
   m.def("plan_poses",
         &planPoses,
         py::arg("machine") = "default",

@@ -189,6 +189,70 @@ void addHybrid(py::dict& a, const workflow::ExechonCalibrationResult& r, const p
   a["geometric_errors"] = jsonLoads(r.errors_json);
 }
 
+constexpr const char* kCalibrationResultDoc = R"doc(The result of a calibration.
+
+Attributes (lengths in the machine's unit, angles in rad unless the name says deg):
+
+machine : Hexapod or Exechon
+    The calibrated machine, usable at once (ik, fk, check).
+parameter_names, initial, parameters, change, standard_deviation, free : ndarray
+    The kinematic parameters (42 for a hexapod: per strut the base joint bx, by, bz, the
+    platform joint px, py, pz and the length offset; 26 for an Exechon), in the order of the
+    summary document's "parameters"; `free` is False for parameters held (`fix`).
+covariance : ndarray
+    The estimate's covariance (hexapod 42 x 42; Exechon 26 x 26, or 32 x 32 with the tracker
+    frame), rows named by `covariance_names`; zero rows and columns for fixed parameters.
+sigma : float
+    The residual standard deviation the covariance uses.
+rank, condition_number : int, float
+    Identifiability of the free unknowns (with the tracker frame and backlash when fitted).
+identifiability : dict
+    parameters, equations, rank, condition_number, unidentifiable (one {name: coefficient}
+    dict per direction the data cannot see), names (the columns), singular_values and
+    null_space (columns x unidentifiable directions) as arrays.
+residuals_before, residuals_after : dict
+    equations, rms, max, fk_failures of the fitted data before and after.
+holdout : dict or None
+    The held-out errors before and after ("before"/"after": poses, fk_failures, mean, rms, max).
+holdout_errors_before, holdout_errors_after : ndarray or None
+    |error| of each held-out observation (TCP or target position, length unit), in the order
+    of the held-out data (hexapod: poses, then points); NaN where the FK did not converge.
+    Before: the nominal machine (with its own fitted tracker frame); after: the calibrated one.
+converged, iterations, termination : bool, int, str
+    How the solver stopped.
+measurement_frame : ndarray (4, 4) or None
+    world_T_tracker, estimated when the readings are in the tracker's frame; frame_sigma its
+    standard deviations (dx, dy, dz, rx, ry, rz; world axes).
+worst_observations, tcp_error_map, monte_carlo, observations, target_offset, uncertainty
+    As in the summary document (None when it has no such member).
+expanded_uncertainty : ndarray or None
+    U (k = 2) of each parameter from the uncertainty budgets, when the summary has them.
+backlash, backlash_sigma : ndarray (6,) or None
+    Hexapod, with backlash=True: the per-strut backlash.
+squareness, squareness_names, squareness_sigma, hybrid, geometric_errors
+    Exechon with hybrid data: szX2, sxP, syP, szP (rad), the hybrid fit's summary and the
+    estimated geometric errors document (CAL.errors.json); None otherwise.
+hybrid_holdout_errors_before, hybrid_holdout_errors_after : ndarray or None
+    |error| of each held-out hybrid observation (NaN: a command the tripod cannot reach).
+)doc";
+
+constexpr const char* kCalibrationSaveDoc =
+    R"doc(Writes the files `pkm calibrate KIND --out OUT` writes.
+
+Hexapod: OUT (the calibrated machine JSON), OUT.hal (genhexkins setp block),
+OUT.pkmhexkins.hal and OUT.summary.json (OUT without .json as the stem). Exechon: OUT,
+OUT.summary.json and with hybrid data OUT.errors.json. The summary's "outputs" name them.
+
+Returns
+-------
+list of str
+    The paths written.
+
+Raises
+------
+ValueError
+    When a file exists and not `force` (nothing is written then), or cannot be written.)doc";
+
 }  // namespace
 
 const std::string& CalibrationResult::summaryJson() const {
@@ -264,52 +328,7 @@ CalibrationResult exechonResult(workflow::ExechonCalibrationResult result) {
 }
 
 void exposeCalibrationResult(py::module_& m) {
-  py::class_<CalibrationResult>(m, "CalibrationResult", R"doc(The result of a calibration.
-
-Attributes (lengths in the machine's unit, angles in rad unless the name says deg):
-
-machine : Hexapod or Exechon
-    The calibrated machine, usable at once (ik, fk, check).
-parameter_names, initial, parameters, change, standard_deviation, free : ndarray
-    The kinematic parameters (42 for a hexapod: per strut the base joint bx, by, bz, the
-    platform joint px, py, pz and the length offset; 26 for an Exechon), in the order of the
-    summary document's "parameters"; `free` is False for parameters held (`fix`).
-covariance : ndarray
-    The estimate's covariance (hexapod 42 x 42; Exechon 26 x 26, or 32 x 32 with the tracker
-    frame), rows named by `covariance_names`; zero rows and columns for fixed parameters.
-sigma : float
-    The residual standard deviation the covariance uses.
-rank, condition_number : int, float
-    Identifiability of the free unknowns (with the tracker frame and backlash when fitted).
-identifiability : dict
-    parameters, equations, rank, condition_number, unidentifiable (one {name: coefficient}
-    dict per direction the data cannot see), names (the columns), singular_values and
-    null_space (columns x unidentifiable directions) as arrays.
-residuals_before, residuals_after : dict
-    equations, rms, max, fk_failures of the fitted data before and after.
-holdout : dict or None
-    The held-out errors before and after ("before"/"after": poses, fk_failures, mean, rms, max).
-holdout_errors_before, holdout_errors_after : ndarray or None
-    |error| of each held-out observation (TCP or target position, length unit), in the order
-    of the held-out data (hexapod: poses, then points); NaN where the FK did not converge.
-    Before: the nominal machine (with its own fitted tracker frame); after: the calibrated one.
-converged, iterations, termination : bool, int, str
-    How the solver stopped.
-measurement_frame : ndarray (4, 4) or None
-    world_T_tracker, estimated when the readings are in the tracker's frame; frame_sigma its
-    standard deviations (dx, dy, dz, rx, ry, rz; world axes).
-worst_observations, tcp_error_map, monte_carlo, observations, target_offset, uncertainty
-    As in the summary document (None when it has no such member).
-expanded_uncertainty : ndarray or None
-    U (k = 2) of each parameter from the uncertainty budgets, when the summary has them.
-backlash, backlash_sigma : ndarray (6,) or None
-    Hexapod, with backlash=True: the per-strut backlash.
-squareness, squareness_names, squareness_sigma, hybrid, geometric_errors
-    Exechon with hybrid data: szX2, sxP, syP, szP (rad), the hybrid fit's summary and the
-    estimated geometric errors document (CAL.errors.json); None otherwise.
-hybrid_holdout_errors_before, hybrid_holdout_errors_after : ndarray or None
-    |error| of each held-out hybrid observation (NaN: a command the tripod cannot reach).
-)doc")
+  py::class_<CalibrationResult>(m, "CalibrationResult", kCalibrationResultDoc)
       .def_readonly("kind", &CalibrationResult::kind, "'hexapod' or 'exechon'.")
       .def("__getattr__",
            [](const CalibrationResult& r, const std::string& name) -> py::object {
@@ -361,21 +380,7 @@ hybrid_holdout_errors_before, hybrid_holdout_errors_after : ndarray or None
           },
           py::arg("out"),
           py::arg("force") = false,
-          R"doc(Writes the files `pkm calibrate KIND --out OUT` writes.
-
-Hexapod: OUT (the calibrated machine JSON), OUT.hal (genhexkins setp block),
-OUT.pkmhexkins.hal and OUT.summary.json (OUT without .json as the stem). Exechon: OUT,
-OUT.summary.json and with hybrid data OUT.errors.json. The summary's "outputs" name them.
-
-Returns
--------
-list of str
-    The paths written.
-
-Raises
-------
-ValueError
-    When a file exists and not `force` (nothing is written then), or cannot be written.)doc")
+          kCalibrationSaveDoc)
       .def("__str__",
            &CalibrationResult::text,
            "The text summary `pkm calibrate KIND` prints, line for line (its \"wrote\" line "

@@ -30,7 +30,7 @@ struct CampaignSummary {
 
 /// A summary row key as an array over the rows: numbers and nulls as float64 (null: NaN),
 /// anything else as numpy makes it (strings, booleans).
-py::object columnOf(const CampaignSummary& s, const std::string& key) {
+py::object summaryColumnOf(const CampaignSummary& s, const std::string& key) {
   const py::list rows = s.doc["rows"];
   py::list values;
   bool numeric = true;
@@ -170,9 +170,8 @@ py::dict campaignSensitivity(const py::object& campaign,
   return jsonLoads(r.json);
 }
 
-}  // namespace
-
-void exposeCampaign(py::module_& m) {
+/// Registers pkm.CampaignSummary in `m`.
+void defCampaignSummary(py::module_& m) {
   py::class_<CampaignSummary>(
       m,
       "CampaignSummary",
@@ -202,7 +201,7 @@ void exposeCampaign(py::module_& m) {
           },
           "summary.json as a dict (a copy).")
       .def("column",
-           &columnOf,
+           &summaryColumnOf,
            py::arg("key"),
            R"doc(One key of every summary row as an array.
 
@@ -236,19 +235,10 @@ key : str
                            py::len(s.doc["rows"]),
                            s.result.all_pass ? "all targets met" : "SOME TARGETS MISSED");
       });
+}
 
-  m.def("run_campaign",
-        &runCampaign,
-        py::arg("campaign") = "default",
-        py::kw_only(),
-        py::arg("out"),
-        py::arg("force") = false,
-        py::arg("db") = py::none(),
-        py::arg("progress") = py::none(),
-        py::arg("environment") = py::none(),
-        py::arg("uncertainty") = py::none(),
-        py::arg("seed") = py::none(),
-        R"doc(Runs a campaign into a folder, as `pkm campaign run CAMPAIGN --out OUT --no-db`.
+constexpr const char* kRunCampaignDoc =
+    R"doc(Runs a campaign into a folder, as `pkm campaign run CAMPAIGN --out OUT --no-db`.
 
 Each step measures on a virtual machine with known errors (or reads measured files), analyses,
 calibrates, writes the controller compensation and measures again (docs/campaign.md). The GIL
@@ -289,21 +279,10 @@ Raises
 ------
 ValueError
     A bad campaign, step or data file (pkm's message, naming it), an unknown name, or an output
-    folder that is not empty without `force`.)doc");
+    folder that is not empty without `force`.)doc";
 
-  m.def(
-      "campaign_sensitivity",
-      &campaignSensitivity,
-      py::arg("campaign") = "default",
-      py::kw_only(),
-      py::arg("source"),
-      py::arg("values"),
-      py::arg("out"),
-      py::arg("environment") = py::none(),
-      py::arg("uncertainty") = py::none(),
-      py::arg("seed") = py::none(),
-      py::arg("force") = false,
-      R"doc(A sensitivity study, as `pkm campaign sensitivity CAMPAIGN --source SOURCE --values ...`.
+constexpr const char* kCampaignSensitivityDoc =
+    R"doc(A sensitivity study, as `pkm campaign sensitivity CAMPAIGN --source SOURCE --values ...`.
 
 One error source of the simulated environment is set to each value on top of a base
 environment, the campaign runs once per value into OUT/runs/value-K/, and OUT/sensitivity.json,
@@ -340,7 +319,38 @@ Raises
 ------
 ValueError
     An unknown source (the message lists the valid paths), bad values, a bad file, or an output
-    folder that is not empty without `force`.)doc");
+    folder that is not empty without `force`.)doc";
+
+}  // namespace
+
+void exposeCampaign(py::module_& m) {
+  defCampaignSummary(m);
+
+  m.def("run_campaign",
+        &runCampaign,
+        py::arg("campaign") = "default",
+        py::kw_only(),
+        py::arg("out"),
+        py::arg("force") = false,
+        py::arg("db") = py::none(),
+        py::arg("progress") = py::none(),
+        py::arg("environment") = py::none(),
+        py::arg("uncertainty") = py::none(),
+        py::arg("seed") = py::none(),
+        kRunCampaignDoc);
+
+  m.def("campaign_sensitivity",
+        &campaignSensitivity,
+        py::arg("campaign") = "default",
+        py::kw_only(),
+        py::arg("source"),
+        py::arg("values"),
+        py::arg("out"),
+        py::arg("environment") = py::none(),
+        py::arg("uncertainty") = py::none(),
+        py::arg("seed") = py::none(),
+        py::arg("force") = false,
+        kCampaignSensitivityDoc);
 
   m.def(
       "campaigns",

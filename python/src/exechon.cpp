@@ -1,6 +1,7 @@
 // pkm.Exechon: tool pose <-> legs and wrist C, A with the dependent rotational motion, tripod IK
-// from wrist points, checks and the DRM circle, on numpy arrays (the rules of
-// `pkm exechon ik|fk|check|drm`: workflow::ExechonPosePath, ExechonFkPath, solveWristPoint).
+// from wrist points, checks and the DRM circle (exechon_drm_circle.cpp), on numpy arrays (the
+// rules of `pkm exechon ik|fk|check|drm`: workflow::ExechonPosePath, ExechonFkPath,
+// solveWristPoint).
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
@@ -9,10 +10,10 @@
 #include <optional>
 
 #include "common.hpp"
+#include "exechon_drm_circle.hpp"
 #include "machines.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
-#include "pkm/kinematics/exechon_drm.hpp"
 #include "pkm/workflow/kinematics_path.hpp"
 
 namespace pkm::python {
@@ -66,7 +67,7 @@ std::pair<DoubleArray, DoubleArray> toolRows(py::handle points, py::handle direc
   return {p, d};
 }
 
-py::dict ik(
+py::dict exechonIk(
     const Exechon& e, py::handle points, py::handle directions, py::handle x2y2_obj, bool raise) {
   const auto [p, d] = toolRows(points, directions);
   const py::ssize_t n = p.shape(0);
@@ -101,7 +102,7 @@ py::dict ik(
   return out;
 }
 
-py::tuple fk(const Exechon& e, py::handle joints_obj, py::handle x2y2_obj, bool raise) {
+py::tuple exechonFk(const Exechon& e, py::handle joints_obj, py::handle x2y2_obj, bool raise) {
   const DoubleArray joints = rowsOf(joints_obj, 5, "joints", true);
   const py::ssize_t n = joints.shape(0);
   const std::optional<DoubleArray> x2y2 = x2y2Of(e, x2y2_obj, n);
@@ -154,7 +155,7 @@ py::tuple ikWrist(const Exechon& e, py::handle wrist) {
   return py::make_tuple(readings, params, statusArray(words));
 }
 
-py::dict check(
+py::dict exechonCheck(
     const Exechon& e, py::handle points, py::handle directions, py::handle x2y2_obj, bool raise) {
   const auto [p, d] = toolRows(points, directions);
   const py::ssize_t n = p.shape(0);
@@ -212,64 +213,113 @@ py::dict check(
   return out;
 }
 
-py::dict drmCircle(
-    const Exechon& e, py::handle centre, double radius, double step_deg, py::handle direction) {
-  kin::DrmCircleOptions opt;
-  opt.centre = Eigen::Vector3d(vectorOf(centre, 3, "center").data());
-  opt.direction = Eigen::Vector3d(vectorOf(direction, 3, "direction").data());
-  opt.radius = radius;
-  opt.step = degToRad(step_deg);
-  std::string why;
-  if (!opt.isValid(&why)) throw InvalidArgument(fmt::format("invalid circle: {}", why));
-  kin::DrmCircleResult r;
-  {
-    py::gil_scoped_release release;
-    kin::ExechonData data(e.machine->model);
-    r = kin::sampleDrmCircle(e.machine->model, data, opt);
-  }
-  if (!r.ok())
-    throw InvalidArgument(fmt::format("the circle leaves the workspace at point {} ({})",
-                                      r.failed_index,
-                                      kin::toString(r.status)));
-  const auto m = static_cast<py::ssize_t>(r.theta.size());
-  py::array_t<double> theta = newArray(m), phi = newArray(m), fit = newArray(m);
-  for (py::ssize_t i = 0; i < m; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    theta.mutable_data()[i] = radToDeg(r.theta[k]);
-    phi.mutable_data()[i] = radToDeg(r.phi[k]);
-    fit.mutable_data()[i] = radToDeg(kin::evaluateDrmPolynomial(r.coefficients, r.theta[k]));
-  }
-  py::array_t<double> coefficients = newArray(6);
-  std::copy(r.coefficients.begin(), r.coefficients.end(), coefficients.mutable_data());
-  py::dict out;
-  out["theta_deg"] = theta;
-  out["phi_deg"] = phi;
-  out["fit_deg"] = fit;
-  out["coefficients"] = coefficients;
-  out["max_abs_phi_deg"] = radToDeg(r.max_abs_phi);
-  out["max_fit_deviation_deg"] = radToDeg(r.max_fit_deviation);
-  return out;
+constexpr const char* kExechonIkDoc = R"doc(Tool IK along a path (as `pkm exechon ik --poses`).
+
+Rows are solved by continuity from home; on a hybrid machine X2/Y2 take their share first
+(the given x2y2, or pkm's centred split).
+
+Parameters
+----------
+points : array_like, shape (N, 3)
+    Tool points x, y, z (world frame, or work frame of a hybrid machine; machine unit).
+directions : array_like, shape (N, 3) or (3,)
+    Tool directions i, j, k (normalised by pkm); one row is used for every point.
+x2y2 : array_like, shape (N, 2), optional
+    X2, Y2 positions (hybrid machines only).
+raise_on_failure : bool, default False
+    Raise pkm.LimitError naming the first row whose status is not "ok".
+
+Returns
+-------
+dict
+    joints (N, 5): q1, q2, q3 (machine unit), c, a (degrees), NaN when unsolved;
+    drm (N,): the dependent rotation about the tool axis from the first solved pose,
+    degrees; status (N,) str; x2y2 (N, 2) on a hybrid machine.)doc";
+
+constexpr const char* kExechonFkDoc =
+    R"doc(Tool FK along a path (as `pkm exechon fk`), each row seeded by the previous.
+
+Parameters
+----------
+joints : array_like, shape (N, 5)
+    q1, q2, q3 (machine unit), c, a (degrees).
+x2y2 : array_like, shape (N, 2), optional
+    Hybrid machines: the tool point is then carried into the work frame.
+raise_on_failure : bool, default False
+    Raise pkm.ConvergenceError naming the first row that did not converge.
+
+Returns
+-------
+(points (N, 3), directions (N, 3), status (N,) str, iterations (N,) int); NaN on failed rows.)doc";
+
+constexpr const char* kExechonIkWristDoc =
+    R"doc(Tripod IK at wrist points S (as `pkm exechon ik --wrist`).
+
+Parameters
+----------
+wrist_points : array_like, shape (N, 3)
+    S in Zoppi's tripod base frame, machine unit.
+
+Returns
+-------
+(readings (N, 3) q1..q3, e (N, 3) alpha, beta (degrees), h (machine unit), status (N,) str).)doc";
+
+constexpr const char* kExechonCheckDoc =
+    R"doc(Limit checks along a path of tool poses (as `pkm exechon check`).
+
+Returns
+-------
+dict
+    status (N,) str; stroke_margin (N, 3) machine unit; alpha_margin_deg, beta_margin_deg,
+    c_margin_deg, a_margin_deg (N,) degrees; wrist_at_pole (N,) bool; condition_number,
+    condition_margin (N,); violations (per row a list of dicts). NaN where unsolved,
+    +inf for a disabled limit.)doc";
+
+/// Registers pkm.Exechon's ik, fk, ik_wrist and check on `cls`.
+void defExechonKinematics(py::class_<Exechon>& cls) {
+  cls.def("ik",
+          &exechonIk,
+          py::arg("points"),
+          py::arg("directions"),
+          py::arg("x2y2") = py::none(),
+          py::arg("raise_on_failure") = false,
+          kExechonIkDoc)
+      .def("fk",
+           &exechonFk,
+           py::arg("joints"),
+           py::arg("x2y2") = py::none(),
+           py::arg("raise_on_failure") = false,
+           kExechonFkDoc)
+      .def("ik_wrist", &ikWrist, py::arg("wrist_points"), kExechonIkWristDoc)
+      .def("check",
+           &exechonCheck,
+           py::arg("points"),
+           py::arg("directions"),
+           py::arg("x2y2") = py::none(),
+           py::arg("raise_on_failure") = false,
+           kExechonCheckDoc);
 }
 
 }  // namespace
 
 void exposeExechon(py::module_& m) {
-  py::class_<Exechon>(m,
-                      "Exechon",
-                      "An Exechon-type tripod with a C/A wrist (possibly on the extending axes "
-                      "X2/Y2 of a hybrid machine), as `pkm.load_machine` loads it.\n\n"
-                      "Tool poses are a tool point (world frame, or the work frame of a hybrid "
-                      "machine; machine unit) and a tool direction (unit vector, normalised by "
-                      "pkm). Joints are the leg readings q1, q2, q3 (machine unit) and the wrist "
-                      "readings C, A (degrees).")
-      .def("__repr__",
-           [](const Exechon& e) {
-             return fmt::format("<pkm.Exechon '{}' from {} ({}{})>",
-                                e.machine->model.name,
-                                e.machine->source,
-                                toString(e.machine->model.unit),
-                                e.machine->hybrid ? ", hybrid X2/Y2" : "");
-           })
+  py::class_<Exechon> cls(
+      m,
+      "Exechon",
+      "An Exechon-type tripod with a C/A wrist (possibly on the extending axes "
+      "X2/Y2 of a hybrid machine), as `pkm.load_machine` loads it.\n\n"
+      "Tool poses are a tool point (world frame, or the work frame of a hybrid "
+      "machine; machine unit) and a tool direction (unit vector, normalised by "
+      "pkm). Joints are the leg readings q1, q2, q3 (machine unit) and the wrist "
+      "readings C, A (degrees).");
+  cls.def("__repr__",
+          [](const Exechon& e) {
+            return fmt::format("<pkm.Exechon '{}' from {} ({}{})>",
+                               e.machine->model.name,
+                               e.machine->source,
+                               toString(e.machine->model.unit),
+                               e.machine->hybrid ? ", hybrid X2/Y2" : "");
+          })
       .def("__str__",
            [](const Exechon& e) {
              return fmt::format("Exechon '{}' ({}), unit {}{}\n{}",
@@ -312,112 +362,9 @@ void exposeExechon(py::module_& m) {
       .def(
           "to_json",
           [](const Exechon& e) { return io::writeExechonJson(*e.machine); },
-          "The machine as a pkm JSON machine file (`pkm exechon describe`).")
-      .def("ik",
-           &ik,
-           py::arg("points"),
-           py::arg("directions"),
-           py::arg("x2y2") = py::none(),
-           py::arg("raise_on_failure") = false,
-           R"doc(Tool IK along a path (as `pkm exechon ik --poses`).
-
-Rows are solved by continuity from home; on a hybrid machine X2/Y2 take their share first
-(the given x2y2, or pkm's centred split).
-
-Parameters
-----------
-points : array_like, shape (N, 3)
-    Tool points x, y, z (world frame, or work frame of a hybrid machine; machine unit).
-directions : array_like, shape (N, 3) or (3,)
-    Tool directions i, j, k (normalised by pkm); one row is used for every point.
-x2y2 : array_like, shape (N, 2), optional
-    X2, Y2 positions (hybrid machines only).
-raise_on_failure : bool, default False
-    Raise pkm.LimitError naming the first row whose status is not "ok".
-
-Returns
--------
-dict
-    joints (N, 5): q1, q2, q3 (machine unit), c, a (degrees), NaN when unsolved;
-    drm (N,): the dependent rotation about the tool axis from the first solved pose,
-    degrees; status (N,) str; x2y2 (N, 2) on a hybrid machine.)doc")
-      .def("fk",
-           &fk,
-           py::arg("joints"),
-           py::arg("x2y2") = py::none(),
-           py::arg("raise_on_failure") = false,
-           R"doc(Tool FK along a path (as `pkm exechon fk`), each row seeded by the previous.
-
-Parameters
-----------
-joints : array_like, shape (N, 5)
-    q1, q2, q3 (machine unit), c, a (degrees).
-x2y2 : array_like, shape (N, 2), optional
-    Hybrid machines: the tool point is then carried into the work frame.
-raise_on_failure : bool, default False
-    Raise pkm.ConvergenceError naming the first row that did not converge.
-
-Returns
--------
-(points (N, 3), directions (N, 3), status (N,) str, iterations (N,) int); NaN on failed rows.)doc")
-      .def("ik_wrist",
-           &ikWrist,
-           py::arg("wrist_points"),
-           R"doc(Tripod IK at wrist points S (as `pkm exechon ik --wrist`).
-
-Parameters
-----------
-wrist_points : array_like, shape (N, 3)
-    S in Zoppi's tripod base frame, machine unit.
-
-Returns
--------
-(readings (N, 3) q1..q3, e (N, 3) alpha, beta (degrees), h (machine unit), status (N,) str).)doc")
-      .def("check",
-           &check,
-           py::arg("points"),
-           py::arg("directions"),
-           py::arg("x2y2") = py::none(),
-           py::arg("raise_on_failure") = false,
-           R"doc(Limit checks along a path of tool poses (as `pkm exechon check`).
-
-Returns
--------
-dict
-    status (N,) str; stroke_margin (N, 3) machine unit; alpha_margin_deg, beta_margin_deg,
-    c_margin_deg, a_margin_deg (N,) degrees; wrist_at_pole (N,) bool; condition_number,
-    condition_margin (N,); violations (per row a list of dicts). NaN where unsolved,
-    +inf for a disabled limit.)doc")
-      .def("drm_circle",
-           &drmCircle,
-           py::arg("center"),
-           py::arg("radius"),
-           py::arg("step") = 1.0,
-           py::arg("direction") = std::vector<double>{0.0, 0.0, -1.0},
-           R"doc(Dependent rotational motion along a circle of tool points (as `pkm exechon drm`).
-
-Parameters
-----------
-center : array_like, shape (3,)
-    Circle centre (world frame, machine unit); the DRM reference.
-radius : float
-    Machine unit, > 0.
-step : float, default 1
-    Angle step, degrees.
-direction : array_like, shape (3,), default (0, 0, -1)
-    Tool direction = normal of the circle's plane.
-
-Returns
--------
-dict
-    theta_deg, phi_deg, fit_deg (M,): the samples and the 5th-order fit, degrees;
-    coefficients (6,): c0..c5 of phi(theta) with both in radians (seed 003 eq. 10);
-    max_abs_phi_deg, max_fit_deviation_deg.
-
-Raises
-------
-ValueError
-    For an invalid circle or one that leaves the workspace.)doc");
+          "The machine as a pkm JSON machine file (`pkm exechon describe`).");
+  defExechonKinematics(cls);
+  defExechonDrmCircle(cls);
 }
 
 }  // namespace pkm::python

@@ -91,14 +91,8 @@ Moves moves(const py::object& program,
   return movesOf(std::move(result), r.program.name);
 }
 
-}  // namespace
-
-void exposeGcode(py::module_& m) {
-  py::module_ g = m.def_submodule(
-      "gcode",
-      "RS274NGC (LinuxCNC 2.9) G-code programs: the interpreted moves, runs on a hexapod or an "
-      "Exechon, compensated and flattened programs (`pkm gcode moves|run|compensate|flatten`, "
-      "docs/gcode.md).");
+/// Registers pkm.gcode.Moves in `g`.
+void defMovesClass(py::module_& g) {
   py::class_<Moves>(g,
                     "Moves",
                     "The motions of a program, one row per motion as `pkm gcode moves` prints "
@@ -142,6 +136,17 @@ void exposeGcode(py::module_& m) {
       .def("__len__", [](const Moves& x) { return x.result.moves; })
       .def("__repr__",
            [](const Moves& x) { return fmt::format("<pkm.gcode.Moves: {}>", x.result.note); });
+}
+
+}  // namespace
+
+void exposeGcode(py::module_& m) {
+  py::module_ g = m.def_submodule(
+      "gcode",
+      "RS274NGC (LinuxCNC 2.9) G-code programs: the interpreted moves, runs on a hexapod or an "
+      "Exechon, compensated and flattened programs (`pkm gcode moves|run|compensate|flatten`, "
+      "docs/gcode.md).");
+  defMovesClass(g);
 
   g.def("moves",
         &moves,

@@ -166,9 +166,8 @@ Run run(const py::object& machine,
   return r;
 }
 
-}  // namespace
-
-void exposeGcodeRun(py::module_& g) {
+/// Registers pkm.gcode.Run in `g`.
+void defGcodeRunClass(py::module_& g) {
   py::class_<Run>(g,
                   "Run",
                   "A program run on a machine (`pkm gcode run`): the interpolated path in joint "
@@ -229,34 +228,10 @@ void exposeGcodeRun(py::module_& g) {
                            r.result.report.cycle_time_s,
                            r.result.ok() ? "ok" : "VIOLATED");
       });
+}
 
-  g.def("run",
-        &run,
-        py::arg("machine"),
-        py::arg("program"),
-        py::kw_only(),
-        py::arg("tolerance") = py::none(),
-        py::arg("strut_diameter") = py::none(),
-        py::arg("ini") = py::none(),
-        py::arg("max_joint_velocity") = py::none(),
-        py::arg("max_joint_acceleration") = py::none(),
-        py::arg("max_wrist_velocity") = py::none(),
-        py::arg("max_wrist_acceleration") = py::none(),
-        py::arg("rapid_rate") = py::none(),
-        py::arg("orientation") = "vector",
-        py::arg("tool_table") = py::none(),
-        py::arg("tool_units") = "mm",
-        py::arg("block_delete") = false,
-        py::arg("max_iterations") = cnc::InterpreterOptions{}.max_loop_iterations,
-        py::arg("max_points") = cnc::kDefaultMaxPathPoints,
-        py::arg("path_points") = py::none(),
-        py::arg("max_violations") = std::size_t{0},
-        py::arg("out") = py::none(),
-        py::arg("report") = py::none(),
-        py::arg("force") = false,
-        py::arg("name") = py::none(),
-        py::arg("raise_on_violation") = false,
-        R"doc(Runs a program on a hexapod or an Exechon, as `pkm gcode run PROGRAM --machine M`.
+constexpr const char* kGcodeRunDoc =
+    R"doc(Runs a program on a hexapod or an Exechon, as `pkm gcode run PROGRAM --machine M`.
 
 Interprets the program, interpolates every motion within the chordal tolerance, converts each
 point to the machine's joints, times the path under the joint rate limits and checks every limit
@@ -320,7 +295,40 @@ ValueError
     `max_points` points, an unknown machine, a bad option or existing files without `force`
     (pkm's messages).
 pkm.LimitError
-    With raise_on_violation, when a check is violated.)doc");
+    With raise_on_violation, when a check is violated.)doc";
+
+}  // namespace
+
+void exposeGcodeRun(py::module_& g) {
+  defGcodeRunClass(g);
+
+  g.def("run",
+        &run,
+        py::arg("machine"),
+        py::arg("program"),
+        py::kw_only(),
+        py::arg("tolerance") = py::none(),
+        py::arg("strut_diameter") = py::none(),
+        py::arg("ini") = py::none(),
+        py::arg("max_joint_velocity") = py::none(),
+        py::arg("max_joint_acceleration") = py::none(),
+        py::arg("max_wrist_velocity") = py::none(),
+        py::arg("max_wrist_acceleration") = py::none(),
+        py::arg("rapid_rate") = py::none(),
+        py::arg("orientation") = "vector",
+        py::arg("tool_table") = py::none(),
+        py::arg("tool_units") = "mm",
+        py::arg("block_delete") = false,
+        py::arg("max_iterations") = cnc::InterpreterOptions{}.max_loop_iterations,
+        py::arg("max_points") = cnc::kDefaultMaxPathPoints,
+        py::arg("path_points") = py::none(),
+        py::arg("max_violations") = std::size_t{0},
+        py::arg("out") = py::none(),
+        py::arg("report") = py::none(),
+        py::arg("force") = false,
+        py::arg("name") = py::none(),
+        py::arg("raise_on_violation") = false,
+        kGcodeRunDoc);
 }
 
 }  // namespace pkm::python

@@ -1,13 +1,14 @@
-// pkm.Hexapod: geometry, inverse and forward kinematics, Jacobian and limit checks on numpy arrays
-// (the rules of `pkm hexapod ik|fk|check`: kinematics::checkPose, workflow::HexapodFkPath).
+// pkm.Hexapod: geometry (hexapod_geometry.cpp), inverse and forward kinematics, Jacobian and limit
+// checks on numpy arrays (the rules of `pkm hexapod ik|fk|check`: kinematics::checkPose,
+// workflow::HexapodFkPath).
 #include <fmt/format.h>
 #include <pybind11/stl.h>
 
 #include <optional>
 
 #include "common.hpp"
+#include "hexapod_geometry.hpp"
 #include "machines.hpp"
-#include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/io/machine_description.hpp"
 #include "pkm/kinematics/hexapod_checks.hpp"
@@ -29,7 +30,7 @@ kin::PoseRpy poseAt(const double* p) {
 
 const kin::HexapodModel& modelOf(const Hexapod& h) { return h.machine->model; }
 
-py::object ik(const Hexapod& h, py::handle poses_obj, bool status, bool raise) {
+py::object hexapodIk(const Hexapod& h, py::handle poses_obj, bool status, bool raise) {
   bool single = false;
   const DoubleArray poses = rowsOf(poses_obj, 6, "poses", true, &single);
   const py::ssize_t n = poses.shape(0);
@@ -60,7 +61,7 @@ py::object ik(const Hexapod& h, py::handle poses_obj, bool status, bool raise) {
   return py::make_tuple(readings, statusArray(words));
 }
 
-py::tuple fk(
+py::tuple hexapodFk(
     const Hexapod& h, py::handle lengths_obj, py::handle seed_obj, bool from_seed, bool raise) {
   bool single = false;
   const DoubleArray lengths = rowsOf(lengths_obj, 6, "lengths", true, &single);
@@ -118,7 +119,7 @@ py::array_t<double> jacobian(const Hexapod& h, py::handle poses_obj) {
   return out;
 }
 
-py::dict check(const Hexapod& h, py::handle poses_obj, bool raise) {
+py::dict hexapodCheck(const Hexapod& h, py::handle poses_obj, bool raise) {
   const DoubleArray poses = rowsOf(poses_obj, 6, "poses", true);
   const py::ssize_t n = poses.shape(0);
   std::vector<kin::HexapodCheckResult> results(static_cast<std::size_t>(n));
@@ -182,149 +183,8 @@ py::dict check(const Hexapod& h, py::handle poses_obj, bool raise) {
   return d;
 }
 
-/// (6, 3) array of a per-strut vector.
-py::array_t<double> strutVectors(const Hexapod& h, Eigen::Vector3d kin::Strut::*field) {
-  py::array_t<double> a = newArray(6, 3);
-  for (int i = 0; i < kin::kStruts; ++i)
-    for (int k = 0; k < 3; ++k)
-      a.mutable_data()[3 * i + k] = (modelOf(h).struts[static_cast<std::size_t>(i)].*field)[k];
-  return a;
-}
-
-Hexapod withGeometry(const Hexapod& h,
-                     py::handle base,
-                     py::handle platform,
-                     py::handle offsets,
-                     py::handle stroke,
-                     py::handle tool_offset) {
-  auto m = std::make_shared<io::HexapodMachine>(*h.machine);
-  if (!base.is_none()) {
-    const DoubleArray b = rowsOf(base, 3, "base_joints", false);
-    if (b.shape(0) != 6) throw InvalidArgument("base_joints: expected shape (6, 3)");
-    for (std::size_t i = 0; i < 6; ++i)
-      m->model.struts[i].world_p_base = Eigen::Vector3d(b.data() + 3 * i);
-  }
-  if (!platform.is_none()) {
-    const DoubleArray p = rowsOf(platform, 3, "platform_joints", false);
-    if (p.shape(0) != 6) throw InvalidArgument("platform_joints: expected shape (6, 3)");
-    for (std::size_t i = 0; i < 6; ++i)
-      m->model.struts[i].platform_p_joint = Eigen::Vector3d(p.data() + 3 * i);
-  }
-  if (!offsets.is_none()) {
-    const DoubleArray o = vectorOf(offsets, 6, "length_offsets");
-    for (std::size_t i = 0; i < 6; ++i) m->model.struts[i].length_offset = o.data()[i];
-  }
-  if (!stroke.is_none()) {
-    const DoubleArray s = rowsOf(stroke, 2, "stroke", false);
-    if (s.shape(0) != 6) throw InvalidArgument("stroke: expected shape (6, 2)");
-    for (std::size_t i = 0; i < 6; ++i) {
-      m->model.struts[i].min_reading = s.data()[2 * i];
-      m->model.struts[i].max_reading = s.data()[2 * i + 1];
-    }
-  }
-  if (!tool_offset.is_none())
-    m->model.tool_offset = Eigen::Vector3d(vectorOf(tool_offset, 3, "tool_offset").data());
-  m->model.validate();
-  m->source = fmt::format("{} (geometry changed)", h.machine->source);
-  return Hexapod{std::move(m)};
-}
-
-}  // namespace
-
-void exposeHexapod(py::module_& m) {
-  py::class_<Hexapod>(
-      m,
-      "Hexapod",
-      "A hexapod (6-UPS Stewart platform) machine, as `pkm.load_machine` loads it.\n\n"
-      "Poses are rows x, y, z, a, b, c: the TCP in the world (base) frame in the "
-      "machine's length unit and LinuxCNC roll-pitch-yaw angles in degrees "
-      "(R = Rz(c) Ry(b) Rx(a)). Strut readings are l0..l5 in the machine unit.")
-      .def("__str__", [](const Hexapod& h) { return io::describeHexapodMachine(*h.machine); })
-      .def("__repr__",
-           [](const Hexapod& h) {
-             return fmt::format("<pkm.Hexapod '{}' from {} ({})>",
-                                h.machine->model.name,
-                                h.machine->source,
-                                toString(h.machine->model.unit));
-           })
-      .def_property_readonly("name", [](const Hexapod& h) { return h.machine->model.name; })
-      .def_property_readonly(
-          "source",
-          [](const Hexapod& h) { return h.machine->source; },
-          "Where the machine came from: a path or 'builtin:NAME'.")
-      .def_property_readonly("description", [](const Hexapod& h) { return h.machine->description; })
-      .def_property_readonly(
-          "notices",
-          [](const Hexapod& h) { return h.machine->notices; },
-          "What the reader ignored or assumed (the CLI's 'pkm: note:' lines).")
-      .def_property_readonly(
-          "unit", [](const Hexapod& h) { return std::string(toString(h.machine->model.unit)); })
-      .def_property_readonly(
-          "base_joints",
-          [](const Hexapod& h) { return strutVectors(h, &kin::Strut::world_p_base); },
-          "(6, 3) base joint centres b_i, world frame, machine unit.")
-      .def_property_readonly(
-          "platform_joints",
-          [](const Hexapod& h) { return strutVectors(h, &kin::Strut::platform_p_joint); },
-          "(6, 3) platform joint centres a_i, platform frame, machine unit.")
-      .def_property_readonly(
-          "length_offsets",
-          [](const Hexapod& h) {
-            py::array_t<double> a = newArray(6);
-            for (std::size_t i = 0; i < 6; ++i)
-              a.mutable_data()[i] = h.machine->model.struts[i].length_offset;
-            return a;
-          },
-          "(6,) reading + offset = joint-centre distance, machine unit.")
-      .def_property_readonly(
-          "stroke",
-          [](const Hexapod& h) {
-            py::array_t<double> a = newArray(6, 2);
-            for (std::size_t i = 0; i < 6; ++i) {
-              a.mutable_data()[2 * i] = h.machine->model.struts[i].min_reading;
-              a.mutable_data()[2 * i + 1] = h.machine->model.struts[i].max_reading;
-            }
-            return a;
-          },
-          "(6, 2) lowest and highest strut reading, machine unit (+-inf: no limit).")
-      .def_property_readonly(
-          "tool_offset",
-          [](const Hexapod& h) {
-            py::array_t<double> a = newArray(3);
-            Eigen::Map<Eigen::Vector3d>(a.mutable_data()) = h.machine->model.tool_offset;
-            return a;
-          },
-          "(3,) TCP in the platform frame, machine unit.")
-      .def_property_readonly(
-          "home",
-          [](const Hexapod& h) {
-            py::array_t<double> a = newArray(6);
-            const kin::PoseRpy& p = h.machine->model.home;
-            for (int k = 0; k < 3; ++k) a.mutable_data()[k] = p.position[k];
-            for (int k = 0; k < 3; ++k) a.mutable_data()[3 + k] = radToDeg(p.rpy[k]);
-            return a;
-          },
-          "(6,) home pose x, y, z, a, b, c (degrees): the FK seed.")
-      .def("with_geometry",
-           &withGeometry,
-           py::arg("base_joints") = py::none(),
-           py::arg("platform_joints") = py::none(),
-           py::arg("length_offsets") = py::none(),
-           py::arg("stroke") = py::none(),
-           py::arg("tool_offset") = py::none(),
-           "A new Hexapod with some geometry replaced (arrays shaped as the properties of the "
-           "same name; joint cones, limits and home are kept).\n\n"
-           "Raises\n------\nValueError\n    when the new geometry is unusable (pkm's message).")
-      .def(
-          "to_json",
-          [](const Hexapod& h) { return io::writeHexapodJson(*h.machine); },
-          "The machine as a pkm JSON machine file (`pkm hexapod describe --json`).")
-      .def("ik",
-           &ik,
-           py::arg("poses"),
-           py::arg("status") = false,
-           py::arg("raise_on_failure") = false,
-           R"doc(Inverse kinematics: poses -> strut readings (as `pkm hexapod ik`).
+constexpr const char* kHexapodIkDoc =
+    R"doc(Inverse kinematics: poses -> strut readings (as `pkm hexapod ik`).
 
 Parameters
 ----------
@@ -347,14 +207,10 @@ status : ndarray of str, shape (N,)
 Raises
 ------
 ValueError
-    For a wrong shape or a value that is not finite.)doc")
-      .def("fk",
-           &fk,
-           py::arg("lengths"),
-           py::arg("seed") = py::none(),
-           py::arg("from_seed") = false,
-           py::arg("raise_on_failure") = false,
-           R"doc(Forward kinematics along a path of strut readings (as `pkm hexapod fk`).
+    For a wrong shape or a value that is not finite.)doc";
+
+constexpr const char* kHexapodFkDoc =
+    R"doc(Forward kinematics along a path of strut readings (as `pkm hexapod fk`).
 
 Each row is seeded with the previous rows' solutions (a servo loop), the first with `seed`
 or home; after a failure the next row starts from home again.
@@ -378,11 +234,10 @@ poses : ndarray, shape (N, 6)
 status : ndarray of str, shape (N,)
     "ok", "no_convergence", "singular" or "invalid_input".
 iterations : ndarray of int, shape (N,)
-    Newton iterations per row.)doc")
-      .def("jacobian",
-           &jacobian,
-           py::arg("pose"),
-           R"doc(Strut Jacobian J_q_x = d(readings)/d(pose perturbation) at a pose.
+    Newton iterations per row.)doc";
+
+constexpr const char* kHexapodJacobianDoc =
+    R"doc(Strut Jacobian J_q_x = d(readings)/d(pose perturbation) at a pose.
 
 Rows are [u_i^T, (R a_i x u_i)^T]: translation of the TCP (machine unit) and a small rotation
 (radians) about world axes (docs/conventions.md, "Perturbations and the Jacobian").
@@ -394,12 +249,9 @@ pose : array_like, shape (6,) or (N, 6)
 
 Returns
 -------
-ndarray, shape (6, 6) or (N, 6, 6))doc")
-      .def("check",
-           &check,
-           py::arg("poses"),
-           py::arg("raise_on_failure") = false,
-           R"doc(Every limit check per pose (as `pkm hexapod check`).
+ndarray, shape (6, 6) or (N, 6, 6))doc";
+
+constexpr const char* kHexapodCheckDoc = R"doc(Every limit check per pose (as `pkm hexapod check`).
 
 Parameters
 ----------
@@ -416,7 +268,67 @@ dict
     min_leg_distance, interference_margin (N,) machine unit; closest_pair (N, 2) int
     (-1 when no pair is checked); condition_number, condition_margin (N,); violations: per
     pose a list of dicts (kind, item, value, limit, margin; joint angles in degrees).
-    Margins are >= 0 when a limit holds and +inf when it is disabled.)doc");
+    Margins are >= 0 when a limit holds and +inf when it is disabled.)doc";
+
+/// Registers pkm.Hexapod's ik, fk, jacobian and check on `cls`.
+void defHexapodKinematics(py::class_<Hexapod>& cls) {
+  cls.def("ik",
+          &hexapodIk,
+          py::arg("poses"),
+          py::arg("status") = false,
+          py::arg("raise_on_failure") = false,
+          kHexapodIkDoc)
+      .def("fk",
+           &hexapodFk,
+           py::arg("lengths"),
+           py::arg("seed") = py::none(),
+           py::arg("from_seed") = false,
+           py::arg("raise_on_failure") = false,
+           kHexapodFkDoc)
+      .def("jacobian", &jacobian, py::arg("pose"), kHexapodJacobianDoc)
+      .def("check",
+           &hexapodCheck,
+           py::arg("poses"),
+           py::arg("raise_on_failure") = false,
+           kHexapodCheckDoc);
+}
+
+}  // namespace
+
+void exposeHexapod(py::module_& m) {
+  py::class_<Hexapod> cls(
+      m,
+      "Hexapod",
+      "A hexapod (6-UPS Stewart platform) machine, as `pkm.load_machine` loads it.\n\n"
+      "Poses are rows x, y, z, a, b, c: the TCP in the world (base) frame in the "
+      "machine's length unit and LinuxCNC roll-pitch-yaw angles in degrees "
+      "(R = Rz(c) Ry(b) Rx(a)). Strut readings are l0..l5 in the machine unit.");
+  cls.def("__str__", [](const Hexapod& h) { return io::describeHexapodMachine(*h.machine); })
+      .def("__repr__",
+           [](const Hexapod& h) {
+             return fmt::format("<pkm.Hexapod '{}' from {} ({})>",
+                                h.machine->model.name,
+                                h.machine->source,
+                                toString(h.machine->model.unit));
+           })
+      .def_property_readonly("name", [](const Hexapod& h) { return h.machine->model.name; })
+      .def_property_readonly(
+          "source",
+          [](const Hexapod& h) { return h.machine->source; },
+          "Where the machine came from: a path or 'builtin:NAME'.")
+      .def_property_readonly("description", [](const Hexapod& h) { return h.machine->description; })
+      .def_property_readonly(
+          "notices",
+          [](const Hexapod& h) { return h.machine->notices; },
+          "What the reader ignored or assumed (the CLI's 'pkm: note:' lines).")
+      .def_property_readonly(
+          "unit", [](const Hexapod& h) { return std::string(toString(h.machine->model.unit)); });
+  defHexapodGeometry(cls);
+  cls.def(
+      "to_json",
+      [](const Hexapod& h) { return io::writeHexapodJson(*h.machine); },
+      "The machine as a pkm JSON machine file (`pkm hexapod describe --json`).");
+  defHexapodKinematics(cls);
 }
 
 }  // namespace pkm::python

@@ -212,12 +212,8 @@ ValueError
 
 std::string doc(const char* head) { return std::string(head) + kTables; }
 
-}  // namespace
-
-void exposeMetrology(py::module_& m) {
-  py::module_ mm = m.def_submodule(
-      "metrology",
-      "Measurement analysis: one function per `pkm analyze <kind>` (docs/analysis.md).");
+/// Registers pkm.metrology.AnalysisResult in `mm`.
+void defAnalysisResult(py::module_& mm) {
   py::class_<AnalysisResult>(mm,
                              "AnalysisResult",
                              "The result of a pkm.metrology analysis: attributes are the keys of "
@@ -251,7 +247,10 @@ void exposeMetrology(py::module_& m) {
         for (auto [k, v] : r.doc) keys += (keys.empty() ? "" : ", ") + std::string(py::str(k));
         return fmt::format("<pkm.metrology.AnalysisResult {}: {}>", r.kind, keys);
       });
+}
 
+/// Registers iso230_2, straightness, parallelism and squareness in `mm`.
+void defAxisAnalyses(py::module_& mm) {
   mm.def("iso230_2",
          &iso230_2,
          py::arg("data"),
@@ -303,6 +302,10 @@ void exposeMetrology(py::module_& m) {
              "each diagonal's start; pdge: {'uu'|'uv'|'vv'|'vu': table (position, deviation)}; "
              "axes: the two axes of simulator files.")
              .c_str());
+}
+
+/// Registers diagonals, circle, circular and probe_offset in `mm`.
+void defDiagonalAndCircleAnalyses(py::module_& mm) {
   mm.def("diagonals",
          &diagonals,
          py::arg("data"),
@@ -340,6 +343,17 @@ void exposeMetrology(py::module_& m) {
              "spindle_deg, x, y; dicts may add drm_deg, touch (+x, -x, +y, -y) and run. "
              "ring_diameter, stylus_diameter in mm; tool_direction '-z' or '+z'.")
              .c_str());
+}
+
+}  // namespace
+
+void exposeMetrology(py::module_& m) {
+  py::module_ mm = m.def_submodule(
+      "metrology",
+      "Measurement analysis: one function per `pkm analyze <kind>` (docs/analysis.md).");
+  defAnalysisResult(mm);
+  defAxisAnalyses(mm);
+  defDiagonalAndCircleAnalyses(mm);
 }
 
 }  // namespace pkm::python

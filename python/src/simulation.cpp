@@ -91,9 +91,8 @@ Simulation simulate(const py::object& scenario,
   return simulationOf(std::move(result));
 }
 
-}  // namespace
-
-void exposeSimulation(py::module_& m) {
+/// Registers pkm.Simulation in `m`.
+void defSimulationClass(py::module_& m) {
   py::class_<Simulation>(m,
                          "Simulation",
                          "What pkm.simulate produced: the measurement tables of every simulated "
@@ -144,6 +143,12 @@ ValueError
                            s.result.seed,
                            py::len(s.tables));
       });
+}
+
+}  // namespace
+
+void exposeSimulation(py::module_& m) {
+  defSimulationClass(m);
 
   m.def("simulate",
         &simulate,
