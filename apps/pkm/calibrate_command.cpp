@@ -47,6 +47,87 @@ void runCalibrate(CalibrateArgs args) {
   out.text() += workflow::hexapodCalibrationText(args.request, result);
 }
 
+/// Adds to `pkm calibrate hexapod` the machine, the data files, the frame and the fit's options.
+void addCalibrateFitOptions(CLI::App& hex, CalibrateArgs& args) {
+  addMachineOptions(hex, args.request.machine, args.request.ini);
+  hex.add_option("--data", args.data, "calibration files (tracker pose/point, constrained motion)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  hex.add_option("--holdout", args.holdout, "tracker files kept out of the fit, for validation")
+      ->check(CLI::ExistingFile);
+  hex.add_option(
+         "--out",
+         args.request.out,
+         "calibrated machine file CAL.json (also CAL.hal, CAL.pkmhexkins.hal, CAL.summary.json)")
+      ->required();
+  hex.add_option("--frame",
+                 args.request.frame,
+                 "where tracker readings are: auto (from the files' metadata), world, tracker")
+      ->check(CLI::IsMember({"auto", "world", "tracker"}));
+  hex.add_option(
+         "--registration",
+         args.registration,
+         "the tracker's readings of the table's fiducial nests (pkm.tracker-registration/1): "
+         "puts tracker-frame readings in the machine's world frame")
+      ->check(CLI::ExistingFile);
+  hex.add_option("--target-offset",
+                 args.target_offset,
+                 "the tracker target in the tool frame x,y,z (default: the files' smr offset)")
+      ->delimiter(',')
+      ->expected(3);
+  hex.add_option("--fix", args.request.fix, "parameters held at their initial value (e.g. offset0)")
+      ->delimiter(',');
+  hex.add_option("--loss", args.request.loss, "robust loss: none, huber, cauchy")
+      ->check(CLI::IsMember({"none", "huber", "cauchy"}));
+  hex.add_option("--loss-scale", args.request.loss_scale, "robust loss scale, machine unit");
+  hex.add_flag("--force", args.request.force, "overwrite existing output files");
+  hex.add_flag(
+      "--allow-large-changes",
+      args.request.allow_large_changes,
+      "write a result whose parameters moved implausibly far (docs/calibration.md, Guards)");
+  hex.add_flag("--json", args.json, "print the summary as JSON");
+}
+
+/// Adds to `pkm calibrate hexapod` the Monte Carlo, prior, uncertainty and backlash options.
+void addCalibrateNoiseOptions(CLI::App& hex, CalibrateArgs& args) {
+  hex.add_option("--monte-carlo",
+                 args.request.monte_carlo,
+                 "also run N Monte Carlo trials of the calibration under simulated noise")
+      ->check(CLI::Range(2, 100000));
+  hex.add_option("--sigma-position",
+                 args.request.sigma_position,
+                 "Monte Carlo: position noise, machine unit (default: the fitted residual sigma)");
+  hex.add_option("--sigma-orientation",
+                 args.request.sigma_orientation_urad,
+                 "Monte Carlo: 6-DOF orientation noise, urad (default 0)");
+  hex.add_option(
+      "--sigma-gauge",
+      args.request.sigma_gauge,
+      "Monte Carlo: dial-gauge noise, machine unit (default: the fitted residual sigma)");
+  hex.add_option(
+      "--threads", args.request.threads, "Monte Carlo worker threads (default: all cores)");
+  hex.add_option(
+      "--db", args.request.db, "also record the calibration in this result store (pkm.db)");
+  hex.add_option("--prior-sigma",
+                 args.request.prior_sigma,
+                 "regularise toward the machine file: how far the true geometry may plausibly be, "
+                 "machine unit (needs --measurement-sigma; for dial-gauge data)");
+  hex.add_option("--measurement-sigma",
+                 args.request.measurement_sigma,
+                 "residual sigma, machine unit, for --prior-sigma and the covariance (default: "
+                 "estimated from the residuals)");
+  args.uncertainty.add(hex);
+  hex.add_option("--uncertainty-trials",
+                 args.request.uncertainty_trials,
+                 "also propagate the budgets by Monte Carlo (GUM S1): re-fits on perturbed "
+                 "observations, adaptive, at most N (>= 20)")
+      ->check(CLI::Range(20, 100000));
+  hex.add_flag("--backlash",
+               args.request.backlash,
+               "also estimate a per-strut backlash; approach directions follow from the row order "
+               "of each file (one continuous sequence of moves per file)");
+}
+
 }  // namespace
 
 void addCalibrateCommand(CLI::App& app) {
@@ -56,81 +137,8 @@ void addCalibrateCommand(CLI::App& app) {
   auto args = std::make_shared<CalibrateArgs>();
   CLI::App* hex = calibrate->add_subcommand(
       "hexapod", "calibrate a hexapod from laser-tracker pose/point files and dial-gauge files");
-  addMachineOptions(*hex, args->request.machine, args->request.ini);
-  hex->add_option(
-         "--data", args->data, "calibration files (tracker pose/point, constrained motion)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  hex->add_option("--holdout", args->holdout, "tracker files kept out of the fit, for validation")
-      ->check(CLI::ExistingFile);
-  hex->add_option(
-         "--out",
-         args->request.out,
-         "calibrated machine file CAL.json (also CAL.hal, CAL.pkmhexkins.hal, CAL.summary.json)")
-      ->required();
-  hex->add_option("--frame",
-                  args->request.frame,
-                  "where tracker readings are: auto (from the files' metadata), world, tracker")
-      ->check(CLI::IsMember({"auto", "world", "tracker"}));
-  hex->add_option(
-         "--registration",
-         args->registration,
-         "the tracker's readings of the table's fiducial nests (pkm.tracker-registration/1): "
-         "puts tracker-frame readings in the machine's world frame")
-      ->check(CLI::ExistingFile);
-  hex->add_option("--target-offset",
-                  args->target_offset,
-                  "the tracker target in the tool frame x,y,z (default: the files' smr offset)")
-      ->delimiter(',')
-      ->expected(3);
-  hex->add_option(
-         "--fix", args->request.fix, "parameters held at their initial value (e.g. offset0)")
-      ->delimiter(',');
-  hex->add_option("--loss", args->request.loss, "robust loss: none, huber, cauchy")
-      ->check(CLI::IsMember({"none", "huber", "cauchy"}));
-  hex->add_option("--loss-scale", args->request.loss_scale, "robust loss scale, machine unit");
-  hex->add_flag("--force", args->request.force, "overwrite existing output files");
-  hex->add_flag(
-      "--allow-large-changes",
-      args->request.allow_large_changes,
-      "write a result whose parameters moved implausibly far (docs/calibration.md, Guards)");
-  hex->add_flag("--json", args->json, "print the summary as JSON");
-  hex->add_option("--monte-carlo",
-                  args->request.monte_carlo,
-                  "also run N Monte Carlo trials of the calibration under simulated noise")
-      ->check(CLI::Range(2, 100000));
-  hex->add_option("--sigma-position",
-                  args->request.sigma_position,
-                  "Monte Carlo: position noise, machine unit (default: the fitted residual sigma)");
-  hex->add_option("--sigma-orientation",
-                  args->request.sigma_orientation_urad,
-                  "Monte Carlo: 6-DOF orientation noise, urad (default 0)");
-  hex->add_option(
-      "--sigma-gauge",
-      args->request.sigma_gauge,
-      "Monte Carlo: dial-gauge noise, machine unit (default: the fitted residual sigma)");
-  hex->add_option(
-      "--threads", args->request.threads, "Monte Carlo worker threads (default: all cores)");
-  hex->add_option(
-      "--db", args->request.db, "also record the calibration in this result store (pkm.db)");
-  hex->add_option("--prior-sigma",
-                  args->request.prior_sigma,
-                  "regularise toward the machine file: how far the true geometry may plausibly be, "
-                  "machine unit (needs --measurement-sigma; for dial-gauge data)");
-  hex->add_option("--measurement-sigma",
-                  args->request.measurement_sigma,
-                  "residual sigma, machine unit, for --prior-sigma and the covariance (default: "
-                  "estimated from the residuals)");
-  args->uncertainty.add(*hex);
-  hex->add_option("--uncertainty-trials",
-                  args->request.uncertainty_trials,
-                  "also propagate the budgets by Monte Carlo (GUM S1): re-fits on perturbed "
-                  "observations, adaptive, at most N (>= 20)")
-      ->check(CLI::Range(20, 100000));
-  hex->add_flag("--backlash",
-                args->request.backlash,
-                "also estimate a per-strut backlash; approach directions follow from the row order "
-                "of each file (one continuous sequence of moves per file)");
+  addCalibrateFitOptions(*hex, *args);
+  addCalibrateNoiseOptions(*hex, *args);
   hex->callback([args] { runCalibrate(*args); });
   addCalibrateExechon(*calibrate);
 }

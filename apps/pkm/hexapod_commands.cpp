@@ -266,21 +266,17 @@ void runCheck(const MachineOption& machine_opt, const std::string& poses) {
   }
 }
 
-}  // namespace
+/// The options of `pkm hexapod`'s subcommands, shared by their callbacks.
+struct HexapodCliState {
+  MachineOption machine;
+  std::string poses, lengths, seed;
+  bool json = false;
+  std::string kins = "genhexkins";
+  bool from_seed = false;
+};
 
-void addHexapodCommands(CLI::App& app) {
-  CLI::App* hex = app.add_subcommand("hexapod", "hexapod (6-UPS Stewart platform) kinematics");
-  hex->require_subcommand(1);
-
-  struct State {
-    MachineOption machine;
-    std::string poses, lengths, seed;
-    bool json = false;
-    std::string kins = "genhexkins";
-    bool from_seed = false;
-  };
-  auto st = std::make_shared<State>();
-
+/// Adds `pkm hexapod ik`, `fk` and `check` to `hex`.
+void addHexapodSolveCommands(CLI::App* hex, const std::shared_ptr<HexapodCliState>& st) {
   CLI::App* ik = hex->add_subcommand(
       "ik", "inverse kinematics: poses x,y,z,a,b,c -> strut readings l0..l5,status");
   st->machine.add(*ik);
@@ -309,7 +305,10 @@ void addHexapodCommands(CLI::App& app) {
   st->machine.add(*check);
   check->add_option("--poses,-p", st->poses, "CSV with header x,y,z,a,b,c; - = stdin")->required();
   check->callback([st] { runCheck(st->machine, st->poses); });
+}
 
+/// Adds `pkm hexapod describe`, `hal`, `linuxcnc-params` and `machines` to `hex`.
+void addHexapodMachineCommands(CLI::App* hex, const std::shared_ptr<HexapodCliState>& st) {
   CLI::App* describe =
       hex->add_subcommand("describe", "print the machine; --json writes it as a pkm machine file");
   st->machine.add(*describe);
@@ -352,6 +351,16 @@ void addHexapodCommands(CLI::App& app) {
   list->callback([] {
     for (const auto& n : io::builtinMachineNames()) fmt::print("{}\n", n);
   });
+}
+
+}  // namespace
+
+void addHexapodCommands(CLI::App& app) {
+  CLI::App* hex = app.add_subcommand("hexapod", "hexapod (6-UPS Stewart platform) kinematics");
+  hex->require_subcommand(1);
+  auto st = std::make_shared<HexapodCliState>();
+  addHexapodSolveCommands(hex, st);
+  addHexapodMachineCommands(hex, st);
 }
 
 }  // namespace pkm::cli

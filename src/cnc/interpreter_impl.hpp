@@ -83,6 +83,12 @@ struct Interpreter::Impl : ParameterSource {
   void straight(const ResolvedBlock& rb, bool rapid, bool g53, MoveSink& sink);
   void arc(const ResolvedBlock& rb, bool clockwise, MoveSink& sink);
   void cycle(const ResolvedBlock& rb, int code, MoveSink& sink);
+  /// Reads the sticky words of canned cycle `code` (×10) into cycle_q, cycle_p, cycle_i..k and
+  /// `q`: Q of G73/G83, P of G74/G82/G84/G86/G88/G89, I J K of G87 (lengths in mm); `entering`:
+  /// the cycle's first block, which must have them (but P of G74/G84).
+  void cycleStickyWords(const ResolvedBlock& rb, int code, bool entering, CycleRequest& q);
+  /// Sends the expanded cycle_steps of source line `line` to `sink` as lines, dwells and actions.
+  void emitCycleSteps(std::size_t line, MoveSink& sink);
   /// Emits a line to machine position `to`; updates the position.
   void emitLine(std::size_t line, bool rapid, const Axes& to, double inverse_f, MoveSink& sink);
 

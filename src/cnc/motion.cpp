@@ -24,6 +24,127 @@ double pathLength(const Axes& from, const Axes& to) {
   return std::hypot(to[3] - from[3], to[4] - from[4], to[5] - from[5]);
 }
 
+/// I, J, K: the centre-offset words of axes X, Y, Z.
+constexpr std::array<char, 3> kArcOffsetWord{'i', 'j', 'k'};
+
+/// Rejects an arc (G2 when `clockwise`) without an axis word of plane `plane` (in-plane axes a1,
+/// a2) or with the offset word of its normal axis an.
+void checkArcWords(const ResolvedBlock& rb,
+                   bool clockwise,
+                   Plane plane,
+                   std::size_t a1,
+                   std::size_t a2,
+                   std::size_t an) {
+  if (!rb.hasWord(kAxes[a1]) && !rb.hasWord(kAxes[a2]))
+    throw GcodeError(fmt::format("{} arc needs at least one of {} and {} in the {} plane",
+                                 clockwise ? "G2" : "G3",
+                                 static_cast<char>(kAxes[a1] - 32),
+                                 static_cast<char>(kAxes[a2] - 32),
+                                 toString(plane)));
+  if (rb.hasWord(kArcOffsetWord[an]))
+    throw GcodeError(fmt::format("{} word given for an arc in the {} plane",
+                                 static_cast<char>(kArcOffsetWord[an] - 32),
+                                 toString(plane)));
+}
+
+/// An arc's F word under inverse time (G93), 0 otherwise; rejects a missing or zero F word
+/// (G93) or a zero feed rate (G94).
+double arcInverseFeed(const ResolvedBlock& rb, const MachineState& st, bool clockwise) {
+  double inverse_f = 0.0;
+  if (st.inverse_time) {
+    if (!rb.hasWord('f')) throw GcodeError("F word missing with an inverse time (G93) arc move");
+    inverse_f = rb.word('f');
+    if (inverse_f <= 0.0) throw GcodeError("zero F word with an inverse time (G93) move");
+  } else if (st.feed <= 0.0) {
+    throw GcodeError(fmt::format("cannot do {} with zero feed rate", clockwise ? "G2" : "G3"));
+  }
+  return inverse_f;
+}
+
+/// An arc's P word (turns; 1 without it); rejects one that is not a positive integer.
+int arcTurns(const ResolvedBlock& rb) {
+  int turns = 1;
+  if (rb.hasWord('p')) {
+    const double p = rb.word('p');
+    if (!(p >= 0.5 && p < 1e9))
+      throw GcodeError(fmt::format("arc P (turns) must be a positive integer, not {}", p));
+    turns = static_cast<int>(std::round(p));
+    if (std::abs(p - turns) > 0.0001 || turns < 1)
+      throw GcodeError(fmt::format("arc P (turns) must be a positive integer, not {}", p));
+  }
+  return turns;
+}
+
+/// The centre of an arc from st.machine to `to` (machine coordinates, mm; in-plane axes a1, a2)
+/// by its R word or its I, J, K words (relative to the start, or absolute under G90.1).
+ArcCentre arcCentreOf(const ResolvedBlock& rb,
+                      const MachineState& st,
+                      bool clockwise,
+                      std::size_t a1,
+                      std::size_t a2,
+                      const Axes& to) {
+  const double s1 = st.machine[a1], s2 = st.machine[a2];
+  const double e1 = to[a1], e2 = to[a2];
+  if (rb.hasWord('r')) {
+    if (rb.hasWord(kArcOffsetWord[a1]) || rb.hasWord(kArcOffsetWord[a2]))
+      throw GcodeError("arc with both R and I/J/K words");
+    return arcFromRadius(s1, s2, e1, e2, rb.word('r') * st.scale(), clockwise, st.inch);
+  }
+  if (!rb.hasWord(kArcOffsetWord[a1]) && !rb.hasWord(kArcOffsetWord[a2]))
+    throw GcodeError(fmt::format("{} arc needs R or at least one of {} and {}",
+                                 clockwise ? "G2" : "G3",
+                                 static_cast<char>(kArcOffsetWord[a1] - 32),
+                                 static_cast<char>(kArcOffsetWord[a2] - 32)));
+  const double o1 = rb.hasWord(kArcOffsetWord[a1]) ? rb.word(kArcOffsetWord[a1]) * st.scale() : 0.0;
+  const double o2 = rb.hasWord(kArcOffsetWord[a2]) ? rb.word(kArcOffsetWord[a2]) * st.scale() : 0.0;
+  const double c1 = st.ijk_absolute ? o1 + st.offset(a1) : s1 + o1;
+  const double c2 = st.ijk_absolute ? o2 + st.offset(a2) : s2 + o2;
+  return arcFromCentre(s1, s2, e1, e2, c1, c2, st.inch);
+}
+
+/// Helix length (mm) for inverse-time feed: the in-plane sweep of the arc of centre c from
+/// `from` to `to` (`turns` turns) times the radius, combined with the travel of the normal axis;
+/// axes = {a1, a2, an} of the plane.
+double helixLength(const ArcCentre& c,
+                   const Axes& from,
+                   const Axes& to,
+                   const std::array<std::size_t, 3>& axes,
+                   bool clockwise,
+                   int turns) {
+  const auto [a1, a2, an] = axes;
+  const double s1 = from[a1], s2 = from[a2];
+  const double e1 = to[a1], e2 = to[a2];
+  double sweep = std::atan2(e2 - c.c2, e1 - c.c1) - std::atan2(s2 - c.c2, s1 - c.c1);
+  const double two_pi = 2.0 * std::acos(-1.0);
+  if (clockwise) {
+    if (sweep >= 0.0) sweep -= two_pi;
+  } else if (sweep <= 0.0) {
+    sweep += two_pi;
+  }
+  const double planar = c.radius * (std::abs(sweep) + two_pi * (turns - 1));
+  return std::hypot(planar, to[an] - from[an]);
+}
+
+/// Rejects a canned cycle outside the XY plane, under inverse time, with A, B or C words, or at
+/// zero feed rate.
+void checkCycleModes(const ResolvedBlock& rb, const MachineState& st) {
+  if (st.plane != Plane::kXY)
+    throw GcodeError("canned cycles are supported in the XY plane (G17) only");
+  if (st.inverse_time) throw GcodeError("canned cycles are not allowed in inverse time (G93)");
+  for (char l : {'a', 'b', 'c'})
+    if (rb.hasWord(l)) throw GcodeError(fmt::format("cannot move {} in a canned cycle", l));
+  if (st.feed <= 0.0) throw GcodeError("cannot do a canned cycle with zero feed rate");
+}
+
+/// A canned cycle's L word (repeats); rejects one that is not a positive integer.
+int cycleRepeats(double l) {
+  if (!(l >= 0.5 && l < 1e9)) throw GcodeError("canned cycle L must be a positive integer");
+  const int repeats = static_cast<int>(std::round(l));
+  if (std::abs(l - repeats) > 0.0001 || repeats < 1)
+    throw GcodeError("canned cycle L must be a positive integer");
+  return repeats;
+}
+
 }  // namespace
 
 void Interpreter::Impl::emitLine(
@@ -79,35 +200,11 @@ void Interpreter::Impl::straight(const ResolvedBlock& rb, bool rapid, bool g53, 
 }
 
 void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& sink) {
-  const auto [a1, a2, an] = planeAxes(st.plane);
-  static constexpr std::array<char, 3> kOffsetWord{'i', 'j', 'k'};
-  if (!rb.hasWord(kAxes[a1]) && !rb.hasWord(kAxes[a2]))
-    throw GcodeError(fmt::format("{} arc needs at least one of {} and {} in the {} plane",
-                                 clockwise ? "G2" : "G3",
-                                 static_cast<char>(kAxes[a1] - 32),
-                                 static_cast<char>(kAxes[a2] - 32),
-                                 toString(st.plane)));
-  if (rb.hasWord(kOffsetWord[an]))
-    throw GcodeError(fmt::format("{} word given for an arc in the {} plane",
-                                 static_cast<char>(kOffsetWord[an] - 32),
-                                 toString(st.plane)));
-  double inverse_f = 0.0;
-  if (st.inverse_time) {
-    if (!rb.hasWord('f')) throw GcodeError("F word missing with an inverse time (G93) arc move");
-    inverse_f = rb.word('f');
-    if (inverse_f <= 0.0) throw GcodeError("zero F word with an inverse time (G93) move");
-  } else if (st.feed <= 0.0) {
-    throw GcodeError(fmt::format("cannot do {} with zero feed rate", clockwise ? "G2" : "G3"));
-  }
-  int turns = 1;
-  if (rb.hasWord('p')) {
-    const double p = rb.word('p');
-    if (!(p >= 0.5 && p < 1e9))
-      throw GcodeError(fmt::format("arc P (turns) must be a positive integer, not {}", p));
-    turns = static_cast<int>(std::round(p));
-    if (std::abs(p - turns) > 0.0001 || turns < 1)
-      throw GcodeError(fmt::format("arc P (turns) must be a positive integer, not {}", p));
-  }
+  const std::array<std::size_t, 3> axes = planeAxes(st.plane);
+  const auto [a1, a2, an] = axes;
+  checkArcWords(rb, clockwise, st.plane, a1, a2, an);
+  const double inverse_f = arcInverseFeed(rb, st, clockwise);
+  const int turns = arcTurns(rb);
   // Target in machine coordinates (the plane geometry is the same in program and machine
   // coordinates: offsets are translations).
   Axes to = st.machine;
@@ -116,25 +213,7 @@ void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& s
     const double v = rb.word(kAxes[i]) * st.axisScale(i);
     to[i] = st.incremental ? st.machine[i] + v : v + st.offset(i);
   }
-  const double s1 = st.machine[a1], s2 = st.machine[a2];
-  const double e1 = to[a1], e2 = to[a2];
-  ArcCentre c;
-  if (rb.hasWord('r')) {
-    if (rb.hasWord(kOffsetWord[a1]) || rb.hasWord(kOffsetWord[a2]))
-      throw GcodeError("arc with both R and I/J/K words");
-    c = arcFromRadius(s1, s2, e1, e2, rb.word('r') * st.scale(), clockwise, st.inch);
-  } else {
-    if (!rb.hasWord(kOffsetWord[a1]) && !rb.hasWord(kOffsetWord[a2]))
-      throw GcodeError(fmt::format("{} arc needs R or at least one of {} and {}",
-                                   clockwise ? "G2" : "G3",
-                                   static_cast<char>(kOffsetWord[a1] - 32),
-                                   static_cast<char>(kOffsetWord[a2] - 32)));
-    const double o1 = rb.hasWord(kOffsetWord[a1]) ? rb.word(kOffsetWord[a1]) * st.scale() : 0.0;
-    const double o2 = rb.hasWord(kOffsetWord[a2]) ? rb.word(kOffsetWord[a2]) * st.scale() : 0.0;
-    const double c1 = st.ijk_absolute ? o1 + st.offset(a1) : s1 + o1;
-    const double c2 = st.ijk_absolute ? o2 + st.offset(a2) : s2 + o2;
-    c = arcFromCentre(s1, s2, e1, e2, c1, c2, st.inch);
-  }
+  const ArcCentre c = arcCentreOf(rb, st, clockwise, a1, a2, to);
   Move m;
   m.line = rb.line;
   m.kind = MoveKind::kArc;
@@ -145,16 +224,7 @@ void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& s
   m.turns = clockwise ? -turns : turns;
   m.plane = st.plane;
   if (st.inverse_time) {
-    // Helix length: the in-plane sweep times the radius, combined with the normal travel.
-    double sweep = std::atan2(e2 - c.c2, e1 - c.c1) - std::atan2(s2 - c.c2, s1 - c.c1);
-    const double two_pi = 2.0 * std::acos(-1.0);
-    if (clockwise) {
-      if (sweep >= 0.0) sweep -= two_pi;
-    } else if (sweep <= 0.0) {
-      sweep += two_pi;
-    }
-    const double planar = c.radius * (std::abs(sweep) + two_pi * (turns - 1));
-    m.feed = std::hypot(planar, to[an] - st.machine[an]) * inverse_f;
+    m.feed = helixLength(c, st.machine, to, axes, clockwise, turns) * inverse_f;
   } else {
     m.feed = st.feed;
   }
@@ -165,12 +235,7 @@ void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& s
 }
 
 void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink) {
-  if (st.plane != Plane::kXY)
-    throw GcodeError("canned cycles are supported in the XY plane (G17) only");
-  if (st.inverse_time) throw GcodeError("canned cycles are not allowed in inverse time (G93)");
-  for (char l : {'a', 'b', 'c'})
-    if (rb.hasWord(l)) throw GcodeError(fmt::format("cannot move {} in a canned cycle", l));
-  if (st.feed <= 0.0) throw GcodeError("cannot do a canned cycle with zero feed rate");
+  checkCycleModes(rb, st);
   const bool entering = st.motion != code;
   if (entering && !rb.hasWord('z'))
     throw GcodeError("Z missing in the first block of a canned cycle");
@@ -195,6 +260,23 @@ void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink)
   if (rb.hasWord('z')) cycle_cc = rb.word('z') * s;
   q.r = cycle_r;
   q.z = cycle_cc;
+  cycleStickyWords(rb, code, entering, q);
+  q.overrides_enabled = st.overrides_enabled;
+  q.spindle = st.spindle_direction > 0   ? SpindleDirection::kClockwise
+              : st.spindle_direction < 0 ? SpindleDirection::kCounterClockwise
+                                         : SpindleDirection::kStopped;
+  if (rb.hasWord('l')) q.repeats = cycleRepeats(rb.word('l'));
+  q.max_steps = options.max_loop_iterations;
+  cycle_steps.clear();
+  expandCycle(q, cycle_steps);
+  emitCycleSteps(rb.line, sink);
+}
+
+void Interpreter::Impl::cycleStickyWords(const ResolvedBlock& rb,
+                                         int code,
+                                         bool entering,
+                                         CycleRequest& q) {
+  const double s = st.scale();
   if (code == 830 || code == 730) {
     if (entering && !rb.hasWord('q'))
       throw GcodeError(fmt::format("Q word missing with G{}", code / 10));
@@ -222,27 +304,16 @@ void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink)
     q.j = cycle_j;
     q.k = cycle_k;
   }
-  q.overrides_enabled = st.overrides_enabled;
-  q.spindle = st.spindle_direction > 0   ? SpindleDirection::kClockwise
-              : st.spindle_direction < 0 ? SpindleDirection::kCounterClockwise
-                                         : SpindleDirection::kStopped;
-  if (rb.hasWord('l')) {
-    const double l = rb.word('l');
-    if (!(l >= 0.5 && l < 1e9)) throw GcodeError("canned cycle L must be a positive integer");
-    q.repeats = static_cast<int>(std::round(l));
-    if (std::abs(l - q.repeats) > 0.0001 || q.repeats < 1)
-      throw GcodeError("canned cycle L must be a positive integer");
-  }
-  q.max_steps = options.max_loop_iterations;
-  cycle_steps.clear();
-  expandCycle(q, cycle_steps);
+}
+
+void Interpreter::Impl::emitCycleSteps(std::size_t line, MoveSink& sink) {
   for (const CycleStep& step : cycle_steps) {
     switch (step.kind) {
       case CycleStep::Kind::kDwell:
-        sink.onDwell(rb.line, step.seconds);
+        sink.onDwell(line, step.seconds);
         break;
       case CycleStep::Kind::kAction:
-        sink.onCycleAction(rb.line, step.action);
+        sink.onCycleAction(line, step.action);
         break;
       case CycleStep::Kind::kManual:
         // G88: the operator retracts by hand; the program goes on from the clear level.
@@ -252,7 +323,7 @@ void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink)
       case CycleStep::Kind::kFeed: {
         Axes to = st.machine;
         for (std::size_t i = 0; i < 3; ++i) to[i] = step.to[i] + st.offset(i);
-        emitLine(rb.line, step.kind == CycleStep::Kind::kRapid, to, 0.0, sink);
+        emitLine(line, step.kind == CycleStep::Kind::kRapid, to, 0.0, sink);
         break;
       }
     }

@@ -19,31 +19,13 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 double angleTo(const Eigen::Vector3d& u, const Eigen::Vector3d& axis) {
   return std::atan2(u.cross(axis).norm(), u.dot(axis));
 }
-}  // namespace
 
-std::string_view toString(LimitKind kind) {
-  switch (kind) {
-    case LimitKind::kStroke:
-      return "stroke";
-    case LimitKind::kJointAngle:
-      return "joint_angle";
-    case LimitKind::kInterference:
-      return "interference";
-    case LimitKind::kSingular:
-      return "singular";
-    case LimitKind::kDegenerate:
-      return "degenerate";
-  }
-  return "unknown";
-}
-
-std::string_view HexapodCheckResult::status() const {
-  return violations.empty() ? std::string_view("ok") : toString(violations.front().kind);
-}
-
-HexapodCheckResult checkPose(const HexapodModel& model, HexapodData& data, const PoseRpy& pose) {
-  HexapodCheckResult out;
-  out.readings = inverseKinematics(model, data, pose);
+/// The stroke margin of each strut and the angles and margins of its joints (rad) into `out`
+/// (out.readings set, `data` at the pose): violations of the strokes and degenerate struts first,
+/// then those of the joint cones.
+void checkHexapodStruts(const HexapodModel& model,
+                        const HexapodData& data,
+                        HexapodCheckResult& out) {
   std::vector<LimitViolation> angle_violations;
 
   for (int i = 0; i < kStruts; ++i) {
@@ -83,7 +65,13 @@ HexapodCheckResult checkPose(const HexapodModel& model, HexapodData& data, const
                                   out.platform_angle_margin[i]});
   }
   out.violations.insert(out.violations.end(), angle_violations.begin(), angle_violations.end());
+}
 
+/// The smallest distance between the legs' joint-centre segments and its margin to the strut
+/// diameter into `out`, with an interference violation when it is negative.
+void checkHexapodLegDistance(const HexapodModel& model,
+                             const HexapodData& data,
+                             HexapodCheckResult& out) {
   // Leg-to-leg distance between joint-centre segments; pairs that share a joint are skipped because
   // their axes always meet at the joint.
   out.min_leg_distance = kInf;
@@ -113,7 +101,34 @@ HexapodCheckResult checkPose(const HexapodModel& model, HexapodData& data, const
                               out.min_leg_distance,
                               d,
                               out.interference_margin});
+}
+}  // namespace
 
+std::string_view toString(LimitKind kind) {
+  switch (kind) {
+    case LimitKind::kStroke:
+      return "stroke";
+    case LimitKind::kJointAngle:
+      return "joint_angle";
+    case LimitKind::kInterference:
+      return "interference";
+    case LimitKind::kSingular:
+      return "singular";
+    case LimitKind::kDegenerate:
+      return "degenerate";
+  }
+  return "unknown";
+}
+
+std::string_view HexapodCheckResult::status() const {
+  return violations.empty() ? std::string_view("ok") : toString(violations.front().kind);
+}
+
+HexapodCheckResult checkPose(const HexapodModel& model, HexapodData& data, const PoseRpy& pose) {
+  HexapodCheckResult out;
+  out.readings = inverseKinematics(model, data, pose);
+  checkHexapodStruts(model, data, out);
+  checkHexapodLegDistance(model, data, out);
   computeStrutJacobian(model, data);
   out.condition_number = scaledConditionNumber(model, data);
   out.condition_margin = model.max_condition - out.condition_number;

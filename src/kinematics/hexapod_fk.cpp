@@ -82,6 +82,57 @@ Pose retract(const Pose& at, const StrutVector& delta, double step) {
   return Pose{at.p - step * delta.head<3>(), geometry::so3Exp(-step * delta.tail<3>()) * at.R};
 }
 
+/// The Newton step of HexapodFkSolver::solveGeneral's damped iteration (dampedNewton's `solve`)
+/// at the legs in `data`, with the state of its linearisations.
+struct FkStepSolver {
+  FkStepSolver(
+      const HexapodModel& m, HexapodData& d, const FkOptions& o, double inv_l, double max_t)
+      : model(m), data(d), options(o), inv_length(inv_l), max_translation(max_t) {}
+
+  /// Turns the residual `delta` into the step; returns the pivot ratio of the factorisation.
+  double operator()(StrutVector& delta, bool polishing) {
+    // The polishing step, after a step that converged, is a chord step: the Jacobian factorised
+    // one step before differs from the current one by about the last step's relative size, so it
+    // shrinks the residual as much as a new factorisation would.
+    if (!polishing || !lu.valid) {
+      // The angular columns × 1/L make the pivot test unit-free; δθ is scaled back after.
+      lu_ratio = detail::factor6(computeStrutJacobian(model, data), lu, &last_sign, inv_length);
+      if (seed_sign == 0) seed_sign = last_sign;
+    }
+    if (!lu.valid) return lu_ratio;
+    // Trust region: a step longer than the options allow is shortened along its direction.
+    if (scaledStep(lu, inv_length, max_translation, options.max_step_rotation, delta) || polishing)
+      return lu_ratio;
+    // A full Newton step leaves a residual of second order in its length. Where that is above
+    // what needs polishing, the step is corrected for it with the same factorisation (one
+    // substitution, no new evaluation of the legs): the step then lands within O(|δ|³), which on
+    // a path of noisy readings saves the polishing step's evaluation.
+    correctSecondOrder(lu, data, inv_length, options.tolerance, delta);
+    return lu_ratio;
+  }
+
+  const HexapodModel& model;
+  HexapodData& data;
+  const FkOptions& options;
+  double inv_length;       ///< 1 / characteristic length
+  double max_translation;  ///< trust region of a step's translation (model units)
+  detail::Lu6 lu;          ///< the factorisation of the last Newton step
+  double lu_ratio = 0.0;   ///< and its pivot ratio
+  int seed_sign = 0;       ///< sign of det J at a solve's first linearisation
+  int last_sign = 0;       ///< and at its latest
+};
+
+/// The number of continuation stages from strut readings `start` to `readings`: stages of at
+/// most `stage_length` (model units) in the largest strut change, at most 1000; 1 when the gap
+/// is not finite.
+int continuationStages(const StrutVector& start, const StrutVector& readings, double stage_length) {
+  const double gap = (readings - start).cwiseAbs().maxCoeff();
+  constexpr int kMaxStages = 1000;
+  return std::isfinite(gap) && gap > stage_length
+             ? static_cast<int>(std::min<double>(std::ceil(gap / stage_length), kMaxStages))
+             : 1;
+}
+
 }  // namespace
 
 std::string_view toString(FkStatus status) {
@@ -233,8 +284,6 @@ FkSummary HexapodFkSolver::solveGeneral(HexapodData& data,
   const double inv_length = inv_length_;
   const double max_translation = max_translation_;
   FkSummary summary;
-  int seed_sign = 0;  // sign of det J at a solve's first linearisation, and at its latest
-  int last_sign = 0;
   StrutVector target = readings;  // the readings the current stage solves for
   bool legs_at_x = false;         // data holds the legs of x (dampedNewton's first evaluation)
   auto evaluate = [&](const Pose& at, StrutVector& r) {
@@ -244,41 +293,14 @@ FkSummary HexapodFkSolver::solveGeneral(HexapodData& data,
     const double n2 = r.squaredNorm();
     return std::isfinite(n2) ? n2 : INFINITY;
   };
-  detail::Lu6 lu;         // the factorisation of the last Newton step
-  double lu_ratio = 0.0;  // and its pivot ratio
-  auto solve = [&](StrutVector& delta, bool polishing) {
-    // The polishing step, after a step that converged, is a chord step: the Jacobian factorised
-    // one step before differs from the current one by about the last step's relative size, so it
-    // shrinks the residual as much as a new factorisation would.
-    if (!polishing || !lu.valid) {
-      // The angular columns × 1/L make the pivot test unit-free; δθ is scaled back after.
-      lu_ratio = detail::factor6(computeStrutJacobian(model_, data), lu, &last_sign, inv_length);
-      if (seed_sign == 0) seed_sign = last_sign;
-    }
-    if (!lu.valid) return lu_ratio;
-    // Trust region: a step longer than the options allow is shortened along its direction.
-    if (scaledStep(lu, inv_length, max_translation, options.max_step_rotation, delta) || polishing)
-      return lu_ratio;
-    // A full Newton step leaves a residual of second order in its length. Where that is above
-    // what needs polishing, the step is corrected for it with the same factorisation (one
-    // substitution, no new evaluation of the legs): the step then lands within O(|δ|³), which on
-    // a path of noisy readings saves the polishing step's evaluation.
-    correctSecondOrder(lu, data, inv_length, options.tolerance, delta);
-    return lu_ratio;
-  };
+  FkStepSolver solve(model_, data, options, inv_length, max_translation);
   // A far seed (a cold start): continuation along the straight line of strut readings from the
   // seed's to the target's, in stages of at most options.continuation_step characteristic
   // lengths, each solved from the previous stage's pose. The answer is then the pose the machine
   // reaches from the seed as its struts move, not whichever root a long Newton step lands near;
   // a determinant sign change between stages means a singularity was crossed (kOtherBranch).
   const StrutVector start = data.readings;
-  const double gap = (readings - start).cwiseAbs().maxCoeff();
-  const double stage_length = options.continuation_step * length;
-  constexpr int kMaxStages = 1000;
-  const int stages =
-      std::isfinite(gap) && gap > stage_length
-          ? static_cast<int>(std::min<double>(std::ceil(gap / stage_length), kMaxStages))
-          : 1;
+  const int stages = continuationStages(start, readings, options.continuation_step * length);
   FkSummary total;
   FkOptions intermediate = options;
   intermediate.tolerance = std::max(options.tolerance, kStageTolerance * length);
@@ -286,7 +308,7 @@ FkSummary HexapodFkSolver::solveGeneral(HexapodData& data,
   for (int k = 1; k <= stages; ++k) {
     target =
         k == stages ? readings : StrutVector(start + (readings - start) * (double(k) / stages));
-    seed_sign = last_sign = 0;
+    solve.seed_sign = solve.last_sign = 0;
     legs_at_x =
         true;  // computed by the caller, or left by the last stage (dampedNewton's contract)
     summary = detail::dampedNewton<kStruts>(
@@ -294,12 +316,13 @@ FkSummary HexapodFkSolver::solveGeneral(HexapodData& data,
     total.iterations += summary.iterations;
     total.backtracks += summary.backtracks;
     if (!summary.ok()) break;
-    if (seed_sign == 0) continue;  // converged without a linearisation
-    if ((previous_sign != 0 && seed_sign != previous_sign) || last_sign != seed_sign) {
+    if (solve.seed_sign == 0) continue;  // converged without a linearisation
+    if ((previous_sign != 0 && solve.seed_sign != previous_sign) ||
+        solve.last_sign != solve.seed_sign) {
       summary.status = FkStatus::kOtherBranch;
       break;
     }
-    previous_sign = last_sign;
+    previous_sign = solve.last_sign;
   }
   summary.iterations = total.iterations;
   summary.backtracks = total.backtracks;

@@ -28,12 +28,9 @@ double pdgeDisplacement(std::span<const PdgeTerm> pdge,
   return sum;
 }
 
-}  // namespace
-
-FaceDiagonalResult fitFaceDiagonalSquareness(std::span<const FaceDiagonal> diagonals,
-                                             std::span<const PdgeTerm> pdge,
-                                             const FaceDiagonalOptions& options) {
-  PKM_CHECK(!diagonals.empty(), "face-diagonal squareness: no diagonal");
+/// Rejects PDGE terms with an argument or component other than 0 or 1, a table of more than
+/// one column, or a lever that is not finite.
+void checkPdgeTerms(std::span<const PdgeTerm> pdge) {
   for (const PdgeTerm& t : pdge) {
     PKM_CHECK((t.argument == 0 || t.argument == 1) && (t.component == 0 || t.component == 1),
               "face-diagonal squareness: PDGE argument and component must be 0 or 1, got {}, {}",
@@ -45,14 +42,22 @@ FaceDiagonalResult fitFaceDiagonalSquareness(std::span<const FaceDiagonal> diago
     PKM_CHECK(std::isfinite(t.lever) && std::isfinite(t.lever_per_other),
               "face-diagonal squareness: PDGE lever is not finite");
   }
-  FaceDiagonalResult result;
-  // Corrected deviations (eq. 9/10 right-hand side: the measured PDGEs removed).
-  struct Row {
-    double u, v, s, rhs;
-    double v_actual;  ///< v plus the positioning error of axis b: the travel the squareness tilts
-    std::size_t diagonal, point;
-  };
-  std::vector<Row> rows;
+}
+
+/// One reading away from its diagonal's start, with its corrected deviation.
+struct FaceDiagonalRow {
+  double u, v, s, rhs;
+  double v_actual;  ///< v plus the positioning error of axis b: the travel the squareness tilts
+  std::size_t diagonal, point;
+};
+
+/// The readings away from the start with their corrected deviations (eq. 9/10 right-hand side:
+/// the measured PDGEs removed), which also go to result.corrected (0 at the start); rejects
+/// non-finite starts and readings.
+std::vector<FaceDiagonalRow> faceDiagonalRows(std::span<const FaceDiagonal> diagonals,
+                                              std::span<const PdgeTerm> pdge,
+                                              FaceDiagonalResult& result) {
+  std::vector<FaceDiagonalRow> rows;
   for (std::size_t i = 0; i < diagonals.size(); ++i) {
     const FaceDiagonal& diag = diagonals[i];
     PKM_CHECK(std::isfinite(diag.start_a) && std::isfinite(diag.start_b),
@@ -81,9 +86,22 @@ FaceDiagonalResult fitFaceDiagonalSquareness(std::span<const FaceDiagonal> diago
       rows.push_back({p.u, p.v, s, corrected, v_actual, i, k});
     }
   }
+  return rows;
+}
+
+}  // namespace
+
+FaceDiagonalResult fitFaceDiagonalSquareness(std::span<const FaceDiagonal> diagonals,
+                                             std::span<const PdgeTerm> pdge,
+                                             const FaceDiagonalOptions& options) {
+  PKM_CHECK(!diagonals.empty(), "face-diagonal squareness: no diagonal");
+  checkPdgeTerms(pdge);
+  FaceDiagonalResult result;
+  const std::vector<FaceDiagonalRow> rows = faceDiagonalRows(diagonals, pdge, result);
+
   bool mixed_sign = false;  // some u v ≠ 0
   double ratio_min = 1.0, ratio_max = 0.0;
-  for (const Row& r : rows) {
+  for (const FaceDiagonalRow& r : rows) {
     mixed_sign = mixed_sign || r.u * r.v != 0.0;
     const double ratio = r.u * r.u / (r.s * r.s);
     ratio_min = std::min(ratio_min, ratio);
@@ -104,7 +122,7 @@ FaceDiagonalResult fitFaceDiagonalSquareness(std::span<const FaceDiagonal> diago
   Eigen::MatrixXd A(static_cast<Eigen::Index>(rows.size()), unknowns);
   Eigen::VectorXd b(A.rows());
   for (Eigen::Index k = 0; k < A.rows(); ++k) {
-    const Row& r = rows[static_cast<std::size_t>(k)];
+    const FaceDiagonalRow& r = rows[static_cast<std::size_t>(k)];
     A(k, 0) = -r.u * r.v_actual / r.s;
     if (unknowns == 2) A(k, 1) = r.s;
     if (unknowns == 3) {
@@ -130,7 +148,7 @@ FaceDiagonalResult fitFaceDiagonalSquareness(std::span<const FaceDiagonal> diago
     result.residuals[i].assign(diagonals[i].points.size(), 0.0);
   }
   for (Eigen::Index k = 0; k < res.size(); ++k) {
-    const Row& r = rows[static_cast<std::size_t>(k)];
+    const FaceDiagonalRow& r = rows[static_cast<std::size_t>(k)];
     result.residuals[r.diagonal][r.point] = res(k);
   }
   return result;

@@ -49,13 +49,8 @@ double range(const std::vector<TargetStatistics>& targets, Low low, High high) {
   return hi - lo;
 }
 
-}  // namespace
-
-Iso230_2Result evaluateIso230_2(std::span<const PositioningSample> samples,
-                                const Iso230_2Options& options) {
-  const double k = options.coverage_factor;
-  PKM_CHECK(std::isfinite(k) && k > 0.0, "ISO 230-2: coverage factor must be > 0, got {}", k);
-  PKM_CHECK(!samples.empty(), "ISO 230-2: no samples");
+/// Rejects non-finite samples, directions other than ±1 and runs below 1.
+void checkIso230_2Samples(std::span<const PositioningSample> samples) {
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const PositioningSample& s = samples[i];
     PKM_CHECK(std::isfinite(s.target) && std::isfinite(s.measured),
@@ -69,7 +64,10 @@ Iso230_2Result evaluateIso230_2(std::span<const PositioningSample> samples,
               s.direction);
     PKM_CHECK(s.run >= 1, "ISO 230-2: sample {}: run must be >= 1, got {}", i + 1, s.run);
   }
+}
 
+/// The samples sorted by target, then '+' before '-', then run; rejects duplicates.
+std::vector<PositioningSample> sortIso230_2Samples(std::span<const PositioningSample> samples) {
   std::vector<PositioningSample> sorted(samples.begin(), samples.end());
   const auto key = [](const PositioningSample& s) {
     return std::make_tuple(s.target, -s.direction, s.run);
@@ -85,42 +83,43 @@ Iso230_2Result evaluateIso230_2(std::span<const PositioningSample> samples,
               sorted[i].direction > 0 ? '+' : '-',
               sorted[i].run);
   }
+  return sorted;
+}
 
-  Iso230_2Result result;
-  const std::span<const PositioningSample> all(sorted);
-  std::size_t begin = 0;
-  while (begin < sorted.size()) {
-    std::size_t end = begin;
-    while (end < sorted.size() && sorted[end].target == sorted[begin].target) ++end;
-    std::size_t split = begin;  // '+' samples first (sorted by -direction)
-    while (split < end && sorted[split].direction > 0) ++split;
-    const DirectionStats up = directionStats(all.subspan(begin, split - begin));
-    const DirectionStats down = directionStats(all.subspan(split, end - split));
-    for (const DirectionStats* d : {&up, &down}) {
-      PKM_CHECK(d->runs != 1,
-                "ISO 230-2: target {} has only 1 run in the {} direction (needs 2)",
-                sorted[begin].target,
-                d == &up ? '+' : '-');
-    }
-    TargetStatistics t;
-    t.target = sorted[begin].target;
-    t.mean_up = up.mean;
-    t.mean_down = down.mean;
-    t.s_up = up.s;
-    t.s_down = down.s;
-    t.runs_up = up.runs;
-    t.runs_down = down.runs;
-    t.reversal = up.mean - down.mean;         // B_i = x̄i↑ - x̄i↓
-    t.repeatability_up = 2.0 * k * up.s;      // R_i↑ = 4 s_i↑ for k = 2
-    t.repeatability_down = 2.0 * k * down.s;  // R_i↓ = 4 s_i↓
-    t.mean = 0.5 * (up.mean + down.mean);     // x̄i
-    t.repeatability = std::max(
-        {k * up.s + k * down.s + std::abs(t.reversal), t.repeatability_up, t.repeatability_down});
-    if (up.runs == 0 || down.runs == 0) t.repeatability = kNaN;  // std::max drops NaN silently
-    result.targets.push_back(t);
-    begin = end;
+/// The statistics of one target (ISO 230-2:2014) from its samples, sorted '+' first, with
+/// coverage factor k; rejects a direction with a single run.
+TargetStatistics iso230_2Target(std::span<const PositioningSample> group, double k) {
+  std::size_t split = 0;  // '+' samples first (sorted by -direction)
+  while (split < group.size() && group[split].direction > 0) ++split;
+  const DirectionStats up = directionStats(group.subspan(0, split));
+  const DirectionStats down = directionStats(group.subspan(split, group.size() - split));
+  for (const DirectionStats* d : {&up, &down}) {
+    PKM_CHECK(d->runs != 1,
+              "ISO 230-2: target {} has only 1 run in the {} direction (needs 2)",
+              group[0].target,
+              d == &up ? '+' : '-');
   }
+  TargetStatistics t;
+  t.target = group[0].target;
+  t.mean_up = up.mean;
+  t.mean_down = down.mean;
+  t.s_up = up.s;
+  t.s_down = down.s;
+  t.runs_up = up.runs;
+  t.runs_down = down.runs;
+  t.reversal = up.mean - down.mean;         // B_i = x̄i↑ - x̄i↓
+  t.repeatability_up = 2.0 * k * up.s;      // R_i↑ = 4 s_i↑ for k = 2
+  t.repeatability_down = 2.0 * k * down.s;  // R_i↓ = 4 s_i↓
+  t.mean = 0.5 * (up.mean + down.mean);     // x̄i
+  t.repeatability = std::max(
+      {k * up.s + k * down.s + std::abs(t.reversal), t.repeatability_up, t.repeatability_down});
+  if (up.runs == 0 || down.runs == 0) t.repeatability = kNaN;  // std::max drops NaN silently
+  return t;
+}
 
+/// The axis parameters (B, R, E, M, A and their one-direction forms) from result.targets (not
+/// empty), with coverage factor k; rejects targets measured in other directions than the first.
+void summariseIso230_2(Iso230_2Result& result, double k) {
   const TargetStatistics& first = result.targets.front();
   for (const TargetStatistics& t : result.targets) {
     PKM_CHECK((t.runs_up > 0) == (first.runs_up > 0) && (t.runs_down > 0) == (first.runs_down > 0),
@@ -180,6 +179,28 @@ Iso230_2Result evaluateIso230_2(std::span<const PositioningSample> samples,
   } else {
     result.B = result.B_mean = result.R = result.E = result.M = result.A = kNaN;
   }
+}
+
+}  // namespace
+
+Iso230_2Result evaluateIso230_2(std::span<const PositioningSample> samples,
+                                const Iso230_2Options& options) {
+  const double k = options.coverage_factor;
+  PKM_CHECK(std::isfinite(k) && k > 0.0, "ISO 230-2: coverage factor must be > 0, got {}", k);
+  PKM_CHECK(!samples.empty(), "ISO 230-2: no samples");
+  checkIso230_2Samples(samples);
+  const std::vector<PositioningSample> sorted = sortIso230_2Samples(samples);
+
+  Iso230_2Result result;
+  const std::span<const PositioningSample> all(sorted);
+  std::size_t begin = 0;
+  while (begin < sorted.size()) {
+    std::size_t end = begin;
+    while (end < sorted.size() && sorted[end].target == sorted[begin].target) ++end;
+    result.targets.push_back(iso230_2Target(all.subspan(begin, end - begin), k));
+    begin = end;
+  }
+  summariseIso230_2(result, k);
   return result;
 }
 

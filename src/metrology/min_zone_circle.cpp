@@ -226,6 +226,72 @@ ZoneCertificate certifyMinimumZone(std::span<const Point2> points,
 
 namespace {
 
+/// The exchange's check of every point once it is optimal on `candidates` (sorted, unique): adds
+/// the points outside the zone about `c` (mean radius rho, half-width |h| + tol); after
+/// kMaxRounds such rounds (counted in `rounds`) all points. False when none was added (or all
+/// were candidates already): the zone is optimal on all points.
+bool addOutsidePoints(std::span<const Point2> points,
+                      const Point2& c,
+                      double rho,
+                      double h,
+                      double tol,
+                      std::vector<std::size_t>& candidates,
+                      int& rounds) {
+  const std::size_t before = candidates.size();
+  if (before == points.size()) return false;
+  // |r − rho| > |h| + tol, compared as squares (no square root per point).
+  const double out_r = rho + std::abs(h) + tol;
+  const double in_r = std::max(rho - std::abs(h) - tol, 0.0);
+  const double out2 = out_r * out_r, in2 = in_r * in_r;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const double r2 = (points[k] - c).squaredNorm();
+    if (r2 > out2 || r2 < in2) candidates.push_back(k);
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  if (candidates.size() == before) return false;
+  constexpr int kMaxRounds = 8;  // then all points: the plain exchange
+  if (++rounds == kMaxRounds) {
+    candidates.resize(points.size());
+    std::iota(candidates.begin(), candidates.end(), std::size_t{0});
+  }
+  return true;
+}
+
+/// Single-point exchange (Remez): point `worst`, at signed distance worst_e from the mean circle
+/// about `c`, replaces the neighbour of its own sign in the cyclically sorted reference `ref`
+/// (re-sorted about `c` after), so the reference keeps alternating; group {0, 2} is outer when
+/// the levelled half-width h >= 0.
+void exchangePoint(std::span<const Point2> points,
+                   const Point2& c,
+                   double h,
+                   std::size_t worst,
+                   double worst_e,
+                   std::array<std::size_t, 4>& ref) {
+  const int sign_a = h >= 0.0 ? 1 : -1;
+  const int sign_new = worst_e > 0.0 ? 1 : -1;
+  const Point2 u0 = points[ref[0]] - c;
+  const auto rel = [&](const Point2& p) {
+    const Point2 v = p - c;
+    double a = std::atan2(cross(u0, v), u0.dot(v));
+    if (a < 0.0) a += 2.0 * std::numbers::pi;
+    return a;
+  };
+  const double beta = rel(points[worst]);
+  std::size_t j = 3;
+  for (std::size_t i = 1; i < 4; ++i) {
+    if (beta < rel(points[ref[i]])) {
+      j = i - 1;
+      break;
+    }
+  }
+  const int sign_j = (j % 2 == 0) ? sign_a : -sign_a;
+  ref[sign_j == sign_new ? j : (j + 1) % 4] = worst;
+  sortCyclic(points, c, ref);
+  // Keep group {0, 2} = the first group after the re-sort only if the alternation holds; the
+  // exchange rule guarantees it for near-circular data.
+}
+
 /// The Remez exchange from `start` (fitMinimumZoneCircle without the global proof); `scale` is
 /// the length the tolerances are relative to. `from_contacts`: the first reference is the two
 /// farthest and two nearest points about `start` when they alternate (a restart at a centre the
@@ -276,57 +342,14 @@ MinZoneCircle localZone(std::span<const Point2> points,
     if (std::abs(worst_e) <= std::abs(h) + tol ||
         std::find(ref.begin(), ref.end(), worst) != ref.end()) {
       // Optimal on the candidates: check every point.
-      const std::size_t before = candidates.size();
-      if (before == points.size()) {
+      if (!addOutsidePoints(points, c, rho, h, tol, candidates, rounds)) {
         done = true;
         break;
-      }
-      // |r − rho| > |h| + tol, compared as squares (no square root per point).
-      const double out_r = rho + std::abs(h) + tol;
-      const double in_r = std::max(rho - std::abs(h) - tol, 0.0);
-      const double out2 = out_r * out_r, in2 = in_r * in_r;
-      for (std::size_t k = 0; k < points.size(); ++k) {
-        const double r2 = (points[k] - c).squaredNorm();
-        if (r2 > out2 || r2 < in2) candidates.push_back(k);
-      }
-      std::sort(candidates.begin(), candidates.end());
-      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-      if (candidates.size() == before) {
-        done = true;
-        break;
-      }
-      constexpr int kMaxRounds = 8;  // then all points: the plain exchange
-      if (++rounds == kMaxRounds) {
-        candidates.resize(points.size());
-        std::iota(candidates.begin(), candidates.end(), std::size_t{0});
       }
       continue;  // the same reference, now against the added points
     }
     ++it;
-    // Single-point exchange (Remez): the new point replaces the neighbour of its own sign, so the
-    // reference keeps alternating.
-    const int sign_a = h >= 0.0 ? 1 : -1;
-    const int sign_new = worst_e > 0.0 ? 1 : -1;
-    const Point2 u0 = points[ref[0]] - c;
-    const auto rel = [&](const Point2& p) {
-      const Point2 v = p - c;
-      double a = std::atan2(cross(u0, v), u0.dot(v));
-      if (a < 0.0) a += 2.0 * std::numbers::pi;
-      return a;
-    };
-    const double beta = rel(points[worst]);
-    std::size_t j = 3;
-    for (std::size_t i = 1; i < 4; ++i) {
-      if (beta < rel(points[ref[i]])) {
-        j = i - 1;
-        break;
-      }
-    }
-    const int sign_j = (j % 2 == 0) ? sign_a : -sign_a;
-    ref[sign_j == sign_new ? j : (j + 1) % 4] = worst;
-    sortCyclic(points, c, ref);
-    // Keep group {0, 2} = the first group after the re-sort only if the alternation holds; the
-    // exchange rule guarantees it for near-circular data.
+    exchangePoint(points, c, h, worst, worst_e, ref);
   }
   zone.center = c;
   const auto [lo, hi] = radialRange(points, c);

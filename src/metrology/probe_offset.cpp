@@ -28,6 +28,47 @@ double checkedPathRadius(std::initializer_list<double> values, double ring, doub
   return ring - stylus;
 }
 
+/// The touches' positions; rejects non-finite touches and touches all at one spindle angle.
+std::vector<Point2> checkedTouchPositions(std::span<const ProbeTouch> touches) {
+  std::vector<Point2> s(touches.size());
+  double amin = touches[0].angle;
+  double amax = amin;
+  for (std::size_t k = 0; k < touches.size(); ++k) {
+    PKM_CHECK(std::isfinite(touches[k].angle) && std::isfinite(touches[k].position.x()) &&
+                  std::isfinite(touches[k].position.y()),
+              "probe offset: touch {} of {} is not finite",
+              k + 1,
+              touches.size());
+    s[k] = touches[k].position;
+    amin = std::min(amin, touches[k].angle);
+    amax = std::max(amax, touches[k].angle);
+  }
+  constexpr double kMinAngleSpread = 1e-3;  // rad: c and d are confounded at one angle
+  PKM_CHECK(amax - amin > kMinAngleSpread,
+            "probe offset: all touches have the same spindle angle (offset and centre are not "
+            "separable)");
+  return s;
+}
+
+/// Fills `fit` from the parameters p = (cx, cy, dx, dy, ρ) (centre relative to `origin`, mm):
+/// ring centre, offset, ball path radius, and the residuals of `touches` with their RMS.
+void setProbeOffsetResult(std::span<const ProbeTouch> touches,
+                          const Point2& origin,
+                          const Eigen::Matrix<double, 5, 1>& p,
+                          ProbeOffsetFit& fit) {
+  fit.ring_center = origin + p.head<2>();
+  fit.offset = p.segment<2>(2);
+  fit.ball_path_radius = p(4);
+  fit.residuals.resize(touches.size());
+  double sq = 0.0;
+  for (std::size_t k = 0; k < touches.size(); ++k) {
+    const double e = (ballCentre(touches[k], fit.offset) - fit.ring_center).norm() - p(4);
+    fit.residuals[k] = e;
+    sq += e * e;
+  }
+  fit.rms = std::sqrt(sq / static_cast<double>(touches.size()));
+}
+
 }  // namespace
 
 Eigen::Vector2d probeOffsetEq9(
@@ -101,23 +142,7 @@ ProbeOffsetFit fitProbeOffset(std::span<const ProbeTouch> touches,
   std::string why;
   PKM_CHECK(options.isValid(&why), "probe offset: {}", why);
   requireCount(touches.size(), 5, "probe offset");
-  std::vector<Point2> s(touches.size());
-  double amin = touches[0].angle;
-  double amax = amin;
-  for (std::size_t k = 0; k < touches.size(); ++k) {
-    PKM_CHECK(std::isfinite(touches[k].angle) && std::isfinite(touches[k].position.x()) &&
-                  std::isfinite(touches[k].position.y()),
-              "probe offset: touch {} of {} is not finite",
-              k + 1,
-              touches.size());
-    s[k] = touches[k].position;
-    amin = std::min(amin, touches[k].angle);
-    amax = std::max(amax, touches[k].angle);
-  }
-  constexpr double kMinAngleSpread = 1e-3;  // rad: c and d are confounded at one angle
-  PKM_CHECK(amax - amin > kMinAngleSpread,
-            "probe offset: all touches have the same spindle angle (offset and centre are not "
-            "separable)");
+  const std::vector<Point2> s = checkedTouchPositions(touches);
   const CircleFit start = fitCircle(s);
   const Point2 origin = start.circle.center;
   // Parameters (cx, cy, dx, dy, ρ), centre relative to `origin`.
@@ -165,17 +190,7 @@ ProbeOffsetFit fitProbeOffset(std::span<const ProbeTouch> touches,
       break;
     }
   }
-  fit.ring_center = origin + p.head<2>();
-  fit.offset = p.segment<2>(2);
-  fit.ball_path_radius = p(4);
-  fit.residuals.resize(touches.size());
-  double sq = 0.0;
-  for (std::size_t k = 0; k < touches.size(); ++k) {
-    const double e = (ballCentre(touches[k], fit.offset) - fit.ring_center).norm() - p(4);
-    fit.residuals[k] = e;
-    sq += e * e;
-  }
-  fit.rms = std::sqrt(sq / static_cast<double>(touches.size()));
+  setProbeOffsetResult(touches, origin, p, fit);
   return fit;
 }
 

@@ -76,6 +76,96 @@ double slopeStandardError(const SlopeRun& run) {
   return std::sqrt(sr / static_cast<double>(n - 2) / sxx);
 }
 
+/// The budget of a least-squares circle's radius R (mm; lsc of N >= 4 points): the fit's
+/// s/√N, the stylus radius calibration, the probe's 2D form, and the ring's temperature and
+/// expansion coefficient.
+UncertaintyBudget circleRadiusBudget(const CircleFit& lsc, const UncertaintySources& src) {
+  const std::size_t n = lsc.residuals.size();
+  const TouchProbe& probe = src.probe;
+  const MeasurementEnvironment& env = src.environment;
+  const double R = lsc.circle.radius;
+  const double s = lsc.rms * std::sqrt(static_cast<double>(n) / static_cast<double>(n - 3));
+  UncertaintyBudget radius = detail::lengthBudget("radius", R, src.coverage_factor);
+  addContributor(radius,
+                 detail::lengthContributor("least-squares fit (s/sqrt(N))",
+                                           s / std::sqrt(static_cast<double>(n)),
+                                           Distribution::kNormal,
+                                           1.0,
+                                           "test data"));
+  addContributor(radius,
+                 detail::lengthContributor("stylus radius calibration",
+                                           probe.stylus_radius_uncertainty_mm,
+                                           Distribution::kNormal,
+                                           1.0,
+                                           "instrument",
+                                           2.0));
+  addContributor(radius,
+                 detail::lengthContributor("probe form error (2D)",
+                                           probe.form_2d_mm,
+                                           Distribution::kRectangular,
+                                           1.0,
+                                           "instrument"));
+  UncertaintyContributor temperature =
+      detail::lengthContributor("ring temperature",
+                                src.laser.material_temperature_accuracy_k,
+                                Distribution::kRectangular,
+                                R * env.expansion_coefficient_per_k,
+                                "environment");
+  temperature.unit = "K";
+  addContributor(radius, temperature);
+  UncertaintyContributor alpha =
+      detail::lengthContributor("expansion coefficient",
+                                env.expansion_coefficient_accuracy_per_k,
+                                Distribution::kRectangular,
+                                R * std::abs(env.material_temperature_c - 20.0),
+                                "environment");
+  alpha.unit = "1/K";
+  addContributor(radius, alpha);
+  return radius;
+}
+
+/// The budget of roundness `name` (`value`, mm) from `n` probed points: the probe's
+/// repeatability and form at two points, the master ring's form, and the probe noise's raising
+/// of a range.
+UncertaintyBudget circleRoundnessBudget(const char* name,
+                                        double value,
+                                        std::size_t n,
+                                        const TouchProbe& probe,
+                                        double coverage_factor) {
+  UncertaintyBudget b = detail::lengthBudget(name, value, coverage_factor);
+  addContributor(b,
+                 detail::lengthContributor("probe repeatability (two points)",
+                                           probe.repeatability_2sigma_mm,
+                                           Distribution::kNormal,
+                                           std::sqrt(2.0),
+                                           "instrument",
+                                           2.0));
+  addContributor(b,
+                 detail::lengthContributor("probe form error (two points)",
+                                           probe.form_2d_mm,
+                                           Distribution::kRectangular,
+                                           std::sqrt(2.0),
+                                           "instrument"));
+  addContributor(b,
+                 detail::lengthContributor("master ring form (certificate)",
+                                           probe.ring_form_mm,
+                                           Distribution::kRectangular,
+                                           1.0,
+                                           "artefact certificate"));
+  // A roundness is a range of the residuals: the probe's noise raises it by up to the
+  // expected range of N noise values, d2(N)·σ (0.68 µm for 180 points at σ = 0.125 µm). The
+  // bias is one-sided and shrinks as the form grows against the noise; it is budgeted as a
+  // rectangular half-width (GUM F.2.4.4) rather than subtracted.
+  addContributor(b,
+                 detail::lengthContributor(
+                     fmt::format("probe noise raising a range of {} points (d2(N) sigma)", n),
+                     expectedNormalRange(n) * probe.repeatability_2sigma_mm / 2.0,
+                     Distribution::kRectangular,
+                     1.0,
+                     "instrument repeatability, expected range of N normal values"));
+  return b;
+}
+
 }  // namespace
 
 UncertaintyBudget straightnessUncertainty(double straightness,
@@ -147,81 +237,11 @@ std::vector<UncertaintyBudget> circleUncertainty(const CircleFit& lsc,
   checkSources(src);
   const std::size_t n = lsc.residuals.size();
   PKM_CHECK(n >= 4, "circle uncertainty: needs >= 4 points, got {}", n);
-  const TouchProbe& probe = src.probe;
-  const MeasurementEnvironment& env = src.environment;
-  const double R = lsc.circle.radius;
-  const double s = lsc.rms * std::sqrt(static_cast<double>(n) / static_cast<double>(n - 3));
-  UncertaintyBudget radius = detail::lengthBudget("radius", R, src.coverage_factor);
-  addContributor(radius,
-                 detail::lengthContributor("least-squares fit (s/sqrt(N))",
-                                           s / std::sqrt(static_cast<double>(n)),
-                                           Distribution::kNormal,
-                                           1.0,
-                                           "test data"));
-  addContributor(radius,
-                 detail::lengthContributor("stylus radius calibration",
-                                           probe.stylus_radius_uncertainty_mm,
-                                           Distribution::kNormal,
-                                           1.0,
-                                           "instrument",
-                                           2.0));
-  addContributor(radius,
-                 detail::lengthContributor("probe form error (2D)",
-                                           probe.form_2d_mm,
-                                           Distribution::kRectangular,
-                                           1.0,
-                                           "instrument"));
-  UncertaintyContributor temperature =
-      detail::lengthContributor("ring temperature",
-                                src.laser.material_temperature_accuracy_k,
-                                Distribution::kRectangular,
-                                R * env.expansion_coefficient_per_k,
-                                "environment");
-  temperature.unit = "K";
-  addContributor(radius, temperature);
-  UncertaintyContributor alpha =
-      detail::lengthContributor("expansion coefficient",
-                                env.expansion_coefficient_accuracy_per_k,
-                                Distribution::kRectangular,
-                                R * std::abs(env.material_temperature_c - 20.0),
-                                "environment");
-  alpha.unit = "1/K";
-  addContributor(radius, alpha);
+  const UncertaintyBudget radius = circleRadiusBudget(lsc, src);
   std::vector<UncertaintyBudget> out{radius};
   for (const auto& [name, value] :
        {std::pair{"roundness_lsc", lsc.roundness}, std::pair{"roundness_mzc", mzc.roundness}}) {
-    UncertaintyBudget b = detail::lengthBudget(name, value, src.coverage_factor);
-    addContributor(b,
-                   detail::lengthContributor("probe repeatability (two points)",
-                                             probe.repeatability_2sigma_mm,
-                                             Distribution::kNormal,
-                                             std::sqrt(2.0),
-                                             "instrument",
-                                             2.0));
-    addContributor(b,
-                   detail::lengthContributor("probe form error (two points)",
-                                             probe.form_2d_mm,
-                                             Distribution::kRectangular,
-                                             std::sqrt(2.0),
-                                             "instrument"));
-    addContributor(b,
-                   detail::lengthContributor("master ring form (certificate)",
-                                             probe.ring_form_mm,
-                                             Distribution::kRectangular,
-                                             1.0,
-                                             "artefact certificate"));
-    // A roundness is a range of the residuals: the probe's noise raises it by up to the
-    // expected range of N noise values, d2(N)·σ (0.68 µm for 180 points at σ = 0.125 µm). The
-    // bias is one-sided and shrinks as the form grows against the noise; it is budgeted as a
-    // rectangular half-width (GUM F.2.4.4) rather than subtracted.
-    addContributor(b,
-                   detail::lengthContributor(
-                       fmt::format("probe noise raising a range of {} points (d2(N) sigma)", n),
-                       expectedNormalRange(n) * probe.repeatability_2sigma_mm / 2.0,
-                       Distribution::kRectangular,
-                       1.0,
-                       "instrument repeatability, expected range of N normal values"));
-    out.push_back(std::move(b));
+    out.push_back(circleRoundnessBudget(name, value, n, src.probe, src.coverage_factor));
   }
   return out;
 }

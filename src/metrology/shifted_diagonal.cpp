@@ -16,6 +16,73 @@ void checkShift(double shift) {
             "shifted diagonal: shift must be finite and != 0");
 }
 
+/// The length errors summed per (diagonal, axis + 1), their count, and the shift of each.
+struct ShiftedSums {
+  std::array<std::array<double, 4>, 4> sum{}, shift{};
+  std::array<std::array<int, 4>, 4> count{};
+};
+
+/// Sums the length errors per (diagonal, axis + 1) and remembers the shift; rejects a bad axis,
+/// non-finite values, a zero shift or one over half the axis length (`size`, mm), and two
+/// different shifts along the same axis.
+ShiftedSums sumShiftedMeasurements(std::span<const ShiftedDiagonalMeasurement> measurements,
+                                   const Eigen::Vector3d& size) {
+  ShiftedSums sums;
+  auto& [sum, shift, count] = sums;
+  for (const ShiftedDiagonalMeasurement& m : measurements) {
+    PKM_CHECK(m.axis >= -1 && m.axis <= 2, "shifted diagonal: axis must be -1, 0, 1 or 2");
+    PKM_CHECK(std::isfinite(m.length_error) && std::isfinite(m.shift),
+              "shifted diagonal {}: non-finite length error or shift",
+              toString(m.diagonal));
+    const auto k = static_cast<std::size_t>(m.diagonal);
+    const auto a = static_cast<std::size_t>(m.axis + 1);
+    if (m.axis >= 0) {
+      PKM_CHECK(m.shift != 0.0 && std::abs(m.shift) <= size[m.axis] / 2,
+                "shifted diagonal {}: the shift along {} must be non-zero and at most half the "
+                "axis length, got {} mm",
+                toString(m.diagonal),
+                "XYZ"[m.axis],
+                m.shift);
+      PKM_CHECK(count[k][a] == 0 || shift[k][a] == m.shift,
+                "shifted diagonal {}: two different shifts along {}",
+                toString(m.diagonal),
+                "XYZ"[m.axis]);
+      shift[k][a] = m.shift;
+    }
+    sum[k][a] += m.length_error;
+    ++count[k][a];
+  }
+  return sums;
+}
+
+/// Into r: the squareness of eq (6) from the measured unshifted lengths (mm) of the four
+/// diagonals, plain and with r.scale, and the squareness and asymmetry from r.components.
+void eq6Squareness(const std::array<double, 4>& measured,
+                   const Eigen::Vector3d& size,
+                   ShiftedDiagonalResult& r) {
+  // Eq (6): γ_ij = acos((R_PPP² + R_F² − 2R_ideal²)/(4·Li·Lj)), F the diagonal that reverses the
+  // third axis. Pairs in output order xy (F = PPN ≡ NNP), xz (F = PNP), yz (F = NPP).
+  const Eigen::Vector3d sq = size.cwiseProduct(size);
+  const double ideal = sq.sum();
+  const double ideal_scaled =
+      sq.x() * (1 + 2 * r.scale[0]) + sq.y() * (1 + 2 * r.scale[1]) + sq.z() * (1 + 2 * r.scale[2]);
+  struct Pair {
+    std::size_t i, j, flip;
+  };
+  constexpr std::array<Pair, 3> kPairs = {Pair{0, 1, 3}, Pair{0, 2, 2}, Pair{1, 2, 1}};
+  const double right = std::numbers::pi / 2;
+  for (std::size_t p = 0; p < 3; ++p) {
+    const auto [i, j, flip] = kPairs[p];
+    const double li = size[static_cast<Eigen::Index>(i)], lj = size[static_cast<Eigen::Index>(j)];
+    const double sum2 = measured[0] * measured[0] + measured[flip] * measured[flip];
+    r.squareness_eq6[p] = std::acos((sum2 - 2.0 * ideal) / (4.0 * li * lj)) - right;
+    r.squareness_eq6_scaled[p] = std::acos((sum2 - 2.0 * ideal_scaled) / (4.0 * li * lj)) - right;
+    const double gij = r.components[i][j] / lj, gji = r.components[j][i] / li;
+    r.squareness[p] = -(gij + gji) / 2.0;
+    r.asymmetry[p] = gij - gji;
+  }
+}
+
 }  // namespace
 
 ShiftTriangle shiftTriangle(double r0, double rm, double shift) {
@@ -48,32 +115,8 @@ double shiftComponent(double r0, double rm, double shift) {
 ShiftedDiagonalResult evaluateShiftedDiagonals(
     std::span<const ShiftedDiagonalMeasurement> measurements, const Eigen::Vector3d& size) {
   requireBoxSize(size);
-  // Average the length error per (diagonal, axis + 1); remember the shift.
-  std::array<std::array<double, 4>, 4> sum{}, shift{};
-  std::array<std::array<int, 4>, 4> count{};
-  for (const ShiftedDiagonalMeasurement& m : measurements) {
-    PKM_CHECK(m.axis >= -1 && m.axis <= 2, "shifted diagonal: axis must be -1, 0, 1 or 2");
-    PKM_CHECK(std::isfinite(m.length_error) && std::isfinite(m.shift),
-              "shifted diagonal {}: non-finite length error or shift",
-              toString(m.diagonal));
-    const auto k = static_cast<std::size_t>(m.diagonal);
-    const auto a = static_cast<std::size_t>(m.axis + 1);
-    if (m.axis >= 0) {
-      PKM_CHECK(m.shift != 0.0 && std::abs(m.shift) <= size[m.axis] / 2,
-                "shifted diagonal {}: the shift along {} must be non-zero and at most half the "
-                "axis length, got {} mm",
-                toString(m.diagonal),
-                "XYZ"[m.axis],
-                m.shift);
-      PKM_CHECK(count[k][a] == 0 || shift[k][a] == m.shift,
-                "shifted diagonal {}: two different shifts along {}",
-                toString(m.diagonal),
-                "XYZ"[m.axis]);
-      shift[k][a] = m.shift;
-    }
-    sum[k][a] += m.length_error;
-    ++count[k][a];
-  }
+  const ShiftedSums sums = sumShiftedMeasurements(measurements, size);
+  const auto& [sum, shift, count] = sums;
   ShiftedDiagonalResult r;
   std::array<double, 4> measured{};              // measured unshifted lengths
   std::array<std::array<double, 3>, 4> along{};  // along-travel shifts
@@ -108,27 +151,7 @@ ShiftedDiagonalResult evaluateShiftedDiagonals(
     const double mean_shift = (along[0][j] + along[kFlip[j]][j]) / 2.0;
     r.scale[j] = r.components[j][j] / (2.0 * size[static_cast<Eigen::Index>(j)] + mean_shift);
   }
-  // Eq (6): γ_ij = acos((R_PPP² + R_F² − 2R_ideal²)/(4·Li·Lj)), F the diagonal that reverses the
-  // third axis. Pairs in output order xy (F = PPN ≡ NNP), xz (F = PNP), yz (F = NPP).
-  const Eigen::Vector3d sq = size.cwiseProduct(size);
-  const double ideal = sq.sum();
-  const double ideal_scaled =
-      sq.x() * (1 + 2 * r.scale[0]) + sq.y() * (1 + 2 * r.scale[1]) + sq.z() * (1 + 2 * r.scale[2]);
-  struct Pair {
-    std::size_t i, j, flip;
-  };
-  constexpr std::array<Pair, 3> kPairs = {Pair{0, 1, 3}, Pair{0, 2, 2}, Pair{1, 2, 1}};
-  const double right = std::numbers::pi / 2;
-  for (std::size_t p = 0; p < 3; ++p) {
-    const auto [i, j, flip] = kPairs[p];
-    const double li = size[static_cast<Eigen::Index>(i)], lj = size[static_cast<Eigen::Index>(j)];
-    const double sum2 = measured[0] * measured[0] + measured[flip] * measured[flip];
-    r.squareness_eq6[p] = std::acos((sum2 - 2.0 * ideal) / (4.0 * li * lj)) - right;
-    r.squareness_eq6_scaled[p] = std::acos((sum2 - 2.0 * ideal_scaled) / (4.0 * li * lj)) - right;
-    const double gij = r.components[i][j] / lj, gji = r.components[j][i] / li;
-    r.squareness[p] = -(gij + gji) / 2.0;
-    r.asymmetry[p] = gij - gji;
-  }
+  eq6Squareness(measured, size, r);
   return r;
 }
 

@@ -53,6 +53,90 @@ struct Candidate {
   std::size_t edge;  ///< index of the edge's first vertex in its hull
 };
 
+/// The lower and upper convex hulls of a profile (indices in increasing x).
+struct StraightnessHulls {
+  std::vector<std::size_t> lower, upper;
+};
+
+/// The half hulls of the points (x, d): per distinct x the lowest point feeds the lower hull and
+/// the highest the upper hull, so neither hull has a vertical edge.
+StraightnessHulls straightnessHulls(std::span<const double> x, std::span<const double> d) {
+  std::vector<std::size_t> order(x.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  if (!std::is_sorted(x.begin(), x.end())) {  // measured lines usually come sorted: O(n) then
+    std::sort(
+        order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
+  }
+  std::vector<std::size_t> lows, highs;
+  for (std::size_t i = 0; i < order.size();) {
+    std::size_t low = order[i], high = order[i], j = i + 1;
+    for (; j < order.size() && x[order[j]] == x[order[i]]; ++j) {
+      if (d[order[j]] < d[low]) low = order[j];
+      if (d[order[j]] > d[high]) high = order[j];
+    }
+    lows.push_back(low);
+    highs.push_back(high);
+    i = j;
+  }
+  return {halfHull(x, d, lows, 1.0), halfHull(x, d, highs, -1.0)};
+}
+
+/// The slopes of the hull edges, the breakpoints of the zone width, in increasing order.
+std::vector<Candidate> hullEdgeSlopes(std::span<const double> x,
+                                      std::span<const double> d,
+                                      const StraightnessHulls& hulls) {
+  const std::vector<std::size_t>& lower = hulls.lower;
+  const std::vector<std::size_t>& upper = hulls.upper;
+  std::vector<Candidate> candidates;
+  const auto slopeOf = [&](std::size_t a, std::size_t b) { return (d[b] - d[a]) / (x[b] - x[a]); };
+  for (std::size_t e = 0; e + 1 < lower.size(); ++e) {
+    candidates.push_back({slopeOf(lower[e], lower[e + 1]), true, e});
+  }
+  for (std::size_t e = 0; e + 1 < upper.size(); ++e) {
+    candidates.push_back({slopeOf(upper[e], upper[e + 1]), false, e});
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    return a.slope < b.slope;
+  });
+  return candidates;
+}
+
+/// The three contacts of the minimum zone of slope best.slope, in increasing x: the end points
+/// of the optimal edge `best` and the opposite contact; t and b are the top and bottom of d − m x
+/// over the upper and lower hull.
+std::array<std::size_t, 3> minimumZoneContacts(std::span<const double> x,
+                                               std::span<const double> d,
+                                               const StraightnessHulls& hulls,
+                                               const Candidate& best,
+                                               double t,
+                                               double b) {
+  const double m = best.slope;
+  const std::vector<std::size_t>& own = best.lower ? hulls.lower : hulls.upper;
+  const std::vector<std::size_t>& other = best.lower ? hulls.upper : hulls.lower;
+  const std::size_t a = own[best.edge], c = own[best.edge + 1];
+  // The opposite contact: the extreme vertex of the other hull, preferring one between the
+  // edge's end points (it exists at the optimum; ties are resolved within rounding).
+  const double scale = std::max({std::abs(t), std::abs(b), t - b});
+  const double eps = 1e-12 * scale + std::numeric_limits<double>::min();
+  std::size_t pick = other.front();
+  double pick_gap = std::numeric_limits<double>::infinity();
+  bool pick_inside = false;
+  for (std::size_t i : other) {
+    const double r = d[i] - m * x[i];
+    const double gap = best.lower ? t - r : r - b;
+    const bool inside = x[i] >= x[a] && x[i] <= x[c] && gap <= eps;
+    if ((inside && !pick_inside) || (inside == pick_inside && gap < pick_gap)) {
+      pick = i;
+      pick_gap = gap;
+      pick_inside = inside;
+    }
+  }
+  std::array<std::size_t, 3> contacts = {a, pick, c};
+  std::sort(
+      contacts.begin(), contacts.end(), [&](std::size_t p, std::size_t q) { return x[p] < x[q]; });
+  return contacts;
+}
+
 }  // namespace
 
 std::string_view toString(StraightnessReference reference) {
@@ -117,39 +201,10 @@ ReferenceLine minimumZoneLine(std::span<const double> x,
                               std::span<const double> d,
                               std::array<std::size_t, 3>* contacts) {
   validate(x, d);
-  std::vector<std::size_t> order(x.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  if (!std::is_sorted(x.begin(), x.end())) {  // measured lines usually come sorted: O(n) then
-    std::sort(
-        order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
-  }
-  // Per distinct x the lowest point feeds the lower hull and the highest the upper hull, so
-  // neither hull has a vertical edge.
-  std::vector<std::size_t> lows, highs;
-  for (std::size_t i = 0; i < order.size();) {
-    std::size_t low = order[i], high = order[i], j = i + 1;
-    for (; j < order.size() && x[order[j]] == x[order[i]]; ++j) {
-      if (d[order[j]] < d[low]) low = order[j];
-      if (d[order[j]] > d[high]) high = order[j];
-    }
-    lows.push_back(low);
-    highs.push_back(high);
-    i = j;
-  }
-  const std::vector<std::size_t> lower = halfHull(x, d, lows, 1.0);
-  const std::vector<std::size_t> upper = halfHull(x, d, highs, -1.0);
-
-  std::vector<Candidate> candidates;
-  const auto slopeOf = [&](std::size_t a, std::size_t b) { return (d[b] - d[a]) / (x[b] - x[a]); };
-  for (std::size_t e = 0; e + 1 < lower.size(); ++e) {
-    candidates.push_back({slopeOf(lower[e], lower[e + 1]), true, e});
-  }
-  for (std::size_t e = 0; e + 1 < upper.size(); ++e) {
-    candidates.push_back({slopeOf(upper[e], upper[e + 1]), false, e});
-  }
-  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
-    return a.slope < b.slope;
-  });
+  const StraightnessHulls hulls = straightnessHulls(x, d);
+  const std::vector<std::size_t>& lower = hulls.lower;
+  const std::vector<std::size_t>& upper = hulls.upper;
+  const std::vector<Candidate> candidates = hullEdgeSlopes(x, d, hulls);
 
   // Zone width for slope m: max over the upper hull minus min over the lower hull of d - m x.
   const auto top = [&](double m) {
@@ -180,32 +235,7 @@ ReferenceLine minimumZoneLine(std::span<const double> x,
   const double m = best.slope;
   const double t = top(m), b = bottom(m);
 
-  if (contacts != nullptr) {
-    const std::vector<std::size_t>& own = best.lower ? lower : upper;
-    const std::vector<std::size_t>& other = best.lower ? upper : lower;
-    const std::size_t a = own[best.edge], c = own[best.edge + 1];
-    // The opposite contact: the extreme vertex of the other hull, preferring one between the
-    // edge's end points (it exists at the optimum; ties are resolved within rounding).
-    const double scale = std::max({std::abs(t), std::abs(b), t - b});
-    const double eps = 1e-12 * scale + std::numeric_limits<double>::min();
-    std::size_t pick = other.front();
-    double pick_gap = std::numeric_limits<double>::infinity();
-    bool pick_inside = false;
-    for (std::size_t i : other) {
-      const double r = d[i] - m * x[i];
-      const double gap = best.lower ? t - r : r - b;
-      const bool inside = x[i] >= x[a] && x[i] <= x[c] && gap <= eps;
-      if ((inside && !pick_inside) || (inside == pick_inside && gap < pick_gap)) {
-        pick = i;
-        pick_gap = gap;
-        pick_inside = inside;
-      }
-    }
-    *contacts = {a, pick, c};
-    std::sort(contacts->begin(), contacts->end(), [&](std::size_t p, std::size_t q) {
-      return x[p] < x[q];
-    });
-  }
+  if (contacts != nullptr) *contacts = minimumZoneContacts(x, d, hulls, best, t, b);
   return {m, 0.5 * (t + b)};
 }
 

@@ -139,47 +139,37 @@ std::vector<LineRun> simulateLine(VirtualMachine& machine,
 
 namespace {
 
-/// simulateLine's body; `scale_z` nullopt: the line draws its own scale error.
-std::vector<LineRun> simulate(VirtualMachine& machine,
-                              const LineSetup& setup,
-                              RandomStream& rng,
-                              MeasurementConditions* conditions,
-                              std::optional<double> scale_z) {
-  setup.validate();
-  const std::vector<double> targets = cycleTargets(setup.cycle, rng);
-  const Eigen::Vector3d beam = machine.nominalPose(setup.line.at(1.0)).translation() -
-                               machine.nominalPose(setup.line.at(0.0)).translation();
-  PKM_CHECK(std::abs(beam.norm() - 1.0) < kUnitTolerance,
-            "{}: the nominal tool travel per unit of the line is {}, not 1",
-            setup.name,
-            beam.norm());
-  const double s0 = targets.front();
-  const double below = s0 - setup.cycle.overshoot;
-  const double above = targets.back() + setup.cycle.overshoot;
+/// The machine's pose in the environment (thermal expansion and warm-up; unchanged without
+/// `conditions`).
+geometry::RigidTransform environmentPose(const MeasurementConditions* conditions,
+                                         const geometry::RigidTransform& pose) {
+  return conditions != nullptr ? conditions->actualPose(pose) : pose;
+}
 
-  machine.reset(rng.bits());
-  machine.moveTo(setup.line.at(below));
-  if (conditions != nullptr) conditions->zero();
-  // The machine's pose in the environment (thermal expansion and warm-up; unchanged without).
-  const auto actual = [&](const geometry::RigidTransform& pose) {
-    return conditions != nullptr ? conditions->actualPose(pose) : pose;
-  };
-  const LineInstrument instrument(
-      setup, beam, actual(machine.moveTo(setup.line.at(s0))), conditions);
+/// The runs of a line measurement (simulate's loop): the machine, the set-up, the instrument and
+/// the values fixed for the line.
+struct LineRunner {
+  VirtualMachine& machine;
+  const LineSetup& setup;
+  RandomStream& rng;
+  MeasurementConditions* conditions;
+  const LineInstrument& instrument;      ///< zeroed at s0
+  const std::vector<double>& targets;    ///< in increasing order
+  const Eigen::Vector3d& beam;           ///< nominal tool travel per unit of the line
+  const Eigen::Vector3d& datum_nominal;  ///< nominal tool point at s0
+  double s0;                             ///< the first target, where the instrument is zeroed
+  double below, above;                   ///< the overshoot positions before either direction
+  double scale;                          ///< the instrument's scale error for the line
+  int moving_axes;                       ///< axes the line moves
 
-  const Eigen::Vector3d datum_nominal = machine.nominalPose(setup.line.at(s0)).translation();
-  // The instrument's ppm accuracy (its environmental compensation) holds over the test: one scale
-  // error for the line, not a draw per reading that would show as the machine's scatter.
-  const double scale = scale_z ? setup.noise.scaleFor(*scale_z) : setup.noise.drawScale(rng);
-  const auto moving_axes = static_cast<int>((setup.line.direction.array() != 0.0).count());
-  std::vector<LineRun> runs;
-  for (int r = 1; r <= setup.cycle.runs; ++r) {
+  /// Run `r` (1-based): the targets upwards, and downwards when the cycle is bidirectional.
+  LineRun measureRun(int r) {
     LineRun run;
     run.run = r;
     Eigen::VectorXd at = setup.line.at(below);  // the current command
     const auto readAt = [&](double target, int direction, int sub_step) {
       if (conditions != nullptr) conditions->next();
-      const double truth = instrument.truth(actual(machine.moveTo(at)), s0);
+      const double truth = instrument.truth(environmentPose(conditions, machine.moveTo(at)), s0);
       run.readings.push_back(
           {target, direction, setup.noise.apply(truth, target - s0, scale, rng), sub_step, {}});
       if (conditions != nullptr && setup.quantity == LineQuantity::kLinear) {
@@ -218,8 +208,54 @@ std::vector<LineRun> simulate(VirtualMachine& machine,
       machine.moveTo(at);
       for (auto it = targets.rbegin(); it != targets.rend(); ++it) read(*it, -1);
     }
-    runs.push_back(std::move(run));
+    return run;
   }
+};
+
+/// simulateLine's body; `scale_z` nullopt: the line draws its own scale error.
+std::vector<LineRun> simulate(VirtualMachine& machine,
+                              const LineSetup& setup,
+                              RandomStream& rng,
+                              MeasurementConditions* conditions,
+                              std::optional<double> scale_z) {
+  setup.validate();
+  const std::vector<double> targets = cycleTargets(setup.cycle, rng);
+  const Eigen::Vector3d beam = machine.nominalPose(setup.line.at(1.0)).translation() -
+                               machine.nominalPose(setup.line.at(0.0)).translation();
+  PKM_CHECK(std::abs(beam.norm() - 1.0) < kUnitTolerance,
+            "{}: the nominal tool travel per unit of the line is {}, not 1",
+            setup.name,
+            beam.norm());
+  const double s0 = targets.front();
+  const double below = s0 - setup.cycle.overshoot;
+  const double above = targets.back() + setup.cycle.overshoot;
+
+  machine.reset(rng.bits());
+  machine.moveTo(setup.line.at(below));
+  if (conditions != nullptr) conditions->zero();
+  const LineInstrument instrument(
+      setup, beam, environmentPose(conditions, machine.moveTo(setup.line.at(s0))), conditions);
+
+  const Eigen::Vector3d datum_nominal = machine.nominalPose(setup.line.at(s0)).translation();
+  // The instrument's ppm accuracy (its environmental compensation) holds over the test: one scale
+  // error for the line, not a draw per reading that would show as the machine's scatter.
+  const double scale = scale_z ? setup.noise.scaleFor(*scale_z) : setup.noise.drawScale(rng);
+  const auto moving_axes = static_cast<int>((setup.line.direction.array() != 0.0).count());
+  LineRunner runner{machine,
+                    setup,
+                    rng,
+                    conditions,
+                    instrument,
+                    targets,
+                    beam,
+                    datum_nominal,
+                    s0,
+                    below,
+                    above,
+                    scale,
+                    moving_axes};
+  std::vector<LineRun> runs;
+  for (int r = 1; r <= setup.cycle.runs; ++r) runs.push_back(runner.measureRun(r));
   return runs;
 }
 
