@@ -88,6 +88,133 @@ std::vector<std::optional<ExechonConfiguration>> seeds(const ExechonModel& model
   return out;
 }
 
+/// FK seeds of `initial` for every observation of `data` (seeds()). Throws pkm::InvalidArgument
+/// when the FK converges for none or fewer than half of them (wrong units or machine).
+std::vector<std::optional<ExechonConfiguration>> convergingExechonSeeds(
+    const ExechonModel& initial,
+    const ExechonCalibrationData& data,
+    const kinematics::FkOptions& fk) {
+  auto seed = seeds(initial, data, fk);
+  const auto converging = static_cast<std::size_t>(
+      std::count_if(seed.begin(), seed.end(), [](const auto& s) { return s.has_value(); }));
+  PKM_CHECK(
+      2 * converging >= data.observations.size() && converging > 0,
+      "calibration: the initial model's FK converges for only {} of {} observations; check "
+      "the units of the leg and wrist readings (length unit, degrees in files) and the machine",
+      converging,
+      data.observations.size());
+  return seed;
+}
+
+/// What an Exechon fit's residuals depend on besides the unknowns and the observations: the
+/// initial model and its base reference (world_T_zoppi), the FK seeds, the measurement frame's
+/// start (frame0, when has_frame) and the options. Everything it refers to outlives the fit.
+struct ExechonFitContext {
+  const ExechonModel& initial;
+  const geometry::RigidTransform& reference;
+  const std::vector<std::optional<ExechonConfiguration>>& seed;
+  bool has_frame;
+  const geometry::RigidTransform& frame0;
+  const ExechonCalibrationOptions& options;
+};
+
+/// The unknowns (42 parameters, then the frame correction when c.has_frame), their
+/// central-difference steps and the residual blocks of the observations of `d`, evaluated with
+/// `c`. `d` and `c` must outlive the problem.
+detail::NumericProblem exechonProblem(const ExechonCalibrationData& d, const ExechonFitContext& c) {
+  detail::NumericProblem problem;
+  for (int k = 0; k < kExechonParameters; ++k) problem.names.push_back(exechonParameterName(k));
+  if (c.has_frame)
+    for (const std::string& n : measurementFrameNames()) problem.names.push_back(n);
+  const Eigen::Index n = problem.unknowns();
+  problem.step.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k)
+    problem.step(k) = (k < kExechonParameters ? exechonParameterIsLength(static_cast<int>(k))
+                                              : k < kExechonParameters + 3)
+                          ? kLengthStep
+                          : kAngleStep;
+  for (const ExechonObservation& o : d.observations) problem.rows.push_back(o.direction ? 6 : 3);
+  problem.residual = [&d, &c](const Eigen::VectorXd& theta, std::size_t b, double* r) {
+    if (!c.seed[b]) return false;
+    const ExechonModel m = withExechonParameters(
+        c.initial, ExechonParameterVector(theta.head<kExechonParameters>()), c.reference);
+    geometry::RigidTransform f = geometry::RigidTransform::Identity();
+    if (c.has_frame) f = frameOf(c.frame0, theta.tail(6));
+    return residuals(m, d, d.observations[b], *c.seed[b], c.has_frame ? &f : nullptr, c.options, r);
+  };
+  return problem;
+}
+
+/// `data` with every point (and direction) replaced by what c.initial predicts from its FK seed,
+/// in the measurement frame c.frame0 when c.has_frame: data the initial model explains exactly,
+/// for the structural identifiability. Observations without a seed or FK keep their measurement.
+ExechonCalibrationData consistentExechonData(const ExechonCalibrationData& data,
+                                             const ExechonFitContext& c) {
+  ExechonCalibrationData consistent = data;
+  for (std::size_t b = 0; b < consistent.observations.size(); ++b) {
+    ExechonObservation& o = consistent.observations[b];
+    if (!c.seed[b]) continue;
+    kinematics::ExechonData work(c.initial);
+    if (!kinematics::toolForwardKinematics(c.initial, work, o.joints, *c.seed[b], c.options.fk)
+             .ok())
+      continue;
+    const Eigen::Vector3d p = work.world_p_tool + work.world_R_tool * data.target_offset;
+    o.point = c.has_frame
+                  ? Eigen::Vector3d(c.frame0.linear().transpose() * (p - c.frame0.translation()))
+                  : p;
+    if (o.direction)
+      o.direction = c.has_frame ? Eigen::Vector3d(c.frame0.linear().transpose() * work.world_u_tool)
+                                : work.world_u_tool;
+  }
+  return consistent;
+}
+
+/// The options.worst_count observations of `data` with the largest target residual (model length
+/// unit) under `estimated`, measurements in `frame` (world when empty); largest first.
+std::vector<WorstObservation> worstExechonObservations(
+    const ExechonModel& estimated,
+    const ExechonCalibrationData& data,
+    const std::optional<geometry::RigidTransform>& frame,
+    const ExechonCalibrationOptions& options) {
+  std::vector<WorstObservation> all;
+  for (std::size_t b = 0; b < data.observations.size(); ++b) {
+    const ExechonObservation& o = data.observations[b];
+    const auto p =
+        exechonTarget(estimated, o.joints, data.target_offset, estimated.home, options.fk);
+    if (!p) continue;
+    const Eigen::Vector3d world =
+        frame ? Eigen::Vector3d(frame->linear() * o.point + frame->translation()) : o.point;
+    all.push_back({b,
+                   o.source.empty() ? fmt::format("observation {}", b + 1) : o.source,
+                   (world - *p).norm()});
+  }
+  std::sort(all.begin(), all.end(), [](const WorstObservation& a, const WorstObservation& b) {
+    return a.residual > b.residual;
+  });
+  all.resize(std::min(all.size(), static_cast<std::size_t>(options.worst_count)));
+  return all;
+}
+
+/// Adds to `out` (estimate and residuals filled) the parameters that moved implausibly far for
+/// `initial`'s size and a warning when the residual RMS exceeds kImplausibleResidualFraction of it.
+void flagImplausibleExechonFit(const ExechonModel& initial,
+                               const ExechonCalibrationOptions& options,
+                               ExechonCalibrationSummary& out) {
+  const double size = initial.characteristicLength();
+  std::vector<ParameterValues> values;
+  for (int k = 0; k < kExechonParameters; ++k)
+    values.push_back(
+        {exechonParameterName(k), out.initial(k), out.parameters(k), exechonParameterIsLength(k)});
+  out.large_changes =
+      implausibleChanges(values, size, toString(initial.unit), options.max_plausible_change);
+  if (out.after.rms > kImplausibleResidualFraction * size)
+    out.warnings.push_back(fmt::format(
+        "the fit leaves a residual RMS of {:.4g} {}: the model does not explain the data; check "
+        "the units, the frame and outliers",
+        out.after.rms,
+        toString(initial.unit)));
+}
+
 }  // namespace
 
 std::size_t ExechonCalibrationData::equations() const {
@@ -209,65 +336,17 @@ ExechonCalibrationSummary calibrateExechon(const ExechonModel& initial,
   initial.validate();
   requireValid(data);
   const geometry::RigidTransform reference = initial.world_T_zoppi;
-  const auto seed = seeds(initial, data, options.fk);
-  const auto converging = static_cast<std::size_t>(
-      std::count_if(seed.begin(), seed.end(), [](const auto& s) { return s.has_value(); }));
-  PKM_CHECK(
-      2 * converging >= data.observations.size() && converging > 0,
-      "calibration: the initial model's FK converges for only {} of {} observations; check "
-      "the units of the leg and wrist readings (length unit, degrees in files) and the machine",
-      converging,
-      data.observations.size());
+  const auto seed = convergingExechonSeeds(initial, data, options.fk);
   const bool has_frame = data.measurement_frame.has_value();
   const geometry::RigidTransform frame0 =
       has_frame ? *data.measurement_frame : geometry::RigidTransform::Identity();
+  const ExechonFitContext context{initial, reference, seed, has_frame, frame0, options};
 
-  detail::NumericProblem problem;
-  for (int k = 0; k < kExechonParameters; ++k) problem.names.push_back(exechonParameterName(k));
-  if (has_frame)
-    for (const std::string& n : measurementFrameNames()) problem.names.push_back(n);
+  const detail::NumericProblem problem = exechonProblem(data, context);
   const Eigen::Index n = problem.unknowns();
-  problem.step.resize(n);
-  for (Eigen::Index k = 0; k < n; ++k)
-    problem.step(k) = (k < kExechonParameters ? exechonParameterIsLength(static_cast<int>(k))
-                                              : k < kExechonParameters + 3)
-                          ? kLengthStep
-                          : kAngleStep;
-  for (const ExechonObservation& o : data.observations) problem.rows.push_back(o.direction ? 6 : 3);
-  problem.residual = [&](const Eigen::VectorXd& theta, std::size_t b, double* r) {
-    if (!seed[b]) return false;
-    const ExechonModel m = withExechonParameters(
-        initial, ExechonParameterVector(theta.head<kExechonParameters>()), reference);
-    geometry::RigidTransform f = geometry::RigidTransform::Identity();
-    if (has_frame) f = frameOf(frame0, theta.tail(6));
-    return residuals(m, data, data.observations[b], *seed[b], has_frame ? &f : nullptr, options, r);
-  };
-
   // Structural identifiability: the same problem on data the initial model explains exactly.
-  ExechonCalibrationData consistent = data;
-  for (std::size_t b = 0; b < consistent.observations.size(); ++b) {
-    ExechonObservation& o = consistent.observations[b];
-    if (!seed[b]) continue;
-    kinematics::ExechonData work(initial);
-    if (!kinematics::toolForwardKinematics(initial, work, o.joints, *seed[b], options.fk).ok())
-      continue;
-    const Eigen::Vector3d p = work.world_p_tool + work.world_R_tool * data.target_offset;
-    o.point =
-        has_frame ? Eigen::Vector3d(frame0.linear().transpose() * (p - frame0.translation())) : p;
-    if (o.direction)
-      o.direction = has_frame ? Eigen::Vector3d(frame0.linear().transpose() * work.world_u_tool)
-                              : work.world_u_tool;
-  }
-  detail::NumericProblem structural = problem;
-  structural.residual = [&](const Eigen::VectorXd& theta, std::size_t b, double* r) {
-    if (!seed[b]) return false;
-    const ExechonModel m = withExechonParameters(
-        initial, ExechonParameterVector(theta.head<kExechonParameters>()), reference);
-    geometry::RigidTransform f = geometry::RigidTransform::Identity();
-    if (has_frame) f = frameOf(frame0, theta.tail(6));
-    return residuals(
-        m, consistent, consistent.observations[b], *seed[b], has_frame ? &f : nullptr, options, r);
-  };
+  const ExechonCalibrationData consistent = consistentExechonData(data, context);
+  const detail::NumericProblem structural = exechonProblem(consistent, context);
 
   detail::NumericOptions no;
   no.free.assign(static_cast<std::size_t>(n), true);
@@ -306,41 +385,9 @@ ExechonCalibrationSummary calibrateExechon(const ExechonModel& initial,
   }
   const ExechonModel estimated = withExechonParameters(initial, out.parameters, reference);
   out.after = exechonResidualStatistics(estimated, data, out.measurement_frame, options.fk);
-
   // Worst observations after the fit (outlier diagnostics).
-  std::vector<WorstObservation> all;
-  for (std::size_t b = 0; b < data.observations.size(); ++b) {
-    const ExechonObservation& o = data.observations[b];
-    const auto p =
-        exechonTarget(estimated, o.joints, data.target_offset, estimated.home, options.fk);
-    if (!p) continue;
-    const Eigen::Vector3d world = out.measurement_frame
-                                      ? Eigen::Vector3d(out.measurement_frame->linear() * o.point +
-                                                        out.measurement_frame->translation())
-                                      : o.point;
-    all.push_back({b,
-                   o.source.empty() ? fmt::format("observation {}", b + 1) : o.source,
-                   (world - *p).norm()});
-  }
-  std::sort(all.begin(), all.end(), [](const WorstObservation& a, const WorstObservation& b) {
-    return a.residual > b.residual;
-  });
-  all.resize(std::min(all.size(), static_cast<std::size_t>(options.worst_count)));
-  out.worst = std::move(all);
-
-  const double size = initial.characteristicLength();
-  std::vector<ParameterValues> values;
-  for (int k = 0; k < kExechonParameters; ++k)
-    values.push_back(
-        {exechonParameterName(k), out.initial(k), out.parameters(k), exechonParameterIsLength(k)});
-  out.large_changes =
-      implausibleChanges(values, size, toString(initial.unit), options.max_plausible_change);
-  if (out.after.rms > kImplausibleResidualFraction * size)
-    out.warnings.push_back(fmt::format(
-        "the fit leaves a residual RMS of {:.4g} {}: the model does not explain the data; check "
-        "the units, the frame and outliers",
-        out.after.rms,
-        toString(initial.unit)));
+  out.worst = worstExechonObservations(estimated, data, out.measurement_frame, options);
+  flagImplausibleExechonFit(initial, options, out);
   return out;
 }
 

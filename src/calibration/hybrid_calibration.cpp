@@ -29,6 +29,129 @@ geometry::RigidTransform frameOf(const geometry::RigidTransform& initial,
   return geometry::perturbedTransform(initial, geometry::Twist(delta));
 }
 
+/// The point residuals of hybrid observations (3 each, model length unit) under the unknowns
+/// θ = (szX2, sxP, syP, szP in rad; then the frame correction when has_frame): the measured
+/// point (through frameOf(frame0, θ_frame) when has_frame) − the target `model` predicts.
+struct HybridFitResiduals {
+  const kinematics::HybridMachineModel& model;
+  const kinematics::GeometricErrors& known;
+  const TripodMotion& tripod;
+  bool has_frame;
+  const geometry::RigidTransform& frame0;
+
+  /// The residuals of observation b of `d` at θ into r (3 values); false when the tripod's
+  /// motion cannot be evaluated.
+  bool operator()(const HybridCalibrationData& d,
+                  const Eigen::VectorXd& theta,
+                  std::size_t b,
+                  double* r) const {
+    const HybridObservation& o = d.observations[b];
+    const auto p =
+        hybridTarget(model, known, fromVector(theta.head<4>()), o.command, d.target_offset, tripod);
+    if (!p) return false;
+    Eigen::Vector3d measured = o.point;
+    if (has_frame) {
+      const geometry::RigidTransform f = frameOf(frame0, theta.tail(6));
+      measured = f.linear() * o.point + f.translation();
+    }
+    Eigen::Map<Eigen::Vector3d> out(r);
+    out = measured - *p;
+    return true;
+  }
+};
+
+/// Throws pkm::InvalidArgument naming the first observation of `data` with a non-finite value, or
+/// when the target offset is not finite.
+void requireFiniteHybridData(const HybridCalibrationData& data) {
+  for (std::size_t k = 0; k < data.observations.size(); ++k) {
+    const HybridObservation& o = data.observations[k];
+    PKM_CHECK(std::isfinite(o.command.x2) && std::isfinite(o.command.y2) &&
+                  o.command.pkm.allFinite() && o.point.allFinite(),
+              "{}: a non-finite value",
+              o.source.empty() ? fmt::format("observation {}", k + 1) : o.source);
+  }
+  PKM_CHECK(data.target_offset.allFinite(), "calibration: the target offset is not finite");
+}
+
+/// The unknowns (4 squareness angles, then the frame correction when e.has_frame), their
+/// central-difference steps and one 3-row residual block per observation of `d`, evaluated by
+/// `e`. `d` and `e` must outlive the problem.
+detail::NumericProblem hybridProblem(const HybridCalibrationData& d, const HybridFitResiduals& e) {
+  detail::NumericProblem problem;
+  problem.names = hybridSquarenessNames();
+  if (e.has_frame)
+    for (const std::string& n : measurementFrameNames()) problem.names.push_back(n);
+  const Eigen::Index n = problem.unknowns();
+  problem.step.resize(n);
+  problem.step.head<4>().setConstant(kAngleStep);
+  if (e.has_frame) {
+    problem.step.segment<3>(4).setConstant(kLengthStep);
+    problem.step.tail<3>().setConstant(kFrameAngleStep);
+  }
+  problem.rows.assign(d.observations.size(), 3);
+  problem.residual = [&d, &e](const Eigen::VectorXd& theta, std::size_t b, double* r) {
+    return e(d, theta, b, r);
+  };
+  return problem;
+}
+
+/// `data` with every point replaced by the target the zero-squareness model predicts (in the
+/// measurement frame e.frame0): data it explains exactly, for the structural identifiability.
+/// Observations whose tripod motion fails keep their measurement.
+HybridCalibrationData consistentHybridData(const HybridCalibrationData& data,
+                                           const HybridFitResiduals& e) {
+  HybridCalibrationData consistent = data;
+  for (HybridObservation& o : consistent.observations)
+    if (const auto p = hybridTarget(e.model, e.known, {}, o.command, data.target_offset, e.tripod))
+      o.point = e.frame0.linear().transpose() * (*p - e.frame0.translation());
+  return consistent;
+}
+
+/// The residual statistics (model length unit) of `data` at θ; observations that cannot be
+/// evaluated count as FK failures.
+ResidualStatistics hybridFitStatistics(const HybridFitResiduals& evaluate,
+                                       const HybridCalibrationData& data,
+                                       const Eigen::VectorXd& theta) {
+  ResidualStatistics s;
+  double sum = 0.0;
+  for (std::size_t b = 0; b < data.observations.size(); ++b) {
+    double r[3];
+    if (!evaluate(data, theta, b, r)) {
+      ++s.fk_failures;
+      continue;
+    }
+    for (const double v : r) {
+      sum += v * v;
+      s.max = std::max(s.max, std::fabs(v));
+    }
+    s.equations += 3;
+  }
+  s.rms = s.equations > 0 ? std::sqrt(sum / s.equations) : 0.0;
+  return s;
+}
+
+/// The `worst_count` observations of `data` with the largest residual norm at θ (model length
+/// unit), largest first.
+std::vector<WorstObservation> worstHybridObservations(const HybridFitResiduals& evaluate,
+                                                      const HybridCalibrationData& data,
+                                                      const Eigen::VectorXd& theta,
+                                                      int worst_count) {
+  std::vector<WorstObservation> all;
+  for (std::size_t b = 0; b < data.observations.size(); ++b) {
+    double r[3];
+    if (!evaluate(data, theta, b, r)) continue;
+    const std::string& src = data.observations[b].source;
+    all.push_back({b,
+                   src.empty() ? fmt::format("observation {}", b + 1) : src,
+                   Eigen::Map<const Eigen::Vector3d>(r).norm()});
+  }
+  std::sort(all.begin(), all.end(), [](const WorstObservation& a, const WorstObservation& b) {
+    return a.residual > b.residual;
+  });
+  all.resize(std::min(all.size(), static_cast<std::size_t>(worst_count)));
+  return all;
+}
+
 }  // namespace
 
 const std::vector<std::string>& hybridSquarenessNames() {
@@ -73,57 +196,17 @@ HybridCalibrationSummary calibrateHybridSquareness(const kinematics::HybridMachi
   options.validate();
   model.validate();
   known.validate();
-  for (std::size_t k = 0; k < data.observations.size(); ++k) {
-    const HybridObservation& o = data.observations[k];
-    PKM_CHECK(std::isfinite(o.command.x2) && std::isfinite(o.command.y2) &&
-                  o.command.pkm.allFinite() && o.point.allFinite(),
-              "{}: a non-finite value",
-              o.source.empty() ? fmt::format("observation {}", k + 1) : o.source);
-  }
-  PKM_CHECK(data.target_offset.allFinite(), "calibration: the target offset is not finite");
+  requireFiniteHybridData(data);
   const bool has_frame = data.measurement_frame.has_value();
   const geometry::RigidTransform frame0 =
       has_frame ? *data.measurement_frame : geometry::RigidTransform::Identity();
+  const HybridFitResiduals evaluate{model, known, tripod, has_frame, frame0};
 
-  detail::NumericProblem problem;
-  problem.names = hybridSquarenessNames();
-  if (has_frame)
-    for (const std::string& n : measurementFrameNames()) problem.names.push_back(n);
+  const detail::NumericProblem problem = hybridProblem(data, evaluate);
   const Eigen::Index n = problem.unknowns();
-  problem.step.resize(n);
-  problem.step.head<4>().setConstant(kAngleStep);
-  if (has_frame) {
-    problem.step.segment<3>(4).setConstant(kLengthStep);
-    problem.step.tail<3>().setConstant(kFrameAngleStep);
-  }
-  problem.rows.assign(data.observations.size(), 3);
-  const auto evaluate =
-      [&](const HybridCalibrationData& d, const Eigen::VectorXd& theta, std::size_t b, double* r) {
-        const HybridObservation& o = d.observations[b];
-        const auto p = hybridTarget(
-            model, known, fromVector(theta.head<4>()), o.command, d.target_offset, tripod);
-        if (!p) return false;
-        Eigen::Vector3d measured = o.point;
-        if (has_frame) {
-          const geometry::RigidTransform f = frameOf(frame0, theta.tail(6));
-          measured = f.linear() * o.point + f.translation();
-        }
-        Eigen::Map<Eigen::Vector3d> out(r);
-        out = measured - *p;
-        return true;
-      };
-  problem.residual = [&](const Eigen::VectorXd& theta, std::size_t b, double* r) {
-    return evaluate(data, theta, b, r);
-  };
   // Structural identifiability on data the zero-squareness model explains exactly.
-  HybridCalibrationData consistent = data;
-  for (HybridObservation& o : consistent.observations)
-    if (const auto p = hybridTarget(model, known, {}, o.command, data.target_offset, tripod))
-      o.point = frame0.linear().transpose() * (*p - frame0.translation());
-  detail::NumericProblem structural = problem;
-  structural.residual = [&](const Eigen::VectorXd& theta, std::size_t b, double* r) {
-    return evaluate(consistent, theta, b, r);
-  };
+  const HybridCalibrationData consistent = consistentHybridData(data, evaluate);
+  const detail::NumericProblem structural = hybridProblem(consistent, evaluate);
 
   detail::NumericOptions no;
   no.free.assign(static_cast<std::size_t>(n), true);
@@ -139,25 +222,7 @@ HybridCalibrationSummary calibrateHybridSquareness(const kinematics::HybridMachi
 
   const Eigen::VectorXd theta0 = Eigen::VectorXd::Zero(n);
   HybridCalibrationSummary out;
-  const auto statistics = [&](const Eigen::VectorXd& theta) {
-    ResidualStatistics s;
-    double sum = 0.0;
-    for (std::size_t b = 0; b < data.observations.size(); ++b) {
-      double r[3];
-      if (!evaluate(data, theta, b, r)) {
-        ++s.fk_failures;
-        continue;
-      }
-      for (const double v : r) {
-        sum += v * v;
-        s.max = std::max(s.max, std::fabs(v));
-      }
-      s.equations += 3;
-    }
-    s.rms = s.equations > 0 ? std::sqrt(sum / s.equations) : 0.0;
-    return s;
-  };
-  out.before = statistics(theta0);
+  out.before = hybridFitStatistics(evaluate, data, theta0);
   const detail::NumericSolution sol = detail::solveNumeric(problem, theta0, no, &structural);
   out.converged = sol.converged;
   out.termination = sol.termination;
@@ -169,21 +234,8 @@ HybridCalibrationSummary calibrateHybridSquareness(const kinematics::HybridMachi
   out.standard_deviation = sol.standard_deviation.head<4>();
   out.identifiability = sol.identifiability;
   if (has_frame) out.measurement_frame = frameOf(frame0, sol.theta.tail(6));
-  out.after = statistics(sol.theta);
-  std::vector<WorstObservation> all;
-  for (std::size_t b = 0; b < data.observations.size(); ++b) {
-    double r[3];
-    if (!evaluate(data, sol.theta, b, r)) continue;
-    const std::string& src = data.observations[b].source;
-    all.push_back({b,
-                   src.empty() ? fmt::format("observation {}", b + 1) : src,
-                   Eigen::Map<const Eigen::Vector3d>(r).norm()});
-  }
-  std::sort(all.begin(), all.end(), [](const WorstObservation& a, const WorstObservation& b) {
-    return a.residual > b.residual;
-  });
-  all.resize(std::min(all.size(), static_cast<std::size_t>(options.worst_count)));
-  out.worst = std::move(all);
+  out.after = hybridFitStatistics(evaluate, data, sol.theta);
+  out.worst = worstHybridObservations(evaluate, data, sol.theta, options.worst_count);
   return out;
 }
 

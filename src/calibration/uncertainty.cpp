@@ -39,6 +39,82 @@ HexapodCalibrationData noisy(const HexapodCalibrationData& predicted,
   return d;
 }
 
+/// Calibrates `initial` on options.trials noisy copies of `predicted` (trial k's noise from the
+/// stream trialSeed(options.seed, k)) on options.threads workers, reporting options.progress from
+/// this thread. Element k: trial k's parameters, nullopt when its calibration threw
+/// pkm::InvalidArgument; the non-converged are counted into `not_converged`.
+std::vector<std::optional<HexapodParameterVector>> runHexapodTrials(
+    const kinematics::HexapodModel& initial,
+    const HexapodCalibrationData& predicted,
+    const HexapodCalibrationOptions& calibration,
+    const MonteCarloOptions& options,
+    std::atomic<int>& not_converged) {
+  const int total = options.trials;
+  std::vector<std::optional<HexapodParameterVector>> results(static_cast<std::size_t>(total));
+  std::atomic<int> next{0}, done{0};
+  const auto worker = [&] {
+    for (int k = next++; k < total; k = next++) {
+      Gaussian n(trialSeed(options.seed, k));
+      HexapodCalibrationData trial = noisy(predicted, options, n);
+      // trial keeps data.measurement_frame as its starting frame, so its gauge (the base-frame
+      // freedoms held by the null-space prior) is fixed exactly as in the original calibration.
+      try {
+        const HexapodCalibrationSummary s = calibrateHexapod(initial, trial, calibration);
+        // An iteration-limited solve still counts (ill-conditioned constrained-motion sets creep
+        // along weak directions); it is reported in not_converged.
+        results[static_cast<std::size_t>(k)] = s.parameters;
+        if (!s.converged) ++not_converged;
+      } catch (const InvalidArgument&) {
+        // Counted as a failure below.
+      }
+      ++done;
+    }
+  };
+  unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
+                                         : std::max(1u, std::thread::hardware_concurrency());
+  threads = std::min<unsigned>(threads, static_cast<unsigned>(total));
+  std::vector<std::thread> pool;
+  for (unsigned i = 0; i < threads; ++i) pool.emplace_back(worker);
+  int reported = -1;
+  while (done.load() < total) {
+    if (options.progress && done.load() != reported) {
+      reported = done.load();
+      options.progress(reported, total);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  for (std::thread& t : pool) t.join();
+  if (options.progress) options.progress(total, total);
+  return results;
+}
+
+/// The TCP errors (model length unit) of the trials' parameters `ok`: each trial's model as the
+/// controller of a machine that is `estimate`, at every pose of `workspace` whose FK converges;
+/// with a measurement `frame` each trial's TCP positions are first aligned rigidly to the
+/// commanded ones (at least 3 poses).
+std::vector<double> hexapodTrialTcpErrors(const std::vector<HexapodParameterVector>& ok,
+                                          const kinematics::HexapodModel& estimate,
+                                          const std::optional<geometry::RigidTransform>& frame,
+                                          const std::vector<kinematics::PoseRpy>& workspace) {
+  std::vector<double> errors;
+  for (const auto& p : ok) {
+    const kinematics::HexapodModel m = withHexapodParameters(estimate, p);
+    kinematics::HexapodData c(m), t(estimate);
+    std::vector<Eigen::Vector3d> commanded, reached;
+    for (const kinematics::PoseRpy& pose : workspace) {
+      const kinematics::StrutVector q = kinematics::inverseKinematics(m, c, pose);
+      if (!kinematics::forwardKinematics(estimate, t, q, pose).ok()) continue;
+      commanded.push_back(pose.position);
+      reached.push_back(t.world_p_tcp);
+    }
+    geometry::RigidTransform align = geometry::RigidTransform::Identity();
+    if (frame && commanded.size() >= 3) align = geometry::fitRigidTransform(commanded, reached);
+    for (std::size_t k = 0; k < commanded.size(); ++k)
+      errors.push_back((align.linear() * reached[k] + align.translation() - commanded[k]).norm());
+  }
+  return errors;
+}
+
 }  // namespace
 
 TcpErrorStatistics tcpErrorStatistics(std::vector<double> errors) {
@@ -93,41 +169,9 @@ MonteCarloSummary monteCarloHexapod(const kinematics::HexapodModel& initial,
   const auto t0 = std::chrono::steady_clock::now();
   const HexapodCalibrationData predicted = detail::predictedData(estimate, data, frame);
   const int total = options.trials;
-  std::vector<std::optional<HexapodParameterVector>> results(static_cast<std::size_t>(total));
-  std::atomic<int> next{0}, done{0}, not_converged{0};
-  const auto worker = [&] {
-    for (int k = next++; k < total; k = next++) {
-      Gaussian n(trialSeed(options.seed, k));
-      HexapodCalibrationData trial = noisy(predicted, options, n);
-      // trial keeps data.measurement_frame as its starting frame, so its gauge (the base-frame
-      // freedoms held by the null-space prior) is fixed exactly as in the original calibration.
-      try {
-        const HexapodCalibrationSummary s = calibrateHexapod(initial, trial, calibration);
-        // An iteration-limited solve still counts (ill-conditioned constrained-motion sets creep
-        // along weak directions); it is reported in not_converged.
-        results[static_cast<std::size_t>(k)] = s.parameters;
-        if (!s.converged) ++not_converged;
-      } catch (const InvalidArgument&) {
-        // Counted as a failure below.
-      }
-      ++done;
-    }
-  };
-  unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)
-                                         : std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min<unsigned>(threads, static_cast<unsigned>(total));
-  std::vector<std::thread> pool;
-  for (unsigned i = 0; i < threads; ++i) pool.emplace_back(worker);
-  int reported = -1;
-  while (done.load() < total) {
-    if (options.progress && done.load() != reported) {
-      reported = done.load();
-      options.progress(reported, total);
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  for (std::thread& t : pool) t.join();
-  if (options.progress) options.progress(total, total);
+  std::atomic<int> not_converged{0};
+  const std::vector<std::optional<HexapodParameterVector>> results =
+      runHexapodTrials(initial, predicted, calibration, options, not_converged);
 
   MonteCarloSummary out;
   std::vector<HexapodParameterVector> ok;
@@ -147,23 +191,7 @@ MonteCarloSummary monteCarloHexapod(const kinematics::HexapodModel& initial,
     // The TCP spread: each trial's model as the controller of a machine that is `estimate`. With a
     // measurement frame the data fix the machine only up to a rigid motion of the world (the
     // gauge freedoms), so each trial's TCP positions are first aligned rigidly to the estimate's.
-    std::vector<double> errors;
-    for (const auto& p : ok) {
-      const kinematics::HexapodModel m = withHexapodParameters(estimate, p);
-      kinematics::HexapodData c(m), t(estimate);
-      std::vector<Eigen::Vector3d> commanded, reached;
-      for (const kinematics::PoseRpy& pose : workspace) {
-        const kinematics::StrutVector q = kinematics::inverseKinematics(m, c, pose);
-        if (!kinematics::forwardKinematics(estimate, t, q, pose).ok()) continue;
-        commanded.push_back(pose.position);
-        reached.push_back(t.world_p_tcp);
-      }
-      geometry::RigidTransform align = geometry::RigidTransform::Identity();
-      if (frame && commanded.size() >= 3) align = geometry::fitRigidTransform(commanded, reached);
-      for (std::size_t k = 0; k < commanded.size(); ++k)
-        errors.push_back((align.linear() * reached[k] + align.translation() - commanded[k]).norm());
-    }
-    out.tcp = tcpErrorStatistics(std::move(errors));
+    out.tcp = tcpErrorStatistics(hexapodTrialTcpErrors(ok, estimate, frame, workspace));
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

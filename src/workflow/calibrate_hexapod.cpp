@@ -186,6 +186,132 @@ void checkOutputs(const CalibrationOutputs& paths, bool force) {
     io::checkOverwrite(p, overwrite);
 }
 
+/// Reads the calibration files of `r` into `input` and its --holdout files into `held`; refuses
+/// (pkm::InvalidArgument) readings in an unstated frame; notes the input's notes on `control`.
+void readHexapodInputs(const HexapodCalibrationRequest& r,
+                       io::CalibrationInput& input,
+                       io::CalibrationInput& held,
+                       const RunControl& control) {
+  for (const io::NamedText& f : r.data) io::addCalibrationFile(f, input);
+  for (const io::NamedText& f : r.holdout) io::addCalibrationFile(f, held);
+  std::vector<std::string> frameless = input.frameless;
+  frameless.insert(frameless.end(), held.frameless.begin(), held.frameless.end());
+  detail::refuseUnstatedFrame(r.frame, frameless);
+  control.note(input.notes);
+}
+
+/// --registration: the tracker's placement from the table's nests into rep.registration, and every
+/// reading of `input` and `held` expressed in the world frame. Precondition: r.registration.
+void registerTrackerReadings(const HexapodCalibrationRequest& r,
+                             const kinematics::HexapodModel& model,
+                             io::CalibrationInput& input,
+                             io::CalibrationInput& held,
+                             io::HexapodCalibrationReport& rep) {
+  // The tracker's placement from the table's nests: every reading into the world frame.
+  rep.registration = {r.registration->name,
+                      detail::registerTrackerFrame(
+                          *r.registration, model.unit, model.characteristicLength(), r.uncertainty),
+                      0.0};
+  cal::expressInWorld(input.data, rep.registration->fit.world_T_measurement);
+  cal::expressInWorld(held.data, rep.registration->fit.world_T_measurement);
+}
+
+/// Refuses (pkm::InvalidArgument) a fit `s` that cannot explain the data: a residual RMS
+/// implausible for `model`'s size (calibration::explainsData); nothing is written then.
+void requireExplainedData(const cal::HexapodCalibrationSummary& s,
+                          const kinematics::HexapodModel& model) {
+  if (!cal::explainsData(s.after.rms, model.characteristicLength()))
+    throw InvalidArgument(fmt::format(
+        "calibration does not explain the data: residual RMS {:.4g} (max {:.4g}) after {} "
+        "iterations ({}); check the units of the data against the machine's ({}), the --frame "
+        "option, and outliers (--loss cauchy --loss-scale ...); nothing was written",
+        s.after.rms,
+        s.after.max,
+        s.iterations,
+        s.termination,
+        toString(model.unit)));
+}
+
+/// The calibrated machine: `machine` with the estimated parameters of `s`, named
+/// "<name>-calibrated", without the reader's notices; its world frame marked unregistered when
+/// `unregistered`.
+io::HexapodMachine calibratedHexapodMachine(const io::HexapodMachine& machine,
+                                            const cal::HexapodCalibrationSummary& s,
+                                            bool unregistered) {
+  io::HexapodMachine calibrated = machine;
+  calibrated.model = cal::withHexapodParameters(machine.model, s.parameters);
+  calibrated.model.name = machine.model.name + "-calibrated";
+  calibrated.notices.clear();
+  calibrated.world_frame_unregistered = unregistered;
+  return calibrated;
+}
+
+/// The TCP error over the workspace of machine.model (rep.workspace_poses, the registration's
+/// tcp_U): the nominal controller on the `calibrated` machine (rep.tcp_before, what calibration
+/// removes), with --monte-carlo the spread the calibration itself leaves (rep.monte_carlo), and
+/// the uncertainty budgets (rep.uncertainty). Reads rep.fit.
+void reportWorkspaceErrors(const HexapodCalibrationRequest& r,
+                           const io::HexapodMachine& machine,
+                           const kinematics::HexapodModel& calibrated,
+                           const kinematics::HexapodModel& model,
+                           const io::CalibrationInput& input,
+                           const io::CalibrationInput& held,
+                           const cal::HexapodCalibrationOptions& options,
+                           io::HexapodCalibrationReport& rep,
+                           const RunControl& control) {
+  const cal::HexapodCalibrationSummary& s = rep.fit;
+  const std::vector<kinematics::PoseRpy> workspace = workspacePoses(machine.model);
+  rep.workspace_poses = static_cast<int>(workspace.size());
+  if (rep.registration)
+    for (const kinematics::PoseRpy& p : workspace)
+      rep.registration->tcp_U =
+          std::max(rep.registration->tcp_U, 2.0 * rep.registration->fit.uncertaintyAt(p.position));
+  rep.tcp_before = cal::tcpErrorOverWorkspace(machine.model, calibrated, workspace);
+  if (r.monte_carlo > 0)
+    rep.monte_carlo = monteCarlo(r, model, input, s, workspace, options, control);
+  rep.uncertainty = uncertainty(r, model, input, held, s, workspace, options, control);
+}
+
+/// The run's notices: the machine reader's, the data files', and the warning on an unregistered
+/// world frame.
+std::vector<std::string> hexapodResultNotices(const io::HexapodMachine& machine,
+                                              const io::CalibrationInput& input,
+                                              const io::HexapodCalibrationReport& rep) {
+  std::vector<std::string> notices = machine.notices;
+  notices.insert(notices.end(), input.notes.begin(), input.notes.end());
+  if (rep.world_frame == "unregistered")
+    notices.push_back(
+        "the readings are in the tracker's own frame and no --registration was given: the "
+        "calibrated geometry is right, but its world frame is where the fit put it (tilted and "
+        "shifted against the table by the base's assembly errors); the machine file is marked "
+        "\"world_frame\": \"unregistered\" and no LinuxCNC block is written (measure the "
+        "table's fiducial nests and pass --registration FILE)");
+  return notices;
+}
+
+/// Records the written calibration in the history database r.db (when given): the inputs, the
+/// summary and the output files (the LinuxCNC block when one was written).
+void recordHexapodRun(const HexapodCalibrationRequest& r,
+                      const io::HexapodMachine& machine,
+                      const kinematics::HexapodModel& model,
+                      const HexapodCalibrationResult& result) {
+  const io::HexapodCalibrationReport& rep = result.report;
+  const CalibrationOutputs paths = calibrationOutputs(r.out);
+  if (!r.db.empty())
+    recordCalibration(
+        r.db,
+        {machine.model.name,
+         "hexapod",
+         "calibrate hexapod",
+         detail::inputNames(r.data),
+         result.summary_json,
+         std::string(toString(model.unit)),
+         rep.out_hal.empty()
+             ? std::vector<std::pair<std::string, std::string>>{{"machine-json", paths.machine}}
+             : std::vector<std::pair<std::string, std::string>>{{"linuxcnc-hal", paths.hal},
+                                                                {"machine-json", paths.machine}}});
+}
+
 }  // namespace
 
 void HexapodCalibrationRequest::validate() const {
@@ -207,12 +333,7 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   control.note(machine.notices);
   if (!r.out.empty()) checkOutputs(calibrationOutputs(r.out), r.force);
   io::CalibrationInput input, held;
-  for (const io::NamedText& f : r.data) io::addCalibrationFile(f, input);
-  for (const io::NamedText& f : r.holdout) io::addCalibrationFile(f, held);
-  std::vector<std::string> frameless = input.frameless;
-  frameless.insert(frameless.end(), held.frameless.begin(), held.frameless.end());
-  detail::refuseUnstatedFrame(r.frame, frameless);
-  control.note(input.notes);
+  readHexapodInputs(r, input, held, control);
 
   // The target (SMR or 6-DOF probe) is the TCP of the fitted model: tool offset += target offset.
   const Eigen::Vector3d target =
@@ -226,16 +347,7 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   HexapodCalibrationResult result;
   io::HexapodCalibrationReport& rep = result.report;
   rep.world_frame = detail::worldFrameKind(tracker_frame, r.registration.has_value());
-  if (r.registration) {
-    // The tracker's placement from the table's nests: every reading into the world frame.
-    rep.registration = {
-        r.registration->name,
-        detail::registerTrackerFrame(
-            *r.registration, model.unit, model.characteristicLength(), r.uncertainty),
-        0.0};
-    cal::expressInWorld(input.data, rep.registration->fit.world_T_measurement);
-    cal::expressInWorld(held.data, rep.registration->fit.world_T_measurement);
-  }
+  if (r.registration) registerTrackerReadings(r, model, input, held, rep);
   const bool use_frame = tracker_frame && !r.registration;
   if (use_frame) input.data.measurement_frame = cal::initialMeasurementFrame(model, input.data);
   const cal::HexapodCalibrationOptions options = fitOptions(r);
@@ -243,65 +355,21 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   rep.fit = cal::calibrateHexapod(model, input.data, options);
   const cal::HexapodCalibrationSummary& s = rep.fit;
   // Plausibility: a model that cannot explain the data is not written.
-  if (!cal::explainsData(s.after.rms, model.characteristicLength()))
-    throw InvalidArgument(fmt::format(
-        "calibration does not explain the data: residual RMS {:.4g} (max {:.4g}) after {} "
-        "iterations ({}); check the units of the data against the machine's ({}), the --frame "
-        "option, and outliers (--loss cauchy --loss-scale ...); nothing was written",
-        s.after.rms,
-        s.after.max,
-        s.iterations,
-        s.termination,
-        toString(model.unit)));
+  requireExplainedData(s, model);
   detail::refuseLargeChanges(s.large_changes, r.allow_large_changes, control);
 
-  result.calibrated = machine;
-  result.calibrated.model = cal::withHexapodParameters(machine.model, s.parameters);
-  result.calibrated.model.name = machine.model.name + "-calibrated";
-  result.calibrated.notices.clear();
-  result.calibrated.world_frame_unregistered = rep.world_frame == "unregistered";
+  result.calibrated = calibratedHexapodMachine(machine, s, rep.world_frame == "unregistered");
   describe(rep, machine, model, input, target, options);
   if (!held.data.poses.empty() || !held.data.points.empty())
     rep.holdout = holdout(machine, result.calibrated, model, input, held, s, use_frame, target);
   rep.worst = worstObservations(cal::withHexapodParameters(model, s.parameters), input, s);
-  // The TCP error over the workspace: the nominal controller on the calibrated machine (what
-  // calibration removes), and with Monte Carlo the spread the calibration itself leaves.
-  const std::vector<kinematics::PoseRpy> workspace = workspacePoses(machine.model);
-  rep.workspace_poses = static_cast<int>(workspace.size());
-  if (rep.registration)
-    for (const kinematics::PoseRpy& p : workspace)
-      rep.registration->tcp_U =
-          std::max(rep.registration->tcp_U, 2.0 * rep.registration->fit.uncertaintyAt(p.position));
-  rep.tcp_before = cal::tcpErrorOverWorkspace(machine.model, result.calibrated.model, workspace);
-  if (r.monte_carlo > 0)
-    rep.monte_carlo = monteCarlo(r, model, input, s, workspace, options, control);
-  rep.uncertainty = uncertainty(r, model, input, held, s, workspace, options, control);
+  reportWorkspaceErrors(
+      r, machine, result.calibrated.model, model, input, held, options, rep, control);
   result.summary_json = io::hexapodCalibrationJson(rep);
-  result.notices = machine.notices;
-  result.notices.insert(result.notices.end(), input.notes.begin(), input.notes.end());
-  if (rep.world_frame == "unregistered")
-    result.notices.push_back(
-        "the readings are in the tracker's own frame and no --registration was given: the "
-        "calibrated geometry is right, but its world frame is where the fit put it (tilted and "
-        "shifted against the table by the base's assembly errors); the machine file is marked "
-        "\"world_frame\": \"unregistered\" and no LinuxCNC block is written (measure the "
-        "table's fiducial nests and pass --registration FILE)");
+  result.notices = hexapodResultNotices(machine, input, rep);
   if (r.out.empty()) return result;
   writeHexapodCalibration(result, r.out, r.force);
-  const CalibrationOutputs paths = calibrationOutputs(r.out);
-  if (!r.db.empty())
-    recordCalibration(
-        r.db,
-        {machine.model.name,
-         "hexapod",
-         "calibrate hexapod",
-         detail::inputNames(r.data),
-         result.summary_json,
-         std::string(toString(model.unit)),
-         rep.out_hal.empty()
-             ? std::vector<std::pair<std::string, std::string>>{{"machine-json", paths.machine}}
-             : std::vector<std::pair<std::string, std::string>>{{"linuxcnc-hal", paths.hal},
-                                                                {"machine-json", paths.machine}}});
+  recordHexapodRun(r, machine, model, result);
   return result;
 }
 

@@ -1,7 +1,7 @@
 /// @file
 /// @brief Internal: one calibration observation's residuals and Jacobians under a parameter vector
 /// and an optional measurement frame, shared by the solver, the identification Jacobian and the
-/// residual statistics (hexapod_calibration.cpp).
+/// residual statistics (hexapod_least_squares.cpp, hexapod_residuals.cpp).
 #pragma once
 
 #include <Eigen/Core>
