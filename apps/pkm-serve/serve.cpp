@@ -16,8 +16,8 @@
 #include <exception>
 #include <thread>
 
-#include "../pkm/cli_common.hpp"
-#include "../pkm/serve_options.hpp"
+#include "exit_codes.hpp"
+#include "serve_options.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/server/http_server.hpp"
 

@@ -8,22 +8,12 @@
 #include <string_view>
 #include <vector>
 
+#include "exit_codes.hpp"
 #include "pkm/io/hexapod_machine.hpp"
 #include "pkm/io/named_text.hpp"
 #include "pkm/workflow/progress.hpp"
 
 namespace pkm::cli {
-
-/// Exit codes (docs/formats.md, "Exit codes"): the job ran and a check failed or a target was
-/// missed; a usage or input error; an internal error (a bug: please report it).
-inline constexpr int kExitCheckFailed = 1;
-inline constexpr int kExitUsage = 2;
-inline constexpr int kExitInternal = 3;
-
-/// The exit-code scheme, as `--help` states it.
-inline constexpr const char* kExitCodesHelp =
-    "Exit codes: 0 success; 1 the job ran and a check failed or a target was missed; 2 usage or "
-    "input error; 3 internal error.";
 
 /// Thrown by a command that has printed its result and must end the program with `code` (e.g. 1
 /// for a missed campaign target); main() returns the code.
