@@ -171,8 +171,9 @@ struct BadCase {
   const char* message;  ///< expected in the error: the JSON path and the reason
 };
 
-TEST(HtmlReport, InvalidDocumentsNameTheJsonPath) {
-  const std::vector<BadCase> cases = {
+/// Invalid documents: the root, the summary, the sections, their tables and the notes.
+std::vector<BadCase> badDocumentCases() {
+  return {
       {"no schema", [](json& d) { d.erase("schema"); }, "(root): missing key 'schema'"},
       {"other schema", [](json& d) { d["schema"] = "pkm.report/2"; }, "schema: expected"},
       {"title type", [](json& d) { d["title"] = 3; }, "title: expected a string"},
@@ -186,6 +187,29 @@ TEST(HtmlReport, InvalidDocumentsNameTheJsonPath) {
       {"paragraph",
        [](json& d) { d["sections"][0]["paragraphs"][0] = 1; },
        "sections[0].paragraphs[0]"},
+      {"duplicate section",
+       [](json& d) {
+         json s = d["sections"][0];
+         s.erase("plots");
+         d["sections"].push_back(s);
+       },
+       "sections[1].id: duplicate section id 's1'"},
+      {"notes",
+       [](json& d) {
+         d["notes"] = {"a", 1};
+       },
+       "notes[1]: expected a string"},
+      {"table",
+       [](json& d) {
+         d["sections"][0]["tables"] = {{{"title", "t"}}};
+       },
+       "sections[0].tables[0]: missing key 'columns'"},
+  };
+}
+
+/// Invalid plots: the kind, the series (lengths, values, x order, bands, bars) and the plot ids.
+std::vector<BadCase> badPlotCases() {
+  return {
       {"kind",
        [](json& d) { d["sections"][0]["plots"][0]["kind"] = "pie"; },
        "sections[0].plots[0].kind: unknown kind 'pie'"},
@@ -210,13 +234,6 @@ TEST(HtmlReport, InvalidDocumentsNameTheJsonPath) {
          d["sections"].push_back(s);
        },
        "sections[1].plots[0].id: duplicate plot id 'p1'"},
-      {"duplicate section",
-       [](json& d) {
-         json s = d["sections"][0];
-         s.erase("plots");
-         d["sections"].push_back(s);
-       },
-       "sections[1].id: duplicate section id 's1'"},
       {"bar categories",
        [](json& d) { d["sections"][0]["plots"][0]["kind"] = "bar"; },
        "sections[0].plots[0].series[0]: a bar series needs 'categories'"},
@@ -232,11 +249,6 @@ TEST(HtmlReport, InvalidDocumentsNameTheJsonPath) {
          d["sections"][0]["plots"][0]["series"][0]["value"] = {1.0};
        },
        "sections[0].plots[0].series[0]: value has 1 entries but x has 3"},
-      {"notes",
-       [](json& d) {
-         d["notes"] = {"a", 1};
-       },
-       "notes[1]: expected a string"},
       {"band length",
        [](json& d) {
          json& s = d["sections"][0]["plots"][0]["series"][0];
@@ -256,12 +268,13 @@ TEST(HtmlReport, InvalidDocumentsNameTheJsonPath) {
          d["sections"][0]["plots"][0]["series"][0]["upper"] = {0.0, 1.0, 2.0};
        },
        "'lower' and 'upper' (a band) belong to line plots only"},
-      {"table",
-       [](json& d) {
-         d["sections"][0]["tables"] = {{{"title", "t"}}};
-       },
-       "sections[0].tables[0]: missing key 'columns'"},
   };
+}
+
+TEST(HtmlReport, InvalidDocumentsNameTheJsonPath) {
+  std::vector<BadCase> cases = badDocumentCases();
+  const std::vector<BadCase> plot_cases = badPlotCases();
+  cases.insert(cases.end(), plot_cases.begin(), plot_cases.end());
   for (const BadCase& c : cases) {
     json doc = minimal();
     c.mutate(doc);
