@@ -5,8 +5,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "support/cli_fixture.hpp"
 
@@ -16,7 +19,101 @@ namespace {
 using Json = nlohmann::json;
 using ::testing::HasSubstr;
 
-class CampaignCli : public CliTest {};
+class CampaignCli : public CliTest {
+ protected:
+  /// Every row of the summary `s` passes; a row with a target meets it after and missed it
+  /// before; every row has its expanded uncertainties (k = 2), null where there is no value.
+  static void expectTargetsMet(const Json& s) {
+    std::map<std::string, int> targets;
+    for (const Json& row : s["rows"]) {
+      EXPECT_TRUE(row["pass"].get<bool>()) << row.dump();
+      if (!row["target"].is_null()) {
+        ++targets[row["step"].get<std::string>()];
+        EXPECT_LE(std::abs(row["after"].get<double>()), row["target"].get<double>()) << row.dump();
+        EXPECT_GT(std::abs(row["before"].get<double>()), row["target"].get<double>()) << row.dump();
+      }
+    }
+    EXPECT_EQ(targets["seed000"], 6);
+    EXPECT_EQ(targets["seed003"], 1);
+    EXPECT_EQ(targets["seed004"], 1);
+    EXPECT_EQ(targets["seed004-gauges"], 1);
+    // Expanded uncertainties (k = 2) where a budget exists, null elsewhere; the parallelism's
+    // improvement is far larger than its combined U.
+    for (const Json& row : s["rows"]) {
+      for (const char* key : {"before_U", "after_U", "significant"})
+        EXPECT_TRUE(row.contains(key)) << key << row.dump();
+      if (row["before"].is_null()) EXPECT_TRUE(row["before_U"].is_null()) << row.dump();
+    }
+    const Json& parallelism = s["rows"][0];
+    EXPECT_GT(parallelism["before_U"].get<double>(), 0.0);
+    EXPECT_LT(parallelism["before_U"].get<double>(), 0.01);
+    EXPECT_TRUE(parallelism["significant"].get<bool>());
+  }
+
+  /// The paper's before and after values (seed 000 parallelism, seed 004 by dial gauges) and the
+  /// hexapod's TCP error with its uncertainties, in the summary `s`.
+  void expectPaperValuesAndTcpUncertainty(const Json& s) const {
+    // The hexapod's TCP error: U from the tracker and registration before, plus the calibration's
+    // predicted TCP U after (tens of µm with a typical tracker and 6-DOF probe).
+    std::map<std::string, Json> by_quantity;
+    for (const Json& row : s["rows"])
+      by_quantity[row["step"].get<std::string>() + " " + row["quantity"].get<std::string>()] = row;
+    const Json& tcp = by_quantity.at("seed004 TCP error, 50 held-out poses, max");
+    // Seed 000 over the paper's 50 mm (its Table 3: 0.134 and 0.735 mm before): the virtual
+    // machine's injected squareness gives the paper's before-values, the after-values are the
+    // compensation's (docs/campaign.md explains the gap to the paper's 0.015 and 0.022 mm).
+    const Json& h50 = by_quantity.at("seed000 parallelism Y2-PY, horizontal (50 mm)");
+    const Json& v50 = by_quantity.at("seed000 parallelism Y2-PY, vertical (50 mm)");
+    EXPECT_NEAR(h50["before"].get<double>(), 0.134, 0.134 * 0.1);
+    EXPECT_NEAR(v50["before"].get<double>(), 0.735, 0.735 * 0.05);
+    EXPECT_EQ(h50["paper"], "0.134 -> 0.015 mm");
+    EXPECT_LT(v50["after"].get<double>(), 0.022);
+    EXPECT_TRUE(by_quantity.at("seed000 parallelism Y2-PY, horizontal (300 mm)")["paper"] == "");
+    // Seed 004 by the paper's method, dial gauges in constrained motion (its §4): x over 540 mm
+    // from about 10.5 mm to below the paper's 0.5 mm; across the work volume, which the gauges do
+    // not see, the TCP error still improves (no target), far from the tracker calibration's.
+    const Json& gx =
+        by_quantity.at("seed004-gauges linear-x positioning (ISO 230-2 M over 540 mm)");
+    const Json& gt = by_quantity.at("seed004-gauges TCP error, 50 held-out poses, max");
+    EXPECT_EQ(gx["paper"], "12 -> < 0.5 mm (540 mm along x)");
+    EXPECT_GT(gx["before"].get<double>(), 9.0);
+    EXPECT_LT(gx["after"].get<double>(), 0.5);
+    EXPECT_TRUE(gt["target"].is_null());
+    EXPECT_LT(gt["after"].get<double>(), gt["before"].get<double>());
+    EXPECT_GT(gt["after"].get<double>(), 10 * tcp["after"].get<double>());
+    EXPECT_TRUE(std::filesystem::is_regular_file(
+        dir_ / "out/seed004-gauges/measured-before/constrained-motion.csv"));
+    EXPECT_GT(tcp["before_U"].get<double>(), 0.01);
+    EXPECT_LT(tcp["before_U"].get<double>(), 0.1);
+    EXPECT_GT(tcp["after_U"].get<double>(), tcp["before_U"].get<double>());
+    EXPECT_LT(tcp["after_U"].get<double>(), 0.1);
+    EXPECT_TRUE(tcp["significant"].get<bool>());
+  }
+
+  /// Every step's files of the summary `s` and the compensation files exist; the report holds
+  /// every plot of its data.
+  void expectFilesAndReport(const Json& s) const {
+    // Every step's files exist: measurements before and after, the controller compensation.
+    for (const Json& step : s["steps"])
+      for (const Json& f : step["files"])
+        EXPECT_TRUE(std::filesystem::is_regular_file(dir_ / "out" / f.get<std::string>())) << f;
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir_ / "out/seed004/compensation/kinematics.hal"));
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir_ / "out/seed000/compensation/x2.comp"));
+    EXPECT_TRUE(
+        std::filesystem::is_regular_file(dir_ / "out/seed000/compensation/pkm-base-frame.txt"));
+    // The report holds every plot of the report data, and loads nothing from outside.
+    const std::string html = slurp(dir_ / "out" / "report.html");
+    const Json data = Json::parse(slurp(dir_ / "out" / "report-data.json"));
+    int plots = 0;
+    for (const Json& sec : data["sections"])
+      for (const Json& p : sec["plots"]) {
+        EXPECT_THAT(html, HasSubstr(p["id"].get<std::string>()));
+        ++plots;
+      }
+    EXPECT_GE(plots, 8);
+    EXPECT_THAT(html, ::testing::Not(HasSubstr("src=\"http")));
+  }
+};
 
 TEST_F(CampaignCli, DefaultCampaignMeetsTheTargetsAndWritesEverything) {
   const CliRun r =
@@ -25,85 +122,11 @@ TEST_F(CampaignCli, DefaultCampaignMeetsTheTargetsAndWritesEverything) {
   EXPECT_THAT(r.out, HasSubstr("all targets met"));
   EXPECT_THAT(r.out, HasSubstr("report.html"));
   const Json s = Json::parse(slurp(dir_ / "out" / "summary.json"));
-  std::map<std::string, int> targets;
-  for (const Json& row : s["rows"]) {
-    EXPECT_TRUE(row["pass"].get<bool>()) << row.dump();
-    if (!row["target"].is_null()) {
-      ++targets[row["step"].get<std::string>()];
-      EXPECT_LE(std::abs(row["after"].get<double>()), row["target"].get<double>()) << row.dump();
-      EXPECT_GT(std::abs(row["before"].get<double>()), row["target"].get<double>()) << row.dump();
-    }
-  }
-  EXPECT_EQ(targets["seed000"], 6);
-  EXPECT_EQ(targets["seed003"], 1);
-  EXPECT_EQ(targets["seed004"], 1);
-  EXPECT_EQ(targets["seed004-gauges"], 1);
-  // Expanded uncertainties (k = 2) where a budget exists, null elsewhere; the parallelism's
-  // improvement is far larger than its combined U.
-  for (const Json& row : s["rows"]) {
-    for (const char* key : {"before_U", "after_U", "significant"})
-      EXPECT_TRUE(row.contains(key)) << key << row.dump();
-    if (row["before"].is_null()) EXPECT_TRUE(row["before_U"].is_null()) << row.dump();
-  }
-  const Json& parallelism = s["rows"][0];
-  EXPECT_GT(parallelism["before_U"].get<double>(), 0.0);
-  EXPECT_LT(parallelism["before_U"].get<double>(), 0.01);
-  EXPECT_TRUE(parallelism["significant"].get<bool>());
-  // The hexapod's TCP error: U from the tracker and registration before, plus the calibration's
-  // predicted TCP U after (tens of µm with a typical tracker and 6-DOF probe).
-  std::map<std::string, Json> by_quantity;
-  for (const Json& row : s["rows"])
-    by_quantity[row["step"].get<std::string>() + " " + row["quantity"].get<std::string>()] = row;
-  const Json& tcp = by_quantity.at("seed004 TCP error, 50 held-out poses, max");
-  // Seed 000 over the paper's 50 mm (its Table 3: 0.134 and 0.735 mm before): the virtual
-  // machine's injected squareness gives the paper's before-values, the after-values are the
-  // compensation's (docs/campaign.md explains the gap to the paper's 0.015 and 0.022 mm).
-  const Json& h50 = by_quantity.at("seed000 parallelism Y2-PY, horizontal (50 mm)");
-  const Json& v50 = by_quantity.at("seed000 parallelism Y2-PY, vertical (50 mm)");
-  EXPECT_NEAR(h50["before"].get<double>(), 0.134, 0.134 * 0.1);
-  EXPECT_NEAR(v50["before"].get<double>(), 0.735, 0.735 * 0.05);
-  EXPECT_EQ(h50["paper"], "0.134 -> 0.015 mm");
-  EXPECT_LT(v50["after"].get<double>(), 0.022);
-  EXPECT_TRUE(by_quantity.at("seed000 parallelism Y2-PY, horizontal (300 mm)")["paper"] == "");
-  // Seed 004 by the paper's method, dial gauges in constrained motion (its §4): x over 540 mm
-  // from about 10.5 mm to below the paper's 0.5 mm; across the work volume, which the gauges do
-  // not see, the TCP error still improves (no target), far from the tracker calibration's.
-  const Json& gx = by_quantity.at("seed004-gauges linear-x positioning (ISO 230-2 M over 540 mm)");
-  const Json& gt = by_quantity.at("seed004-gauges TCP error, 50 held-out poses, max");
-  EXPECT_EQ(gx["paper"], "12 -> < 0.5 mm (540 mm along x)");
-  EXPECT_GT(gx["before"].get<double>(), 9.0);
-  EXPECT_LT(gx["after"].get<double>(), 0.5);
-  EXPECT_TRUE(gt["target"].is_null());
-  EXPECT_LT(gt["after"].get<double>(), gt["before"].get<double>());
-  EXPECT_GT(gt["after"].get<double>(), 10 * tcp["after"].get<double>());
-  EXPECT_TRUE(std::filesystem::is_regular_file(
-      dir_ / "out/seed004-gauges/measured-before/constrained-motion.csv"));
-  EXPECT_GT(tcp["before_U"].get<double>(), 0.01);
-  EXPECT_LT(tcp["before_U"].get<double>(), 0.1);
-  EXPECT_GT(tcp["after_U"].get<double>(), tcp["before_U"].get<double>());
-  EXPECT_LT(tcp["after_U"].get<double>(), 0.1);
-  EXPECT_TRUE(tcp["significant"].get<bool>());
+  expectTargetsMet(s);
+  expectPaperValuesAndTcpUncertainty(s);
   EXPECT_THAT(r.out, HasSubstr("uncertainty (k = 2): before -> after, improvement"));
   EXPECT_THAT(r.out, HasSubstr(" ± "));
-  // Every step's files exist: measurements before and after, the controller compensation.
-  for (const Json& step : s["steps"])
-    for (const Json& f : step["files"])
-      EXPECT_TRUE(std::filesystem::is_regular_file(dir_ / "out" / f.get<std::string>())) << f;
-  EXPECT_TRUE(std::filesystem::is_regular_file(dir_ / "out/seed004/compensation/kinematics.hal"));
-  EXPECT_TRUE(std::filesystem::is_regular_file(dir_ / "out/seed000/compensation/x2.comp"));
-  EXPECT_TRUE(
-      std::filesystem::is_regular_file(dir_ / "out/seed000/compensation/pkm-base-frame.txt"));
-  // The report holds every plot of the report data, and loads nothing from outside.
-  const std::string html = slurp(dir_ / "out" / "report.html");
-  const Json data = Json::parse(slurp(dir_ / "out" / "report-data.json"));
-  int plots = 0;
-  for (const Json& sec : data["sections"])
-    for (const Json& p : sec["plots"]) {
-      EXPECT_THAT(html, HasSubstr(p["id"].get<std::string>()));
-      ++plots;
-    }
-  EXPECT_GE(plots, 8);
-  EXPECT_THAT(html, ::testing::Not(HasSubstr("src=\"http")));
+  expectFilesAndReport(s);
   // The results are in the store: the hexapod's TCP error before and after.
   const CliRun h = pkm({"history", "--machine", "pkm-hx1200", "--db", path("pkm.db"), "--json"});
   ASSERT_EQ(h.code, 0) << h.err;
@@ -148,7 +171,8 @@ TEST_F(CampaignCli, BadCampaignsAreUsageErrors) {
                         "run",
                         write("d.json", R"({"schema": "pkm.campaign/1", "steps": [
                           {"id": "x", "kind": "probe-offset", "scenario": "seed003-probe-offset"},
-                          {"id": "x", "kind": "probe-offset", "scenario": "seed003-probe-offset"}]})"),
+                          {"id": "x", "kind": "probe-offset",
+                           "scenario": "seed003-probe-offset"}]})"),
                         "--out",
                         path("o"),
                         "--no-db"}),
@@ -156,7 +180,8 @@ TEST_F(CampaignCli, BadCampaignsAreUsageErrors) {
   expectUsageError(pkm({"campaign",
                         "run",
                         write("e.json", R"({"schema": "pkm.campaign/1", "steps": [
-                          {"id": "x", "kind": "hexapod-calibration", "scenario": "seed003-probe-offset"}]})"),
+                          {"id": "x", "kind": "hexapod-calibration",
+                           "scenario": "seed003-probe-offset"}]})"),
                         "--out",
                         path("o"),
                         "--no-db"}),
@@ -169,7 +194,8 @@ TEST_F(CampaignCli, MeasuredFilesAreCalibratedAndTheKinematicsWritten) {
   ASSERT_EQ(pkm({"simulate", "seed004-hexapod-calibration", "--out", path("sim")}).code, 0);
   const std::string campaign = write("real.json", R"({"schema": "pkm.campaign/1", "name": "real",
     "steps": [{"id": "hx", "kind": "hexapod-calibration", "machine": "default",
-               "data": {"fit": ["sim/tracker-pose.csv"], "holdout": ["sim/tracker-holdout.csv"]}}]})");
+               "data": {"fit": ["sim/tracker-pose.csv"],
+                        "holdout": ["sim/tracker-holdout.csv"]}}]})");
   const CliRun r = pkm({"campaign", "run", campaign, "--out", path("o"), "--no-db"});
   ASSERT_EQ(r.code, 0) << r.out << r.err;
   const Json s = Json::parse(slurp(dir_ / "o" / "summary.json"));
@@ -253,7 +279,8 @@ TEST_F(CampaignCli, MeasuredLaserFilesGiveTheSameCompensationAsTheSimulation) {
   expectUsageError(pkm({"campaign",
                         "run",
                         write("g.json", R"({"schema": "pkm.campaign/1", "steps": [
-                          {"id": "hyb", "kind": "hybrid-squareness", "data": {"folder": "nowhere"}}]})"),
+                          {"id": "hyb", "kind": "hybrid-squareness",
+                           "data": {"folder": "nowhere"}}]})"),
                         "--out",
                         path("g"),
                         "--no-db"}),

@@ -68,6 +68,15 @@ std::string runCapture(const std::string& cmd, int& status) {
   return out;
 }
 
+/// What rs274 prints (standard output and error) for `program` with the parameter file `var`.
+std::string runRs274Command(const fs::path& program, const fs::path& var, int& status) {
+  return runCapture("LD_LIBRARY_PATH=" + shellQuote((kLinuxcnc / "lib").string()) + " " +
+                        shellQuote((kLinuxcnc / "bin/rs274").string()) + " -t " +
+                        shellQuote(kToolTable.string()) + " -v " + shellQuote(var.string()) +
+                        " -g " + shellQuote(program.string()) + " 2>&1",
+                    status);
+}
+
 bool rs274Available() {
   if (!fs::exists(kLinuxcnc / "bin/rs274") || !fs::exists(kToolTable)) return false;
   const fs::path prog = fs::temp_directory_path() / "pkm_rs274_probe.ngc";
@@ -75,12 +84,7 @@ bool rs274Available() {
   int status = 0;
   const std::string var = (fs::temp_directory_path() / "pkm_rs274_probe.var").string();
   std::ofstream(var).close();
-  const std::string out =
-      runCapture("LD_LIBRARY_PATH=" + shellQuote((kLinuxcnc / "lib").string()) + " " +
-                     shellQuote((kLinuxcnc / "bin/rs274").string()) + " -t " +
-                     shellQuote(kToolTable.string()) + " -v " + shellQuote(var) + " -g " +
-                     shellQuote(prog.string()) + " 2>&1",
-                 status);
+  const std::string out = runRs274Command(prog, var, status);
   return status == 0 && out.find("STRAIGHT_TRAVERSE(1.0000") != std::string::npos;
 }
 
@@ -102,26 +106,98 @@ std::vector<double> numbers(const std::string& args) {
   return v;
 }
 
+/// What rs274 has reported before a motion: units, plane, offsets (mm, deg) and feed.
+struct Rs274State {
+  double scale = 1.0;  ///< mm per program unit
+  int plane = 0;       ///< 0 XY, 1 XZ, 2 YZ
+  std::array<double, 6> g5x{}, g92{}, tlo{};
+  std::array<int, 6> t5{}, t9{}, tt{};  ///< non-zero printed offset terms per axis
+  double feed = 0.0;
+};
+
+/// Applies the call `name(args)` when it sets units, the plane, an offset or the feed.
+void applyRs274Setting(Rs274State& st, const std::string& name, const std::string& args) {
+  if (name == "USE_LENGTH_UNITS") {
+    st.scale = args.find("INCHES") != std::string::npos ? 25.4 : 1.0;
+    return;
+  }
+  if (name == "SELECT_PLANE") {
+    st.plane = args.find("XZ") != std::string::npos   ? 1
+               : args.find("YZ") != std::string::npos ? 2
+                                                      : 0;
+    return;
+  }
+  const std::vector<double> v = numbers(args);
+  auto store = [&](std::array<double, 6>& dst, std::array<int, 6>& nz, std::size_t first) {
+    for (std::size_t i = 0; i < 6; ++i) {
+      dst[i] = v[first + i] * (i < 3 ? st.scale : 1.0);
+      nz[i] = v[first + i] != 0.0 ? 1 : 0;
+    }
+  };
+  if (name == "SET_G5X_OFFSET" && v.size() >= 7) {
+    store(st.g5x, st.t5, 1);
+  } else if (name == "SET_G92_OFFSET" && v.size() >= 6) {
+    store(st.g92, st.t9, 0);
+  } else if (name == "USE_TOOL_LENGTH_OFFSET" && v.size() >= 6) {
+    store(st.tlo, st.tt, 0);
+  } else if (name == "SET_FEED_RATE" && !v.empty()) {
+    st.feed = v[0] * st.scale;
+  }
+}
+
+/// The motion call `name(v)` (STRAIGHT_TRAVERSE, STRAIGHT_FEED or ARC_FEED) in machine
+/// coordinates, with the rounding bound of its printed terms.
+RefMove rs274Motion(const Rs274State& st, const std::string& name, const std::vector<double>& v) {
+  std::array<int, 6> terms{};
+  for (std::size_t i = 0; i < 6; ++i) terms[i] = 1 + st.t5[i] + st.t9[i] + st.tt[i];
+  RefMove m;
+  std::array<double, 6> prog{};
+  std::array<double, 3> centre{NAN, NAN, NAN};
+  if (name == "ARC_FEED") {
+    // ARC_FEED(first_end, second_end, first_centre, second_centre, rotation, axis_end, a, b, c)
+    // first/second axes: XY -> X,Y; XZ -> Z,X; YZ -> Y,Z.
+    static constexpr std::array<std::array<std::size_t, 3>, 3> kAxes{
+        {{0, 1, 2}, {2, 0, 1}, {1, 2, 0}}};
+    const auto& ax = kAxes[static_cast<std::size_t>(st.plane)];
+    prog[ax[0]] = v[0];
+    prog[ax[1]] = v[1];
+    centre[ax[0]] = v[2];
+    centre[ax[1]] = v[3];
+    m.turns = static_cast<int>(v[4]);
+    prog[ax[2]] = v[5];
+    prog[3] = v[6];
+    prog[4] = v[7];
+    prog[5] = v[8];
+    m.kind = MoveKind::kArc;
+  } else {
+    for (std::size_t i = 0; i < 6; ++i) prog[i] = v[i];
+    m.kind = name == "STRAIGHT_TRAVERSE" ? MoveKind::kRapid : MoveKind::kLinear;
+  }
+  int max_terms = 1;
+  for (std::size_t i = 0; i < 6; ++i) {
+    const double s = i < 3 ? st.scale : 1.0;
+    m.end[i] = prog[i] * s + st.g5x[i] + st.g92[i] + st.tlo[i];
+    max_terms = std::max(max_terms, terms[i]);
+  }
+  for (std::size_t i = 0; i < 3; ++i)
+    if (!std::isnan(centre[i]))
+      m.centre[i] = centre[i] * st.scale + st.g5x[i] + st.g92[i] + st.tlo[i];
+  m.tol = kPrintHalfUnit * 25.4 * (max_terms + 1) + kTolSlack;
+  if (st.scale == 1.0) m.tol = kPrintHalfUnit * (max_terms + 1) + kTolSlack;
+  if (m.kind != MoveKind::kRapid) m.feed = st.feed;
+  return m;
+}
+
 RefRun runRs274(const fs::path& program) {
   const fs::path var =
       fs::temp_directory_path() / ("pkm_rs274_" + program.stem().string() + ".var");
   std::ofstream(var).close();  // a fresh, empty parameter file every run (rs274 writes it back)
   int status = 0;
-  const std::string out =
-      runCapture("LD_LIBRARY_PATH=" + shellQuote((kLinuxcnc / "lib").string()) + " " +
-                     shellQuote((kLinuxcnc / "bin/rs274").string()) + " -t " +
-                     shellQuote(kToolTable.string()) + " -v " + shellQuote(var.string()) + " -g " +
-                     shellQuote(program.string()) + " 2>&1",
-                 status);
+  const std::string out = runRs274Command(program, var, status);
   fs::remove(var);
   RefRun r;
   r.ok = status == 0;
-  double scale = 1.0;
-  int plane = 0;
-  std::array<double, 6> g5x{}, g92{}, tlo{};
-  std::array<int, 6> terms{};  // non-zero printed offset terms per axis
-  std::array<int, 6> t5{}, t9{}, tt{};
-  double feed = 0.0;
+  Rs274State state;
   static const std::regex kCall(R"(^\s*\d+ N\S*\s+(\w+)\((.*)\)\s*$)");
   std::istringstream in(out);
   std::string line, prev;
@@ -133,69 +209,10 @@ RefRun runRs274(const fs::path& program) {
     }
     const std::string name = match[1].str();
     const std::string args = match[2].str();
-    if (name == "USE_LENGTH_UNITS") {
-      scale = args.find("INCHES") != std::string::npos ? 25.4 : 1.0;
-      continue;
-    }
-    if (name == "SELECT_PLANE") {
-      plane = args.find("XZ") != std::string::npos   ? 1
-              : args.find("YZ") != std::string::npos ? 2
-                                                     : 0;
-      continue;
-    }
-    const std::vector<double> v = numbers(args);
-    auto store = [&](std::array<double, 6>& dst, std::array<int, 6>& nz, std::size_t first) {
-      for (std::size_t i = 0; i < 6; ++i) {
-        dst[i] = v[first + i] * (i < 3 ? scale : 1.0);
-        nz[i] = v[first + i] != 0.0 ? 1 : 0;
-      }
-    };
-    if (name == "SET_G5X_OFFSET" && v.size() >= 7) {
-      store(g5x, t5, 1);
-    } else if (name == "SET_G92_OFFSET" && v.size() >= 6) {
-      store(g92, t9, 0);
-    } else if (name == "USE_TOOL_LENGTH_OFFSET" && v.size() >= 6) {
-      store(tlo, tt, 0);
-    } else if (name == "SET_FEED_RATE" && !v.empty()) {
-      feed = v[0] * scale;
-    } else if ((name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED" || name == "ARC_FEED")) {
-      for (std::size_t i = 0; i < 6; ++i) terms[i] = 1 + t5[i] + t9[i] + tt[i];
-      RefMove m;
-      std::array<double, 6> prog{};
-      std::array<double, 3> centre{NAN, NAN, NAN};
-      if (name == "ARC_FEED") {
-        // ARC_FEED(first_end, second_end, first_centre, second_centre, rotation, axis_end, a, b, c)
-        // first/second axes: XY -> X,Y; XZ -> Z,X; YZ -> Y,Z.
-        static constexpr std::array<std::array<std::size_t, 3>, 3> kAxes{
-            {{0, 1, 2}, {2, 0, 1}, {1, 2, 0}}};
-        const auto& ax = kAxes[static_cast<std::size_t>(plane)];
-        prog[ax[0]] = v[0];
-        prog[ax[1]] = v[1];
-        centre[ax[0]] = v[2];
-        centre[ax[1]] = v[3];
-        m.turns = static_cast<int>(v[4]);
-        prog[ax[2]] = v[5];
-        prog[3] = v[6];
-        prog[4] = v[7];
-        prog[5] = v[8];
-        m.kind = MoveKind::kArc;
-      } else {
-        for (std::size_t i = 0; i < 6; ++i) prog[i] = v[i];
-        m.kind = name == "STRAIGHT_TRAVERSE" ? MoveKind::kRapid : MoveKind::kLinear;
-      }
-      int max_terms = 1;
-      for (std::size_t i = 0; i < 6; ++i) {
-        const double s = i < 3 ? scale : 1.0;
-        m.end[i] = prog[i] * s + g5x[i] + g92[i] + tlo[i];
-        max_terms = std::max(max_terms, terms[i]);
-      }
-      for (std::size_t i = 0; i < 3; ++i)
-        if (!std::isnan(centre[i])) m.centre[i] = centre[i] * scale + g5x[i] + g92[i] + tlo[i];
-      m.tol = kPrintHalfUnit * 25.4 * (max_terms + 1) + kTolSlack;
-      if (scale == 1.0) m.tol = kPrintHalfUnit * (max_terms + 1) + kTolSlack;
-      if (m.kind != MoveKind::kRapid) m.feed = feed;
-      r.moves.push_back(m);
-    }
+    if (name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED" || name == "ARC_FEED")
+      r.moves.push_back(rs274Motion(state, name, numbers(args)));
+    else
+      applyRs274Setting(state, name, args);
   }
   r.error_line = prev;
   static const std::regex kFromLine(R"(from line: (\d+))");

@@ -16,7 +16,8 @@ Z up and down; after each move, at rows and between rows, checked for both joint
     nominal − actual = −e; type 1 stores the trim −e);
     (to the table's slope times the last servo step, STEP below);
   - −e equals the value interpolated from the written file itself (what LinuxCNC read), 1e-12;
-  - joint.N.pos-fb = joint.N.pos-cmd to 1e-9 in: the feedback does not carry the correction. LinuxCNC is run by lcnc_harness.py (exit 77 when it cannot run here).
+  - joint.N.pos-fb = joint.N.pos-cmd to 1e-9 in: the feedback does not carry the correction.
+LinuxCNC is run by lcnc_harness.py (exit 77 when it cannot run here).
 
 Usage: comp_file_test.py PKM_BINARY HEXKINS_SO SOURCE_DIR
 """
@@ -97,15 +98,9 @@ def read_table(path, comp_type):
     return nominal, forward, reverse
 
 
-def main():
-    pkm, module, source_dir = (os.path.abspath(a) for a in sys.argv[1:4])
-    lh.require([module])
-    work = lh.workdir("pkm-comp-file-")
-    sample = os.path.join(source_dir, "data/linuxcnc/hexapod-linuxcnc-sim")
-    cfg = lh.copy_config(sample, work, "cfg")
-    ini = os.path.join(cfg, "hexapod-linuxcnc-sim.ini")
-    lh.make_headless(ini)
-
+def write_tables(pkm, work, cfg, ini):
+    """Writes the COMP_FILE tables of joints 0 and 1 with pkm and sets them in `ini`. Returns
+    {joint: (rows, −e forward, −e reverse)} (the docs' sign) and {joint: read_table(file)}."""
     poses = os.path.join(work, "poses.csv")
     with open(poses, "w") as f:
         f.write("x,y,z,a,b,c\n" + "".join(f"0,0,{z!r},0,0,0\n" for z in Z_ROWS))
@@ -127,6 +122,18 @@ def main():
         up, down = ERRORS[j]
         expected[j] = (targets, [-e for e in up], [-e for e in down])  # the docs' sign: −e
         tables[j] = read_table(table, j)
+    return expected, tables
+
+
+def main():
+    pkm, module, source_dir = (os.path.abspath(a) for a in sys.argv[1:4])
+    lh.require([module])
+    work = lh.workdir("pkm-comp-file-")
+    sample = os.path.join(source_dir, "data/linuxcnc/hexapod-linuxcnc-sim")
+    cfg = lh.copy_config(sample, work, "cfg")
+    ini = os.path.join(cfg, "hexapod-linuxcnc-sim.ini")
+    lh.make_headless(ini)
+    expected, tables = write_tables(pkm, work, cfg, ini)
 
     checked = {"forward": 0, "reverse": 0, "at a row": 0, "between rows": 0}
     worst = [0.0]

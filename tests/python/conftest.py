@@ -11,6 +11,9 @@ import pytest
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
+# The calibration tests' shared helpers assert too: with pytest's messages.
+pytest.register_assert_rewrite("calibration_helpers")
+
 
 @pytest.fixture(scope="session")
 def pkm_binary():
@@ -31,6 +34,22 @@ def run_cli(pkm_binary):
         return p
 
     return run
+
+
+@pytest.fixture(scope="session")
+def s4(run_cli, tmp_path_factory):
+    """The simulator's seed004-hexapod-calibration files (simulated once per run)."""
+    out = tmp_path_factory.mktemp("s4") / "sim"
+    run_cli(["simulate", "seed004-hexapod-calibration", "--out", str(out)])
+    return out
+
+
+@pytest.fixture(scope="session")
+def ex(run_cli, tmp_path_factory):
+    """The simulator's exechon-calibration files (simulated once per run)."""
+    out = tmp_path_factory.mktemp("ex") / "sim"
+    run_cli(["simulate", "exechon-calibration", "--out", str(out)])
+    return out
 
 
 def csv_text(header, rows):
