@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Seed 000's campaign step on a PKM that is not calibrated, as the paper's was (its §4 names the
-# PKM's own accuracy as the limit of the compensation): the built-in seed000-parallelism scenario
-# with ILLUSTRATIVE Exechon tripod assembly errors of SCALE times those of the built-in
-# exechon-calibration scenario (default 0.25: joint positions off by up to 0.3 mm, leg lengths by
-# up to 0.28 mm, wrist zeros 0.15-0.2 mrad), in the realistic workshop. Prints the step's rows;
-# docs/campaign.md ("Against the papers") quotes them. Not a timing benchmark.
+# The campaign step of the MXT700S parallelism paper on a PKM that is not calibrated, as the
+# paper's was (its §4 names the PKM's own accuracy as the limit of the compensation): the built-in
+# seed000-parallelism scenario with ILLUSTRATIVE Exechon tripod assembly errors of SCALE times
+# those of the built-in exechon-calibration scenario (default 0.25: joint positions off by up to
+# 0.3 mm, leg lengths by up to 0.28 mm, wrist zeros 0.15-0.2 mrad), in the realistic workshop.
+# Prints the step's rows; docs/campaign.md ("Against the papers") quotes them. Not a timing
+# benchmark.
 # Usage: benchmarks/seed000_uncalibrated_pkm.sh [path/to/pkm] [SCALE]
 set -euo pipefail
 pkm=$(realpath "${1:-build/bin/pkm}")

@@ -1,7 +1,7 @@
 // `pkm analyze circle | circular | probe-offset`: least-squares and minimum-zone circles with
 // roundness, ISO 230-4 circular deviation and hysteresis, and the touch-probe stylus offset from
-// master-ring touches with spindle reversal (seed 003), through pkm/workflow/analyze_circle.hpp.
-// docs/analysis.md, "Circles".
+// master-ring touches with spindle reversal (Lee et al. 2019), through
+// pkm/workflow/analyze_circle.hpp. docs/analysis.md, "Circles".
 #include "pkm/workflow/analyze_circle.hpp"
 
 #include <memory>
@@ -86,7 +86,7 @@ void addCircular(CLI::App& analyze) {
 
 const AnalyzeRegistration kRegisterCircular{65, &addCircular};
 
-// --- probe-offset (seed 003) -------------------------------------------------------------------
+// --- probe-offset (Lee et al. 2019) ------------------------------------------------------------
 
 struct ProbeOffsetState {
   AnalyzeIo io;

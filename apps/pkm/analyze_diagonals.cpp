@@ -1,7 +1,7 @@
-// `pkm analyze diagonals`: ISO 230-6 body diagonals (--method body), seed 001's shifted diagonals
-// (--method shifted) and Wang's step diagonals (--method step), with the 2-D XY prediction
-// compared against direct measurements (--compare), through pkm/workflow/analyze_diagonals.hpp.
-// docs/analysis.md, "Diagonal methods".
+// `pkm analyze diagonals`: ISO 230-6 body diagonals (--method body), Hwang et al.'s ("Analysis of
+// multi-axis volumetric errors") shifted diagonals (--method shifted) and Wang's step diagonals
+// (--method step), with the 2-D XY prediction compared against direct measurements (--compare),
+// through pkm/workflow/analyze_diagonals.hpp. docs/analysis.md, "Diagonal methods".
 #include "pkm/workflow/analyze_diagonals.hpp"
 
 #include <memory>

@@ -1,7 +1,7 @@
 // `pkm analyze iso230-2 | straightness | parallelism | squareness`: ISO 230-2 positioning,
 // straightness about end-point / least-squares / minimum-zone lines, parallelism from two
-// straightness runs along one beam and face-diagonal squareness (seed 000 §3), through
-// pkm/workflow/analyze_positioning.hpp. docs/analysis.md, "Positioning".
+// straightness runs along one beam and face-diagonal squareness (MXT700S parallelism paper, §3),
+// through pkm/workflow/analyze_positioning.hpp. docs/analysis.md, "Positioning".
 #include "pkm/workflow/analyze_positioning.hpp"
 
 #include <fmt/format.h>

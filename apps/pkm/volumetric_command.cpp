@@ -1,5 +1,6 @@
-// `pkm volumetric`: the volumetric error dp of a hybrid machine (seed 000 eq. 3) over a grid of
-// tool positions or a list of axis commands, exact and first-order (docs/formats.md).
+// `pkm volumetric`: the volumetric error dp of a hybrid machine (MXT700S parallelism paper, eq. 3)
+// over a grid of tool positions or a list of axis commands, exact and first-order
+// (docs/formats.md).
 #include <memory>
 
 #include "cli_common.hpp"

@@ -1,5 +1,5 @@
 // The JSON documents of the circle analyses (analysis_report.hpp): circle, circular (ISO 230-4),
-// probe-offset (seed 003).
+// probe-offset (Lee et al. 2019).
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>

@@ -1,5 +1,5 @@
 // The tables of the circle analyses (analysis_text.hpp): circle, circular (ISO 230-4),
-// probe-offset (seed 003).
+// probe-offset (Lee et al. 2019).
 #include <fmt/format.h>
 
 #include <cmath>

@@ -1,5 +1,6 @@
 // The hexapod parts of a scenario (docs/formats.md, "Scenario files"): the true hexapod and the
-// constrained-motion (dial gauge) measurements of seed 004.
+// constrained-motion (dial gauge) measurements of Lee et al. ("Development of a Parallel-Typed CNC
+// Machine").
 #include "io/scenario_detail.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"

@@ -118,7 +118,8 @@ FaceDiagonalResult fitFaceDiagonalSquareness(std::span<const FaceDiagonal> diago
   // Eqs 7-8: one linear equation per reading, in deviation units:
   //   deviation' = -σ u v / s [+ k_a u²/s + k_b v²/s  or  + k s],
   // with v the actual travel of b (v + its positioning error): the squareness tilts axis b's
-  // actual motion (second order; seed 000's 0.8 mm PZ error over 210 mm is 0.4 % of syP).
+  // actual motion (second order; the MXT700S parallelism paper's 0.8 mm PZ error over 210 mm is
+  // 0.4 % of syP).
   Eigen::MatrixXd A(static_cast<Eigen::Index>(rows.size()), unknowns);
   Eigen::VectorXd b(A.rows());
   for (Eigen::Index k = 0; k < A.rows(); ++k) {

@@ -28,7 +28,8 @@ ParallelismResult evaluateParallelism(const BeamRun& reference,
   ParallelismResult r;
   r.reference_straightness = evaluateStraightness(u_ref, reference.deviations, options.reference);
   r.axis_straightness = evaluateStraightness(u_axis, axis.deviations, options.reference);
-  // Representative slopes γ (α) of both runs and their difference Δγ (Δα) (seed 000 §3.1).
+  // Representative slopes γ (α) of both runs and their difference Δγ (Δα) (MXT700S parallelism
+  // paper, §3.1).
   r.reference_slope = r.reference_straightness.line.slope;
   r.axis_slope = r.axis_straightness.line.slope;
   r.slope_difference = r.axis_slope - r.reference_slope;
@@ -51,7 +52,8 @@ PkmSquareness pkmSquarenessFromSlopes(double dgamma, double dalpha, double szX2)
             dgamma,
             dalpha,
             szX2);
-  // Seed 000 §3.3: sxP = Δα; szP from Δγ and szX2 (eq. 11, sign as its reported values).
+  // The MXT700S parallelism paper, §3.3: sxP = Δα; szP from Δγ and szX2 (eq. 11, sign as its
+  // reported values).
   return {dalpha, szX2 - dgamma};
 }
 

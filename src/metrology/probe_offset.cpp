@@ -75,7 +75,7 @@ Eigen::Vector2d probeOffsetEq9(
     double x1, double y1, double x2, double y3, double ring_radius, double stylus_radius) {
   const double rho =
       checkedPathRadius({x1, y1, x2, y3, ring_radius, stylus_radius}, ring_radius, stylus_radius);
-  /// Seed 003 eq. 9.
+  /// Lee et al. (2019), eq. 9.
   return {(-x2 + x1 + rho) / 2.0, (-y3 + y1 + rho) / 2.0};
 }
 
@@ -99,7 +99,7 @@ ProbeOffsetEq8Solution solveProbeOffsetEq8(
               "probe offset: the offset does not fit inside the ring");
     const double cos2 = std::sqrt(1.0 - sin2 * sin2);
     const double sin3 = std::sqrt(1.0 - cos3 * cos3);
-    /// Seed 003 eq. 8: x2 − x1 = ρ cos θ2 − 2 o_x, y3 − y1 = ρ sin θ3 − 2 o_y.
+    /// Lee et al. (2019), eq. 8: x2 − x1 = ρ cos θ2 − 2 o_x, y3 − y1 = ρ sin θ3 − 2 o_y.
     const Eigen::Vector2d f(rho * cos2 - (x2 - x1) - 2.0 * o.x(),
                             rho * sin3 - (y3 - y1) - 2.0 * o.y());
     Eigen::Matrix2d j;

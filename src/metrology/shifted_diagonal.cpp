@@ -97,7 +97,8 @@ ShiftTriangle shiftTriangle(double r0, double rm, double shift) {
             d);
   const double sigma = shift > 0.0 ? 1.0 : -1.0;
   ShiftTriangle t;
-  // Seed 001 eq (2): the angle at the common start O, law of cosines.
+  // Hwang et al. ("Analysis of multi-axis volumetric errors"), eq (2): the angle at the common
+  // start O, law of cosines.
   t.delta_alpha = std::acos(std::clamp((r0 * r0 + rm * rm - d * d) / (2.0 * r0 * rm), -1.0, 1.0));
   // Eq (3): law of sines at A; asin gives π/2 − α on both sides of the normal plane.
   t.alpha =

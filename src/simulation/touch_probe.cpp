@@ -87,7 +87,7 @@ class Prober {
     double spindle = base;
     if (compensate) {
       // The spindle is set before the move to cancel φ_DRM at the target, the touch point that a
-      // perfectly compensated stylus would reach (seed 003 sec. 3.2: DRM angle at the touch
+      // perfectly compensated stylus would reach (Lee et al. 2019, sec. 3.2: DRM angle at the touch
       // position relative to the ring centre).
       const double t0 = travel(start, u, centre, [&](const Eigen::Vector3d&) { return base; });
       spindle = base - drmAt(start + t0 * Eigen::Vector3d(u.x(), u.y(), 0.0));
@@ -172,7 +172,7 @@ TouchProbeResult simulateTouchProbe(const TouchProbeSetup& setup, RandomStream& 
     const TouchRecord my = prober.touch("-y", run, p1, -kPi / 2.0, c1, 0.0, true, rng);
     p1.y() = 0.5 * (py.position.y() + my.position.y());
     for (const TouchRecord& r : {px, mx, py, my}) out.offset.push_back(r);
-    // Spindle reversed (seed 003 Fig. 5): the offset shows twice.
+    // Spindle reversed (Lee et al. 2019, Fig. 5): the offset shows twice.
     const std::array<std::pair<const char*, double>, 4> moves{
         {{"+x", 0.0}, {"-x", kPi}, {"+y", kPi / 2.0}, {"-y", -kPi / 2.0}}};
     for (const auto& [label, approach] : moves)

@@ -52,9 +52,9 @@ struct Labelled {
   Point2 p;
 };
 
-/// Seed 003 eqs. 8-9 per run from labelled touches: x1, y1 from the ±x and ±y touches at turn 0,
-/// x2 and y3 from the +x and +y touches at turn 180°; averaged over the runs that have all six
-/// touches, or nullopt.
+/// Lee et al. (2019), eqs. 8-9 per run from labelled touches: x1, y1 from the ±x and ±y touches at
+/// turn 0, x2 and y3 from the +x and +y touches at turn 180°; averaged over the runs that have all
+/// six touches, or nullopt.
 std::optional<io::PaperProbeOffset> paperOffset(const std::vector<Labelled>& touches,
                                                 double ring_radius,
                                                 double stylus_radius) {

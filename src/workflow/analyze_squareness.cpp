@@ -1,6 +1,6 @@
 // `pkm analyze squareness` as a workflow (workflow/analyze_positioning.hpp): face diagonals from
 // u,v tables or simulator diagonal files, PDGE tables from position tables or simulator linear and
-// straightness files (seed 000 eqs 4-10).
+// straightness files (MXT700S parallelism paper, eqs 4-10).
 #include <fmt/format.h>
 
 #include <Eigen/Core>

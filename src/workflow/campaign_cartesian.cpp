@@ -1,7 +1,7 @@
-// Campaign step "cartesian-diagonals" (seed 001): body diagonals (ISO 230-6) of a Cartesian
-// machine give its three squareness errors; they are compensated by a linear command correction
-// and the X and Y positioning by LinuxCNC axis tables; the diagonals are measured again
-// (docs/campaign.md).
+// Campaign step "cartesian-diagonals" (Hwang et al., "Analysis of multi-axis volumetric errors"):
+// body diagonals (ISO 230-6) of a Cartesian machine give its three squareness errors; they are
+// compensated by a linear command correction and the X and Y positioning by LinuxCNC axis tables;
+// the diagonals are measured again (docs/campaign.md).
 #include <fmt/format.h>
 
 #include <Eigen/LU>

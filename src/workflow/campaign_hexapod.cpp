@@ -1,6 +1,7 @@
-// Campaign step "hexapod-calibration" (seed 004): laser-tracker calibration of a hexapod, the
-// calibrated kinematics loaded into the controller (LinuxCNC genhexkins setp block), and the
-// TCP and positioning errors measured again (docs/campaign.md).
+// Campaign step "hexapod-calibration" (Lee et al., "Development of a Parallel-Typed CNC Machine"):
+// laser-tracker calibration of a hexapod, the calibrated kinematics loaded into the controller
+// (LinuxCNC genhexkins setp block), and the TCP and positioning errors measured again
+// (docs/campaign.md).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -156,8 +157,9 @@ io::CalibrationInput readFitFiles(const StepContext& ctx, const std::vector<std:
 /// The calibration's options: with dial-gauge data, which see only the platform's height and
 /// tilt, the prior of docs/calibration.md ("Weakly identified directions"): the geometry within
 /// "prior_sigma" (default 5 mm) of the machine file, readings to "measurement_sigma" (default
-/// 0.002 mm, the struts' repeatability). 20 mm let one seed in 20 of seed 004's scenario end
-/// worse across the work volume than uncalibrated (docs/campaign.md).
+/// 0.002 mm, the struts' repeatability). 20 mm let one seed in 20 of the hexapod scenario
+/// (after Lee et al., "Development of a Parallel-Typed CNC Machine") end worse across the work
+/// volume than uncalibrated (docs/campaign.md).
 cal::HexapodCalibrationOptions calibrationOptions(const StepContext& ctx,
                                                   const io::CalibrationInput& input) {
   cal::HexapodCalibrationOptions options;
@@ -263,7 +265,8 @@ void addRows(const StepContext& ctx,
        "mm",
        pb.M,
        pa.M,
-       gauges ? std::optional(0.5) : std::nullopt,  // seed 004: 12 -> < 0.5 mm over 540 mm
+       // Lee et al. ("Development of a Parallel-Typed CNC Machine"): 12 -> < 0.5 mm over 540 mm
+       gauges ? std::optional(0.5) : std::nullopt,
        "12 -> < 0.5 mm (540 mm along x)",
        fmt::format("laser {:g} µm + {:g} ppm", ls.noise.sigma * 1e3, ls.noise.sigma_ppm)});
   out.rows.back().before_U = iso230_2U(pb, "M", sourcesAt(ctx.sources, before.lines));
@@ -281,7 +284,8 @@ StepOutcome runHexapodCalibrationStep(const StepContext& ctx) {
   const std::vector<std::string> fit = names(ctx.spec, "fit", "tracker-pose");
   const std::vector<std::string> holdout = names(ctx.spec, "holdout", "tracker-holdout");
   const std::string linear = ctx.spec.value("positioning", std::string("linear-x"));
-  // The dial gauges are set up only when the fit uses them (seed 004 §4, constrained motion).
+  // The dial gauges are set up only when the fit uses them (Lee et al., "Development of a
+  // Parallel-Typed CNC Machine", §4, constrained motion).
   const bool gauges =
       std::find(fit.begin(), fit.end(), std::string("constrained-motion")) != fit.end();
   if (!gauges) scenario.campaign.constrained.clear();

@@ -1,7 +1,7 @@
-// Campaign step "hybrid-squareness" (seed 000): the MXT700S-like hybrid machine's parallelism and
-// face diagonals measured with a laser interferometer, the four squareness errors estimated
-// (seed 000 §3), compensated by the PKM base-frame rotation and the X2 travel correction
-// (§3.3) plus LinuxCNC axis tables for X2, Y2 and PZ, and measured again (docs/campaign.md).
+// Campaign step "hybrid-squareness" (MXT700S parallelism paper): the MXT700S-like hybrid machine's
+// parallelism and face diagonals measured with a laser interferometer, the four squareness errors
+// estimated (§3), compensated by the PKM base-frame rotation and the X2 travel correction (§3.3)
+// plus LinuxCNC axis tables for X2, Y2 and PZ, and measured again (docs/campaign.md).
 #include <fmt/format.h>
 
 #include <cmath>
@@ -95,7 +95,8 @@ StepOutcome fromFiles(const StepContext& ctx) {
   return out;
 }
 
-/// The parallelism rows over the paper's 50 mm, when both passes measured them (seed 000 Table 3).
+/// The parallelism rows over the paper's 50 mm, when both passes measured them (MXT700S parallelism
+/// paper, Table 3).
 void add50mmRows(StepOutcome& out,
                  const Analysis& ab,
                  const Analysis& aa,
@@ -140,9 +141,9 @@ void addRows(const StepContext& ctx,
              const LineData& before,
              const Analysis& ab,
              const Analysis& aa) {
-  // Seed 000 (Table 3, §4): parallelism 0.134 -> 0.015 mm (x) and 0.735 -> 0.022 mm (z) over
-  // 50 mm of the PKM's y travel (its optics' range); face diagonals X2-PZ 1.216 -> 0.082 mm and
-  // X2-Y2 0.082 -> 0.011 mm. The 300 mm rows have no paper figure.
+  // The MXT700S parallelism paper (Table 3, §4): parallelism 0.134 -> 0.015 mm (x) and
+  // 0.735 -> 0.022 mm (z) over 50 mm of the PKM's y travel (its optics' range); face diagonals
+  // X2-PZ 1.216 -> 0.082 mm and X2-Y2 0.082 -> 0.011 mm. The 300 mm rows have no paper figure.
   const double parallelism_target = stepTarget(scenario, 0.010, 0.030);
   const double xy_target = stepTarget(scenario, 0.02, 0.011);
   const double xz_target = stepTarget(scenario, 0.02, 0.082);

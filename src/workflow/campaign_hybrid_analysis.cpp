@@ -1,7 +1,7 @@
-// Analysis and compensation of the campaign step "hybrid-squareness" (seed 000 §3): the Y2-PY
-// parallelism, the face-diagonal squareness and the four squareness errors from the laser lines;
-// the PKM base-frame correction, the X2 cross table and the axis tables written and returned as the
-// controller's compensation (docs/campaign.md).
+// Analysis and compensation of the campaign step "hybrid-squareness" (MXT700S parallelism paper,
+// §3): the Y2-PY parallelism, the face-diagonal squareness and the four squareness errors from the
+// laser lines; the PKM base-frame correction, the X2 cross table and the axis tables written and
+// returned as the controller's compensation (docs/campaign.md).
 #include <fmt/format.h>
 
 #include <algorithm>

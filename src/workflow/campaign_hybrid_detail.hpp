@@ -19,7 +19,8 @@ namespace pkm::workflow::campaign::detail {
 
 /// What the laser lines of the hybrid machine give.
 struct HybridAnalysis {
-  metrology::ParallelismResult horizontal, vertical;  ///< Y2-PY parallelism (seed 000 §3.1)
+  metrology::ParallelismResult horizontal, vertical;  ///< Y2-PY parallelism (MXT700S
+                                                      ///< parallelism paper, §3.1)
   kinematics::HybridSquareness squareness;            ///< the four squareness errors
   metrology::Iso230_2Result diag_xy, diag_xz;         ///< the face diagonals X2-Y2 and X2-PZ
   /// U (k = 2, mm) of |parallelism| (metrology::parallelismUncertainty).
@@ -28,7 +29,7 @@ struct HybridAnalysis {
   /// The largest contributors of horizontal_U and vertical_U (largestContributors).
   std::string horizontal_limit, vertical_limit;
   /// The same over the paper's 50 mm (the pairs straightness-{y2,py}-{h,v}-50), when measured:
-  /// seed 000 Table 3 states its parallelism over that range.
+  /// Table 3 of the MXT700S parallelism paper states its parallelism over that range.
   std::optional<metrology::ParallelismResult> horizontal_50, vertical_50;
   double horizontal_50_U = std::numeric_limits<double>::quiet_NaN();
   double vertical_50_U = std::numeric_limits<double>::quiet_NaN();

@@ -1,6 +1,7 @@
-// Campaign step "probe-offset" (seed 003): the touch probe's stylus offset from master-ring touches
-// with spindle reversal, then a ring measured without and with the DRM compensation by the spindle
-// angle (seed 003 sec. 3.3); roundness before and after, polar plots (docs/campaign.md).
+// Campaign step "probe-offset" (Lee et al. 2019): the touch probe's stylus offset from master-ring
+// touches with spindle reversal, then a ring measured without and with the DRM compensation by the
+// spindle angle (Lee et al. 2019, sec. 3.3); roundness before and after, polar plots
+// (docs/campaign.md).
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 

@@ -76,8 +76,9 @@ struct StepContext {
 /// A step kind: runs one step. Throws pkm::IoError / pkm::InvalidArgument for bad input.
 using StepRunner = StepOutcome (*)(const StepContext& context);
 
-/// The step kinds: "hybrid-squareness" (seed 000), "cartesian-diagonals" (seed 001),
-/// "probe-offset" (seed 003), "hexapod-calibration" (seed 004).
+/// The step kinds: "hybrid-squareness" (MXT700S parallelism paper), "cartesian-diagonals"
+/// (Hwang et al., "Analysis of multi-axis volumetric errors"), "probe-offset" (Lee et al. 2019),
+/// "hexapod-calibration" (Lee et al., "Development of a Parallel-Typed CNC Machine").
 StepOutcome runHybridSquarenessStep(const StepContext& context);
 StepOutcome runCartesianDiagonalsStep(const StepContext& context);
 StepOutcome runProbeOffsetStep(const StepContext& context);

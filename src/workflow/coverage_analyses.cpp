@@ -99,9 +99,9 @@ void diagonals(const io::Scenario& scenario,
   }
 }
 
-/// seed 000's parallelism: the axis PY against the reference Y2 along one beam (their positions
-/// run against and along the beam, as the campaign's hybrid step reads them), over 300 mm and
-/// over the paper's 50 mm (the "-50" pairs).
+/// The MXT700S parallelism paper's parallelism: the axis PY against the reference Y2 along one beam
+/// (their positions run against and along the beam, as the campaign's hybrid step reads them), over
+/// 300 mm and over the paper's 50 mm (the "-50" pairs).
 void parallelism(const io::Scenario& scenario,
                  const Files& files,
                  const met::UncertaintySources& sources,

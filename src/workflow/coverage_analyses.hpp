@@ -26,9 +26,9 @@ struct CoverageReading {
 /// with the instruments of `sources`, through the same workflow functions as `pkm analyze`: ISO
 /// 230-2 of every continuous linear measurement, the straightness of every straightness
 /// measurement, the body, step and shifted diagonals when the scenario has them (diag-*, step-*,
-/// shift-*), seed 000's parallelism pairs (straightness-y2-h/-py-h, -v) and every touch probe's
-/// circles and stylus offset. Returns every budget's value and U. Throws as the analyses
-/// (naming the file).
+/// shift-*), the MXT700S parallelism paper's parallelism pairs (straightness-y2-h/-py-h, -v) and
+/// every touch probe's circles and stylus offset. Returns every budget's value and U. Throws as the
+/// analyses (naming the file).
 [[nodiscard]] std::vector<CoverageReading> coverageReadings(
     const io::Scenario& scenario,
     const SimulateResult& simulation,

@@ -1,7 +1,7 @@
 // The Exechon part of `pkm demo` (demo.hpp): on the built-in hybrid machine mxt700s-like, a
 // 5-axis tool path through tool IK and back through FK, the dependent rotational motion along a
-// ring-gauge circle (seed 003), and the volumetric error map of seed 000's squareness and PDGE
-// values.
+// ring-gauge circle (Lee et al. 2019), and the volumetric error map of the MXT700S parallelism
+// paper's squareness and PDGE values.
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -68,7 +68,7 @@ bool runPath(const io::ExechonMachine& machine, io::ExechonDemoReport& r) {
   return true;
 }
 
-/// φ_DRM along a 40 mm master ring with a vertical tool, as in seed 003.
+/// φ_DRM along a 40 mm master ring with a vertical tool, as in Lee et al. (2019).
 void runDrmCircle(const kin::ExechonModel& model, io::ExechonDemoReport& r) {
   kin::ExechonData data(model);
   kin::DrmCircleOptions opt;
@@ -82,7 +82,7 @@ void runDrmCircle(const kin::ExechonModel& model, io::ExechonDemoReport& r) {
 }
 
 /// The volumetric error over X2 0..4000 × Y ±300 × Z ±200 mm, and the parallelism of the PKM's Y
-/// to Y2 (seed 000 §3.1): the z deviation over a 600 mm PKM y stroke.
+/// to Y2 (MXT700S parallelism paper, §3.1): the z deviation over a 600 mm PKM y stroke.
 void runVolumetric(const kin::HybridMachineModel& model,
                    const kin::GeometricErrors& errors,
                    io::ExechonDemoReport& r) {

@@ -1,5 +1,6 @@
 // `pkm gcode compensate --hybrid-frame F --x2 POS`: the hybrid machine's X2–Y2 squareness
-// corrected in a PKM program (workflow/gcode_compensate.hpp; seed 000, docs/campaign.md).
+// corrected in a PKM program (workflow/gcode_compensate.hpp; MXT700S parallelism paper,
+// docs/campaign.md).
 #include <fmt/format.h>
 
 #include <Eigen/Core>

@@ -24,9 +24,11 @@ inline constexpr double kAcceptableResidualFraction = 1e-3;
 /// The largest plausible change of a calibrated length parameter from the machine file's value,
 /// as a fraction of the machine's characteristic length (a hexapod's platform radius, an
 /// Exechon's largest base offset): a quarter of it. Assembly errors, even the large illustrative
-/// ones of seed 004 (joints off by up to 33 mm on a 250 mm platform), stay inside it; readings in
-/// another unit, or a tracker's placement absorbed into the geometry because readings in the
-/// tracker's own frame were taken as the machine's, move joints by the machine's size or more.
+/// ones of the seed004-hexapod-calibration scenario (after Lee et al., "Development of a
+/// Parallel-Typed CNC Machine"; joints off by up to 33 mm on a 250 mm platform), stay inside it;
+/// readings in another unit, or a tracker's placement absorbed into the geometry because readings
+/// in the tracker's own frame were taken as the machine's, move joints by the machine's size or
+/// more.
 inline constexpr double kPlausibleChangeFraction = 0.25;
 /// The largest plausible change of a calibrated angle parameter, rad (1.15°).
 inline constexpr double kPlausibleAngleChange = 0.02;

@@ -1,8 +1,9 @@
 /// @file
-/// @brief Identification of the four squareness errors of a hybrid machine (seed 000 §2.2: szX2,
-/// sxP, syP, szP) from tool positions measured over all five axes, with the PDGE of X2, Y2 and the
-/// PKM taken as known (measured by laser beforehand, as in seed 000) and, optionally, the PKM's
-/// calibrated tripod (docs/calibration.md, "Hybrid machine").
+/// @brief Identification of the four squareness errors of a hybrid machine (MXT700S parallelism
+/// paper, §2.2: szX2, sxP, syP, szP) from tool positions measured over all five axes, with the PDGE
+/// of X2, Y2 and the PKM taken as known (measured by laser beforehand, as in the MXT700S
+/// parallelism paper) and, optionally, the PKM's calibrated tripod (docs/calibration.md, "Hybrid
+/// machine").
 #pragma once
 
 #include <Eigen/Core>

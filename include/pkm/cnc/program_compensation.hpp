@@ -97,7 +97,7 @@ inline constexpr AxisMask kAllAxes{true, true, true, true, true, true};
 
 /// The hybrid machine's squareness correction of a PKM program (X Y Z = PKM command in its P
 /// frame) run with X2 at `x2` (mm): the X2–Y2 part p_c = p + x2·b₁ by G-code, with the base frame
-/// (A, b₀) in the controller's kinematic parameters (seed 000 §3.3); with
+/// (A, b₀) in the controller's kinematic parameters (MXT700S parallelism paper, §3.3); with
 /// `base_frame_in_controller` false also p ← A·p + b₀ first (compensation/hybrid_squareness.hpp).
 /// A, B, C words are kept. Throws pkm::InvalidArgument for a non-finite x2, and as rewriteProgram.
 [[nodiscard]] ProgramCompensation compensateHybridProgram(

@@ -1,9 +1,9 @@
 /// @file
-/// @brief Compensation of the four squareness errors of a hybrid machine (seed 000 §3.3): the PKM's
-/// three by rotating its basic coordinate system against the kinematic reference frame in the PKM
-/// controller, and the X2–Y2 squareness by a correction of the PKM command proportional to the X2
-/// travel (a G-code / post-processor correction, or a cross-axis table of the PKM axes over X2)
-/// (docs/compensation.md, "Hybrid machine: squareness").
+/// @brief Compensation of the four squareness errors of a hybrid machine (MXT700S parallelism
+/// paper, §3.3): the PKM's three by rotating its basic coordinate system against the kinematic
+/// reference frame in the PKM controller, and the X2–Y2 squareness by a correction of the PKM
+/// command proportional to the X2 travel (a G-code / post-processor correction, or a cross-axis
+/// table of the PKM axes over X2) (docs/compensation.md, "Hybrid machine: squareness").
 ///
 /// Derivation (frames and signs of pkm/kinematics/hybrid_chain.hpp; PDGE left out): with
 /// R_X2 = exp([ω_X2]×), R_P = exp([ω_P]×), the actual tool position for the command (x2, y2, p) is
@@ -12,8 +12,9 @@
 /// position equal the nominal position of p is exactly
 ///   p_c = A·p + b₀ + x2·b₁,   A = R_Pᵀ·R_X2ᵀ,
 ///   b₀ = A·P_p_tcp0 − P_p_tcp0 + R_Pᵀ·(R_X2ᵀ − I)·X2_p_P,   b₁ = R_Pᵀ·(R_X2ᵀ − I)·x̂.
-/// A is the base-frame rotation (controller parameter), b₀ a base-frame offset (zero in seed 000,
-/// whose offsets are zero), b₁ ≈ (0, szX2, 0) the X2–Y2 squareness correction per mm of X2.
+/// A is the base-frame rotation (controller parameter), b₀ a base-frame offset (zero in the MXT700S
+/// parallelism paper, whose offsets are zero), b₁ ≈ (0, szX2, 0) the X2–Y2 squareness correction
+/// per mm of X2.
 #pragma once
 
 #include <Eigen/Core>

@@ -63,14 +63,14 @@ struct StraightnessReport {
   std::vector<metrology::UncertaintyBudget> uncertainty;
 };
 
-/// The plane of a parallelism measurement (seed 000 §3.1).
+/// The plane of a parallelism measurement (MXT700S parallelism paper, §3.1).
 enum class ParallelismPlane {
   kHorizontal,  ///< slope difference Δγ; with szX2 also szP
   kVertical,    ///< slope difference Δα = sxP
 };
 
 /// Parallelism of an axis to a reference axis from two straightness runs along one beam
-/// (seed 000 §3.1, eqs 1-3).
+/// (MXT700S parallelism paper, §3.1, eqs 1-3).
 struct ParallelismReport {
   ParallelismPlane plane = ParallelismPlane::kHorizontal;
   metrology::StraightnessReference line = metrology::StraightnessReference::kLeastSquares;
@@ -82,7 +82,7 @@ struct ParallelismReport {
   std::vector<metrology::UncertaintyBudget> uncertainty;
 };
 
-/// Face-diagonal squareness (seed 000 eqs 4-10).
+/// Face-diagonal squareness (MXT700S parallelism paper, eqs 4-10).
 struct SquarenessReport {
   metrology::FaceDiagonalResult result;
   std::size_t diagonals = 0;    ///< diagonals fitted
@@ -96,7 +96,7 @@ struct SquarenessReport {
 /// The diagonal method of `pkm analyze diagonals`.
 enum class DiagonalMethod {
   kBody,     ///< ISO 230-6:2002 body diagonals
-  kShifted,  ///< seed 001's shifted diagonals
+  kShifted,  ///< Hwang et al.'s ("Analysis of multi-axis volumetric errors") shifted diagonals
   kStep,     ///< Wang's step diagonals
 };
 
@@ -166,14 +166,14 @@ struct CircularReport {
   std::vector<metrology::UncertaintyBudget> uncertainty;
 };
 
-/// Seed 003 eqs. 8 and 9 averaged over the runs with all six labelled touches.
+/// Lee et al. (2019), eqs. 8 and 9 averaged over the runs with all six labelled touches.
 struct PaperProbeOffset {
   Eigen::Vector2d eq9 = Eigen::Vector2d::Zero();  ///< o_probe by eq. 9, mm
   Eigen::Vector2d eq8 = Eigen::Vector2d::Zero();  ///< o_probe by eq. 8, mm
   int runs = 0;
 };
 
-/// Touch-probe stylus offset from master-ring touches (seed 003).
+/// Touch-probe stylus offset from master-ring touches (Lee et al. 2019).
 struct ProbeOffsetReport {
   metrology::ProbeOffsetFit fit;
   std::size_t touches = 0;

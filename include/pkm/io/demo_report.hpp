@@ -1,7 +1,8 @@
 /// @file
 /// @brief The report of `pkm demo`: an IK/FK round trip of a hexapod along a 5-axis path and,
 /// on the default machines, the Exechon part (tool path round trip, dependent rotational motion
-/// along a ring gauge (seed 003), volumetric error map of seed 000's errors), as text.
+/// along a ring gauge (Lee et al. 2019), volumetric error map of the MXT700S parallelism paper's
+/// errors), as text.
 #pragma once
 
 #include <map>
@@ -44,7 +45,7 @@ struct ExechonDemoReport {
   double max_direction_error = 0.0;    ///< |u_FK − u|
   std::string drm_status = "ok";       ///< sampleDrmCircle status on the 40 mm ring
   double drm_max_phi = 0.0;            ///< max |φ_DRM|, rad
-  double drm_max_fit_deviation = 0.0;  ///< of the 5th-order fit (seed 003 eq. 10), rad
+  double drm_max_fit_deviation = 0.0;  ///< of the 5th-order fit (Lee et al. 2019, eq. 10), rad
   int volumetric_points = 0;
   double max_dp = 0.0;          ///< largest |Δp| over the map, mm
   double max_dp_linear = 0.0;   ///< largest |Δp − Δp_linear|, mm

@@ -20,7 +20,7 @@ struct ExechonMachine {
   kinematics::FkOptions fk;                  ///< tripod forward-kinematics settings
   std::optional<JointRateSpec> joint_rates;  ///< leg and wrist rate limits, when given
   /// The extending axes X2 (carries the PKM) and Y2 (carries the work table) when the machine is a
-  /// hybrid one (seed 000); absent for a stand-alone tripod.
+  /// hybrid one (MXT700S parallelism paper); absent for a stand-alone tripod.
   std::optional<kinematics::HybridMachineModel> hybrid;
   std::string description;
   std::string source;                ///< file path, or "builtin:NAME"

@@ -39,7 +39,7 @@ void appendExechonCheckRow(std::string& out,
 
 /// The table of `pkm exechon drm`: θ, φ_DRM, the 5th-order fit and its residual per sample
 /// (degrees), "# status", then either "# failed at point N" (no fit) or the fit's coefficients
-/// c0..c5 (rad, seed 003 eq. 10), max |φ_DRM| and the largest fit deviation.
+/// c0..c5 (rad, Lee et al. 2019, eq. 10), max |φ_DRM| and the largest fit deviation.
 [[nodiscard]] std::string drmCircleCsv(const kinematics::DrmCircleResult& result);
 
 }  // namespace pkm::io

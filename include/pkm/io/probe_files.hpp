@@ -1,7 +1,7 @@
 /// @file
 /// @brief Touch-probe files (docs/formats.md, "Touch-probe files"): the spindle-reversal touches
 /// on a master ring that `pkm analyze probe-offset` reads, and the circle measurements (without
-/// and with DRM compensation) that `pkm analyze circle` reads (seed 003).
+/// and with DRM compensation) that `pkm analyze circle` reads (Lee et al. 2019).
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,7 @@
 /// @file
 /// @brief The rows of `pkm volumetric` (docs/formats.md, "pkm volumetric"): the volumetric error
-/// of a hybrid machine at one command, exact and first-order (seed 000 eq. 3), and its CSV form.
+/// of a hybrid machine at one command, exact and first-order (MXT700S parallelism paper, eq. 3),
+/// and its CSV form.
 #pragma once
 
 #include <Eigen/Core>

@@ -24,9 +24,9 @@ const StrutVector& inverseKinematics(const HexapodModel& model,
                                      const Eigen::Matrix3d& world_R_platform);
 
 /// The strut Jacobian J_q_x at the pose of the last inverseKinematics call: row i is
-/// [u_iᵀ, (R·a_i × u_i)ᵀ] with u_i the unit leg vector (seed 004 eq. for dL; genhexkins' inverse
-/// Jacobian). Columns: TCP displacement (world), then world-frame rotation vector. Returns
-/// data.J_q_x.
+/// [u_iᵀ, (R·a_i × u_i)ᵀ] with u_i the unit leg vector (Lee et al., "Development of a
+/// Parallel-Typed CNC Machine", eq. for dL; genhexkins' inverse Jacobian). Columns: TCP
+/// displacement (world), then world-frame rotation vector. Returns data.J_q_x.
 const Matrix6d& computeStrutJacobian(const HexapodModel& model, HexapodData& data);
 
 /// Condition number (largest / smallest singular value) of J_q_x with its angular columns divided

@@ -1,16 +1,18 @@
 /// @file
 /// @brief The kinematic error chain of the hybrid machine: nominal and actual pose of the tool in
 /// the work frame by exact composition of homogeneous transforms (HTMs), the volumetric error Δp =
-/// actual − nominal (seed 000, eq. 3), and its first-order (small-angle) linear model.
+/// actual − nominal (MXT700S parallelism paper, eq. 3), and its first-order (small-angle) linear
+/// model.
 ///
-/// Reconstruction of seed 000 §2.2 (its eqs. 1–2 are missing from the text and eq. 3 is garbled;
-/// what follows is rebuilt from the frames the text describes and is the project's definition):
+/// Reconstruction of §2.2 of the MXT700S parallelism paper (its eqs. 1–2 are missing from the text
+/// and eq. 3 is garbled; what follows is rebuilt from the frames the text describes and is the
+/// project's definition):
 ///
 /// Frames
 /// - F  reference frame, fixed to the bed. Origin: the X2 and Y2 carriage frame origins at
-///      x2 = y2 = 0 (with seed 000's zero offsets, the TCP with every axis at zero). y along the Y2
-///      axis (+y = the direction the table moves for +y2); x perpendicular to y in the plane of the
-///      X2 and Y2 axes (the X2 axis lies in F's xy plane); z = x × y.
+///      x2 = y2 = 0 (with the MXT700S parallelism paper's zero offsets, the TCP with every axis at
+///      zero). y along the Y2 axis (+y = the direction the table moves for +y2); x perpendicular to
+///      y in the plane of the X2 and Y2 axes (the X2 axis lies in F's xy plane); z = x × y.
 /// - Y2 the Y2 carriage (work table) frame; F at y2 = 0 without errors.
 /// - w  the work frame, fixed to the table (Y2_p_work from its origin, axes parallel).
 /// - X2 the X2 carriage frame (carries the PKM); its x axis is the X2 direction of travel.
@@ -24,7 +26,7 @@
 ///   F_T_X2 = Rot(ω_X2) · Trans(x2·x̂) · E(e_X2(x2)),   ω_X2 = (0, 0, −szX2)
 ///   X2_T_P = Trans(X2_p_P) · Rot(ω_P),                ω_P = (sxP, −syP, szP)
 ///   P_T_t  = Trans(P_p_tcp0 + p) · E(e_P(p)),          p = (xP, yP, zP), the PKM command
-/// composed as (seed 000 eq. 3)
+/// composed as (MXT700S parallelism paper, eq. 3)
 ///   w_T_t  = (F_T_Y2 · Y2_T_w)⁻¹ · F_T_X2 · X2_T_P · P_T_t.
 /// So: each PDGE multiplies its axis's nominal motion on the right (it is the error motion of the
 /// moving frame, in that frame's axes, about that frame's origin); szX2 rotates the X2 axis and
@@ -88,8 +90,8 @@ struct HybridChain {
                                                         const GeometricErrors& errors,
                                                         const HybridCommand& command);
 
-/// The volumetric error Δp = p − p̄ (seed 000 eq. 3): actual minus nominal tool position, in the
-/// work frame, model length unit; exact (no small-angle approximation).
+/// The volumetric error Δp = p − p̄ (MXT700S parallelism paper, eq. 3): actual minus nominal tool
+/// position, in the work frame, model length unit; exact (no small-angle approximation).
 [[nodiscard]] Eigen::Vector3d hybridVolumetricError(const HybridMachineModel& model,
                                                     const HybridErrorValues& values,
                                                     const HybridCommand& command);

@@ -1,8 +1,8 @@
 /// @file
-/// @brief The geometric errors of a hybrid machine (seed 000 §2.2): the position-dependent
-/// geometric errors (PDGE) of the extending axes X2 and Y2 and of the PKM, and the four
-/// position-independent squareness errors szX2, sxP, syP, szP. Where each error acts in the chain:
-/// pkm/kinematics/hybrid_chain.hpp.
+/// @brief The geometric errors of a hybrid machine (MXT700S parallelism paper, §2.2): the
+/// position-dependent geometric errors (PDGE) of the extending axes X2 and Y2 and of the PKM, and
+/// the four position-independent squareness errors szX2, sxP, syP, szP. Where each error acts in
+/// the chain: pkm/kinematics/hybrid_chain.hpp.
 #pragma once
 
 #include <Eigen/Core>
@@ -16,24 +16,25 @@
 
 namespace pkm::kinematics {
 
-/// The four squareness errors of seed 000 (§2.2, Fig. 3; values in §4), radians. Project convention
-/// (docs/conventions.md, "Signs"): a squareness is the included angle between the positive
-/// directions of the two axes minus 90°, positive when that angle is larger than 90°. Each value is
-/// exact when it is the only non-zero one; together they hold to first order. "ISO" gives the ISO
-/// 230-1 location error (right-handed rotation of the second axis about the named direction) that
-/// equals it.
+/// The four squareness errors of the MXT700S parallelism paper (§2.2, Fig. 3; values in §4),
+/// radians. Project convention (docs/conventions.md, "Signs"): a squareness is the included angle
+/// between the positive directions of the two axes minus 90°, positive when that angle is larger
+/// than 90°. Each value is exact when it is the only non-zero one; together they hold to first
+/// order. "ISO" gives the ISO 230-1 location error (right-handed rotation of the second axis about
+/// the named direction) that equals it.
 struct HybridSquareness {
-  /// szX2: ∠(+X2, +Y2) − 90°, in the xy plane of F (seed 000: −0.034 mrad). ISO EC0X2 = −szX2
-  /// (X2 squared to the reference axis Y2).
+  /// szX2: ∠(+X2, +Y2) − 90°, in the xy plane of F (MXT700S parallelism paper: −0.034 mrad). ISO
+  /// EC0X2 = −szX2 (X2 squared to the reference axis Y2).
   double sz_x2 = 0.0;
   /// sxP: ∠(+y of the X2 frame, +PZ) − 90°, in the yz plane; to first order also the vertical
-  /// parallelism slope dz/dy of the PKM's Y axis to Y2 (seed 000: Δα, −14.74 mrad). ISO EA0ZP =
-  /// +sxP.
+  /// parallelism slope dz/dy of the PKM's Y axis to Y2 (MXT700S parallelism paper: Δα,
+  /// −14.74 mrad). ISO EA0ZP = +sxP.
   double sx_p = 0.0;
-  /// syP: ∠(+X2, +PZ) − 90°, in the xz plane (seed 000: 4.35 mrad). ISO EB0ZP = −syP.
+  /// syP: ∠(+X2, +PZ) − 90°, in the xz plane (MXT700S parallelism paper: 4.35 mrad). ISO EB0ZP =
+  /// −syP.
   double sy_p = 0.0;
-  /// szP: ∠(+X2, +PY) − 90°, in the xy plane (seed 000: −2.85 mrad). ISO EC0YP = +szP. To first
-  /// order the horizontal parallelism slope dx/dy of PY in F is szX2 − szP.
+  /// szP: ∠(+X2, +PY) − 90°, in the xy plane (MXT700S parallelism paper: −2.85 mrad). ISO EC0YP =
+  /// +szP. To first order the horizontal parallelism slope dx/dy of PY in F is szX2 − szP.
   double sz_p = 0.0;
 };
 
@@ -60,8 +61,8 @@ struct GeometricErrors {
   /// work.
   std::optional<geometry::ErrorTable1d> y2;
   /// The PKM's errors over its working volume: error motion of the tool frame t relative to its
-  /// nominal pose in P, as a grid over the PKM command (xP, yP, zP) (seed 000: the PKM's PDGE
-  /// depend on all three coordinates because all its struts move together).
+  /// nominal pose in P, as a grid over the PKM command (xP, yP, zP) (MXT700S parallelism paper: the
+  /// PKM's PDGE depend on all three coordinates because all its struts move together).
   std::optional<geometry::ErrorGrid3d> pkm;
   HybridSquareness squareness;  ///< the position-independent errors
 

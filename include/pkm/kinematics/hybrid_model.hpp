@@ -1,8 +1,9 @@
 /// @file
 /// @brief HybridMachineModel: a PKM carried by a serial extending axis X2, over a work table on a
-/// serial extending axis Y2 (seed 000, §2.1: a large-volume machining robot, Exechon PKM on X2/Y2).
-/// The PKM is treated as a kinematic Cartesian 3-axis machine (xP, yP, zP) in its base frame P. The
-/// frames and the error chain are documented in pkm/kinematics/hybrid_chain.hpp.
+/// serial extending axis Y2 (MXT700S parallelism paper, §2.1: a large-volume machining robot,
+/// Exechon PKM on X2/Y2). The PKM is treated as a kinematic Cartesian 3-axis machine (xP, yP, zP)
+/// in its base frame P. The frames and the error chain are documented in
+/// pkm/kinematics/hybrid_chain.hpp.
 #pragma once
 
 #include <Eigen/Core>
@@ -40,17 +41,18 @@ struct HybridStroke {
 struct HybridMachineModel {
   std::string name = "hybrid";
   LengthUnit unit = LengthUnit::kMillimetre;
-  HybridStroke x2_stroke;  ///< X2 travel (seed 000 Table 1: 4000 mm)
-  HybridStroke y2_stroke;  ///< Y2 travel (seed 000 Table 1: 450 mm)
+  HybridStroke x2_stroke;  ///< X2 travel (MXT700S parallelism paper, Table 1: 4000 mm)
+  HybridStroke y2_stroke;  ///< Y2 travel (MXT700S parallelism paper, Table 1: 450 mm)
   /// The PKM's Cartesian working volume: the box [pkm_min, pkm_max] of commands (xP, yP, zP) in P.
   Eigen::Vector3d pkm_min = Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity());
   Eigen::Vector3d pkm_max = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  /// Origin of the PKM base frame P in the X2 carriage frame (0 in seed 000, which sets no
-  /// offsets).
+  /// Origin of the PKM base frame P in the X2 carriage frame (0 in the MXT700S parallelism paper,
+  /// which sets no offsets).
   Eigen::Vector3d X2_p_P = Eigen::Vector3d::Zero();
-  /// The TCP in P when the PKM command is (0, 0, 0) (0 in seed 000: P's origin is the TCP at zero).
+  /// The TCP in P when the PKM command is (0, 0, 0) (0 in the MXT700S parallelism paper: P's origin
+  /// is the TCP at zero).
   Eigen::Vector3d P_p_tcp0 = Eigen::Vector3d::Zero();
-  /// Origin of the work frame w in the Y2 table frame (0 in seed 000).
+  /// Origin of the work frame w in the Y2 table frame (0 in the MXT700S parallelism paper).
   Eigen::Vector3d Y2_p_work = Eigen::Vector3d::Zero();
 
   /// Nominal tool position in the work frame with every axis at zero:
@@ -67,8 +69,8 @@ struct HybridMachineModel {
 [[nodiscard]] bool hybridWithinLimits(const HybridMachineModel& model,
                                       const HybridCommand& command);
 
-/// The nominal tool position in the work frame (no errors; seed 000 eq. 3 with every error zero):
-/// (x2 + xP, yP − y2, zP) + model.workOffset(), model length unit.
+/// The nominal tool position in the work frame (no errors; MXT700S parallelism paper, eq. 3 with
+/// every error zero): (x2 + xP, yP − y2, zP) + model.workOffset(), model length unit.
 [[nodiscard]] Eigen::Vector3d hybridNominalToolPosition(const HybridMachineModel& model,
                                                         const HybridCommand& command);
 

@@ -1,8 +1,8 @@
 /// @file
 /// @brief Abbe error removal: a linear or straightness reading taken at an offset from the point of
-/// interest is corrected by offset × angle from measured angular errors (seed 000 §4: "the Abbe
-/// errors in all measurement data were computed from the measured angular errors and the Abbe
-/// offsets and removed"; first-order rigid-body model with ISO 230-1 error names).
+/// interest is corrected by offset × angle from measured angular errors (MXT700S parallelism paper,
+/// §4: "the Abbe errors in all measurement data were computed from the measured angular errors and
+/// the Abbe offsets and removed"; first-order rigid-body model with ISO 230-1 error names).
 #pragma once
 
 #include <Eigen/Core>

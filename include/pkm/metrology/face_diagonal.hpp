@@ -1,8 +1,8 @@
 /// @file
 /// @brief Squareness of two linear axes from face-diagonal displacement measurements by least
-/// squares, after removing the measured position-dependent geometric errors (PDGEs) (seed 000
-/// §3.2, eqs 4-10; docs/conventions.md, "First-order diagonal formula"), optionally with the two
-/// axes' scale errors.
+/// squares, after removing the measured position-dependent geometric errors (PDGEs) (MXT700S
+/// parallelism paper, §3.2, eqs 4-10; docs/conventions.md, "First-order diagonal formula"),
+/// optionally with the two axes' scale errors.
 #pragma once
 
 #include <array>
@@ -33,8 +33,8 @@ struct FaceDiagonal {
 /// tool (relative to the work) along axis a or b by value × (lever + lever_per_other · position of
 /// the other axis). Positioning error of a: (argument a, along a, lever 1); straightness of a along
 /// b: (a, b, 1); an angular error of a (rad) with an Abbe arm: lever = arm at the other axis's
-/// position 0, lever_per_other = ±1 when the arm grows with the other axis (seed 000: the pitch
-/// εyX2 times the PKM z travel in the X2-PZ diagonal).
+/// position 0, lever_per_other = ±1 when the arm grows with the other axis (MXT700S parallelism
+/// paper: the pitch εyX2 times the PKM z travel in the X2-PZ diagonal).
 struct PdgeTerm {
   geometry::ErrorTable1d table;  ///< 1 column: deviation (length) or angle (rad) vs position
   int argument = 0;              ///< 0: evaluated at the position of axis a, 1: of axis b
@@ -50,14 +50,14 @@ struct FaceDiagonalOptions {
   /// diagonals of one rectangle) only k_a u² + k_b v² is observable, and a common scale
   /// k = k_a = k_b is fitted instead (FaceDiagonalResult::scale_per_axis = false).
   bool fit_scale = false;
-  /// Axis a (first) or b (second) moves the work instead of the tool (seed 000: Y2 carries the
-  /// table): the commanded displacement then moves the tool the opposite way, and the fitted
-  /// squareness of the relative motions is negated to give the included angle of the axes.
+  /// Axis a (first) or b (second) moves the work instead of the tool (MXT700S parallelism paper: Y2
+  /// carries the table): the commanded displacement then moves the tool the opposite way, and the
+  /// fitted squareness of the relative motions is negated to give the included angle of the axes.
   bool first_moves_work = false;
   bool second_moves_work = false;  ///< see first_moves_work
 };
 
-/// The least-squares squareness (seed 000 eqs 7-8 / 10).
+/// The least-squares squareness (MXT700S parallelism paper, eqs 7-8 / 10).
 struct FaceDiagonalResult {
   /// Included angle between the positive directions of axes a and b minus 90°, rad (the project
   /// convention; ISO 230-1 EC0Y = +squareness for a = X, b = Y).
@@ -70,14 +70,14 @@ struct FaceDiagonalResult {
   int points_used = 0;                         ///< readings with u² + v² > 0
 };
 
-/// Fits the squareness of axes a and b to face-diagonal displacements. First-order model (seed 000
-/// eq. 6, linearised diagonal length; docs/conventions.md "First-order diagonal formula"): with
-/// s = √(u² + v²) and Δa, Δb the PDGE displacements relative to the start,
+/// Fits the squareness of axes a and b to face-diagonal displacements. First-order model (MXT700S
+/// parallelism paper, eq. 6, linearised diagonal length; docs/conventions.md "First-order diagonal
+/// formula"): with s = √(u² + v²) and Δa, Δb the PDGE displacements relative to the start,
 ///   s · deviation = u Δa + v Δb - σ u (v + Δb_b) + k_a u² + k_b v²,
 /// solved for σ (and k) by least squares on the residual in deviation units (eqs 7-8). Δb_b, the
 /// positioning terms of axis b (argument b, along b), enter the squareness term because the
-/// squareness tilts b's actual travel (a second-order refinement; seed 000's 0.8 mm PZ error over
-/// 210 mm is 0.4 % of syP).
+/// squareness tilts b's actual travel (a second-order refinement; the MXT700S parallelism paper's
+/// 0.8 mm PZ error over 210 mm is 0.4 % of syP).
 /// @throws pkm::InvalidArgument for no diagonal, non-finite values, a PDGE term with an argument or
 /// component outside {0, 1} or a table without exactly one column, fewer readings with s > 0 than
 /// unknowns + 1, no reading with u v ≠ 0, or fit_scale with a single diagonal direction.

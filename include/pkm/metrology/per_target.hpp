@@ -2,7 +2,8 @@
 /// @brief The per-target mean of line-measurement readings: what a straightness profile, a mean
 /// positioning deviation or a diagonal's length error is computed from when the readings of
 /// several runs and both approach directions are averaged at each target position (ISO 230-2:2014
-/// mean bidirectional deviation; seed 000 averages the runs of each line the same way).
+/// mean bidirectional deviation; the MXT700S parallelism paper averages the runs of each line the
+/// same way).
 #pragma once
 
 #include <span>

@@ -1,9 +1,9 @@
 /// @file
-/// @brief 2-D error prediction on the XY plane from extracted error components (seed 001 §3): the
-/// tool-position error e(x, y) = (EXX(x) + EXY(y), EYX(x) + EYY(y)) of the additive model
-/// (first-order rigid-body model, ISO 230-1 names, z fixed), built from a step-diagonal or
-/// shifted-diagonal evaluation, and its comparison with direct measurements along lines in the
-/// plane (linear or straightness).
+/// @brief 2-D error prediction on the XY plane from extracted error components (Hwang et al.,
+/// "Analysis of multi-axis volumetric errors", §3): the tool-position error
+/// e(x, y) = (EXX(x) + EXY(y), EYX(x) + EYY(y)) of the additive model (first-order rigid-body
+/// model, ISO 230-1 names, z fixed), built from a step-diagonal or shifted-diagonal evaluation, and
+/// its comparison with direct measurements along lines in the plane (linear or straightness).
 #pragma once
 
 #include <Eigen/Core>

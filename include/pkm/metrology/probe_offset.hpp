@@ -1,17 +1,17 @@
 /// @file
-/// @brief Touch-probe stylus offset from touches on a master ring with spindle reversal (Lee, Lee,
-/// Yang, JKSPE 36(5):463-469, 2019 = seed 003, sec. 3.2, eqs. 8-9), its least-squares
-/// generalisation to any set of spindle angles, the effective stylus radius
+/// @brief Touch-probe stylus offset from touches on a master ring with spindle reversal
+/// (Lee et al. 2019, sec. 3.2, eqs. 8-9; H. H. Lee, D. M. Lee, S. H. Yang, JKSPE 36(5):463-469),
+/// its least-squares generalisation to any set of spindle angles, the effective stylus radius
 /// (ring-gauge calibration of the stylus: touch probe + master ring) and the correction of
-/// touches by the offset rotated with the tool (seed 003 sec. 3.3).
+/// touches by the offset rotated with the tool (Lee et al. 2019, sec. 3.3).
 ///
 /// Conventions. All vectors lie in the measurement plane (x, y of the machine). A touch records
 /// the spindle-axis position s (the tool point with zero probe offset) when the probe triggers.
 /// The stylus offset d is the vector from the spindle axis to the stylus-ball centre when the tool
 /// is turned by 0 about its axis; turned by ψ (counter-clockwise in the plane) the ball centre is
 /// b = s + Rot(ψ)·d. ψ is the spindle angle plus, on an Exechon, the dependent rotation φ_DRM.
-/// Seed 003's eq. 8 is written for o_probe = −d (the vector from the ball centre to the spindle
-/// axis): probeOffsetEq9 returns the paper's o_probe as printed.
+/// Eq. 8 of Lee et al. (2019) is written for o_probe = −d (the vector from the ball centre to the
+/// spindle axis): probeOffsetEq9 returns the paper's o_probe as printed.
 #pragma once
 
 #include <Eigen/Core>
@@ -23,30 +23,32 @@
 
 namespace pkm::metrology {
 
-/// Seed 003 eq. 9 (small-angle form of eq. 8): o_x = (−x2 + x1 + R_master − r_stylus)/2, o_y =
-/// (−y3 + y1 + R_master − r_stylus)/2. (x1, y1): spindle position with the ball centred in the ring
-/// at spindle 0°; x2: the +X touch and y3: the +Y touch, both with the spindle reversed (180°).
-/// Returns o_probe = −d (mm). Throws pkm::InvalidArgument for non-finite input or r >= R.
+/// Lee et al. (2019), eq. 9 (small-angle form of eq. 8): o_x = (−x2 + x1 + R_master − r_stylus)/2,
+/// o_y = (−y3 + y1 + R_master − r_stylus)/2. (x1, y1): spindle position with the ball centred in
+/// the ring at spindle 0°; x2: the +X touch and y3: the +Y touch, both with the spindle reversed
+/// (180°). Returns o_probe = −d (mm). Throws pkm::InvalidArgument for non-finite input or r >= R.
 [[nodiscard]] Eigen::Vector2d probeOffsetEq9(
     double x1, double y1, double x2, double y3, double ring_radius, double stylus_radius);
 
-/// Seed 003 eq. 8 solved for o_probe (see probeOffsetEq8) and how the iteration ended.
+/// Lee et al. (2019), eq. 8 solved for o_probe (see probeOffsetEq8) and how the iteration ended.
 struct ProbeOffsetEq8Solution {
   Eigen::Vector2d o_probe = Eigen::Vector2d::Zero();  ///< o_probe = −d, mm
   int iterations = 0;                                 ///< Newton steps taken
   bool converged = false;  ///< a step reached the rounding floor of ρ before the step limit
 };
 
-/// Seed 003 eq. 8 by Newton's method from eq. 9, stopped when a step is within the rounding floor
-/// of the equations' ρ-sized terms (≤ 8ε·ρ): a few steps for any offset that fits in the ring.
-/// Throws pkm::InvalidArgument like probeOffsetEq9 or when the offset does not fit in the ring.
+/// Lee et al. (2019), eq. 8 by Newton's method from eq. 9, stopped when a step is within the
+/// rounding floor of the equations' ρ-sized terms (≤ 8ε·ρ): a few steps for any offset that fits in
+/// the ring. Throws pkm::InvalidArgument like probeOffsetEq9 or when the offset does not fit in the
+/// ring.
 [[nodiscard]] ProbeOffsetEq8Solution solveProbeOffsetEq8(
     double x1, double y1, double x2, double y3, double ring_radius, double stylus_radius);
 
-/// Seed 003 eq. 8 solved without the small-angle approximation: x2 − x1 = ρ cos θ2 − 2 o_x with
-/// sin θ2 = 2 o_y/ρ (the +X touch keeps y = y1), y3 − y1 = ρ sin θ3 − 2 o_y with cos θ3 = 2 o_x/ρ,
-/// ρ = R_master − r_stylus; solveProbeOffsetEq8's o_probe. Same arguments and result as
-/// probeOffsetEq9; also throws pkm::InvalidArgument when the iteration does not converge.
+/// Lee et al. (2019), eq. 8 solved without the small-angle approximation:
+/// x2 − x1 = ρ cos θ2 − 2 o_x with sin θ2 = 2 o_y/ρ (the +X touch keeps y = y1),
+/// y3 − y1 = ρ sin θ3 − 2 o_y with cos θ3 = 2 o_x/ρ, ρ = R_master − r_stylus; solveProbeOffsetEq8's
+/// o_probe. Same arguments and result as probeOffsetEq9; also throws pkm::InvalidArgument when the
+/// iteration does not converge.
 [[nodiscard]] Eigen::Vector2d probeOffsetEq8(
     double x1, double y1, double x2, double y3, double ring_radius, double stylus_radius);
 
@@ -97,8 +99,8 @@ struct ProbeOffsetOptions {
 /// d_eff = D_cert − D_c for an internal ring): D/2 − ρ. Throws pkm::InvalidArgument unless D > 0.
 [[nodiscard]] double effectiveStylusRadius(double ring_diameter, double ball_path_radius);
 
-/// Seed 003 sec. 3.3: the measured surface points of touches on an internal circle, the ball
-/// centre b_k = s_k + Rot(ψ_k)·d pushed out by the stylus radius along the approach direction
+/// Lee et al. (2019), sec. 3.3: the measured surface points of touches on an internal circle, the
+/// ball centre b_k = s_k + Rot(ψ_k)·d pushed out by the stylus radius along the approach direction
 /// u_k = (b_k − nominal_center)/|b_k − nominal_center|. With ψ_k the true turn of the tool this is
 /// the DRM-corrected measurement; with ψ_k = 0 the uncorrected one.
 [[nodiscard]] std::vector<Point2> correctedSurfacePoints(std::span<const ProbeTouch> touches,

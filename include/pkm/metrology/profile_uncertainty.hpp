@@ -1,8 +1,8 @@
 /// @file
 /// @brief Uncertainty budgets of straightness, parallelism and circle results (ISO/TR 230-9:2005
 /// §6 applied to ISO 230-1 straightness and parallelism and to on-machine circle measurement with
-/// a touch probe, seed 003): the instrument per its specification (straightness optics, probe
-/// repeatability and form, stylus calibration), the test's own statistics (repeated readings,
+/// a touch probe, Lee et al. 2019): the instrument per its specification (straightness optics,
+/// probe repeatability and form, stylus calibration), the test's own statistics (repeated readings,
 /// the least-squares slopes' and circle's standard errors) and the artefact's temperature.
 /// docs/analysis.md lists each budget's contributors and formulas.
 #pragma once
@@ -42,9 +42,9 @@ struct SlopeRun {
 };
 
 /// Budget of a parallelism value `parallelism` = Δγ · L_axis (mm) from a reference and an axis
-/// run along one beam (seed 000 §3.1): per run the least-squares slope's standard error
-/// s_r/√Σ(u − ū)² (s_r the residuals' standard deviation, N − 2 degrees of freedom, carried into
-/// ν_eff) and the straightness optics' accuracy a + b·|reading|max + c·L² turned into a slope
+/// run along one beam (MXT700S parallelism paper, §3.1): per run the least-squares slope's standard
+/// error s_r/√Σ(u − ū)² (s_r the residuals' standard deviation, N − 2 degrees of freedom, carried
+/// into ν_eff) and the straightness optics' accuracy a + b·|reading|max + c·L² turned into a slope
 /// (√2 a / L_run), each times the axis travel.
 /// Throws pkm::InvalidArgument for invalid sources or a run with fewer than 3 points.
 [[nodiscard]] UncertaintyBudget parallelismUncertainty(double parallelism,

@@ -1,9 +1,10 @@
 /// @file
-/// @brief The shifted-diagonal ("moving diagonal") method of seed 001 (Hwang, Bui, Shim, Kim, Lee,
-/// "Analysis of multi-axis volumetric errors", KIMM): each body diagonal is measured once as it
-/// is and once with its end point shifted along each axis; the triangle of the two measured
-/// lengths and the commanded shift gives the diagonal's travel along that axis (eqs 1-3), four
-/// diagonals give the 9 error components (eq 5) and the squareness angles (eq 6).
+/// @brief The shifted-diagonal ("moving diagonal") method of Hwang et al. ("Analysis of multi-axis
+/// volumetric errors"; J. Hwang, C. B. Bui, J. Shim, Y. J. Kim, C. H. Lee, KIMM): each body
+/// diagonal is measured once as it is and once with its end point shifted along each axis; the
+/// triangle of the two measured lengths and the commanded shift gives the diagonal's travel along
+/// that axis (eqs 1-3), four diagonals give the 9 error components (eq 5) and the squareness angles
+/// (eq 6).
 #pragma once
 
 #include <array>
@@ -13,16 +14,17 @@
 
 namespace pkm::metrology {
 
-/// The triangle of seed 001 eqs (1)-(3): common start O, the diagonal's end A (|OA| = r0), the
-/// shifted end B (|OB| = rm), AB along the shifted axis with |AB| = |shift|.
+/// The triangle of Hwang et al. ("Analysis of multi-axis volumetric errors"), eqs (1)-(3): common
+/// start O, the diagonal's end A (|OA| = r0), the shifted end B (|OB| = rm), AB along the shifted
+/// axis with |AB| = |shift|.
 struct ShiftTriangle {
   double delta_alpha = 0.0;  ///< Δα, the angle at O between OA and OB, rad (eq 2)
   double alpha = 0.0;        ///< α, the angle of OA from the plane normal to the axis, rad (eq 3)
   double component = 0.0;    ///< R_real, the travel of OA along the axis, mm (eq 1)
 };
 
-/// Seed 001 eqs (1)-(3), as printed, for a shift `shift` (mm, signed: > 0 lengthens the diagonal's
-/// travel along the axis, < 0 shortens it):
+/// Hwang et al. ("Analysis of multi-axis volumetric errors"), eqs (1)-(3), as printed, for a shift
+/// `shift` (mm, signed: > 0 lengthens the diagonal's travel along the axis, < 0 shortens it):
 ///   Δα = acos((r0² + rm² − Δ²)/(2·r0·rm)), α = π/2 − asin(rm·sin Δα/|Δ|),
 ///   R_real = rm·sin(α + σΔα) − σ|Δ| (σ = sign of the shift; eq 1 is the σ = +1 case).
 /// Equal to shiftComponent() (law of cosines) up to rounding. Throws pkm::InvalidArgument unless

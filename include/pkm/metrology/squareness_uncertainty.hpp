@@ -1,10 +1,11 @@
 /// @file
-/// @brief Uncertainty of squareness from laser diagonal tests (face diagonals, seed 000 eqs 4-10;
-/// ISO 230-6 body diagonals; seed 001's shifted diagonals; Wang's step diagonal). The chains from
-/// line lengths to squareness are non-linear (least squares, the shifted triangle, the step
-/// extraction), so the result is propagated twice: by the law of propagation with sensitivities
-/// from linearizeModel (GUM §5.1) and by Monte Carlo (GUM Supplement 1, JCGM 101:2008), ISO/TR
-/// 230-9 §6 for the laser contributors. docs/analysis.md, "Budget: squareness from diagonals".
+/// @brief Uncertainty of squareness from laser diagonal tests (face diagonals, MXT700S parallelism
+/// paper, eqs 4-10; ISO 230-6 body diagonals; Hwang et al.'s ("Analysis of multi-axis volumetric
+/// errors") shifted diagonals; Wang's step diagonal). The chains from line lengths to squareness
+/// are non-linear (least squares, the shifted triangle, the step extraction), so the result is
+/// propagated twice: by the law of propagation with sensitivities from linearizeModel (GUM §5.1)
+/// and by Monte Carlo (GUM Supplement 1, JCGM 101:2008), ISO/TR 230-9 §6 for the laser
+/// contributors. docs/analysis.md, "Budget: squareness from diagonals".
 #pragma once
 
 #include <span>
@@ -77,12 +78,12 @@ struct NonlinearBudget {
                                                 const UncertaintyBudget& inputs,
                                                 const MonteCarloOptions& options = {});
 
-/// Budget of a squareness from seed 000 eq. 11 (rad): sxP = Δα (`sign` +1) or szP = szX2 − Δγ
-/// (`sign` −1), from the budget of the parallelism Δ·L over the axis travel `travel_mm` (mm, > 0;
-/// metrology::parallelismUncertainty): the same contributors with sensitivities sign/travel. The
-/// given szX2 carries no uncertainty here (the parallelism command takes it as a number). The
-/// chain is linear, so no Monte Carlo. Throws pkm::InvalidArgument for a travel that is not finite
-/// and > 0 or a sign other than ±1.
+/// Budget of a squareness from the MXT700S parallelism paper, eq. 11 (rad): sxP = Δα (`sign` +1) or
+/// szP = szX2 − Δγ (`sign` −1), from the budget of the parallelism Δ·L over the axis travel
+/// `travel_mm` (mm, > 0; metrology::parallelismUncertainty): the same contributors with
+/// sensitivities sign/travel. The given szX2 carries no uncertainty here (the parallelism command
+/// takes it as a number). The chain is linear, so no Monte Carlo. Throws pkm::InvalidArgument for a
+/// travel that is not finite and > 0 or a sign other than ±1.
 [[nodiscard]] UncertaintyBudget eq11Uncertainty(const UncertaintyBudget& parallelism,
                                                 double travel_mm,
                                                 int sign,

@@ -37,7 +37,7 @@ struct LaserInterferometer {
   double angular_accuracy_rad_per_m = 0.05e-6;
 };
 
-/// A touch probe on the machine (on-machine measurement, seed 003).
+/// A touch probe on the machine (on-machine measurement, Lee et al. 2019).
 struct TouchProbe {
   std::string name = "typical strain-gauge touch probe";
   double repeatability_2sigma_mm = 0.25e-3;  ///< unidirectional repeatability, 2σ, mm
@@ -47,12 +47,13 @@ struct TouchProbe {
   /// Expanded uncertainty (k = 2) of the master ring's certified diameter, mm.
   double ring_diameter_uncertainty_mm = 1.0e-3;
   /// The master ring's certified roundness (peak to valley), mm: it adds to or hides a measured
-  /// roundness by up to itself. Typical of a certified 40 mm setting ring; seed 003's paper lists
-  /// 2 µm for its ring (Table 4).
+  /// roundness by up to itself. Typical of a certified 40 mm setting ring; Lee et al. (2019) list
+  /// 2 µm for their ring (Table 4).
   double ring_form_mm = 0.5e-3;
 };
 
-/// A dial gauge or digital indicator (constrained-motion calibration, seed 004).
+/// A dial gauge or digital indicator (constrained-motion calibration, Lee et al., "Development of a
+/// Parallel-Typed CNC Machine").
 struct DialGauge {
   std::string name = "typical digital indicator, 1 um resolution";
   double accuracy_mm = 3e-3;    ///< maximum permissible error over the used range, ± mm

@@ -26,7 +26,8 @@ struct Campaign {
   std::string description;                  ///< free text
   std::shared_ptr<VirtualMachine> machine;  ///< the true machine (required)
   std::vector<LineSetup> measurements;      ///< in the order they are taken; names unique
-  /// Constrained-motion measurements with dial gauges (seed 004); need a HexapodVirtualMachine.
+  /// Constrained-motion measurements with dial gauges (Lee et al., "Development of a Parallel-Typed
+  /// CNC Machine"); need a HexapodVirtualMachine.
   std::vector<DialGaugeSetup> constrained;
   /// Laser-tracker measurements (point or 6-DOF pose); need a HexapodVirtualMachine. Checked by
   /// validateTrackers (names unique among all measurements).
@@ -37,8 +38,8 @@ struct Campaign {
   /// Laser-tracker measurements of the tool of a hybrid machine over all five axes
   /// (hybrid_tracker.hpp); checked by validateTrackers, run by runHybridTrackers.
   std::vector<HybridTrackerSetup> hybrid_trackers;
-  /// Touch-probe measurements on a master ring (seed 003); need a hybrid (Exechon) machine. Run
-  /// with runTouchProbes (pkm/simulation/touch_probe.hpp).
+  /// Touch-probe measurements on a master ring (Lee et al. 2019); need a hybrid (Exechon) machine.
+  /// Run with runTouchProbes (pkm/simulation/touch_probe.hpp).
   std::vector<TouchProbeSetup> probes;
   /// The workshop's environment (environment.hpp); the default is ideal (every source off).
   Environment environment;

@@ -2,7 +2,7 @@
 /// @brief A Cartesian 3-axis true machine with the 21 ISO 230-1 geometric errors: 18 component
 /// errors (six per axis, as tables over the axis position) and three squareness errors, composed
 /// as homogeneous transforms (docs/conventions.md, "Cartesian virtual machine"). Used for the
-/// diagonal methods of seed 001.
+/// diagonal methods of Hwang et al. ("Analysis of multi-axis volumetric errors").
 #pragma once
 
 #include <array>

@@ -1,7 +1,8 @@
 /// @file
-/// @brief Seed 004's calibration by constrained motion: three dial gauges on the hexapod platform
-/// touch the table; at each station the platform is moved parallel to the table and then driven
-/// until the gauges read zero again, and the commanded strut lengths are recorded.
+/// @brief Lee et al.'s ("Development of a Parallel-Typed CNC Machine") calibration by constrained
+/// motion: three dial gauges on the hexapod platform touch the table; at each station the platform
+/// is moved parallel to the table and then driven until the gauges read zero again, and the
+/// commanded strut lengths are recorded.
 #pragma once
 
 #include <array>

@@ -1,7 +1,8 @@
 /// @file
 /// @brief A hexapod true machine: the nominal model the controller believes in, plus injected
 /// assembly errors (joint positions, strut length offsets) and actuator effects (encoder
-/// resolution, per-strut backlash, repeatability), as seed 004 describes them.
+/// resolution, per-strut backlash, repeatability), as Lee et al. ("Development of a Parallel-Typed
+/// CNC Machine") describe them.
 #pragma once
 
 #include <array>
@@ -41,10 +42,12 @@ struct StrutActuation {
   /// Encoder resolution, mm: a commanded reading is positioned to the nearest count (0: exact).
   double encoder_resolution = 0.0;
   /// Per-strut backlash (lost motion), mm, ≥ 0: a strut that last moved in +reading stops b/2
-  /// short of its command, one that last moved in − b/2 beyond it (seed 004 Fig. 6 hysteresis).
-  /// After reset() a strut counts as having moved in +.
+  /// short of its command, one that last moved in − b/2 beyond it (Lee et al., "Development of a
+  /// Parallel-Typed CNC Machine", Fig. 6 hysteresis). After reset() a strut counts as having moved
+  /// in +.
   kinematics::StrutVector backlash = kinematics::StrutVector::Zero();
-  /// Standard deviation of a strut's positioning per move, mm (seed 004: about 2 µm overall).
+  /// Standard deviation of a strut's positioning per move, mm (Lee et al., "Development of a
+  /// Parallel-Typed CNC Machine": about 2 µm overall).
   double repeatability_sigma = 0.0;
   /// Throws pkm::InvalidArgument for a negative or non-finite value.
   void validate() const;

@@ -1,8 +1,8 @@
 /// @file
-/// @brief A laser tracker on the work table of a hybrid machine (seed 000): at random commands of
-/// the five axes (x2, y2 and the PKM's xP, yP, zP) it reads an SMR on the tool, in its own frame.
-/// The data of the identification of the four squareness errors (docs/formats.md, "Hybrid tracker
-/// files").
+/// @brief A laser tracker on the work table of a hybrid machine (MXT700S parallelism paper): at
+/// random commands of the five axes (x2, y2 and the PKM's xP, yP, zP) it reads an SMR on the tool,
+/// in its own frame. The data of the identification of the four squareness errors (docs/formats.md,
+/// "Hybrid tracker files").
 #pragma once
 
 #include <string>

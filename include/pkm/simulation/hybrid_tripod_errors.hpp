@@ -1,8 +1,9 @@
 /// @file
-/// @brief Tripod parameter errors of the hybrid machine's Exechon PKM (seed 000's "the PKM is an
-/// Exechon", beyond its Cartesian error grid): the controller solves the NOMINAL Exechon tool IK
-/// for the commanded PKM point with a vertical tool, the true (perturbed) tripod reaches its FK for
-/// those leg and wrist readings, and the difference is a PKM error motion at the TCP.
+/// @brief Tripod parameter errors of the hybrid machine's Exechon PKM (the MXT700S parallelism
+/// paper's "the PKM is an Exechon", beyond its Cartesian error grid): the controller solves the
+/// NOMINAL Exechon tool IK for the commanded PKM point with a vertical tool, the true (perturbed)
+/// tripod reaches its FK for those leg and wrist readings, and the difference is a PKM error motion
+/// at the TCP.
 ///
 /// Definition (pkm's; the PKM frames of docs/conventions.md "Hybrid machine"): with the PKM command
 /// p (the tool point in the Exechon model's world frame, whose axes are P's) and the tool direction

@@ -1,7 +1,8 @@
 /// @file
-/// @brief The hybrid machine of seed 000 (Exechon PKM on X2 over a table on Y2) as a virtual
-/// machine: the kinematic error chain of pkm/kinematics/hybrid_chain.hpp with known errors, and
-/// optionally the tripod parameter errors of its Exechon PKM (hybrid_tripod_errors.hpp).
+/// @brief The hybrid machine of the MXT700S parallelism paper (Exechon PKM on X2 over a table on
+/// Y2) as a virtual machine: the kinematic error chain of pkm/kinematics/hybrid_chain.hpp with
+/// known errors, and optionally the tripod parameter errors of its Exechon PKM
+/// (hybrid_tripod_errors.hpp).
 #pragma once
 
 #include <optional>

@@ -64,7 +64,8 @@ struct NoiseModel {
 ///   error), resolution 1 nm.
 /// - "xl80-straightness": 0.25 µm (±0.5 µm, short range), resolution 0.01 µm.
 /// - "xl80-angular": 0.05 µrad (±0.1 µm/m), resolution 0.01 µrad.
-/// - "dial-gauge": 0.5 µm, resolution 1 µm (a 1 µm dial gauge, seed 004).
+/// - "dial-gauge": 0.5 µm, resolution 1 µm (a 1 µm dial gauge, Lee et al., "Development of a
+///   Parallel-Typed CNC Machine").
 /// std::nullopt for another name.
 [[nodiscard]] std::optional<NoiseModel> instrumentNoise(std::string_view name);
 /// The names instrumentNoise knows.

@@ -1,8 +1,9 @@
 /// @file
-/// @brief A touch-trigger probe with a stylus offset on an Exechon, probing a master ring (Lee,
-/// Lee, Yang, JKSPE 36(5):463-469, 2019 = seed 003, secs. 3-4): the spindle-reversal touches that
-/// give the offset (Figs. 4-5, eqs. 8-9) and a circle measurement without and with compensation of
-/// the dependent rotational motion (DRM) by the spindle angle (sec. 3.3, Fig. 9).
+/// @brief A touch-trigger probe with a stylus offset on an Exechon, probing a master ring
+/// (Lee et al. 2019, secs. 3-4; H. H. Lee, D. M. Lee, S. H. Yang, JKSPE 36(5):463-469): the
+/// spindle-reversal touches that give the offset (Figs. 4-5, eqs. 8-9) and a circle measurement
+/// without and with compensation of the dependent rotational motion (DRM) by the spindle angle
+/// (sec. 3.3, Fig. 9).
 ///
 /// Model. The tool moves with a fixed direction t (±z). A touch starts with the spindle axis at a
 /// start point and moves it along an approach direction u in the xy plane until the ball centre
@@ -26,22 +27,23 @@
 
 namespace pkm::simulation {
 
-/// The set-up of a touch-probe measurement on a master ring (defaults: seed 003 sec. 4).
+/// The set-up of a touch-probe measurement on a master ring (defaults: Lee et al. 2019, sec. 4).
 struct TouchProbeSetup {
   std::string name = "touch-probe";  ///< names the random stream and the files
-  /// Centre of the ring for the offset measurement, world frame of the Exechon model, mm (seed
-  /// 003 sec. 4: {−0.625, 200.914, −168}); also the DRM reference.
+  /// Centre of the ring for the offset measurement, world frame of the Exechon model, mm
+  /// (Lee et al. 2019, sec. 4: {−0.625, 200.914, −168}); also the DRM reference.
   Eigen::Vector3d offset_ring_center{-0.625, 200.914, -168.0};
-  /// Centre of the ring for the circle measurement, mm (seed 003: {−316.081, 247.037, −166.817}).
+  /// Centre of the ring for the circle measurement, mm
+  /// (Lee et al. 2019: {−316.081, 247.037, −166.817}).
   Eigen::Vector3d circle_ring_center{-316.081, 247.037, -166.817};
-  double ring_diameter = 40.001;  ///< master ring diameter, mm (seed 003 Table 2)
+  double ring_diameter = 40.001;  ///< master ring diameter, mm (Lee et al. 2019, Table 2)
   double ball_radius = 3.0;       ///< stylus-ball radius, mm (> 0, < ring radius)
-  /// Stylus offset d: spindle axis -> ball centre at spindle 0, world xy, mm. Seed 003 Table 3
-  /// reports o_probe = (0.210, 0.160) in the sense of its eq. 8, which is −d.
+  /// Stylus offset d: spindle axis -> ball centre at spindle 0, world xy, mm. Lee et al. (2019),
+  /// Table 3 reports o_probe = (0.210, 0.160) in the sense of its eq. 8, which is −d.
   Eigen::Vector2d stylus_offset{-0.210, -0.160};
   Eigen::Vector3d direction = -Eigen::Vector3d::UnitZ();  ///< tool direction, ±z
-  int circle_points = 36;    ///< touches per circle run (seed 003: every 10°), >= 4
-  int runs = 5;              ///< repetitions of each sequence (seed 003: 5), >= 1
+  int circle_points = 36;    ///< touches per circle run (Lee et al. 2019: every 10°), >= 4
+  int runs = 5;              ///< repetitions of each sequence (Lee et al. 2019: 5), >= 1
   double start_angle = 0.0;  ///< approach angle of the first circle touch, rad
   NoiseModel noise;          ///< trigger noise along the approach, mm
   /// Pre-travel variation with direction (lobing): the probe triggers
@@ -75,7 +77,7 @@ struct TouchRecord {
 struct TouchProbeResult {
   /// Offset sequence per run (DRM compensated): at spindle 0 the ±x touches from the ring centre,
   /// then the ±y touches from the x-centred point; the centred point p1 is their midpoint; then
-  /// at spindle 180° the ±x and ±y touches from p1 (seed 003 Figs. 4-5).
+  /// at spindle 180° the ±x and ±y touches from p1 (Lee et al. 2019, Figs. 4-5).
   std::vector<TouchRecord> offset;
   std::vector<TouchRecord> circle_uncompensated;  ///< spindle at 0 (the DRM turns the stylus)
   std::vector<TouchRecord> circle_compensated;    ///< spindle at −φ_DRM of the target point

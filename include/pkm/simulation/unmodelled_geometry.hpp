@@ -80,8 +80,9 @@ struct HexapodUnmodelledGeometry {
 /// One hexapod's unmodelled geometry drawn from `env` (GeometryEnvironment's distributions): each
 /// strut's lead error with its reference at the nominal home reading, the platform joints as
 /// U-joints whose first axis is horizontal in the platform frame and perpendicular to the strut at
-/// home (the base joints are ball-and-socket, as in seed 004). All zero when env is off. Throws
-/// pkm::InvalidArgument for an invalid env or a nominal model whose home IK fails.
+/// home (the base joints are ball-and-socket, as in Lee et al. ("Development of a Parallel-Typed
+/// CNC Machine")). All zero when env is off. Throws pkm::InvalidArgument for an invalid env or a
+/// nominal model whose home IK fails.
 [[nodiscard]] HexapodUnmodelledGeometry drawHexapodGeometry(const GeometryEnvironment& env,
                                                             const kinematics::HexapodModel& nominal,
                                                             RandomStream& rng);

@@ -2,8 +2,8 @@
 /// @brief `pkm analyze circle | circular | probe-offset` as workflows (docs/analysis.md,
 /// "Circles"): least-squares and minimum-zone circles with roundness, the ISO 230-4 circular
 /// deviation and hysteresis, and the touch-probe stylus offset from master-ring touches with
-/// spindle reversal (seed 003). Inputs come from memory (io::NamedText); every input error is
-/// pkm::IoError "NAME:LINE: message".
+/// spindle reversal (Lee et al. 2019). Inputs come from memory (io::NamedText); every input error
+/// is pkm::IoError "NAME:LINE: message".
 #pragma once
 
 #include <optional>
@@ -48,7 +48,7 @@ struct CircularRequest {
 /// validate(), pkm::IoError for a bad input or an unlabelled single input.
 [[nodiscard]] io::CircularReport analyzeCircular(const CircularRequest& request);
 
-/// Touch-probe stylus offset (seed 003).
+/// Touch-probe stylus offset (Lee et al. 2019).
 struct ProbeOffsetRequest {
   /// `spindle_deg,x,y[,drm_deg,touch,run]` tables (required); `touch` labels +x, -x, +y, -y.
   std::vector<io::NamedText> data;
@@ -62,9 +62,9 @@ struct ProbeOffsetRequest {
 };
 
 /// The least-squares offset (metrology::fitProbeOffset) and, with a ring diameter, the effective
-/// stylus radius and seed 003 eqs. 8-9 averaged over the runs that have the six labelled touches
-/// (+x, -x, +y, -y at turn 0°; +x, +y at 180°, ±10°). Throws as validate(), pkm::IoError for a
-/// bad input or label, pkm::InvalidArgument for too few touches.
+/// stylus radius and Lee et al. (2019), eqs. 8-9 averaged over the runs that have the six labelled
+/// touches (+x, -x, +y, -y at turn 0°; +x, +y at 180°, ±10°). Throws as validate(), pkm::IoError
+/// for a bad input or label, pkm::InvalidArgument for too few touches.
 [[nodiscard]] io::ProbeOffsetReport analyzeProbeOffset(const ProbeOffsetRequest& request);
 
 }  // namespace pkm::workflow

@@ -1,8 +1,9 @@
 /// @file
 /// @brief `pkm analyze diagonals` as a workflow (docs/analysis.md, "Diagonal methods"): ISO 230-6
-/// body diagonals, seed 001's shifted diagonals and Wang's step diagonals, with the 2-D XY
-/// prediction of the step and shifted methods compared against direct measurements. Inputs come
-/// from memory (io::NamedText); every input error is pkm::IoError "NAME:LINE: message".
+/// body diagonals, Hwang et al.'s ("Analysis of multi-axis volumetric errors") shifted diagonals
+/// and Wang's step diagonals, with the 2-D XY prediction of the step and shifted methods compared
+/// against direct measurements. Inputs come from memory (io::NamedText); every input error is
+/// pkm::IoError "NAME:LINE: message".
 #pragma once
 
 #include <Eigen/Core>

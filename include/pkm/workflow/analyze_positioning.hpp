@@ -1,9 +1,9 @@
 /// @file
 /// @brief `pkm analyze iso230-2 | straightness | parallelism | squareness` as workflows
 /// (docs/analysis.md, "Positioning"): ISO 230-2 positioning, straightness about a reference line,
-/// parallelism from two straightness runs along one beam and face-diagonal squareness (seed 000
-/// §3). Inputs come from memory (io::NamedText: a file read by the front end or an upload); every
-/// input error is pkm::IoError "NAME:LINE: message".
+/// parallelism from two straightness runs along one beam and face-diagonal squareness (MXT700S
+/// parallelism paper, §3). Inputs come from memory (io::NamedText: a file read by the front end or
+/// an upload); every input error is pkm::IoError "NAME:LINE: message".
 #pragma once
 
 #include <array>
@@ -64,8 +64,8 @@ struct StraightnessRequest {
 /// Throws as validate(), pkm::IoError for a bad input, pkm::InvalidArgument for too few points.
 [[nodiscard]] io::StraightnessReport analyzeStraightness(const StraightnessRequest& request);
 
-/// Parallelism of an axis to a reference axis from two straightness runs along one beam (seed 000
-/// §3.1, eqs 1-3; Δγ, or Δα = sxP in the vertical plane).
+/// Parallelism of an axis to a reference axis from two straightness runs along one beam (MXT700S
+/// parallelism paper, §3.1, eqs 1-3; Δγ, or Δα = sxP in the vertical plane).
 struct ParallelismRequest {
   std::vector<io::NamedText> reference;  ///< straightness files of the reference axis (required)
   std::vector<io::NamedText> axis;       ///< straightness files of the axis (required)
@@ -73,7 +73,8 @@ struct ParallelismRequest {
   int axis_sign = 1;       ///< +1 or −1, as reference_sign for the axis run
   metrology::StraightnessReference line = metrology::StraightnessReference::kLeastSquares;
   io::ParallelismPlane plane = io::ParallelismPlane::kHorizontal;
-  std::optional<double> szX2;  ///< rad; horizontal plane: also report szP (seed 000 eq 3)
+  std::optional<double> szX2;  ///< rad; horizontal plane: also report szP (MXT700S parallelism
+                               ///< paper, eq 3)
   /// The straightness optics of the budget (metrology::parallelismUncertainty; none when a run
   /// has fewer than 3 points).
   metrology::UncertaintySources uncertainty{};
@@ -95,7 +96,7 @@ struct PdgeInput {
   io::NamedText table;
 };
 
-/// Face-diagonal squareness (seed 000 eqs 4-10).
+/// Face-diagonal squareness (MXT700S parallelism paper, eqs 4-10).
 struct SquarenessRequest {
   /// One input per diagonal: `u,v,deviation` tables, or simulator diagonal files (grouped by
   /// their `# measurement`, runs averaged per target). Required.
@@ -107,7 +108,8 @@ struct SquarenessRequest {
   std::vector<std::string> axes;   ///< the two moving axes of simulator files by name (or none)
   bool fit_scale = false;          ///< also fit the scale errors (needs two diagonals)
   bool first_moves_work = false;   ///< the first axis moves the work, not the tool
-  bool second_moves_work = false;  ///< the second axis moves the work (seed 000: Y2)
+  bool second_moves_work = false;  ///< the second axis moves the work (MXT700S parallelism
+                                   ///< paper: Y2)
   /// Instruments and environment of the squareness budget (metrology::diagonalLineInputs).
   metrology::UncertaintySources uncertainty{};
   /// The Monte Carlo propagation beside the linear budget (each trial refits the diagonals).

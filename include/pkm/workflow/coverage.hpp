@@ -25,7 +25,8 @@
 namespace pkm::workflow {
 
 /// The scenarios `pkm validate coverage` runs by default: the built-in scenarios whose analyses
-/// report a U (seed 000's parallelism, seed 001's diagonals, seed 003's probe and ring).
+/// report a U (the MXT700S parallelism paper's parallelism, Hwang et al.'s ("Analysis of multi-axis
+/// volumetric errors") diagonals, Lee et al.'s (2019) probe and ring).
 [[nodiscard]] std::vector<std::string> defaultCoverageScenarios();
 
 /// A coverage run.

@@ -4,7 +4,8 @@
 /// ±10° in a and b) through IK and every limit check, then FK solves the path back as a servo loop
 /// would (each solve seeded by the previous one); on the default machine also the Exechon part on
 /// the built-in hybrid machine mxt700s-like (tool path round trip, the dependent rotational motion
-/// along a 40 mm ring (seed 003 eq. 10), the volumetric error of seed 000's errors).
+/// along a 40 mm ring (Lee et al. 2019, eq. 10), the volumetric error of the MXT700S parallelism
+/// paper's errors).
 #pragma once
 
 #include <optional>

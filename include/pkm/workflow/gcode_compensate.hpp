@@ -2,7 +2,8 @@
 /// @brief `pkm gcode compensate` as a workflow (docs/gcode.md "gcode compensate"): a program
 /// pre-distorted for a controller that keeps the nominal kinematics of a calibrated hexapod or
 /// Exechon (X_cmd = FK_nominal(IK_calibrated(X)), docs/compensation.md), or the hybrid machine's
-/// X2–Y2 squareness corrected in a PKM program from a campaign's pkm-base-frame.txt (seed 000).
+/// X2–Y2 squareness corrected in a PKM program from a campaign's pkm-base-frame.txt (MXT700S
+/// parallelism paper).
 #pragma once
 
 #include <memory>

@@ -126,7 +126,8 @@ struct ExechonPoseStep {
   /// stroke.
   std::string_view status;
   kinematics::ExechonJoints joints;   ///< leg readings and wrist readings C, A
-  double drm = 0.0;                   ///< φ_DRM from the path's first solved pose, rad (seed 003)
+  double drm = 0.0;                   ///< φ_DRM from the path's first solved pose, rad
+                                      ///< (Lee et al. 2019)
   kinematics::HybridCommand command;  ///< hybrid machine: x2, y2 and the PKM command
 };
 

@@ -34,9 +34,9 @@ struct PoseCheckRow {
   std::vector<WorldPoint> base_points, moving_points;
   WorldPoint tool_point{}, tool_direction{};
   std::vector<WorldPoint> wrist_points;
-  /// A hybrid machine (an Exechon on X2/Y2, seed 000): the X2 carriage and Y2 table positions
-  /// the pose's split gives (machine unit); empty otherwise. The drawing's points are in the
-  /// PKM's frame P, which X2 carries.
+  /// A hybrid machine (an Exechon on X2/Y2, MXT700S parallelism paper): the X2 carriage and Y2
+  /// table positions the pose's split gives (machine unit); empty otherwise. The drawing's points
+  /// are in the PKM's frame P, which X2 carries.
   std::vector<double> carriage;
 };
 

@@ -1,8 +1,9 @@
 /// @file
 /// @brief `pkm volumetric` as a workflow (docs/formats.md): the volumetric error Δp of a hybrid
-/// machine (X2/Y2 axes carrying an Exechon PKM; seed 000 eq. 3) from its geometric errors, exact
-/// and first-order, over a grid of tool positions or a list of axis commands. Rows are handed to
-/// a sink as they are computed, so a large grid streams in constant memory.
+/// machine (X2/Y2 axes carrying an Exechon PKM; MXT700S parallelism paper, eq. 3) from its
+/// geometric errors, exact and first-order, over a grid of tool positions or a list of axis
+/// commands. Rows are handed to a sink as they are computed, so a large grid streams in constant
+/// memory.
 #pragma once
 
 #include <array>

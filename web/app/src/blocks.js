@@ -1,7 +1,8 @@
-// Seed 004's command icons as Blockly blocks, and the G-code they generate: moves (rapid, feed,
-// arcs, platform orientation), modes, feed and spindle, dwell, loops and conditions (O-words),
-// subroutines, and composite machining commands (sphere, circular pocket, drilling pattern, face
-// mill). generate() returns the program and, for each of its lines, the block that wrote it.
+// The command icons of Lee et al. ("Development of a Parallel-Typed CNC Machine") as Blockly
+// blocks, and the G-code they generate: moves (rapid, feed, arcs, platform orientation), modes,
+// feed and spindle, dwell, loops and conditions (O-words), subroutines, and composite machining
+// commands (sphere, circular pocket, drilling pattern, face mill). generate() returns the program
+// and, for each of its lines, the block that wrote it.
 import * as Blockly from "blockly/core";
 
 const num = (name, value) => ({ type: "field_number", name, value });
@@ -106,8 +107,9 @@ export const toolbox = {
 
 /** The composite commands' G-code (lines), each a sequence of plain moves. */
 const composites = {
-  // Seed 004's sphere machining with a ball-end tool: the tool centre runs on a sphere of radius
-  // R + r, as full circles from the equator up to the pole, finishing with the pole point.
+  // The sphere machining of Lee et al. ("Development of a Parallel-Typed CNC Machine") with a
+  // ball-end tool: the tool centre runs on a sphere of radius R + r, as full circles from the
+  // equator up to the pole, finishing with the pole point.
   pkm_sphere(b) {
     const R = n(b, "R") + n(b, "TR"), cx = n(b, "X"), cy = n(b, "Y"), cz = n(b, "Z");
     const levels = Math.max(1, Math.round(n(b, "LEVELS")));

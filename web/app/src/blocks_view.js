@@ -1,6 +1,7 @@
-// The Blocks view (seed 004's graphic programming): a Blockly workspace of command icons connected
-// into a program, its G-code beside it, Run in the simulator, violations marked on the blocks
-// that wrote them; programs save to and load from a file (Blockly JSON) and export as .ngc.
+// The Blocks view (the graphic programming of Lee et al., "Development of a Parallel-Typed CNC
+// Machine"): a Blockly workspace of command icons connected into a program, its G-code beside it,
+// Run in the simulator, violations marked on the blocks that wrote them; programs save to and load
+// from a file (Blockly JSON) and export as .ngc.
 import * as Blockly from "blockly/core";
 import * as En from "blockly/msg/en";
 import { registerBlocks, toolbox, generate } from "./blocks.js";
