@@ -285,7 +285,7 @@ StepOutcome runHexapodCalibrationStep(const StepContext& ctx) {
   const std::vector<std::string> holdout = names(ctx.spec, "holdout", "tracker-holdout");
   const std::string linear = ctx.spec.value("positioning", std::string("linear-x"));
   // The dial gauges are set up only when the fit uses them (Lee et al., "Development of a
-  // Parallel-Typed CNC Machine", §4, constrained motion).
+  // Parallel-Typed CNC Machine", §3, constrained motion).
   const bool gauges =
       std::find(fit.begin(), fit.end(), std::string("constrained-motion")) != fit.end();
   if (!gauges) scenario.campaign.constrained.clear();

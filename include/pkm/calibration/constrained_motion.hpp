@@ -1,6 +1,6 @@
 /// @file
 /// @brief The constrained-motion measurement model of Lee et al. ("Development of a Parallel-Typed
-/// CNC Machine"), §4: three dial gauges on the platform touch a table; at every station the
+/// CNC Machine"), §3: three dial gauges on the platform touch a table; at every station the
 /// platform was driven until the gauges read (about) zero, and the commanded strut readings were
 /// recorded. Each gauge gives one plane-contact equation per station (Ikits & Hollerbach,
 /// "Kinematic calibration using a plane constraint", ICRA 1997).
