@@ -17,9 +17,9 @@
 #include <thread>
 
 #include "exit_codes.hpp"
-#include "serve_options.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/server/http_server.hpp"
+#include "serve_options.hpp"
 
 namespace {
 
