@@ -1,8 +1,8 @@
 /// @file
 /// @brief Internal: the uncertainty budgets of `pkm calibrate hexapod` (calibrate_hexapod.cpp) and
-/// of the campaign's hexapod calibration step (campaign_hexapod.cpp): the linear budgets of the
-/// calibrated parameters, optionally their Monte Carlo, and the predicted TCP uncertainty at the
-/// check poses (docs/calibration.md, "Uncertainty budgets").
+/// of the campaign's hexapod calibration step (campaign/campaign_hexapod.cpp): the linear budgets
+/// of the calibrated parameters, optionally their Monte Carlo, and the predicted TCP uncertainty at
+/// the check poses (docs/calibration.md, "Uncertainty budgets").
 #pragma once
 
 #include <string>

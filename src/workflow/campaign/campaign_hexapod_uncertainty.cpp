@@ -6,9 +6,9 @@
 #include <cmath>
 #include <numeric>
 
-#include "calibration_uncertainty.hpp"
 #include "campaign_hexapod_detail.hpp"
 #include "pkm/kinematics/pose_rpy.hpp"
+#include "workflow/calibration_uncertainty.hpp"
 
 namespace pkm::workflow::campaign::detail {
 

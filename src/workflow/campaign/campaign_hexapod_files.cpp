@@ -6,7 +6,6 @@
 
 #include <cmath>
 
-#include "calibration_uncertainty.hpp"
 #include "campaign_hexapod_detail.hpp"
 #include "campaign_steps.hpp"
 #include "pkm/calibration/acceptance.hpp"
@@ -17,6 +16,7 @@
 #include "pkm/io/calibration_files.hpp"
 #include "pkm/io/linuxcnc_hal.hpp"
 #include "pkm/io/machine_loader.hpp"
+#include "workflow/calibration_uncertainty.hpp"
 
 namespace pkm::workflow::campaign {
 

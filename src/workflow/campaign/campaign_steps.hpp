@@ -1,9 +1,9 @@
 /// @file
 /// @brief The campaign's step kinds (workflow/campaign.hpp, docs/campaign.md): measure ->
 /// analyse -> calibrate -> compensate -> re-measure -> report. A campaign (`pkm.campaign/1`) is a
-/// list of steps; each step kind (src/workflow/campaign_<kind>.cpp) simulates its scenario's
-/// measurements on the virtual machine (or reads measured files), analyses them, writes the
-/// controller compensation, applies it to the virtual machine, measures again and returns its
+/// list of steps; each step kind (src/workflow/campaign/campaign_<kind>.cpp) simulates its
+/// scenario's measurements on the virtual machine (or reads measured files), analyses them, writes
+/// the controller compensation, applies it to the virtual machine, measures again and returns its
 /// before/after figures and report section.
 #pragma once
 
