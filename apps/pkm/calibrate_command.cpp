@@ -14,25 +14,13 @@
 namespace pkm::cli {
 namespace {
 
-struct CalibrateArgs {
-  workflow::HexapodCalibrationRequest request;
-  std::vector<std::string> data, holdout;  ///< --data, --holdout paths (read into the request)
-  std::string registration;                ///< --registration path
-  std::vector<double> target_offset;
-  bool json = false;
-  UncertaintyArgs uncertainty;  ///< --uncertainty FILE
+/// `pkm calibrate hexapod`'s arguments: the shared ones and the --registration path.
+struct HexapodCalibrateArgs : CalibrateArgs<workflow::HexapodCalibrationRequest> {
+  std::string registration;  ///< --registration path
 };
 
-void runCalibrate(CalibrateArgs args) {
-  if (!args.target_offset.empty()) {
-    if (args.target_offset.size() != 3) throw InvalidArgument("--target-offset needs x,y,z");
-    args.request.target_offset =
-        Eigen::Vector3d(args.target_offset[0], args.target_offset[1], args.target_offset[2]);
-  }
-  args.request.uncertainty = args.uncertainty.parsed();
-  args.request.uncertainty_name = args.uncertainty.file;
-  args.request.data = io::readNamedTexts(args.data);
-  args.request.holdout = io::readNamedTexts(args.holdout);
+void runCalibrate(HexapodCalibrateArgs args) {
+  fillCalibrateRequest(args);
   if (!args.registration.empty()) args.request.registration = io::readNamedText(args.registration);
   CliRunControl run;
   const workflow::HexapodCalibrationResult result =
@@ -48,7 +36,7 @@ void runCalibrate(CalibrateArgs args) {
 }
 
 /// Adds to `pkm calibrate hexapod` the machine, the data files, the frame and the fit's options.
-void addCalibrateFitOptions(CLI::App& hex, CalibrateArgs& args) {
+void addCalibrateFitOptions(CLI::App& hex, HexapodCalibrateArgs& args) {
   addMachineOptions(hex, args.request.machine, args.request.ini);
   hex.add_option("--data", args.data, "calibration files (tracker pose/point, constrained motion)")
       ->required()
@@ -89,7 +77,7 @@ void addCalibrateFitOptions(CLI::App& hex, CalibrateArgs& args) {
 }
 
 /// Adds to `pkm calibrate hexapod` the Monte Carlo, prior, uncertainty and backlash options.
-void addCalibrateNoiseOptions(CLI::App& hex, CalibrateArgs& args) {
+void addCalibrateNoiseOptions(CLI::App& hex, HexapodCalibrateArgs& args) {
   hex.add_option("--monte-carlo",
                  args.request.monte_carlo,
                  "also run N Monte Carlo trials of the calibration under simulated noise")
@@ -134,7 +122,7 @@ void addCalibrateCommand(CLI::App& app) {
   CLI::App* calibrate =
       app.add_subcommand("calibrate", "identify kinematic parameters from measurements");
   calibrate->require_subcommand(1);
-  auto args = std::make_shared<CalibrateArgs>();
+  auto args = std::make_shared<HexapodCalibrateArgs>();
   CLI::App* hex = calibrate->add_subcommand(
       "hexapod", "calibrate a hexapod from laser-tracker pose/point files and dial-gauge files");
   addCalibrateFitOptions(*hex, *args);

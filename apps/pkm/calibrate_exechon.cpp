@@ -15,24 +15,10 @@
 namespace pkm::cli {
 namespace {
 
-struct ExechonArgs {
-  workflow::ExechonCalibrationRequest request;
-  std::vector<std::string> data, holdout;  ///< --data, --holdout paths (read into the request)
-  std::vector<double> target_offset;
-  bool json = false;
-  UncertaintyArgs uncertainty;  ///< --uncertainty FILE
-};
+using ExechonArgs = CalibrateArgs<workflow::ExechonCalibrationRequest>;
 
 void runExechon(ExechonArgs args) {
-  if (!args.target_offset.empty()) {
-    if (args.target_offset.size() != 3) throw InvalidArgument("--target-offset needs x,y,z");
-    args.request.target_offset =
-        Eigen::Vector3d(args.target_offset[0], args.target_offset[1], args.target_offset[2]);
-  }
-  args.request.uncertainty = args.uncertainty.parsed();
-  args.request.uncertainty_name = args.uncertainty.file;
-  args.request.data = io::readNamedTexts(args.data);
-  args.request.holdout = io::readNamedTexts(args.holdout);
+  fillCalibrateRequest(args);
   CliRunControl run;
   const workflow::ExechonCalibrationResult r =
       workflow::calibrateExechon(args.request, run.control());

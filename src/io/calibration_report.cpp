@@ -61,21 +61,6 @@ ordered_json parametersJson(const HexapodCalibrationReport& r) {
   return params;
 }
 
-/// The view of the report's uncertainty for the shared JSON and text.
-detail::CalibrationUncertaintyView uncertaintyView(const HexapodCalibrationReport& r,
-                                                   const std::string& unit) {
-  const HexapodCalibrationReport::Uncertainty& u = *r.uncertainty;
-  std::size_t parameters = 0;
-  for (const int k : u.parameters.parameter_indices) parameters += k >= 0 ? 1 : 0;
-  return {u.sources,
-          u.parameters.linear,
-          u.monte_carlo ? &*u.monte_carlo : nullptr,
-          u.tcp_poses,
-          u.tcp,
-          unit,
-          parameters};
-}
-
 /// The members from "machine" to "residuals": what was fitted and how the solver did.
 void addFit(const HexapodCalibrationReport& r, ordered_json& j) {
   const cal::HexapodCalibrationSummary& s = r.fit;
@@ -139,7 +124,8 @@ std::string hexapodCalibrationJson(const HexapodCalibrationReport& r) {
   j["outputs"] = {{"machine", r.out_machine}, {"hal", r.out_hal}, {"summary", r.out_summary}};
   if (r.uncertainty) {
     const std::string unit(toString(r.unit));
-    j["uncertainty"] = detail::calibrationUncertaintyJson(uncertaintyView(r, unit));
+    j["uncertainty"] =
+        detail::calibrationUncertaintyJson(detail::uncertaintyViewOf(*r.uncertainty, unit));
   }
   return j.dump(2) + "\n";
 }
@@ -147,7 +133,7 @@ std::string hexapodCalibrationJson(const HexapodCalibrationReport& r) {
 std::string hexapodCalibrationUncertaintyText(const HexapodCalibrationReport& r) {
   if (!r.uncertainty) return {};
   const std::string unit(toString(r.unit));
-  return detail::calibrationUncertaintyText(uncertaintyView(r, unit));
+  return detail::calibrationUncertaintyText(detail::uncertaintyViewOf(*r.uncertainty, unit));
 }
 
 }  // namespace pkm::io

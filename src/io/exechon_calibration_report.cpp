@@ -61,24 +61,9 @@ ordered_json parametersJson(const ExechonTripodReport& t, LengthUnit unit) {
   return params;
 }
 
-/// The view of the tripod's uncertainty for the shared JSON and text.
-detail::CalibrationUncertaintyView uncertaintyView(const ExechonTripodReport& t,
-                                                   const std::string& unit) {
-  const ExechonTripodReport::Uncertainty& u = *t.uncertainty;
-  std::size_t parameters = 0;
-  for (const int k : u.parameters.parameter_indices) parameters += k >= 0 ? 1 : 0;
-  return {u.sources,
-          u.parameters.linear,
-          u.monte_carlo ? &*u.monte_carlo : nullptr,
-          u.tcp_poses,
-          u.tcp,
-          unit,
-          parameters};
-}
-
 ordered_json uncertaintyJson(const ExechonTripodReport& t, LengthUnit unit) {
   const std::string u(toString(unit));
-  return detail::calibrationUncertaintyJson(uncertaintyView(t, u));
+  return detail::calibrationUncertaintyJson(detail::uncertaintyViewOf(*t.uncertainty, u));
 }
 
 /// The tripod members, added to the top level of the document.
@@ -146,7 +131,7 @@ ordered_json hybridJson(const HybridSquarenessReport& h) {
 std::string exechonCalibrationUncertaintyText(const ExechonTripodReport& tripod, LengthUnit unit) {
   if (!tripod.uncertainty) return {};
   const std::string u(toString(unit));
-  return detail::calibrationUncertaintyText(uncertaintyView(tripod, u));
+  return detail::calibrationUncertaintyText(detail::uncertaintyViewOf(*tripod.uncertainty, u));
 }
 
 std::string exechonCalibrationJson(const ExechonCalibrationReport& r) {

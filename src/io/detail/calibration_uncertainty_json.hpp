@@ -24,6 +24,22 @@ struct CalibrationUncertaintyView {
   std::size_t text_budgets = 0;
 };
 
+/// The view of a calibration report's uncertainty (HexapodCalibrationReport::Uncertainty or
+/// ExechonTripodReport::Uncertainty: sources, parameters, monte_carlo, tcp_poses, tcp). The text
+/// lists the budgets of the parameters that were fitted (parameter index >= 0).
+template <typename Uncertainty>
+CalibrationUncertaintyView uncertaintyViewOf(const Uncertainty& u, const std::string& unit) {
+  std::size_t parameters = 0;
+  for (const int k : u.parameters.parameter_indices) parameters += k >= 0 ? 1 : 0;
+  return {u.sources,
+          u.parameters.linear,
+          u.monte_carlo ? &*u.monte_carlo : nullptr,
+          u.tcp_poses,
+          u.tcp,
+          unit,
+          parameters};
+}
+
 /// {"coverage_factor", "sources", "residual_sigma", "instrument_sigma", "fit_sigma",
 /// "parameters": {NAME: budget (with "monte_carlo")}, "monte_carlo": {trials, failures, batches,
 /// stabilised, seconds, rule}, "tcp": {"poses", "count", "unit", "U_max", "U_mean", "U"}}.

@@ -22,7 +22,7 @@ std::vector<std::string> paragraphs(const io::Scenario& scenario,
                                     const cal::HexapodCalibrationSummary& s) {
   const std::string data =
       constrained_sets > 0
-          ? fmt::format("{} constrained-motion set(s) read by three dial gauges (seed 004 §4)",
+          ? fmt::format("{} constrained-motion set(s) read by three dial gauges (seed 004 §3)",
                         constrained_sets)
           : fmt::format("{} pose observations", poses);
   std::vector<std::string> out = {
