@@ -9,6 +9,7 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/hexapod_machine.hpp"
+#include "support/edited_lines.hpp"
 
 namespace pkm::test::hexapod_json {
 
@@ -33,25 +34,12 @@ inline constexpr const char* kSource = "machine-under-test.json";
 
 /// kLines with line n replaced by `edits[n]` (an empty replacement drops the line).
 inline std::string text(const std::map<int, std::string>& edits = {}) {
-  std::string out;
-  for (int n = 1; n <= static_cast<int>(kLines.size()); ++n) {
-    const auto it = edits.find(n);
-    if (it == edits.end())
-      out += kLines[static_cast<std::size_t>(n - 1)] + "\n";
-    else if (!it->second.empty())
-      out += it->second + "\n";
-  }
-  return out;
+  return editedLines(kLines, edits);
 }
 
 /// The message of the IoError that parsing `json_text` throws ("" when it does not throw).
 inline std::string errorOf(const std::string& json_text) {
-  try {
-    (void)io::parseHexapodJson(json_text, kSource);
-  } catch (const IoError& e) {
-    return e.what();
-  }
-  return {};
+  return ioErrorOf([&] { return io::parseHexapodJson(json_text, kSource); });
 }
 
 /// "SOURCE:LINE: " as the reader starts its messages.
