@@ -92,22 +92,8 @@ TEST(HexapodCalibration, ConvergesInAFewIterationsOnNoisyTrackerPoints) {
 
 TEST(HexapodCalibration, ConvergesInAFewIterationsOnNoisyBidirectionalData) {
   // Backlash estimated from tracker poses with the simulated tracker's noise.
-  simulation::HexapodAssemblyErrors errors;
-  for (int i = 0; i < kinematics::kStruts; ++i) {
-    const double s = i % 2 ? -1.0 : 1.0;
-    errors.base_joint[static_cast<std::size_t>(i)] = Eigen::Vector3d(0.5 * s, -0.4, 0.2 * i);
-    errors.platform_joint[static_cast<std::size_t>(i)] = Eigen::Vector3d(-0.3, 0.2 * s, 0.1);
-    errors.length_offset[i] = 0.6 * s;
-  }
-  simulation::StrutActuation act;
-  act.backlash << 0.03, 0.05, 0.02, 0.04, 0.06, 0.01;
-  simulation::HexapodVirtualMachine vm(test::millingModel(), errors, act);
-  simulation::TrackerSetup setup;
-  setup.name = "bidirectional-noisy";
-  setup.mode = simulation::TrackerMode::kPose;
-  setup.random_count = 200;
-  setup.random_box.lo << -150, -150, 150, -0.15, -0.15, -0.3;
-  setup.random_box.hi << 150, 150, 280, 0.15, 0.15, 0.3;
+  simulation::HexapodVirtualMachine vm = test::backlashMachine();
+  simulation::TrackerSetup setup = test::bidirectionalSetup("bidirectional-noisy", 200);
   setup.noise = *simulation::trackerNoise("laser-tracker");
   simulation::RandomStream rng(test::kSeed + 46);
   HexapodCalibrationData data;
@@ -133,7 +119,8 @@ TEST(HexapodCalibration, ConvergesInAFewIterationsOnNoisyBidirectionalData) {
   ASSERT_TRUE(strict.backlash.has_value());
   EXPECT_LT((*strict.backlash - *s.backlash).cwiseAbs().maxCoeff(), kTolStationary);
   for (int i = 0; i < kinematics::kStruts; ++i)
-    EXPECT_NEAR((*s.backlash)(i), act.backlash(i), 4.0 * s.backlash_standard_deviation(i)) << i;
+    EXPECT_NEAR((*s.backlash)(i), test::trueBacklash()(i), 4.0 * s.backlash_standard_deviation(i))
+        << i;
 }
 
 }  // namespace

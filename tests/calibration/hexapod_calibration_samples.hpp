@@ -13,6 +13,8 @@
 #include "pkm/calibration/hexapod_calibration.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "pkm/kinematics/pose_rpy.hpp"
+#include "pkm/simulation/hexapod_virtual_machine.hpp"
+#include "pkm/simulation/laser_tracker.hpp"
 #include "support/sample_models.hpp"
 
 namespace pkm::test {
@@ -71,6 +73,40 @@ inline double maxTcpError(const kinematics::HexapodModel& model,
     if (e) worst = std::max(worst, e->head<3>().norm());
   }
   return worst;
+}
+
+/// The per-strut backlash of backlashMachine(), mm.
+inline kinematics::StrutVector trueBacklash() {
+  kinematics::StrutVector b;
+  b << 0.03, 0.05, 0.02, 0.04, 0.06, 0.01;
+  return b;
+}
+
+/// The milling model with seeded assembly errors and the backlash trueBacklash(): the true
+/// machine of the backlash tests.
+inline simulation::HexapodVirtualMachine backlashMachine() {
+  simulation::HexapodAssemblyErrors errors;
+  for (int i = 0; i < kinematics::kStruts; ++i) {
+    const double s = i % 2 ? -1.0 : 1.0;
+    errors.base_joint[static_cast<std::size_t>(i)] = Eigen::Vector3d(0.5 * s, -0.4, 0.2 * i);
+    errors.platform_joint[static_cast<std::size_t>(i)] = Eigen::Vector3d(-0.3, 0.2 * s, 0.1);
+    errors.length_offset[i] = 0.6 * s;
+  }
+  simulation::StrutActuation act;
+  act.backlash = trueBacklash();
+  return simulation::HexapodVirtualMachine(millingModel(), errors, act);
+}
+
+/// Tracker poses at `count` random poses of the backlash tests' box, in the order the machine
+/// moves to them (so that each strut approaches from either side).
+inline simulation::TrackerSetup bidirectionalSetup(const std::string& name, int count) {
+  simulation::TrackerSetup setup;
+  setup.name = name;
+  setup.mode = simulation::TrackerMode::kPose;
+  setup.random_count = count;
+  setup.random_box.lo << -150, -150, 150, -0.15, -0.15, -0.3;
+  setup.random_box.hi << 150, 150, 280, 0.15, 0.15, 0.3;
+  return setup;
 }
 
 }  // namespace pkm::test

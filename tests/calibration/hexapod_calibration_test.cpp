@@ -269,22 +269,8 @@ TEST(HexapodCalibration, RobustLossResistsAnOutlier) {
 /// poses in the order it moved; the approach directions follow from that order.
 TEST(HexapodCalibration, IdentifiesPerStrutBacklashFromBidirectionalData) {
   constexpr double kBacklashTolerance = 1e-6;  // mm: exact data
-  simulation::HexapodAssemblyErrors errors;
-  for (int i = 0; i < kinematics::kStruts; ++i) {
-    const double s = i % 2 ? -1.0 : 1.0;
-    errors.base_joint[static_cast<std::size_t>(i)] = Eigen::Vector3d(0.5 * s, -0.4, 0.2 * i);
-    errors.platform_joint[static_cast<std::size_t>(i)] = Eigen::Vector3d(-0.3, 0.2 * s, 0.1);
-    errors.length_offset[i] = 0.6 * s;
-  }
-  simulation::StrutActuation act;
-  act.backlash << 0.03, 0.05, 0.02, 0.04, 0.06, 0.01;
-  simulation::HexapodVirtualMachine vm(test::millingModel(), errors, act);
-  simulation::TrackerSetup setup;
-  setup.name = "bidirectional";
-  setup.mode = simulation::TrackerMode::kPose;
-  setup.random_count = 120;
-  setup.random_box.lo << -150, -150, 150, -0.15, -0.15, -0.3;
-  setup.random_box.hi << 150, 150, 280, 0.15, 0.15, 0.3;
+  simulation::HexapodVirtualMachine vm = test::backlashMachine();
+  simulation::TrackerSetup setup = test::bidirectionalSetup("bidirectional", 120);
   simulation::RandomStream rng(test::kSeed + 30);
   const auto readings = simulation::simulateLaserTracker(vm, setup, rng);
   HexapodCalibrationData data;
@@ -303,7 +289,7 @@ TEST(HexapodCalibration, IdentifiesPerStrutBacklashFromBidirectionalData) {
   options.estimate_backlash = true;
   const HexapodCalibrationSummary with = calibrateHexapod(test::millingModel(), data, options);
   ASSERT_TRUE(with.backlash.has_value());
-  EXPECT_LT((*with.backlash - act.backlash).cwiseAbs().maxCoeff(), kBacklashTolerance);
+  EXPECT_LT((*with.backlash - test::trueBacklash()).cwiseAbs().maxCoeff(), kBacklashTolerance);
   EXPECT_EQ(with.identifiability.parameters, kHexapodParameters + kinematics::kStruts);
   EXPECT_TRUE(with.identifiability.fullRank());
   EXPECT_LT(with.after.max, kBacklashTolerance);

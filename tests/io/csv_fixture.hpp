@@ -14,31 +14,14 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/csv.hpp"
+#include "support/scratch_files.hpp"
 
 namespace pkm::test {
 
 /// A fresh temporary directory per test, removed afterwards (suite name CsvTest).
-class CsvTest : public ::testing::Test {
+class CsvTest : public ScratchDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() /
-           (std::string("pkm_csv_test_") + std::to_string(::getpid()) + "_" + info->name());
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    std::filesystem::remove_all(dir_, ec);
-  }
-
-  /// Writes `content` byte for byte to DIR/name and returns the path.
-  std::string write(const std::string& name, const std::string& content) const {
-    const std::filesystem::path p = dir_ / name;
-    std::ofstream out(p, std::ios::binary);
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    return p.string();
-  }
+  CsvTest() : ScratchDirTest("csv_test") {}
 
   /// The message of the pkm::IoError thrown by reading all of `content` with columns `cols`
   /// (empty if none is thrown).
@@ -56,8 +39,6 @@ class CsvTest : public ::testing::Test {
     }
     return {};
   }
-
-  std::filesystem::path dir_;
 };
 
 }  // namespace pkm::test

@@ -21,6 +21,7 @@
 #include "pkm/kinematics/hexapod_data.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "support/sample_models.hpp"
+#include "support/scratch_files.hpp"
 #include "support/tolerances.hpp"
 
 namespace pkm::test {
@@ -131,27 +132,9 @@ inline std::vector<std::string> simIniLines(const std::string& halfile = "kinema
 }
 
 /// A fresh folder per test (removed afterwards) to write the HAL and INI files into.
-class LinuxcncHalTest : public ::testing::Test {
+class LinuxcncHalTest : public ScratchDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() /
-           (std::string("pkm_hal_test_") + std::to_string(::getpid()) + "_" + info->name());
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    std::filesystem::remove_all(dir_, ec);
-  }
-
-  std::string write(const std::string& name, const std::string& content) const {
-    const std::filesystem::path p = dir_ / name;
-    std::filesystem::create_directories(p.parent_path());
-    std::ofstream out(p, std::ios::binary);
-    out << content;
-    return p.string();
-  }
+  LinuxcncHalTest() : ScratchDirTest("hal_test") {}
   std::string writeHal(const std::vector<std::string>& lines,
                        const std::string& name = "kinematics.hal") const {
     return write(name, join(lines));
@@ -170,8 +153,6 @@ class LinuxcncHalTest : public ::testing::Test {
     }
     return {};
   }
-
-  std::filesystem::path dir_;
 };
 
 /// Whether any notice contains `text`.
