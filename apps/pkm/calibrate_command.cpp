@@ -100,6 +100,11 @@ void addCalibrateNoiseOptions(CLI::App& hex, HexapodCalibrateArgs& args) {
                  args.request.prior_sigma,
                  "regularise toward the machine file: how far the true geometry may plausibly be, "
                  "machine unit (needs --measurement-sigma; for dial-gauge data)");
+  hex.add_option(
+      "--prior-uncertainty",
+      args.request.prior_uncertainty,
+      "the machine file's geometry as an input of the uncertainty budgets: one "
+      "standard deviation per parameter, machine unit (default --prior-sigma; needs it)");
   hex.add_option("--measurement-sigma",
                  args.request.measurement_sigma,
                  "residual sigma, machine unit, for --prior-sigma and the covariance (default: "

@@ -207,6 +207,7 @@ CalibrationResult runHexapodCalibration(const py::object& machine,
   r.backlash = options.backlash;
   r.prior_sigma = options.prior_sigma;
   r.measurement_sigma = options.measurement_sigma;
+  r.prior_uncertainty = options.prior_uncertainty;
   r.sigma_gauge = options.sigma_gauge;
   setUncertainty(r, options.uncertainty);
   r.uncertainty_trials = options.uncertainty_trials;

@@ -60,7 +60,7 @@ struct CommonOptions {
 /// The options only a hexapod calibration has.
 struct HexapodOptions {
   bool backlash;
-  double prior_sigma, measurement_sigma, sigma_gauge;
+  double prior_sigma, measurement_sigma, prior_uncertainty, sigma_gauge;
   py::object uncertainty;  ///< the sources file of the uncertainty budgets, or None
   int uncertainty_trials;
   py::object registration;  ///< the tracker's readings of the table's nests (a path), or None

@@ -39,10 +39,12 @@ CalibrationResult hexapodCalibration(const py::object& machine,
                                      const py::object& uncertainty,
                                      int uncertainty_trials,
                                      const py::object& registration,
-                                     bool raise_on_failure) {
+                                     bool raise_on_failure,
+                                     double prior_uncertainty) {
   const HexapodOptions options{backlash,
                                prior_sigma,
                                measurement_sigma,
+                               prior_uncertainty,
                                sigma_gauge,
                                uncertainty,
                                uncertainty_trials,
@@ -126,6 +128,9 @@ registration : str or path
 prior_sigma, measurement_sigma : float
     Tikhonov prior toward the machine file (length unit; needs measurement_sigma) and the
     residual sigma for the prior and the covariance (0: estimated).
+prior_uncertainty : float
+    The machine file's geometry as an input of the uncertainty budgets, one standard deviation
+    per parameter (length unit; 0: prior_sigma). Needs prior_sigma.
 monte_carlo, sigma_position, sigma_orientation, sigma_gauge, threads
     Monte Carlo trials of the calibration (0 or 2..100000) and their noise (length unit;
     orientation in urad); worker threads (0: all cores).
@@ -192,6 +197,7 @@ void defHexapod(py::module_& c) {
         py::arg("uncertainty_trials") = 0,
         py::arg("registration") = py::none(),
         py::arg("raise_on_failure") = false,
+        py::arg("prior_uncertainty") = 0.0,
         kHexapodCalibrationDoc);
 }
 

@@ -2,7 +2,11 @@
 // (calibration/hexapod_budget.hpp).
 #include "pkm/calibration/hexapod_budget.hpp"
 
+#include <fmt/format.h>
+
 #include <Eigen/QR>
+#include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -116,8 +120,7 @@ Eigen::MatrixXd effectOf(const AtEstimate& at,
     for (std::size_t b = 0; b < refs.size(); ++b) {
       const ObservationRef& ref = refs[b];
       const bool touched = ref.kind == c.ref.kind && ref.set == c.ref.set &&
-                           (ref.index == c.ref.index ||
-                            (ref.kind == ObservationRef::Kind::kGauge && c.coordinate >= 3));
+                           (ref.index == c.ref.index || detail::actsOnWholeSet(c));
       if (!touched) continue;
       detail::MeasuredCoordinate plus = c;
       d = data;
@@ -131,6 +134,42 @@ Eigen::MatrixXd effectOf(const AtEstimate& at,
     }
   }
   return E;
+}
+
+/// The number of singular values of J above its largest times n·ε (Eigen's default threshold).
+int numericalRank(const Eigen::MatrixXd& J) {
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J);
+  const Eigen::VectorXd& s = svd.singularValues();
+  if (s.size() == 0) return 0;
+  const double threshold = s(0) * static_cast<double>(std::max(J.rows(), J.cols())) *
+                           Eigen::NumTraits<double>::epsilon();
+  return static_cast<int>((s.array() > threshold).count());
+}
+
+/// The prior (calibration.parameter_prior_sigma) as an input of the budgets: each of the p prior
+/// rows w·(θ_k − θ₀_k), w = σ_r/σ_θ, changes by w per σ_θ of error in the machine file's θ₀_k.
+ObservationErrorSource priorSource(const HexapodCalibrationOptions& calibration,
+                                   LengthUnit unit,
+                                   Eigen::Index p) {
+  ObservationErrorSource prior;
+  const double sigma = calibration.prior_uncertainty > 0.0 ? calibration.prior_uncertainty
+                                                           : calibration.parameter_prior_sigma;
+  prior.contributor.name = "prior: the machine file's geometry";
+  prior.contributor.value = sigma;
+  prior.contributor.unit = std::string(toString(unit));
+  prior.contributor.distribution = metrology::Distribution::kNormal;
+  prior.contributor.normal_k = 1.0;
+  prior.contributor.source = fmt::format(
+      "the true geometry within sigma {:g} {} of the machine file, per parameter (the fit's prior "
+      "weight: sigma {:g} {}); it fixes the directions the data do not see",
+      sigma,
+      toString(unit),
+      calibration.parameter_prior_sigma,
+      toString(unit));
+  // Prior row k is w·(θ_k − θ₀_k), w = σ_r/σ_prior: an error e in θ₀_k changes it by −w·e.
+  prior.effect = Eigen::MatrixXd::Identity(p, p) *
+                 (calibration.measurement_sigma / calibration.parameter_prior_sigma);
+  return prior;
 }
 
 }  // namespace
@@ -175,11 +214,20 @@ HexapodParameterUncertainty hexapodParameterUncertainty(
   for (const int k : fit.free_indices) in.values(v++) = fit.parameters(k);
   for (Eigen::Index k = 0; k < (at.has_frame ? 6 : 0); ++k) in.values(v++) = 0.0;
   for (Eigen::Index k = 0; k < (at.backlash ? 6 : 0); ++k) in.values(v++) = (*at.backlash)(k);
-  in.inverse = identificationInverse(s.J, fit.identifiability.rank, s.observation_rows);
+  if (calibration.parameter_prior_sigma > 0.0) {
+    // With a prior every direction is determined (by the data or by the prior): the inverse of
+    // the whole stacked system, its prior columns carrying the prior's own uncertainty.
+    const Eigen::MatrixXd all = identificationInverse(s.J, numericalRank(s.J), s.J.rows());
+    in.inverse = all.leftCols(s.observation_rows);
+    in.prior_inverse = all.rightCols(s.J.rows() - s.observation_rows);
+    in.prior = priorSource(calibration, initial.unit, in.prior_inverse.cols());
+  } else {
+    in.inverse = identificationInverse(s.J, fit.identifiability.rank, s.observation_rows);
+  }
   in.residual_sigma = fit.sigma;
   in.residual_unit = unit;
   for (const detail::CoordinateSource& src :
-       detail::hexapodCoordinateSources(data, sources, initial.unit))
+       detail::hexapodCoordinateSources(data, sources, initial.unit, fit.backlash.has_value()))
     in.sources.push_back({src.contributor, effectOf(at, data, s, refs, src)});
   in.coverage_factor = sources.coverage_factor;
 
@@ -247,6 +295,22 @@ TcpUncertainty hexapodTcpUncertainty(const kinematics::HexapodModel& estimated,
   }
   out.mean = out.poses > 0 ? sum / out.poses : 0.0;
   return out;
+}
+
+void addTcpRemainder(TcpUncertainty& tcp, double rms, double coverage_factor) {
+  PKM_CHECK(std::isfinite(rms) && rms >= 0.0, "TCP remainder: the RMS must be finite and >= 0");
+  PKM_CHECK(coverage_factor > 0.0, "TCP remainder: the coverage factor must be > 0");
+  const double R = coverage_factor * rms / std::sqrt(3.0);
+  double sum = 0.0;
+  tcp.max = 0.0;
+  for (double& U : tcp.expanded) {
+    if (!std::isfinite(U)) continue;
+    U = std::hypot(U, R);
+    tcp.max = std::max(tcp.max, U);
+    sum += U;
+  }
+  tcp.mean = tcp.poses > 0 ? sum / tcp.poses : 0.0;
+  tcp.remainder = std::hypot(tcp.remainder, R);
 }
 
 }  // namespace pkm::calibration

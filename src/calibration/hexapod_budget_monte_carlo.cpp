@@ -66,7 +66,7 @@ BudgetMonteCarloResult hexapodBudgetMonteCarlo(const kinematics::HexapodModel& i
   const kinematics::HexapodModel estimate = withHexapodParameters(initial, fit.parameters);
   const HexapodCalibrationData base = detail::predictedData(estimate, data, fit.measurement_frame);
   std::vector<detail::CoordinateSource> inputs =
-      detail::hexapodCoordinateSources(data, sources, initial.unit);
+      detail::hexapodCoordinateSources(data, sources, initial.unit, fit.backlash.has_value());
   if (linear.linear.fit_sigma > 0.0) {
     detail::CoordinateSource typeA;
     typeA.contributor.distribution = metrology::Distribution::kNormal;
@@ -90,8 +90,19 @@ BudgetMonteCarloResult hexapodBudgetMonteCarlo(const kinematics::HexapodModel& i
           for (const detail::MeasuredCoordinate& c : s.coordinates)
             detail::perturbMeasurement(
                 d, c, detail::drawError(s.contributor.distribution, c.u, uniform, normal));
+        // The prior's centre (the machine file's free parameters) is an input too: drawn from
+        // N(θ₀, σ²), σ as the linear budget's prior contributor states it.
+        kinematics::HexapodModel start = initial;
+        if (calibration.parameter_prior_sigma > 0.0) {
+          const double sigma = calibration.prior_uncertainty > 0.0
+                                   ? calibration.prior_uncertainty
+                                   : calibration.parameter_prior_sigma;
+          HexapodParameterVector theta0 = hexapodParameters(initial);
+          for (const int k : fit.free_indices) theta0(k) += sigma * normal();
+          start = withHexapodParameters(initial, theta0);
+        }
         try {
-          return unknownsOf(calibrateHexapod(initial, d, calibration), fit, n);
+          return unknownsOf(calibrateHexapod(start, d, calibration), fit, n);
         } catch (const InvalidArgument&) {
           return std::nullopt;  // a failed re-fit: counted as a failure, its column dropped
         }

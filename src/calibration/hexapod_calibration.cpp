@@ -185,6 +185,9 @@ void HexapodCalibrationOptions::validate() const {
             "calibration: measurement_sigma must be finite and >= 0");
   PKM_CHECK(parameter_prior_sigma >= 0.0 && std::isfinite(parameter_prior_sigma),
             "calibration: parameter_prior_sigma must be finite and >= 0");
+  PKM_CHECK(prior_uncertainty >= 0.0 && std::isfinite(prior_uncertainty) &&
+                (prior_uncertainty == 0.0 || parameter_prior_sigma > 0.0),
+            "calibration: prior_uncertainty must be finite, >= 0, and needs parameter_prior_sigma");
   PKM_CHECK(parameter_prior_sigma == 0.0 || measurement_sigma > 0.0,
             "calibration: parameter_prior_sigma needs measurement_sigma > 0 (the prior's weight is "
             "measurement_sigma / parameter_prior_sigma)");

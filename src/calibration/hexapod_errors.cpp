@@ -78,11 +78,84 @@ void add(std::vector<CoordinateSource>& out, CoordinateSource s) {
   if (!s.coordinates.empty() && s.contributor.value > 0.0) out.push_back(std::move(s));
 }
 
+/// Every strut reading of `data` (the reference station's once per set), standard uncertainty 1.
+std::vector<MeasuredCoordinate> strutReadings(const HexapodCalibrationData& data) {
+  std::vector<MeasuredCoordinate> c;
+  for (const ObservationRef& ref : observations(data)) {
+    const bool two_ends = ref.kind == ObservationRef::Kind::kDistance &&
+                          data.distances[ref.index].readings_from.has_value();
+    for (int k = 6; k < 12; ++k) c.push_back({ref, k, 1.0});
+    if (two_ends)
+      for (int k = 12; k < 18; ++k) c.push_back({ref, k, 1.0});
+  }
+  for (std::size_t s = 0; s < data.constrained.size(); ++s)
+    if (!data.constrained[s].stations.empty())
+      for (int k = 12; k < 18; ++k) c.push_back({{ObservationRef::Kind::kGauge, 0, s}, k, 1.0});
+  return c;
+}
+
+/// The machine's strut readings as inputs: encoder resolution (rectangular ±res/2), repeatability
+/// (normal) and backlash (U-shaped ±b/2, independent per reading) unless the fit estimates it.
+void addActuatorSources(std::vector<CoordinateSource>& out,
+                        const HexapodCalibrationData& data,
+                        const metrology::ActuatorReadings& a,
+                        LengthUnit unit,
+                        bool backlash_estimated) {
+  const double per_mm = 1.0 / millimetresPer(unit);
+  const std::string u(toString(unit));
+  const std::vector<MeasuredCoordinate> readings = strutReadings(data);
+  const auto with = [&](double sd) {
+    std::vector<MeasuredCoordinate> c = readings;
+    for (MeasuredCoordinate& m : c) m.u = sd;
+    return c;
+  };
+  const double half_count = 0.5 * a.resolution_mm * per_mm;
+  add(out,
+      {contributor(fmt::format("{} resolution", a.name),
+                   half_count,
+                   u,
+                   Distribution::kRectangular,
+                   "half an encoder count, per strut reading"),
+       with(half_count / kSqrt3)});
+  const double repeat = a.repeatability_mm * per_mm;
+  add(out,
+      {contributor(fmt::format("{} repeatability", a.name),
+                   repeat,
+                   u,
+                   Distribution::kNormal,
+                   "one standard deviation, per strut reading"),
+       with(repeat)});
+  if (backlash_estimated) return;
+  // Lost motion depends on the approach direction, unknown per reading. A constrained-motion
+  // set's reference is the datum of every station and is reached in one move, in which the six
+  // struts take up their lost motion together: there it also acts as one shift of all six
+  // (coordinate 18), the coherent case the independent terms would average away.
+  const double half_lost = 0.5 * a.backlash_mm * per_mm;
+  std::vector<MeasuredCoordinate> lost = with(half_lost / std::sqrt(2.0));
+  for (std::size_t s = 0; s < data.constrained.size(); ++s)
+    if (!data.constrained[s].stations.empty())
+      lost.push_back({{ObservationRef::Kind::kGauge, 0, s}, 18, half_lost / std::sqrt(2.0)});
+  add(out,
+      {contributor(fmt::format("{} backlash", a.name),
+                   half_lost,
+                   u,
+                   Distribution::kUShaped,
+                   "half the lost motion at a reversal, per strut reading, and at a gauge set's "
+                   "reference for its six struts together"),
+       lost});
+}
+
 }  // namespace
+
+bool actsOnWholeSet(const MeasuredCoordinate& c) {
+  return c.ref.kind == ObservationRef::Kind::kGauge &&
+         ((c.coordinate >= 3 && c.coordinate < 6) || c.coordinate >= 12);
+}
 
 std::vector<CoordinateSource> hexapodCoordinateSources(const HexapodCalibrationData& data,
                                                        const metrology::UncertaintySources& sources,
-                                                       LengthUnit unit) {
+                                                       LengthUnit unit,
+                                                       bool backlash_estimated) {
   const double per_mm = 1.0 / millimetresPer(unit);
   const std::string u(toString(unit));
   std::vector<CoordinateSource> out;
@@ -156,6 +229,7 @@ std::vector<CoordinateSource> hexapodCoordinateSources(const HexapodCalibrationD
                    Distribution::kNormal,
                    "environment.setup_repeatability_mm, per coordinate of each tracker reading"),
        positions});
+  addActuatorSources(out, data, sources.actuators, unit, backlash_estimated);
   return out;
 }
 
@@ -205,12 +279,23 @@ void perturbMeasurement(HexapodCalibrationData& data, const MeasuredCoordinate& 
       ConstrainedMotionData& set = data.constrained[c.ref.set];
       if (c.coordinate < 3)
         set.stations[i].gauges[static_cast<std::size_t>(c.coordinate)] += delta;
-      else
+      else if (c.coordinate < 6)
         set.reference.gauges[static_cast<std::size_t>(c.coordinate - 3)] += delta;
+      else if (c.coordinate < 12)
+        set.stations[i].readings(c.coordinate - 6) += delta;
+      else if (c.coordinate < 18)
+        set.reference.readings(c.coordinate - 12) += delta;
+      else
+        set.reference.readings.array() += delta;
       return;
     }
     case ObservationRef::Kind::kDistance:
-      data.distances[i].distance += delta;
+      if (c.coordinate == 0)
+        data.distances[i].distance += delta;
+      else if (c.coordinate < 12)
+        data.distances[i].readings(c.coordinate - 6) += delta;
+      else
+        (*data.distances[i].readings_from)(c.coordinate - 12) += delta;
       return;
   }
 }

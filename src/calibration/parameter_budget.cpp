@@ -51,6 +51,15 @@ bool ParameterBudgetInput::isValid(std::string* why) const {
                               s.contributor.name,
                               s.effect.rows(),
                               inverse.cols()));
+  if (prior_inverse.size() > 0 &&
+      (prior_inverse.rows() != n || prior.effect.rows() != prior_inverse.cols()))
+    return fail(
+        fmt::format("parameter budgets: the prior has a {} x {} inverse and {} effect rows "
+                    "for {} unknowns",
+                    prior_inverse.rows(),
+                    prior_inverse.cols(),
+                    prior.effect.rows(),
+                    n));
   if (!(std::isfinite(residual_sigma) && residual_sigma >= 0.0))
     return fail("parameter budgets: the residual sigma must be finite and >= 0");
   if (!(std::isfinite(coverage_factor) && coverage_factor > 0.0))
@@ -78,6 +87,13 @@ ParameterUncertainty parameterBudgets(const ParameterBudgetInput& in) {
       in.residual_sigma * in.residual_sigma - out.instrument_sigma * out.instrument_sigma;
   out.fit_sigma = std::sqrt(std::max(0.0, excess));
   out.covariance += out.fit_sigma * out.fit_sigma * in.inverse * in.inverse.transpose();
+  const bool has_prior = in.prior_inverse.size() > 0;
+  Eigen::MatrixXd prior_on_theta;
+  if (has_prior) {
+    const double u = in.prior.contributor.standardUncertainty();
+    prior_on_theta = in.prior_inverse * in.prior.effect;
+    out.covariance += u * u * prior_on_theta * prior_on_theta.transpose();
+  }
 
   for (Eigen::Index k = 0; k < n; ++k) {
     metrology::UncertaintyBudget b;
@@ -102,6 +118,11 @@ ParameterUncertainty parameterBudgets(const ParameterBudgetInput& in) {
                              in.residual_unit,
                              out.instrument_sigma);
     metrology::addContributor(b, std::move(fit));
+    if (has_prior) {
+      metrology::UncertaintyContributor prior = in.prior.contributor;
+      prior.sensitivity = prior_on_theta.row(k).norm();
+      metrology::addContributor(b, std::move(prior));
+    }
     out.budgets.push_back(std::move(b));
   }
   return out;

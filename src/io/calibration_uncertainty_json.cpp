@@ -28,6 +28,7 @@ Json tcpJson(const CalibrationUncertaintyView& v) {
               {"unit", v.unit},
               {"U_max", v.tcp.max},
               {"U_mean", v.tcp.mean},
+              {"U_remainder", v.tcp.remainder},
               {"U", std::move(per_pose)}};
 }
 
@@ -113,6 +114,10 @@ std::string calibrationUncertaintyText(const CalibrationUncertaintyView& v) {
       v.tcp.max,
       v.tcp.mean,
       v.unit);
+  if (v.tcp.remainder > 0.0)
+    t += fmt::format("  of which the model's remainder at the held-out poses: {:.2g} {}\n",
+                     v.tcp.remainder,
+                     v.unit);
   return t;
 }
 

@@ -61,6 +61,7 @@ cal::HexapodCalibrationOptions fitOptions(const HexapodCalibrationRequest& r) {
   options.estimate_backlash = r.backlash;
   options.parameter_prior_sigma = r.prior_sigma;
   options.measurement_sigma = r.measurement_sigma;
+  options.prior_uncertainty = r.prior_uncertainty;
   return options;
 }
 
@@ -111,31 +112,6 @@ io::HexapodCalibrationReport::MonteCarlo monteCarlo(const HexapodCalibrationRequ
   out.sigma_gauge = mc.gauge_sigma;
   control.checkCancelled();
   return out;
-}
-
-/// The budgets of the calibrated parameters and the predicted TCP uncertainty at the held-out
-/// configurations (or the workspace poses without held-out data).
-io::HexapodCalibrationReport::Uncertainty uncertainty(const HexapodCalibrationRequest& r,
-                                                      const kinematics::HexapodModel& model,
-                                                      const io::CalibrationInput& input,
-                                                      const io::CalibrationInput& held,
-                                                      const cal::HexapodCalibrationSummary& s,
-                                                      const std::vector<kinematics::PoseRpy>& ws,
-                                                      const cal::HexapodCalibrationOptions& options,
-                                                      const RunControl& control) {
-  detail::CalibrationUncertaintyRequest u;
-  u.sources = r.uncertainty;
-  if (!r.uncertainty_name.empty()) u.sources_name = r.uncertainty_name;
-  u.monte_carlo_trials = r.uncertainty_trials;
-  u.threads = r.threads;
-  const bool has_held = !held.data.poses.empty() || !held.data.points.empty();
-  const std::vector<kinematics::PoseRpy> check =
-      has_held
-          ? detail::checkPoses(
-                cal::withHexapodParameters(model, s.parameters), held.data, s.measurement_frame)
-          : ws;
-  return detail::hexapodCalibrationUncertainty(
-      model, input.data, s, options, u, check, has_held ? "held-out" : "workspace", control);
 }
 
 /// The held-out check: the nominal model with the frame fitted through it, against the
@@ -269,7 +245,8 @@ void reportWorkspaceErrors(const HexapodCalibrationRequest& r,
   rep.tcp_before = cal::tcpErrorOverWorkspace(machine.model, calibrated, workspace);
   if (r.monte_carlo > 0)
     rep.monte_carlo = monteCarlo(r, model, input, s, workspace, options, control);
-  rep.uncertainty = uncertainty(r, model, input, held, s, workspace, options, control);
+  rep.uncertainty = detail::hexapodRequestUncertainty(
+      r, model, input, held, s, workspace, options, rep.holdout, control);
 }
 
 /// The run's notices: the machine reader's, the data files', and the warning on an unregistered
@@ -316,12 +293,13 @@ void recordHexapodRun(const HexapodCalibrationRequest& r,
 
 void HexapodCalibrationRequest::validate() const {
   detail::checkCalibrationRequest(data, "calibration file", out, db, frame, loss, monte_carlo);
-}
-
-CalibrationOutputs calibrationOutputs(const std::string& out) {
-  std::string stem = out;
-  if (stem.size() > 5 && stem.ends_with(".json")) stem.resize(stem.size() - 5);
-  return {out, stem + ".hal", stem + ".summary.json", stem + ".pkmhexkins.hal"};
+  if (!(prior_uncertainty >= 0.0 && std::isfinite(prior_uncertainty)))
+    throw InvalidArgument(
+        fmt::format("--prior-uncertainty must be a length >= 0, got {}", prior_uncertainty));
+  if (prior_uncertainty > 0.0 && !(prior_sigma > 0.0))
+    throw InvalidArgument(
+        "--prior-uncertainty states the uncertainty of --prior-sigma's centre; "
+        "give --prior-sigma too");
 }
 
 HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,

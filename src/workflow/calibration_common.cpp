@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "pkm/core/error.hpp"
+#include "pkm/workflow/calibrate_hexapod.hpp"
 
 namespace pkm::workflow::detail {
 
@@ -90,3 +91,13 @@ std::function<void(int, int)> monteCarloProgress(const RunControl& control) {
 }
 
 }  // namespace pkm::workflow::detail
+
+namespace pkm::workflow {
+
+CalibrationOutputs calibrationOutputs(const std::string& out) {
+  std::string stem = out;
+  if (stem.size() > 5 && stem.ends_with(".json")) stem.resize(stem.size() - 5);
+  return {out, stem + ".hal", stem + ".summary.json", stem + ".pkmhexkins.hal"};
+}
+
+}  // namespace pkm::workflow

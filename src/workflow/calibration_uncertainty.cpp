@@ -73,4 +73,33 @@ io::HexapodCalibrationReport::Uncertainty hexapodCalibrationUncertainty(
   return u;
 }
 
+io::HexapodCalibrationReport::Uncertainty hexapodRequestUncertainty(
+    const HexapodCalibrationRequest& r,
+    const kinematics::HexapodModel& model,
+    const io::CalibrationInput& input,
+    const io::CalibrationInput& held,
+    const cal::HexapodCalibrationSummary& s,
+    const std::vector<kinematics::PoseRpy>& ws,
+    const cal::HexapodCalibrationOptions& options,
+    const std::optional<io::HexapodCalibrationReport::Holdout>& holdout,
+    const RunControl& control) {
+  CalibrationUncertaintyRequest u;
+  u.sources = r.uncertainty;
+  if (!r.uncertainty_name.empty()) u.sources_name = r.uncertainty_name;
+  u.monte_carlo_trials = r.uncertainty_trials;
+  u.threads = r.threads;
+  const bool has_held = !held.data.poses.empty() || !held.data.points.empty();
+  const std::vector<kinematics::PoseRpy> check =
+      has_held
+          ? checkPoses(
+                cal::withHexapodParameters(model, s.parameters), held.data, s.measurement_frame)
+          : ws;
+  io::HexapodCalibrationReport::Uncertainty out = hexapodCalibrationUncertainty(
+      model, input.data, s, options, u, check, has_held ? "held-out" : "workspace", control);
+  // What the model leaves at the held-out poses beyond its parameters' uncertainty.
+  if (holdout && holdout->after.poses > 0)
+    cal::addTcpRemainder(out.tcp, holdout->after.rms, r.uncertainty.coverage_factor);
+  return out;
+}
+
 }  // namespace pkm::workflow::detail

@@ -9,8 +9,10 @@
 #include <vector>
 
 #include "pkm/calibration/hexapod_budget.hpp"
+#include "pkm/io/calibration_files.hpp"
 #include "pkm/io/calibration_report.hpp"
 #include "pkm/metrology/uncertainty_sources.hpp"
+#include "pkm/workflow/calibrate_hexapod.hpp"
 #include "pkm/workflow/progress.hpp"
 
 namespace pkm::workflow::detail {
@@ -43,5 +45,20 @@ struct CalibrationUncertaintyRequest {
     const std::vector<kinematics::PoseRpy>& check,
     const std::string& check_label,
     const RunControl& control = {});
+
+/// The budgets of `pkm calibrate hexapod`'s fit `s` with the request's instruments and Monte Carlo
+/// trials: the predicted TCP uncertainty at the poses the calibrated model reaches for the
+/// held-out readings (else at the workspace poses `ws`), with the model's remainder at the
+/// held-out poses (`holdout`'s RMS after calibration, calibration::addTcpRemainder) when given.
+[[nodiscard]] io::HexapodCalibrationReport::Uncertainty hexapodRequestUncertainty(
+    const HexapodCalibrationRequest& r,
+    const kinematics::HexapodModel& model,
+    const io::CalibrationInput& input,
+    const io::CalibrationInput& held,
+    const calibration::HexapodCalibrationSummary& s,
+    const std::vector<kinematics::PoseRpy>& ws,
+    const calibration::HexapodCalibrationOptions& options,
+    const std::optional<io::HexapodCalibrationReport::Holdout>& holdout,
+    const RunControl& control);
 
 }  // namespace pkm::workflow::detail

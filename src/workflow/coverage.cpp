@@ -73,6 +73,8 @@ void addSeed(const std::string& scenario,
              std::vector<CoverageQuantity>& quantities) {
   std::map<Key, double> truth_of;
   for (const detail::CoverageReading& t : truth) truth_of[{t.group, t.quantity}] = t.value;
+  // A quantity measured at several places per seed (the TCP at each held-out pose) adds a trial
+  // per place; a reading with its own truth compares with the virtual machine's true value.
   const auto add = [&](const detail::CoverageReading& m, double t, const std::string& kind) {
     const std::string name = kind == "injected" ? m.quantity + " vs injected" : m.quantity;
     const Key key{m.group, name};
@@ -81,6 +83,10 @@ void addSeed(const std::string& scenario,
     quantities[it->second].trials.push_back({seed, m.value, t, m.U, m.u_c, m.k});
   };
   for (const detail::CoverageReading& m : measured) {
+    if (m.truth) {
+      add(m, *m.truth, "true geometry");
+      continue;
+    }
     const auto t = truth_of.find({m.group, m.quantity});
     if (t == truth_of.end())
       throw InvalidArgument(fmt::format("{} seed {}: {} {} has no perfect-instrument value",
@@ -105,7 +111,10 @@ bool selected(const std::vector<std::string>& only, const detail::CoverageReadin
 }  // namespace
 
 std::vector<std::string> defaultCoverageScenarios() {
-  return {"seed000-parallelism", "seed001-diagonals", "seed003-probe-offset"};
+  return {"seed000-parallelism",
+          "seed001-diagonals",
+          "seed003-probe-offset",
+          "seed004-hexapod-calibration"};
 }
 
 void CoverageOptions::validate() const {
@@ -209,8 +218,12 @@ CoverageResult validateCoverage(const CoverageOptions& options, const RunControl
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
            fmt::format("seed {}", seed)});
       control.checkCancelled();
-      std::vector<detail::CoverageReading> m = detail::coverageReadings(
-          measured, simulateLoadedScenario(measured, seed), options.uncertainty);
+      const SimulateResult simulation = simulateLoadedScenario(measured, seed);
+      std::vector<detail::CoverageReading> m =
+          detail::coverageReadings(measured, simulation, options.uncertainty);
+      for (detail::CoverageReading& r :
+           detail::calibrationReadings(measured, simulation, options.uncertainty))
+        m.push_back(std::move(r));
       std::erase_if(m,
                     [&](const detail::CoverageReading& r) { return !selected(options.only, r); });
       const std::vector<detail::CoverageReading> t =

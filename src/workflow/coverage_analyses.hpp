@@ -2,6 +2,7 @@
 // pkm's analyses report on one simulation's files.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,9 @@ struct CoverageReading {
   double U = 0.0;
   double u_c = 0.0;
   double k = 2.0;
+  /// The true value when the reading knows it itself (a calibrated parameter: the virtual
+  /// machine's true geometry); unset: the perfect-instrument run's value of the same quantity.
+  std::optional<double> truth = std::nullopt;
 };
 
 /// Runs the analyses a user would run on the files of `simulation` (a simulation of `scenario`),
@@ -30,6 +34,18 @@ struct CoverageReading {
 /// every touch probe's circles and stylus offset. Returns every budget's value and U. Throws as the
 /// analyses (naming the file).
 [[nodiscard]] std::vector<CoverageReading> coverageReadings(
+    const io::Scenario& scenario,
+    const SimulateResult& simulation,
+    const metrology::UncertaintySources& sources);
+
+/// The calibrations a user would run on the files of `simulation` when the scenario's machine is
+/// a hexapod: the laser tracker's 6-DOF poses with the registration (tracker-pose.csv and its
+/// registration file) and the dial gauges (constrained-motion.csv, with the default campaign's
+/// prior), each through workflow::calibrateHexapod with the instruments of `sources`. Readings:
+/// every parameter with its U against the machine's true parameter, and each coordinate of the TCP
+/// error at the held-out poses (tracker-holdout.csv) against the predicted TCP U. Empty for
+/// another machine or without those files. Throws as calibrateHexapod.
+[[nodiscard]] std::vector<CoverageReading> calibrationReadings(
     const io::Scenario& scenario,
     const SimulateResult& simulation,
     const metrology::UncertaintySources& sources);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 
+#include "constrained_samples.hpp"
 #include "pkm/calibration/hexapod_calibration.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/so3.hpp"
@@ -27,45 +28,12 @@ constexpr double kYawRange = 0.2;          ///< rad, station moves about z
 constexpr double kRemovedFraction = 0.95;  ///< acceptance: at least 95 % of the error removed
 
 HexapodModel perturbed(const HexapodModel& nominal, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-kJointError, kJointError);
-  HexapodParameterVector p = hexapodParameters(nominal);
-  for (int k = 0; k < kHexapodParameters; ++k) p(k) += u(rng);
-  return withHexapodParameters(nominal, p);
+  return test::perturbedModel(nominal, seed, kJointError);
 }
 
-/// Exact constrained-motion data of `truth` as seen by a controller running `nominal`: the true
-/// platform keeps its height and tilt (it moves in x, y and about z), the controller records the
-/// readings and believes the command FK_nominal(readings).
 ConstrainedMotionData constrainedData(
     const HexapodModel& nominal, const HexapodModel& truth, double z, int stations, unsigned seed) {
-  ConstrainedMotionData set;
-  set.gauge_points = {
-      Eigen::Vector3d(100, 0, 0), Eigen::Vector3d(-50, 86.6, 0), Eigen::Vector3d(-50, -86.6, 0)};
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  HexapodData t(truth), n(nominal);
-  const auto station = [&](const PoseRpy& true_pose) {
-    GaugeStation s;
-    s.readings = kinematics::inverseKinematics(truth, t, true_pose);
-    EXPECT_TRUE(kinematics::forwardKinematics(nominal, n, s.readings, true_pose).ok());
-    s.command = n.pose;
-    return s;
-  };
-  PoseRpy ref = nominal.home;
-  ref.position.z() = z;
-  ref.rpy = Eigen::Vector3d(0.01, -0.02, 0.0);
-  set.reference = station(ref);
-  for (int k = 0; k < stations; ++k) {
-    PoseRpy p = ref;
-    p.position.x() += kPlanarRange * u(rng);
-    p.position.y() += kPlanarRange * u(rng);
-    const Eigen::Matrix3d R = geometry::so3Exp(Eigen::Vector3d(0, 0, kYawRange * u(rng))) *
-                              geometry::rotationFromRpy(ref.rpy);
-    p.rpy = geometry::rpyFromRotation(R);
-    set.stations.push_back(station(p));
-  }
-  return set;
+  return test::constrainedData(nominal, truth, z, stations, seed, kPlanarRange, kYawRange);
 }
 
 /// Largest gauge deviation from the reference plane when `controller` commands planar moves on

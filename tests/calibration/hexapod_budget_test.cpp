@@ -66,13 +66,21 @@ HexapodCalibrationData measure(const HexapodModel& truth, unsigned seed) {
   return data;
 }
 
+/// Sources without any instrument or actuator error: only the fit's scatter remains.
+metrology::UncertaintySources noInstrumentErrors() {
+  metrology::UncertaintySources none;
+  none.tracker.accuracy_mm = none.tracker.accuracy_mm_per_m = 0.0;
+  none.tracker.orientation_accuracy_rad = 0.0;
+  none.actuators.resolution_mm = none.actuators.repeatability_mm = 0.0;
+  none.actuators.backlash_mm = 0.0;
+  return none;
+}
+
 TEST(HexapodParameterUncertainty, WithoutInstrumentErrorsItIsTheFitCovariance) {
   const HexapodModel nominal = test::millingModel();
   const HexapodCalibrationData data = measure(truthModel(), 7);
   const HexapodCalibrationSummary fit = calibrateHexapod(nominal, data);
-  metrology::UncertaintySources none;
-  none.tracker.accuracy_mm = none.tracker.accuracy_mm_per_m = 0.0;
-  none.tracker.orientation_accuracy_rad = 0.0;
+  const metrology::UncertaintySources none = noInstrumentErrors();
   const HexapodParameterUncertainty u = hexapodParameterUncertainty(nominal, data, fit, {}, none);
   ASSERT_EQ(u.linear.budgets.size(), static_cast<std::size_t>(kHexapodParameters));
   EXPECT_DOUBLE_EQ(u.linear.fit_sigma, fit.sigma);
@@ -109,6 +117,29 @@ TEST(HexapodParameterUncertainty, ListsTheInstrumentAndTheFitScatter) {
   metrology::UncertaintySources bad = statedSources();
   bad.tracker.accuracy_mm = -1.0;
   EXPECT_THROW((void)hexapodParameterUncertainty(nominal, data, fit, {}, bad), InvalidArgument);
+}
+
+TEST(HexapodParameterUncertainty, WithAPriorItIsTheBayesianPosteriorCovariance) {
+  // With a prior of weight w = σ/σ_θ the data's scatter and the prior's own error together give
+  // σ²(JᵀJ + w²I)⁻¹, the MAP covariance the fit reports when the data fix every direction.
+  const HexapodModel nominal = test::millingModel();
+  const HexapodCalibrationData data = measure(truthModel(), 7);
+  HexapodCalibrationOptions options;
+  options.measurement_sigma = kTrackerMm;
+  options.parameter_prior_sigma = 0.05;  // comparable to what the data determine
+  const HexapodCalibrationSummary fit = calibrateHexapod(nominal, data, options);
+  ASSERT_EQ(fit.identifiability.rank, kHexapodParameters);
+  const metrology::UncertaintySources none = noInstrumentErrors();
+  const HexapodParameterUncertainty u =
+      hexapodParameterUncertainty(nominal, data, fit, options, none);
+  for (int k = 0; k < kHexapodParameters; ++k)
+    EXPECT_NEAR(
+        std::sqrt(u.covariance(k, k)), fit.standard_deviation(k), 1e-6 * fit.standard_deviation(k))
+        << hexapodParameterName(k);
+  const metrology::UncertaintyBudget& b = u.linear.budgets.front();
+  ASSERT_FALSE(b.contributors.empty());
+  EXPECT_NE(b.contributors.back().name.find("prior"), std::string::npos);
+  EXPECT_DOUBLE_EQ(b.contributors.back().value, options.parameter_prior_sigma);
 }
 
 TEST(HexapodBudgetMonteCarlo, AgreesWithTheLinearPropagationOnANearLinearCalibration) {

@@ -30,6 +30,8 @@ TEST(UncertaintySourcesJson, RoundTripsEveryField) {
   s.laser.air_pressure_accuracy_pa = 0.1 + 0.2;  // not a short decimal
   s.probe.form_2d_mm = 1e-3;
   s.tracker.accuracy_mm = 0.01;
+  s.actuators.name = "lab struts";
+  s.actuators.backlash_mm = 0.008;
   s.ballbar.name = "lab ballbar";
   s.ballbar.sensor_accuracy_mm = 0.7e-3;
   s.environment.air.temperature_c = 21.7;
@@ -43,6 +45,8 @@ TEST(UncertaintySourcesJson, RoundTripsEveryField) {
   EXPECT_EQ(back.laser.air_pressure_accuracy_pa, 0.1 + 0.2);
   EXPECT_EQ(back.environment.air.temperature_c, 21.7);
   EXPECT_EQ(back.coverage_factor, 2.5);
+  EXPECT_EQ(back.actuators.name, "lab struts");
+  EXPECT_EQ(back.actuators.backlash_mm, 0.008);
   EXPECT_EQ(back.ballbar.name, "lab ballbar");
   EXPECT_EQ(back.ballbar.sensor_accuracy_mm, 0.7e-3);
   EXPECT_THAT(text, HasSubstr(kUncertaintySourcesSchema));

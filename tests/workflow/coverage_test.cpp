@@ -78,6 +78,41 @@ TEST(Coverage, ShortRunComparesWithThePerfectInstrument) {
   EXPECT_EQ(j["quantities"][0]["trials"].size(), 3u);
 }
 
+TEST(Coverage, CalibrationsAreComparedWithTheTrueGeometry) {
+  // The hexapod scenario's tracker and dial-gauge calibrations: every parameter against the
+  // virtual machine's true one, the TCP at each held-out pose against the predicted U.
+  CoverageOptions o;
+  o.scenarios = {"seed004-hexapod-calibration"};
+  o.seeds = 3;
+  o.only = {"calibration "};
+  const CoverageResult r = validateCoverage(o);
+  constexpr std::size_t kFits = 2, kParameters = 42, kHeldOut = 50;
+  ASSERT_EQ(r.quantities.size(), kFits * (kParameters + 1));
+  std::size_t covered = 0, parameter_trials = 0;
+  for (const CoverageQuantity& q : r.quantities) {
+    EXPECT_EQ(q.truth_kind, "true geometry") << q.quantity;
+    EXPECT_TRUE(q.claimed());
+    const bool tcp = q.quantity == "TCP error at the held-out poses";
+    EXPECT_EQ(q.trials.size(), tcp ? 3 * kHeldOut * 3 : 3u) << q.group << " " << q.quantity;
+    if (tcp) {
+      EXPECT_TRUE(q.holds()) << q.group << " " << q.coverage();
+      continue;
+    }
+    for (const CoverageTrial& t : q.trials) covered += t.covered() ? 1 : 0;
+    parameter_trials += q.trials.size();
+  }
+  // Three seeds are too few to judge one parameter (the 200-seed figures are in docs); the 252
+  // (parameter, seed) pairs together must reach the 92 % a 200-seed row must.
+  EXPECT_GE(static_cast<double>(covered), 0.92 * static_cast<double>(parameter_trials));
+  // The gauges do not see the base's placement in x and y: there the estimate is the machine
+  // file's, 12 mm off the truth, and only the prior's stated 20 mm covers it.
+  for (const CoverageQuantity& q : r.quantities)
+    if (q.group == "calibration constrained-motion" && q.quantity == "base0.x") {
+      EXPECT_GT(std::abs(q.bias()), 5.0);
+      EXPECT_GT(q.meanU(), std::abs(q.bias()));
+    }
+}
+
 TEST(Coverage, SquarenessIsAlsoComparedWithTheInjectedOne) {
   CoverageOptions o;
   o.scenarios = {"seed001-diagonals"};

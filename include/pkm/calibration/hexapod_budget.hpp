@@ -101,7 +101,18 @@ struct TcpUncertainty {
   double max = 0.0;   ///< largest U
   double mean = 0.0;  ///< mean U
   int poses = 0;      ///< poses with a value
+  /// The model's remainder included in `expanded` (addTcpRemainder), model length unit; 0: none.
+  double remainder = 0.0;
 };
+
+/// Adds what the model leaves at the tool to a predicted TCP uncertainty: each U ← √(U² + R²),
+/// R = k·rms/√3 with `rms` the RMS |TCP error| the calibrated model leaves at held-out poses
+/// (one coordinate's share of a 3-D RMS). The parameters' covariance carries only the
+/// measurement's errors; geometry the model cannot represent (lead errors, joint imperfections,
+/// compliance) is what the held-out poses show beyond it. The held-out errors include their own
+/// readings' noise, so R bounds the remainder from above. Throws pkm::InvalidArgument for a
+/// negative or non-finite rms or k <= 0.
+void addTcpRemainder(TcpUncertainty& tcp, double rms, double coverage_factor);
 
 /// The uncertainty of the TCP position the calibrated controller reaches at each commanded pose:
 /// q = IK_estimated(X), J_tcp = ∂p_FK(q; θ)/∂θ (forwardPoseError's position rows) and Σ the

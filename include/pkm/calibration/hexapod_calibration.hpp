@@ -72,6 +72,13 @@ struct HexapodCalibrationOptions {
   /// docs/calibration.md, "Weakly identified directions"). The covariance then includes the
   /// prior. 0: no prior.
   double parameter_prior_sigma = 0.0;
+  /// The uncertainty budgets' statement of the machine file's geometry, the prior's centre, as an
+  /// input quantity (hexapodParameterUncertainty): one standard deviation per parameter, model
+  /// length unit. 0: parameter_prior_sigma. A prior may regularise more strongly than the
+  /// assembly tolerance (a ridge estimate: lower variance, some bias); the budgets then carry that
+  /// bias at the tolerance stated here (docs/calibration.md, "Uncertainty budgets"). Needs
+  /// parameter_prior_sigma > 0 when > 0.
+  double prior_uncertainty = 0.0;
   /// Throws pkm::InvalidArgument naming the field when a setting is unusable.
   void validate() const;
 };

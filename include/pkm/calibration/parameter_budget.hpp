@@ -51,9 +51,19 @@ struct ParameterBudgetInput {
   std::string residual_unit = "mm";             ///< the residuals' length unit
   std::vector<ObservationErrorSource> sources;  ///< the instrument and set-up sources
   double coverage_factor = 2.0;                 ///< k of U = k·u_c, > 0
+  /// n × p: the identification inverse's columns of the p prior (Tikhonov) rows; empty: no prior.
+  Eigen::MatrixXd prior_inverse;
+  /// The prior's own error, when prior_inverse is set: the geometry the prior pulls toward (the
+  /// machine file) is an input quantity whose true value lies within the stated σ_θ (Type B, GUM
+  /// §4.3); its effect has p rows (the prior rows' change per reference uncertainty). In the
+  /// directions the data do not fix, the estimate is the prior's value and its uncertainty is
+  /// σ_θ: without this term those parameters would claim the instrument's U for a value the
+  /// measurement never saw (docs/calibration.md, "Uncertainty budgets").
+  ObservationErrorSource prior;
 
   /// True when the sizes agree (names, units, values and inverse rows; every source's effect has
-  /// m rows), σ ≥ 0 and k > 0; otherwise false with the reason in *why (if given).
+  /// m rows; a prior's inverse has n rows and its effect as many rows as the inverse has columns),
+  /// σ ≥ 0 and k > 0; otherwise false with the reason in *why (if given).
   [[nodiscard]] bool isValid(std::string* why = nullptr) const;
 };
 
@@ -63,7 +73,8 @@ struct ParameterUncertainty {
   /// its sensitivity c_k = ‖(J⁺·E_s)_k‖ (root sum of squares over the source's independent
   /// errors) and the fit's residual scatter beyond the instrument (Type A, GUM §4.2).
   std::vector<metrology::UncertaintyBudget> budgets;
-  /// n × n: Σ_θ = Σ_s u_s²·J⁺E_sE_sᵀJ⁺ᵀ + σ_A²·J⁺J⁺ᵀ (the sources are independent).
+  /// n × n: Σ_θ = Σ_s u_s²·J⁺E_sE_sᵀJ⁺ᵀ + σ_A²·J⁺J⁺ᵀ (+ u_p²·J_p⁺E_pE_pᵀJ_p⁺ᵀ for a prior; the
+  /// sources are independent).
   Eigen::MatrixXd covariance;
   /// √(Σ_s u_s²·‖E_s‖²_F / m): the instrument's RMS standard uncertainty per residual row.
   double instrument_sigma = 0.0;

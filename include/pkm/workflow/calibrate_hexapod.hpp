@@ -45,9 +45,12 @@ struct HexapodCalibrationRequest {
   /// Write a result whose parameters moved implausibly far from the machine file
   /// (calibration::kPlausibleChangeFraction); refused without it.
   bool allow_large_changes = false;
-  bool backlash = false;                ///< also estimate a per-strut backlash
-  double prior_sigma = 0.0;             ///< Tikhonov prior σ_θ, machine unit (0: none)
-  double measurement_sigma = 0.0;       ///< residual σ for the prior and covariance (0: estimated)
+  bool backlash = false;           ///< also estimate a per-strut backlash
+  double prior_sigma = 0.0;        ///< Tikhonov prior σ_θ, machine unit (0: none)
+  double measurement_sigma = 0.0;  ///< residual σ for the prior and covariance (0: estimated)
+  /// The machine file's geometry as an input of the uncertainty budgets, σ per parameter, machine
+  /// unit (0: prior_sigma; calibration::HexapodCalibrationOptions::prior_uncertainty).
+  double prior_uncertainty = 0.0;
   int monte_carlo = 0;                  ///< Monte Carlo trials (0: none; else 2 … 100000)
   double sigma_position = 0.0;          ///< Monte Carlo position noise (0: the fitted σ)
   double sigma_orientation_urad = 0.0;  ///< Monte Carlo 6-DOF orientation noise, µrad

@@ -15,7 +15,9 @@ namespace pkm::calibration::detail {
 /// One measured coordinate of one observation. `coordinate`: pose 0–2 position, 3–5 rotation
 /// vector (left perturbation, measurement axes), 6–11 strut readings; point 0–2 position, 6–11
 /// strut readings; gauge station 0–2 its gauges, 3–5 the reference station's gauges (of
-/// ref.set); distance 0 the distance.
+/// ref.set), 6–11 its strut readings, 12–17 the reference station's strut readings, 18 all six
+/// of the reference station's strut readings together; distance 0
+/// the distance, 6–11 the strut readings at its end (12–17 at its other end on the machine).
 struct MeasuredCoordinate {
   ObservationRef ref;
   int coordinate = 0;
@@ -31,12 +33,19 @@ struct CoordinateSource {
 
 /// The instrument and set-up sources of `data` (docs/calibration.md, "Uncertainty budgets"):
 /// tracker a + b·L on pose and point positions, 6-DOF probe orientation, dial-gauge accuracy and
-/// resolution on every gauge reading, the distance instrument, set-up repeatability when > 0.
-/// Lengths of `sources` (mm) are converted to `unit`. Sources that act on nothing are left out.
+/// resolution on every gauge reading, the distance instrument, set-up repeatability when > 0, and
+/// the machine's strut readings (encoder resolution, repeatability, and backlash unless
+/// `backlash_estimated`). Lengths of `sources` (mm) are converted to `unit`. Sources that act on
+/// nothing are left out.
 [[nodiscard]] std::vector<CoordinateSource> hexapodCoordinateSources(
     const HexapodCalibrationData& data,
     const metrology::UncertaintySources& sources,
-    LengthUnit unit);
+    LengthUnit unit,
+    bool backlash_estimated);
+
+/// Whether the coordinate `c` belongs to a whole constrained-motion set (the reference station's
+/// gauges or strut readings) rather than to its own observation.
+[[nodiscard]] bool actsOnWholeSet(const MeasuredCoordinate& c);
 
 /// The residual-space coordinates of every observation (pose readings, point positions, station
 /// gauges, distances), each with standard uncertainty `sigma`: the Type A scatter's inputs.

@@ -159,16 +159,20 @@ io::CalibrationInput readFitFiles(const StepContext& ctx, const std::vector<std:
 /// "prior_sigma" (default 5 mm) of the machine file, readings to "measurement_sigma" (default
 /// 0.002 mm, the struts' repeatability). 20 mm let one seed in 20 of the hexapod scenario
 /// (after Lee et al., "Development of a Parallel-Typed CNC Machine") end worse across the work
-/// volume than uncalibrated (docs/campaign.md).
+/// volume than uncalibrated (docs/campaign.md). The budgets state the machine file's geometry at
+/// "prior_uncertainty" (default: prior_sigma), the assembly tolerance the prior regularises within.
 cal::HexapodCalibrationOptions calibrationOptions(const StepContext& ctx,
                                                   const io::CalibrationInput& input) {
   cal::HexapodCalibrationOptions options;
   if (input.data.constrained.empty()) return options;
   options.parameter_prior_sigma = ctx.spec.value("prior_sigma", 5.0);
   options.measurement_sigma = ctx.spec.value("measurement_sigma", 0.002);
-  if (!(options.parameter_prior_sigma > 0.0 && options.measurement_sigma > 0.0))
-    throw IoError(
-        fmt::format("{}: \"prior_sigma\" and \"measurement_sigma\" must be > 0", ctx.source));
+  options.prior_uncertainty = ctx.spec.value("prior_uncertainty", 0.0);
+  if (!(options.parameter_prior_sigma > 0.0 && options.measurement_sigma > 0.0 &&
+        options.prior_uncertainty >= 0.0))
+    throw IoError(fmt::format(
+        "{}: \"prior_sigma\" and \"measurement_sigma\" must be > 0, \"prior_uncertainty\" >= 0",
+        ctx.source));
   return options;
 }
 

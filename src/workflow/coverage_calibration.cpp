@@ -1,0 +1,172 @@
+// The calibrations of `pkm validate coverage` (coverage_analyses.hpp): a hexapod scenario's
+// tracker and dial-gauge files calibrated as `pkm calibrate hexapod` does, every parameter and
+// the predicted TCP error compared with the virtual machine's true geometry.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include "coverage_analyses.hpp"
+#include "pkm/calibration/hexapod_budget.hpp"
+#include "pkm/calibration/hexapod_parameters.hpp"
+#include "pkm/core/error.hpp"
+#include "pkm/io/calibration_files.hpp"
+#include "pkm/kinematics/hexapod_fk.hpp"
+#include "pkm/kinematics/hexapod_ik.hpp"
+#include "pkm/simulation/hexapod_virtual_machine.hpp"
+#include "pkm/workflow/calibrate_hexapod.hpp"
+
+namespace pkm::workflow::detail {
+namespace {
+
+namespace cal = pkm::calibration;
+
+/// The dial-gauge calibration's prior as the default campaign's "seed004-gauges" step sets it
+/// (docs/campaign.md): the geometry regularised within 5 mm of the machine file, the readings to
+/// the struts' 2 µm, and the budgets' statement of the machine file's geometry at 20 mm — the
+/// scenario's joint centres are off by up to 33 mm, a rectangular ±33 mm (σ 19 mm).
+constexpr double kGaugePriorSigmaMm = 5.0;
+constexpr double kGaugeMeasurementSigmaMm = 0.002;
+constexpr double kGaugePriorUncertaintyMm = 20.0;
+
+/// The tracker file of the held-out poses.
+constexpr const char* kHoldout = "tracker-holdout.csv";
+/// The virtual machine's repeatability stream of the TCP trials.
+constexpr std::uint64_t kTcpNoiseSeed = 20261206u;
+
+using FileTexts = std::map<std::string, std::string>;
+
+/// The commanded poses of the held-out file's readings: FK of the nominal model at the commanded
+/// strut readings (the nominal controller's own command), those whose FK converges.
+std::vector<kinematics::PoseRpy> heldOutCommands(const FileTexts& files,
+                                                 const kinematics::HexapodModel& nominal) {
+  const auto it = files.find(kHoldout);
+  if (it == files.end()) return {};
+  io::CalibrationInput held;
+  io::addCalibrationFile(io::NamedText{it->first, it->second}, held);
+  kinematics::HexapodData work(nominal);
+  std::vector<kinematics::PoseRpy> out;
+  for (const cal::PoseObservation& o : held.data.poses)
+    if (kinematics::forwardKinematics(nominal, work, o.readings, nominal.home).ok())
+      out.push_back(work.pose);
+  return out;
+}
+
+/// Every parameter's estimate with its U against the true parameter.
+void addParameters(std::vector<CoverageReading>& out,
+                   const std::string& group,
+                   const io::HexapodCalibrationReport& report,
+                   const cal::HexapodParameterVector& truth) {
+  const std::vector<int>& index = report.uncertainty->parameters.parameter_indices;
+  const auto& budgets = report.uncertainty->parameters.linear.budgets;
+  for (std::size_t b = 0; b < budgets.size(); ++b) {
+    if (index[b] < 0) continue;  // a frame or backlash unknown: no true value
+    const metrology::UncertaintyBudget& u = budgets[b];
+    CoverageReading r{group,
+                      u.quantity,
+                      u.unit,
+                      u.value,
+                      u.expandedUncertainty(),
+                      u.combinedStandardUncertainty(),
+                      u.coverageFactor()};
+    r.truth = truth(index[b]);
+    out.push_back(r);
+  }
+}
+
+/// The predicted TCP error at the held-out commands: the virtual machine with the calibrated
+/// kinematics in its controller goes to X (moveTo: the true geometry with everything the workshop
+/// adds — unmodelled geometry, compliance, strut growth, backlash, repeatability); each
+/// coordinate of its tool's error against X is a trial of the predicted U (hexapodTcpUncertainty,
+/// a bound for any component),
+/// combined with the model's remainder at the held-out poses (addTcpRemainder) and the
+/// registration's U at the TCP when the world frame was registered.
+void addTcp(std::vector<CoverageReading>& out,
+            const std::string& group,
+            const HexapodCalibrationResult& result,
+            simulation::HexapodVirtualMachine& vm,
+            const std::vector<kinematics::PoseRpy>& commands) {
+  const kinematics::HexapodModel& calibrated = result.calibrated.model;
+  const double k = result.report.uncertainty->parameters.linear.budgets.front().coverageFactor();
+  const cal::TcpUncertainty U = cal::hexapodTcpUncertainty(
+      calibrated, result.report.uncertainty->parameters.covariance, commands, k);
+  const double registration =
+      result.report.registration ? result.report.registration->tcp_U : 0.0;
+  const double remainder = result.report.uncertainty->tcp.remainder;
+  const kinematics::HexapodModel controller = vm.controller();
+  vm.setControllerModel(calibrated);
+  vm.reset(kTcpNoiseSeed);
+  for (std::size_t i = 0; i < commands.size(); ++i) {
+    if (!std::isfinite(U.expanded[i])) continue;
+    Eigen::VectorXd command(6);
+    command << commands[i].position, commands[i].rpy;
+    geometry::RigidTransform reached;
+    try {
+      reached = vm.moveTo(command);
+    } catch (const InvalidArgument&) {
+      continue;  // the true machine cannot reach it: no trial
+    }
+    const Eigen::Vector3d e = reached.translation() - vm.nominalPose(command).translation();
+    const double u = std::hypot(std::hypot(U.expanded[i], remainder), registration);
+    for (int a = 0; a < 3; ++a) {
+      CoverageReading r{group, "TCP error at the held-out poses", "mm", 0.0, u, u / k, k};
+      r.truth = e(a);
+      out.push_back(r);
+    }
+  }
+  vm.setControllerModel(controller);
+}
+
+/// One calibration of `data` as `pkm calibrate hexapod` runs it, and its readings.
+void addCalibration(std::vector<CoverageReading>& out,
+                    const std::string& group,
+                    HexapodCalibrationRequest request,
+                    simulation::HexapodVirtualMachine& vm,
+                    const std::vector<kinematics::PoseRpy>& commands,
+                    const metrology::UncertaintySources& sources) {
+  request.loaded = io::HexapodMachine{};
+  request.loaded->model = vm.nominal();
+  request.loaded->source = "the scenario's nominal machine";
+  request.allow_large_changes = true;  // the scenario's assembly errors are large by design
+  request.uncertainty = sources;
+  const HexapodCalibrationResult result = calibrateHexapod(request);
+  if (!result.report.uncertainty) return;
+  addParameters(out, group, result.report, cal::hexapodParameters(vm.truth()));
+  if (!commands.empty()) addTcp(out, group, result, vm, commands);
+}
+
+}  // namespace
+
+std::vector<CoverageReading> calibrationReadings(const io::Scenario& scenario,
+                                                 const SimulateResult& simulation,
+                                                 const metrology::UncertaintySources& sources) {
+  auto* vm = dynamic_cast<simulation::HexapodVirtualMachine*>(scenario.campaign.machine.get());
+  if (vm == nullptr) return {};
+  FileTexts files;
+  for (const SimulatedFile& f : simulation.files) files[f.name] = f.text;
+  const std::vector<kinematics::PoseRpy> commands = heldOutCommands(files, vm->nominal());
+  std::vector<CoverageReading> out;
+  const auto pose = files.find("tracker-pose.csv");
+  const auto registration = files.find("tracker-pose-registration.csv");
+  if (pose != files.end() && registration != files.end()) {
+    HexapodCalibrationRequest r;
+    r.data = {{pose->first, pose->second}};
+    r.registration = io::NamedText{registration->first, registration->second};
+    // The held-out poses, as a user checks the calibration: their remainder enters the TCP U.
+    if (const auto held = files.find(kHoldout); held != files.end())
+      r.holdout = {{held->first, held->second}};
+    addCalibration(out, "calibration tracker-pose", r, *vm, commands, sources);
+  }
+  if (const auto gauges = files.find("constrained-motion.csv"); gauges != files.end()) {
+    HexapodCalibrationRequest r;
+    r.data = {{gauges->first, gauges->second}};
+    r.prior_sigma = kGaugePriorSigmaMm;
+    r.measurement_sigma = kGaugeMeasurementSigmaMm;
+    r.prior_uncertainty = kGaugePriorUncertaintyMm;
+    addCalibration(out, "calibration constrained-motion", r, *vm, commands, sources);
+  }
+  return out;
+}
+
+}  // namespace pkm::workflow::detail
