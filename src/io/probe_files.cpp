@@ -35,7 +35,7 @@ Metadata metadata(const std::string& scenario,
                   const sim::TouchProbeSetup& s,
                   const std::string& what,
                   const Eigen::Vector3d& centre) {
-  return {
+  Metadata md{
       {"format", "pkm.touch-probe/1"},
       {"scenario", scenario},
       {"seed", std::to_string(seed)},
@@ -51,6 +51,9 @@ Metadata metadata(const std::string& scenario,
                    formatNumber(s.noise.sigma),
                    formatNumber(s.noise.resolution))},
   };
+  // The ring's certificate: its form deviation, which bounds what the ring adds to a roundness.
+  if (s.ring_form > 0.0) md.push_back({"ring form mm", formatNumber(s.ring_form)});
+  return md;
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "pkm/core/units.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/number_format.hpp"
+#include "pkm/simulation/hybrid_virtual_machine.hpp"
 
 namespace pkm::io::detail {
 
@@ -47,6 +48,7 @@ sim::TouchProbeSetup readTouchProbe(const JsonDoc& doc,
                 "offset_ring_center",
                 "circle_ring_center",
                 "ring_diameter",
+                "ring_form",
                 "ball_radius",
                 "stylus_offset",
                 "direction",
@@ -71,6 +73,7 @@ sim::TouchProbeSetup readTouchProbe(const JsonDoc& doc,
   if (obj.contains("circle_ring_center"))
     s.circle_ring_center = doc.vec3(obj["circle_ring_center"], ptr + "/circle_ring_center");
   s.ring_diameter = doc.number(obj, ptr, "ring_diameter", s.ring_diameter);
+  s.ring_form = doc.number(obj, ptr, "ring_form", s.ring_form);
   s.ball_radius = doc.number(obj, ptr, "ball_radius", s.ball_radius);
   if (obj.contains("stylus_offset"))
     s.stylus_offset = vec2(doc, obj["stylus_offset"], ptr + "/stylus_offset");
@@ -81,6 +84,10 @@ sim::TouchProbeSetup readTouchProbe(const JsonDoc& doc,
   if (obj.contains("noise")) s.noise = readNoise(doc, obj["noise"], ptr + "/noise", 1.0);
   s.machine =
       std::make_shared<const kinematics::ExechonModel>(loadExechonMachine(machine_path).model);
+  // The machine's tripod errors move the tool at every touch (the campaign's machine owns it).
+  if (const auto* hybrid = dynamic_cast<const sim::HybridVirtualMachine*>(campaign.machine.get());
+      hybrid != nullptr && hybrid->tripod())
+    s.tripod = std::shared_ptr<const sim::HybridTripod>(campaign.machine, &*hybrid->tripod());
   try {
     s.validate();
   } catch (const InvalidArgument& e) {
@@ -97,13 +104,14 @@ std::string touchProbeTruthJson(const sim::Campaign& campaign) {
     const Eigen::Vector2d& d = s.stylus_offset;
     out += fmt::format(
         "{}\n    {{\"name\": \"{}\", \"stylus_offset\": {}, \"o_probe\": {}, "
-        "\"ring_diameter\": {}, \"ball_radius\": {}, \"ball_path_radius\": {},\n"
+        "\"ring_diameter\": {}, \"ring_form\": {}, \"ball_radius\": {}, \"ball_path_radius\": {},\n"
         "     \"offset_ring_center\": {}, \"circle_ring_center\": {}, \"direction\": {}}}",
         i ? "," : "",
         s.name,
         array({d.x(), d.y()}),
         array({-d.x(), -d.y()}),
         formatNumber(s.ring_diameter),
+        formatNumber(s.ring_form),
         formatNumber(s.ball_radius),
         formatNumber(s.ring_diameter / 2.0 - s.ball_radius),
         array({s.offset_ring_center.x(), s.offset_ring_center.y(), s.offset_ring_center.z()}),

@@ -45,10 +45,28 @@ class Prober {
     return phi;
   }
 
-  /// Ball centre (x, y) with the spindle axis at p and the stylus turned by `turn` about t.
-  [[nodiscard]] Eigen::Vector2d ball(const Eigen::Vector3d& p, double turn) const {
+  /// The machine's error motion at command p (identity without a tripod).
+  [[nodiscard]] geometry::RigidTransform errorAt(const Eigen::Vector3d& p) const {
+    return s_.tripod ? s_.tripod->errorMotion(p) : geometry::RigidTransform::Identity();
+  }
+
+  /// Ball centre (x, y) with the spindle axis commanded at p, the stylus turned by `turn` about t
+  /// and the tool moved by the error motion `e` (at p, or near it while a touch converges).
+  [[nodiscard]] Eigen::Vector2d ball(const Eigen::Vector3d& p,
+                                     double turn,
+                                     const geometry::RigidTransform& e) const {
     const Eigen::Vector3d d(s_.stylus_offset.x(), s_.stylus_offset.y(), 0.0);
-    return (p + Eigen::AngleAxisd(turn, reference_.direction) * d).head<2>();
+    return (p + e.translation() + e.linear() * (Eigen::AngleAxisd(turn, reference_.direction) * d))
+        .head<2>();
+  }
+
+  /// The ring's radius less the ball's at the angle of `b` (x, y about the ring's centre).
+  [[nodiscard]] double contactRadius(const Eigen::Vector2d& b) const {
+    const double R = s_.ring_diameter * (1.0 + s_.ring_expansion) / 2.0;
+    const double form = s_.ring_form > 0.0 && b.norm() > 0.0
+                            ? 0.5 * s_.ring_form * std::cos(2.0 * std::atan2(b.y(), b.x()))
+                            : 0.0;
+    return R + form - s_.ball_radius;
   }
 
   /// Travel along u from `start` until the ball reaches the ring of `centre`, for a turn that is a
@@ -58,11 +76,11 @@ class Prober {
                 const Eigen::Vector2d& u,
                 const Eigen::Vector3d& centre,
                 Turn turn) {
-    const double rho = s_.ring_diameter * (1.0 + s_.ring_expansion) / 2.0 - s_.ball_radius;
     double t = 0.0;
     for (int it = 0; it < kTouchIterations; ++it) {
       const Eigen::Vector3d p = start + t * Eigen::Vector3d(u.x(), u.y(), 0.0);
-      const Eigen::Vector2d b0 = ball(start, turn(p)) - centre.head<2>();
+      const Eigen::Vector2d b0 = ball(start, turn(p), errorAt(p)) - centre.head<2>();
+      const double rho = contactRadius(b0 + t * u);
       const double bu = b0.dot(u);
       const double disc = bu * bu - b0.squaredNorm() + rho * rho;
       PKM_CHECK(disc >= 0.0, "{}: the ball starts outside the ring", s_.name);
@@ -101,7 +119,7 @@ class Prober {
     r.spindle = spindle;
     const Eigen::Vector3d p = start + t * Eigen::Vector3d(u.x(), u.y(), 0.0);
     r.drm = drmAt(p);
-    r.ball = ball(p, spindle + r.drm);
+    r.ball = ball(p, spindle + r.drm, errorAt(p));
     const double lobe = s_.lobing * std::cos(s_.lobes * (approach - planeTurn(s_, r)));
     const double measured = s_.noise.apply(t + lobe, t, rng);
     r.position = start + measured * Eigen::Vector3d(u.x(), u.y(), 0.0);
@@ -141,6 +159,9 @@ void TouchProbeSetup::validate() const {
             name);
   PKM_CHECK(circle_points >= 4, "{}: circle_points must be >= 4", name);
   PKM_CHECK(runs >= 1, "{}: runs must be >= 1", name);
+  PKM_CHECK(std::isfinite(ring_form) && ring_form >= 0.0 && ring_form < ring_diameter / 4.0,
+            "{}: the ring form must be >= 0 and small against the ring",
+            name);
   PKM_CHECK(std::isfinite(lobing) && lobing >= 0.0 && lobes >= 1,
             "{}: lobing must be >= 0 and lobes >= 1",
             name);

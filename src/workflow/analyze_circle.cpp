@@ -131,6 +131,24 @@ void ProbeOffsetRequest::validate() const {
 
 namespace {
 
+/// A master ring's certificate in the file (`# ring form mm`): its form deviation replaces the
+/// sources' probe.ring_form_mm. Throws pkm::IoError naming the file for a value that is not a
+/// length >= 0.
+void ringCertificate(const io::TextTable& t, metrology::UncertaintySources& sources) {
+  const std::optional<std::string> form = t.meta("ring form mm");
+  if (!form) return;
+  double v = std::nan("");
+  try {
+    std::size_t used = 0;
+    v = std::stod(*form, &used);
+    if (used != form->size()) v = std::nan("");
+  } catch (const std::exception&) {
+  }
+  if (!(std::isfinite(v) && v >= 0.0))
+    t.failHeader(fmt::format("metadata 'ring form mm' must be a length >= 0, got '{}'", *form));
+  sources.probe.ring_form_mm = v;
+}
+
 /// analyzeCircle after the request's check; the texts are moved out of `request`, names kept.
 io::CircleReport circle(CircleRequest& request) {
   io::CircleReport report;
@@ -141,6 +159,7 @@ io::CircleReport circle(CircleRequest& request) {
     const std::size_t cx = t.column({"x", "x_mm"});
     const std::size_t cy = t.column({"y", "y_mm"});
     report.sources.beginInput(t.source());
+    ringCertificate(t, request.uncertainty);
     const std::array<std::size_t, 2> cols{cx, cy};
     const std::size_t base = p.size();
     p.resize(base + t.rows());

@@ -47,7 +47,7 @@ io::Scenario measuredScenario(const std::string& spec,
 /// The perfect-instrument twin of `measured`: the same machine (shared, with its geometry and
 /// compliance) in the same thermal and structural state (every random stream stays aligned:
 /// NoiseModel::perfect and Environment::perfect_instrument draw as the measured run does), every
-/// instrument perfect, the probes without lobing and the ring at 20 °C.
+/// instrument perfect, the probes without lobing and the ring round and at 20 °C.
 io::Scenario perfectTwin(const io::Scenario& measured) {
   io::Scenario t = measured;
   for (sim::LineSetup& m : t.campaign.measurements) m.noise.perfect = true;
@@ -55,6 +55,7 @@ io::Scenario perfectTwin(const io::Scenario& measured) {
     p.noise.perfect = true;
     p.lobing = 0.0;
     p.ring_expansion = 0.0;
+    p.ring_form = 0.0;  // the master ring is part of the standard: a perfect one
   }
   t.campaign.environment.perfect_instrument = true;
   return t;
@@ -114,6 +115,7 @@ std::vector<std::string> defaultCoverageScenarios() {
   return {"seed000-parallelism",
           "seed001-diagonals",
           "seed003-probe-offset",
+          "seed003-probe-uncalibrated",
           "seed004-hexapod-calibration"};
 }
 

@@ -91,8 +91,7 @@ void addTcp(std::vector<CoverageReading>& out,
   const double k = result.report.uncertainty->parameters.linear.budgets.front().coverageFactor();
   const cal::TcpUncertainty U = cal::hexapodTcpUncertainty(
       calibrated, result.report.uncertainty->parameters.covariance, commands, k);
-  const double registration =
-      result.report.registration ? result.report.registration->tcp_U : 0.0;
+  const double registration = result.report.registration ? result.report.registration->tcp_U : 0.0;
   const double remainder = result.report.uncertainty->tcp.remainder;
   const kinematics::HexapodModel controller = vm.controller();
   vm.setControllerModel(calibrated);

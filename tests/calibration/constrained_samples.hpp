@@ -33,12 +33,12 @@ inline kinematics::HexapodModel perturbedModel(const kinematics::HexapodModel& n
 /// about z at `stations` random stations; the controller records the readings and believes the
 /// command FK_nominal(readings).
 inline calibration::ConstrainedMotionData constrainedData(const kinematics::HexapodModel& nominal,
-                                             const kinematics::HexapodModel& truth,
-                                             double z,
-                                             int stations,
-                                             unsigned seed,
-                                             double planar,
-                                             double yaw) {
+                                                          const kinematics::HexapodModel& truth,
+                                                          double z,
+                                                          int stations,
+                                                          unsigned seed,
+                                                          double planar,
+                                                          double yaw) {
   calibration::ConstrainedMotionData set;
   set.gauge_points = {
       Eigen::Vector3d(100, 0, 0), Eigen::Vector3d(-50, 86.6, 0), Eigen::Vector3d(-50, -86.6, 0)};
@@ -60,8 +60,8 @@ inline calibration::ConstrainedMotionData constrainedData(const kinematics::Hexa
     kinematics::PoseRpy p = ref;
     p.position.x() += planar * u(rng);
     p.position.y() += planar * u(rng);
-    const Eigen::Matrix3d R = geometry::so3Exp(Eigen::Vector3d(0, 0, yaw * u(rng))) *
-                              geometry::rotationFromRpy(ref.rpy);
+    const Eigen::Matrix3d R =
+        geometry::so3Exp(Eigen::Vector3d(0, 0, yaw * u(rng))) * geometry::rotationFromRpy(ref.rpy);
     p.rpy = geometry::rpyFromRotation(R);
     set.stations.push_back(station(p));
   }

@@ -53,8 +53,7 @@ TEST(HexapodParameterUncertainty, WhereTheDataSeeNothingThePriorsSigmaIsTheUncer
   }
   // The budget of the data alone claims almost no uncertainty in those directions (they are
   // outside its identifiable subspace, up to rounding).
-  const HexapodParameterUncertainty none =
-      hexapodParameterUncertainty(nominal, data, fit, {}, {});
+  const HexapodParameterUncertainty none = hexapodParameterUncertainty(nominal, data, fit, {}, {});
   EXPECT_LT(std::sqrt(N.col(0).normalized().dot(none.covariance * N.col(0).normalized())),
             0.05 * kPriorSigma);
 }
@@ -67,7 +66,8 @@ TEST(HexapodParameterUncertainty, StatedPriorUncertaintyReplacesThePriorsWeight)
   HexapodCalibrationOptions options = priorOptions(2.0);
   options.prior_uncertainty = 8.0;
   const HexapodCalibrationSummary fit = calibrateHexapod(nominal, data, options);
-  const HexapodParameterUncertainty u = hexapodParameterUncertainty(nominal, data, fit, options, {});
+  const HexapodParameterUncertainty u =
+      hexapodParameterUncertainty(nominal, data, fit, options, {});
   const Eigen::VectorXd v = fit.identifiability.null_space.col(0).normalized();
   EXPECT_NEAR(std::sqrt(v.dot(u.covariance * v)), 8.0, 0.08);
   options.prior_uncertainty = -1.0;
@@ -105,7 +105,8 @@ TEST(HexapodParameterUncertainty, StrutReadingsAreInputsAndTheirBacklashUnlessEs
   }
   // The default actuators also carry the encoder's resolution and the backlash (an input only
   // while the fit does not estimate it: hexapodCoordinateSources).
-  const HexapodParameterUncertainty all = hexapodParameterUncertainty(nominal, data, fit, options, {});
+  const HexapodParameterUncertainty all =
+      hexapodParameterUncertainty(nominal, data, fit, options, {});
   std::string names;
   for (const metrology::UncertaintyContributor& c : all.linear.budgets.front().contributors)
     names += c.name + ";";

@@ -192,6 +192,58 @@ TEST(TouchProbe, PreTravelLobingShiftsEachTouchByItsDirectionalSize) {
   EXPECT_THROW(lobed.validate(), InvalidArgument);
 }
 
+TEST(TouchProbe, AnOvalRingShowsItsCertifiedFormInTheRoundness) {
+  // A ring certified to 2 µm of form (Lee et al. 2019, Table 4): every touch meets the oval, and
+  // the compensated circle's roundness is that form (an oval sampled evenly: its peak to valley).
+  constexpr double kForm = 2e-3;
+  TouchProbeSetup s = paperSetup(0.0);
+  s.ring_form = kForm;
+  RandomStream rng(kSeed, s.name);
+  const TouchProbeResult r = simulateTouchProbe(s, rng);
+  for (const TouchRecord& t : r.circle_compensated) {
+    const Eigen::Vector2d b = t.ball - s.circle_ring_center.head<2>();
+    const double R = s.ring_diameter / 2.0 + 0.5 * kForm * std::cos(2.0 * std::atan2(b.y(), b.x()));
+    EXPECT_NEAR(b.norm(), R - s.ball_radius, kTolNominal);
+  }
+  const auto pts = metrology::correctedSurfacePoints(probeTouches(s, r.circle_compensated),
+                                                     s.stylus_offset,
+                                                     s.ball_radius,
+                                                     s.circle_ring_center.head<2>());
+  EXPECT_NEAR(metrology::fitCircle(pts).roundness, kForm, 0.02 * kForm);
+  s.ring_form = -1e-3;
+  EXPECT_THROW(s.validate(), InvalidArgument);
+}
+
+TEST(TouchProbe, TheMachinesOwnErrorsMoveTheToolAtEveryTouch) {
+  // An uncalibrated tripod: at each touch the ball is where the true tool puts the stylus, on the
+  // ring, while the OMM records the command; the machine's error then shows in the circle.
+  TouchProbeSetup s = paperSetup(0.0);
+  ExechonTripodErrors e;
+  e.dA = 1.2;
+  e.dB = -0.8;
+  e.length_offset = Eigen::Vector3d(0.8, -1.1, 0.5);
+  s.tripod = std::make_shared<const HybridTripod>(*s.machine, e);
+  RandomStream rng(kSeed, s.name);
+  const TouchProbeResult r = simulateTouchProbe(s, rng);
+  const double rho = s.ring_diameter / 2.0 - s.ball_radius;
+  const Eigen::Vector3d d(s.stylus_offset.x(), s.stylus_offset.y(), 0.0);
+  double largest = 0.0;
+  for (const TouchRecord& t : r.circle_uncompensated) {
+    EXPECT_NEAR((t.ball - s.circle_ring_center.head<2>()).norm(), rho, kTolNominal);
+    const geometry::RigidTransform E = s.tripod->errorMotion(t.position);
+    const Eigen::Vector3d stylus = Eigen::AngleAxisd(planeTurn(s, t), Eigen::Vector3d::UnitZ()) * d;
+    const Eigen::Vector3d expected = t.position + E.translation() + E.linear() * stylus;
+    EXPECT_NEAR((expected.head<2>() - t.ball).norm(), 0.0, 1e-6);
+    largest = std::max(largest, E.translation().head<2>().norm());
+  }
+  EXPECT_GT(largest, 0.1);  // mm: the tool misses its command by tenths of a millimetre
+  const auto pts = metrology::correctedSurfacePoints(probeTouches(s, r.circle_compensated),
+                                                     s.stylus_offset,
+                                                     s.ball_radius,
+                                                     s.circle_ring_center.head<2>());
+  EXPECT_GT(metrology::fitCircle(pts).roundness, 1e-3);  // the error's gradient over 40 mm
+}
+
 TEST(TouchProbe, RejectsBadSetups) {
   TouchProbeSetup s = paperSetup(0.0);
   s.direction = Eigen::Vector3d(1.0, 0.0, 0.0);

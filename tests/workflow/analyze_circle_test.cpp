@@ -37,6 +37,28 @@ TEST(AnalyzeCircleWorkflow, FitsTheCircleAndNamesTheContacts) {
   EXPECT_EQ(r.sources[0].line, 2u);
 }
 
+TEST(AnalyzeCircleWorkflow, TheRingsCertificateInTheFileEntersTheBudget) {
+  // "# ring form mm: 0.002" (Lee et al. 2019, Table 4) replaces the sources' typical 0.5 µm.
+  const auto ring_form = [](const io::CircleReport& r) {
+    for (const metrology::UncertaintyBudget& b : r.uncertainty)
+      for (const metrology::UncertaintyContributor& c : b.contributors)
+        if (c.name.find("ring form") != std::string::npos) return c.value;
+    return -1.0;
+  };
+  const std::string points = circle(0.0, 0.0, 20.0, 36);
+  const io::CircleReport plain = analyzeCircle({{{"ring.csv", points}}});
+  EXPECT_DOUBLE_EQ(ring_form(plain), metrology::TouchProbe{}.ring_form_mm);
+  const io::CircleReport cert = analyzeCircle({{{"ring.csv", "# ring form mm: 0.002\n" + points}}});
+  EXPECT_DOUBLE_EQ(ring_form(cert), 0.002);
+  try {
+    (void)analyzeCircle({{{"ring.csv", "# ring form mm: -1\n" + points}}});
+    FAIL() << "accepted a negative ring form";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("ring.csv"));
+    EXPECT_THAT(e.what(), HasSubstr("ring form mm"));
+  }
+}
+
 TEST(AnalyzeCircleWorkflow, CircularOfTwoPerfectRunsHasNoDeviation) {
   CircularRequest r;
   r.data = {{"cw", circle(0, 0, 50, 36)}, {"ccw", circle(0, 0, 50, 36)}};

@@ -12,7 +12,11 @@
 /// of the world frame, with the spindle at C = 0 and the tool at the reference pose), C the spindle
 /// angle and φ_DRM the DRM relative to the reference pose (kinematics/exechon_drm.hpp), both about
 /// t. The trigger is recorded with noise along u. The reference pose is the tool at the centre of
-/// the offset ring with direction t. The machine's own geometric errors are not modelled.
+/// the offset ring with direction t. With a `tripod` the machine's own errors move the tool: at
+/// spindle-axis command s the tool stands at s + e(s), turned by E(s) (HybridTripod::errorMotion:
+/// the true Exechon's tool pose for the nominal IK's joints), so b = s + e(s) + E(s)·Rot(…)·d;
+/// the OMM still records the command s. A ring with a form error has the radius
+/// R + (ring_form/2)·cos(2θ) at the angle θ about its centre (an oval).
 #pragma once
 
 #include <Eigen/Core>
@@ -22,6 +26,7 @@
 #include <vector>
 
 #include "pkm/kinematics/exechon_model.hpp"
+#include "pkm/simulation/hybrid_tripod_errors.hpp"
 #include "pkm/simulation/noise.hpp"
 #include "pkm/simulation/random.hpp"
 
@@ -55,8 +60,15 @@ struct TouchProbeSetup {
   /// ring_diameter·(1 + ring_expansion) while ring_diameter stays its certified value at 20 °C,
   /// the one an analysis uses. Set from the environment by applyProbeEnvironment.
   double ring_expansion = 0.0;
+  /// The ring's form deviation, peak to valley, mm (≥ 0; 0: round): its radius is
+  /// R + (ring_form/2)·cos(2θ) at the angle θ from +x about its centre, an oval, the commonest
+  /// form of a setting ring. Its certificate states it (Lee et al. 2019, Table 4: 2 µm).
+  double ring_form = 0.0;
   /// The Exechon whose tool IK gives φ_DRM (the machine of the scenario); required.
   std::shared_ptr<const kinematics::ExechonModel> machine;
+  /// The true tripod of the machine (its tool position and orientation errors at each touch);
+  /// none: the tool is where it is commanded.
+  std::shared_ptr<const HybridTripod> tripod;
   /// Throws pkm::InvalidArgument (naming the measurement) for non-finite values, a direction that
   /// is not ±z, a ball that does not fit, an offset the ring cannot hold, or too few points/runs.
   void validate() const;

@@ -92,6 +92,7 @@ ProbeFiles readProbeFiles(const StepContext& ctx) {
   f.setup.ball_radius = metaNumber(offset, "stylus ball radius mm");
   f.setup.offset_ring_center = metaVector(offset, "ring centre mm");
   f.setup.circle_ring_center = metaVector(before, "ring centre mm");
+  if (before.meta("ring form mm")) f.setup.ring_form = metaNumber(before, "ring form mm");
   f.setup.direction = metaVector(offset, "tool direction");
   if (!(f.setup.ring_diameter > 2.0 * f.setup.ball_radius) || !(f.setup.ball_radius > 0.0))
     offset.failHeader("the stylus ball does not fit the ring");
