@@ -116,7 +116,8 @@ std::vector<std::string> defaultCoverageScenarios() {
           "seed001-diagonals",
           "seed003-probe-offset",
           "seed003-probe-uncalibrated",
-          "seed004-hexapod-calibration"};
+          "seed004-hexapod-calibration",
+          "exechon-calibration"};
 }
 
 void CoverageOptions::validate() const {

@@ -38,13 +38,15 @@ struct CoverageReading {
     const SimulateResult& simulation,
     const metrology::UncertaintySources& sources);
 
-/// The calibrations a user would run on the files of `simulation` when the scenario's machine is
-/// a hexapod: the laser tracker's 6-DOF poses with the registration (tracker-pose.csv and its
-/// registration file) and the dial gauges (constrained-motion.csv, with the default campaign's
-/// prior), each through workflow::calibrateHexapod with the instruments of `sources`. Readings:
-/// every parameter with its U against the machine's true parameter, and each coordinate of the TCP
-/// error at the held-out poses (tracker-holdout.csv) against the predicted TCP U. Empty for
-/// another machine or without those files. Throws as calibrateHexapod.
+/// The calibrations a user would run on the files of `simulation`. A hexapod: the laser tracker's
+/// 6-DOF poses with the registration (tracker-pose.csv and its registration file) and the dial
+/// gauges (constrained-motion.csv, with the default campaign's prior), each through
+/// workflow::calibrateHexapod with the instruments of `sources`; readings: every parameter with
+/// its U against the machine's true parameter, and each coordinate of the TCP error at the
+/// held-out poses (tracker-holdout.csv) against the predicted TCP U. A hybrid machine with tripod
+/// errors and no touch probe: the Exechon tracker calibration (tracker-fit.csv, held out
+/// tracker-holdout.csv) through workflow::calibrateExechon, every estimated tripod parameter
+/// against the true tripod's. Empty otherwise. Throws as the calibrations.
 [[nodiscard]] std::vector<CoverageReading> calibrationReadings(
     const io::Scenario& scenario,
     const SimulateResult& simulation,

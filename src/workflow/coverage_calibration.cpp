@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "coverage_analyses.hpp"
+#include "pkm/calibration/exechon_parameters.hpp"
 #include "pkm/calibration/hexapod_budget.hpp"
 #include "pkm/calibration/hexapod_parameters.hpp"
 #include "pkm/core/error.hpp"
@@ -15,6 +16,8 @@
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "pkm/simulation/hexapod_virtual_machine.hpp"
+#include "pkm/simulation/hybrid_virtual_machine.hpp"
+#include "pkm/workflow/calibrate_exechon.hpp"
 #include "pkm/workflow/calibrate_hexapod.hpp"
 
 namespace pkm::workflow::detail {
@@ -135,15 +138,59 @@ void addCalibration(std::vector<CoverageReading>& out,
   if (!commands.empty()) addTcp(out, group, result, vm, commands);
 }
 
+/// The Exechon tripod calibration of a hybrid scenario's tracker files (tracker-fit.csv with the
+/// held-out tracker-holdout.csv) as `pkm calibrate exechon` runs it: each estimated parameter
+/// against the true tripod's (its assembly errors added to the machine file's).
+void addExechonCalibration(std::vector<CoverageReading>& out,
+                           const io::Scenario& scenario,
+                           const FileTexts& files,
+                           const simulation::HybridTripod& tripod,
+                           const metrology::UncertaintySources& sources) {
+  const auto fit = files.find("tracker-fit.csv");
+  if (fit == files.end()) return;
+  ExechonCalibrationRequest r;
+  r.machine = scenario.machine_spec;
+  r.data = {{fit->first, fit->second}};
+  if (const auto held = files.find(kHoldout); held != files.end())
+    r.holdout = {{held->first, held->second}};
+  r.allow_large_changes = true;  // the scenario's assembly errors are large by design
+  r.uncertainty = sources;
+  const ExechonCalibrationResult result = calibrateExechon(r);
+  if (!result.report.tripod || !result.report.tripod->uncertainty) return;
+  const auto& u = result.report.tripod->uncertainty->parameters;
+  const cal::ExechonParameterVector truth =
+      cal::exechonParameters(tripod.actual(), tripod.nominal().world_T_zoppi);
+  for (std::size_t b = 0; b < u.linear.budgets.size(); ++b) {
+    if (u.parameter_indices[b] < 0) continue;  // the tracker frame: no true value
+    const metrology::UncertaintyBudget& p = u.linear.budgets[b];
+    CoverageReading reading{"calibration exechon tracker",
+                            p.quantity,
+                            p.unit,
+                            p.value,
+                            p.expandedUncertainty(),
+                            p.combinedStandardUncertainty(),
+                            p.coverageFactor()};
+    reading.truth = truth(u.parameter_indices[b]);
+    out.push_back(reading);
+  }
+}
+
 }  // namespace
 
 std::vector<CoverageReading> calibrationReadings(const io::Scenario& scenario,
                                                  const SimulateResult& simulation,
                                                  const metrology::UncertaintySources& sources) {
-  auto* vm = dynamic_cast<simulation::HexapodVirtualMachine*>(scenario.campaign.machine.get());
-  if (vm == nullptr) return {};
   FileTexts files;
   for (const SimulatedFile& f : simulation.files) files[f.name] = f.text;
+  if (const auto* hybrid =
+          dynamic_cast<const simulation::HybridVirtualMachine*>(scenario.campaign.machine.get());
+      hybrid != nullptr && hybrid->tripod() && scenario.campaign.probes.empty()) {
+    std::vector<CoverageReading> out;
+    addExechonCalibration(out, scenario, files, *hybrid->tripod(), sources);
+    return out;
+  }
+  auto* vm = dynamic_cast<simulation::HexapodVirtualMachine*>(scenario.campaign.machine.get());
+  if (vm == nullptr) return {};
   const std::vector<kinematics::PoseRpy> commands = heldOutCommands(files, vm->nominal());
   std::vector<CoverageReading> out;
   const auto pose = files.find("tracker-pose.csv");

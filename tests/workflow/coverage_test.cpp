@@ -113,6 +113,21 @@ TEST(Coverage, CalibrationsAreComparedWithTheTrueGeometry) {
     }
 }
 
+TEST(Coverage, TheExechonCalibrationIsComparedWithTheTrueTripod) {
+  CoverageOptions o;
+  o.scenarios = {"exechon-calibration"};
+  o.seeds = 2;
+  const CoverageResult r = validateCoverage(o);
+  ASSERT_EQ(r.quantities.size(), 20u);  // 14 tripod dimensions, 3 leg offsets, 3 wrist
+  std::size_t covered = 0;
+  for (const CoverageQuantity& q : r.quantities) {
+    EXPECT_EQ(q.group, "calibration exechon tracker");
+    EXPECT_EQ(q.truth_kind, "true geometry");
+    for (const CoverageTrial& t : q.trials) covered += t.covered() ? 1 : 0;
+  }
+  EXPECT_GE(covered, 38u);  // of 40 (parameter, seed) pairs: 95 %
+}
+
 TEST(Coverage, SquarenessIsAlsoComparedWithTheInjectedOne) {
   CoverageOptions o;
   o.scenarios = {"seed001-diagonals"};

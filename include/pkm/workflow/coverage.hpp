@@ -27,8 +27,8 @@ namespace pkm::workflow {
 /// The scenarios `pkm validate coverage` runs by default: the built-in scenarios whose analyses
 /// report a U (the MXT700S parallelism paper's parallelism, Hwang et al.'s ("Analysis of multi-axis
 /// volumetric errors") diagonals, Lee et al.'s (2019) probe and ring, on an ideal and on an
-/// uncalibrated PKM, and the calibrations of Lee et al.'s ("Development of a Parallel-Typed CNC
-/// Machine") hexapod).
+/// uncalibrated PKM, the calibrations of Lee et al.'s ("Development of a Parallel-Typed CNC
+/// Machine") hexapod and the Exechon's tracker calibration).
 [[nodiscard]] std::vector<std::string> defaultCoverageScenarios();
 
 /// A coverage run.
