@@ -8,6 +8,7 @@
 #include "calibration_common.hpp"
 #include "pkm/calibration/acceptance.hpp"
 #include "pkm/calibration/exechon_uncertainty.hpp"
+#include "pkm/calibration/hexapod_budget.hpp"
 #include "pkm/calibration/holdout.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/kinematics/exechon_checks.hpp"
@@ -228,6 +229,10 @@ io::ExechonTripodReport fitTripod(const ExechonCalibrationRequest& r,
   if (r.monte_carlo > 0)
     report.monte_carlo = monteCarlo(r, machine, input.data, s, calibrated.model, options, control);
   report.uncertainty = uncertainty(r, machine.model, input.data, held.data, s, options);
+  // What the model leaves at the held-out poses beyond its parameters' uncertainty.
+  if (report.holdout && report.holdout->after.poses > 0)
+    cal::addTcpRemainder(
+        report.uncertainty->tcp, report.holdout->after.rms, r.uncertainty.coverage_factor);
   return report;
 }
 

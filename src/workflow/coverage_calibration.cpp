@@ -8,15 +8,20 @@
 #include <memory>
 
 #include "coverage_analyses.hpp"
+#include "pkm/calibration/exechon_calibration.hpp"
 #include "pkm/calibration/exechon_parameters.hpp"
 #include "pkm/calibration/hexapod_budget.hpp"
 #include "pkm/calibration/hexapod_parameters.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/geometry/rigid_fit.hpp"
 #include "pkm/io/calibration_files.hpp"
+#include "pkm/io/exechon_tracker_files.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
+#include "pkm/simulation/compliance.hpp"
 #include "pkm/simulation/hexapod_virtual_machine.hpp"
 #include "pkm/simulation/hybrid_virtual_machine.hpp"
+#include "pkm/simulation/unmodelled_geometry.hpp"
 #include "pkm/workflow/calibrate_exechon.hpp"
 #include "pkm/workflow/calibrate_hexapod.hpp"
 
@@ -138,6 +143,68 @@ void addCalibration(std::vector<CoverageReading>& out,
   if (!commands.empty()) addTcp(out, group, result, vm, commands);
 }
 
+/// The predicted tool-point (target) U of an Exechon calibration at the held-out readings: the
+/// calibrated model's target FK_est(q) against where the true tripod puts it for the same
+/// readings (its legs' lead errors and compliance included), each coordinate a trial. The fit
+/// estimated the tracker's frame, so its world is fixed only up to a rigid motion (as the
+/// hexapod's aligned Monte Carlo): the predicted targets are first moved onto the true ones by
+/// their best rigid fit.
+void addExechonTcp(std::vector<CoverageReading>& out,
+                   const ExechonCalibrationResult& result,
+                   const simulation::HybridTripod& tripod,
+                   const FileTexts& files) {
+  const auto held = files.find(kHoldout);
+  if (held == files.end()) return;
+  io::ExechonCalibrationInput in;
+  io::addExechonCalibrationFile(io::NamedText{held->first, held->second}, in);
+  const auto& u = *result.report.tripod->uncertainty;
+  if (u.tcp.expanded.size() != in.data.observations.size()) return;
+  const kinematics::ExechonModel& est = result.calibrated.model;
+  const kinematics::ExechonModel& truth = tripod.actual();
+  const Eigen::Vector3d& offset = in.data.target_offset;
+  const kinematics::FkOptions& fk = tripod.fkOptions();
+  const double k = u.parameters.linear.budgets.front().coverageFactor();
+  std::vector<Eigen::Vector3d> predicted_points, reached_points;
+  std::vector<double> expanded;
+  for (std::size_t i = 0; i < u.tcp.expanded.size(); ++i) {
+    const double U = u.tcp.expanded[i];
+    const kinematics::ExechonJoints& q = in.data.observations[i].joints;
+    const std::optional<Eigen::Vector3d> predicted =
+        cal::exechonTarget(est, q, offset, est.home, fk);
+    if (!std::isfinite(U) || !predicted) continue;
+    const kinematics::ExechonJoints travelled =
+        simulation::withLeadErrors(q, tripod.legLeadErrors());
+    const kinematics::ExechonJoints actual =
+        tripod.compliance() ? simulation::exechonDeflectedJoints(
+                                  truth, travelled, truth.home, fk, *tripod.compliance())
+                            : travelled;
+    const std::optional<Eigen::Vector3d> reached =
+        cal::exechonTarget(truth, actual, offset, truth.home, fk);
+    if (!reached) continue;
+    predicted_points.push_back(*predicted);
+    reached_points.push_back(*reached);
+    expanded.push_back(U);
+  }
+  if (predicted_points.size() < 3) return;
+  // reached_T_predicted: the rigid motion that best puts the predicted targets on the reached.
+  const geometry::RigidTransform align =
+      geometry::fitRigidTransform(reached_points, predicted_points);
+  for (std::size_t i = 0; i < predicted_points.size(); ++i) {
+    const Eigen::Vector3d e = reached_points[i] - align * predicted_points[i];
+    for (int a = 0; a < 3; ++a) {
+      CoverageReading r{"calibration exechon tracker",
+                        "tool point at the held-out poses",
+                        "mm",
+                        0.0,
+                        expanded[i],
+                        expanded[i] / k,
+                        k};
+      r.truth = e(a);
+      out.push_back(r);
+    }
+  }
+}
+
 /// The Exechon tripod calibration of a hybrid scenario's tracker files (tracker-fit.csv with the
 /// held-out tracker-holdout.csv) as `pkm calibrate exechon` runs it: each estimated parameter
 /// against the true tripod's (its assembly errors added to the machine file's).
@@ -173,6 +240,7 @@ void addExechonCalibration(std::vector<CoverageReading>& out,
     reading.truth = truth(u.parameter_indices[b]);
     out.push_back(reading);
   }
+  addExechonTcp(out, result, tripod, files);
 }
 
 }  // namespace

@@ -118,11 +118,17 @@ TEST(Coverage, TheExechonCalibrationIsComparedWithTheTrueTripod) {
   o.scenarios = {"exechon-calibration"};
   o.seeds = 2;
   const CoverageResult r = validateCoverage(o);
-  ASSERT_EQ(r.quantities.size(), 20u);  // 14 tripod dimensions, 3 leg offsets, 3 wrist
+  // 14 tripod dimensions, 3 leg offsets, 3 wrist parameters, and the tool point.
+  ASSERT_EQ(r.quantities.size(), 21u);
   std::size_t covered = 0;
   for (const CoverageQuantity& q : r.quantities) {
     EXPECT_EQ(q.group, "calibration exechon tracker");
     EXPECT_EQ(q.truth_kind, "true geometry");
+    if (q.quantity == "tool point at the held-out poses") {
+      EXPECT_EQ(q.trials.size(), 2u * 50u * 3u);
+      EXPECT_TRUE(q.holds());
+      continue;
+    }
     for (const CoverageTrial& t : q.trials) covered += t.covered() ? 1 : 0;
   }
   EXPECT_GE(covered, 38u);  // of 40 (parameter, seed) pairs: 95 %
