@@ -109,6 +109,12 @@ ordered_json hybridJson(const HybridSquarenessReport& h) {
                 {"sxP", s.standard_deviation(1)},
                 {"syP", s.standard_deviation(2)},
                 {"szP", s.standard_deviation(3)}};
+  const Eigen::Vector4d u = h.standardUncertainty();
+  j["tripod_standard_uncertainty"] = {{"szX2", h.tripod_standard_uncertainty(0)},
+                                      {"sxP", h.tripod_standard_uncertainty(1)},
+                                      {"syP", h.tripod_standard_uncertainty(2)},
+                                      {"szP", h.tripod_standard_uncertainty(3)}};
+  j["standard_uncertainty"] = {{"szX2", u(0)}, {"sxP", u(1)}, {"syP", u(2)}, {"szP", u(3)}};
   j["solver"] = {{"converged", s.converged},
                  {"termination", s.termination},
                  {"iterations", s.iterations},

@@ -5,9 +5,14 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
 #include "calibrate_exechon_detail.hpp"
 #include "calibration_common.hpp"
 #include "pkm/calibration/acceptance.hpp"
+#include "pkm/calibration/exechon_parameters.hpp"
+#include "pkm/calibration/hybrid_calibration.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/rigid_transform.hpp"
 #include "pkm/io/atomic_file.hpp"
@@ -62,11 +67,67 @@ void acceptSquareness(const cal::HybridCalibrationSummary& s, double characteris
       detail::worstList(s.worst)));
 }
 
+/// The error motion of `tripod` as the squareness fit takes it (nullopt outside its reach).
+cal::TripodMotion motionOf(const std::optional<sim::HybridTripod>& tripod) {
+  if (!tripod) return {};
+  return [&tripod](const Eigen::Vector3d& p) -> std::optional<geometry::RigidTransform> {
+    try {
+      return tripod->errorMotion(p);
+    } catch (const InvalidArgument&) {
+      return std::nullopt;
+    }
+  };
+}
+
+/// The squareness's standard uncertainty from the calibrated tripod's covariance Σ_θ (26 × 26):
+/// the fit repeated with the tripod moved by 1σ along each principal direction of Σ_θ (GUM §5.1.3
+/// sensitivities by re-evaluation), u² = Σ_k (Δs_k)². Zero without a covariance.
+Eigen::Vector4d tripodSquarenessSpread(const io::ExechonMachine& machine,
+                                       const kinematics::ExechonModel& calibrated,
+                                       const Eigen::MatrixXd& covariance,
+                                       const kinematics::GeometricErrors& known,
+                                       const cal::HybridCalibrationData& data,
+                                       const cal::HybridCalibrationOptions& options,
+                                       const kinematics::HybridSquareness& estimate) {
+  Eigen::Vector4d variance = Eigen::Vector4d::Zero();
+  if (covariance.rows() != cal::kExechonParameters) return variance;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(covariance);
+  const double top = eig.eigenvalues().maxCoeff();
+  const cal::ExechonParameterVector theta =
+      cal::exechonParameters(calibrated, machine.model.world_T_zoppi);
+  for (Eigen::Index k = 0; k < eig.eigenvalues().size(); ++k) {
+    const double lambda = eig.eigenvalues()(k);
+    if (!(lambda > 1e-12 * top)) continue;
+    const cal::ExechonParameterVector moved = theta + std::sqrt(lambda) * eig.eigenvectors().col(k);
+    std::optional<sim::HybridTripod> tripod;
+    tripod.emplace(machine.model,
+                   tripodDifference(
+                       machine.model,
+                       cal::withExechonParameters(calibrated, moved, machine.model.world_T_zoppi)),
+                   machine.fk);
+    try {
+      const kinematics::HybridSquareness s =
+          cal::calibrateHybridSquareness(*machine.hybrid, known, data, options, motionOf(tripod))
+              .squareness;
+      const Eigen::Vector4d d(s.sz_x2 - estimate.sz_x2,
+                              s.sx_p - estimate.sx_p,
+                              s.sy_p - estimate.sy_p,
+                              s.sz_p - estimate.sz_p);
+      variance += d.cwiseProduct(d);
+    } catch (const InvalidArgument&) {
+      // A moved tripod the data cannot follow: its direction is left out.
+    }
+  }
+  return variance.cwiseSqrt();
+}
+
 /// The four squareness errors from the hybrid tracker files, with the calibrated tripod's error
-/// motion when the PKM was calibrated too; returns the estimated errors (CAL.errors.json).
+/// motion when the PKM was calibrated too (and its covariance carried into the squareness's
+/// uncertainty); returns the estimated errors (CAL.errors.json).
 kinematics::GeometricErrors fitSquareness(const ExechonCalibrationRequest& r,
                                           const io::ExechonMachine& machine,
                                           const io::ExechonMachine& calibrated,
+                                          const Eigen::MatrixXd& tripod_covariance,
                                           io::ExechonCalibrationInput& input,
                                           io::ExechonCalibrationInput& held,
                                           io::HybridSquarenessReport& report) {
@@ -81,15 +142,7 @@ kinematics::GeometricErrors fitSquareness(const ExechonCalibrationRequest& r,
   std::optional<sim::HybridTripod> tripod;
   const sim::ExechonTripodErrors diff = tripodDifference(machine.model, calibrated.model);
   if (!diff.isZero()) tripod.emplace(machine.model, diff, machine.fk);
-  cal::TripodMotion motion;
-  if (tripod)
-    motion = [&tripod](const Eigen::Vector3d& p) -> std::optional<geometry::RigidTransform> {
-      try {
-        return tripod->errorMotion(p);
-      } catch (const InvalidArgument&) {
-        return std::nullopt;
-      }
-    };
+  const cal::TripodMotion motion = motionOf(tripod);
   cal::HybridCalibrationData& d = input.hybrid;
   std::optional<geometry::RigidTransform> before_frame;
   if (d.measurement_frame) {
@@ -99,9 +152,13 @@ kinematics::GeometricErrors fitSquareness(const ExechonCalibrationRequest& r,
   cal::HybridCalibrationOptions options;
   options.loss = detail::robustLoss(r.loss);
   options.loss_scale = r.loss_scale;
+  const cal::HybridCalibrationData start = d;
   report.fit = cal::calibrateHybridSquareness(model, known, d, options, motion);
   const cal::HybridCalibrationSummary& s = report.fit;
   acceptSquareness(s, machine.model.characteristicLength());
+  if (tripod)
+    report.tripod_standard_uncertainty = tripodSquarenessSpread(
+        machine, calibrated.model, tripod_covariance, known, start, options, s.squareness);
   report.observations = d.observations.size();
   report.known_errors = r.errors.empty() ? "none" : r.errors;
   report.tripod_error_motion = tripod.has_value();
@@ -181,8 +238,15 @@ ExechonCalibrationResult calibrateExechon(const ExechonCalibrationRequest& r,
     rep.tripod = detail::fitTripod(r, machine, input, held, result.calibrated, control);
   if (hybrid) {
     rep.hybrid.emplace();
-    result.errors_json = io::writeGeometricErrorsJson(
-        fitSquareness(r, machine, result.calibrated, input, held, *rep.hybrid));
+    result.errors_json = io::writeGeometricErrorsJson(fitSquareness(
+        r,
+        machine,
+        result.calibrated,
+        rep.tripod && rep.tripod->uncertainty ? rep.tripod->uncertainty->parameters.covariance
+                                              : Eigen::MatrixXd(),
+        input,
+        held,
+        *rep.hybrid));
   }
   result.summary_json = io::exechonCalibrationJson(rep);
   if (r.out.empty()) return result;

@@ -123,6 +123,15 @@ std::string hybridText(const io::ExechonCalibrationReport& rep,
       kMrad * s.standard_deviation(1),
       kMrad * s.standard_deviation(2),
       kMrad * s.standard_deviation(3));
+  if (h.tripod_standard_uncertainty.any()) {
+    const Eigen::Vector4d u = h.standardUncertainty();
+    t += fmt::format(
+        "  with the calibrated tripod's uncertainty: u {:.2g}, {:.2g}, {:.2g}, {:.2g} mrad\n",
+        kMrad * u(0),
+        kMrad * u(1),
+        kMrad * u(2),
+        kMrad * u(3));
+  }
   t += beforeAfter(fmt::format("hybrid residuals ({})", toString(rep.unit)), s.before, s.after);
   if (h.holdout)
     t += beforeAfter("held-out hybrid target error", h.holdout->before, h.holdout->after);

@@ -205,14 +205,44 @@ void addExechonTcp(std::vector<CoverageReading>& out,
   }
 }
 
+/// The hybrid machine's four squareness errors from the hybrid tracker files (the fit after the
+/// tripod's, as `pkm calibrate exechon` reports them): each against the machine's injected
+/// squareness, U = k·u with u the fit's σ and the calibrated tripod's uncertainty combined
+/// (HybridSquarenessReport::standardUncertainty), k the sources'.
+void addHybridSquareness(std::vector<CoverageReading>& out,
+                         const ExechonCalibrationResult& result,
+                         const simulation::HybridVirtualMachine& vm,
+                         double k) {
+  if (!result.report.hybrid) return;
+  const cal::HybridCalibrationSummary& fit = result.report.hybrid->fit;
+  const kinematics::HybridSquareness& t = vm.errors().squareness;
+  const Eigen::Vector4d standard = result.report.hybrid->standardUncertainty();
+  const std::array<double, 4> estimate{
+      fit.squareness.sz_x2, fit.squareness.sx_p, fit.squareness.sy_p, fit.squareness.sz_p};
+  const std::array<double, 4> truth{t.sz_x2, t.sx_p, t.sy_p, t.sz_p};
+  for (int i = 0; i < 4; ++i) {
+    const double u = standard(i);
+    CoverageReading r{"calibration hybrid squareness",
+                      cal::hybridSquarenessNames()[static_cast<std::size_t>(i)],
+                      "rad",
+                      estimate[static_cast<std::size_t>(i)],
+                      k * u,
+                      u,
+                      k};
+    r.truth = truth[static_cast<std::size_t>(i)];
+    out.push_back(r);
+  }
+}
+
 /// The Exechon tripod calibration of a hybrid scenario's tracker files (tracker-fit.csv with the
 /// held-out tracker-holdout.csv) as `pkm calibrate exechon` runs it: each estimated parameter
 /// against the true tripod's (its assembly errors added to the machine file's).
 void addExechonCalibration(std::vector<CoverageReading>& out,
                            const io::Scenario& scenario,
                            const FileTexts& files,
-                           const simulation::HybridTripod& tripod,
+                           const simulation::HybridVirtualMachine& vm,
                            const metrology::UncertaintySources& sources) {
+  const simulation::HybridTripod& tripod = *vm.tripod();
   const auto fit = files.find("tracker-fit.csv");
   if (fit == files.end()) return;
   ExechonCalibrationRequest r;
@@ -220,6 +250,12 @@ void addExechonCalibration(std::vector<CoverageReading>& out,
   r.data = {{fit->first, fit->second}};
   if (const auto held = files.find(kHoldout); held != files.end())
     r.holdout = {{held->first, held->second}};
+  // The hybrid files, with the machine's known position-dependent errors under the fit.
+  if (const auto hybrid = files.find("tracker-hybrid.csv");
+      hybrid != files.end() && !scenario.errors_spec.empty()) {
+    r.data.push_back({hybrid->first, hybrid->second});
+    r.errors = scenario.errors_spec;
+  }
   r.allow_large_changes = true;  // the scenario's assembly errors are large by design
   r.uncertainty = sources;
   const ExechonCalibrationResult result = calibrateExechon(r);
@@ -241,6 +277,7 @@ void addExechonCalibration(std::vector<CoverageReading>& out,
     out.push_back(reading);
   }
   addExechonTcp(out, result, tripod, files);
+  addHybridSquareness(out, result, vm, sources.coverage_factor);
 }
 
 }  // namespace
@@ -254,7 +291,7 @@ std::vector<CoverageReading> calibrationReadings(const io::Scenario& scenario,
           dynamic_cast<const simulation::HybridVirtualMachine*>(scenario.campaign.machine.get());
       hybrid != nullptr && hybrid->tripod() && scenario.campaign.probes.empty()) {
     std::vector<CoverageReading> out;
-    addExechonCalibration(out, scenario, files, *hybrid->tripod(), sources);
+    addExechonCalibration(out, scenario, files, *hybrid, sources);
     return out;
   }
   auto* vm = dynamic_cast<simulation::HexapodVirtualMachine*>(scenario.campaign.machine.get());

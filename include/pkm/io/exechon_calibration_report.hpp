@@ -72,6 +72,15 @@ struct HybridSquarenessReport {
   bool tripod_error_motion = false;  ///< the calibrated tripod's error motion was included
   calibration::HybridCalibrationSummary fit;
   std::optional<HoldoutComparison> holdout;
+  /// The standard uncertainty (rad; szX2, sxP, syP, szP) the calibrated tripod's own uncertainty
+  /// gives the squareness through its error motion (its covariance's principal directions, one
+  /// re-fit each); zero without a tripod budget. u = √(fit σ² + this²).
+  Eigen::Vector4d tripod_standard_uncertainty = Eigen::Vector4d::Zero();
+  /// √(fit.standard_deviation² + tripod_standard_uncertainty²), rad.
+  [[nodiscard]] Eigen::Vector4d standardUncertainty() const {
+    return (fit.standard_deviation.array().square() + tripod_standard_uncertainty.array().square())
+        .sqrt();
+  }
 };
 
 /// An Exechon calibration, as reported.
