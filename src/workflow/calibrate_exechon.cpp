@@ -152,13 +152,16 @@ kinematics::GeometricErrors fitSquareness(const ExechonCalibrationRequest& r,
   cal::HybridCalibrationOptions options;
   options.loss = detail::robustLoss(r.loss);
   options.loss_scale = r.loss_scale;
-  const cal::HybridCalibrationData start = d;
   report.fit = cal::calibrateHybridSquareness(model, known, d, options, motion);
   const cal::HybridCalibrationSummary& s = report.fit;
   acceptSquareness(s, machine.model.characteristicLength());
-  if (tripod)
+  if (tripod) {
+    // The re-fits start from the fitted frame: each moves the estimate a little.
+    cal::HybridCalibrationData start = d;
+    if (start.measurement_frame) start.measurement_frame = s.measurement_frame;
     report.tripod_standard_uncertainty = tripodSquarenessSpread(
         machine, calibrated.model, tripod_covariance, known, start, options, s.squareness);
+  }
   report.observations = d.observations.size();
   report.known_errors = r.errors.empty() ? "none" : r.errors;
   report.tripod_error_motion = tripod.has_value();

@@ -28,8 +28,10 @@ std::string flags(const CoverageQuantity& q) {
   return f;
 }
 
-/// A value in the quantity's unit, shown in µm / µrad where that reads better.
+/// A value in the quantity's unit, shown in µm / µrad where that reads better (mm from 1 mm: a
+/// calibration's parameters and TCP errors reach tens of millimetres).
 std::string scaled(double v, const std::string& unit) {
+  if (unit == "mm" && std::abs(v) >= 1.0) return fmt::format("{:.3g} mm", v);
   if (unit == "mm") return fmt::format("{:.3g} µm", v * 1e3);
   if (unit == "rad") return fmt::format("{:.3g} µrad", v * 1e6);
   return fmt::format("{:.3g} {}", v, unit);
