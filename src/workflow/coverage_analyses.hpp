@@ -44,7 +44,7 @@ struct CoverageReading {
 /// workflow::calibrateHexapod with the instruments of `sources`; readings: every parameter with
 /// its U against the machine's true parameter, and each coordinate of the TCP error at the
 /// held-out poses (tracker-holdout.csv) against the predicted TCP U. A hybrid machine with tripod
-/// errors and no touch probe: the Exechon tracker calibration (tracker-fit.csv, held out
+/// errors and a tracker-fit.csv: the Exechon tracker calibration (held out
 /// tracker-holdout.csv) through workflow::calibrateExechon, every estimated tripod parameter
 /// against the true tripod's. Empty otherwise. Throws as the calibrations.
 [[nodiscard]] std::vector<CoverageReading> calibrationReadings(

@@ -101,7 +101,13 @@ void addTcp(std::vector<CoverageReading>& out,
       calibrated, result.report.uncertainty->parameters.covariance, commands, k);
   const double registration = result.report.registration ? result.report.registration->tcp_U : 0.0;
   const double remainder = result.report.uncertainty->tcp.remainder;
-  const kinematics::HexapodModel controller = vm.controller();
+  // The scenario's machine is shared with the next runs: its controller is put back however this
+  // ends.
+  struct RestoreController {
+    simulation::HexapodVirtualMachine& vm;
+    kinematics::HexapodModel model;
+    ~RestoreController() { vm.setControllerModel(model); }
+  } restore{vm, vm.controller()};
   vm.setControllerModel(calibrated);
   vm.reset(kTcpNoiseSeed);
   for (std::size_t i = 0; i < commands.size(); ++i) {
@@ -122,7 +128,6 @@ void addTcp(std::vector<CoverageReading>& out,
       out.push_back(r);
     }
   }
-  vm.setControllerModel(controller);
 }
 
 /// One calibration of `data` as `pkm calibrate hexapod` runs it, and its readings.
@@ -289,7 +294,7 @@ std::vector<CoverageReading> calibrationReadings(const io::Scenario& scenario,
   for (const SimulatedFile& f : simulation.files) files[f.name] = f.text;
   if (const auto* hybrid =
           dynamic_cast<const simulation::HybridVirtualMachine*>(scenario.campaign.machine.get());
-      hybrid != nullptr && hybrid->tripod() && scenario.campaign.probes.empty()) {
+      hybrid != nullptr && hybrid->tripod()) {
     std::vector<CoverageReading> out;
     addExechonCalibration(out, scenario, files, *hybrid, sources);
     return out;
