@@ -48,7 +48,7 @@ void addGcodeCommand(CLI::App& app) {
   m->add_option("program", a->program, "G-code file (.ngc)")->required();
   m->add_option("--out", a->request.out, "write the CSV to FILE instead of standard output");
   m->add_flag("--force", a->request.force, "overwrite an existing --out file");
-  addInterpreterOptions(*m, a->request.interpreter);
+  addInterpreterOptions(*m, a->request.interpreter, true, true);
   m->callback([a] { runMoves(*a); });
   addGcodeRunCommand(*g);
   addGcodeCompensateCommand(*g);

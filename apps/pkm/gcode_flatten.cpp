@@ -38,7 +38,7 @@ void addGcodeFlattenCommand(CLI::App& gcode) {
   f->add_option("program", a->program, "G-code file (.ngc)")->required();
   f->add_option("--out", a->request.out, "write the program to FILE instead of standard output");
   f->add_flag("--force", a->request.force, "overwrite an existing --out file");
-  addInterpreterOptions(*f, a->request.interpreter);
+  addInterpreterOptions(*f, a->request.interpreter, true, true);
   f->callback([a] { runFlatten(*a); });
 }
 

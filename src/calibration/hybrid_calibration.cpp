@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include "detail/numeric_fit.hpp"
 #include "pkm/core/error.hpp"
@@ -29,15 +31,50 @@ geometry::RigidTransform frameOf(const geometry::RigidTransform& initial,
   return geometry::perturbedTransform(initial, geometry::Twist(delta));
 }
 
+/// The tripod's error motion at each observation's PKM command, evaluated once: it does not
+/// depend on the fitted unknowns, and each evaluation solves the tripod's kinematics. An empty
+/// tripod gives identity motions.
+class MotionCache {
+ public:
+  MotionCache(const HybridCalibrationData& d, const TripodMotion& tripod) : has_(bool(tripod)) {
+    if (!has_) return;
+    motions_.reserve(d.observations.size());
+    for (const HybridObservation& o : d.observations) motions_.push_back(tripod(o.command.pkm));
+  }
+  /// The motion at observation b; nullopt when the tripod cannot reach it.
+  [[nodiscard]] std::optional<geometry::RigidTransform> at(std::size_t b) const {
+    return has_ ? motions_[b] : geometry::RigidTransform::Identity();
+  }
+
+ private:
+  bool has_;
+  std::vector<std::optional<geometry::RigidTransform>> motions_;
+};
+
 /// The point residuals of hybrid observations (3 each, model length unit) under the unknowns
 /// θ = (szX2, sxP, syP, szP in rad; then the frame correction when has_frame): the measured
-/// point (through frameOf(frame0, θ_frame) when has_frame) − the target `model` predicts.
+/// point (through frameOf(frame0, θ_frame) when has_frame) − the target `model` predicts, with
+/// the tripod's motion taken from `motion` (same observation order as every data set evaluated).
 struct HybridFitResiduals {
   const kinematics::HybridMachineModel& model;
   const kinematics::GeometricErrors& known;
-  const TripodMotion& tripod;
+  const MotionCache& motion;
   bool has_frame;
   const geometry::RigidTransform& frame0;
+
+  /// The target of observation b of `d` under `squareness`; nullopt without the tripod's motion.
+  [[nodiscard]] std::optional<Eigen::Vector3d> target(
+      const HybridCalibrationData& d,
+      const kinematics::HybridSquareness& squareness,
+      std::size_t b) const {
+    const auto E = motion.at(b);
+    if (!E) return std::nullopt;
+    const kinematics::HybridCommand& c = d.observations[b].command;
+    kinematics::HybridErrorValues values = kinematics::evaluateHybridErrors(known, c);
+    values.squareness = squareness;
+    const geometry::RigidTransform T = kinematics::hybridActualPose(model, values, c) * *E;
+    return Eigen::Vector3d(T * d.target_offset);
+  }
 
   /// The residuals of observation b of `d` at θ into r (3 values); false when the tripod's
   /// motion cannot be evaluated.
@@ -46,8 +83,7 @@ struct HybridFitResiduals {
                   std::size_t b,
                   double* r) const {
     const HybridObservation& o = d.observations[b];
-    const auto p =
-        hybridTarget(model, known, fromVector(theta.head<4>()), o.command, d.target_offset, tripod);
+    const auto p = target(d, fromVector(theta.head<4>()), b);
     if (!p) return false;
     Eigen::Vector3d measured = o.point;
     if (has_frame) {
@@ -101,9 +137,10 @@ detail::NumericProblem hybridProblem(const HybridCalibrationData& d, const Hybri
 HybridCalibrationData consistentHybridData(const HybridCalibrationData& data,
                                            const HybridFitResiduals& e) {
   HybridCalibrationData consistent = data;
-  for (HybridObservation& o : consistent.observations)
-    if (const auto p = hybridTarget(e.model, e.known, {}, o.command, data.target_offset, e.tripod))
-      o.point = e.frame0.linear().transpose() * (*p - e.frame0.translation());
+  for (std::size_t b = 0; b < consistent.observations.size(); ++b)
+    if (const auto p = e.target(data, {}, b))
+      consistent.observations[b].point =
+          e.frame0.linear().transpose() * (*p - e.frame0.translation());
   return consistent;
 }
 
@@ -200,7 +237,8 @@ HybridCalibrationSummary calibrateHybridSquareness(const kinematics::HybridMachi
   const bool has_frame = data.measurement_frame.has_value();
   const geometry::RigidTransform frame0 =
       has_frame ? *data.measurement_frame : geometry::RigidTransform::Identity();
-  const HybridFitResiduals evaluate{model, known, tripod, has_frame, frame0};
+  const MotionCache motion(data, tripod);
+  const HybridFitResiduals evaluate{model, known, motion, has_frame, frame0};
 
   const detail::NumericProblem problem = hybridProblem(data, evaluate);
   const Eigen::Index n = problem.unknowns();

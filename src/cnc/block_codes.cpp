@@ -2,6 +2,8 @@
 // one code per group, the supported G and M codes, M9 not with M7/M8.
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "interpreter_impl.hpp"
 #include "pkm/cnc/gcode_error.hpp"
 
@@ -34,6 +36,10 @@ bool isMotion(int g) {
     case 10:
     case 20:
     case 30:
+    case 382:
+    case 383:
+    case 384:
+    case 385:
     case 800:
     case 810:
     case 820:
@@ -161,7 +167,31 @@ void classifyM(BlockCodes& c, int m) {
     case 9:
       c.m_coolant_off = true;
       break;
+    case 19:
+      setOnce(c.m_orient, m, "M");
+      break;
+    case 50:
+    case 51:
+    case 52:
+    case 53:
+      setOnce(c.m_switch, m, "M");
+      break;
+    case 61:
+      setOnce(c.m_set_tool, m, "M");
+      break;
+    case 62:
+    case 63:
+    case 64:
+    case 65:
+    case 66:
+    case 67:
+    case 68:
+      setOnce(c.m_io, m, "M");
+      break;
     default:
+      if (m >= 100 && m <= 199)
+        throw GcodeError(fmt::format(
+            "user M code M{} (a program of the controller's USER_M_PATH) is not supported", m));
       throw GcodeError(fmt::format("unsupported M code M{}", m));
   }
 }
@@ -175,6 +205,26 @@ BlockCodes Interpreter::Impl::classify(const ResolvedBlock& rb) const {
   if (c.m_coolant_off && (c.m_mist || c.m_flood))
     throw GcodeError("two M codes from the same modal group: M9 with M7/M8");
   return c;
+}
+
+void Interpreter::Impl::checkIoWords(const ResolvedBlock& rb, const BlockCodes& c) const {
+  if (c.m_set_tool >= 0 && !rb.hasWord('q'))
+    throw GcodeError("M61 needs a Q word >= 0 (the tool number)");
+  if (c.m_io < 0) return;
+  const int m = c.m_io;
+  if (m <= 65 && !rb.hasWord('p')) throw GcodeError(fmt::format("M{} needs a P word", m));
+  if (m >= 67 && !rb.hasWord('e'))
+    throw GcodeError(fmt::format("M{} needs an E word (the analog output)", m));
+  if (m != 66) return;
+  if (rb.hasWord('p') == rb.hasWord('e'))
+    throw GcodeError("M66 needs either a P word (digital input) or an E word (analog input)");
+  const double l = rb.hasWord('l') ? rb.word('l') : 0.0;
+  if (l != 0.0 && rb.hasWord('e'))
+    throw GcodeError("M66 with an analog input (E) can only return at once (L0)");
+  if (l != 0.0 && !(rb.word('q') > 0.0))
+    throw GcodeError("M66 with a wait mode (L1-L4) needs a timeout Q > 0");
+  if (l < 0.0 || l > 4.0 || l != std::floor(l))
+    throw GcodeError(fmt::format("M66 L{} is not a wait mode (0..4)", l));
 }
 
 }  // namespace pkm::cnc

@@ -63,7 +63,7 @@ void Interpreter::Impl::resolve(const Block& block, ResolvedBlock& rb, MoveSink&
   for (std::size_t k = 0; k < block.assignments.size(); ++k) {
     const Assignment& a = block.assignments[k];
     if (a.named) {
-      params.setNamed(a.name, values[k]);
+      setNamedChecked(a.name, values[k]);
     } else {
       const double idx = a.index.evaluate(*this);
       setNumbered(toInt(idx, '#'), values[k]);
@@ -90,17 +90,23 @@ void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c)
   if ((rb.hasWord('i') || rb.hasWord('j') || rb.hasWord('k')) &&
       !(arc && c.non_modal != 100 && axis) && motion != 870)
     throw GcodeError("I, J or K word with no G2, G3 or G87 to use it");
-  if (rb.hasWord('r') && !arc && !canned && c.non_modal != 100)
-    throw GcodeError("R word with no G2, G3, G10 or canned cycle to use it");
-  if (rb.hasWord('l') && !canned && c.non_modal != 100)
-    throw GcodeError("L word with no G10 or canned cycle to use it");
-  if (rb.hasWord('q') && !(motion == 830 || motion == 730) && c.path != 640)
-    throw GcodeError("Q word with no G73, G83 or G64 to use it");
+  if (rb.hasWord('r') && !arc && !canned && c.non_modal != 100 && c.m_orient < 0)
+    throw GcodeError("R word with no G2, G3, G10, M19 or canned cycle to use it");
+  if (rb.hasWord('l') && !canned && c.non_modal != 100 && c.m_io != 66)
+    throw GcodeError("L word with no G10, M66 or canned cycle to use it");
+  const bool io_q = c.m_io >= 66 || c.m_set_tool >= 0 || c.m_orient >= 0;
+  if (rb.hasWord('q') && !(motion == 830 || motion == 730) && c.path != 640 && !io_q)
+    throw GcodeError("Q word with no G73, G83, G64, M19, M61 or M66-M68 to use it");
+  if (rb.hasWord('e') && c.m_io < 66) throw GcodeError("E word with no M66, M67 or M68 to use it");
+  checkIoWords(rb, c);
   const bool dwell_cycle = motion == 740 || motion == 820 || motion == 840 || motion == 860 ||
                            motion == 880 || motion == 890;
+  const bool io_p = (c.m_io >= 62 && c.m_io <= 66) || c.m_switch >= 0 || c.m_orient >= 0;
   if (rb.hasWord('p') &&
-      !(c.non_modal == 40 || c.non_modal == 100 || arc || dwell_cycle || c.path == 640))
-    throw GcodeError("P word with no G4, G10, G2/G3, G64 or dwelling canned cycle to use it");
+      !(c.non_modal == 40 || c.non_modal == 100 || arc || dwell_cycle || c.path == 640 || io_p))
+    throw GcodeError(
+        "P word with no G4, G10, G2/G3, G64, M19, M50-M53, M62-M66 or dwelling canned cycle to "
+        "use it");
   if (rb.hasWord('h') && c.tlo != 430) throw GcodeError("H word with no G43 to use it");
   if (rb.hasWord('d')) throw GcodeError("D word (cutter compensation) is not supported");
   if (c.non_modal == 530 && !(c.motion == 0 || c.motion == 10))
@@ -111,12 +117,26 @@ void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c)
     if (rb.hasWord(l)) throw GcodeError(fmt::format("{} axis is not supported", l));
 }
 
+void Interpreter::Impl::activeComment(const Block& block, MoveSink& sink) {
+  const std::string text = block.comment == CommentKind::kMsg
+                               ? block.comment_text
+                               : substituteParameters(block.comment_text, *this);
+  if (block.comment == CommentKind::kAbort) {
+    const std::size_t first = text.find_first_not_of(" \t");
+    throw GcodeError(
+        fmt::format("program aborted: {}", first == std::string::npos ? "" : text.substr(first)));
+  }
+  sink.onMessage(block.line, block.comment, text);
+}
+
 bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
+  current_line = block.line;
   ResolvedBlock rb;
   resolve(block, rb, sink);
+  if (block.comment != CommentKind::kNone) activeComment(block, sink);
   if (rb.n_g == 0 && rb.n_m == 0 && !rb.hasAxis() && !rb.hasWord('f') && !rb.hasWord('s') &&
       !rb.hasWord('t')) {
-    for (char l : {'i', 'j', 'k', 'r', 'l', 'p', 'q', 'h', 'd', 'u', 'v', 'w'})
+    for (char l : {'i', 'j', 'k', 'r', 'l', 'p', 'q', 'h', 'd', 'e', 'u', 'v', 'w'})
       if (rb.hasWord(l)) throw GcodeError(fmt::format("{} word with nothing to use it", l));
     return true;
   }
@@ -145,7 +165,15 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
     st.selected_tool = t;
   }
   if (c.m_tool == 6) st.tool_in_spindle = st.selected_tool;
+  if (c.m_set_tool >= 0) {
+    const int t = toInt(rb.word('q'), 'Q');
+    if (t < 0) throw GcodeError("M61 needs a tool number Q >= 0");
+    st.tool_in_spindle = t;
+  }
   if (c.m_override >= 0) st.overrides_enabled = c.m_override == 48;
+  if (c.m_mist) st.mist = true;
+  if (c.m_flood) st.flood = true;
+  if (c.m_coolant_off) st.mist = st.flood = false;
   if (c.m_spindle >= 0) st.spindle_direction = c.m_spindle == 3 ? 1 : c.m_spindle == 4 ? -1 : 0;
   if (c.non_modal == 40) {
     if (!rb.hasWord('p')) throw GcodeError("G4 needs a P word (dwell time, s)");
@@ -155,6 +183,7 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   if (c.plane >= 0)
     st.plane = c.plane == 170 ? Plane::kXY : c.plane == 180 ? Plane::kXZ : Plane::kYZ;
   if (c.units >= 0) st.inch = c.units == 200;
+  const Axes tlo_before = st.tool_offset;
   if (c.tlo >= 0) setTlo(rb, c.tlo);
   if (c.wcs >= 0) {
     static constexpr std::array<int, 9> kCodes{540, 550, 560, 570, 580, 590, 591, 592, 593};
@@ -168,7 +197,14 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   if (c.non_modal == 100) doG10(rb);
   if (c.non_modal >= 920) doG92(rb, c.non_modal);
   if (c.non_modal >= 280 && c.non_modal <= 301) doHome(rb, c.non_modal, sink);
+  const std::size_t moves_before = summary.moves;
   doMotion(rb, c, sink);
+  if (c.m_tool == 6 && summary.moves == moves_before) {
+    // After a tool change rs274 re-reads the position in program coordinates as the last motion
+    // left it, so a G43/G49 in the M6 block shifts the machine position the next motion starts
+    // its unprogrammed axes from (checked with rs274: "T1 M6 G43 H1" then "G0 X1" moves Z).
+    for (std::size_t i = 0; i < 6; ++i) st.machine[i] += st.tool_offset[i] - tlo_before[i];
+  }
   return !(c.m_stop == 2 || c.m_stop == 30);
 }
 

@@ -39,8 +39,9 @@ constexpr std::array<CharClass, 256> kCharClass = [] {
 }();
 
 /// Lower-cases and removes blanks and comments; writes the result to `out` (room for
-/// text.size() characters) and returns it.
-std::string_view normalize(std::string_view text, char* out) {
+/// text.size() characters) and returns it. The last parenthesised comment's kind and text go to
+/// `block` (classifyComment).
+std::string_view normalize(std::string_view text, char* out, Block& block) {
   char* o = out;
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
@@ -61,10 +62,15 @@ std::string_view normalize(std::string_view text, char* out) {
       if (close == std::string_view::npos) throw GcodeError("comment not closed: missing ')'");
       const std::size_t nested = text.find('(', i + 1);
       if (nested < close) throw GcodeError("nested comment: '(' inside a comment");
+      block.comment = classifyComment(text.substr(i + 1, close - i - 1), block.comment_text);
       i = close;
       continue;
     }
-    if (c == ';') break;
+    if (c == ';') {
+      std::string ignored;
+      (void)classifyComment(text.substr(i + 1), ignored);  // refuses ";py," lines
+      break;
+    }
     if (c == ')') throw GcodeError("')' without '('");
     throw GcodeError(fmt::format("bad character (code {}) in line", static_cast<unsigned char>(c)));
   }
@@ -196,6 +202,8 @@ void Block::clear() {
   jump = kNoBlock;
   partner = kNoBlock;
   closes_do = false;
+  comment = CommentKind::kNone;
+  comment_text.clear();
 }
 
 LineMark parseLine(std::string_view text, Block& block) {
@@ -205,7 +213,7 @@ LineMark parseLine(std::string_view text, Block& block) {
   if (parseSimpleLine(text, block)) return LineMark::kNormal;
   block.clear();
   std::array<char, kMaxLineLength> buffer;
-  const std::string_view s = normalize(text, buffer.data());
+  const std::string_view s = normalize(text, buffer.data(), block);
   if (s == "%") return LineMark::kPercent;
   std::size_t pos = 0;
   if (pos < s.size() && s[pos] == '/') {
@@ -250,7 +258,7 @@ LineMark parseLine(std::string_view text, Block& block) {
       throw GcodeError(fmt::format("bad character '{}' where a word was expected", c));
     if (c == 'n') throw GcodeError("N word not at the start of the line");
     if (c == 'o') throw GcodeError("O-word not at the start of the line");
-    if (c == 'e' || c == 'o') throw GcodeError(fmt::format("unknown word letter '{}'", c));
+
     const auto idx = static_cast<std::size_t>(c - 'a');
     if (c != 'g' && c != 'm') {
       if (seen[idx]) throw GcodeError(fmt::format("multiple {} words on one line", c));

@@ -168,15 +168,25 @@ class ExprCompiler {
     const std::string_view name = text_.substr(start, pos - start);
     if (pos >= text_.size() || text_[pos] != '[')
       throw GcodeError(fmt::format("unknown word '{}' where a value was expected", name));
+    if (name == "exists" && pos + 2 < text_.size() && text_[pos + 1] == '#' &&
+        text_[pos + 2] != '<') {
+      // EXISTS[#n]: whether #n is a parameter number (1..5601); n may itself be #m (rs274).
+      pos += 2;
+      real(pos, depth + 1);
+      if (pos >= text_.size() || text_[pos] != ']')
+        throw GcodeError("EXISTS takes one parameter: exists[#<name>] or exists[#n]");
+      ++pos;
+      emit(ExprOp::kExistsNumbered);
+      return;
+    }
     if (name == "exists") {
-      const std::size_t close = text_.find(']', pos);
-      const std::string_view inner = text_.substr(
-          pos + 1, close == std::string_view::npos ? std::string_view::npos : close - pos - 1);
-      if (close == std::string_view::npos || inner.size() < 4 || inner.substr(0, 2) != "#<" ||
-          inner.back() != '>')
-        throw GcodeError("EXISTS needs a named parameter: exists[#<name>]");
-      emit(ExprOp::kExists, addName(std::string(inner.substr(2, inner.size() - 3))));
-      pos = close + 1;
+      // The name may hold brackets itself (#<_ini[section]name>): it ends at its '>'.
+      const std::size_t gt = text_.find('>', pos);
+      if (text_.substr(pos, 3) != "[#<" || gt == std::string_view::npos || gt == pos + 3 ||
+          gt + 1 >= text_.size() || text_[gt + 1] != ']')
+        throw GcodeError("EXISTS takes one parameter: exists[#<name>] or exists[#n]");
+      emit(ExprOp::kExists, addName(std::string(text_.substr(pos + 3, gt - pos - 3))));
+      pos = gt + 2;
       return;
     }
     if (name == "atan") {

@@ -122,6 +122,14 @@ double Expression::run(ParameterSource& params) const {
       case ExprOp::kExists:
         stack.push_back(params.exists(names[in.name]) ? 1.0 : 0.0);
         continue;
+      case ExprOp::kExistsNumbered: {
+        const double idx = pop();
+        const double rounded = std::round(idx);
+        const bool ok =
+            std::abs(idx - rounded) <= kExprEqualTolerance && rounded >= 1.0 && rounded <= 5601.0;
+        stack.push_back(ok ? 1.0 : 0.0);
+        continue;
+      }
       case ExprOp::kParam: {
         const double idx = pop();
         const double rounded = std::round(idx);

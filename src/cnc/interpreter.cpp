@@ -195,17 +195,27 @@ class ProgramFlow {
 
 }  // namespace
 
+namespace {
+constexpr const char* kNoProgramEnd =
+    "the file ended with no percent sign or program end (M2, M30), which LinuxCNC refuses";
+}  // namespace
+
 Interpreter::Interpreter(InterpreterOptions options)
     : impl_(std::make_unique<Impl>(std::move(options))) {
   const InterpreterOptions& o = impl_->options;
+  o.arc.validate();
+  impl_->loadParameters();
   if (o.startup_code.empty()) return;
   const std::string where = o.startup_source.empty() ? "" : o.startup_source + ": ";
   MoveCollector none;
+  const bool require_end = o.require_program_end;
+  impl_->options.require_program_end = false;  // start-up code is a line, not a program
   try {
     (void)run(Program::parse(o.startup_code, "RS274NGC_STARTUP_CODE"), none);
   } catch (const IoError& e) {
     throw IoError(where + e.what());
   }
+  impl_->options.require_program_end = require_end;
   if (!none.moves.empty() || !none.dwells.empty())
     throw IoError(where + "RS274NGC_STARTUP_CODE moves the machine; it may set modes only");
 }
@@ -247,6 +257,8 @@ RunSummary Interpreter::run(const Program& program, MoveSink& sink) {
   } catch (const GcodeError& e) {
     throw IoError(locate(program.file(), line, e.what()));
   }
+  if (s.options.require_program_end && !program.closedByPercent())
+    throw IoError(locate(program.file(), program.lineCount(), kNoProgramEnd));
   return s.summary;
 }
 
@@ -274,6 +286,8 @@ RunSummary Interpreter::runStream(LineReader& reader, MoveSink& sink) {
       throw IoError(locate(reader.file(), b.line, e.what()));
     }
   }
+  if (s.options.require_program_end && !reader.closedByPercent())
+    throw IoError(locate(reader.file(), reader.lines(), kNoProgramEnd));
   return s.summary;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,8 @@ struct BlockCodes {
   int plane = -1, distance = -1, ijk = -1, feed_mode = -1, units = -1, cutter = -1, tlo = -1,
       retract = -1, wcs = -1, path = -1;
   int m_stop = -1, m_tool = -1, m_spindle = -1, m_override = -1;
+  // M19 (orient), M50-M53 (override switches), M61 (set the tool), M62-M68 (I/O): no motion.
+  int m_orient = -1, m_switch = -1, m_set_tool = -1, m_io = -1;
   bool m_mist = false, m_flood = false, m_coolant_off = false;
 };
 
@@ -53,24 +56,42 @@ struct BlockCodes {
 [[nodiscard]] std::string gName(int code);
 
 struct Interpreter::Impl : ParameterSource {
-  explicit Impl(InterpreterOptions o) : options(std::move(o)) {}
+  explicit Impl(InterpreterOptions o) : options(std::move(o)) {
+    params.setNamed("_value", 0.0);  // LinuxCNC: 0 at program start
+    params.setNamed("_value_returned", 0.0);
+  }
 
   // ParameterSource: reads in program units.
   double numbered(int index) override;
-  double named(const std::string& name) override { return params.named(name); }
-  bool exists(const std::string& name) override { return params.exists(name); }
+  /// A predefined parameter (system_parameters.cpp) or the store's.
+  double named(const std::string& name) override;
+  bool exists(const std::string& name) override;
   void setNumbered(int index, double value);
+  /// Sets `#<name>`; throws GcodeError for a read-only one (predefined, INI, #<_value>...).
+  void setNamedChecked(const std::string& name, double value);
+  /// The value of predefined parameter `name` (lower case, without '#<' '>'): LinuxCNC's
+  /// #<_x>, #<_metric>, #<_current_tool>, ..., and #<_ini[section]name>; nullopt for others.
+  [[nodiscard]] std::optional<double> systemParameter(const std::string& name) const;
 
   // block_executor.cpp
   /// Executes one block; returns false when the program ends (M2/M30).
   bool execute(const Block& block, MoveSink& sink);
+  /// Runs the block's active comment (after its parameter settings, before its motion): a
+  /// message to `sink`, or the error of an ABORT.
+  void activeComment(const Block& block, MoveSink& sink);
   /// Evaluates the words of `block` into `rb` (freshly constructed) and performs its parameter
   /// settings.
   void resolve(const Block& block, ResolvedBlock& rb, MoveSink& sink);
   BlockCodes classify(const ResolvedBlock& rb) const;  // block_codes.cpp
   void checkWords(const ResolvedBlock& rb, const BlockCodes& c) const;
+  /// The words M61 and M62-M68 need (LinuxCNC 2.9 M-code reference): P for M62-M65, P or E for
+  /// M66 (L mode 0..4), E and Q for M67/M68, Q for M61. They make no motion.
+  void checkIoWords(const ResolvedBlock& rb, const BlockCodes& c) const;
   void setTlo(const ResolvedBlock& rb, int code);
   void selectSystem(int n);
+  /// Applies options.initial_parameters: stores them, selects the system #5220 names (1..9,
+  /// else G54) and applies the stored G92 offset when #5210 is 1, as LinuxCNC starts up.
+  void loadParameters();
   void doG10(const ResolvedBlock& rb);
   void doG92(const ResolvedBlock& rb, int code);
   /// G28/G30: rapid to the intermediate point of the axis words, then to the stored position
@@ -82,6 +103,8 @@ struct Interpreter::Impl : ParameterSource {
   void doMotion(const ResolvedBlock& rb, const BlockCodes& c, MoveSink& sink);
   void straight(const ResolvedBlock& rb, bool rapid, bool g53, MoveSink& sink);
   void arc(const ResolvedBlock& rb, bool clockwise, MoveSink& sink);
+  /// G38.2-G38.5: a straight feed to the axis words with the probe on, as rs274 simulates it.
+  void probe(const ResolvedBlock& rb, MoveSink& sink);
   void cycle(const ResolvedBlock& rb, int code, MoveSink& sink);
   /// Reads the sticky words of canned cycle `code` (×10) into cycle_q, cycle_p, cycle_i..k and
   /// `q`: Q of G73/G83, P of G74/G82/G84/G86/G88/G89, I J K of G87 (lengths in mm); `entering`:
@@ -94,6 +117,7 @@ struct Interpreter::Impl : ParameterSource {
 
   InterpreterOptions options;
   MachineState st;
+  std::size_t current_line = 0;  // source line of the block being executed (#<_line>)
   Parameters params;
   RunSummary summary;
   // Canned-cycle memory (rs274ngc cycle_il / cycle_cc and sticky R, Q, P).

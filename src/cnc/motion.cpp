@@ -16,6 +16,8 @@ namespace {
 
 constexpr std::array<char, 6> kAxes{'x', 'y', 'z', 'a', 'b', 'c'};
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kProbeSamePoint = 1e-9;   // mm: rs274 refuses a probe move to where it is
+constexpr double kProbeBackOffMm = 0.254;  // rs274's simulated probe stops 0.01 in short
 
 /// Length of a line (mm, or degrees for a rotary-only move) for inverse-time feed.
 double pathLength(const Axes& from, const Axes& to) {
@@ -82,13 +84,14 @@ ArcCentre arcCentreOf(const ResolvedBlock& rb,
                       bool clockwise,
                       std::size_t a1,
                       std::size_t a2,
-                      const Axes& to) {
+                      const Axes& to,
+                      double tolerance_mm) {
   const double s1 = st.machine[a1], s2 = st.machine[a2];
   const double e1 = to[a1], e2 = to[a2];
   if (rb.hasWord('r')) {
     if (rb.hasWord(kArcOffsetWord[a1]) || rb.hasWord(kArcOffsetWord[a2]))
       throw GcodeError("arc with both R and I/J/K words");
-    return arcFromRadius(s1, s2, e1, e2, rb.word('r') * st.scale(), clockwise, st.inch);
+    return arcFromRadius(s1, s2, e1, e2, rb.word('r') * st.scale(), clockwise);
   }
   if (!rb.hasWord(kArcOffsetWord[a1]) && !rb.hasWord(kArcOffsetWord[a2]))
     throw GcodeError(fmt::format("{} arc needs R or at least one of {} and {}",
@@ -99,7 +102,7 @@ ArcCentre arcCentreOf(const ResolvedBlock& rb,
   const double o2 = rb.hasWord(kArcOffsetWord[a2]) ? rb.word(kArcOffsetWord[a2]) * st.scale() : 0.0;
   const double c1 = st.ijk_absolute ? o1 + st.offset(a1) : s1 + o1;
   const double c2 = st.ijk_absolute ? o2 + st.offset(a2) : s2 + o2;
-  return arcFromCentre(s1, s2, e1, e2, c1, c2, st.inch);
+  return arcFromCentre(s1, s2, e1, e2, c1, c2, tolerance_mm);
 }
 
 /// Helix length (mm) for inverse-time feed: the in-plane sweep of the arc of centre c from
@@ -199,6 +202,29 @@ void Interpreter::Impl::straight(const ResolvedBlock& rb, bool rapid, bool g53, 
   emitLine(rb.line, rapid, to, inverse_f, sink);
 }
 
+void Interpreter::Impl::probe(const ResolvedBlock& rb, MoveSink& sink) {
+  if (st.inverse_time || st.feed <= 0.0) throw GcodeError("cannot probe with zero feed rate");
+  Axes to = st.machine;
+  for (std::size_t i = 0; i < 6; ++i) {
+    if (!rb.hasWord(kAxes[i])) continue;
+    const double v = rb.word(kAxes[i]) * st.axisScale(i);
+    to[i] = st.incremental ? st.machine[i] + v : v + st.offset(i);
+  }
+  if (pathLength(st.machine, to) < kProbeSamePoint)
+    throw GcodeError("start point too close to probe point");
+  const Axes from = st.machine;
+  emitLine(rb.line, false, to, 0.0, sink);
+  // A simulated probe never touches: the probe position (#5061-#5066, program coordinates) is
+  // the end, #5070 is 0, and the tool stops 0.254 mm (0.01 in) short of the end along the XYZ
+  // direction of the move, where rs274's simulated probe leaves it.
+  for (std::size_t i = 0; i < 6; ++i) params.set(5061 + static_cast<int>(i), st.program(i));
+  params.set(5070, 0.0);
+  const std::array<double, 3> d{to[0] - from[0], to[1] - from[1], to[2] - from[2]};
+  const double n = std::hypot(d[0], d[1], d[2]);
+  if (n > 0.0)
+    for (std::size_t i = 0; i < 3; ++i) st.machine[i] -= kProbeBackOffMm * d[i] / n;
+}
+
 void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& sink) {
   const std::array<std::size_t, 3> axes = planeAxes(st.plane);
   const auto [a1, a2, an] = axes;
@@ -213,7 +239,7 @@ void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& s
     const double v = rb.word(kAxes[i]) * st.axisScale(i);
     to[i] = st.incremental ? st.machine[i] + v : v + st.offset(i);
   }
-  const ArcCentre c = arcCentreOf(rb, st, clockwise, a1, a2, to);
+  const ArcCentre c = arcCentreOf(rb, st, clockwise, a1, a2, to, options.arc.centreMm(st.inch));
   Move m;
   m.line = rb.line;
   m.kind = MoveKind::kArc;
@@ -370,6 +396,12 @@ void Interpreter::Impl::doMotion(const ResolvedBlock& rb, const BlockCodes& c, M
     case 20:
     case 30:
       if (axis || c.motion >= 0) arc(rb, motion == 20, sink);
+      break;
+    case 382:
+    case 383:
+    case 384:
+    case 385:
+      if (axis) probe(rb, sink);
       break;
     case 800:
       break;

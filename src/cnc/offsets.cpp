@@ -7,6 +7,7 @@
 
 #include "interpreter_impl.hpp"
 #include "pkm/cnc/gcode_error.hpp"
+#include "pkm/core/error.hpp"
 
 namespace pkm::cnc {
 
@@ -46,6 +47,19 @@ void Interpreter::Impl::setNumbered(int index, double value) {
   params.set(index, isLengthParameter(index) ? value * st.scale() : value);
 }
 
+void Interpreter::Impl::loadParameters() {
+  if (options.initial_parameters.empty()) return;
+  for (const auto& [n, v] : options.initial_parameters) {
+    if (n < 1 || n >= kParameterCount)
+      throw IoError(fmt::format("parameter number {} outside 1..5601", n));
+    params.set(n, v);
+  }
+  const double system = params.get(kActiveSystemParam);
+  selectSystem(system >= 1.0 && system <= 9.0 ? static_cast<int>(system) : 1);
+  if (params.get(kG92Base - 1) == 1.0)
+    for (std::size_t i = 0; i < 6; ++i) st.g92[i] = params.get(kG92Base + static_cast<int>(i));
+}
+
 void Interpreter::Impl::selectSystem(int n) {
   st.coordinate_system = n;
   params.set(kActiveSystemParam, n);
@@ -54,6 +68,7 @@ void Interpreter::Impl::selectSystem(int n) {
 }
 
 void Interpreter::Impl::setTlo(const ResolvedBlock& rb, int code) {
+  st.tool_length_mode = code;
   if (code == 490) {
     st.tool_offset = {};
     return;

@@ -12,7 +12,8 @@ bool isLengthParameter(int index) {
     const int k = index - base;
     return (k >= 0 && k <= 2) || (k >= 6 && k <= 8);
   };
-  if (inBlock(5161) || inBlock(5181) || inBlock(kG92Base) || inBlock(5401)) return true;
+  if (inBlock(5061) || inBlock(5161) || inBlock(5181) || inBlock(kG92Base) || inBlock(5401))
+    return true;
   for (int n = 1; n <= 9; ++n)
     if (inBlock(coordinateSystemBase(n))) return true;
   return false;

@@ -230,6 +230,7 @@ Program Program::parse(std::string_view text, const std::string& file) {
   Block block;
   while (reader.next(block)) p.blocks_.push_back(std::move(block));
   p.lines_ = reader.lines();
+  p.closed_by_percent_ = reader.closedByPercent();
   p.resolve();
   return p;
 }

@@ -134,6 +134,7 @@ GcodeInterpreterSettings hexapodSettings(const GcodeCompensateRequest& request,
                                       request.machineName(),
                                       toString(cal.model.unit)));
   takeStartupCode(under_ini, settings);
+  if (settings.ini.empty()) settings.ini = request.ini;  // its [RS274NGC] section too
   return settings;
 }
 

@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 
 #include "gcode_progress.hpp"
+#include "pkm/cnc/interpreter_ini.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/io/named_text.hpp"
 
 namespace pkm::workflow {
 
@@ -27,6 +29,21 @@ cnc::InterpreterOptions GcodeInterpreterSettings::options() const {
   o.max_loop_iterations = max_iterations;
   o.startup_code = startup_code;
   o.startup_source = startup_source;
+  o.require_program_end = require_program_end;
+  if (!ini.empty()) {
+    const io::NamedText text = io::readNamedText(ini);
+    const cnc::Rs274ngcIni r = cnc::readRs274ngcIni(text.text, text.name);
+    if (o.startup_code.empty()) {
+      o.startup_code = r.startup_code;
+      o.startup_source = r.startup_source;
+    }
+    o.arc = r.arc;
+    o.ini_values = r.values;
+    if (!r.parameter_file.empty()) {
+      const io::NamedText var = io::readNamedText(r.parameter_file);
+      cnc::readParameterFile(var.text, var.name, r.inch_machine, o);
+    }
+  }
   return o;
 }
 

@@ -77,7 +77,7 @@ GcodeMovesResult runGcodeMoves(const GcodeMovesRequest& request,
       result.csv += text;
   });
   const detail::GcodeProgress progress(control);
-  detail::ProgressMoveSink watched(sink, progress, 0, 0);
+  detail::ProgressMoveSink watched(sink, progress, 0, 0, name);
   const cnc::RunSummary s =
       program ? interpreter.run(*program, watched) : interpreter.runStream(reader, watched);
   sink.flush();

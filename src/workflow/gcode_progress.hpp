@@ -2,9 +2,12 @@
 // kGcodeProgressInterval motions or points (workflow/gcode_interpreter.hpp).
 #pragma once
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <cstddef>
 #include <string>
+#include <utility>
 
 #include "pkm/cnc/move.hpp"
 #include "pkm/workflow/gcode_interpreter.hpp"
@@ -25,6 +28,8 @@ class GcodeProgress {
               std::size_t count,
               std::size_t done,
               std::size_t total) const;
+  /// Passes `text` on as a notice.
+  void note(std::string text) const { control_.note({std::move(text)}); }
   /// report() when `done` is a positive multiple of kGcodeProgressInterval.
   void every(const char* stage,
              const char* what,
@@ -42,14 +47,20 @@ class GcodeProgress {
 };
 
 /// A sink that passes every call on to `inner` and reports the motions interpreted so far
-/// ("interpreting: N motions", stage `index` of `count`) every kGcodeProgressInterval motions.
+/// ("interpreting: N motions", stage `index` of `count`) every kGcodeProgressInterval motions;
+/// the program's messages become notices "SOURCE:LINE: debug: text".
 class ProgressMoveSink final : public cnc::MoveSink {
  public:
   ProgressMoveSink(cnc::MoveSink& inner,
                    const GcodeProgress& progress,
                    std::size_t index,
-                   std::size_t count)
-      : inner_(inner), progress_(progress), index_(index), count_(count) {}
+                   std::size_t count,
+                   std::string source)
+      : inner_(inner),
+        progress_(progress),
+        index_(index),
+        count_(count),
+        source_(std::move(source)) {}
   [[nodiscard]] bool wantsBlocks() const override { return inner_.wantsBlocks(); }
   void onBlock(const cnc::Block& block,
                std::size_t index,
@@ -64,11 +75,21 @@ class ProgressMoveSink final : public cnc::MoveSink {
   void onCycleAction(std::size_t line, cnc::CycleAction action) override {
     inner_.onCycleAction(line, action);
   }
+  void onMessage(std::size_t line, cnc::CommentKind kind, const std::string& text) override {
+    inner_.onMessage(line, kind, text);
+    const std::size_t first = text.find_first_not_of(" \t");
+    progress_.note(fmt::format("{}:{}: {}: {}",
+                               source_,
+                               line,
+                               cnc::commentKeyword(kind),
+                               first == std::string::npos ? "" : text.substr(first)));
+  }
 
  private:
   cnc::MoveSink& inner_;
   const GcodeProgress& progress_;
   std::size_t index_, count_;
+  std::string source_;
   std::size_t moves_ = 0;
 };
 

@@ -72,12 +72,13 @@ cnc::MoveCollector interpret(const GcodeRunRequest& request,
                              std::size_t& lines) {
   GcodeInterpreterSettings settings = request.interpreter;
   if (machine != nullptr) takeStartupCode(*machine, settings);
+  if (settings.ini.empty()) settings.ini = request.ini;  // the machine's INI sets up rs274 too
   cnc::Interpreter interpreter(settings.options());
   const cnc::Program program = cnc::Program::parse(request.program.text, request.program.name);
   lines = program.lineCount();
   cnc::MoveCollector moves;
   progress.report("interpreting", "motions", 1, detail::kRunStages, 0, 0);
-  detail::ProgressMoveSink watched(moves, progress, 1, detail::kRunStages);
+  detail::ProgressMoveSink watched(moves, progress, 1, detail::kRunStages, request.program.name);
   (void)interpreter.run(program, watched);
   if (moves.moves.empty())
     throw InvalidArgument(fmt::format("{}: no motion", request.program.name));

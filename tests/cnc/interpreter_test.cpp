@@ -285,7 +285,8 @@ TEST(Interpreter, RunawayLoopIsRejected) {
 
 TEST(Interpreter, ErrorsNameTheLine) {
   EXPECT_THAT(errorOf("G0 X1\nG33 X2\n"), HasSubstr("t.ngc:2: unsupported G code G33"));
-  EXPECT_THAT(errorOf("G0 X1\nM62 P1\n"), HasSubstr("t.ngc:2: unsupported M code M62"));
+  EXPECT_THAT(errorOf("G0 X1\nM62\n"), HasSubstr("t.ngc:2: M62 needs a P word"));
+  EXPECT_THAT(errorOf("G0 X1\nM120\n"), HasSubstr("t.ngc:2: user M code M120"));
   EXPECT_THAT(errorOf("G41 X1\n"), HasSubstr("t.ngc:1: G41 cutter radius compensation"));
   EXPECT_THAT(errorOf("G0 X1\nG1 X[1/0] F1\n"), HasSubstr("t.ngc:2: attempt to divide by zero"));
   EXPECT_THAT(errorOf("G0 X1\no<nope> call\n"), HasSubstr("t.ngc:2: call to undefined subroutine"));

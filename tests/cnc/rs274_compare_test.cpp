@@ -171,7 +171,7 @@ RefMove rs274Motion(const Rs274State& st, const std::string& name, const std::ve
     m.kind = MoveKind::kArc;
   } else {
     for (std::size_t i = 0; i < 6; ++i) prog[i] = v[i];
-    m.kind = name == "STRAIGHT_TRAVERSE" ? MoveKind::kRapid : MoveKind::kLinear;
+    m.kind = name == "STRAIGHT_TRAVERSE" ? MoveKind::kRapid : MoveKind::kLinear;  // probes feed
   }
   int max_terms = 1;
   for (std::size_t i = 0; i < 6; ++i) {
@@ -209,7 +209,8 @@ RefRun runRs274(const fs::path& program) {
     }
     const std::string name = match[1].str();
     const std::string args = match[2].str();
-    if (name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED" || name == "ARC_FEED")
+    if (name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED" || name == "ARC_FEED" ||
+        name == "STRAIGHT_PROBE")
       r.moves.push_back(rs274Motion(state, name, numbers(args)));
     else
       applyRs274Setting(state, name, args);
@@ -253,6 +254,7 @@ TEST(Rs274Compare, EveryMotionMatchesLinuxcnc) {
     const bool expect_error = file.filename().string().rfind("err_", 0) == 0;
     InterpreterOptions options;
     options.tools = tools;
+    options.require_program_end = true;  // as `pkm gcode moves` runs a file
     Interpreter interp(options);
     MoveCollector got;
     std::string error;

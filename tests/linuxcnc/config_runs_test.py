@@ -116,7 +116,8 @@ def exechon_body(pkm, machine, work, ini, poses, program, source_dir):
     home_joints = [float(values[f"JOINT_{j}"]["HOME"]) for j in range(5)]
     mdi = os.path.join(work, "exechon-mdi.ngc")
     with open(mdi, "w") as f:
-        f.write("G21 G90\n" + "".join("G1 X{} Y{} Z{} A{} C{} F1000\n".format(*p) for p in poses))
+        f.write("G21 G90\n" + "".join("G1 X{} Y{} Z{} A{} C{} F1000\n".format(*p) for p in poses)
+                + "M2\n")
     expected = [q for _, _, q in ch.joint_ends(pkm, machine, mdi, work, exechon=True)]
     ends = ch.joint_ends(pkm, machine, program, work, exechon=True)
     stopped = ch.with_stops(program, ends, os.path.join(os.path.dirname(ini), "program.ngc"))
@@ -134,7 +135,7 @@ def exechon_body(pkm, machine, work, ini, poses, program, source_dir):
         f.write("G21 G90\n" + "".join("G1 X{} Y{} Z{} A{} C{} F1000\n".format(*p) for p in poses)
                 + "G1 X{} Y{} Z{} A{} C{}\n".format(tool_pose[0], tool_pose[1],
                                                      tool_pose[2] + TOOL_LENGTH, tool_pose[3],
-                                                     tool_pose[4]))
+                                                     tool_pose[4]) + "M2\n")
     expected_tool = ch.joint_ends(pkm, longer_path, tool_mdi, work, exechon=True)[-1][2]
 
     def world5(cnc):

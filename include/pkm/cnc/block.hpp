@@ -1,7 +1,8 @@
 /// @file
 /// @brief One line of an RS274NGC program as LinuxCNC 2.9 reads it ("Format of a line" of the
 /// LinuxCNC G-code overview): optional `/` block delete, optional N number, words whose values
-/// are expressions, parameter settings, an O-word statement, comments `( )` and `;` (dropped).
+/// are expressions, parameter settings, an O-word statement, comments `( )` and `;` (dropped, but
+/// for the active comments of comment_message.hpp).
 /// Case and blanks outside comments do not matter.
 #pragma once
 
@@ -11,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pkm/cnc/comment_message.hpp"
 #include "pkm/cnc/expression.hpp"
 
 namespace pkm::cnc {
@@ -69,12 +71,17 @@ struct Block {
   std::size_t partner = kNoBlock;
   /// True for the `while` that closes a `do` loop.
   bool closes_do = false;
+  /// The line's last comment when it is an active one (MSG, DEBUG, PRINT, ABORT, LOG...), and
+  /// its text after the comma (comment_message.hpp).
+  CommentKind comment = CommentKind::kNone;
+  std::string comment_text;
   /// Resets every field to its default, keeping the storage of the vectors and of `o_name` (a
   /// reader reuses one Block for every line). Keep it in step with the fields above.
   void clear();
   /// True when the line holds nothing to execute.
   [[nodiscard]] bool empty() const {
-    return words.empty() && assignments.empty() && o_kind == OKind::kNone;
+    return words.empty() && assignments.empty() && o_kind == OKind::kNone &&
+           comment == CommentKind::kNone;
   }
 };
 

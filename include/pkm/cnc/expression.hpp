@@ -33,6 +33,7 @@ enum class ExprOp : std::uint8_t {
   kParam,
   kNamed,
   kExists,
+  kExistsNumbered,  ///< pops a number: 1 when it is a parameter number (1..5601), else 0
   kNeg,
   kPow,
   kMul,

@@ -6,9 +6,11 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 
+#include "pkm/cnc/arc.hpp"
 #include "pkm/cnc/line_reader.hpp"
 #include "pkm/cnc/modal_state.hpp"
 #include "pkm/cnc/move.hpp"
@@ -25,6 +27,9 @@ struct InterpreterOptions {
   /// rejected as runaway (no hang on `while [1]`); also the most motions one canned-cycle block
   /// may expand to (L repeats times pecks).
   std::uint64_t max_loop_iterations = 10'000'000;
+  /// Refuse a program that ends without M2/M30 and is not enclosed in `%` lines, as LinuxCNC's
+  /// rs274 does ("file ended with no percent sign or program end"); off for snippets.
+  bool require_program_end = false;
   /// Deepest subroutine nesting.
   std::size_t max_call_depth = 64;
   /// Blocks the controller runs before every program, e.g. "G20 G17 G40" (LinuxCNC's INI
@@ -33,6 +38,15 @@ struct InterpreterOptions {
   std::string startup_code;
   /// Where startup_code comes from, prefixed to its messages ("hexapod.ini:12"; "" : nothing).
   std::string startup_source;
+  /// Centre-format arc tolerances (INI [RS274NGC] CENTER_ARC_RADIUS_TOLERANCE_MM/_INCH).
+  ArcTolerances arc;
+  /// The INI's numeric entries for #<_ini[section]name>, keyed "section]name" in lower case
+  /// (LinuxCNC upper-cases the name before it looks it up, so only upper-case entries count).
+  std::map<std::string, double> ini_values;
+  /// Numbered parameters at start-up (a LinuxCNC parameter file, lengths in mm): offsets of the
+  /// coordinate systems and G92 (#5210-#5390), the active system (#5220), G28/G30 positions and
+  /// the user's values. Applied before startup_code.
+  std::map<int, double> initial_parameters;
 };
 
 /// What a run did.

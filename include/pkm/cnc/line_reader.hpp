@@ -28,6 +28,8 @@ class LineReader {
   [[nodiscard]] std::size_t lines() const { return line_; }
   /// The file name given to the constructor.
   [[nodiscard]] const std::string& file() const { return file_; }
+  /// True once the closing `%` of a program that started with `%` was read.
+  [[nodiscard]] bool closedByPercent() const { return done_; }
 
   /// True when the text may contain an O-word statement: a letter `o` or `O` outside comments.
   /// Conservative (an `o` in an expression's function name counts too); false means none.

@@ -34,6 +34,9 @@ struct MachineState {
   double spindle_speed = 0.0;     ///< S
   int spindle_direction = 0;      ///< M3 (+1, clockwise), M4 (-1), M5 (0; stopped at start-up)
   bool overrides_enabled = true;  ///< M48 (true) / M49: feed and speed overrides
+  bool mist = false;              ///< M7 (on) / M9
+  bool flood = false;             ///< M8 (on) / M9
+  int tool_length_mode = 490;     ///< G43 (430) / G43.1 (431) / G49 (490)
   int selected_tool = 0;          ///< T
   int tool_in_spindle = 0;        ///< after M6
   Axes machine{};                 ///< current position, machine coordinates

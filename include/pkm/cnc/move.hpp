@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "pkm/cnc/comment_message.hpp"
+
 namespace pkm::cnc {
 
 /// Kind of motion: G0 rapid, G1 (and canned-cycle feeds) linear feed, G2/G3 arc.
@@ -100,6 +102,21 @@ class MoveSink {
     (void)line;
     (void)action;
   }
+  /// Called for each active comment a block runs (MSG, DEBUG, PRINT, LOG...; ABORT is an error
+  /// instead), in order with the motions and before the block's own motions; `text` has its
+  /// parameters substituted (but MSG's). The default ignores it.
+  virtual void onMessage(std::size_t line, CommentKind kind, const std::string& text) {
+    (void)line;
+    (void)kind;
+    (void)text;
+  }
+};
+
+/// An active comment of a program as a sink received it.
+struct MessageEvent {
+  std::size_t line = 0;  ///< 1-based source line
+  CommentKind kind = CommentKind::kNone;
+  std::string text;  ///< after parameter substitution
 };
 
 /// A dwell of a program: `seconds` (≥ 0) after the first `after_moves` motions.
@@ -116,8 +133,12 @@ class MoveCollector final : public MoveSink {
   void onDwell(std::size_t line, double seconds) override {
     dwells.push_back({line, moves.size(), seconds});
   }
-  std::vector<Move> moves;         ///< the motions received, in order
-  std::vector<DwellEvent> dwells;  ///< the dwells received, in order
+  void onMessage(std::size_t line, CommentKind kind, const std::string& text) override {
+    messages.push_back({line, kind, text});
+  }
+  std::vector<Move> moves;             ///< the motions received, in order
+  std::vector<DwellEvent> dwells;      ///< the dwells received, in order
+  std::vector<MessageEvent> messages;  ///< the active comments received, in order
 };
 
 /// Header of the moves CSV: `line,kind,x,y,z,a,b,c,cx,cy,cz,turns,plane,feed`.

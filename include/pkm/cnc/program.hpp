@@ -36,6 +36,8 @@ class Program {
   [[nodiscard]] const std::string& file() const { return file_; }
   /// Number of source lines read.
   [[nodiscard]] std::size_t lineCount() const { return lines_; }
+  /// True when the program is enclosed in `%` lines (it may then end without M2/M30).
+  [[nodiscard]] bool closedByPercent() const { return closed_by_percent_; }
 
  private:
   void resolve();
@@ -43,6 +45,7 @@ class Program {
   std::unordered_map<std::string, std::size_t> subs_;
   std::string file_;
   std::size_t lines_ = 0;
+  bool closed_by_percent_ = false;
 };
 
 }  // namespace pkm::cnc

@@ -35,11 +35,18 @@ struct GcodeInterpreterSettings {
   /// "G20"; "" : none); the jobs with a LinuxCNC machine set it from the INI.
   std::string startup_code;
   std::string startup_source;  ///< where startup_code comes from ("INI:LINE"), for messages
+  /// A LinuxCNC INI whose [RS274NGC] section sets the interpreter up, as `rs274 -i` does
+  /// (io/rs274ngc_ini.hpp: start-up code unless startup_code is set, arc tolerances, parameter
+  /// file, #<_ini[section]name> values); "" : none.
+  std::string ini;
+  /// Refuse a program without M2/M30 that is not enclosed in `%` lines, as LinuxCNC does.
+  bool require_program_end = true;
   /// Throws pkm::InvalidArgument for a unit other than mm or inch (naming --tool-units) or a
   /// zero iteration cap (naming --max-iterations).
   void validate() const;
-  /// The interpreter options, with the tool table read (lengths converted to mm). Throws as
-  /// validate(), and pkm::IoError "FILE:LINE: message" for an unreadable or malformed table.
+  /// The interpreter options, with the tool table and the INI read (lengths converted to mm).
+  /// Throws as validate(), and pkm::IoError "FILE:LINE: message" for an unreadable or malformed
+  /// table, INI or parameter file.
   [[nodiscard]] cnc::InterpreterOptions options() const;
 };
 
