@@ -179,6 +179,10 @@ void classifyM(BlockCodes& c, int m) {
     case 61:
       setOnce(c.m_set_tool, m, "M");
       break;
+    case 98:
+    case 99:
+      setOnce(c.m_fanuc, m, "M");
+      break;
     case 62:
     case 63:
     case 64:

@@ -92,8 +92,8 @@ void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c)
     throw GcodeError("I, J or K word with no G2, G3 or G87 to use it");
   if (rb.hasWord('r') && !arc && !canned && c.non_modal != 100 && c.m_orient < 0)
     throw GcodeError("R word with no G2, G3, G10, M19 or canned cycle to use it");
-  if (rb.hasWord('l') && !canned && c.non_modal != 100 && c.m_io != 66)
-    throw GcodeError("L word with no G10, M66 or canned cycle to use it");
+  if (rb.hasWord('l') && !canned && c.non_modal != 100 && c.m_io != 66 && c.m_fanuc != 98)
+    throw GcodeError("L word with no G10, M66, M98 or canned cycle to use it");
   const bool io_q = c.m_io >= 66 || c.m_set_tool >= 0 || c.m_orient >= 0;
   if (rb.hasWord('q') && !(motion == 830 || motion == 730) && c.path != 640 && !io_q)
     throw GcodeError("Q word with no G73, G83, G64, M19, M61 or M66-M68 to use it");
@@ -101,7 +101,8 @@ void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c)
   checkIoWords(rb, c);
   const bool dwell_cycle = motion == 740 || motion == 820 || motion == 840 || motion == 860 ||
                            motion == 880 || motion == 890;
-  const bool io_p = (c.m_io >= 62 && c.m_io <= 66) || c.m_switch >= 0 || c.m_orient >= 0;
+  const bool io_p =
+      (c.m_io >= 62 && c.m_io <= 66) || c.m_switch >= 0 || c.m_orient >= 0 || c.m_fanuc == 98;
   if (rb.hasWord('p') &&
       !(c.non_modal == 40 || c.non_modal == 100 || arc || dwell_cycle || c.path == 640 || io_p))
     throw GcodeError(
@@ -127,6 +128,22 @@ void Interpreter::Impl::activeComment(const Block& block, MoveSink& sink) {
         fmt::format("program aborted: {}", first == std::string::npos ? "" : text.substr(first)));
   }
   sink.onMessage(block.line, block.comment, text);
+}
+
+FanucRequest Interpreter::Impl::fanucRequest(const ResolvedBlock& rb, int m) const {
+  FanucRequest r;
+  r.kind = m;
+  if (m == 99) return r;
+  if (!rb.hasWord('p')) throw GcodeError("M98 needs a P word (the subprogram number)");
+  const int p = toInt(rb.word('p'), 'P');
+  if (p < 0) throw GcodeError("M98 P must be a subprogram number >= 0");
+  r.target = std::to_string(p);
+  if (rb.hasWord('l')) {
+    const int l = toInt(rb.word('l'), 'L');
+    if (l < 0) throw GcodeError("M98 L (the repeat count) must be >= 0");
+    r.count = l;
+  }
+  return r;
 }
 
 bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
@@ -199,6 +216,7 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   if (c.non_modal >= 280 && c.non_modal <= 301) doHome(rb, c.non_modal, sink);
   const std::size_t moves_before = summary.moves;
   doMotion(rb, c, sink);
+  if (c.m_fanuc >= 0) fanuc = fanucRequest(rb, c.m_fanuc);
   if (c.m_tool == 6 && summary.moves == moves_before) {
     // After a tool change rs274 re-reads the position in program coordinates as the last motion
     // left it, so a G43/G49 in the M6 block shifts the machine position the next motion starts

@@ -102,7 +102,9 @@ OKind keyword(std::string_view k) {
 
 void parseOWord(std::string_view s, std::size_t pos, Block& block) {
   ++pos;  // 'o'
-  if (pos < s.size() && s[pos] == '<') {
+  if (pos < s.size() && s[pos] == '[') {
+    block.o_label = Expression::parseBracketed(s, pos);
+  } else if (pos < s.size() && s[pos] == '<') {
     const std::size_t close = s.find('>', pos);
     if (close == std::string_view::npos)
       throw GcodeError("O-word name not terminated: missing '>'");
@@ -113,11 +115,17 @@ void parseOWord(std::string_view s, std::size_t pos, Block& block) {
     while (pos < s.size() && isDigit(s[pos])) ++pos;
     block.o_name = std::string(s.substr(start, pos - start));
   }
-  if (block.o_name.empty()) throw GcodeError("O-word without a number or name");
+  if (block.o_name.empty() && !block.o_label) throw GcodeError("O-word without a number or name");
   const std::size_t kstart = pos;
   while (pos < s.size() && isAlpha(s[pos])) ++pos;
+  if (pos == kstart && pos == s.size() && !block.o_label) {
+    block.o_kind = OKind::kProgram;  // a program label: main program title or M98 subprogram
+    return;
+  }
   if (pos == kstart) throw GcodeError("O-word without a keyword (sub, call, if, while, ...)");
   block.o_kind = keyword(s.substr(kstart, pos - kstart));
+  if (block.o_label && block.o_kind != OKind::kCall)
+    throw GcodeError("O[expression] is only for calls: O[...] call");
   while (pos < s.size() && s[pos] == '[')
     block.o_args.push_back(Expression::parseBracketed(s, pos));
   if (pos != s.size())
@@ -199,6 +207,7 @@ void Block::clear() {
   o_kind = OKind::kNone;
   o_name.clear();
   o_args.clear();
+  o_label.reset();
   jump = kNoBlock;
   partner = kNoBlock;
   closes_do = false;

@@ -50,8 +50,7 @@ CommentKind classifyComment(std::string_view inner, std::string& text) {
   std::size_t i = 0;
   while (i < inner.size() && (inner[i] == ' ' || inner[i] == '\t')) ++i;
   const std::string_view s = inner.substr(i);
-  if (startsWithNoCase(s, "py,"))
-    throw GcodeError("embedded Python (PY, ...) is not supported");
+  if (startsWithNoCase(s, "py,")) throw GcodeError("embedded Python (PY, ...) is not supported");
   for (const auto& [name, kind] : kKeywords) {
     if (!startsWithNoCase(s, name)) continue;
     const std::string_view rest = s.substr(name.size());
@@ -85,9 +84,10 @@ std::string substituteParameters(std::string_view text, ParameterSource& source)
       }
       std::string name;
       for (const char n : text.substr(i + 2, close - i - 2))
-        if (n != ' ' && n != '\t') name += static_cast<char>(std::tolower(static_cast<unsigned char>(n)));
-      out += source.exists(name) ? fmt::format("{:.6f}", source.named(name))
-                                 : std::string(kUndefined);
+        if (n != ' ' && n != '\t')
+          name += static_cast<char>(std::tolower(static_cast<unsigned char>(n)));
+      out +=
+          source.exists(name) ? fmt::format("{:.6f}", source.named(name)) : std::string(kUndefined);
       i = close + 1;
       continue;
     }

@@ -1,9 +1,14 @@
 // Program flow of the interpreter: the block loop and O-word control (LinuxCNC 2.9 "O Codes":
 // sub/endsub/call/return with #1-#30 arguments and #<_value> return values, if/elseif/else/endif,
-// while/endwhile, do/while, repeat/endrepeat, break/continue), with an iteration guard per loop.
+// while/endwhile, do/while, repeat/endrepeat, break/continue, O[expression] call; "Fanuc-Style
+// Numbered Programs": M98 P L calls of O-labelled subprograms ended by M99, sharing the
+// parameters), with an iteration guard per loop.
 #include "pkm/cnc/interpreter.hpp"
 
 #include <fmt/format.h>
+
+#include <cmath>
+#include <utility>
 
 #include "interpreter_impl.hpp"
 #include "pkm/cnc/gcode_error.hpp"
@@ -22,16 +27,44 @@ struct Loop {
 struct Frame {
   std::size_t return_to;  // block after the call
   std::vector<Loop> loops;
+  bool fanuc = false;            // an M98 call: ended by M99, no parameter scope
+  std::size_t start = kNoBlock;  // M98: the label block, where each repeat starts
+  double remaining = 0.0;        // M98: passes left, this one included
+  std::uint64_t passes = 0;      // M98: repeats made (runaway guard)
 };
 
 /// The O-word flow of one run of a program: the call frames, each with its active loops.
 class ProgramFlow {
  public:
-  ProgramFlow(const std::vector<Block>& blocks,
+  ProgramFlow(const Program& program,
               const InterpreterOptions& options,
               Parameters& params,
               ParameterSource& source)
-      : blocks_(blocks), options_(options), params_(params), source_(source) {}
+      : program_(program),
+        blocks_(program.blocks()),
+        options_(options),
+        params_(params),
+        source_(source) {}
+
+  /// M98 (request.kind 98) or M99 (99) of the block at pc: the block to run next, or kNoBlock
+  /// when M99 ends the main program (LinuxCNC's standalone interpreter stops there).
+  std::size_t fanuc(const FanucRequest& request, std::size_t pc) {
+    if (request.kind == 98) return fanucCall(request, pc);
+    Frame& f = frames_.back();
+    if (frames_.size() <= 1) return kNoBlock;
+    if (!f.fanuc) throw GcodeError("M99 inside an O-word sub: end it with endsub or return");
+    f.remaining -= 1.0;
+    if (f.remaining >= 1.0) {
+      if (++f.passes > options_.max_loop_iterations)
+        throw GcodeError(fmt::format("M98 repeats exceeded {} passes (runaway loop guard)",
+                                     options_.max_loop_iterations));
+      f.loops.clear();
+      return f.start + 1;
+    }
+    const std::size_t back = f.return_to;
+    frames_.pop_back();
+    return back;
+  }
 
   /// Performs the O-word statement blocks[pc]; returns the index of the block to run next.
   std::size_t step(std::size_t pc) {
@@ -52,6 +85,7 @@ class ProgramFlow {
       case OKind::kElse:
         return b.partner + 1;
       case OKind::kEndIf:
+      case OKind::kProgram:  // a label reached in sequence
         return pc + 1;
       case OKind::kWhile:
         return b.closes_do ? closeDo(b, pc) : whileLoop(b, pc);
@@ -102,8 +136,35 @@ class ProgramFlow {
     }
   }
 
+  std::size_t fanucCall(const FanucRequest& request, std::size_t pc) {
+    const std::size_t label = program_.findProgram(request.target);
+    if (label == kNoBlock) {
+      const std::size_t sub = program_.findSub(request.target);
+      throw GcodeError(sub != kNoBlock ? fmt::format("M98 P{}: o{} is an O-word sub; call it with "
+                                                     "o{} call",
+                                                     request.target,
+                                                     request.target,
+                                                     request.target)
+                                       : fmt::format("M98 P{}: no subprogram O{} in the program",
+                                                     request.target,
+                                                     request.target));
+    }
+    if (request.count < 1.0) return pc + 1;
+    if (frames_.size() > options_.max_call_depth)
+      throw GcodeError(
+          fmt::format("subroutine calls nested deeper than {}", options_.max_call_depth));
+    Frame f{pc + 1, {}};
+    f.fanuc = true;
+    f.start = label;
+    f.remaining = request.count;
+    frames_.push_back(std::move(f));
+    return label + 1;
+  }
+
   std::size_t returnFromSub(const Block& b) {
     if (frames_.size() <= 1) throw GcodeError("return/endsub outside a subroutine call");
+    if (frames_.back().fanuc)
+      throw GcodeError("endsub/return inside an M98 subprogram: end it with M99");
     bool has_value = !b.o_args.empty();
     const double value = has_value ? b.o_args[0].evaluate(source_) : 0.0;
     const std::size_t pc = frames_.back().return_to;
@@ -115,11 +176,21 @@ class ProgramFlow {
   }
 
   std::size_t call(const Block& b, std::size_t pc) {
-    if (b.jump == kNoBlock)
-      throw GcodeError(
-          fmt::format("call to undefined subroutine {} (subroutine files are "
-                      "not searched)",
-                      oLabel(b.o_name)));
+    std::size_t target = b.jump;
+    std::string name = b.o_name;
+    if (b.o_label) {  // O[expression] call
+      const double v = std::round(b.o_label->evaluate(source_));
+      name = fmt::format("{}", static_cast<long long>(v));
+      target = program_.findSub(name);
+    }
+    if (target == kNoBlock)
+      throw GcodeError(program_.findProgram(name) != kNoBlock
+                           ? fmt::format("{} is an M98 subprogram (no sub): call it with M98 P{}",
+                                         oLabel(name),
+                                         name)
+                           : fmt::format("call to undefined subroutine {} (subroutine files are "
+                                         "not searched)",
+                                         oLabel(name)));
     if (frames_.size() > options_.max_call_depth)
       throw GcodeError(
           fmt::format("subroutine calls nested deeper than {}", options_.max_call_depth));
@@ -128,7 +199,7 @@ class ProgramFlow {
     for (const Expression& e : b.o_args) args.push_back(e.evaluate(source_));
     params_.pushCall(args);
     frames_.push_back(Frame{pc + 1, {}});
-    return b.jump + 1;
+    return target + 1;
   }
 
   /// if: the first branch whose condition holds (or else), past endif when none does.
@@ -186,6 +257,7 @@ class ProgramFlow {
     return open.jump;  // do: the closing while; repeat: endrepeat
   }
 
+  const Program& program_;
   const std::vector<Block>& blocks_;
   const InterpreterOptions& options_;
   Parameters& params_;
@@ -227,7 +299,7 @@ RunSummary Interpreter::run(const Program& program, MoveSink& sink) {
   s.summary = RunSummary{};
   s.report_blocks = sink.wantsBlocks();
   const std::vector<Block>& blocks = program.blocks();
-  ProgramFlow flow(blocks, s.options, s.params, s);
+  ProgramFlow flow(program, s.options, s.params, s);
   std::size_t pc = 0;
   std::size_t line = 0;
   try {
@@ -245,7 +317,16 @@ RunSummary Interpreter::run(const Program& program, MoveSink& sink) {
           s.summary.ended_by_m2 = true;
           return s.summary;
         }
-        ++pc;
+        if (s.fanuc.kind == 0) {
+          ++pc;
+          continue;
+        }
+        const FanucRequest request = std::exchange(s.fanuc, FanucRequest{});
+        pc = flow.fanuc(request, pc);
+        if (pc == kNoBlock) {  // M99 in the main program
+          s.summary.ended_by_m2 = true;
+          return s.summary;
+        }
         continue;
       }
       if (s.report_blocks) {
@@ -282,6 +363,8 @@ RunSummary Interpreter::runStream(LineReader& reader, MoveSink& sink) {
         }
         return s.summary;
       }
+      if (std::exchange(s.fanuc, FanucRequest{}).kind != 0)
+        throw GcodeError("M98/M99 need the whole program (read it with Program::parse)");
     } catch (const GcodeError& e) {
       throw IoError(locate(reader.file(), b.line, e.what()));
     }

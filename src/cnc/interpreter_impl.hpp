@@ -16,6 +16,9 @@
 
 namespace pkm::cnc {
 
+/// The axis words X Y Z A B C, in the order of Axes.
+inline constexpr std::array<char, 6> kAxisWords{'x', 'y', 'z', 'a', 'b', 'c'};
+
 /// The bit of letter `c` (a..z) in ResolvedBlock::has.
 constexpr std::uint32_t letterBit(char c) { return std::uint32_t{1} << (c - 'a'); }
 
@@ -40,6 +43,14 @@ struct ResolvedBlock {
   }
 };
 
+/// An M98 call (kind 98: subprogram `target`, `count` passes) or M99 return (kind 99) that a
+/// block asks the program flow for; kind 0: none.
+struct FanucRequest {
+  int kind = 0;
+  std::string target;
+  double count = 1.0;
+};
+
 /// Per-block decisions of the modal-group check (one code per group at most).
 struct BlockCodes {
   int motion = -1;     // group 1
@@ -49,6 +60,7 @@ struct BlockCodes {
   int m_stop = -1, m_tool = -1, m_spindle = -1, m_override = -1;
   // M19 (orient), M50-M53 (override switches), M61 (set the tool), M62-M68 (I/O): no motion.
   int m_orient = -1, m_switch = -1, m_set_tool = -1, m_io = -1;
+  int m_fanuc = -1;  // M98 / M99
   bool m_mist = false, m_flood = false, m_coolant_off = false;
 };
 
@@ -76,6 +88,8 @@ struct Interpreter::Impl : ParameterSource {
   // block_executor.cpp
   /// Executes one block; returns false when the program ends (M2/M30).
   bool execute(const Block& block, MoveSink& sink);
+  /// The M98 call (P subprogram, L passes, default 1) or M99 return block `rb` asks for.
+  [[nodiscard]] FanucRequest fanucRequest(const ResolvedBlock& rb, int m) const;
   /// Runs the block's active comment (after its parameter settings, before its motion): a
   /// message to `sink`, or the error of an ABORT.
   void activeComment(const Block& block, MoveSink& sink);
@@ -118,6 +132,7 @@ struct Interpreter::Impl : ParameterSource {
   InterpreterOptions options;
   MachineState st;
   std::size_t current_line = 0;  // source line of the block being executed (#<_line>)
+  FanucRequest fanuc;            // set by execute() for the program flow
   Parameters params;
   RunSummary summary;
   // Canned-cycle memory (rs274ngc cycle_il / cycle_cc and sticky R, Q, P).

@@ -67,7 +67,8 @@ std::vector<std::string_view> wordsOf(std::string_view s) {
 double numberOf(const std::string& name, const IniEntry& e) {
   double v = 0.0;
   if (!parseNumber(e.value, v))
-    throw IoError(locate(name, e.line, fmt::format("[{}] {}: expected a number", e.section, e.key)));
+    throw IoError(
+        locate(name, e.line, fmt::format("[{}] {}: expected a number", e.section, e.key)));
   return v;
 }
 
@@ -106,9 +107,7 @@ Rs274ngcIni readRs274ngcIni(std::string_view text, const std::string& name) {
   bool ini_vars = true;
   const std::vector<IniEntry> entries = parseIni(text, name);
   for (const IniEntry& e : entries) {
-    const auto fail = [&](const std::string& what) {
-      throw IoError(locate(name, e.line, what));
-    };
+    const auto fail = [&](const std::string& what) { throw IoError(locate(name, e.line, what)); };
     if (e.section == "TRAJ" && e.key == "LINEAR_UNITS")
       r.inch_machine = e.value == "inch" || e.value == "in" || e.value == "imperial";
     if (e.section != "RS274NGC") continue;
@@ -132,9 +131,10 @@ Rs274ngcIni readRs274ngcIni(std::string_view text, const std::string& name) {
     } else if (e.key == "INI_VARS") {
       ini_vars = numberOf(name, e) != 0.0;
     } else if (e.key == "REMAP" || e.key == "USER_M_PATH" || e.key == "ON_ABORT_COMMAND") {
-      fail(fmt::format("[RS274NGC] {} is not supported: pkm does not run remapped codes, user M "
-                       "programs or abort handlers (remove the line for pkm)",
-                       e.key));
+      fail(
+          fmt::format("[RS274NGC] {} is not supported: pkm does not run remapped codes, user M "
+                      "programs or abort handlers (remove the line for pkm)",
+                      e.key));
     }
     try {
       r.arc.validate();
@@ -145,8 +145,7 @@ Rs274ngcIni readRs274ngcIni(std::string_view text, const std::string& name) {
   if (ini_vars)
     for (const IniEntry& e : entries) {
       double v = 0.0;
-      if (hasLowerCase(e.section) || hasLowerCase(e.key) || !parseNumber(e.value, v))
-        continue;
+      if (hasLowerCase(e.section) || hasLowerCase(e.key) || !parseNumber(e.value, v)) continue;
       r.values[lowerCase(e.section) + "]" + lowerCase(e.key)] = v;
     }
   return r;
@@ -173,7 +172,8 @@ void readParameterFile(std::string_view text_in,
     const int n = static_cast<int>(index);
     if (n < 1 || n >= kParameterCount)
       throw IoError(locate(name, line_no, fmt::format("parameter number {} outside 1..5601", n)));
-    options.initial_parameters[n] = isLengthParameter(n) && inch_machine ? value * kMmPerInch : value;
+    options.initial_parameters[n] =
+        isLengthParameter(n) && inch_machine ? value * kMmPerInch : value;
   }
 }
 

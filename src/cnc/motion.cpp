@@ -16,8 +16,6 @@ namespace {
 
 constexpr std::array<char, 6> kAxes{'x', 'y', 'z', 'a', 'b', 'c'};
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kProbeSamePoint = 1e-9;   // mm: rs274 refuses a probe move to where it is
-constexpr double kProbeBackOffMm = 0.254;  // rs274's simulated probe stops 0.01 in short
 
 /// Length of a line (mm, or degrees for a rotary-only move) for inverse-time feed.
 double pathLength(const Axes& from, const Axes& to) {
@@ -200,29 +198,6 @@ void Interpreter::Impl::straight(const ResolvedBlock& rb, bool rapid, bool g53, 
     }
   }
   emitLine(rb.line, rapid, to, inverse_f, sink);
-}
-
-void Interpreter::Impl::probe(const ResolvedBlock& rb, MoveSink& sink) {
-  if (st.inverse_time || st.feed <= 0.0) throw GcodeError("cannot probe with zero feed rate");
-  Axes to = st.machine;
-  for (std::size_t i = 0; i < 6; ++i) {
-    if (!rb.hasWord(kAxes[i])) continue;
-    const double v = rb.word(kAxes[i]) * st.axisScale(i);
-    to[i] = st.incremental ? st.machine[i] + v : v + st.offset(i);
-  }
-  if (pathLength(st.machine, to) < kProbeSamePoint)
-    throw GcodeError("start point too close to probe point");
-  const Axes from = st.machine;
-  emitLine(rb.line, false, to, 0.0, sink);
-  // A simulated probe never touches: the probe position (#5061-#5066, program coordinates) is
-  // the end, #5070 is 0, and the tool stops 0.254 mm (0.01 in) short of the end along the XYZ
-  // direction of the move, where rs274's simulated probe leaves it.
-  for (std::size_t i = 0; i < 6; ++i) params.set(5061 + static_cast<int>(i), st.program(i));
-  params.set(5070, 0.0);
-  const std::array<double, 3> d{to[0] - from[0], to[1] - from[1], to[2] - from[2]};
-  const double n = std::hypot(d[0], d[1], d[2]);
-  if (n > 0.0)
-    for (std::size_t i = 0; i < 3; ++i) st.machine[i] -= kProbeBackOffMm * d[i] / n;
 }
 
 void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& sink) {

@@ -46,6 +46,7 @@ class StructureResolver {
     switch (b.o_kind) {
       case OKind::kNone:
       case OKind::kCall:
+      case OKind::kProgram:
         break;
       case OKind::kSub:
         sub(i);
@@ -261,10 +262,24 @@ std::size_t Program::findSub(const std::string& name) const {
   return it == subs_.end() ? kNoBlock : it->second;
 }
 
+std::size_t Program::findProgram(const std::string& name) const {
+  const auto it = programs_.find(programKey(name));
+  return it == programs_.end() ? kNoBlock : it->second;
+}
+
+std::string Program::programKey(const std::string& name) {
+  if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) return name;
+  const std::size_t first = name.find_first_not_of('0');
+  return first == std::string::npos ? "0" : name.substr(first);
+}
+
 void Program::resolve() {
   StructureResolver(blocks_, subs_, file_).run();
-  for (Block& b : blocks_)
-    if (b.o_kind == OKind::kCall) b.jump = findSub(b.o_name);
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    Block& b = blocks_[i];
+    if (b.o_kind == OKind::kCall && !b.o_label) b.jump = findSub(b.o_name);
+    if (b.o_kind == OKind::kProgram) programs_.emplace(programKey(b.o_name), i);  // first wins
+  }
 }
 
 }  // namespace pkm::cnc

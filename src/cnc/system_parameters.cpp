@@ -20,13 +20,20 @@ constexpr std::string_view kIniPrefix = "_ini[";
 /// Index of axis letter `c` among X Y Z A B C; -1 for U V W (not supported, always 0).
 int axisIndex(char c) {
   switch (c) {
-    case 'x': return 0;
-    case 'y': return 1;
-    case 'z': return 2;
-    case 'a': return 3;
-    case 'b': return 4;
-    case 'c': return 5;
-    default: return -1;
+    case 'x':
+      return 0;
+    case 'y':
+      return 1;
+    case 'z':
+      return 2;
+    case 'a':
+      return 3;
+    case 'b':
+      return 4;
+    case 'c':
+      return 5;
+    default:
+      return -1;
   }
 }
 
@@ -47,13 +54,15 @@ std::optional<double> Interpreter::Impl::systemParameter(const std::string& name
   const std::string_view n = std::string_view(name).substr(1);
   if (n.size() == 1 && isAxisLetter(n[0])) {
     const int i = axisIndex(n[0]);
-    return i < 0 ? 0.0 : st.program(static_cast<std::size_t>(i)) /
-                             st.axisScale(static_cast<std::size_t>(i));
+    return i < 0 ? 0.0
+                 : st.program(static_cast<std::size_t>(i)) /
+                       st.axisScale(static_cast<std::size_t>(i));
   }
   if (n.size() == 5 && n.substr(0, 4) == "abs_" && isAxisLetter(n[4])) {
     const int i = axisIndex(n[4]);
-    return i < 0 ? 0.0 : st.machine[static_cast<std::size_t>(i)] /
-                             st.axisScale(static_cast<std::size_t>(i));
+    return i < 0 ? 0.0
+                 : st.machine[static_cast<std::size_t>(i)] /
+                       st.axisScale(static_cast<std::size_t>(i));
   }
   const auto flag = [](bool b) { return b ? 1.0 : 0.0; };
   if (n == "vmajor") return kVersionMajor;

@@ -75,8 +75,8 @@ TEST(CommentMessage, TheInterpreterSendsMessagesInOrderAndAborts) {
   ASSERT_EQ(c.messages.size(), 4u);
   EXPECT_EQ(c.messages[0].text, " one 2.000000 two 3.000000");
   EXPECT_EQ(c.messages[0].line, 2u);
-  EXPECT_EQ(c.messages[1].text, " m #1");  // MSG is not substituted
-  EXPECT_EQ(c.messages[2].text, "a 5.000000");  // after the line's own setting
+  EXPECT_EQ(c.messages[1].text, " m #1");              // MSG is not substituted
+  EXPECT_EQ(c.messages[2].text, "a 5.000000");         // after the line's own setting
   EXPECT_EQ(c.messages[3].kind, CommentKind::kPrint);  // the last comment of the line
   EXPECT_EQ(c.messages[3].text, "e 5.000000");
   EXPECT_EQ(c.moves.size(), 2u);
@@ -84,8 +84,7 @@ TEST(CommentMessage, TheInterpreterSendsMessagesInOrderAndAborts) {
   Interpreter aborting;
   MoveCollector none;
   try {
-    aborting.run(Program::parse("#1=2.5\nG0 X1\n(abort, stop #1 now)\nG0 X2\nM2\n", "a.ngc"),
-                 none);
+    aborting.run(Program::parse("#1=2.5\nG0 X1\n(abort, stop #1 now)\nG0 X2\nM2\n", "a.ngc"), none);
     FAIL() << "no error";
   } catch (const IoError& e) {
     EXPECT_THAT(e.what(), HasSubstr("a.ngc:3: program aborted: stop 2.500000 now"));

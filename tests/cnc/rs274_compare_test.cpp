@@ -7,7 +7,9 @@
 // active when printed), so the machine position is rebuilt here as
 // printed + G5x + G92 + tool offset, converted to mm. rs274 prints 4 decimals: the tolerance is
 // half a unit of the last digit per printed term (1e-4 mm class in mm programs, 25.4 times that
-// in inch programs). Programs named err_*.ngc must fail in both, on the same line.
+// in inch programs). Programs named err_*.ngc must fail in both, on the same line; err_any_*.ngc
+// in both, where rs274 reports another line than the one at fault (it searches on for a missing
+// M98 subprogram and reports where the search ends; pkm names the M98 line).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -273,6 +275,7 @@ TEST(Rs274Compare, EveryMotionMatchesLinuxcnc) {
       std::ifstream in(file);
       std::string l;
       for (std::size_t k = 0; k < error_line_no && std::getline(in, l);) ++k;
+      if (file.filename().string().rfind("err_any_", 0) == 0) continue;
       if (ref.error_line_no != 0) {
         EXPECT_EQ(error_line_no, ref.error_line_no) << error;
       } else {

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,7 +35,8 @@ enum class OKind : std::uint8_t {
   kRepeat,
   kEndRepeat,
   kBreak,
-  kContinue
+  kContinue,
+  kProgram  ///< `O1000` alone: the label of a main program or of an M98 subprogram (Fanuc style)
 };
 
 /// A word: a letter (lower-case) and its value.
@@ -63,6 +65,8 @@ struct Block {
   OKind o_kind = OKind::kNone;          ///< O-word statement, if any
   std::string o_name;                   ///< its label: "100" for o100, "name" for o<name>
   std::vector<Expression> o_args;       ///< call arguments, or the condition / count / value
+  /// `O[expression] call`: the sub's number, evaluated when the call runs (o_name is then "").
+  std::optional<Expression> o_label;
   /// Control flow resolved by Program: for sub, the endsub; for if/elseif, the next branch; for
   /// while/do/repeat, the closing statement; for call, the sub (kNoBlock when undefined).
   std::size_t jump = kNoBlock;

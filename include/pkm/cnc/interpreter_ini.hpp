@@ -7,9 +7,8 @@
 
 #include <cstddef>
 #include <string>
-#include <vector>
-
 #include <string_view>
+#include <vector>
 
 #include "pkm/cnc/interpreter.hpp"
 
@@ -32,7 +31,7 @@ struct IniEntry {
 struct Rs274ngcIni {
   std::string startup_code;    ///< [RS274NGC] RS274NGC_STARTUP_CODE ("" : none)
   std::string startup_source;  ///< "INI:LINE" of it
-  ArcTolerances arc;      ///< CENTER_ARC_RADIUS_TOLERANCE_MM/_INCH (defaults otherwise)
+  ArcTolerances arc;           ///< CENTER_ARC_RADIUS_TOLERANCE_MM/_INCH (defaults otherwise)
   /// [RS274NGC] PARAMETER_FILE resolved against the INI's folder ("" : none).
   std::string parameter_file;
   /// [RS274NGC] SUBROUTINE_PATH's folders, resolved against the INI's folder, in order.

@@ -32,6 +32,11 @@ class Program {
   [[nodiscard]] const std::vector<Block>& blocks() const { return blocks_; }
   /// Index of the `sub` block of subroutine `name`, or kNoBlock.
   [[nodiscard]] std::size_t findSub(const std::string& name) const;
+  /// Index of the first label block `O<name>` alone (OKind::kProgram) whose name is `name`, or
+  /// kNoBlock: the target of `M98 P<name>`. Numbers compare as numbers ("0002" is 2).
+  [[nodiscard]] std::size_t findProgram(const std::string& name) const;
+  /// `name` as findProgram compares it: a number without its leading zeros, else as written.
+  [[nodiscard]] static std::string programKey(const std::string& name);
   /// The file name given to parse/load.
   [[nodiscard]] const std::string& file() const { return file_; }
   /// Number of source lines read.
@@ -43,6 +48,7 @@ class Program {
   void resolve();
   std::vector<Block> blocks_;
   std::unordered_map<std::string, std::size_t> subs_;
+  std::unordered_map<std::string, std::size_t> programs_;  // M98 targets, by programKey
   std::string file_;
   std::size_t lines_ = 0;
   bool closed_by_percent_ = false;
