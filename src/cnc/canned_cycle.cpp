@@ -257,7 +257,10 @@ std::array<double, 3> expandCycle(const CycleRequest& q, std::vector<CycleStep>&
   for (int rep = 0; rep < q.repeats; ++rep) {
     x += p.dx;
     y += p.dy;
-    const double level = std::max(z, clear);
+    // The first repeat starting above R goes over at its own level; any other at the clear
+    // level (rs274: a later repeat, or a start at R, under G98 rises to the initial level).
+    const bool from_above = rep == 0 && z > p.r;
+    const double level = from_above ? z : clear;
     push(out, K::kRapid, x, y, level);
     if (level != p.r) push(out, K::kRapid, x, y, p.r);
     cycleBody(q, p, x, y, clear, out);

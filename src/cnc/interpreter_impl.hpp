@@ -19,6 +19,9 @@ namespace pkm::cnc {
 /// The axis words X Y Z A B C, in the order of Axes.
 inline constexpr std::array<char, 6> kAxisWords{'x', 'y', 'z', 'a', 'b', 'c'};
 
+/// The centre-offset (and G87 offset) words I J K of the axes X Y Z.
+inline constexpr std::array<char, 3> kOffsetWords{'i', 'j', 'k'};
+
 /// The bit of letter `c` (a..z) in ResolvedBlock::has.
 constexpr std::uint32_t letterBit(char c) { return std::uint32_t{1} << (c - 'a'); }
 
@@ -139,6 +142,8 @@ struct Interpreter::Impl : ParameterSource {
   bool cycle_il_flag = false;
   double cycle_il = 0.0, cycle_cc = 0.0, cycle_r = 0.0, cycle_q = 0.0, cycle_p = 0.0;
   double cycle_i = 0.0, cycle_j = 0.0, cycle_k = 0.0;  // G87's sticky I, J, K
+  std::array<std::size_t, 3> cycle_axes{0, 1, 2};      // plane's axes and the hole axis
+  int cycle_code = 810;                                // the cycle being expanded (x10)
   std::vector<CycleStep> cycle_steps;
   std::vector<double> values;  // scratch: evaluated assignment values
   // Block reports (MoveSink::wantsBlocks): the index of the block being executed, its words.

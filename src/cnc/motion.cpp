@@ -126,26 +126,6 @@ double helixLength(const ArcCentre& c,
   return std::hypot(planar, to[an] - from[an]);
 }
 
-/// Rejects a canned cycle outside the XY plane, under inverse time, with A, B or C words, or at
-/// zero feed rate.
-void checkCycleModes(const ResolvedBlock& rb, const MachineState& st) {
-  if (st.plane != Plane::kXY)
-    throw GcodeError("canned cycles are supported in the XY plane (G17) only");
-  if (st.inverse_time) throw GcodeError("canned cycles are not allowed in inverse time (G93)");
-  for (char l : {'a', 'b', 'c'})
-    if (rb.hasWord(l)) throw GcodeError(fmt::format("cannot move {} in a canned cycle", l));
-  if (st.feed <= 0.0) throw GcodeError("cannot do a canned cycle with zero feed rate");
-}
-
-/// A canned cycle's L word (repeats); rejects one that is not a positive integer.
-int cycleRepeats(double l) {
-  if (!(l >= 0.5 && l < 1e9)) throw GcodeError("canned cycle L must be a positive integer");
-  const int repeats = static_cast<int>(std::round(l));
-  if (std::abs(l - repeats) > 0.0001 || repeats < 1)
-    throw GcodeError("canned cycle L must be a positive integer");
-  return repeats;
-}
-
 }  // namespace
 
 void Interpreter::Impl::emitLine(
@@ -233,102 +213,6 @@ void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& s
   sink.onMove(m);
   ++summary.moves;
   if (st.inch) ++summary.inch_moves;
-}
-
-void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink) {
-  checkCycleModes(rb, st);
-  const bool entering = st.motion != code;
-  if (entering && !rb.hasWord('z'))
-    throw GcodeError("Z missing in the first block of a canned cycle");
-  if (entering && !rb.hasWord('r'))
-    throw GcodeError("R missing in the first block of a canned cycle");
-  const double s = st.scale();
-  CycleRequest q;
-  q.code = code / 10;
-  for (std::size_t i = 0; i < 3; ++i) q.current[i] = st.program(i);
-  if (!cycle_il_flag) {  // first cycle block since a non-cycle motion mode: remember its Z
-    cycle_il = q.current[2];
-    cycle_il_flag = true;
-  }
-  q.initial_level = cycle_il;
-  q.incremental = st.incremental;
-  q.retract_to_r = st.retract_to_r;
-  q.has_x = rb.hasWord('x');
-  q.has_y = rb.hasWord('y');
-  q.x = rb.word('x') * s;
-  q.y = rb.word('y') * s;
-  if (rb.hasWord('r')) cycle_r = rb.word('r') * s;
-  if (rb.hasWord('z')) cycle_cc = rb.word('z') * s;
-  q.r = cycle_r;
-  q.z = cycle_cc;
-  cycleStickyWords(rb, code, entering, q);
-  q.overrides_enabled = st.overrides_enabled;
-  q.spindle = st.spindle_direction > 0   ? SpindleDirection::kClockwise
-              : st.spindle_direction < 0 ? SpindleDirection::kCounterClockwise
-                                         : SpindleDirection::kStopped;
-  if (rb.hasWord('l')) q.repeats = cycleRepeats(rb.word('l'));
-  q.max_steps = options.max_loop_iterations;
-  cycle_steps.clear();
-  expandCycle(q, cycle_steps);
-  emitCycleSteps(rb.line, sink);
-}
-
-void Interpreter::Impl::cycleStickyWords(const ResolvedBlock& rb,
-                                         int code,
-                                         bool entering,
-                                         CycleRequest& q) {
-  const double s = st.scale();
-  if (code == 830 || code == 730) {
-    if (entering && !rb.hasWord('q'))
-      throw GcodeError(fmt::format("Q word missing with G{}", code / 10));
-    if (rb.hasWord('q')) cycle_q = rb.word('q') * s;
-    q.q = cycle_q;
-  }
-  if (code == 820 || code == 860 || code == 880 || code == 890 || code == 840 || code == 740) {
-    // G84/G74 default to the sticky P (0 at start-up); the others need P in their first block.
-    if (entering && !rb.hasWord('p') && code != 840 && code != 740)
-      throw GcodeError(fmt::format("dwell time P word missing with G{}", code / 10));
-    if (rb.hasWord('p')) {
-      if (rb.word('p') < 0.0) throw GcodeError("negative dwell time P in a canned cycle");
-      cycle_p = rb.word('p');
-    }
-    q.p = cycle_p;
-  }
-  if (code == 870) {
-    for (char l : {'i', 'j', 'k'})
-      if (entering && !rb.hasWord(l))
-        throw GcodeError(fmt::format("{} word missing with G87", static_cast<char>(l - 32)));
-    if (rb.hasWord('i')) cycle_i = rb.word('i') * s;
-    if (rb.hasWord('j')) cycle_j = rb.word('j') * s;
-    if (rb.hasWord('k')) cycle_k = rb.word('k') * s;
-    q.i = cycle_i;
-    q.j = cycle_j;
-    q.k = cycle_k;
-  }
-}
-
-void Interpreter::Impl::emitCycleSteps(std::size_t line, MoveSink& sink) {
-  for (const CycleStep& step : cycle_steps) {
-    switch (step.kind) {
-      case CycleStep::Kind::kDwell:
-        sink.onDwell(line, step.seconds);
-        break;
-      case CycleStep::Kind::kAction:
-        sink.onCycleAction(line, step.action);
-        break;
-      case CycleStep::Kind::kManual:
-        // G88: the operator retracts by hand; the program goes on from the clear level.
-        for (std::size_t i = 0; i < 3; ++i) st.machine[i] = step.to[i] + st.offset(i);
-        break;
-      case CycleStep::Kind::kRapid:
-      case CycleStep::Kind::kFeed: {
-        Axes to = st.machine;
-        for (std::size_t i = 0; i < 3; ++i) to[i] = step.to[i] + st.offset(i);
-        emitLine(line, step.kind == CycleStep::Kind::kRapid, to, 0.0, sink);
-        break;
-      }
-    }
-  }
 }
 
 void Interpreter::Impl::doHome(const ResolvedBlock& rb, int code, MoveSink& sink) {

@@ -26,8 +26,7 @@ void Interpreter::Impl::probe(const ResolvedBlock& rb, MoveSink& sink) {
   }
   double length = 0.0;
   for (std::size_t i = 0; i < 6; ++i) length = std::hypot(length, to[i] - st.machine[i]);
-  if (length < kProbeSamePoint)
-    throw GcodeError("start point too close to probe point");
+  if (length < kProbeSamePoint) throw GcodeError("start point too close to probe point");
   const Axes from = st.machine;
   emitLine(rb.line, false, to, 0.0, sink);
   // A simulated probe never touches: the probe position (#5061-#5066, program coordinates) is

@@ -304,7 +304,8 @@ TEST(Interpreter, ErrorsNameTheLine) {
   EXPECT_THAT(errorOf("G92 X1 G1 Y1\n"), HasSubstr("both use axis values"));
   EXPECT_THAT(errorOf("G81 X1 R2 F1\n"), HasSubstr("Z missing"));
   EXPECT_THAT(errorOf("G83 X1 Z-1 R2 F1\n"), HasSubstr("Q word missing"));
-  EXPECT_THAT(errorOf("G18 G81 X1 Z-1 R2 F1\n"), HasSubstr("XY plane"));
+  EXPECT_THAT(errorOf("G18 G81 X1 Z-1 R2 F1\n"),
+              HasSubstr("t.ngc:1: Y missing in the first block of a canned cycle"));
   EXPECT_THAT(errorOf("G91 G53 G0 X1\n"), HasSubstr("G53"));
   EXPECT_THAT(errorOf("G0 U1\n"), HasSubstr("u axis"));
   EXPECT_THAT(errorOf("G1 X1 F1\nI5\n"), HasSubstr("t.ngc:2:"));
