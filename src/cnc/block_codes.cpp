@@ -69,6 +69,7 @@ int* modalSlot(BlockCodes& c, int g) {
     case 300:
     case 301:
     case 530:
+    case 520:
     case 920:
     case 921:
     case 922:

@@ -15,14 +15,14 @@ namespace {
 
 constexpr double kIntegerTolerance = 0.0001;  // integer-valued words accept reals within this
 
+}  // namespace
+
 int toInt(double v, char letter) {
   const double r = std::round(v);
   if (std::abs(v - r) > kIntegerTolerance || std::abs(r) > 1e9)
     throw GcodeError(fmt::format("{} word value {} is not an integer", letter, v));
   return static_cast<int>(r);
 }
-
-}  // namespace
 
 std::string gName(int code) {
   return code % 10 == 0 ? fmt::format("G{}", code / 10)
@@ -76,8 +76,8 @@ void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c)
   const int motion = c.motion >= 0 ? c.motion : st.motion;
   const bool arc = motion == 20 || motion == 30;
   const bool canned = motion >= 730 && motion != 800;
-  const bool axis_user0 = c.non_modal == 100 || c.non_modal == 920 || c.non_modal == 280 ||
-                          c.non_modal == 300 || c.tlo == 431;
+  const bool axis_user0 = c.non_modal == 100 || c.non_modal == 920 || c.non_modal == 520 ||
+                          c.non_modal == 280 || c.non_modal == 300 || c.tlo == 431;
   if (axis_user0 && c.motion >= 0 && c.motion != 800 && axis)
     throw GcodeError(fmt::format("cannot use two G codes that both use axis values ({} and {})",
                                  gName(c.non_modal >= 0 ? c.non_modal : c.tlo),
@@ -86,9 +86,11 @@ void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c)
     throw GcodeError(c.motion == 800 ? "cannot use axis values with G80"
                                      : "cannot use axis values without a G code that uses them "
                                        "(motion mode is G80)");
-  if (c.non_modal == 920 && !axis) throw GcodeError("G92 needs at least one axis word");
-  if ((rb.hasWord('i') || rb.hasWord('j') || rb.hasWord('k')) &&
-      !(arc && c.non_modal != 100 && axis) && motion != 870)
+  if ((c.non_modal == 920 || c.non_modal == 520) && !axis)
+    throw GcodeError(fmt::format("{} needs at least one axis word", gName(c.non_modal)));
+  // An arc with I/J/K and no axis word is a full circle where the tool is (G2 I1, rs274).
+  const bool arc_words = arc && c.non_modal != 100 && (axis || c.motion == 20 || c.motion == 30);
+  if ((rb.hasWord('i') || rb.hasWord('j') || rb.hasWord('k')) && !arc_words && motion != 870)
     throw GcodeError("I, J or K word with no G2, G3 or G87 to use it");
   if (rb.hasWord('r') && !arc && !canned && c.non_modal != 100 && c.m_orient < 0)
     throw GcodeError("R word with no G2, G3, G10, M19 or canned cycle to use it");
@@ -110,8 +112,8 @@ void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c)
         "use it");
   if (rb.hasWord('h') && c.tlo != 430) throw GcodeError("H word with no G43 to use it");
   if (rb.hasWord('d')) throw GcodeError("D word (cutter compensation) is not supported");
-  if (c.non_modal == 530 && !(c.motion == 0 || c.motion == 10))
-    throw GcodeError("G53 needs G0 or G1 in the same block");
+  if (c.non_modal == 530 && !(motion == 0 || motion == 10))
+    throw GcodeError("G53 needs G0 or G1 active");
   if (c.non_modal == 530 && (c.distance == 910 || (c.distance < 0 && st.incremental)))
     throw GcodeError("cannot use G53 in incremental distance mode");
   for (char l : {'u', 'v', 'w'})
@@ -212,7 +214,7 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   if (c.ijk >= 0) st.ijk_absolute = c.ijk == 901;
   if (c.retract >= 0) st.retract_to_r = c.retract == 990;
   if (c.non_modal == 100) doG10(rb);
-  if (c.non_modal >= 920) doG92(rb, c.non_modal);
+  if (c.non_modal >= 920 || c.non_modal == 520) doG92(rb, c.non_modal);
   if (c.non_modal >= 280 && c.non_modal <= 301) doHome(rb, c.non_modal, sink);
   const std::size_t moves_before = summary.moves;
   doMotion(rb, c, sink);

@@ -104,6 +104,8 @@ void parseOWord(std::string_view s, std::size_t pos, Block& block) {
   ++pos;  // 'o'
   if (pos < s.size() && s[pos] == '[') {
     block.o_label = Expression::parseBracketed(s, pos);
+  } else if (pos < s.size() && s[pos] == '#') {  // o#<name> call: the number a parameter holds
+    block.o_label = Expression::parseReal(s, pos);
   } else if (pos < s.size() && s[pos] == '<') {
     const std::size_t close = s.find('>', pos);
     if (close == std::string_view::npos)

@@ -43,8 +43,8 @@ void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink)
   const char wn = kAxisWords[cycle_axes[2]];
   const bool entering = st.motion != code;
   if (entering && !rb.hasWord(wn))
-    throw GcodeError(fmt::format("{} missing in the first block of a canned cycle",
-                                 static_cast<char>(wn - 32)));
+    throw GcodeError(
+        fmt::format("{} missing in the first block of a canned cycle", static_cast<char>(wn - 32)));
   if (entering && !rb.hasWord('r'))
     throw GcodeError("R missing in the first block of a canned cycle");
   const double s = st.scale();
@@ -116,6 +116,19 @@ void Interpreter::Impl::cycleStickyWords(const ResolvedBlock& rb,
   }
 }
 
+Axes Interpreter::Impl::cyclePoint(const std::array<double, 3>& local,
+                                   const std::array<std::size_t, 3>& axes) const {
+  if (st.rotation == 0.0) {  // exact per axis
+    Axes to = st.machine;
+    for (std::size_t i = 0; i < 3; ++i)
+      to[axes[i]] = local[i] + st.g5x[axes[i]] + st.g92[axes[i]] + st.tool_offset[axes[i]];
+    return to;
+  }
+  Axes p = st.programPosition();
+  for (std::size_t i = 0; i < 3; ++i) p[axes[i]] = local[i];
+  return st.toMachine(p);
+}
+
 void Interpreter::Impl::emitCycleSteps(std::size_t line, MoveSink& sink) {
   for (const CycleStep& step : cycle_steps) {
     switch (step.kind) {
@@ -127,12 +140,10 @@ void Interpreter::Impl::emitCycleSteps(std::size_t line, MoveSink& sink) {
         break;
       case CycleStep::Kind::kManual:
         // G88: the operator retracts by hand; the program goes on from the clear level.
-        for (std::size_t i = 0; i < 3; ++i)
-          st.machine[cycle_axes[i]] = step.to[i] + st.offset(cycle_axes[i]);
+        st.machine = cyclePoint(step.to, cycle_axes);
         break;
       case CycleStep::Kind::kRapid:
       case CycleStep::Kind::kFeed: {
-        Axes to = st.machine;
         std::array<std::size_t, 3> axes = cycle_axes;
         if (step.kind == CycleStep::Kind::kFeed && (cycle_code == 740 || cycle_code == 840)) {
           // LinuxCNC 2.9 hands a tap's feed to the canon in the wrong axis order outside G17,
@@ -142,11 +153,9 @@ void Interpreter::Impl::emitCycleSteps(std::size_t line, MoveSink& sink) {
           if (st.plane == Plane::kXZ) axes = {1, 2, 0};
           if (st.plane == Plane::kYZ) axes = {2, 0, 1};
         }
-        for (std::size_t i = 0; i < 3; ++i) to[axes[i]] = step.to[i] + st.offset(axes[i]);
-        emitLine(line, step.kind == CycleStep::Kind::kRapid, to, 0.0, sink);
+        emitLine(line, step.kind == CycleStep::Kind::kRapid, cyclePoint(step.to, axes), 0.0, sink);
         if (axes != cycle_axes)  // the interpreter goes on from where it meant to feed to
-          for (std::size_t i = 0; i < 3; ++i)
-            st.machine[cycle_axes[i]] = step.to[i] + st.offset(cycle_axes[i]);
+          st.machine = cyclePoint(step.to, cycle_axes);
         break;
       }
     }

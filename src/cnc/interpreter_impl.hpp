@@ -67,6 +67,10 @@ struct BlockCodes {
   bool m_mist = false, m_flood = false, m_coolant_off = false;
 };
 
+/// The integer value of word `letter` (reals within 0.0001 of one are accepted); throws
+/// GcodeError otherwise.
+[[nodiscard]] int toInt(double v, char letter);
+
 /// The name of G code `code` (its number ×10): "G1", "G92.1".
 [[nodiscard]] std::string gName(int code);
 
@@ -110,6 +114,9 @@ struct Interpreter::Impl : ParameterSource {
   /// else G54) and applies the stored G92 offset when #5210 is 1, as LinuxCNC starts up.
   void loadParameters();
   void doG10(const ResolvedBlock& rb);
+  /// G10 L1 (entry = words), L10 and L11 (entry from the current position) of tool P
+  /// (tool_entries.cpp).
+  void doG10Tool(const ResolvedBlock& rb, int l);
   void doG92(const ResolvedBlock& rb, int code);
   /// G28/G30: rapid to the intermediate point of the axis words, then to the stored position
   /// (#5161-#5166, #5181-#5186, machine coordinates) of those axes, or of all without words;
@@ -121,14 +128,20 @@ struct Interpreter::Impl : ParameterSource {
   void straight(const ResolvedBlock& rb, bool rapid, bool g53, MoveSink& sink);
   void arc(const ResolvedBlock& rb, bool clockwise, MoveSink& sink);
   /// G38.2-G38.5: a straight feed to the axis words with the probe on, as rs274 simulates it.
-  void probe(const ResolvedBlock& rb, MoveSink& sink);
+  void probe(const ResolvedBlock& rb, int code, MoveSink& sink);
   void cycle(const ResolvedBlock& rb, int code, MoveSink& sink);
   /// Reads the sticky words of canned cycle `code` (×10) into cycle_q, cycle_p, cycle_i..k and
   /// `q`: Q of G73/G83, P of G74/G82/G84/G86/G88/G89, I J K of G87 (lengths in mm); `entering`:
   /// the cycle's first block, which must have them (but P of G74/G84).
   void cycleStickyWords(const ResolvedBlock& rb, int code, bool entering, CycleRequest& q);
+  /// The machine position of a cycle point: `local` (program coordinates, mm) on the program
+  /// axes `axes`, the other axes where they are.
+  [[nodiscard]] Axes cyclePoint(const std::array<double, 3>& local,
+                                const std::array<std::size_t, 3>& axes) const;
   /// Sends the expanded cycle_steps of source line `line` to `sink` as lines, dwells and actions.
   void emitCycleSteps(std::size_t line, MoveSink& sink);
+  /// The block's axis words in mm/deg (NaN where it has none), for MachineState::target.
+  [[nodiscard]] Axes axisWords(const ResolvedBlock& rb) const;
   /// Emits a line to machine position `to`; updates the position.
   void emitLine(std::size_t line, bool rapid, const Axes& to, double inverse_f, MoveSink& sink);
 

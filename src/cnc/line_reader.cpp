@@ -31,11 +31,11 @@ bool LineReader::next(Block& block) {
         seen_content_ = true;
         continue;
       }
-      if (percent_open_) {  // closing '%': the rest of the file is ignored
-        done_ = true;
-        break;
-      }
-      throw IoError(locate(file_, line_, "'%' closes a program that did not start with '%'"));
+      // A closing '%', or one after a program that did not open with it (after M2, as in
+      // LinuxCNC's own files): reading stops there, the rest of the file is ignored. Without
+      // M2/M30 before it the program has no end (Interpreter's require_program_end).
+      done_ = true;
+      break;
     }
     if (block.empty()) continue;
     seen_content_ = true;

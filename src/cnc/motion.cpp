@@ -98,8 +98,9 @@ ArcCentre arcCentreOf(const ResolvedBlock& rb,
                                  static_cast<char>(kArcOffsetWord[a2] - 32)));
   const double o1 = rb.hasWord(kArcOffsetWord[a1]) ? rb.word(kArcOffsetWord[a1]) * st.scale() : 0.0;
   const double o2 = rb.hasWord(kArcOffsetWord[a2]) ? rb.word(kArcOffsetWord[a2]) * st.scale() : 0.0;
-  const double c1 = st.ijk_absolute ? o1 + st.offset(a1) : s1 + o1;
-  const double c2 = st.ijk_absolute ? o2 + st.offset(a2) : s2 + o2;
+  const auto offset = [&st](std::size_t i) { return st.g5x[i] + st.g92[i] + st.tool_offset[i]; };
+  const double c1 = st.ijk_absolute ? o1 + offset(a1) : s1 + o1;
+  const double c2 = st.ijk_absolute ? o2 + offset(a2) : s2 + o2;
   return arcFromCentre(s1, s2, e1, e2, c1, c2, tolerance_mm);
 }
 
@@ -155,17 +156,20 @@ void Interpreter::Impl::emitLine(
   if (st.inch) ++summary.inch_moves;
 }
 
+Axes Interpreter::Impl::axisWords(const ResolvedBlock& rb) const {
+  Axes w;
+  for (std::size_t i = 0; i < 6; ++i)
+    w[i] = rb.hasWord(kAxes[i]) ? rb.word(kAxes[i]) * st.axisScale(i) : kNaN;
+  return w;
+}
+
 void Interpreter::Impl::straight(const ResolvedBlock& rb, bool rapid, bool g53, MoveSink& sink) {
   Axes to = st.machine;
-  for (std::size_t i = 0; i < 6; ++i) {
-    if (!rb.hasWord(kAxes[i])) continue;
-    const double v = rb.word(kAxes[i]) * st.axisScale(i);
-    if (g53)
-      to[i] = v;
-    else if (st.incremental)
-      to[i] = st.machine[i] + v;
-    else
-      to[i] = v + st.offset(i);
+  if (g53) {
+    for (std::size_t i = 0; i < 6; ++i)
+      if (rb.hasWord(kAxes[i])) to[i] = rb.word(kAxes[i]) * st.axisScale(i);
+  } else {
+    to = st.target(axisWords(rb));
   }
   double inverse_f = 0.0;
   if (!rapid) {
@@ -186,15 +190,30 @@ void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& s
   checkArcWords(rb, clockwise, st.plane, a1, a2, an);
   const double inverse_f = arcInverseFeed(rb, st, clockwise);
   const int turns = arcTurns(rb);
-  // Target in machine coordinates (the plane geometry is the same in program and machine
-  // coordinates: offsets are translations).
-  Axes to = st.machine;
-  for (std::size_t i = 0; i < 6; ++i) {
-    if (!rb.hasWord(kAxes[i])) continue;
-    const double v = rb.word(kAxes[i]) * st.axisScale(i);
-    to[i] = st.incremental ? st.machine[i] + v : v + st.offset(i);
+  const Axes to = st.target(axisWords(rb));
+  const double tolerance = options.arc.centreMm(st.inch);
+  ArcCentre c;
+  if (st.rotation == 0.0) {  // offsets are translations: the arc is the same in machine space
+    c = arcCentreOf(rb, st, clockwise, a1, a2, to, tolerance);
+  } else {
+    // A rotated system (G10 L2 R): the arc in program coordinates, its centre turned with it.
+    if (st.plane != Plane::kXY)
+      throw GcodeError(
+          "an arc in G18 or G19 in a rotated coordinate system (G10 L2 R) is not "
+          "supported");
+    MachineState program = st;
+    program.machine = st.programPosition();
+    program.g5x = program.g92 = program.tool_offset = Axes{};
+    program.rotation = 0.0;
+    const Axes end = st.toProgram(to);
+    c = arcCentreOf(rb, program, clockwise, a1, a2, end, tolerance);
+    Axes centre = end;
+    centre[a1] = c.c1;
+    centre[a2] = c.c2;
+    const Axes on_machine = st.toMachine(centre);
+    c.c1 = on_machine[a1];
+    c.c2 = on_machine[a2];
   }
-  const ArcCentre c = arcCentreOf(rb, st, clockwise, a1, a2, to, options.arc.centreMm(st.inch));
   Move m;
   m.line = rb.line;
   m.kind = MoveKind::kArc;
@@ -223,13 +242,8 @@ void Interpreter::Impl::doHome(const ResolvedBlock& rb, int code, MoveSink& sink
   }
   // The intermediate point is a G0 target (offsets, units, G90/G91); rs274 makes this rapid
   // even when it goes nowhere (no axis words).
-  Axes mid = st.machine;
+  const Axes mid = st.target(axisWords(rb));
   const bool any = rb.hasAxis();
-  for (std::size_t i = 0; i < 6; ++i) {
-    if (!rb.hasWord(kAxes[i])) continue;
-    const double v = rb.word(kAxes[i]) * st.axisScale(i);
-    mid[i] = st.incremental ? st.machine[i] + v : v + st.offset(i);
-  }
   emitLine(rb.line, true, mid, 0.0, sink);
   Axes home = mid;
   for (std::size_t i = 0; i < 6; ++i)
@@ -241,8 +255,8 @@ void Interpreter::Impl::doMotion(const ResolvedBlock& rb, const BlockCodes& c, M
   const int motion = c.motion >= 0 ? c.motion : st.motion;
   const bool is_cycle = motion >= 730 && motion != 800;
   if (!is_cycle) cycle_il_flag = false;  // a non-cycle motion mode ends the cycle sequence
-  const bool axis_user0 = c.non_modal == 100 || c.non_modal == 920 || c.non_modal == 280 ||
-                          c.non_modal == 300 || c.tlo == 431;
+  const bool axis_user0 = c.non_modal == 100 || c.non_modal == 920 || c.non_modal == 520 ||
+                          c.non_modal == 280 || c.non_modal == 300 || c.tlo == 431;
   const bool axis = rb.hasAxis() && !axis_user0;
   switch (motion) {
     case 0:
@@ -260,7 +274,7 @@ void Interpreter::Impl::doMotion(const ResolvedBlock& rb, const BlockCodes& c, M
     case 383:
     case 384:
     case 385:
-      if (axis) probe(rb, sink);
+      if (axis) probe(rb, motion, sink);
       break;
     case 800:
       break;

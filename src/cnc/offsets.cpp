@@ -11,19 +11,6 @@
 
 namespace pkm::cnc {
 
-namespace {
-
-constexpr double kIntegerTolerance = 0.0001;  // integer-valued words accept reals within this
-
-int toInt(double v, char letter) {
-  const double r = std::round(v);
-  if (std::abs(v - r) > kIntegerTolerance || std::abs(r) > 1e9)
-    throw GcodeError(fmt::format("{} word value {} is not an integer", letter, v));
-  return static_cast<int>(r);
-}
-
-}  // namespace
-
 double Interpreter::Impl::numbered(int index) {
   if (index >= 5420 && index <= 5425) {
     const auto i = static_cast<std::size_t>(index - 5420);
@@ -65,6 +52,7 @@ void Interpreter::Impl::selectSystem(int n) {
   params.set(kActiveSystemParam, n);
   const int base = coordinateSystemBase(n);
   for (std::size_t i = 0; i < 6; ++i) st.g5x[i] = params.get(base + static_cast<int>(i));
+  st.rotation = params.get(base + kRotationIndex);
 }
 
 void Interpreter::Impl::setTlo(const ResolvedBlock& rb, int code) {
@@ -97,22 +85,40 @@ void Interpreter::Impl::doG10(const ResolvedBlock& rb) {
   if (!rb.hasWord('l')) throw GcodeError("G10 needs an L word");
   if (!rb.hasWord('p')) throw GcodeError("G10 needs a P word");
   const int l = toInt(rb.word('l'), 'L');
+  if (l == 1 || l == 10 || l == 11) {
+    doG10Tool(rb, l);
+    return;
+  }
   if (l != 2 && l != 20)
-    throw GcodeError(fmt::format("G10 L{} is not supported (only L2 and L20)", l));
+    throw GcodeError(fmt::format("G10 L{} is not supported (L1, L2, L10, L11, L20)", l));
   int p = toInt(rb.word('p'), 'P');
   if (p < 0 || p > 9) throw GcodeError(fmt::format("G10 P{} out of range (0..9)", p));
   if (p == 0) p = st.coordinate_system;
-  if (rb.hasWord('r') && rb.word('r') != 0.0)
-    throw GcodeError("G10 L2 R (XY rotation of a coordinate system) is not supported");
   const int base = coordinateSystemBase(p);
-  static constexpr std::array<char, 6> kAxes{'x', 'y', 'z', 'a', 'b', 'c'};
-  for (std::size_t i = 0; i < 6; ++i) {
-    if (!rb.hasWord(kAxes[i])) continue;
-    const double v = rb.word(kAxes[i]) * st.axisScale(i);
-    // L20: the current point gets coordinate v; LinuxCNC computes the new origin from the
-    // program position and the *active* origin, without the G92 offset (checked with rs274).
-    const double origin = l == 2 ? v : st.program(i) + st.g5x[i] - v;
-    params.set(base + static_cast<int>(i), origin);
+  if (rb.hasWord('r')) params.set(base + kRotationIndex, rb.word('r'));
+  const double rotation = params.get(base + kRotationIndex);
+  const Axes words = axisWords(rb);
+  if (l == 20 && rotation != 0.0) {
+    // The current point gets the given coordinates in system p, turned by p's rotation: its
+    // origin moves along the turned axes (the other axes keep their program coordinates).
+    MachineState in_p = st;
+    for (std::size_t i = 0; i < 6; ++i) in_p.g5x[i] = params.get(base + static_cast<int>(i));
+    in_p.rotation = rotation;
+    Axes v = in_p.programPosition();
+    for (std::size_t i = 0; i < 6; ++i)
+      if (!std::isnan(words[i])) v[i] = words[i];
+    in_p.g5x = {};
+    const Axes without_origin = in_p.toMachine(v);  // R·(v + G92) + tool offset
+    for (std::size_t i = 0; i < 6; ++i)
+      params.set(base + static_cast<int>(i), st.machine[i] - without_origin[i]);
+  } else {
+    for (std::size_t i = 0; i < 6; ++i) {
+      if (std::isnan(words[i])) continue;
+      // L20: the current point gets coordinate v; LinuxCNC computes the new origin from the
+      // program position and the *active* origin, without the G92 offset (checked with rs274).
+      const double origin = l == 2 ? words[i] : st.program(i) + st.g5x[i] - words[i];
+      params.set(base + static_cast<int>(i), origin);
+    }
   }
   if (p == st.coordinate_system) selectSystem(p);
 }
@@ -120,12 +126,23 @@ void Interpreter::Impl::doG10(const ResolvedBlock& rb) {
 void Interpreter::Impl::doG92(const ResolvedBlock& rb, int code) {
   static constexpr std::array<char, 6> kAxes{'x', 'y', 'z', 'a', 'b', 'c'};
   switch (code) {
-    case 920:
+    case 920: {
+      // The current point gets the given program coordinates: G92 = R⁻¹(machine − G5x − tool)
+      // − v on each given axis.
+      MachineState no_g92 = st;
+      no_g92.g92 = {};
+      const Axes p = no_g92.programPosition();
       for (std::size_t i = 0; i < 6; ++i) {
         if (!rb.hasWord(kAxes[i])) continue;
-        const double v = rb.word(kAxes[i]) * st.axisScale(i);
-        st.g92[i] = st.machine[i] - st.g5x[i] - st.tool_offset[i] - v;
+        st.g92[i] = p[i] - rb.word(kAxes[i]) * st.axisScale(i);
       }
+      for (std::size_t i = 0; i < 6; ++i) params.set(kG92Base + static_cast<int>(i), st.g92[i]);
+      params.set(kG92Base - 1, 1.0);
+      break;
+    }
+    case 520:  // G52: a local offset in the G92 registers, set to the words themselves
+      for (std::size_t i = 0; i < 6; ++i)
+        if (rb.hasWord(kAxes[i])) st.g92[i] = rb.word(kAxes[i]) * st.axisScale(i);
       for (std::size_t i = 0; i < 6; ++i) params.set(kG92Base + static_cast<int>(i), st.g92[i]);
       params.set(kG92Base - 1, 1.0);
       break;

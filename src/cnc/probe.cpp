@@ -16,17 +16,14 @@ constexpr int kProbeResult = 5061;         // #5061-#5066: the probe position, X
 constexpr int kProbeSuccess = 5070;        // #5070: 1 when the probe tripped
 }  // namespace
 
-void Interpreter::Impl::probe(const ResolvedBlock& rb, MoveSink& sink) {
+void Interpreter::Impl::probe(const ResolvedBlock& rb, int code, MoveSink& sink) {
   if (st.inverse_time || st.feed <= 0.0) throw GcodeError("cannot probe with zero feed rate");
-  Axes to = st.machine;
-  for (std::size_t i = 0; i < 6; ++i) {
-    if (!rb.hasWord(kAxisWords[i])) continue;
-    const double v = rb.word(kAxisWords[i]) * st.axisScale(i);
-    to[i] = st.incremental ? st.machine[i] + v : v + st.offset(i);
-  }
+  const Axes to = st.target(axisWords(rb));
   double length = 0.0;
   for (std::size_t i = 0; i < 6; ++i) length = std::hypot(length, to[i] - st.machine[i]);
-  if (length < kProbeSamePoint) throw GcodeError("start point too close to probe point");
+  // Only the probes that fail without contact (G38.2, G38.4) refuse a move to where they are.
+  if (length < kProbeSamePoint && (code == 382 || code == 384))
+    throw GcodeError("start point too close to probe point");
   const Axes from = st.machine;
   emitLine(rb.line, false, to, 0.0, sink);
   // A simulated probe never touches: the probe position (#5061-#5066, program coordinates) is

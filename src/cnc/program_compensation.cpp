@@ -77,7 +77,7 @@ void checkBlock(const Block& b, const std::string& file, BlockScan& scan) {
     const bool l20 = std::any_of(b.words.begin(), b.words.end(), [&](const Word& x) {
       return x.letter == 'l' && x.value.isConstant() && x.value.evaluate(params) == 20.0;
     });
-    sets_offset = sets_offset || g10 == 920 || (g10 == 100 && l20);
+    sets_offset = sets_offset || g10 == 920 || g10 == 520 || (g10 == 100 && l20);
     if (unsupportedG(g10))
       fail(file,
            b.line,
@@ -112,7 +112,11 @@ class FrameSink final : public MoveSink {
     moves.push_back(move);
     const MachineState& st = interpreter_->state();
     detail::WordFrame f;
-    for (std::size_t k = 0; k < 6; ++k) f.offset[k] = st.offset(k);
+    if (st.rotation != 0.0)  // the rewritten words would need the rotation undone
+      throw GcodeError(
+          "gcode compensate does not support a rotated coordinate system (G10 L2 R); the "
+          "program was not written");
+    for (std::size_t k = 0; k < 6; ++k) f.offset[k] = st.g5x[k] + st.g92[k] + st.tool_offset[k];
     f.scale = st.scale();
     f.incremental = st.incremental;
     frames.push_back(f);

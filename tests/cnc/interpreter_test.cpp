@@ -299,7 +299,9 @@ TEST(Interpreter, ErrorsNameTheLine) {
   EXPECT_THAT(errorOf("G2 X1 F1\n"), HasSubstr("needs R or at least one of I and J"));
   EXPECT_THAT(errorOf("G2 X1 I1 K1 F1\n"), HasSubstr("K word given for an arc in the XY plane"));
   EXPECT_THAT(errorOf("G4\n"), HasSubstr("G4 needs a P word"));
-  EXPECT_THAT(errorOf("G10 L1 P1 Z1\n"), HasSubstr("G10 L1 is not supported"));
+  EXPECT_THAT(errorOf("G10 L1 P1 Z1\n"),
+              HasSubstr("t.ngc:1: G10 L1: tool 1 is not in the tool table"));
+  EXPECT_THAT(errorOf("G10 L3 P1 Z1\n"), HasSubstr("t.ngc:1: G10 L3 is not supported"));
   EXPECT_THAT(errorOf("G92\n"), HasSubstr("G92 needs"));
   EXPECT_THAT(errorOf("G92 X1 G1 Y1\n"), HasSubstr("both use axis values"));
   EXPECT_THAT(errorOf("G81 X1 R2 F1\n"), HasSubstr("Z missing"));

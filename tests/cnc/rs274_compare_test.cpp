@@ -115,12 +115,29 @@ struct Rs274State {
   std::array<double, 6> g5x{}, g92{}, tlo{};
   std::array<int, 6> t5{}, t9{}, tt{};  ///< non-zero printed offset terms per axis
   double feed = 0.0;
+  double rotation = 0.0;  ///< SET_XY_ROTATION, rad
 };
+
+/// machine = Rz(rotation)·(program + G92) + G5x + tool offset (LinuxCNC's canon), mm.
+std::array<double, 6> toMachine(const Rs274State& st, const std::array<double, 6>& program) {
+  std::array<double, 6> m{};
+  for (std::size_t i = 0; i < 6; ++i) m[i] = program[i] * (i < 3 ? st.scale : 1.0) + st.g92[i];
+  const double c = std::cos(st.rotation), s = std::sin(st.rotation);
+  const double x = m[0], y = m[1];
+  m[0] = c * x - s * y;
+  m[1] = s * x + c * y;
+  for (std::size_t i = 0; i < 6; ++i) m[i] += st.g5x[i] + st.tlo[i];
+  return m;
+}
 
 /// Applies the call `name(args)` when it sets units, the plane, an offset or the feed.
 void applyRs274Setting(Rs274State& st, const std::string& name, const std::string& args) {
   if (name == "USE_LENGTH_UNITS") {
     st.scale = args.find("INCHES") != std::string::npos ? 25.4 : 1.0;
+    return;
+  }
+  if (name == "SET_XY_ROTATION") {
+    st.rotation = numbers(args).at(0) * M_PI / 180.0;
     return;
   }
   if (name == "SELECT_PLANE") {
@@ -176,14 +193,13 @@ RefMove rs274Motion(const Rs274State& st, const std::string& name, const std::ve
     m.kind = name == "STRAIGHT_TRAVERSE" ? MoveKind::kRapid : MoveKind::kLinear;  // probes feed
   }
   int max_terms = 1;
-  for (std::size_t i = 0; i < 6; ++i) {
-    const double s = i < 3 ? st.scale : 1.0;
-    m.end[i] = prog[i] * s + st.g5x[i] + st.g92[i] + st.tlo[i];
-    max_terms = std::max(max_terms, terms[i]);
-  }
+  m.end = toMachine(st, prog);
+  for (std::size_t i = 0; i < 6; ++i) max_terms = std::max(max_terms, terms[i]);
+  std::array<double, 6> c6{};
+  for (std::size_t i = 0; i < 3; ++i) c6[i] = std::isnan(centre[i]) ? 0.0 : centre[i];
+  const std::array<double, 6> centre_machine = toMachine(st, c6);
   for (std::size_t i = 0; i < 3; ++i)
-    if (!std::isnan(centre[i]))
-      m.centre[i] = centre[i] * st.scale + st.g5x[i] + st.g92[i] + st.tlo[i];
+    if (!std::isnan(centre[i])) m.centre[i] = centre_machine[i];
   m.tol = kPrintHalfUnit * 25.4 * (max_terms + 1) + kTolSlack;
   if (st.scale == 1.0) m.tol = kPrintHalfUnit * (max_terms + 1) + kTolSlack;
   if (m.kind != MoveKind::kRapid) m.feed = st.feed;

@@ -20,8 +20,8 @@ class LineReader {
   LineReader(std::string_view text, std::string file);
 
   /// Parses the next non-empty block into `block` (its `line` set). Returns false at the end of
-  /// the text or after the closing `%`. Throws pkm::IoError "FILE:LINE: message" for a malformed
-  /// line or a `%` that closes a program that did not start with `%`.
+  /// the text or after a `%` line that does not open the program (the rest is not read). Throws
+  /// pkm::IoError "FILE:LINE: message" for a malformed line.
   bool next(Block& block);
 
   /// Source lines read so far.
@@ -29,7 +29,7 @@ class LineReader {
   /// The file name given to the constructor.
   [[nodiscard]] const std::string& file() const { return file_; }
   /// True once the closing `%` of a program that started with `%` was read.
-  [[nodiscard]] bool closedByPercent() const { return done_; }
+  [[nodiscard]] bool closedByPercent() const { return done_ && percent_open_; }
 
   /// True when the text may contain an O-word statement: a letter `o` or `O` outside comments.
   /// Conservative (an `o` in an expression's function name counts too); false means none.

@@ -1,7 +1,8 @@
 /// @file
 /// @brief Modal state and offsets of the interpreter (LinuxCNC 2.9 "Modal Groups"), and the
-/// coordinate chain machine = program + G5x + G92 + tool length offset (per axis; lengths in mm,
-/// angles in degrees).
+/// coordinate chain machine = Rz(rotation)·(program + G92) + G5x + tool length offset, the
+/// rotation (G10 L2 R of the active system) turning X and Y about the system's origin (lengths
+/// in mm, angles in degrees).
 #pragma once
 
 #include <array>
@@ -43,12 +44,19 @@ struct MachineState {
   Axes g5x{};                     ///< active coordinate system offset
   Axes g92{};                     ///< G92 offset
   Axes tool_offset{};             ///< tool length offset (G43 / G43.1)
+  double rotation = 0.0;          ///< XY rotation of the active system, deg (G10 L2 R)
+  /// The machine position of program position `p` (the chain above).
+  [[nodiscard]] Axes toMachine(const Axes& p) const;
+  /// The program position of machine position `m` (the chain above, inverted).
+  [[nodiscard]] Axes toProgram(const Axes& m) const;
+  /// The program position now.
+  [[nodiscard]] Axes programPosition() const { return toProgram(machine); }
   /// Program coordinate of axis `i` at the current position.
-  [[nodiscard]] double program(std::size_t i) const {
-    return machine[i] - g5x[i] - g92[i] - tool_offset[i];
-  }
-  /// Sum of all offsets of axis `i`.
-  [[nodiscard]] double offset(std::size_t i) const { return g5x[i] + g92[i] + tool_offset[i]; }
+  [[nodiscard]] double program(std::size_t i) const { return programPosition()[i]; }
+  /// The machine position after a move to the axis values `words` (program units converted to
+  /// mm/deg; NaN for an axis without a word: it keeps its program coordinate), absolute or
+  /// incremental as the state says.
+  [[nodiscard]] Axes target(const Axes& words) const;
   /// mm per program length unit (1 or 25.4).
   [[nodiscard]] double scale() const { return inch ? kMmPerInch : 1.0; }
   /// mm (or deg) per program unit of axis `i`.

@@ -25,6 +25,8 @@ inline constexpr int kG30Base = 5181;
 inline constexpr int kActiveSystemParam = 5220;
 /// First parameter (X) of coordinate system `n` (1 = G54 .. 9 = G59.3): 5201 + 20 n.
 [[nodiscard]] constexpr int coordinateSystemBase(int n) { return 5201 + 20 * n; }
+/// The rotation (R, degrees about Z) of a coordinate system: coordinateSystemBase(n) + 9.
+inline constexpr int kRotationIndex = 9;
 /// True when parameter `index` holds a length (stored in mm, read and written in program units).
 [[nodiscard]] bool isLengthParameter(int index);
 
