@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -92,6 +94,20 @@ struct Interpreter::Impl : ParameterSource {
   /// #<_x>, #<_metric>, #<_current_tool>, ..., and #<_ini[section]name>; nullopt for others.
   [[nodiscard]] std::optional<double> systemParameter(const std::string& name) const;
 
+  // interpreter.cpp, sub_files.cpp
+  /// How a run of blocks ended: M2/M30 (or M99 in the main program), past its last block, or
+  /// by the return of the sub file it was started for.
+  enum class Outcome { kEnded, kFellOff, kReturned };
+  /// Runs `program` from block `pc`; `external`: a sub file's sub, whose endsub returns.
+  Outcome runProgram(const Program& program, std::size_t pc, MoveSink& sink, bool external);
+  /// Calls sub `name` with `args` (for `caller`) from the file NAME.ngc in the working folder
+  /// or options.subroutine_path (LinuxCNC's SUBROUTINE_PATH); throws GcodeError when there is
+  /// none or it does not define the sub.
+  Outcome callExternal(const Program& caller,
+                       const std::string& name,
+                       const std::vector<double>& args,
+                       MoveSink& sink);
+
   // block_executor.cpp
   /// Executes one block; returns false when the program ends (M2/M30).
   bool execute(const Block& block, MoveSink& sink);
@@ -149,6 +165,8 @@ struct Interpreter::Impl : ParameterSource {
   MachineState st;
   std::size_t current_line = 0;  // source line of the block being executed (#<_line>)
   FanucRequest fanuc;            // set by execute() for the program flow
+  std::map<std::string, std::unique_ptr<Program>> sub_files;  // loaded, by path
+  std::size_t external_depth = 0;                             // sub files being run
   Parameters params;
   RunSummary summary;
   // Canned-cycle memory (rs274ngc cycle_il / cycle_cc and sticky R, Q, P).

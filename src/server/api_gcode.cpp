@@ -26,6 +26,7 @@ io::NamedText program(const Json& body) {
 /// The tool table a request sends as text ("tool_table", "tool_units").
 workflow::GcodeInterpreterSettings interpreter(const Json& body) {
   workflow::GcodeInterpreterSettings settings;
+  settings.search_working_folder = false;  // the server's folder is not the user's
   settings.tool_table_text = stringField(body, "tool_table", "");
   settings.tool_units = stringField(body, "tool_units", "mm");
   return settings;

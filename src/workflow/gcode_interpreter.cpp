@@ -30,6 +30,7 @@ cnc::InterpreterOptions GcodeInterpreterSettings::options() const {
   o.startup_code = startup_code;
   o.startup_source = startup_source;
   o.require_program_end = require_program_end;
+  o.search_working_folder = search_working_folder;
   if (!ini.empty()) {
     const io::NamedText text = io::readNamedText(ini);
     const cnc::Rs274ngcIni r = cnc::readRs274ngcIni(text.text, text.name);
@@ -38,6 +39,7 @@ cnc::InterpreterOptions GcodeInterpreterSettings::options() const {
       o.startup_source = r.startup_source;
     }
     o.arc = r.arc;
+    o.subroutine_path = r.subroutine_path;
     o.ini_values = r.values;
     if (!r.parameter_file.empty()) {
       const io::NamedText var = io::readNamedText(r.parameter_file);

@@ -4,6 +4,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "pkm/cnc/interpreter.hpp"
 #include "pkm/core/error.hpp"
 
@@ -103,6 +106,34 @@ TEST(InterpreterIni, IniValuesAreReadOnlyParameters) {
               ::testing::ThrowsMessage<IoError>(HasSubstr("w.ngc:1: cannot assign to read-only")));
   EXPECT_THAT([&] { again.run(Program::parse("G0 X#<_ini[setup]nope>\nM2\n", "u.ngc"), c); },
               ::testing::ThrowsMessage<IoError>(HasSubstr("u.ngc:1: named parameter")));
+}
+
+TEST(InterpreterIni, SubFilesComeFromTheSubroutinePath) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "pkm_sub_files_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / "corner.ngc") << "o<corner> sub\nG0 X#1 Y#2\no<inner> call [#1]\n"
+                                       "o<corner> endsub [#1 + #2]\nM2\n";
+  std::ofstream(dir / "inner.ngc") << "(the sub of a sub file, also from the path)\n"
+                                      "o<inner> sub\nG0 Z#1\no<inner> endsub\n";
+  std::ofstream(dir / "broken.ngc") << "o<broken> sub\nG1 X1 F0\no<broken> endsub\n";
+  InterpreterOptions o;
+  o.subroutine_path = {dir.string()};
+  o.search_working_folder = false;
+  o.require_program_end = true;
+  MoveCollector c;
+  Interpreter(o).run(
+      Program::parse("o<corner> call [3] [4]\nG0 X#<_value>\n#1 = 7\nG0 Y#1\nM2\n", "m.ngc"), c);
+  ASSERT_EQ(c.moves.size(), 4u);
+  EXPECT_DOUBLE_EQ(c.moves[0].end[0], 3.0);
+  EXPECT_DOUBLE_EQ(c.moves[1].end[2], 3.0);  // o<inner> from inner.ngc
+  EXPECT_DOUBLE_EQ(c.moves[2].end[0], 7.0);  // the value endsub returned
+  EXPECT_DOUBLE_EQ(c.moves[3].end[1], 7.0);  // #1 of the main program untouched by the call
+  EXPECT_THAT([&] { Interpreter(o).run(Program::parse("o<nope> call\nM2\n", "m.ngc"), c); },
+              ::testing::ThrowsMessage<IoError>(HasSubstr("m.ngc:1: call to undefined")));
+  EXPECT_THAT([&] { Interpreter(o).run(Program::parse("o<broken> call\nM2\n", "m.ngc"), c); },
+              ::testing::ThrowsMessage<IoError>(HasSubstr("broken.ngc:2: cannot do G1")));
+  fs::remove_all(dir);
 }
 
 TEST(InterpreterIni, ProgramEndIsRequiredWhenAsked) {

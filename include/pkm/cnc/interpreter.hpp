@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "pkm/cnc/arc.hpp"
 #include "pkm/cnc/line_reader.hpp"
@@ -38,6 +39,11 @@ struct InterpreterOptions {
   std::string startup_code;
   /// Where startup_code comes from, prefixed to its messages ("hexapod.ini:12"; "" : nothing).
   std::string startup_source;
+  /// Folders searched for NAME.ngc when a program calls a sub it does not define (INI
+  /// [RS274NGC] SUBROUTINE_PATH, in order), after the working folder when
+  /// search_working_folder (where LinuxCNC's rs274 looks first; off for uploads).
+  std::vector<std::string> subroutine_path;
+  bool search_working_folder = true;
   /// Centre-format arc tolerances (INI [RS274NGC] CENTER_ARC_RADIUS_TOLERANCE_MM/_INCH).
   ArcTolerances arc;
   /// The INI's numeric entries for #<_ini[section]name>, keyed "section]name" in lower case

@@ -41,6 +41,9 @@ struct GcodeInterpreterSettings {
   std::string ini;
   /// Refuse a program without M2/M30 that is not enclosed in `%` lines, as LinuxCNC does.
   bool require_program_end = true;
+  /// Look for called sub files (NAME.ngc) in the working folder first, as rs274 does; the
+  /// server turns it off (an upload has no folder).
+  bool search_working_folder = true;
   /// Throws pkm::InvalidArgument for a unit other than mm or inch (naming --tool-units) or a
   /// zero iteration cap (naming --max-iterations).
   void validate() const;
