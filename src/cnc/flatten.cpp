@@ -66,6 +66,12 @@ bool isPercentLine(std::string_view line) {
 
 class FlattenSink final : public MoveSink {
  public:
+  /// What the M98/M99 of a block's words do (the passes of the M98 calls still running are
+  /// counted, so that the M99 of the main program is told from a subprogram's).
+  struct Fanuc {
+    bool m98 = false;
+    bool ends_main = false;
+  };
   FlattenSink(const Program& program, const std::vector<std::string_view>& lines, FlatProgram& out)
       : program_(program), lines_(lines), out_(out) {}
 
@@ -84,8 +90,9 @@ class FlattenSink final : public MoveSink {
     const std::string_view src = block.line <= lines_.size() ? lines_[block.line - 1] : "";
     const std::string comments = commentsOf(src);
     if (words.empty() && comments.empty()) return;  // a line of parameter settings only
-    std::string text = wordsText(block, words, false);
-    if (text.size() > kMaxLine) text = wordsText(block, words, true);
+    const Fanuc fanuc = fanucOf(words);
+    std::string text = wordsText(block, words, fanuc, false);
+    if (text.size() > kMaxLine) text = wordsText(block, words, fanuc, true);
     if (text.size() > kMaxLine)
       throw IoError(fmt::format("{}:{}: the evaluated block is longer than {} characters",
                                 program_.file(),
@@ -144,9 +151,16 @@ class FlattenSink final : public MoveSink {
   /// long) values rounded to 9 decimals, as gcode compensate writes its words.
   std::string wordsText(const Block& block,
                         const std::vector<EvaluatedWord>& words,
+                        const Fanuc& fanuc,
                         bool rounded) const {
     std::string text = block.block_delete ? "/" : "";
     for (const EvaluatedWord& w : words) {
+      // The flat program holds the subprogram's blocks: M98 and its P, L go; an M99 goes, but
+      // the one that ends the main program becomes M2.
+      if (fanuc.m98 && (w.letter == 'p' || w.letter == 'l')) continue;
+      if (w.letter == 'm' && (w.value == 98.0 || w.value == 99.0)) {
+        if (w.value == 98.0 || !fanuc.ends_main) continue;
+      }
       if (!std::isfinite(w.value))
         throw IoError(fmt::format("{}:{}: {} word value is not a finite number",
                                   program_.file(),
@@ -155,9 +169,30 @@ class FlattenSink final : public MoveSink {
       if (text.size() > (block.block_delete ? 1u : 0u)) text.push_back(' ');
       text.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(w.letter))));
       const bool round = rounded && std::abs(w.value) < 1e9;
-      text += formatGcodeNumber(round ? std::round(w.value * 1e9) / 1e9 : w.value);
+      const double v = w.letter == 'm' && w.value == 99.0 ? 2.0 : w.value;
+      text += formatGcodeNumber(round ? std::round(v * 1e9) / 1e9 : v);
     }
     return text;
+  }
+
+  [[nodiscard]] Fanuc fanucOf(const std::vector<EvaluatedWord>& words) {
+    Fanuc f;
+    double count = 1.0;
+    bool m99 = false;
+    for (const EvaluatedWord& w : words) {
+      if (w.letter == 'm' && w.value == 98.0) f.m98 = true;
+      if (w.letter == 'm' && w.value == 99.0) m99 = true;
+      if (w.letter == 'l') count = w.value;
+    }
+    if (f.m98 && count >= 1.0) passes_.push_back(std::floor(count));
+    if (m99) {
+      if (passes_.empty()) {
+        f.ends_main = true;
+      } else if (--passes_.back() < 1.0) {
+        passes_.pop_back();
+      }
+    }
+    return f;
   }
 
   /// Copies source lines [from, to) (1-based): they hold no block, only comments or blanks.
@@ -180,6 +215,7 @@ class FlattenSink final : public MoveSink {
   const std::vector<std::string_view>& lines_;
   FlatProgram& out_;
   bool reported_ = false;
+  std::vector<double> passes_;  // passes left of the M98 calls running, innermost last
   std::size_t last_ = 0;
   int percent_lines_ = 0;
 };
