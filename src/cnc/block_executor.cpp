@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "interpreter_impl.hpp"
 #include "pkm/cnc/gcode_error.hpp"
@@ -14,6 +15,7 @@ namespace pkm::cnc {
 namespace {
 
 constexpr double kIntegerTolerance = 0.0001;  // integer-valued words accept reals within this
+constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
 
 }  // namespace
 
@@ -148,11 +150,42 @@ FanucRequest Interpreter::Impl::fanucRequest(const ResolvedBlock& rb, int m) con
   return r;
 }
 
+void Interpreter::Impl::applyPolar(ResolvedBlock& rb) const {
+  if (rb.hasWord('x') || rb.hasWord('y'))
+    throw GcodeError("cannot give a polar coordinate (@, ^) and an X or Y word in one block");
+  const Axes p = st.programPosition();
+  const double x = p[0] / st.scale(), y = p[1] / st.scale();  // program units
+  const double here_r = std::hypot(x, y);
+  const double here_t = std::atan2(y, x) * kDegreesPerRadian;
+  double r = rb.hasWord(kPolarRadius) ? rb.word(kPolarRadius) : 0.0;
+  double t = rb.hasWord(kPolarAngle) ? rb.word(kPolarAngle) : 0.0;
+  bool incremental = st.incremental;  // the block's own G90/G91 applies before its motion
+  for (int k = 0; k < rb.n_g; ++k) {
+    if (rb.g[static_cast<std::size_t>(k)] == 900) incremental = false;
+    if (rb.g[static_cast<std::size_t>(k)] == 910) incremental = true;
+  }
+  if (incremental) {
+    if (here_r == 0.0)
+      throw GcodeError("G91 motion with polar coordinates is indeterminate at the origin");
+    r += here_r;  // G91: the distance and angle are added to the point's own
+    t += here_t;
+  } else {
+    if (!rb.hasWord(kPolarRadius)) r = here_r;
+    if (!rb.hasWord(kPolarAngle)) t = here_t;
+  }
+  const double nx = r * std::cos(t / kDegreesPerRadian), ny = r * std::sin(t / kDegreesPerRadian);
+  rb.value['x' - 'a'] = incremental ? nx - x : nx;
+  rb.value['y' - 'a'] = incremental ? ny - y : ny;
+  rb.has |= letterBit('x') | letterBit('y');
+  rb.has &= ~(letterBit(kPolarRadius) | letterBit(kPolarAngle));
+}
+
 bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   current_line = block.line;
   ResolvedBlock rb;
   resolve(block, rb, sink);
   if (block.comment != CommentKind::kNone) activeComment(block, sink);
+  if ((rb.has & (letterBit(kPolarRadius) | letterBit(kPolarAngle))) != 0) applyPolar(rb);
   if (rb.n_g == 0 && rb.n_m == 0 && !rb.hasAxis() && !rb.hasWord('f') && !rb.hasWord('s') &&
       !rb.hasWord('t')) {
     for (char l : {'i', 'j', 'k', 'r', 'l', 'p', 'q', 'h', 'd', 'e', 'u', 'v', 'w'})

@@ -197,6 +197,12 @@ bool parseSimpleLine(std::string_view text, Block& block) {
 
 }  // namespace
 
+char writtenLetter(char letter) {
+  if (letter == kPolarRadius) return '@';
+  if (letter == kPolarAngle) return '^';
+  return static_cast<char>(std::toupper(static_cast<unsigned char>(letter)));
+}
+
 std::string oLabel(const std::string& name) {
   const bool numeric = !name.empty() && name.find_first_not_of("0123456789") == std::string::npos;
   return numeric ? "o" + name : "o<" + name + ">";
@@ -241,7 +247,7 @@ LineMark parseLine(std::string_view text, Block& block) {
     parseOWord(s, pos, block);
     return LineMark::kNormal;
   }
-  std::array<bool, 26> seen{};
+  std::array<bool, 28> seen{};  // a..z, @, ^
   block.words.reserve(6);
   while (pos < s.size()) {
     const char c = s[pos];
@@ -264,20 +270,20 @@ LineMark parseLine(std::string_view text, Block& block) {
       block.assignments.push_back(std::move(a));
       continue;
     }
-    if (c == '@' || c == '^') throw GcodeError("polar coordinates (@, ^) are not supported");
-    if (!isAlpha(c))
+    if (!isAlpha(c) && c != '@' && c != '^')
       throw GcodeError(fmt::format("bad character '{}' where a word was expected", c));
     if (c == 'n') throw GcodeError("N word not at the start of the line");
     if (c == 'o') throw GcodeError("O-word not at the start of the line");
 
-    const auto idx = static_cast<std::size_t>(c - 'a');
+    const char letter = c == '@' ? kPolarRadius : c == '^' ? kPolarAngle : c;
+    const auto idx = static_cast<std::size_t>(letter - 'a');
     if (c != 'g' && c != 'm') {
       if (seen[idx]) throw GcodeError(fmt::format("multiple {} words on one line", c));
       seen[idx] = true;
     }
     ++pos;
     Word w;
-    w.letter = c;
+    w.letter = letter;
     w.value = Expression::parseReal(s, pos);
     block.words.push_back(std::move(w));
   }

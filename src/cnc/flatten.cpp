@@ -167,7 +167,7 @@ class FlattenSink final : public MoveSink {
                                   block.line,
                                   static_cast<char>(std::toupper(w.letter))));
       if (text.size() > (block.block_delete ? 1u : 0u)) text.push_back(' ');
-      text.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(w.letter))));
+      text.push_back(writtenLetter(w.letter));
       const bool round = rounded && std::abs(w.value) < 1e9;
       const double v = w.letter == 'm' && w.value == 99.0 ? 2.0 : w.value;
       text += formatGcodeNumber(round ? std::round(v * 1e9) / 1e9 : v);

@@ -31,7 +31,7 @@ constexpr std::uint32_t letterBit(char c) { return std::uint32_t{1} << (c - 'a')
 /// `value` is only meaningful (and only written) where `has` says so.
 struct ResolvedBlock {
   std::size_t line = 0;
-  std::array<double, 26> value;  // not initialised: see hasWord and word
+  std::array<double, 28> value;  // a..z, @, ^; not initialised: see hasWord and word
   std::uint32_t has = 0;         // bit letterBit(c): the block has word c
   std::array<int, 8> g;          // G codes x10, the first n_g
   int n_g = 0;
@@ -111,6 +111,9 @@ struct Interpreter::Impl : ParameterSource {
   // block_executor.cpp
   /// Executes one block; returns false when the program ends (M2/M30).
   bool execute(const Block& block, MoveSink& sink);
+  /// Turns the polar words @ ^ of `rb` into X and Y (LinuxCNC 2.9 G-code overview, "Polar
+  /// Coordinates": about the program's XY zero, cumulative under G91).
+  void applyPolar(ResolvedBlock& rb) const;
   /// The M98 call (P subprogram, L passes, default 1) or M99 return block `rb` asks for.
   [[nodiscard]] FanucRequest fanucRequest(const ResolvedBlock& rb, int m) const;
   /// Runs the block's active comment (after its parameter settings, before its motion): a

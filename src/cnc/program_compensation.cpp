@@ -67,6 +67,9 @@ void checkBlock(const Block& b, const std::string& file, BlockScan& scan) {
   if (b.o_kind != OKind::kNone) fail(file, b.line, "gcode compensate does not support O-words");
   detail::NoParams params;
   bool sets_offset = false;
+  for (const Word& w : b.words)
+    if (w.letter == kPolarRadius || w.letter == kPolarAngle)
+      fail(file, b.line, "gcode compensate does not support polar coordinates (@, ^)");
   for (const Word& w : b.words) {
     if (w.letter != 'g') continue;
     if (!w.value.isConstant()) fail(file, b.line, "gcode compensate needs constant G words");

@@ -292,5 +292,4 @@ class ProgramFlow {
   ExternalCall external_;
 };
 
-
 }  // namespace pkm::cnc

@@ -29,12 +29,13 @@ Interpreter::Impl::Outcome Interpreter::Impl::callExternal(const Program& caller
     }
   }
   if (found.empty())
-    throw GcodeError(fmt::format("call to undefined subroutine {}: the program does not define it "
-                                 "and no {}.ngc was found ({} folder{} searched)",
-                                 oLabel(name),
-                                 name,
-                                 folders.size(),
-                                 folders.size() == 1 ? "" : "s"));
+    throw GcodeError(
+        fmt::format("call to undefined subroutine {}: the program does not define it "
+                    "and no {}.ngc was found ({} folder{} searched)",
+                    oLabel(name),
+                    name,
+                    folders.size(),
+                    folders.size() == 1 ? "" : "s"));
   if (external_depth >= options.max_call_depth)
     throw GcodeError(fmt::format("subroutine calls nested deeper than {}", options.max_call_depth));
   auto& slot = sub_files[found.string()];
@@ -48,8 +49,8 @@ Interpreter::Impl::Outcome Interpreter::Impl::callExternal(const Program& caller
   const Outcome outcome = runProgram(file, start + 1, sink, true);
   --external_depth;
   if (outcome == Outcome::kFellOff)
-    throw GcodeError(fmt::format("{}: {} sub ran past the end of the file", found.string(),
-                                 oLabel(name)));
+    throw GcodeError(
+        fmt::format("{}: {} sub ran past the end of the file", found.string(), oLabel(name)));
   return outcome;
 }
 

@@ -39,7 +39,16 @@ enum class OKind : std::uint8_t {
   kProgram  ///< `O1000` alone: the label of a main program or of an M98 subprogram (Fanuc style)
 };
 
-/// A word: a letter (lower-case) and its value.
+/// The polar-coordinate words `@` (distance) and `^` (angle, degrees) as Word letters: the two
+/// characters after 'z', so that words index letters 'a'..'z' + 2 alike.
+inline constexpr char kPolarRadius = '{';
+inline constexpr char kPolarAngle = '|';
+
+/// The letter of word `letter` as written: 'X' for 'x', '@' for kPolarRadius, '^' for
+/// kPolarAngle.
+[[nodiscard]] char writtenLetter(char letter);
+
+/// A word: a letter (lower-case; kPolarRadius, kPolarAngle for @ ^) and its value.
 struct Word {
   char letter = 0;
   Expression value;
