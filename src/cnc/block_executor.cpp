@@ -160,10 +160,15 @@ void Interpreter::Impl::applyPolar(ResolvedBlock& rb) const {
   double r = rb.hasWord(kPolarRadius) ? rb.word(kPolarRadius) : 0.0;
   double t = rb.hasWord(kPolarAngle) ? rb.word(kPolarAngle) : 0.0;
   bool incremental = st.incremental;  // the block's own G90/G91 applies before its motion
+  int motion = st.motion;
   for (int k = 0; k < rb.n_g; ++k) {
-    if (rb.g[static_cast<std::size_t>(k)] == 900) incremental = false;
-    if (rb.g[static_cast<std::size_t>(k)] == 910) incremental = true;
+    const int g = rb.g[static_cast<std::size_t>(k)];
+    if (g == 900) incremental = false;
+    if (g == 910) incremental = true;
+    if (g == 730 || g == 740 || (g >= 810 && g <= 890)) motion = g;
   }
+  // A G91 canned cycle adds the polar words to each repeat's hole: cycle() takes them.
+  if (incremental && (motion == 730 || motion == 740 || (motion >= 810 && motion <= 890))) return;
   if (incremental) {
     if (here_r == 0.0)
       throw GcodeError("G91 motion with polar coordinates is indeterminate at the origin");

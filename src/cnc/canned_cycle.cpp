@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "pkm/cnc/gcode_error.hpp"
 
@@ -255,8 +256,17 @@ std::array<double, 3> expandCycle(const CycleRequest& q, std::vector<CycleStep>&
   }
   const double clear = q.retract_to_r ? p.r : old_z;
   for (int rep = 0; rep < q.repeats; ++rep) {
-    x += p.dx;
-    y += p.dy;
+    if (q.polar) {
+      if (x == 0.0 && y == 0.0)
+        throw GcodeError("G91 motion with polar coordinates is indeterminate at the origin");
+      const double r = std::hypot(x, y) + q.polar_radius;
+      const double t = std::atan2(y, x) + q.polar_angle * std::numbers::pi / 180.0;
+      x = r * std::cos(t);
+      y = r * std::sin(t);
+    } else {
+      x += p.dx;
+      y += p.dy;
+    }
     // The first repeat starting above R goes over at its own level; any other at the clear
     // level (rs274: a later repeat, or a start at R, under G98 rises to the initial level).
     const bool from_above = rep == 0 && z > p.r;

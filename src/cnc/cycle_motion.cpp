@@ -72,6 +72,13 @@ void Interpreter::Impl::cycle(const ResolvedBlock& rb, int code, MoveSink& sink)
               : st.spindle_direction < 0 ? SpindleDirection::kCounterClockwise
                                          : SpindleDirection::kStopped;
   if (rb.hasWord('l')) q.repeats = cycleRepeats(rb.word('l'));
+  if (rb.hasWord(kPolarRadius) || rb.hasWord(kPolarAngle)) {  // G91 polar (applyPolar left them)
+    if (st.plane != Plane::kXY)
+      throw GcodeError("polar coordinates (@, ^) in a canned cycle need the XY plane (G17)");
+    q.polar = true;
+    q.polar_radius = rb.word(kPolarRadius) * s;
+    q.polar_angle = rb.word(kPolarAngle);
+  }
   q.max_steps = options.max_loop_iterations;
   cycle_steps.clear();
   expandCycle(q, cycle_steps);

@@ -43,8 +43,9 @@ struct ResolvedBlock {
     return hasWord(c) ? value[static_cast<std::size_t>(c - 'a')] : 0.0;
   }
   [[nodiscard]] bool hasAxis() const {
-    return (has & (letterBit('x') | letterBit('y') | letterBit('z') | letterBit('a') |
-                   letterBit('b') | letterBit('c'))) != 0;
+    return (has &
+            (letterBit('x') | letterBit('y') | letterBit('z') | letterBit('a') | letterBit('b') |
+             letterBit('c') | letterBit(kPolarRadius) | letterBit(kPolarAngle))) != 0;
   }
 };
 

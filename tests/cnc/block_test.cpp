@@ -140,15 +140,15 @@ TEST(Block, MalformedLinesThrow) {
   for (const char* bad : {"G1 X1 X2",
                           "G1 (unclosed",
                           "G1 ) X1",
-                          "G1 E5",
+                          "G1 E5 E6",
                           "G1 X1 N10",
                           "X[1+",
                           "#1 2",
-                          "o100",
+                          "o",
                           "o100 frobnicate",
                           "o100 if",
                           "o100 while [1] [2]",
-                          "G1 @5 ^30",
+                          "G1 @5 @6",
                           "G1 X1 o100 call",
                           "G1 (a (nested) b)",
                           "G1 X$"}) {
@@ -157,6 +157,24 @@ TEST(Block, MalformedLinesThrow) {
   }
   Block b;
   EXPECT_THROW(parseLine(std::string(300, 'x'), b), GcodeError);
+}
+
+TEST(Block, PolarWordsProgramLabelsAndEWords) {
+  Block b;
+  parseLine("G1 @5 ^30 E2", b);
+  ASSERT_EQ(b.words.size(), 4u);
+  EXPECT_EQ(b.words[1].letter, kPolarRadius);
+  EXPECT_EQ(b.words[2].letter, kPolarAngle);
+  EXPECT_EQ(writtenLetter(b.words[1].letter), '@');
+  EXPECT_EQ(writtenLetter(b.words[2].letter), '^');
+  EXPECT_EQ(b.words[3].letter, 'e');
+  parseLine("O0100 (a Fanuc program label)", b);
+  EXPECT_EQ(b.o_kind, OKind::kProgram);
+  EXPECT_EQ(b.o_name, "0100");
+  parseLine("o[#2 * 10] call [1]", b);
+  EXPECT_EQ(b.o_kind, OKind::kCall);
+  EXPECT_TRUE(b.o_label.has_value());
+  EXPECT_THROW(parseLine("o[1] sub", b), GcodeError);
 }
 
 }  // namespace

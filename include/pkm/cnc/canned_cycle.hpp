@@ -51,6 +51,11 @@ struct CycleRequest {
   /// tap and back on only when they were on.
   bool overrides_enabled = true;
   int repeats = 1;  ///< L
+  /// G91 polar words (@ ^) of a cycle: each repeat adds `polar_radius` (mm) to the distance of
+  /// the hole from the XY zero and `polar_angle` (deg) to its angle, instead of x, y increments
+  /// (LinuxCNC 2.9). `current` is then the position relative to that zero.
+  bool polar = false;
+  double polar_radius = 0.0, polar_angle = 0.0;
   /// Most steps the expansion may produce (L repeats times pecks): guards against a runaway
   /// cycle such as L1e9 or a tiny Q.
   std::uint64_t max_steps = 10'000'000;
