@@ -180,6 +180,12 @@ void classifyM(BlockCodes& c, int m) {
     case 61:
       setOnce(c.m_set_tool, m, "M");
       break;
+    case 70:
+    case 71:
+    case 72:
+    case 73:
+      setOnce(c.m_modes, m, "M");
+      break;
     case 98:
     case 99:
       setOnce(c.m_fanuc, m, "M");

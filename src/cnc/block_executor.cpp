@@ -232,6 +232,7 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   if (c.m_flood) st.flood = true;
   if (c.m_coolant_off) st.mist = st.flood = false;
   if (c.m_spindle >= 0) st.spindle_direction = c.m_spindle == 3 ? 1 : c.m_spindle == 4 ? -1 : 0;
+  if (c.m_modes >= 0) modalState(c.m_modes);
   if (c.non_modal == 40) {
     if (!rb.hasWord('p')) throw GcodeError("G4 needs a P word (dwell time, s)");
     if (rb.word('p') < 0.0) throw GcodeError("negative G4 dwell time");

@@ -67,6 +67,7 @@ struct BlockCodes {
   // M19 (orient), M50-M53 (override switches), M61 (set the tool), M62-M68 (I/O): no motion.
   int m_orient = -1, m_switch = -1, m_set_tool = -1, m_io = -1;
   int m_fanuc = -1;  // M98 / M99
+  int m_modes = -1;  // M70-M73
   bool m_mist = false, m_flood = false, m_coolant_off = false;
 };
 
@@ -77,7 +78,14 @@ struct BlockCodes {
 /// The name of G code `code` (its number ×10): "G1", "G92.1".
 [[nodiscard]] std::string gName(int code);
 
-struct Interpreter::Impl : ParameterSource {
+/// What the program flow needs of the interpreter: its parameters, and leaving a call level.
+class FlowSource : public ParameterSource {
+ public:
+  /// Leaving a sub: forgets the modal states it saved, restoring an M73 one.
+  virtual void leaveCallLevel() = 0;
+};
+
+struct Interpreter::Impl : FlowSource {
   explicit Impl(InterpreterOptions o) : options(std::move(o)) {
     params.setNamed("_value", 0.0);  // LinuxCNC: 0 at program start
     params.setNamed("_value_returned", 0.0);
@@ -112,6 +120,12 @@ struct Interpreter::Impl : ParameterSource {
   // block_executor.cpp
   /// Executes one block; returns false when the program ends (M2/M30).
   bool execute(const Block& block, MoveSink& sink);
+  /// M70 (save), M71 (forget), M72 (restore) or M73 (save, restore on return) of the modal
+  /// state at the current call level (modal_save.cpp).
+  void modalState(int m);
+  /// Restores the modes M70 saves from `s` (not the motion mode; the position stays).
+  void restoreModes(const MachineState& s);
+  void leaveCallLevel() override;
   /// Turns the polar words @ ^ of `rb` into X and Y (LinuxCNC 2.9 G-code overview, "Polar
   /// Coordinates": about the program's XY zero, cumulative under G91).
   void applyPolar(ResolvedBlock& rb) const;
@@ -169,6 +183,11 @@ struct Interpreter::Impl : ParameterSource {
   MachineState st;
   std::size_t current_line = 0;  // source line of the block being executed (#<_line>)
   FanucRequest fanuc;            // set by execute() for the program flow
+  struct SavedModes {
+    std::optional<MachineState> state;
+    bool autorestore = false;  // M73
+  };
+  std::vector<SavedModes> saved_modes;                        // by call level (M70-M73)
   std::map<std::string, std::unique_ptr<Program>> sub_files;  // loaded, by path
   std::size_t external_depth = 0;                             // sub files being run
   Parameters params;

@@ -44,7 +44,7 @@ class ProgramFlow {
   ProgramFlow(const Program& program,
               const InterpreterOptions& options,
               Parameters& params,
-              ParameterSource& source,
+              FlowSource& source,
               bool external_sub = false)
       : program_(program),
         blocks_(program.blocks()),
@@ -178,6 +178,7 @@ class ProgramFlow {
   std::size_t returnFromSub(const Block& b) {
     if (frames_.size() <= 1 && external_sub_) {
       setReturnValue(b);
+      source_.leaveCallLevel();
       params_.popCall();
       return kReturnToCaller;
     }
@@ -187,6 +188,7 @@ class ProgramFlow {
     const std::size_t pc = frames_.back().return_to;
     frames_.pop_back();
     setReturnValue(b);
+    source_.leaveCallLevel();
     params_.popCall();
     return pc;
   }
@@ -286,7 +288,7 @@ class ProgramFlow {
   const std::vector<Block>& blocks_;
   const InterpreterOptions& options_;
   Parameters& params_;
-  ParameterSource& source_;
+  FlowSource& source_;  // the parameters' source; M73's modal state
   std::vector<FlowFrame> frames_ = std::vector<FlowFrame>(1, FlowFrame{kNoBlock, {}});
   bool external_sub_ = false;
   ExternalCall external_;
