@@ -185,20 +185,7 @@ void Interpreter::Impl::applyPolar(ResolvedBlock& rb) const {
   rb.has &= ~(letterBit(kPolarRadius) | letterBit(kPolarAngle));
 }
 
-bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
-  current_line = block.line;
-  ResolvedBlock rb;
-  resolve(block, rb, sink);
-  if (block.comment != CommentKind::kNone) activeComment(block, sink);
-  if ((rb.has & (letterBit(kPolarRadius) | letterBit(kPolarAngle))) != 0) applyPolar(rb);
-  if (rb.n_g == 0 && rb.n_m == 0 && !rb.hasAxis() && !rb.hasWord('f') && !rb.hasWord('s') &&
-      !rb.hasWord('t')) {
-    for (char l : {'i', 'j', 'k', 'r', 'l', 'p', 'q', 'h', 'd', 'e', 'u', 'v', 'w'})
-      if (rb.hasWord(l)) throw GcodeError(fmt::format("{} word with nothing to use it", l));
-    return true;
-  }
-  const BlockCodes c = classify(rb);
-  checkWords(rb, c);
+void Interpreter::Impl::setFeedSpeedTool(const ResolvedBlock& rb, const BlockCodes& c) {
   if (c.feed_mode >= 0) {
     const bool inv = c.feed_mode == 930;
     if (inv != st.inverse_time) st.feed = st.angular_feed = 0.0;  // LinuxCNC zeroes F then
@@ -227,6 +214,23 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
     if (t < 0) throw GcodeError("M61 needs a tool number Q >= 0");
     st.tool_in_spindle = t;
   }
+}
+
+bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
+  current_line = block.line;
+  ResolvedBlock rb;
+  resolve(block, rb, sink);
+  if (block.comment != CommentKind::kNone) activeComment(block, sink);
+  if ((rb.has & (letterBit(kPolarRadius) | letterBit(kPolarAngle))) != 0) applyPolar(rb);
+  if (rb.n_g == 0 && rb.n_m == 0 && !rb.hasAxis() && !rb.hasWord('f') && !rb.hasWord('s') &&
+      !rb.hasWord('t')) {
+    for (char l : {'i', 'j', 'k', 'r', 'l', 'p', 'q', 'h', 'd', 'e', 'u', 'v', 'w'})
+      if (rb.hasWord(l)) throw GcodeError(fmt::format("{} word with nothing to use it", l));
+    return true;
+  }
+  const BlockCodes c = classify(rb);
+  checkWords(rb, c);
+  setFeedSpeedTool(rb, c);
   if (c.m_override >= 0) st.overrides_enabled = c.m_override == 48;
   if (c.m_mist) st.mist = true;
   if (c.m_flood) st.flood = true;

@@ -126,6 +126,8 @@ struct Interpreter::Impl : FlowSource {
   /// Restores the modes M70 saves from `s` (not the motion mode; the position stays).
   void restoreModes(const MachineState& s);
   void leaveCallLevel() override;
+  /// Feed mode, F, S, T, M6 and M61 of a block, in LinuxCNC's order.
+  void setFeedSpeedTool(const ResolvedBlock& rb, const BlockCodes& c);
   /// Turns the polar words @ ^ of `rb` into X and Y (LinuxCNC 2.9 G-code overview, "Polar
   /// Coordinates": about the program's XY zero, cumulative under G91).
   void applyPolar(ResolvedBlock& rb) const;
