@@ -32,7 +32,8 @@ std::string gName(int code) {
 }
 
 void Interpreter::Impl::resolve(const Block& block, ResolvedBlock& rb, MoveSink& sink) {
-  rb.line = block.line;
+  // A block of a sub file reports the main program's line that called the file.
+  rb.line = external_depth > 0 ? external_call_line : block.line;
   if (report_blocks) evaluated.clear();
   for (const Word& w : block.words) {
     const double v = w.value.evaluate(*this);

@@ -109,10 +109,11 @@ struct Interpreter::Impl : FlowSource {
   enum class Outcome { kEnded, kFellOff, kReturned };
   /// Runs `program` from block `pc`; `external`: a sub file's sub, whose endsub returns.
   Outcome runProgram(const Program& program, std::size_t pc, MoveSink& sink, bool external);
-  /// Calls sub `name` with `args` (for `caller`) from the file NAME.ngc in the working folder
+  /// Calls sub `name` with `args` (for `caller`'s block at `line`) from the file NAME.ngc in the working folder
   /// or options.subroutine_path (LinuxCNC's SUBROUTINE_PATH); throws GcodeError when there is
   /// none or it does not define the sub.
   Outcome callExternal(const Program& caller,
+                       std::size_t line,
                        const std::string& name,
                        const std::vector<double>& args,
                        MoveSink& sink);
@@ -192,6 +193,7 @@ struct Interpreter::Impl : FlowSource {
   std::vector<SavedModes> saved_modes;                        // by call level (M70-M73)
   std::map<std::string, std::unique_ptr<Program>> sub_files;  // loaded, by path
   std::size_t external_depth = 0;                             // sub files being run
+  std::size_t external_call_line = 0;  // the main program's line of the outermost file call
   Parameters params;
   RunSummary summary;
   // Canned-cycle memory (rs274ngc cycle_il / cycle_cc and sticky R, Q, P).

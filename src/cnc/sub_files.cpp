@@ -13,6 +13,7 @@ namespace pkm::cnc {
 namespace fs = std::filesystem;
 
 Interpreter::Impl::Outcome Interpreter::Impl::callExternal(const Program& caller,
+                                                           std::size_t line,
                                                            const std::string& name,
                                                            const std::vector<double>& args,
                                                            MoveSink& sink) {
@@ -45,6 +46,7 @@ Interpreter::Impl::Outcome Interpreter::Impl::callExternal(const Program& caller
   if (start == kNoBlock)
     throw GcodeError(fmt::format("{} does not define {} sub", found.string(), oLabel(name)));
   params.pushCall(args);
+  if (external_depth == 0) external_call_line = line;  // motions in the file report this line
   ++external_depth;
   const Outcome outcome = runProgram(file, start + 1, sink, true);
   --external_depth;

@@ -110,5 +110,31 @@ TEST_F(GcodeCli, FlattenUnrollsTheSphereSubroutine) {
   expectUsageError(pkm({"gcode", "flatten", bad}), "bad.ngc:2:");
 }
 
+TEST_F(GcodeCli, IniSetsTheInterpreterUpAndMessagesAreNotes) {
+  write("sim.var", "5220 2\n5241 10\n");
+  std::filesystem::create_directories(path("subs"));
+  write("subs/corner.ngc", "o<corner> sub\nG0 X#1\no<corner> endsub\nM2\n");
+  const std::string ini = write("machine.ini",
+                                "[RS274NGC]\nPARAMETER_FILE = sim.var\nSUBROUTINE_PATH = subs\n"
+                                "RS274NGC_STARTUP_CODE = G21 G90\n[SETUP]\nXPOS = 3\n");
+  const std::string prog = write("p.ngc",
+                                 "(debug, x from the INI: #<_ini[setup]xpos>)\n"
+                                 "G0 X#<_ini[setup]xpos>\no<corner> call [5]\nM2\n");
+  const CliRun r = pkm({"gcode", "moves", prog, "--ini", ini});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("2,rapid,13,0,0,"));  // G55 from the parameter file: X 10 + 3
+  EXPECT_THAT(r.out, HasSubstr("3,rapid,15,0,0,"));  // the sub file from SUBROUTINE_PATH
+  EXPECT_THAT(r.err, HasSubstr("p.ngc:1: debug: x from the INI: 3.000000"));
+  const std::string flat = write("f.ngc", "G0 X1\nM2\n");
+  EXPECT_EQ(pkm({"gcode", "flatten", flat, "--ini", ini}).code, 0);
+  const std::string remap = write("remap.ini", "[RS274NGC]\nREMAP=M6 modalgroup=6 ngc=change\n");
+  expectUsageError(pkm({"gcode", "moves", prog, "--ini", remap}),
+                   "remap.ini:2: [RS274NGC] REMAP is not supported");
+  const std::string abort = write("abort.ngc", "G0 X1\n(abort, no stock)\nM2\n");
+  expectUsageError(pkm({"gcode", "moves", abort}), "abort.ngc:2: program aborted: no stock");
+  const std::string open = write("open.ngc", "G0 X1\nG0 X2\n");
+  expectUsageError(pkm({"gcode", "moves", open}), "open.ngc:2: the file ended with no percent");
+}
+
 }  // namespace
 }  // namespace pkm::test
