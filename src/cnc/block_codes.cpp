@@ -210,12 +210,34 @@ void classifyM(BlockCodes& c, int m) {
 }  // namespace
 
 BlockCodes Interpreter::Impl::classify(const ResolvedBlock& rb) const {
+  if (!options.remapped_codes.empty()) refuseRemapped(rb);
   BlockCodes c;
   for (int k = 0; k < rb.n_g; ++k) classifyG(c, rb.g[static_cast<std::size_t>(k)]);
   for (int k = 0; k < rb.n_m; ++k) classifyM(c, rb.m[static_cast<std::size_t>(k)]);
   if (c.m_coolant_off && (c.m_mist || c.m_flood))
     throw GcodeError("two M codes from the same modal group: M9 with M7/M8");
   return c;
+}
+
+void Interpreter::Impl::refuseRemapped(const ResolvedBlock& rb) const {
+  const auto refuse = [this](const std::string& code, const std::string& shown) {
+    const auto it = options.remapped_codes.find(code);
+    if (it != options.remapped_codes.end())
+      throw GcodeError(
+          fmt::format("{} is remapped by the INI ({}); pkm does not run a remap's procedure",
+                      shown,
+                      it->second));
+  };
+  for (int k = 0; k < rb.n_g; ++k) {
+    const std::string name = gName(rb.g[static_cast<std::size_t>(k)]);
+    std::string lower = name;
+    lower[0] = 'g';
+    refuse(lower, name);
+  }
+  for (int k = 0; k < rb.n_m; ++k) {
+    const int m = rb.m[static_cast<std::size_t>(k)];
+    refuse(fmt::format("m{}", m), fmt::format("M{}", m));
+  }
 }
 
 void Interpreter::Impl::checkIoWords(const ResolvedBlock& rb, const BlockCodes& c) const {

@@ -86,8 +86,13 @@ class FlattenSink final : public MoveSink {
       copyLines(index == 0 ? 1 : blocks[index - 1].line + 1, block.line);
     reported_ = true;
     last_ = index;
+    if (block.o_kind == OKind::kCall) ++sub_depth_;
+    if (block.o_kind == OKind::kEndSub || block.o_kind == OKind::kReturn) --sub_depth_;
     if (block.o_kind != OKind::kNone) return;
-    const std::string_view src = block.line <= lines_.size() ? lines_[block.line - 1] : "";
+    refuseModalState(block, words);
+    // A sub file's block (no index in the program) keeps no comment: its lines are not ours.
+    const std::string_view src =
+        index != kNoBlock && block.line <= lines_.size() ? lines_[block.line - 1] : "";
     const std::string comments = commentsOf(src);
     if (words.empty() && comments.empty()) return;  // a line of parameter settings only
     const Fanuc fanuc = fanucOf(words);
@@ -195,6 +200,21 @@ class FlattenSink final : public MoveSink {
     return f;
   }
 
+  /// Throws for M73 anywhere, and for M70-M72 inside a subroutine: the saved state is per call
+  /// level, and the flat program has one.
+  void refuseModalState(const Block& block, const std::vector<EvaluatedWord>& words) const {
+    for (const EvaluatedWord& w : words) {
+      if (w.letter != 'm' || w.value < 70.0 || w.value > 73.0) continue;
+      if (w.value == 73.0 || sub_depth_ > 0 || !passes_.empty())
+        throw IoError(
+            fmt::format("{}:{}: gcode flatten does not support M73, nor M70-M72 in a "
+                        "subroutine: their saved state belongs to a call level and the "
+                        "flat program has one",
+                        program_.file(),
+                        block.line));
+    }
+  }
+
   /// Copies source lines [from, to) (1-based): they hold no block, only comments or blanks.
   void copyLines(std::size_t from, std::size_t to) {
     for (std::size_t l = from; l < to && l <= lines_.size(); ++l) {
@@ -216,6 +236,7 @@ class FlattenSink final : public MoveSink {
   FlatProgram& out_;
   bool reported_ = false;
   std::vector<double> passes_;  // passes left of the M98 calls running, innermost last
+  int sub_depth_ = 0;           // O-word subs being run
   std::size_t last_ = 0;
   int percent_lines_ = 0;
 };

@@ -109,9 +109,9 @@ struct Interpreter::Impl : FlowSource {
   enum class Outcome { kEnded, kFellOff, kReturned };
   /// Runs `program` from block `pc`; `external`: a sub file's sub, whose endsub returns.
   Outcome runProgram(const Program& program, std::size_t pc, MoveSink& sink, bool external);
-  /// Calls sub `name` with `args` (for `caller`'s block at `line`) from the file NAME.ngc in the working folder
-  /// or options.subroutine_path (LinuxCNC's SUBROUTINE_PATH); throws GcodeError when there is
-  /// none or it does not define the sub.
+  /// Calls sub `name` with `args` (for `caller`'s block at `line`) from the file NAME.ngc in the
+  /// working folder or options.subroutine_path (LinuxCNC's SUBROUTINE_PATH); throws GcodeError when
+  /// there is none or it does not define the sub.
   Outcome callExternal(const Program& caller,
                        std::size_t line,
                        const std::string& name,
@@ -145,6 +145,8 @@ struct Interpreter::Impl : FlowSource {
   /// The words M61 and M62-M68 need (LinuxCNC 2.9 M-code reference): P for M62-M65, P or E for
   /// M66 (L mode 0..4), E and Q for M67/M68, Q for M61. They make no motion.
   void checkIoWords(const ResolvedBlock& rb, const BlockCodes& c) const;
+  /// Throws GcodeError for a G or M code of `rb` that options.remapped_codes names.
+  void refuseRemapped(const ResolvedBlock& rb) const;
   void setTlo(const ResolvedBlock& rb, int code);
   void selectSystem(int n);
   /// Applies options.initial_parameters: stores them, selects the system #5220 names (1..9,

@@ -130,11 +130,11 @@ Rs274ngcIni readRs274ngcIni(std::string_view text, const std::string& name) {
       }
     } else if (e.key == "INI_VARS") {
       ini_vars = numberOf(name, e) != 0.0;
-    } else if (e.key == "REMAP" || e.key == "USER_M_PATH" || e.key == "ON_ABORT_COMMAND") {
-      fail(
-          fmt::format("[RS274NGC] {} is not supported: pkm does not run remapped codes, user M "
-                      "programs or abort handlers (remove the line for pkm)",
-                      e.key));
+    } else if (e.key == "REMAP") {
+      // "REMAP = M6 modalgroup=6 ngc=change": a program that uses the code is refused.
+      const auto words = wordsOf(e.value);
+      if (words.empty()) fail("[RS274NGC] REMAP without a code");
+      r.remapped[lowerCase(words[0])] = fmt::format("{}:{}", name, e.line);
     }
     try {
       r.arc.validate();

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
 #include "gcode_progress.hpp"
 #include "pkm/cnc/interpreter_ini.hpp"
 #include "pkm/core/error.hpp"
@@ -40,8 +42,10 @@ cnc::InterpreterOptions GcodeInterpreterSettings::options() const {
     }
     o.arc = r.arc;
     o.subroutine_path = r.subroutine_path;
+    o.remapped_codes = r.remapped;
     o.ini_values = r.values;
-    if (!r.parameter_file.empty()) {
+    // LinuxCNC starts with zeros and creates the file when it is missing; so does pkm.
+    if (!r.parameter_file.empty() && std::filesystem::exists(r.parameter_file)) {
       const io::NamedText var = io::readNamedText(r.parameter_file);
       cnc::readParameterFile(var.text, var.name, r.inch_machine, o);
     }

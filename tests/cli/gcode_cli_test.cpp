@@ -128,8 +128,9 @@ TEST_F(GcodeCli, IniSetsTheInterpreterUpAndMessagesAreNotes) {
   const std::string flat = write("f.ngc", "G0 X1\nM2\n");
   EXPECT_EQ(pkm({"gcode", "flatten", flat, "--ini", ini}).code, 0);
   const std::string remap = write("remap.ini", "[RS274NGC]\nREMAP=M6 modalgroup=6 ngc=change\n");
-  expectUsageError(pkm({"gcode", "moves", prog, "--ini", remap}),
-                   "remap.ini:2: [RS274NGC] REMAP is not supported");
+  const std::string change = write("change.ngc", "G0 X1\nT1 M6\nM2\n");
+  expectUsageError(pkm({"gcode", "moves", change, "--ini", remap}),
+                   "change.ngc:2: M6 is remapped by the INI (");
   const std::string abort = write("abort.ngc", "G0 X1\n(abort, no stock)\nM2\n");
   expectUsageError(pkm({"gcode", "moves", abort}), "abort.ngc:2: program aborted: no stock");
   const std::string open = write("open.ngc", "G0 X1\nG0 X2\n");

@@ -43,7 +43,7 @@ TEST_F(GcodeCompensateCli, RewritesMotionLinesOnly) {
 
 TEST_F(GcodeCompensateCli, RefusesToOverwriteAndReportsErrors) {
   const std::string cal = write("cal.json", calibratedJson());
-  const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 X30 F600\n");
+  const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 X30 F600\nM2\n");
   write("out.ngc", "keep");
   expectUsageError(pkm({"gcode", "compensate", "--machine", cal, prog, "--out", path("out.ngc")}),
                    "--force");
@@ -64,7 +64,7 @@ TEST_F(GcodeCompensateCli, RefusesToOverwriteAndReportsErrors) {
                  prog})
                 .code,
             0);
-  const std::string g92 = write("g92.ngc", "G0 X0 Y0 Z200\nG92 X[#1]\n");
+  const std::string g92 = write("g92.ngc", "G0 X0 Y0 Z200\nG92 X[#1]\nM2\n");
   expectUsageError(pkm({"gcode", "compensate", "--machine", cal, g92}), "g92.ngc:2:");
   expectUsageError(pkm({"gcode", "compensate", prog}), "--machine");
 }
@@ -216,7 +216,7 @@ TEST_F(GcodeCompensateCli, ExechonProgramsInBothOrientations) {
     EXPECT_EQ(run.code, 0) << run.err;
   }
   // --orientation belongs to Exechon machines; the nominal must be one.
-  const std::string hex = write("p.ngc", "G0 X0 Y0 Z200\n");
+  const std::string hex = write("p.ngc", "G0 X0 Y0 Z200\nM2\n");
   expectUsageError(pkm({"gcode",
                         "compensate",
                         "--machine",
@@ -230,7 +230,7 @@ TEST_F(GcodeCompensateCli, ExechonProgramsInBothOrientations) {
   expectUsageError(
       pkm({"gcode", "compensate", "--machine", cal, "--nominal", "hexapod-default", prog}),
       "not an Exechon");
-  const std::string b = write("b.ngc", "G0 X0 Y0 Z50\nG1 B3 F100\n");
+  const std::string b = write("b.ngc", "G0 X0 Y0 Z50\nG1 B3 F100\nM2\n");
   expectUsageError(pkm({"gcode", "compensate", "--machine", cal, b}), "b.ngc:2:");
 }
 

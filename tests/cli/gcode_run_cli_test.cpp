@@ -97,7 +97,7 @@ TEST_F(GcodeRunCli, ShippedSphereWithTheToolTable) {
 }
 
 TEST_F(GcodeRunCli, StrokeViolationExitsOneWithLine) {
-  const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\n");
+  const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\nM2\n");
   const auto r = pkm({"gcode", "run", prog, "--report", path("r.json")});
   EXPECT_EQ(r.code, kExitViolation) << r.err;
   EXPECT_THAT(r.out, ::testing::HasSubstr(prog + ":3: stroke violated"));
@@ -107,15 +107,15 @@ TEST_F(GcodeRunCli, StrokeViolationExitsOneWithLine) {
 }
 
 TEST_F(GcodeRunCli, UsageAndInputErrors) {
-  const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 X10 F600\n");
+  const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 X10 F600\nM2\n");
   expectUsageError(pkm({"gcode", "run", prog, "--tolerance", "0"}), "tolerance");
   expectUsageError(pkm({"gcode", "run", prog, "--max-joint-velocity", "-1"}), "velocity");
   expectUsageError(pkm({"gcode", "run", prog, "--orientation", "axes"}), "Exechon machines only");
   expectUsageError(pkm({"gcode", "run", prog, "--machine", "mxt700s-like", "--orientation", "ijk"}),
                    "orientation");
-  const std::string b = write("b.ngc", "G0 X0 Y0 Z50\nG1 X10 B5 F600\n");
+  const std::string b = write("b.ngc", "G0 X0 Y0 Z50\nG1 X10 B5 F600\nM2\n");
   expectUsageError(pkm({"gcode", "run", b, "--machine", "mxt700s-like"}), "b.ngc:2: B5");
-  const std::string bad = write("bad.ngc", "G0 X0\nG1 X1 Q\n");
+  const std::string bad = write("bad.ngc", "G0 X0\nG1 X1 Q\nM2\n");
   expectUsageError(pkm({"gcode", "run", bad}), "bad.ngc:2:");
   expectUsageError(pkm({"gcode", "run"}), "program");
 }
@@ -183,7 +183,7 @@ TEST_F(GcodeRunCli, ExechonToolVectorProgram) {
 
 TEST_F(GcodeRunCli, ExechonWristAxesAndStrokeViolation) {
   const std::string prog =
-      write("a.ngc", "G0 X0 Y0 Z50 A-20 C0\nG1 X100 Y50 Z0 A-25 C10 F2000\nG1 X1500\n");
+      write("a.ngc", "G0 X0 Y0 Z50 A-20 C0\nG1 X100 Y50 Z0 A-25 C10 F2000\nG1 X1500\nM2\n");
   const auto r = pkm({"gcode",
                       "run",
                       "--machine",
@@ -208,7 +208,7 @@ TEST_F(GcodeRunCli, JointRatesFromTheMachineFile) {
       slurp(std::string(PKM_SOURCE_DIR) + "/data/machines/hexapod-default.json"));
   machine["joint_rates"] = {{"velocity", 5.0}, {"acceleration", 50.0}};
   const std::string file = write("m.json", machine.dump(2));
-  const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 X60 F3000\n");
+  const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 X60 F3000\nM2\n");
   auto r = pkm({"gcode", "run", prog, "--machine", file, "--report", path("r.json")});
   EXPECT_EQ(r.code, kExitViolation) << r.err << r.out;  // 5 mm/s is too slow for F3000
   EXPECT_THAT(r.out, ::testing::HasSubstr("(velocity, acceleration from the machine file)"));
@@ -293,7 +293,7 @@ TEST_F(GcodeRunCli, AnInchConfigurationIsCheckedInInchesWithItsStartupCode) {
 }
 
 TEST_F(GcodeRunCli, RefusesToOverwrite) {
-  const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 X10 F600\n");
+  const std::string prog = write("p.ngc", "G0 X0 Y0 Z200\nG1 X10 F600\nM2\n");
   write("q.csv", "keep");
   expectUsageError(pkm({"gcode", "run", prog, "--out", path("q.csv")}), "--force");
   EXPECT_EQ(slurp(path("q.csv")), "keep");

@@ -48,9 +48,15 @@ TEST(InterpreterIni, ReadsTheRs274ngcSection) {
 }
 
 TEST(InterpreterIni, RefusesWhatItCannotHonour) {
+  const Rs274ngcIni remap =
+      readRs274ngcIni("[RS274NGC]\nREMAP=M6 modalgroup=6 ngc=change\n", "m.ini");
+  ASSERT_EQ(remap.remapped.count("m6"), 1u);
+  InterpreterOptions o;
+  o.remapped_codes = remap.remapped;
+  MoveCollector c;
   EXPECT_THAT(
-      [] { (void)readRs274ngcIni("[RS274NGC]\nREMAP=M6 modalgroup=6 ngc=change\n", "m.ini"); },
-      ::testing::ThrowsMessage<IoError>(HasSubstr("m.ini:2: [RS274NGC] REMAP is not supported")));
+      [&] { Interpreter(o).run(Program::parse("G0 X1\nT1 M6\nM2\n", "r.ngc"), c); },
+      ::testing::ThrowsMessage<IoError>(HasSubstr("r.ngc:2: M6 is remapped by the INI (m.ini:2)")));
   EXPECT_THAT(
       [] { (void)readRs274ngcIni("[RS274NGC]\nCENTER_ARC_RADIUS_TOLERANCE_MM = 0.5\n", "m.ini"); },
       ::testing::ThrowsMessage<IoError>(HasSubstr("m.ini:2: CENTER_ARC_RADIUS_TOLERANCE_MM")));

@@ -140,7 +140,7 @@ def test_decimated_path_keeps_the_ends():
 
 def test_point_limit_bounds_memory(run_cli, tmp_path):
     program = tmp_path / "helix.ngc"
-    program.write_text("G0 X0 Y0 Z200\nG1 X10 F600\nG2 X10 Y0 I-10 J0 Z150 P100000000\n")
+    program.write_text("G0 X0 Y0 Z200\nG1 X10 F600\nG2 X10 Y0 I-10 J0 Z150 P100000000\nM2\n")
     p = run_cli(["gcode", "run", str(program), "--max-points", "1000"], check=False)
     assert p.returncode == 2
     with pytest.raises(ValueError, match=r"helix\.ngc:3: .*--max-points") as e:
@@ -151,7 +151,7 @@ def test_point_limit_bounds_memory(run_cli, tmp_path):
 
 
 def test_violations_and_errors(run_cli, tmp_path):
-    program = "G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\n"
+    program = "G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\nM2\n"
     r = pkm.gcode.run("hexapod-default", program)
     assert not r.ok and r.report["checks"]["stroke"]["violations"] > 0
     assert r.report["checks"]["stroke"]["first_violation"]["line"] == 3
@@ -164,7 +164,7 @@ def test_violations_and_errors(run_cli, tmp_path):
     with pytest.raises(ValueError, match="--tolerance must be > 0"):
         pkm.gcode.run("hexapod-default", program, tolerance=-1)
     with pytest.raises(ValueError, match="B.*Exechon has no B axis"):
-        pkm.gcode.run("mxt700s-like", "G0 X0 Y0 Z50\nG1 B5 F100\n")
+        pkm.gcode.run("mxt700s-like", "G0 X0 Y0 Z50\nG1 B5 F100\nM2\n")
     with pytest.raises(ValueError, match="no motion"):
         pkm.gcode.run("hexapod-default", "G21\nM2\n")
 
@@ -179,7 +179,7 @@ def test_arguments_of_the_wrong_type_raise_value_error():
 
 
 def test_violations_listed_per_check():
-    program = "G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\n"
+    program = "G0 X0 Y0 Z200\nG1 Z100 F600\nG1 Z-300\nM2\n"
     r = pkm.gcode.run("hexapod-default", program, max_violations=3)
     stroke = [v for v in r.violations if v["check"] == "stroke"]
     assert 1 <= len(stroke) <= 3
@@ -299,7 +299,7 @@ def test_compensate_errors_raise_with_pkms_message(run_cli, tmp_path):
     with pytest.raises(ValueError, match="--orientation"):
         pkm.gcode.compensate("G0 X0\n", machine=cal, orientation="axes")
     with pytest.raises(ValueError, match="--nominal"):
-        pkm.gcode.compensate("G0 X0 Y0 Z200\n", machine="hexapod-default")
+        pkm.gcode.compensate("G0 X0 Y0 Z200\nM2\n", machine="hexapod-default")
     with pytest.raises(ValueError, match="cannot open"):
         pkm.gcode.compensate(tmp_path / "missing.ngc", machine=cal)
     with pytest.raises(ValueError, match="orientation is for Exechon machines; pkm-hx1200-cal"):

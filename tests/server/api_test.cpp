@@ -161,6 +161,7 @@ TEST_F(ApiTest, AProgramRunsWithPathAndViolations) {
 TEST_F(ApiTest, ANamedRunIsCancelled) {
   std::string program = "G0 X0 Y0 Z200\nF600\n";
   for (int i = 0; i < 100'000; ++i) program += i % 2 ? "G1 X10\n" : "G1 X-10\n";
+  program += "M2\n";
   const std::string body =
       Json{{"machine", "hexapod-default"}, {"program", program}, {"job", "long-run"}}.dump();
   Response run;
@@ -182,7 +183,7 @@ TEST_F(ApiTest, ANamedRunIsCancelled) {
 
 TEST_F(ApiTest, CompensateReturnsTheProgram) {
   const Response r = post("/api/gcode/compensate", R"({"machine": "hexapod-default",
-      "nominal": "hexapod-default", "program": "G0 X0 Y0 Z200\nG1 X10 F600\n"})");
+      "nominal": "hexapod-default", "program": "G0 X0 Y0 Z200\nG1 X10 F600\nM2\n"})");
   ASSERT_EQ(r.status, 200) << r.body;
   EXPECT_THAT(body(r)["text"].get<std::string>(), HasSubstr("G1 X"));
   EXPECT_EQ(body(r)["max_correction_mm"], 0.0);  // the same machine: nothing to correct

@@ -39,6 +39,7 @@ class HttpServerTest : public ::testing::Test {
   static std::string longProgram(int n) {
     std::string p = "G0 X0 Y0 Z200\nF600\n";
     for (int i = 0; i < n; ++i) p += i % 2 ? "G1 X10\n" : "G1 X-10\n";
+    p += "M2\n";
     return p;
   }
   std::unique_ptr<HttpServer> server_;

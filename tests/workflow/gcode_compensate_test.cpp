@@ -51,6 +51,7 @@ class GcodeCompensateWorkflow : public ::testing::Test {
   GcodeCompensateRequest request(std::string text) {
     GcodeCompensateRequest r;
     r.program = {"upload.ngc", std::move(text)};
+    r.interpreter.require_program_end = false;  // snippets; the CLI tests check the end
     r.machine = calibratedMachine();
     return r;
   }

@@ -49,6 +49,9 @@ struct InterpreterOptions {
   /// The INI's numeric entries for #<_ini[section]name>, keyed "section]name" in lower case
   /// (LinuxCNC upper-cases the name before it looks it up, so only upper-case entries count).
   std::map<std::string, double> ini_values;
+  /// Codes an INI remaps ("m6" -> "machine.ini:22"): a program that uses one is refused, since
+  /// pkm does not run the remap's procedure.
+  std::map<std::string, std::string> remapped_codes;
   /// Numbered parameters at start-up (a LinuxCNC parameter file, lengths in mm): offsets of the
   /// coordinate systems and G92 (#5210-#5390), the active system (#5220), G28/G30 positions and
   /// the user's values. Applied before startup_code.

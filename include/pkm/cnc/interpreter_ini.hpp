@@ -41,12 +41,14 @@ struct Rs274ngcIni {
   std::map<std::string, double> values;
   /// A millimetre machine ([TRAJ] LINEAR_UNITS mm, the default) or an inch one.
   bool inch_machine = false;
+  /// The codes `[RS274NGC] REMAP` remaps ("m6", "g81"), with "INI:LINE" of each.
+  std::map<std::string, std::string> remapped;
 };
 
 /// Reads the interpreter settings of INI `text` named `name` (its path, for relative folders).
-/// Throws pkm::IoError "NAME:LINE: message" for a tolerance outside LinuxCNC's range, a REMAP
-/// (remapped codes run Python or O-word procedures pkm does not: refused rather than ignored)
-/// or a malformed line.
+/// Throws pkm::IoError "NAME:LINE: message" for a tolerance outside LinuxCNC's range or a
+/// malformed line. USER_M_PATH and ON_ABORT_COMMAND have no effect (user M codes are refused by
+/// name; pkm stops at an error).
 [[nodiscard]] Rs274ngcIni readRs274ngcIni(std::string_view text, const std::string& name);
 
 /// Reads LinuxCNC parameter file `text` named `name` (`NUMBER VALUE` per line; LinuxCNC's .var)
