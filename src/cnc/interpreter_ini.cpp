@@ -12,16 +12,11 @@
 
 #include "pkm/cnc/parameters.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/core/text.hpp"
 
 namespace pkm::cnc {
 
 namespace {
-
-std::string_view trimmed(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return s;
-}
 
 bool hasLowerCase(std::string_view s) {
   for (const char c : s)
@@ -50,19 +45,6 @@ bool parseNumber(std::string_view s, double& v) {
   return r.ec == std::errc() && r.ptr == s.data() + s.size() && std::isfinite(v);
 }
 
-/// The blank-separated words of `s`.
-std::vector<std::string_view> wordsOf(std::string_view s) {
-  std::vector<std::string_view> out;
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
-    const std::size_t start = i;
-    while (i < s.size() && !std::isspace(static_cast<unsigned char>(s[i]))) ++i;
-    if (i > start) out.push_back(s.substr(start, i - start));
-  }
-  return out;
-}
-
 /// The number of entry `e` of INI `name`; throws naming the line.
 double numberOf(const std::string& name, const IniEntry& e) {
   double v = 0.0;
@@ -73,34 +55,6 @@ double numberOf(const std::string& name, const IniEntry& e) {
 }
 
 }  // namespace
-
-std::vector<IniEntry> parseIni(std::string_view text_in, const std::string& name) {
-  std::vector<IniEntry> out;
-  std::string section;
-  std::size_t line_no = 0;
-  std::string_view rest = text_in;
-  while (!rest.empty()) {
-    const auto end = rest.find('\n');
-    const std::string_view text = trimmed(rest.substr(0, end));
-    rest = end == std::string_view::npos ? std::string_view() : rest.substr(end + 1);
-    ++line_no;
-    if (text.empty() || text.front() == '#' || text.front() == ';') continue;
-    if (text.front() == '[') {
-      const auto close = text.find(']');
-      if (close == std::string_view::npos)
-        throw IoError(locate(name, line_no, "unterminated section header"));
-      section = std::string(text.substr(1, close - 1));
-      continue;
-    }
-    const auto eq = text.find('=');
-    if (eq == std::string_view::npos) continue;
-    out.push_back({section,
-                   std::string(trimmed(text.substr(0, eq))),
-                   std::string(trimmed(text.substr(eq + 1))),
-                   line_no});
-  }
-  return out;
-}
 
 Rs274ngcIni readRs274ngcIni(std::string_view text, const std::string& name) {
   Rs274ngcIni r;
@@ -132,7 +86,7 @@ Rs274ngcIni readRs274ngcIni(std::string_view text, const std::string& name) {
       ini_vars = numberOf(name, e) != 0.0;
     } else if (e.key == "REMAP") {
       // "REMAP = M6 modalgroup=6 ngc=change": a program that uses the code is refused.
-      const auto words = wordsOf(e.value);
+      const auto words = splitWords(e.value);
       if (words.empty()) fail("[RS274NGC] REMAP without a code");
       r.remapped[lowerCase(words[0])] = fmt::format("{}:{}", name, e.line);
     }
@@ -155,15 +109,12 @@ void readParameterFile(std::string_view text_in,
                        const std::string& name,
                        bool inch_machine,
                        InterpreterOptions& options) {
-  std::size_t line_no = 0;
-  std::string_view rest = text_in;
-  while (!rest.empty()) {
-    const auto end = rest.find('\n');
-    const std::string_view text = trimmed(rest.substr(0, end));
-    rest = end == std::string_view::npos ? std::string_view() : rest.substr(end + 1);
-    ++line_no;
+  const std::vector<std::string_view> lines = splitLines(text_in);
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const std::size_t line_no = k + 1;
+    const std::string_view text = trimBlanks(lines[k]);
     if (text.empty()) continue;
-    const auto words = wordsOf(text);
+    const auto words = splitWords(text);
     double index = 0.0;
     double value = 0.0;
     if (words.size() != 2 || !parseNumber(words[0], index) || !parseNumber(words[1], value) ||

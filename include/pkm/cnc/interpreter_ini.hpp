@@ -11,21 +11,9 @@
 #include <vector>
 
 #include "pkm/cnc/interpreter.hpp"
+#include "pkm/core/text.hpp"
 
 namespace pkm::cnc {
-
-/// One `KEY = value` line of an INI file.
-struct IniEntry {
-  std::string section;  ///< without the brackets, as written
-  std::string key;      ///< as written, blanks trimmed
-  std::string value;    ///< the rest of the line, blanks trimmed
-  std::size_t line = 0;
-};
-
-/// The entries of an INI file in order: `[SECTION]` headers, `KEY = value` lines; blank lines,
-/// lines starting with '#' or ';' and lines without '=' are skipped. Throws pkm::IoError
-/// "NAME:LINE: unterminated section header".
-[[nodiscard]] std::vector<IniEntry> parseIni(std::string_view text, const std::string& name);
 
 /// What an INI sets up for the interpreter.
 struct Rs274ngcIni {

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pkm/core/text.hpp"
 #include "pkm/io/named_text.hpp"
 
 namespace pkm::io {
@@ -83,14 +84,12 @@ class CsvReader {
 /// Returns false for anything else, including "nan" and "inf".
 [[nodiscard]] bool parseFiniteDouble(std::string_view text, double& value);
 
-/// `s` without leading and trailing spaces, tabs and carriage returns.
-[[nodiscard]] std::string_view trimBlanks(std::string_view s);
+using pkm::trimBlanks;  // core/text.hpp
 
 /// The comma-separated fields of `line` (views into it, each trimmed as by trimBlanks), in
 /// order; an empty line gives one empty field.
 [[nodiscard]] std::vector<std::string_view> splitFields(std::string_view line);
 
-/// The whitespace-separated words of `line` (views into it), in order.
-[[nodiscard]] std::vector<std::string_view> splitWords(std::string_view line);
+using pkm::splitWords;  // core/text.hpp
 
 }  // namespace pkm::io
