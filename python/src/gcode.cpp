@@ -13,6 +13,7 @@
 #include "columns.hpp"
 #include "common.hpp"
 #include "gcode_program.hpp"
+#include "paths.hpp"
 #include "pkm/cnc/interpreter.hpp"
 #include "pkm/cnc/move.hpp"
 #include "pkm/io/text_table.hpp"
@@ -78,9 +79,11 @@ Moves moves(const py::object& program,
             const std::string& tool_units,
             bool block_delete,
             std::uint64_t max_iterations,
+            const py::object& ini,
             const std::optional<std::string>& name) {
   workflow::GcodeMovesRequest r;
   r.interpreter = interpreterOf(tool_table, tool_units, block_delete, max_iterations);
+  r.interpreter.ini = optionalPath(ini, "ini");
   r.validate();  // option errors before the program is read, as the command
   r.program = programOf(program, name);
   workflow::GcodeMovesResult result;
@@ -156,6 +159,7 @@ void exposeGcode(py::module_& m) {
         py::arg("tool_units") = "mm",
         py::arg("block_delete") = false,
         py::arg("max_iterations") = cnc::InterpreterOptions{}.max_loop_iterations,
+        py::arg("ini") = py::none(),
         py::arg("name") = py::none(),
         R"doc(Interprets a program with LinuxCNC semantics, as `pkm gcode moves PROGRAM`.
 
@@ -172,6 +176,9 @@ block_delete : bool, default False
     Skip lines starting with '/' (--block-delete).
 max_iterations : int, default 10_000_000
     Iterations one loop may make before the program is rejected as runaway.
+ini : str or os.PathLike, optional
+    A LinuxCNC INI whose [RS274NGC] section sets the interpreter up, as rs274 -i does (--ini):
+    start-up code, arc tolerances, parameter file, sub-file path, #<_ini[...]> values.
 name : str, optional
     The program's name in messages (default: its path, or "program" for a text).
 

@@ -94,11 +94,13 @@ py::tuple flatten(const py::object& program,
                   const std::string& tool_units,
                   bool block_delete,
                   std::uint64_t max_iterations,
+                  const py::object& ini,
                   const py::object& out,
                   bool force,
                   const std::optional<std::string>& name) {
   workflow::GcodeFlattenRequest q;
   q.interpreter = interpreterOf(tool_table, tool_units, block_delete, max_iterations);
+  q.interpreter.ini = optionalPath(ini, "ini");
   q.out = optionalPath(out, "out");
   q.force = force;
   q.validate();  // option errors before the program is read, as the command
@@ -179,7 +181,7 @@ Parameters
 ----------
 program : str or os.PathLike
     A G-code file or the program's text (as pkm.gcode.moves).
-tool_table, tool_units, block_delete, max_iterations
+tool_table, tool_units, block_delete, max_iterations, ini
     As pkm.gcode.moves.
 out, force
     Also write the program to this file (refused when it exists unless force).
@@ -229,6 +231,7 @@ void exposeGcodeTransforms(py::module_& g) {
         py::arg("tool_units") = "mm",
         py::arg("block_delete") = false,
         py::arg("max_iterations") = cnc::InterpreterOptions{}.max_loop_iterations,
+        py::arg("ini") = py::none(),
         py::arg("out") = py::none(),
         py::arg("force") = false,
         py::arg("name") = py::none(),

@@ -27,9 +27,10 @@ TEST(Text, TrimWordsAndLines) {
 }
 
 TEST(Text, IniEntriesWithTheirSectionsAndLines) {
-  const auto e = parseIni("# comment\n[EMC]\nMACHINE = hexapod \r\n; x\n[TRAJ]\n"
-                          "LINEAR_UNITS=inch\nno equals sign\n  HOME = 0 0 20 \n",
-                          "m.ini");
+  const auto e = parseIni(
+      "# comment\n[EMC]\nMACHINE = hexapod \r\n; x\n[TRAJ]\n"
+      "LINEAR_UNITS=inch\nno equals sign\n  HOME = 0 0 20 \n",
+      "m.ini");
   ASSERT_EQ(e.size(), 3u);
   EXPECT_EQ(e[0].section, "EMC");
   EXPECT_EQ(e[0].value, "hexapod");

@@ -341,3 +341,16 @@ def test_flatten_options_and_errors(run_cli, tmp_path):
         pkm.gcode.flatten("G0 X0\nG1 X1 Q\n")
     with pytest.raises(ValueError, match="loop"):
         pkm.gcode.flatten("o1 while [1]\nG0 X1\no1 endwhile\n", max_iterations=10)
+
+
+def test_moves_and_flatten_take_an_ini(tmp_path):
+    (tmp_path / "m.var").write_text("5220 2\n5241 10\n")
+    ini = tmp_path / "m.ini"
+    ini.write_text("[RS274NGC]\nPARAMETER_FILE = m.var\n[SETUP]\nXPOS = 3\n")
+    program = "G0 X#<_ini[setup]xpos>\nM2\n"
+    m = pkm.gcode.moves(program, ini=ini)
+    assert m.position[0][0] == 13.0  # G55 from the parameter file, X from the INI
+    text, _ = pkm.gcode.flatten(program, ini=str(ini))
+    assert text.splitlines()[0] == "G0 X3"
+    with pytest.raises(ValueError, match=r"program:1: named parameter"):
+        pkm.gcode.moves(program)
