@@ -30,7 +30,7 @@ namespace {
 /// not know where the tool is), probing, spindle-synchronised motion, and inverse time (a feed
 /// per source motion).
 bool unsupportedG(long g10) {
-  static constexpr long kBad[] = {870, 880, 930, 382, 383, 384, 385, 330, 331, 760};
+  static constexpr long kBad[] = {870, 880, 930, 382, 383, 384, 385, 330, 331, 760, 520};
   return std::find(std::begin(kBad), std::end(kBad), g10) != std::end(kBad);
 }
 
@@ -80,13 +80,22 @@ void checkBlock(const Block& b, const std::string& file, BlockScan& scan) {
     const bool l20 = std::any_of(b.words.begin(), b.words.end(), [&](const Word& x) {
       return x.letter == 'l' && x.value.isConstant() && x.value.evaluate(params) == 20.0;
     });
-    sets_offset = sets_offset || g10 == 920 || g10 == 520 || (g10 == 100 && l20);
+    const bool tool_from_position = std::any_of(b.words.begin(), b.words.end(), [&](const Word& x) {
+      return x.letter == 'l' && x.value.isConstant() &&
+             (x.value.evaluate(params) == 10.0 || x.value.evaluate(params) == 11.0);
+    });
+    if (g10 == 100 && tool_from_position)
+      fail(file,
+           b.line,
+           "gcode compensate does not support G10 L10/L11: they set a tool entry from the "
+           "position, which the compensated program changes");
+    sets_offset = sets_offset || g10 == 920 || (g10 == 100 && l20);
     if (unsupportedG(g10))
       fail(file,
            b.line,
            fmt::format("G{} is not supported by gcode compensate (it rewrites one motion per "
-                       "line, or expands a canned cycle or G28/G30: no G87/G88, probing, G33/G76 "
-                       "or G93)",
+                       "line, or expands a canned cycle or G28/G30: no G87/G88, probing, G33/G76, "
+                       "G52 or G93)",
                        static_cast<double>(g10) / 10.0));
   }
   if (!sets_offset) return;

@@ -130,7 +130,12 @@ TEST(CompensateProgram, RejectsUnsupportedWithLine) {
                            "G0 X0 Y0 Z200\nG93 G1 X1 F10\n",
                            "G0 X0 Y0 Z200\nG92 X[#1]\n",
                            "G0 X0 Y0 Z200\nG10 L20 P1 X[1 + #2]\n",
-                           "G0 X0 Y0 Z200\nG88 X1 Z150 R190 P1 F100 S100 M3\n"}) {
+                           "G0 X0 Y0 Z200\nG88 X1 Z150 R190 P1 F100 S100 M3\n",
+                           "G0 X0 Y0 Z200\nG52 X5\n",
+                           "G0 X0 Y0 Z200\nG10 L10 P1 Z0\n",
+                           "G0 X0 Y0 Z200\nG10 L11 P1 Z0\n",
+                           "G0 X0 Y0 Z200\nG0 @10 ^30\n",
+                           "G10 L2 P1 R30\nG0 X1\n"}) {
     try {
       (void)compensateProgram(text, "bad.ngc", m, m);
       ADD_FAILURE() << text;
