@@ -209,7 +209,10 @@ void Interpreter::Impl::setFeedSpeedTool(const ResolvedBlock& rb, const BlockCod
     if (t < 0) throw GcodeError("negative tool number");
     st.selected_tool = t;
   }
-  if (c.m_tool == 6) st.tool_in_spindle = st.selected_tool;
+  if (c.m_tool == 6) {
+    st.tool_in_spindle = st.selected_tool;
+    if (const ToolEntry* t = options.tools.find(st.tool_in_spindle)) spindle_entry = t->offset;
+  }
   if (c.m_set_tool >= 0) {
     const int t = toInt(rb.word('q'), 'Q');
     if (t < 0) throw GcodeError("M61 needs a tool number Q >= 0");
@@ -246,7 +249,6 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   if (c.plane >= 0)
     st.plane = c.plane == 170 ? Plane::kXY : c.plane == 180 ? Plane::kXZ : Plane::kYZ;
   if (c.units >= 0) st.inch = c.units == 200;
-  const Axes tlo_before = st.tool_offset;
   if (c.tlo >= 0) setTlo(rb, c.tlo);
   if (c.wcs >= 0) {
     static constexpr std::array<int, 9> kCodes{540, 550, 560, 570, 580, 590, 591, 592, 593};
@@ -265,9 +267,12 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   if (c.m_fanuc >= 0) fanuc = fanucRequest(rb, c.m_fanuc);
   if (c.m_tool == 6 && summary.moves == moves_before) {
     // After a tool change rs274 re-reads the position in program coordinates as the last motion
-    // left it, so a G43/G49 in the M6 block shifts the machine position the next motion starts
-    // its unprogrammed axes from (checked with rs274: "T1 M6 G43 H1" then "G0 X1" moves Z).
-    for (std::size_t i = 0; i < 6; ++i) st.machine[i] += st.tool_offset[i] - tlo_before[i];
+    // left it (tool offset changes since then do not count), so a G43/G49 since that motion
+    // shifts the machine position the next motion starts its unprogrammed axes from (checked
+    // with rs274: "T1 M6 G43 H1" then "G0 X1" moves Z).
+    for (std::size_t i = 0; i < 6; ++i)
+      st.machine[i] += st.tool_offset[i] - tlo_at_last_motion[i];
+    tlo_at_last_motion = st.tool_offset;
   }
   return !(c.m_stop == 2 || c.m_stop == 30);
 }

@@ -187,6 +187,8 @@ struct Interpreter::Impl : FlowSource {
   InterpreterOptions options;
   MachineState st;
   std::size_t current_line = 0;  // source line of the block being executed (#<_line>)
+  Axes tlo_at_last_motion{};     // the tool offset the last motion was made with (M6 re-read)
+  Axes spindle_entry{};          // #5401-#5406: the spindle tool's entry, kept for T0
   FanucRequest fanuc;            // set by execute() for the program flow
   struct SavedModes {
     std::optional<MachineState> state;

@@ -154,6 +154,7 @@ void Interpreter::Impl::emitLine(
   sink.onMove(m);
   ++summary.moves;
   if (st.inch) ++summary.inch_moves;
+  tlo_at_last_motion = st.tool_offset;
 }
 
 Axes Interpreter::Impl::axisWords(const ResolvedBlock& rb) const {
@@ -232,6 +233,7 @@ void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& s
   sink.onMove(m);
   ++summary.moves;
   if (st.inch) ++summary.inch_moves;
+  tlo_at_last_motion = st.tool_offset;
 }
 
 void Interpreter::Impl::doHome(const ResolvedBlock& rb, int code, MoveSink& sink) {

@@ -18,9 +18,11 @@ double Interpreter::Impl::numbered(int index) {
   }
   if (index >= 5426 && index <= 5428) return 0.0;
   if (index == 5400) return st.tool_in_spindle;
-  if (index >= 5401 && index <= 5406) {
+  if (index >= 5401 && index <= 5406) {  // the table entry of the tool in the spindle (rs274)
     const auto i = static_cast<std::size_t>(index - 5401);
-    return st.tool_offset[i] / st.axisScale(i);
+    // A tool not in the table (T0) leaves the last entry read, as rs274 does.
+    if (const ToolEntry* t = options.tools.find(st.tool_in_spindle)) spindle_entry = t->offset;
+    return spindle_entry[i] / st.axisScale(i);
   }
   const double v = params.get(index);
   return isLengthParameter(index) ? v / st.scale() : v;
