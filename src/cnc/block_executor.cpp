@@ -270,8 +270,7 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
     // left it (tool offset changes since then do not count), so a G43/G49 since that motion
     // shifts the machine position the next motion starts its unprogrammed axes from (checked
     // with rs274: "T1 M6 G43 H1" then "G0 X1" moves Z).
-    for (std::size_t i = 0; i < 6; ++i)
-      st.machine[i] += st.tool_offset[i] - tlo_at_last_motion[i];
+    for (std::size_t i = 0; i < 6; ++i) st.machine[i] += st.tool_offset[i] - tlo_at_last_motion[i];
     tlo_at_last_motion = st.tool_offset;
   }
   return !(c.m_stop == 2 || c.m_stop == 30);

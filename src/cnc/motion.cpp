@@ -27,16 +27,17 @@ double pathLength(const Axes& from, const Axes& to) {
 /// I, J, K: the centre-offset words of axes X, Y, Z.
 constexpr std::array<char, 3> kArcOffsetWord{'i', 'j', 'k'};
 
-/// Rejects an arc (G2 when `clockwise`) without an axis word of plane `plane` (in-plane axes a1,
-/// a2) or with the offset word of its normal axis an.
+/// Rejects an R-format arc (G2 when `clockwise`) without an axis word of plane `plane` (in-plane
+/// axes a1, a2; a centre-format arc without one is a full circle, as in rs274), or an arc with
+/// the offset word of its normal axis an.
 void checkArcWords(const ResolvedBlock& rb,
                    bool clockwise,
                    Plane plane,
                    std::size_t a1,
                    std::size_t a2,
                    std::size_t an) {
-  if (!rb.hasWord(kAxes[a1]) && !rb.hasWord(kAxes[a2]))
-    throw GcodeError(fmt::format("{} arc needs at least one of {} and {} in the {} plane",
+  if (rb.hasWord('r') && !rb.hasWord(kAxes[a1]) && !rb.hasWord(kAxes[a2]))
+    throw GcodeError(fmt::format("{} R-format arc needs at least one of {} and {} in the {} plane",
                                  clockwise ? "G2" : "G3",
                                  static_cast<char>(kAxes[a1] - 32),
                                  static_cast<char>(kAxes[a2] - 32),
