@@ -93,7 +93,7 @@ Interpreter::Impl::Outcome Interpreter::Impl::runProgram(const Program& program,
       const std::size_t next = flow.step(pc);
       if (next == kReturnToCaller) return Outcome::kReturned;
       if (next == kExternalCall) {
-        if (callExternal(program, b.line, flow.external().name, flow.external().args, sink) ==
+        if (callExternal(b.line, flow.external().name, flow.external().args, sink) ==
             Outcome::kEnded)
           return Outcome::kEnded;
         ++pc;

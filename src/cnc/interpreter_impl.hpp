@@ -109,11 +109,10 @@ struct Interpreter::Impl : FlowSource {
   enum class Outcome { kEnded, kFellOff, kReturned };
   /// Runs `program` from block `pc`; `external`: a sub file's sub, whose endsub returns.
   Outcome runProgram(const Program& program, std::size_t pc, MoveSink& sink, bool external);
-  /// Calls sub `name` with `args` (for `caller`'s block at `line`) from the file NAME.ngc in the
+  /// Calls sub `name` with `args` (for the calling block at `line`) from the file NAME.ngc in the
   /// working folder or options.subroutine_path (LinuxCNC's SUBROUTINE_PATH); throws GcodeError when
   /// there is none or it does not define the sub.
-  Outcome callExternal(const Program& caller,
-                       std::size_t line,
+  Outcome callExternal(std::size_t line,
                        const std::string& name,
                        const std::vector<double>& args,
                        MoveSink& sink);

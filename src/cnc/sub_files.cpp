@@ -12,12 +12,10 @@ namespace pkm::cnc {
 
 namespace fs = std::filesystem;
 
-Interpreter::Impl::Outcome Interpreter::Impl::callExternal(const Program& caller,
-                                                           std::size_t line,
+Interpreter::Impl::Outcome Interpreter::Impl::callExternal(std::size_t line,
                                                            const std::string& name,
                                                            const std::vector<double>& args,
                                                            MoveSink& sink) {
-  (void)caller;
   std::vector<fs::path> folders;
   if (options.search_working_folder) folders.emplace_back(".");
   for (const std::string& d : options.subroutine_path) folders.emplace_back(d);
@@ -47,9 +45,15 @@ Interpreter::Impl::Outcome Interpreter::Impl::callExternal(const Program& caller
     throw GcodeError(fmt::format("{} does not define {} sub", found.string(), oLabel(name)));
   params.pushCall(args);
   if (external_depth == 0) external_call_line = line;  // motions in the file report this line
-  ++external_depth;
+  // The depth goes back down however the sub ends (an error leaves the interpreter reusable).
+  struct Depth {
+    std::size_t& depth;
+    explicit Depth(std::size_t& d) : depth(d) { ++depth; }
+    ~Depth() { --depth; }
+    Depth(const Depth&) = delete;
+    Depth& operator=(const Depth&) = delete;
+  } const guard(external_depth);
   const Outcome outcome = runProgram(file, start + 1, sink, true);
-  --external_depth;
   if (outcome == Outcome::kFellOff)
     throw GcodeError(
         fmt::format("{}: {} sub ran past the end of the file", found.string(), oLabel(name)));

@@ -39,7 +39,7 @@ int axisIndex(char c) {
 
 bool isAxisLetter(char c) { return axisIndex(c) >= 0 || c == 'u' || c == 'v' || c == 'w'; }
 
-/// The motion mode as #<_motion_mode> reports it: G0 is 0, G1 10, ..., G80 800.
+/// The plane as #<_plane> reports it: G17 is 170, G18 180, G19 190.
 double planeCode(Plane p) { return p == Plane::kXY ? 170 : p == Plane::kXZ ? 180 : 190; }
 
 }  // namespace
