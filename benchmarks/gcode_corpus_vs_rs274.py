@@ -161,8 +161,10 @@ def run_one(path, opts, work):
         cmd += ["-i", ini]
     cmd += ["-g", os.path.abspath(path), out]
     try:
+        # rs274 keeps its tool data in $HOME/.tool.mmap: a HOME of our own, so that runs in
+        # parallel (ctest -j) do not clobber each other's tool table.
         r = subprocess.run(cmd, cwd=folder, stdin=subprocess.DEVNULL, capture_output=True,
-                           text=True, errors="replace", timeout=30)
+                           text=True, errors="replace", timeout=30, env=dict(os.environ, HOME=work))
         ref_ok = r.returncode == 0
         ref_text = open(out, errors="replace").read() if os.path.exists(out) else ""
         ref_err = (r.stdout + r.stderr).strip().replace("executing", "").strip()

@@ -92,6 +92,10 @@ int* modalSlot(BlockCodes& c, int g) {
     case 210:
       return &c.units;
     case 400:
+    case 410:
+    case 411:
+    case 420:
+    case 421:
       return &c.cutter;
     case 430:
     case 431:
@@ -133,8 +137,6 @@ void classifyG(BlockCodes& c, int g) {
     setOnceG(*slot, g);
     return;
   }
-  if (g == 410 || g == 420 || g == 411 || g == 421)
-    throw GcodeError(fmt::format("{} cutter radius compensation is not supported", gName(g)));
   throw GcodeError(fmt::format("unsupported G code {}", gName(g)));
 }
 

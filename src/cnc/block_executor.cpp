@@ -97,8 +97,9 @@ void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c)
     throw GcodeError("I, J or K word with no G2, G3 or G87 to use it");
   if (rb.hasWord('r') && !arc && !canned && c.non_modal != 100 && c.m_orient < 0)
     throw GcodeError("R word with no G2, G3, G10, M19 or canned cycle to use it");
-  if (rb.hasWord('l') && !canned && c.non_modal != 100 && c.m_io != 66 && c.m_fanuc != 98)
-    throw GcodeError("L word with no G10, M66, M98 or canned cycle to use it");
+  if (rb.hasWord('l') && !canned && c.non_modal != 100 && c.m_io != 66 && c.m_fanuc != 98 &&
+      c.cutter != 411 && c.cutter != 421)
+    throw GcodeError("L word with no G10, G41.1, G42.1, M66, M98 or canned cycle to use it");
   const bool io_q = c.m_io >= 66 || c.m_set_tool >= 0 || c.m_orient >= 0;
   if (rb.hasWord('q') && !(motion == 830 || motion == 730) && c.path != 640 && !io_q)
     throw GcodeError("Q word with no G73, G83, G64, M19, M61 or M66-M68 to use it");
@@ -114,7 +115,8 @@ void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c)
         "P word with no G4, G10, G2/G3, G64, M19, M50-M53, M62-M66 or dwelling canned cycle to "
         "use it");
   if (rb.hasWord('h') && c.tlo != 430) throw GcodeError("H word with no G43 to use it");
-  if (rb.hasWord('d')) throw GcodeError("D word (cutter compensation) is not supported");
+  if (rb.hasWord('d') && c.cutter < 410)
+    throw GcodeError("D word with no G41, G41.1, G42 or G42.1 to use it");
   if (c.non_modal == 530 && !(motion == 0 || motion == 10))
     throw GcodeError("G53 needs G0 or G1 active");
   if (c.non_modal == 530 && (c.distance == 910 || (c.distance < 0 && st.incremental)))
@@ -132,7 +134,7 @@ void Interpreter::Impl::activeComment(const Block& block, MoveSink& sink) {
     throw GcodeError(
         fmt::format("program aborted: {}", first == std::string::npos ? "" : text.substr(first)));
   }
-  sink.onMessage(block.line, block.comment, text);
+  comp.message(block.line, block.comment, text, sink);
 }
 
 FanucRequest Interpreter::Impl::fanucRequest(const ResolvedBlock& rb, int m) const {
@@ -186,6 +188,12 @@ void Interpreter::Impl::applyPolar(ResolvedBlock& rb) const {
   rb.has &= ~(letterBit(kPolarRadius) | letterBit(kPolarAngle));
 }
 
+void Interpreter::Impl::checkToolExists(int tool) const {
+  // LinuxCNC refuses a tool its table does not hold; without a table pkm knows no tools.
+  if (tool != 0 && !options.tools.tools.empty() && options.tools.find(tool) == nullptr)
+    throw GcodeError(fmt::format("requested tool {} not found in the tool table", tool));
+}
+
 void Interpreter::Impl::setFeedSpeedTool(const ResolvedBlock& rb, const BlockCodes& c) {
   if (c.feed_mode >= 0) {
     const bool inv = c.feed_mode == 930;
@@ -207,6 +215,7 @@ void Interpreter::Impl::setFeedSpeedTool(const ResolvedBlock& rb, const BlockCod
   if (rb.hasWord('t')) {
     const int t = toInt(rb.word('t'), 'T');
     if (t < 0) throw GcodeError("negative tool number");
+    checkToolExists(t);
     st.selected_tool = t;
   }
   if (c.m_tool == 6) {
@@ -216,6 +225,7 @@ void Interpreter::Impl::setFeedSpeedTool(const ResolvedBlock& rb, const BlockCod
   if (c.m_set_tool >= 0) {
     const int t = toInt(rb.word('q'), 'Q');
     if (t < 0) throw GcodeError("M61 needs a tool number Q >= 0");
+    checkToolExists(t);
     st.tool_in_spindle = t;
   }
 }
@@ -234,6 +244,7 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   }
   const BlockCodes c = classify(rb);
   checkWords(rb, c);
+  checkCompRestrictions(rb, c);
   setFeedSpeedTool(rb, c);
   if (c.m_override >= 0) st.overrides_enabled = c.m_override == 48;
   if (c.m_mist) st.mist = true;
@@ -244,11 +255,12 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   if (c.non_modal == 40) {
     if (!rb.hasWord('p')) throw GcodeError("G4 needs a P word (dwell time, s)");
     if (rb.word('p') < 0.0) throw GcodeError("negative G4 dwell time");
-    sink.onDwell(rb.line, rb.word('p'));
+    comp.dwell(rb.line, rb.word('p'), sink);
   }
   if (c.plane >= 0)
     st.plane = c.plane == 170 ? Plane::kXY : c.plane == 180 ? Plane::kXZ : Plane::kYZ;
   if (c.units >= 0) st.inch = c.units == 200;
+  if (c.cutter >= 0) cutterCompensation(rb, c.cutter, sink);
   if (c.tlo >= 0) setTlo(rb, c.tlo);
   if (c.wcs >= 0) {
     static constexpr std::array<int, 9> kCodes{540, 550, 560, 570, 580, 590, 591, 592, 593};
@@ -270,9 +282,12 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
     // left it (tool offset changes since then do not count), so a G43/G49 since that motion
     // shifts the machine position the next motion starts its unprogrammed axes from (checked
     // with rs274: "T1 M6 G43 H1" then "G0 X1" moves Z).
+    // Cutter compensation may have left the tool off the programmed path: rs274 re-reads it.
+    if (const Axes* tool = comp.displacedTool()) st.machine = *tool;
     for (std::size_t i = 0; i < 6; ++i) st.machine[i] += st.tool_offset[i] - tlo_at_last_motion[i];
     tlo_at_last_motion = st.tool_offset;
   }
+  if (c.m_stop >= 0) flushCompensation(sink);  // M0, M1, M2, M30, M60
   return !(c.m_stop == 2 || c.m_stop == 30);
 }
 

@@ -49,6 +49,11 @@ RunSummary Interpreter::run(const Program& program, MoveSink& sink) {
   s.summary = RunSummary{};
   s.report_blocks = sink.wantsBlocks();
   const Impl::Outcome outcome = s.runProgram(program, 0, sink, false);
+  try {
+    s.flushCompensation(sink);  // M2 flushed already; a program ending otherwise does it here
+  } catch (const GcodeError& e) {
+    throw IoError(locate(program.file(), program.lineCount(), e.what()));
+  }
   if (outcome == Impl::Outcome::kEnded) {
     s.summary.ended_by_m2 = true;
     return s.summary;
@@ -132,6 +137,11 @@ RunSummary Interpreter::runStream(LineReader& reader, MoveSink& sink) {
     } catch (const GcodeError& e) {
       throw IoError(locate(reader.file(), b.line, e.what()));
     }
+  }
+  try {
+    s.flushCompensation(sink);
+  } catch (const GcodeError& e) {
+    throw IoError(locate(reader.file(), reader.lines(), e.what()));
   }
   if (s.options.require_program_end && !reader.closedByPercent())
     throw IoError(locate(reader.file(), reader.lines(), kNoProgramEnd));

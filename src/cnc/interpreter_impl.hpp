@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "pkm/cnc/canned_cycle.hpp"
+#include "pkm/cnc/cutter_comp.hpp"
 #include "pkm/cnc/interpreter.hpp"
 #include "pkm/cnc/parameters.hpp"
 
@@ -78,6 +79,21 @@ struct BlockCodes {
 /// The name of G code `code` (its number ×10): "G1", "G92.1".
 [[nodiscard]] std::string gName(int code);
 
+/// Forwards motions, dwells and messages to `inner`, counting the motions in `summary` (the path
+/// of the moves cutter compensation passes on, some of them after their block).
+class CountingSink final : public MoveSink {
+ public:
+  CountingSink(MoveSink& inner, RunSummary& summary, bool inch);
+  void onMove(const Move& move) override;
+  void onDwell(std::size_t line, double seconds) override;
+  void onMessage(std::size_t line, CommentKind kind, const std::string& text) override;
+
+ private:
+  MoveSink& inner_;
+  RunSummary& summary_;
+  bool inch_;
+};
+
 /// What the program flow needs of the interpreter: its parameters, and leaving a call level.
 class FlowSource : public ParameterSource {
  public:
@@ -128,6 +144,8 @@ struct Interpreter::Impl : FlowSource {
   void leaveCallLevel() override;
   /// Feed mode, F, S, T, M6 and M61 of a block, in LinuxCNC's order.
   void setFeedSpeedTool(const ResolvedBlock& rb, const BlockCodes& c);
+  /// Throws GcodeError for tool number `tool` (> 0) missing from a non-empty tool table.
+  void checkToolExists(int tool) const;
   /// Turns the polar words @ ^ of `rb` into X and Y (LinuxCNC 2.9 G-code overview, "Polar
   /// Coordinates": about the program's XY zero, cumulative under G91).
   void applyPolar(ResolvedBlock& rb) const;
@@ -160,6 +178,19 @@ struct Interpreter::Impl : FlowSource {
   /// (#5161-#5166, #5181-#5186, machine coordinates) of those axes, or of all without words;
   /// G28.1/G30.1 store the current machine position there.
   void doHome(const ResolvedBlock& rb, int code, MoveSink& sink);
+
+  // cutter_comp_block.cpp
+  /// G40, G41, G42, G41.1, G42.1 of a block (after its plane and units, before its motion).
+  void cutterCompensation(const ResolvedBlock& rb, int code, MoveSink& sink);
+  /// The radius (mm) of G41/G42's D word (a tool number; the tool in the spindle without one) or
+  /// of G41.1/G42.1's D word (a diameter in program units).
+  [[nodiscard]] double compRadius(const ResolvedBlock& rb, int code) const;
+  /// Throws GcodeError for what LinuxCNC refuses while compensation is on in block `rb`
+  /// (changing planes, systems, offsets, path or retract modes; G28/G30, probes, cycles,
+  /// G53, I/O and override M-codes).
+  void checkCompRestrictions(const ResolvedBlock& rb, const BlockCodes& c) const;
+  /// M0, M1, M2, M30, M60 and the end of a program: the held compensated moves go out.
+  void flushCompensation(MoveSink& sink);
 
   // motion.cpp
   void doMotion(const ResolvedBlock& rb, const BlockCodes& c, MoveSink& sink);
@@ -199,6 +230,7 @@ struct Interpreter::Impl : FlowSource {
   std::size_t external_call_line = 0;  // the main program's line of the outermost file call
   Parameters params;
   RunSummary summary;
+  CutterComp comp;  // G40-G42.1
   // Canned-cycle memory (rs274ngc cycle_il / cycle_cc and sticky R, Q, P).
   bool cycle_il_flag = false;
   double cycle_il = 0.0, cycle_cc = 0.0, cycle_r = 0.0, cycle_q = 0.0, cycle_p = 0.0;

@@ -156,6 +156,7 @@ void Interpreter::Impl::emitLine(
   ++summary.moves;
   if (st.inch) ++summary.inch_moves;
   tlo_at_last_motion = st.tool_offset;
+  comp.forgetTool();
 }
 
 Axes Interpreter::Impl::axisWords(const ResolvedBlock& rb) const {
@@ -183,10 +184,23 @@ void Interpreter::Impl::straight(const ResolvedBlock& rb, bool rapid, bool g53, 
       throw GcodeError("cannot do G1 with zero feed rate");
     }
   }
+  comp.allowArc();
+  if (comp.compensating()) {
+    if (g53) throw GcodeError("cannot use G53 with cutter radius compensation on");
+    const double feed = st.inverse_time ? pathLength(st.machine, to) * inverse_f : st.feed;
+    CountingSink counted(sink, summary, st.inch);
+    comp.straight(rb.line, rapid, st.machine, to, feed, counted, st.inch);
+    st.machine = to;
+    tlo_at_last_motion = st.tool_offset;
+    return;
+  }
   emitLine(rb.line, rapid, to, inverse_f, sink);
 }
 
 void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& sink) {
+  if (comp.arcForbidden())
+    throw GcodeError(
+        "the move just after exiting cutter compensation mode must be straight, not an arc");
   const std::array<std::size_t, 3> axes = planeAxes(st.plane);
   const auto [a1, a2, an] = axes;
   checkArcWords(rb, clockwise, st.plane, a1, a2, an);
@@ -230,10 +244,16 @@ void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& s
   } else {
     m.feed = st.feed;
   }
+  if (comp.compensating()) {
+    CountingSink counted(sink, summary, st.inch);
+    comp.arc(m, st.machine, counted, st.inch);
+  } else {
+    sink.onMove(m);
+    ++summary.moves;
+    if (st.inch) ++summary.inch_moves;
+    comp.forgetTool();
+  }
   st.machine = to;
-  sink.onMove(m);
-  ++summary.moves;
-  if (st.inch) ++summary.inch_moves;
   tlo_at_last_motion = st.tool_offset;
 }
 

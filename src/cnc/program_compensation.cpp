@@ -89,6 +89,12 @@ void checkBlock(const Block& b, const std::string& file, BlockScan& scan) {
            b.line,
            "gcode compensate does not support G10 L10/L11: they set a tool entry from the "
            "position, which the compensated program changes");
+    if (g10 == 410 || g10 == 420 || g10 == 411 || g10 == 421)
+      fail(file,
+           b.line,
+           "gcode compensate does not support cutter radius compensation (G41/G42): the "
+           "controller would offset the corrected path again; `pkm gcode moves` and `gcode run` "
+           "show the compensated path");
     sets_offset = sets_offset || g10 == 920 || (g10 == 100 && l20);
     if (unsupportedG(g10))
       fail(file,

@@ -124,9 +124,12 @@ TEST(Flatten, UnrollsSubsLoopsAndConditionsKeepingComments) {
 
 TEST(Flatten, ShippedExamplesAndCorpusMakeTheSameMotions) {
   InterpreterOptions o;
-  o.tools = ToolTable::load((kRoot / "examples/gcode/tools.tbl").string(), 1.0);
   std::size_t programs = 0;
-  for (const fs::path& dir : {kRoot / "examples/gcode", kRoot / "tests/cnc/corpus"})
+  // Each folder with its tool table (the corpus's is rs274's sample table in mm: the diameters
+  // its cutter-compensation programs were checked with).
+  for (const auto& [dir, table] : {std::pair{kRoot / "examples/gcode", "tools.tbl"},
+                                   std::pair{kRoot / "tests/cnc/corpus", "tools_mm.tbl"}}) {
+    o.tools = ToolTable::load((dir / table).string(), 1.0);
     for (const auto& e : fs::directory_iterator(dir)) {
       const std::string name = e.path().filename().string();
       if (e.path().extension() != ".ngc" || name.rfind("err_", 0) == 0) continue;
@@ -152,6 +155,7 @@ TEST(Flatten, ShippedExamplesAndCorpusMakeTheSameMotions) {
       // Flattening is idempotent on its own output.
       EXPECT_EQ(flattenProgram(f.text, name, o).text, f.text) << name;
     }
+  }
   EXPECT_GE(programs, 15u);
 }
 

@@ -287,7 +287,7 @@ TEST(Interpreter, ErrorsNameTheLine) {
   EXPECT_THAT(errorOf("G0 X1\nG33 X2\n"), HasSubstr("t.ngc:2: unsupported G code G33"));
   EXPECT_THAT(errorOf("G0 X1\nM62\n"), HasSubstr("t.ngc:2: M62 needs a P word"));
   EXPECT_THAT(errorOf("G0 X1\nM120\n"), HasSubstr("t.ngc:2: user M code M120"));
-  EXPECT_THAT(errorOf("G41 X1\n"), HasSubstr("t.ngc:1: G41 cutter radius compensation"));
+  EXPECT_THAT(errorOf("G1 X1 D1 F1\n"), HasSubstr("t.ngc:1: D word with no G41"));
   EXPECT_THAT(errorOf("G0 X1\nG1 X[1/0] F1\n"), HasSubstr("t.ngc:2: attempt to divide by zero"));
   EXPECT_THAT(errorOf("G0 X1\no<nope> call\n"), HasSubstr("t.ngc:2: call to undefined subroutine"));
   EXPECT_THAT(errorOf("G0 G1 X1\n"), HasSubstr("t.ngc:1: two G codes from the same modal group"));

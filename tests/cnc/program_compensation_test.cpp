@@ -135,6 +135,7 @@ TEST(CompensateProgram, RejectsUnsupportedWithLine) {
                            "G0 X0 Y0 Z200\nG10 L10 P1 Z0\n",
                            "G0 X0 Y0 Z200\nG10 L11 P1 Z0\n",
                            "G0 X0 Y0 Z200\nG0 @10 ^30\n",
+                           "G0 X0 Y0 Z200\nG41.1 D2 G1 X10 F100\n",
                            "G10 L2 P1 R30\nG0 X1\n"}) {
     try {
       (void)compensateProgram(text, "bad.ngc", m, m);

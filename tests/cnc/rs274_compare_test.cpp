@@ -11,6 +11,7 @@
 // in both, where rs274 reports another line than the one at fault (it searches on for a missing
 // M98 subprogram and reports where the search ends; pkm names the M98 line).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -70,9 +71,25 @@ std::string runCapture(const std::string& cmd, int& status) {
   return out;
 }
 
+/// A HOME of this process's own for rs274: LinuxCNC keeps its tool data in $HOME/.tool.mmap, so
+/// two rs274 runs with one HOME (ctest -j, the cutter-compensation check) clobber each other's.
+const fs::path& rs274Home() {
+  struct Home {
+    fs::path path = fs::temp_directory_path() / ("pkm_rs274_home_" + std::to_string(::getpid()));
+    Home() { fs::create_directories(path); }
+    ~Home() {
+      std::error_code ec;
+      fs::remove_all(path, ec);
+    }
+  };
+  static const Home home;
+  return home.path;
+}
+
 /// What rs274 prints (standard output and error) for `program` with the parameter file `var`.
 std::string runRs274Command(const fs::path& program, const fs::path& var, int& status) {
-  return runCapture("LD_LIBRARY_PATH=" + shellQuote((kLinuxcnc / "lib").string()) + " " +
+  return runCapture("HOME=" + shellQuote(rs274Home().string()) +
+                        " LD_LIBRARY_PATH=" + shellQuote((kLinuxcnc / "lib").string()) + " " +
                         shellQuote((kLinuxcnc / "bin/rs274").string()) + " -t " +
                         shellQuote(kToolTable.string()) + " -v " + shellQuote(var.string()) +
                         " -g " + shellQuote(program.string()) + " 2>&1",

@@ -39,6 +39,17 @@ const definitions = [
     colour: MODE,
   },
   { type: "pkm_dwell", message0: "dwell %1 s", args0: [num("P", 0.5)], colour: MODE },
+  {
+    // Cutter radius compensation (G41.1/G42.1 with the diameter, G40): the tool centre runs one
+    // radius beside the programmed contour (docs/gcode.md "Cutter radius compensation").
+    type: "pkm_comp",
+    message0: "cutter compensation %1 tool diameter %2",
+    args0: [
+      { type: "field_dropdown", name: "SIDE", options: [["tool left of path", "G41.1"], ["tool right of path", "G42.1"], ["off", "G40"]] },
+      num("D", 6),
+    ],
+    colour: MODE,
+  },
   { type: "pkm_set", message0: "set #<%1> = %2", args0: [{ type: "field_input", name: "VAR", text: "i" }, num("VALUE", 0)], colour: FLOW },
   { type: "pkm_add", message0: "add %2 to #<%1>", args0: [{ type: "field_input", name: "VAR", text: "i" }, num("VALUE", 1)], colour: FLOW },
   { type: "pkm_repeat", message0: "repeat %1 times", args0: [num("N", 3)], message1: "%1", args1: [{ type: "input_statement", name: "DO" }], colour: FLOW },
@@ -60,6 +71,14 @@ const definitions = [
   },
   { type: "pkm_sub", message0: "subroutine %1", args0: [{ type: "field_input", name: "NAME", text: "part" }], message1: "%1", args1: [{ type: "input_statement", name: "DO" }], colour: FLOW, previousStatement: null, nextStatement: null },
   { type: "pkm_call", message0: "call %1", args0: [{ type: "field_input", name: "NAME", text: "part" }], colour: FLOW },
+  {
+    // A call with arguments: the subroutine reads them as #1, #2, ...
+    type: "pkm_call_args",
+    message0: "call %1 with #1… = %2",
+    args0: [{ type: "field_input", name: "NAME", text: "part" }, { type: "field_input", name: "ARGS", text: "10 5" }],
+    colour: FLOW,
+  },
+  { type: "pkm_param", message0: "move by parameters: %1 to X #%2 Y #%3 Z #%4", args0: [{ type: "field_dropdown", name: "G", options: [["feed", "G1"], ["rapid", "G0"]] }, num("PX", 1), num("PY", 2), num("PZ", 3)], colour: MOVE },
   {
     type: "pkm_sphere",
     message0: "sphere: radius %1 centre X %2 Y %3 Z %4 ball tool radius %5 levels %6",
@@ -98,9 +117,9 @@ export function registerBlocks() {
 export const toolbox = {
   kind: "categoryToolbox",
   contents: [
-    { kind: "category", name: "Moves", colour: MOVE, contents: ["pkm_rapid", "pkm_line", "pkm_arc", "pkm_orient"].map((type) => ({ kind: "block", type })) },
-    { kind: "category", name: "Settings", colour: MODE, contents: ["pkm_mode", "pkm_feed", "pkm_spindle", "pkm_dwell"].map((type) => ({ kind: "block", type })) },
-    { kind: "category", name: "Flow", colour: FLOW, contents: ["pkm_set", "pkm_add", "pkm_repeat", "pkm_while", "pkm_if", "pkm_sub", "pkm_call"].map((type) => ({ kind: "block", type })) },
+    { kind: "category", name: "Moves", colour: MOVE, contents: ["pkm_rapid", "pkm_line", "pkm_arc", "pkm_orient", "pkm_param"].map((type) => ({ kind: "block", type })) },
+    { kind: "category", name: "Settings", colour: MODE, contents: ["pkm_mode", "pkm_feed", "pkm_spindle", "pkm_dwell", "pkm_comp"].map((type) => ({ kind: "block", type })) },
+    { kind: "category", name: "Flow", colour: FLOW, contents: ["pkm_set", "pkm_add", "pkm_repeat", "pkm_while", "pkm_if", "pkm_sub", "pkm_call", "pkm_call_args"].map((type) => ({ kind: "block", type })) },
     { kind: "category", name: "Machining", colour: COMPOSITE, contents: ["pkm_sphere", "pkm_pocket", "pkm_drill", "pkm_face"].map((type) => ({ kind: "block", type })) },
   ],
 };
@@ -191,9 +210,27 @@ function simple(b) {
       return `#<${name(b, "VAR")}> = [#<${name(b, "VAR")}> + ${f(n(b, "VALUE"))}]`;
     case "pkm_call":
       return `o<${name(b, "NAME")}> call`;
+    case "pkm_call_args":
+      return `o<${name(b, "NAME")}> call ${args(b)}`;
+    case "pkm_comp":
+      return b.getFieldValue("SIDE") === "G40" ? "G40" : `${b.getFieldValue("SIDE")} D${f(n(b, "D"))}`;
+    case "pkm_param": {
+      const p = (k) => Math.max(1, Math.min(30, Math.round(n(b, k))));
+      return `${b.getFieldValue("G")} X#${p("PX")} Y#${p("PY")} Z#${p("PZ")}`;
+    }
     default:
       return null;
   }
+}
+
+/** The argument field of a call block as O-word call arguments: numbers only ([10] [5]). */
+function args(b) {
+  return String(b.getFieldValue("ARGS"))
+    .split(/[\s,;]+/)
+    .filter((t) => t !== "" && Number.isFinite(Number(t)))
+    .slice(0, 30)
+    .map((t) => `[${f(Number(t))}]`)
+    .join(" ");
 }
 
 /** A name field as an O-word or parameter name (letters, digits, _). */

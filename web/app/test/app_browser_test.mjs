@@ -192,6 +192,33 @@ try {
   const exported = readFileSync(await download.path(), "utf8");
   expect(download.suggestedFilename() === "blocks.ngc" && exported.endsWith("G1 X0 Y0 Z230\nM2\n"),
     "blocks view: the program exports as .ngc");
+  // Cutter compensation and a subroutine called with arguments, from blocks: the contour runs.
+  const comp = await page.evaluate(async () => {
+    const v = window.pkmApp.views.blocks;
+    const ws = v.workspace;
+    ws.clear();
+    const make = (type, fields) => {
+      const b = ws.newBlock(type);
+      for (const [k, val] of Object.entries(fields)) b.setFieldValue(val, k);
+      b.initSvg();
+      b.render();
+      return b;
+    };
+    const chain = (...bs) => bs.reduce((a, b) => (a.nextConnection.connect(b.previousConnection), b));
+    const sub = make("pkm_sub", { NAME: "corner" });
+    sub.getInput("DO").connection.connect(make("pkm_param", { G: "G1", PX: 1, PY: 2, PZ: 3 }).previousConnection);
+    const first = make("pkm_rapid", { X: -20, Y: -20, Z: 230 });
+    chain(first, make("pkm_line", { X: -20, Y: -20, Z: 200 }), make("pkm_comp", { SIDE: "G41.1", D: 6 }),
+      make("pkm_line", { X: 0, Y: 0, Z: 200 }), make("pkm_call_args", { NAME: "corner", ARGS: "20 0 200" }),
+      make("pkm_call_args", { NAME: "corner", ARGS: "20, 20, 200" }), make("pkm_line", { X: 0, Y: 20, Z: 200 }),
+      make("pkm_line", { X: 0, Y: 0, Z: 200 }), make("pkm_comp", { SIDE: "G40", D: 0 }), make("pkm_line", { X: -20, Y: -20, Z: 230 }));
+    const text = v.code().text;
+    const r = await v.run();
+    return { text, ok: r && r.ok };
+  });
+  expect(comp.ok === true && comp.text.includes("G41.1 D6\nG1 X0 Y0 Z200\no<corner> call [20] [0] [200]\n") &&
+    comp.text.includes("o<corner> sub\nG1 X#1 Y#2 Z#3\no<corner> endsub") && comp.text.includes("G40\nG1 X-20 Y-20 Z230"),
+    `blocks view: cutter compensation and a call with arguments run\n${JSON.stringify(comp)}`);
 
   // The Exechon: drawn at home, and its example program runs.
   await page.click("button[data-view=machine]");
