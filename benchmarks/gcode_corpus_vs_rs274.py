@@ -43,7 +43,12 @@ def rs274_moves(text):
     tol)."""
     scale, plane, rot, feed = 1.0, 0, 0.0, 0.0
     g5x, g92, tlo = [0.0] * 6, [0.0] * 6, [0.0] * 6
+    per_rev, spindle, sync = False, 0.0, 0.0  # G95, S, G33/G33.1's K (mm/rev)
     moves = []
+
+    def rate():  # a feed move's rate in mm/min as pkm reports it: F, F*S (G95), K*S (G33)
+        return sync * spindle if sync else feed * spindle if per_rev else feed
+
     for line in text.splitlines():
         m = CALL.match(line)
         if not m:
@@ -64,6 +69,20 @@ def rs274_moves(text):
             tlo = [v[i] * (scale if i < 3 else 1.0) for i in range(6)]
         elif name == "SET_FEED_RATE" and v:
             feed = v[0] * scale
+        elif name == "SET_FEED_MODE" and len(v) >= 2:
+            per_rev = v[1] == 1
+        elif name == "SET_SPINDLE_SPEED" and len(v) >= 2:
+            spindle = v[1]
+        elif name == "START_SPEED_FEED_SYNC" and v:
+            sync = abs(v[0]) * scale
+        elif name == "STOP_SPEED_FEED_SYNCH":
+            sync = 0.0
+        elif name == "RIGID_TAP" and len(v) >= 3:  # in to the point, back out to the start
+            start = moves[-1][1] if moves else [0.0] * 6
+            end = machine(list(v[:3]) + [0.0] * 3, scale, rot, g5x, g92, tlo)
+            end[3:6] = start[3:6]
+            moves.append(("linear", end, [None] * 3, 0, rate()))
+            moves.append(("linear", list(start), [None] * 3, 0, rate()))
         elif name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED", "STRAIGHT_PROBE"):
             prog = [0.0] * 6
             centre = [None] * 3
@@ -81,7 +100,7 @@ def rs274_moves(text):
                 kind = "rapid" if name == "STRAIGHT_TRAVERSE" else "linear"
             moves.append((kind, machine(prog, scale, rot, g5x, g92, tlo),
                           machine_centre(centre, scale, rot, g5x, g92, tlo), turns,
-                          None if kind == "rapid" else feed))
+                          None if kind == "rapid" else rate()))
     return moves
 
 

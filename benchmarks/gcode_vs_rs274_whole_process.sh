@@ -9,8 +9,10 @@
 # rs274 is $RS274, else the one on PATH (Debian: /usr/bin/rs274), else the unpacked package of
 # scripts/fetch-linuxcnc.sh (.cache/linuxcnc); without one (or with RS274=none) only pkm is timed.
 # PROGRAM=FILE times that program instead of the generated one (the motion check assumes the XY
-# plane, mm and no offsets, as in the generated program).
-# Usage: [PROGRAM=FILE] benchmarks/gcode_vs_rs274_whole_process.sh [path/to/pkm] [lines] [pairs]
+# plane, mm and no offsets, as in the generated program). COMP=1 generates a cutter-compensated
+# program instead: gear-shaped contours of lines and shallow arcs (convex and concave corners),
+# each entered with G41.1 D6 (or G42.1) and left with G40, at several depths.
+# Usage: [PROGRAM=FILE|COMP=1] benchmarks/gcode_vs_rs274_whole_process.sh [pkm] [lines] [pairs]
 set -euo pipefail
 pkm=${1:-build/bin/pkm}
 lines=${2:-220000}
@@ -83,6 +85,35 @@ awk -v n="$lines" 'BEGIN {
   printf "N%d M5\n", N += 10;
   printf "N%d M30\n", N += 10;
   print "%" }' > "$work/prog.ngc"
+if [ -n "${COMP:-}" ]; then
+  # 60-tooth gears (radius 40/31 mm alternating), every third side a shallow arc (R about twice
+  # the chord), each contour at a new depth, tool left or right in turn, centres on a grid.
+  awk -v n="$lines" 'BEGIN {
+    pi = atan2(0, -1); k = 0; N = 0; c = 0;
+    print "%"; print "(pkm benchmark: cutter-compensated contours, generated)";
+    print "G21 G90 G17 G94 G40"; print "S10000 M3"; print "G0 Z10.000"; k = 5;
+    while (k < n - 70) {
+      cx = (c % 10) * 100; cy = int(c / 10) % 10 * 100; z = -0.5 - (c % 7) * 0.5;
+      side = (c % 2 == 0) ? "G41.1" : "G42.1"; c++;
+      printf "N%d G0 X%.3f Y%.3f\n", N += 10, cx + 55, cy; printf "N%d G1 Z%.3f F400\n", N += 10, z;
+      printf "N%d %s D6 G1 X%.3f Y%.3f F1200\n", N += 10, side, cx + 40, cy; k += 3;
+      for (i = 1; i <= 60; i++) {
+        a = 2 * pi * i / 60; r = (i % 2 == 0) ? 40 : 31;
+        x = cx + r * cos(a); y = cy + r * sin(a);
+        if (i % 3 == 0) {
+          chord = sqrt((x - px) ^ 2 + (y - py) ^ 2);
+          printf "N%d %s X%.3f Y%.3f R%.3f\n", N += 10, (i % 2 ? "G2" : "G3"), x, y, 2 * chord;
+        } else {
+          printf "N%d G1 X%.3f Y%.3f\n", N += 10, x, y;
+        }
+        px = x; py = y; k++;
+        if (i == 1) { px = x; py = y }
+      }
+      printf "N%d G40 G1 X%.3f Y%.3f\n", N += 10, cx + 55, cy; printf "N%d G0 Z5.000\n", N += 10; k += 2;
+    }
+    printf "N%d G0 Z15.000\n", N += 10; printf "N%d M5\n", N += 10; printf "N%d M30\n", N += 10;
+    print "%" }' > "$work/prog.ngc"
+fi
 if [ -n "${PROGRAM:-}" ]; then cp "$PROGRAM" "$work/prog.ngc"; fi
 : > "$work/empty.tbl"
 

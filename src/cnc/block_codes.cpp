@@ -36,6 +36,8 @@ bool isMotion(int g) {
     case 10:
     case 20:
     case 30:
+    case 330:
+    case 331:
     case 382:
     case 383:
     case 384:
@@ -87,7 +89,11 @@ int* modalSlot(BlockCodes& c, int g) {
       return &c.ijk;
     case 930:
     case 940:
+    case 950:
       return &c.feed_mode;
+    case 960:
+    case 970:
+      return &c.spindle_mode;
     case 200:
     case 210:
       return &c.units;

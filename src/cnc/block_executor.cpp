@@ -93,7 +93,9 @@ void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c)
     throw GcodeError(fmt::format("{} needs at least one axis word", gName(c.non_modal)));
   // An arc with I/J/K and no axis word is a full circle where the tool is (G2 I1, rs274).
   const bool arc_words = arc && c.non_modal != 100 && (axis || c.motion == 20 || c.motion == 30);
-  if ((rb.hasWord('i') || rb.hasWord('j') || rb.hasWord('k')) && !arc_words && motion != 870)
+  const bool sync = motion == 330 || motion == 331;  // G33 K, G33.1 K (and I)
+  if ((rb.hasWord('i') || rb.hasWord('j') || rb.hasWord('k')) && !arc_words && motion != 870 &&
+      !sync)
     throw GcodeError("I, J or K word with no G2, G3 or G87 to use it");
   if (rb.hasWord('r') && !arc && !canned && c.non_modal != 100 && c.m_orient < 0)
     throw GcodeError("R word with no G2, G3, G10, M19 or canned cycle to use it");
@@ -115,8 +117,8 @@ void Interpreter::Impl::checkWords(const ResolvedBlock& rb, const BlockCodes& c)
         "P word with no G4, G10, G2/G3, G64, M19, M50-M53, M62-M66 or dwelling canned cycle to "
         "use it");
   if (rb.hasWord('h') && c.tlo != 430) throw GcodeError("H word with no G43 to use it");
-  if (rb.hasWord('d') && c.cutter < 410)
-    throw GcodeError("D word with no G41, G41.1, G42 or G42.1 to use it");
+  if (rb.hasWord('d') && c.cutter < 410 && c.spindle_mode != 960)
+    throw GcodeError("D word with no G41, G41.1, G42, G42.1 or G96 to use it");
   if (c.non_modal == 530 && !(motion == 0 || motion == 10))
     throw GcodeError("G53 needs G0 or G1 active");
   if (c.non_modal == 530 && (c.distance == 910 || (c.distance < 0 && st.incremental)))
@@ -196,9 +198,11 @@ void Interpreter::Impl::checkToolExists(int tool) const {
 
 void Interpreter::Impl::setFeedSpeedTool(const ResolvedBlock& rb, const BlockCodes& c) {
   if (c.feed_mode >= 0) {
-    const bool inv = c.feed_mode == 930;
-    if (inv != st.inverse_time) st.feed = st.angular_feed = 0.0;  // LinuxCNC zeroes F then
+    const bool inv = c.feed_mode == 930, per_rev = c.feed_mode == 950;
+    if (inv != st.inverse_time || per_rev != st.feed_per_rev)
+      st.feed = st.angular_feed = 0.0;  // LinuxCNC zeroes F on a change of feed mode
     st.inverse_time = inv;
+    st.feed_per_rev = per_rev;
   }
   if (rb.hasWord('f')) {
     const double f = rb.word('f');
@@ -208,6 +212,7 @@ void Interpreter::Impl::setFeedSpeedTool(const ResolvedBlock& rb, const BlockCod
       st.angular_feed = f;
     }
   }
+  if (c.spindle_mode >= 0) spindleMode(rb, c.spindle_mode);
   if (rb.hasWord('s')) {
     if (rb.word('s') < 0.0) throw GcodeError("negative spindle speed");
     st.spindle_speed = rb.word('s');

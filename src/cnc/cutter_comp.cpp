@@ -103,8 +103,9 @@ void CutterComp::endHeldAt(P2 p, MoveSink& sink, bool inch) {
       const double r1 = std::hypot(m.end[a1] - m.centre[a1], m.end[a2] - m.centre[a2]);
       const double r2 = std::hypot(p.u - m.centre[a1], p.v - m.centre[a2]);
       if (std::abs(r1 - r2) > 0.01 * unit)
-        throw GcodeError("cutter compensation made an arc with mismatched radii (a corner "
-                         "of arcs it cannot resolve)");
+        throw GcodeError(
+            "cutter compensation made an arc with mismatched radii (a corner "
+            "of arcs it cannot resolve)");
       const double sweep =
           sweepOf(start_.u, start_.v, m.centre[a1], m.centre[a2], m.turns, p.u, p.v);
       if (h.sweep != 0.0 && start_known_ && std::abs(sweep) > std::abs(h.sweep) + sweep_slack)
@@ -128,8 +129,13 @@ void CutterComp::endHeldAt(P2 p, MoveSink& sink, bool inch) {
   start_known_ = true;
 }
 
-void CutterComp::cornerMove(std::size_t line, bool rapid, P2 corner, P2 to, const Axes& end_axes,
-                            double feed, MoveSink& sink) {
+void CutterComp::cornerMove(std::size_t line,
+                            bool rapid,
+                            P2 corner,
+                            P2 to,
+                            const Axes& end_axes,
+                            double feed,
+                            MoveSink& sink) {
   Axes end = end_axes;
   end[axes_[2]] = tool_at_[axes_[2]];  // the normal axis moves on the programmed move
   Move m = lineTo(line, rapid, end, to, feed);
@@ -190,8 +196,7 @@ void CutterComp::straight(std::size_t line,
     tool_ = o;
     tool_at_ = from;
     if (std::hypot(p.u - o.u, p.v - o.v) < radius_ - kRadiusSlack)
-      throw GcodeError(
-          "the cutter compensation entry move is not longer than the tool radius");
+      throw GcodeError("the cutter compensation entry move is not longer than the tool radius");
     const double n = angleOf(p.u - o.u, p.v - o.v) + s * kHalfPi;
     const P2 end{p.u + radius_ * std::cos(n), p.v + radius_ * std::sin(n)};
     start_ = o;
@@ -216,16 +221,15 @@ void CutterComp::straight(std::size_t line,
   const Move* prev = heldPlaneMove();
   const bool prev_arc = prev != nullptr && prev->kind == MoveKind::kArc;
   // Tool outside a held arc and the line turning back over it (an "h"): stay on that side.
-  const bool reversal_over_arc = beta > kPi - kCornerTolerance && prev_arc &&
-                                 (side_ == CompSide::kLeft) != (prev->turns > 0);
+  const bool reversal_over_arc =
+      beta > kPi - kCornerTolerance && prev_arc && (side_ == CompSide::kLeft) != (prev->turns > 0);
   const bool concave =
       beta < -kCornerTolerance || beta > kPi + kCornerTolerance || reversal_over_arc;
   if (!concave && beta > kCornerTolerance) {
     endHeldAt(tool_, sink, inch);
     cornerMove(line, rapid, o, mid, to, feed, sink);
   } else if (concave) {
-    endHeldAt(prev_arc ? arcToLineEnd(*prev, o, alpha) : concaveLineEnd(beta, theta), sink,
-              inch);
+    endHeldAt(prev_arc ? arcToLineEnd(*prev, o, alpha) : concaveLineEnd(beta, theta), sink, inch);
   } else {
     release(sink);
     start_ = tool_;

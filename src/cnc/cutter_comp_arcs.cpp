@@ -30,8 +30,8 @@ void CutterComp::arcEntry(const Move& programmed, const Axes& from) {
   const bool inside = (side_ == CompSide::kLeft) == (programmed.turns > 0);
   if (inside && std::hypot(centre.u - c.u, centre.v - c.v) < radius_ - kRadiusSlack)
     throw GcodeError("the tool radius is not less than the arc radius with cutter compensation");
-  const double g = inside ? angleOf(centre.u - e.u, centre.v - e.v)
-                          : angleOf(e.u - centre.u, e.v - centre.v);
+  const double g =
+      inside ? angleOf(centre.u - e.u, centre.v - e.v) : angleOf(e.u - centre.u, e.v - centre.v);
   const P2 end{e.u + radius_ * std::cos(g), e.v + radius_ * std::sin(g)};
   // The compensated arc runs from the tool to `end`; its centre lies on the line from `end`
   // towards the programmed centre, equidistant from both ends.
@@ -71,8 +71,7 @@ void CutterComp::arcNext(const Move& programmed, const Axes& from, MoveSink& sin
   if (inside) {
     g = angleOf(centre.u - e.u, centre.v - e.v);
     if (arc_radius < radius_ - kRadiusSlack)
-      throw GcodeError(
-          "the tool radius is not less than the arc radius with cutter compensation");
+      throw GcodeError("the tool radius is not less than the arc radius with cutter compensation");
   } else {
     g = angleOf(e.u - centre.u, e.v - centre.v);
     delta += kPi;
@@ -87,9 +86,10 @@ void CutterComp::arcNext(const Move& programmed, const Axes& from, MoveSink& sin
   if (concave) {
     const Move* prev = heldPlaneMove();
     if (prev != nullptr && prev->kind == MoveKind::kArc) {
-      endHeldAt(arcToArcEnd(*prev, centre, inside ? arc_radius - radius_ : arc_radius + radius_,
-                            turns),
-                sink, inch);
+      endHeldAt(
+          arcToArcEnd(*prev, centre, inside ? arc_radius - radius_ : arc_radius + radius_, turns),
+          sink,
+          inch);
     } else {
       endHeldAt(lineToArcEnd(centre, arc_radius, beta, theta, inside, turns), sink, inch);
     }
@@ -113,15 +113,16 @@ CutterComp::P2 CutterComp::lineToArcEnd(
   const double dist = inside ? arc_radius - radius_ : arc_radius + radius_;
   const double l = (inside ? across + radius_ : across - radius_) / dist;
   if (l > 1.0 || l < -1.0)
-    throw GcodeError(
-        "arc move in a concave corner cannot be reached by the tool without gouging");
+    throw GcodeError("arc move in a concave corner cannot be reached by the tool without gouging");
   const double turn_sign = turns > 0 ? 1.0 : -1.0;
-  const double a = inside ? theta + turn_sign * std::asin(l)
-                          : theta + kPi - turn_sign * std::asin(l);
+  const double a =
+      inside ? theta + turn_sign * std::asin(l) : theta + kPi - turn_sign * std::asin(l);
   return {centre.u + dist * std::cos(a), centre.v + dist * std::sin(a)};
 }
 
-CutterComp::P2 CutterComp::arcToArcEnd(const Move& prev, P2 centre, double new_rad,
+CutterComp::P2 CutterComp::arcToArcEnd(const Move& prev,
+                                       P2 centre,
+                                       double new_rad,
                                        int turns) const {
   // Where the held (compensated) arc meets the offset of the new arc: a triangle of the two
   // centres and the meeting point.
@@ -132,8 +133,8 @@ CutterComp::P2 CutterComp::arcToArcEnd(const Move& prev, P2 centre, double new_r
   const double centres = std::hypot(centre.u - pu, centre.v - pv);
   if (old_rad == 0.0 || centres == 0.0)
     throw GcodeError("arc to arc motion is invalid because the arcs have the same centre");
-  const double c = (old_rad * old_rad + centres * centres - new_rad * new_rad) /
-                   (2.0 * old_rad * centres);
+  const double c =
+      (old_rad * old_rad + centres * centres - new_rad * new_rad) / (2.0 * old_rad * centres);
   if (c > 1.0 || c < -1.0)
     throw GcodeError(
         "arc to arc motion makes a corner the compensated tool cannot fit in without gouging");

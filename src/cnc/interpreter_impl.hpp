@@ -64,6 +64,7 @@ struct BlockCodes {
   int non_modal = -1;  // group 0 (G4, G10, G53, G92, G92.x)
   int plane = -1, distance = -1, ijk = -1, feed_mode = -1, units = -1, cutter = -1, tlo = -1,
       retract = -1, wcs = -1, path = -1;
+  int spindle_mode = -1;  // group 14: G96 / G97
   int m_stop = -1, m_tool = -1, m_spindle = -1, m_override = -1;
   // M19 (orient), M50-M53 (override switches), M61 (set the tool), M62-M68 (I/O): no motion.
   int m_orient = -1, m_switch = -1, m_set_tool = -1, m_io = -1;
@@ -75,6 +76,10 @@ struct BlockCodes {
 /// The integer value of word `letter` (reals within 0.0001 of one are accepted); throws
 /// GcodeError otherwise.
 [[nodiscard]] int toInt(double v, char letter);
+
+/// Throws GcodeError for a feed move under G95 with the spindle speed 0 (LinuxCNC's error), or
+/// under G96 (the speed would depend on a lathe's X radius: not supported).
+void checkFeedPerRev(const MachineState& st);
 
 /// The name of G code `code` (its number ×10): "G1", "G92.1".
 [[nodiscard]] std::string gName(int code);
@@ -196,6 +201,11 @@ struct Interpreter::Impl : FlowSource {
   void doMotion(const ResolvedBlock& rb, const BlockCodes& c, MoveSink& sink);
   void straight(const ResolvedBlock& rb, bool rapid, bool g53, MoveSink& sink);
   void arc(const ResolvedBlock& rb, bool clockwise, MoveSink& sink);
+  /// G33 (a feed synchronised with the spindle, K length units per revolution) and G33.1 (rigid
+  /// tapping: in to the axis words and back out), as rs274 emits them (spindle_sync.cpp).
+  void spindleSynchronised(const ResolvedBlock& rb, int code, MoveSink& sink);
+  /// G96 D S / G97 S (spindle_sync.cpp).
+  void spindleMode(const ResolvedBlock& rb, int code);
   /// G38.2-G38.5: a straight feed to the axis words with the probe on, as rs274 simulates it.
   void probe(const ResolvedBlock& rb, int code, MoveSink& sink);
   void cycle(const ResolvedBlock& rb, int code, MoveSink& sink);

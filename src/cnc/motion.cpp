@@ -59,6 +59,7 @@ double arcInverseFeed(const ResolvedBlock& rb, const MachineState& st, bool cloc
   } else if (st.feed <= 0.0) {
     throw GcodeError(fmt::format("cannot do {} with zero feed rate", clockwise ? "G2" : "G3"));
   }
+  checkFeedPerRev(st);
   return inverse_f;
 }
 
@@ -148,7 +149,8 @@ void Interpreter::Impl::emitLine(
           to[0] != st.machine[0] || to[1] != st.machine[1] || to[2] != st.machine[2];
       const bool rotary =
           to[3] != st.machine[3] || to[4] != st.machine[4] || to[5] != st.machine[5];
-      m.feed = !linear && rotary ? st.angular_feed : st.feed;
+      m.feed = !linear && rotary ? st.angular_feed : st.feedPerMinute();
+      if (st.feed_per_rev && !linear && rotary) m.feed = st.angular_feed * st.spindle_speed;
     }
   }
   st.machine = to;
@@ -183,11 +185,13 @@ void Interpreter::Impl::straight(const ResolvedBlock& rb, bool rapid, bool g53, 
     } else if (st.feed <= 0.0) {
       throw GcodeError("cannot do G1 with zero feed rate");
     }
+    checkFeedPerRev(st);
   }
   comp.allowArc();
   if (comp.compensating()) {
     if (g53) throw GcodeError("cannot use G53 with cutter radius compensation on");
-    const double feed = st.inverse_time ? pathLength(st.machine, to) * inverse_f : st.feed;
+    const double feed =
+        st.inverse_time ? pathLength(st.machine, to) * inverse_f : st.feedPerMinute();
     CountingSink counted(sink, summary, st.inch);
     comp.straight(rb.line, rapid, st.machine, to, feed, counted, st.inch);
     st.machine = to;
@@ -242,7 +246,7 @@ void Interpreter::Impl::arc(const ResolvedBlock& rb, bool clockwise, MoveSink& s
   if (st.inverse_time) {
     m.feed = helixLength(c, st.machine, to, axes, clockwise, turns) * inverse_f;
   } else {
-    m.feed = st.feed;
+    m.feed = st.feedPerMinute();
   }
   if (comp.compensating()) {
     CountingSink counted(sink, summary, st.inch);
@@ -298,6 +302,10 @@ void Interpreter::Impl::doMotion(const ResolvedBlock& rb, const BlockCodes& c, M
     case 384:
     case 385:
       if (axis) probe(rb, motion, sink);
+      break;
+    case 330:
+    case 331:
+      if (axis) spindleSynchronised(rb, motion, sink);
       break;
     case 800:
       break;

@@ -55,8 +55,8 @@ TEST_F(GcodeCli, ToolTableInInch) {
 }
 
 TEST_F(GcodeCli, ErrorsNameFileAndLine) {
-  const std::string prog = write("bad.ngc", "G0 X1\nG1 X2 F100\nG33 X3\nM2\n");
-  expectUsageError(pkm({"gcode", "moves", prog}), "bad.ngc:3: unsupported G code G33");
+  const std::string prog = write("bad.ngc", "G0 X1\nG1 X2 F100\nG5.2 X3\nM2\n");
+  expectUsageError(pkm({"gcode", "moves", prog}), "bad.ngc:3: unsupported G code G5.2");
   const std::string loop = write("loop.ngc", "o1 while [1]\no1 endwhile\n");
   expectUsageError(pkm({"gcode", "moves", loop, "--max-iterations", "100"}),
                    "loop.ngc:2: loop o1 exceeded 100 iterations");

@@ -73,8 +73,7 @@ TEST(CutterComp, ConvexCornerGetsAnArcAboutTheCorner) {
 TEST(CutterComp, ConcaveCornerEndsWhereTheOffsetLinesMeet) {
   // Left of a path turning left by 60 degrees: the meeting point is one radius from both lines.
   const double c = std::cos(M_PI / 3), s = std::sin(M_PI / 3);
-  const Recorder rec =
-      runLines(CompSide::kLeft, {at(0, 0), at(10, 0), at(10 + 10 * c, 10 * s)});
+  const Recorder rec = runLines(CompSide::kLeft, {at(0, 0), at(10, 0), at(10 + 10 * c, 10 * s)});
   ASSERT_EQ(rec.moves.size(), 2u);
   const Move& corner = rec.moves[0];
   EXPECT_NEAR(distToLine(corner, 0, 0, 10, 0), kR, kTol);
@@ -119,8 +118,7 @@ TEST(CutterComp, LineIntoAnArcEndsOnBothOffsets) {
   ASSERT_EQ(rec.moves.size(), 2u);
   EXPECT_NEAR(rec.moves[0].end[0], 20.0, kTol);
   EXPECT_NEAR(rec.moves[0].end[1], kR, kTol);
-  EXPECT_NEAR(std::hypot(rec.moves[1].end[0] - 20.0, rec.moves[1].end[1] - 10.0), 10.0 - kR,
-              kTol);
+  EXPECT_NEAR(std::hypot(rec.moves[1].end[0] - 20.0, rec.moves[1].end[1] - 10.0), 10.0 - kR, kTol);
 }
 
 TEST(CutterComp, ConcaveLineToArcMeetsAtOffsetDistances) {

@@ -284,7 +284,7 @@ TEST(Interpreter, RunawayLoopIsRejected) {
 }
 
 TEST(Interpreter, ErrorsNameTheLine) {
-  EXPECT_THAT(errorOf("G0 X1\nG33 X2\n"), HasSubstr("t.ngc:2: unsupported G code G33"));
+  EXPECT_THAT(errorOf("G0 X1\nG5.1 X2\n"), HasSubstr("t.ngc:2: unsupported G code G5.1"));
   EXPECT_THAT(errorOf("G0 X1\nM62\n"), HasSubstr("t.ngc:2: M62 needs a P word"));
   EXPECT_THAT(errorOf("G0 X1\nM120\n"), HasSubstr("t.ngc:2: user M code M120"));
   EXPECT_THAT(errorOf("G1 X1 D1 F1\n"), HasSubstr("t.ngc:1: D word with no G41"));

@@ -133,6 +133,13 @@ struct Rs274State {
   std::array<int, 6> t5{}, t9{}, tt{};  ///< non-zero printed offset terms per axis
   double feed = 0.0;
   double rotation = 0.0;  ///< SET_XY_ROTATION, rad
+  bool per_rev = false;   ///< SET_FEED_MODE(0, 1): F per spindle revolution (G95)
+  double spindle = 0.0;   ///< SET_SPINDLE_SPEED, rev/min
+  double sync = 0.0;      ///< START_SPEED_FEED_SYNC's advance per revolution (mm), 0 when off
+  /// A feed move's rate in mm/min, as pkm reports it: F, F·S under G95, K·S under G33.
+  [[nodiscard]] double feedRate() const {
+    return sync != 0.0 ? sync * spindle : per_rev ? feed * spindle : feed;
+  }
 };
 
 /// machine = Rz(rotation)·(program + G92) + G5x + tool offset (LinuxCNC's canon), mm.
@@ -178,6 +185,14 @@ void applyRs274Setting(Rs274State& st, const std::string& name, const std::strin
     store(st.tlo, st.tt, 0);
   } else if (name == "SET_FEED_RATE" && !v.empty()) {
     st.feed = v[0] * st.scale;
+  } else if (name == "SET_FEED_MODE" && v.size() >= 2) {
+    st.per_rev = v[1] == 1.0;
+  } else if (name == "SET_SPINDLE_SPEED" && v.size() >= 2) {
+    st.spindle = v[1];
+  } else if (name == "START_SPEED_FEED_SYNC" && !v.empty()) {
+    st.sync = std::abs(v[0]) * st.scale;
+  } else if (name == "STOP_SPEED_FEED_SYNCH") {
+    st.sync = 0.0;
   }
 }
 
@@ -219,7 +234,7 @@ RefMove rs274Motion(const Rs274State& st, const std::string& name, const std::ve
     if (!std::isnan(centre[i])) m.centre[i] = centre_machine[i];
   m.tol = kPrintHalfUnit * 25.4 * (max_terms + 1) + kTolSlack;
   if (st.scale == 1.0) m.tol = kPrintHalfUnit * (max_terms + 1) + kTolSlack;
-  if (m.kind != MoveKind::kRapid) m.feed = st.feed;
+  if (m.kind != MoveKind::kRapid) m.feed = st.feedRate();
   return m;
 }
 
@@ -245,10 +260,22 @@ RefRun runRs274(const fs::path& program) {
     const std::string name = match[1].str();
     const std::string args = match[2].str();
     if (name == "STRAIGHT_TRAVERSE" || name == "STRAIGHT_FEED" || name == "ARC_FEED" ||
-        name == "STRAIGHT_PROBE")
+        name == "STRAIGHT_PROBE") {
       r.moves.push_back(rs274Motion(state, name, numbers(args)));
-    else
+    } else if (name == "RIGID_TAP") {
+      // RIGID_TAP(x, y, z): in to the point and back out to where the tap started (G33.1).
+      const RefMove before = r.moves.empty() ? RefMove{} : r.moves.back();
+      std::vector<double> v = numbers(args);
+      v.resize(3);
+      RefMove tap_in = rs274Motion(state, "STRAIGHT_FEED", {v[0], v[1], v[2], 0, 0, 0});
+      for (std::size_t i = 3; i < 6; ++i) tap_in.end[i] = before.end[i];
+      RefMove tap_out = tap_in;
+      tap_out.end = before.end;
+      r.moves.push_back(tap_in);
+      r.moves.push_back(tap_out);
+    } else {
       applyRs274Setting(state, name, args);
+    }
   }
   r.error_line = prev;
   static const std::regex kFromLine(R"(from line: (\d+))");

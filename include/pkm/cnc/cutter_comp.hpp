@@ -105,7 +105,12 @@ class CutterComp {
   void endHeldAt(P2 p, MoveSink& sink, bool inch);
   /// The arc about programmed corner `corner` from the tool position to `to` (straight when
   /// `rapid`): normal axis where the tool is, rotary axes at `end_axes`.
-  void cornerMove(std::size_t line, bool rapid, P2 corner, P2 to, const Axes& end_axes, double feed,
+  void cornerMove(std::size_t line,
+                  bool rapid,
+                  P2 corner,
+                  P2 to,
+                  const Axes& end_axes,
+                  double feed,
                   MoveSink& sink);
   [[nodiscard]] const Move* heldPlaneMove() const;
   /// Where the held line ends at a concave corner before a line (beta, theta as in straight()).
@@ -120,10 +125,10 @@ class CutterComp {
   CompSide side_ = CompSide::kOff;
   double radius_ = 0.0;
   std::array<std::size_t, 3> axes_{0, 1, 2};  // plane axes and normal (planeAxes)
-  bool first_ = true;                          // the next move is the entry move
+  bool first_ = true;                         // the next move is the entry move
   bool arc_forbidden_ = false;
   bool displaced_ = false;  // see displacedTool()
-  P2 tool_;       // compensated end of the last move (held or passed on), plane coordinates
+  P2 tool_;         // compensated end of the last move (held or passed on), plane coordinates
   Axes tool_at_{};  // the same, all axes
   std::vector<Held> held_;
   P2 start_;  // where the first held plane move starts

@@ -24,6 +24,9 @@ struct MachineState {
   bool incremental = false;   ///< G91 / G90
   bool ijk_absolute = false;  ///< G90.1 / G91.1
   bool inverse_time = false;  ///< G93 / G94
+  bool feed_per_rev = false;  ///< G95 (F in length units per spindle revolution) / G94
+  bool css = false;           ///< G96 (S is a surface speed) / G97 (S in rev/min)
+  double css_max = 0.0;       ///< G96's D word: the most rev/min (0: none given)
   bool retract_to_r = true;   ///< G99 / G98 (rs274's start-up mode is G99)
   int motion = 800;           ///< active motion mode x10 (0, 10, 20, 30, 730, 740, 800..890)
   int coordinate_system = 1;  ///< 1 = G54 .. 9 = G59.3
@@ -57,6 +60,8 @@ struct MachineState {
   /// mm/deg; NaN for an axis without a word: it keeps its program coordinate), absolute or
   /// incremental as the state says.
   [[nodiscard]] Axes target(const Axes& words) const;
+  /// The feed of a non-rapid move in mm/min: F, or under G95 F (mm/rev) times S (rev/min).
+  [[nodiscard]] double feedPerMinute() const { return feed_per_rev ? feed * spindle_speed : feed; }
   /// mm per program length unit (1 or 25.4).
   [[nodiscard]] double scale() const { return inch ? kMmPerInch : 1.0; }
   /// mm (or deg) per program unit of axis `i`.
