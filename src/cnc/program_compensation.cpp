@@ -59,12 +59,41 @@ const char* actionBlock(CycleAction a) {
 struct BlockScan {
   std::set<std::size_t> g53_lines;
   std::map<std::size_t, detail::OffsetLine> offset_lines;
-  double scale = 1.0;  ///< G20/G21 state while scanning
+  double scale = 1.0;                ///< G20/G21 state while scanning
+  bool comp_on = false;              ///< G41/G42/G41.1/G42.1 in effect (until G40)
+  std::set<std::size_t> comp_lines;  ///< lines with G41/G42/G41.1/G42.1 (their words go)
 };
+
+/// Cutter compensation in a program to rewrite: the written motions are the compensated path,
+/// so the compensation words go (RewriteInput::comp_lines). A change of units, distance mode or
+/// tool length offset while compensation is on is refused: a move's end is held until the next
+/// block, whose modes would then write it.
+void scanCutterComp(const Block& b, const std::string& file, BlockScan& scan) {
+  detail::NoParams params;
+  bool units = false, modes = false, on = scan.comp_on, off = false;
+  for (const Word& w : b.words) {
+    if (w.letter != 'g' || !w.value.isConstant()) continue;
+    const long g10 = std::lround(w.value.evaluate(params) * 10.0);
+    units = units || g10 == 200 || g10 == 210;
+    modes = modes || g10 == 900 || g10 == 910 || g10 == 430 || g10 == 431 || g10 == 490;
+    if (g10 == 410 || g10 == 420 || g10 == 411 || g10 == 421) {
+      on = true;
+      scan.comp_lines.insert(b.line);
+    }
+    off = off || g10 == 400;
+  }
+  if ((units && scan.comp_on) || (modes && on && !off))
+    fail(file,
+         b.line,
+         "gcode compensate does not support changing units, distance mode or tool length offset "
+         "while cutter radius compensation is on");
+  scan.comp_on = on && !off;
+}
 
 /// Rejects blocks outside the supported subset (see the header); notes G53 and offset lines.
 void checkBlock(const Block& b, const std::string& file, BlockScan& scan) {
   if (b.o_kind != OKind::kNone) fail(file, b.line, "gcode compensate does not support O-words");
+  scanCutterComp(b, file, scan);
   detail::NoParams params;
   bool sets_offset = false;
   for (const Word& w : b.words)
@@ -89,12 +118,6 @@ void checkBlock(const Block& b, const std::string& file, BlockScan& scan) {
            b.line,
            "gcode compensate does not support G10 L10/L11: they set a tool entry from the "
            "position, which the compensated program changes");
-    if (g10 == 410 || g10 == 420 || g10 == 411 || g10 == 421)
-      fail(file,
-           b.line,
-           "gcode compensate does not support cutter radius compensation (G41/G42): the "
-           "controller would offset the corrected path again; `pkm gcode moves` and `gcode run` "
-           "show the compensated path");
     sets_offset = sets_offset || g10 == 920 || (g10 == 100 && l20);
     if (unsupportedG(g10))
       fail(file,
@@ -263,7 +286,8 @@ ProgramCompensation rewriteFlat(std::string_view text,
   assert(commands.size() == lines.points.size());
   ProgramCompensation r;
   fillCompensatedPoints(r, lines.points, commands);
-  const detail::RewriteInput input{scan.offset_lines, moves.frames, lines, cycle_events, axes};
+  const detail::RewriteInput input{
+      scan.offset_lines, moves.frames, lines, cycle_events, axes, scan.comp_lines};
   detail::writeCompensatedText(text, input, r);
   return r;
 }

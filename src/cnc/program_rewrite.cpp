@@ -36,7 +36,7 @@ struct LineWord {
 /// with the interpreter's own reader.
 LineWord readLineWord(std::string_view line, std::size_t i, Rewrite what) {
   const bool arc = what == Rewrite::kArc, offset = what == Rewrite::kOffset,
-             cycle = what == Rewrite::kCycle;
+             cycle = what == Rewrite::kCycle, comp = what == Rewrite::kCutterComp;
   const std::size_t n = line.size();
   const char ch = line[i];
   std::string compact;
@@ -55,15 +55,18 @@ LineWord readLineWord(std::string_view line, std::size_t i, Rewrite what) {
   const std::size_t end = where[pos - 1] + 1;
   const char l = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   bool drop =
-      std::string_view(offset ? "xyzabc" : "xyzabcijkr").find(l) != std::string_view::npos ||
-      (arc && l == 'p') || (cycle && std::string_view("pql").find(l) != std::string_view::npos);
+      comp ? l == 'd'
+           : std::string_view(offset ? "xyzabc" : "xyzabcijkr").find(l) != std::string_view::npos ||
+                 (arc && l == 'p') ||
+                 (cycle && std::string_view("pql").find(l) != std::string_view::npos);
   if (l == 'g' && !offset) {
     std::size_t p = 1;
     const Expression e = Expression::parseReal(compact, p);
     if (e.isConstant()) {
       NoParams params;
       const double g = e.evaluate(params);
-      drop = g == 0.0 || g == 1.0 || g == 2.0 || g == 3.0 || (cycle && cycleG(g));
+      drop = comp ? g == 41.0 || g == 42.0 || g == 41.1 || g == 42.1
+                  : g == 0.0 || g == 1.0 || g == 2.0 || g == 3.0 || (cycle && cycleG(g));
     }
   }
   return {end, l, drop};
@@ -84,6 +87,14 @@ void insertWords(std::string& out,
       const bool blank = out.empty() || out.back() == ' ' || out.back() == '\t';
       out += blank ? words : " " + words;
     }
+  } else if (what == Rewrite::kCutterComp) {
+    // Nothing to insert: the removed words are said in a comment before any ';' comment.
+    const std::size_t semi = out.find(';');
+    const std::string note = "(pkm: cutter compensation is in the path)";
+    if (semi == std::string::npos)
+      out += out.empty() ? note : " " + note;
+    else
+      out.insert(semi, note + " ");
   } else if (insert_at == std::string::npos) {
     // After a block-delete slash and leading blanks.
     insert_at = 0;
@@ -269,7 +280,14 @@ void writeCompensatedText(std::string_view text, const RewriteInput& in, Program
     std::size_t nl = text.find('\n', start);
     const bool has_nl = nl != std::string_view::npos;
     if (!has_nl) nl = text.size();
-    const std::string_view line = text.substr(start, nl - start);
+    std::string_view line = text.substr(start, nl - start);
+    std::string stripped;
+    if (in.comp_lines.count(line_no) != 0) {
+      const bool cr = !line.empty() && line.back() == '\r';
+      stripped = rewriteLine(cr ? line.substr(0, line.size() - 1) : line, Rewrite::kCutterComp, "");
+      if (cr) stripped.push_back('\r');
+      line = stripped;
+    }
     const auto it = in.lines.span.find(line_no);
     const auto off = in.offset_lines.find(line_no);
     if (off != in.offset_lines.end()) {

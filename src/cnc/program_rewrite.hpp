@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -47,7 +48,7 @@ std::string axisWords(const Axes& c,
 /// What rewriteLine replaces: a line's motion (G0..G3 and X..C, I J K R, P of an arc; the new
 /// words go after the N word), a drilling cycle (also its G word and R, Q, P, L), or the axis
 /// words of a G92/G10 L20 line (X..C only; the new words go where the first of them was).
-enum class Rewrite { kMotion, kArc, kCycle, kOffset };
+enum class Rewrite { kMotion, kArc, kCycle, kOffset, kCutterComp };
 
 /// The line with the words `what` names removed and `words` inserted; comments, blanks and
 /// other words stay where they are.
@@ -83,6 +84,9 @@ struct RewriteInput {
   LineSpans& lines;                                       ///< the interpolated points by line
   std::map<std::size_t, std::vector<CycleEvent>>& cycle_events;  ///< of multi-motion lines
   const AxisMask& axes;                                          ///< the axis words written
+  /// Lines whose G41/G42/G41.1/G42.1 and D words are removed: the written motions are the
+  /// compensated tool path already, which the controller must not offset again.
+  const std::set<std::size_t>& comp_lines;
 };
 
 /// Appends program `text` rewritten line by line (line numbers 1-based as in Program) to

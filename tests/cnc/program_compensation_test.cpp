@@ -135,7 +135,7 @@ TEST(CompensateProgram, RejectsUnsupportedWithLine) {
                            "G0 X0 Y0 Z200\nG10 L10 P1 Z0\n",
                            "G0 X0 Y0 Z200\nG10 L11 P1 Z0\n",
                            "G0 X0 Y0 Z200\nG0 @10 ^30\n",
-                           "G0 X0 Y0 Z200\nG41.1 D2 G1 X10 F100\n",
+                           "G0 X0 Y0 Z200\nG41.1 D2 G91 G1 X10 F100\n",
                            "G10 L2 P1 R30\nG0 X1\n"}) {
     try {
       (void)compensateProgram(text, "bad.ngc", m, m);
@@ -291,3 +291,42 @@ TEST(CompensateHybridProgram, AddsTheX2TermAndOptionallyTheBaseFrame) {
 }
 
 }  // namespace
+/// A cutter-compensated program is written as its compensated tool path: the G41/G42 and D
+/// words go (the controller must not offset the corrected path again), and the text reads back,
+/// without compensation, to the commands, which follow the compensated path of the source.
+TEST(CompensateProgram, CutterCompensationIsWrittenIntoThePath) {
+  const kin::HexapodModel nominal = pkm::test::millingModel();
+  const char* const program =
+      "G21 G90 G17 F600\n"
+      "G0 X-20 Y-20 Z200\n"
+      "G41.1 D6 G1 X0 Y0 (entry)\n"
+      "G1 X30\n"
+      "G3 X40 Y10 R10\n"
+      "G1 Y30 ; concave next\n"
+      "G1 X0 Y20\n"
+      "G40 G1 X-20 Y-20\n"
+      "M2\n";
+  const ProgramCompensation r = compensateProgram(program, "p.ngc", nominal, nominal);
+  EXPECT_EQ(r.text.find("G41"), std::string::npos) << r.text;
+  EXPECT_EQ(r.text.find("D6"), std::string::npos) << r.text;
+  EXPECT_NE(r.text.find("(entry) (pkm: cutter compensation is in the path)"), std::string::npos)
+      << r.text;
+  MoveCollector source;
+  Interpreter a;
+  (void)a.run(Program::parse(program, "p.ngc"), source);
+  MoveCollector back;
+  Interpreter b;
+  (void)b.run(Program::parse(r.text, "out.ngc"), back);
+  ASSERT_EQ(back.moves.size(), r.points.size()) << r.text;
+  for (std::size_t i = 0; i < back.moves.size(); ++i)
+    for (std::size_t k = 0; k < 6; ++k)
+      EXPECT_NEAR(back.moves[i].end[k], r.points[i].command[k], kTextDigits) << r.text;
+  // The written path ends each source move where the compensated source move ends.
+  for (const Move& m : source.moves) {
+    bool found = false;
+    for (const Move& w : back.moves)
+      found = found || (std::abs(w.end[0] - m.end[0]) < kTextDigits &&
+                        std::abs(w.end[1] - m.end[1]) < kTextDigits && w.end[2] == m.end[2]);
+    EXPECT_TRUE(found) << "line " << m.line << "\n" << r.text;
+  }
+}
