@@ -6,6 +6,9 @@ tests/cnc/rs274_compare_test.cpp: rs274's canonical calls rebuilt in machine coo
 position + G5x + G92 + tool offset, the XY rotation applied, in mm), kind, end point, arc centre,
 turns and feed within rs274's printing precision.
 
+With --pkm-ini, an INI's RS274NGC_STARTUP_CODE is put before the program for rs274 (LinuxCNC's
+task runs it before every program; the standalone rs274 ignores it); pkm runs it from the INI.
+
 A corpus is any folder of .ngc files, e.g. LinuxCNC's own tests/interp and nc_files (a git
 checkout of LinuxCNC, not part of pkm) or /usr/share/linuxcnc/ncfiles. Each program runs in its
 own folder (so that subroutine files there are found), with a fresh parameter file; a test.ini
@@ -164,6 +167,32 @@ def beside(folder, suffix):
     return None
 
 
+def startup_code(ini):
+    """The INI's RS274NGC_STARTUP_CODE ([RS274NGC], or [EMC] in old files), or None."""
+    section = None
+    found = {}
+    for raw in open(ini, errors="replace"):
+        line = raw.strip()
+        if line.startswith("[") and line.endswith("]"):
+            section = line[1:-1].strip().upper()
+        elif "=" in line and not line.startswith("#"):
+            key, value = line.split("=", 1)
+            if key.strip() == "RS274NGC_STARTUP_CODE" and section in ("RS274NGC", "EMC"):
+                found.setdefault(section, value.strip())
+    return found.get("RS274NGC", found.get("EMC"))
+
+
+def with_startup(path, code, work):
+    """A copy of program `path` with `code` as its first block (after a leading %): LinuxCNC's
+    task runs the INI's start-up code before a program, the standalone rs274 does not."""
+    lines = open(path, errors="replace").read().split("\n")
+    at = 1 if lines and lines[0].strip().startswith("%") else 0
+    out = os.path.join(work, "with_startup.ngc")
+    with open(out, "w") as f:
+        f.write("\n".join(lines[:at] + [code] + lines[at:]))
+    return out
+
+
 def run_one(path, opts, work):
     folder = os.path.dirname(os.path.abspath(path))
     tbl = opts.tool_table or beside(folder, ".tbl")
@@ -178,7 +207,11 @@ def run_one(path, opts, work):
         cmd += ["-t", tbl]
     if ini:
         cmd += ["-i", ini]
-    cmd += ["-g", os.path.abspath(path), out]
+    program = os.path.abspath(path)
+    code = startup_code(ini) if ini and opts.pkm_ini else None
+    if code:
+        program = with_startup(program, code, work)
+    cmd += ["-g", program, out]
     try:
         # rs274 keeps its tool data in $HOME/.tool.mmap: a HOME of our own, so that runs in
         # parallel (ctest -j) do not clobber each other's tool table.

@@ -136,6 +136,8 @@ void Interpreter::Impl::activeComment(const Block& block, MoveSink& sink) {
     throw GcodeError(
         fmt::format("program aborted: {}", first == std::string::npos ? "" : text.substr(first)));
   }
+  // #5599 = 0 silences (DEBUG, ...) as in LinuxCNC (default 1).
+  if (block.comment == CommentKind::kDebug && params.get(kDebugFlagParam) == 0.0) return;
   comp.message(block.line, block.comment, text, sink);
 }
 
@@ -237,6 +239,7 @@ void Interpreter::Impl::setFeedSpeedTool(const ResolvedBlock& rb, const BlockCod
 
 bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   current_line = block.line;
+  if (!block.deferred_error.empty()) throw GcodeError(block.deferred_error);
   ResolvedBlock rb;
   resolve(block, rb, sink);
   if (block.comment != CommentKind::kNone) activeComment(block, sink);

@@ -221,6 +221,7 @@ void Block::clear() {
   closes_do = false;
   comment = CommentKind::kNone;
   comment_text.clear();
+  deferred_error.clear();
 }
 
 LineMark parseLine(std::string_view text, Block& block) {

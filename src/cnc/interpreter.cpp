@@ -128,7 +128,8 @@ RunSummary Interpreter::runStream(LineReader& reader, MoveSink& sink) {
       if (b.block_delete && s.options.block_delete) continue;
       if (!s.execute(b, sink)) {
         s.summary.ended_by_m2 = true;
-        while (reader.next(b)) {  // the rest is not run, but must still be well formed
+        reader.setLenient(true);  // LinuxCNC reads nothing after M2: the rest is not checked
+        while (reader.next(b)) {
         }
         return s.summary;
       }

@@ -34,9 +34,9 @@ struct ResolvedBlock {
   std::size_t line = 0;
   std::array<double, 28> value;  // a..z, @, ^; not initialised: see hasWord and word
   std::uint32_t has = 0;         // bit letterBit(c): the block has word c
-  std::array<int, 8> g;          // G codes x10, the first n_g
+  std::array<int, 16> g;         // G codes x10, the first n_g (one per modal group at most)
   int n_g = 0;
-  std::array<int, 8> m;  // M codes, the first n_m
+  std::array<int, 12> m;  // M codes, the first n_m
   int n_m = 0;
   [[nodiscard]] bool hasWord(char c) const { return (has & letterBit(c)) != 0; }
   /// The value of word `c`; 0 when the block has none.
@@ -106,8 +106,12 @@ class FlowSource : public ParameterSource {
   virtual void leaveCallLevel() = 0;
 };
 
+/// #5599: (DEBUG, ...) messages are shown when 1 (the default), not when 0 (LinuxCNC).
+inline constexpr int kDebugFlagParam = 5599;
+
 struct Interpreter::Impl : FlowSource {
   explicit Impl(InterpreterOptions o) : options(std::move(o)) {
+    params.set(kDebugFlagParam, 1.0);
     params.setNamed("_value", 0.0);  // LinuxCNC: 0 at program start
     params.setNamed("_value_returned", 0.0);
   }

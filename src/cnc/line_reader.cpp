@@ -23,7 +23,11 @@ bool LineReader::next(Block& block) {
     try {
       mark = parseLine(raw, block);
     } catch (const GcodeError& e) {
-      throw IoError(locate(file_, line_, e.what()));
+      if (!lenient_) throw IoError(locate(file_, line_, e.what()));
+      block.clear();
+      block.deferred_error = e.what();
+      seen_content_ = true;
+      return true;
     }
     if (mark == LineMark::kPercent) {
       if (!seen_content_ && !percent_open_) {

@@ -31,7 +31,10 @@ double Interpreter::Impl::numbered(int index) {
 void Interpreter::Impl::setNumbered(int index, double value) {
   if (index < 1 || index >= kParameterCount)
     throw GcodeError(fmt::format("parameter number {} out of range (1..5601)", index));
-  if (index >= 5161)
+  // The machine's state (#5161 and above: homes, offsets, the tool) changes only through G10,
+  // G92, G28.1...: a program that wrote it directly could not be flattened or rewritten line by
+  // line. #5599, the (DEBUG, ...) switch, is no state of the machine.
+  if (index >= 5161 && index != kDebugFlagParam)
     throw GcodeError(fmt::format("parameter #{} is read-only here (use G10, G92)", index));
   params.set(index, isLengthParameter(index) ? value * st.scale() : value);
 }

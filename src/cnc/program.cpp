@@ -223,13 +223,47 @@ class StructureResolver {
 
 }  // namespace
 
+namespace {
+
+/// Whether the text read so far has an M2 or M30: LinuxCNC stops reading at the program end it
+/// executes, so a line after one that does not parse is an error only if it is ever reached (a
+/// conditional end, a sub defined after the main program).
+class EndTracker {
+ public:
+  /// Takes the next block; true once an M2/M30 (not block-deleted) has been read.
+  bool after(const Block& b) {
+    if (!b.block_delete)
+      for (const Word& w : b.words)
+        if (w.letter == 'm' && w.value.isConstant()) {
+          NoParameters none;
+          const double m = w.value.evaluate(none);
+          ended_ = ended_ || m == 2.0 || m == 30.0;
+        }
+    return ended_;
+  }
+
+ private:
+  struct NoParameters : ParameterSource {
+    double numbered(int) override { return 0.0; }
+    double named(const std::string&) override { return 0.0; }
+    bool exists(const std::string&) override { return false; }
+  };
+  bool ended_ = false;
+};
+
+}  // namespace
+
 Program Program::parse(std::string_view text, const std::string& file) {
   Program p;
   p.file_ = file;
   p.blocks_.reserve(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1);
   LineReader reader(text, file);
   Block block;
-  while (reader.next(block)) p.blocks_.push_back(std::move(block));
+  EndTracker end;
+  while (reader.next(block)) {
+    reader.setLenient(end.after(block));
+    p.blocks_.push_back(std::move(block));
+  }
   p.lines_ = reader.lines();
   p.closed_by_percent_ = reader.closedByPercent();
   p.resolve();

@@ -137,5 +137,21 @@ TEST_F(GcodeCli, IniSetsTheInterpreterUpAndMessagesAreNotes) {
   expectUsageError(pkm({"gcode", "moves", open}), "open.ngc:2: the file ended with no percent");
 }
 
+TEST_F(GcodeCli, DebugSwitchAndTextAfterTheEnd) {
+  // #5599 = 0 silences (DEBUG, ...) as in LinuxCNC; text after M2 is never read (LinuxCNC stops
+  // there), but a line after an end that is not reached is still an error when it runs.
+  const std::string quiet = write("quiet.ngc",
+                                  "(debug, shown)\n#5599 = 0\n(debug, hidden)\nG0 X1\nM2\n"
+                                  "These are notes, not G-code.\n");
+  const CliRun r = pkm({"gcode", "moves", quiet});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("quiet.ngc:1: debug: shown"));
+  EXPECT_EQ(r.err.find("hidden"), std::string::npos) << r.err;
+  const std::string skipped = write("skipped.ngc", "G0 X1\no1 if [0]\nM2\no1 endif\njunk\nM2\n");
+  expectUsageError(pkm({"gcode", "moves", skipped}), "skipped.ngc:5: unknown word");
+  expectUsageError(pkm({"gcode", "moves", write("w.ngc", "#5221 = 3\nM2\n")}),
+                   "w.ngc:1: parameter #5221 is read-only here");
+}
+
 }  // namespace
 }  // namespace pkm::test

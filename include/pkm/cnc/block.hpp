@@ -88,13 +88,16 @@ struct Block {
   /// its text after the comma (comment_message.hpp).
   CommentKind comment = CommentKind::kNone;
   std::string comment_text;
+  /// A line that could not be parsed after the program's end (LineReader::setLenient): the
+  /// message, reported only if the line is ever executed (LinuxCNC never reads past M2).
+  std::string deferred_error;
   /// Resets every field to its default, keeping the storage of the vectors and of `o_name` (a
   /// reader reuses one Block for every line). Keep it in step with the fields above.
   void clear();
   /// True when the line holds nothing to execute.
   [[nodiscard]] bool empty() const {
     return words.empty() && assignments.empty() && o_kind == OKind::kNone &&
-           comment == CommentKind::kNone;
+           comment == CommentKind::kNone && deferred_error.empty();
   }
 };
 

@@ -24,6 +24,10 @@ class LineReader {
   /// pkm::IoError "FILE:LINE: message" for a malformed line.
   bool next(Block& block);
 
+  /// After the program's end: a malformed line becomes a block with Block::deferred_error
+  /// instead of an error (LinuxCNC stops reading at M2/M30, so text after it is never read).
+  void setLenient(bool lenient) { lenient_ = lenient; }
+
   /// Source lines read so far.
   [[nodiscard]] std::size_t lines() const { return line_; }
   /// The file name given to the constructor.
@@ -43,6 +47,7 @@ class LineReader {
   bool seen_content_ = false;
   bool percent_open_ = false;
   bool done_ = false;
+  bool lenient_ = false;
 };
 
 }  // namespace pkm::cnc

@@ -206,6 +206,7 @@ try {
     };
     const chain = (...bs) => bs.reduce((a, b) => (a.nextConnection.connect(b.previousConnection), b));
     const sub = make("pkm_sub", { NAME: "corner" });
+    sub.moveBy(20, 300);
     sub.getInput("DO").connection.connect(make("pkm_param", { G: "G1", PX: 1, PY: 2, PZ: 3 }).previousConnection);
     const first = make("pkm_rapid", { X: -20, Y: -20, Z: 230 });
     chain(first, make("pkm_line", { X: -20, Y: -20, Z: 200 }), make("pkm_comp", { SIDE: "G41.1", D: 6 }),
@@ -219,6 +220,7 @@ try {
   expect(comp.ok === true && comp.text.includes("G41.1 D6\nG1 X0 Y0 Z200\no<corner> call [20] [0] [200]\n") &&
     comp.text.includes("o<corner> sub\nG1 X#1 Y#2 Z#3\no<corner> endsub") && comp.text.includes("G40\nG1 X-20 Y-20 Z230"),
     `blocks view: cutter compensation and a call with arguments run\n${JSON.stringify(comp)}`);
+  await page.screenshot({ path: join(outDir, "blocks-comp.png") });
 
   // The Exechon: drawn at home, and its example program runs.
   await page.click("button[data-view=machine]");
