@@ -155,7 +155,9 @@ metrology::RecordedConditions environmentRecords(const TextTable& table) {
   out.material_temperature_c = series[kMaterialTemperature];
   for (const auto& [key, field, scale] :
        {std::tuple{"dead path mm", &out.dead_path_mm, 1.0},
-        std::tuple{"beam alignment urad", &out.misalignment_rad, 1e-6}}) {
+        std::tuple{"beam alignment urad", &out.misalignment_rad, 1e-6},
+        std::tuple{"abbe offset mm", &out.abbe_offset_mm, 1.0},
+        std::tuple{"angular range urad", &out.angular_range_rad, 1e-6}}) {
     const std::optional<double> v = metaNumber(table, key);
     if (!v) continue;
     if (*v < 0.0)

@@ -4,8 +4,10 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <array>
 #include <string>
+#include <vector>
 
 #include "pkm/core/units.hpp"
 #include "pkm/io/number_format.hpp"
@@ -44,7 +46,11 @@ const char* instrumentName(sim::LineQuantity q) {
 
 }  // namespace
 
-Metadata lineRunMetadata(const Scenario& s, std::uint64_t seed, const sim::LineSetup& m, int run) {
+Metadata lineRunMetadata(const Scenario& s,
+                         std::uint64_t seed,
+                         const sim::LineSetup& m,
+                         int run,
+                         const std::vector<sim::LineRun>& runs) {
   const std::vector<std::string> axes = s.campaign.machine->axisNames();
   const std::vector<bool> angular_axes = s.campaign.machine->angularAxes();
   const bool angular = m.quantity == sim::LineQuantity::kAngular;
@@ -78,8 +84,19 @@ Metadata lineRunMetadata(const Scenario& s, std::uint64_t seed, const sim::LineS
   const sim::Environment& env = s.campaign.environment;
   if (m.quantity == sim::LineQuantity::kLinear && env.air.enabled)
     md.emplace_back("dead path mm", formatNumber(env.air.dead_path_mm));
-  if (m.quantity == sim::LineQuantity::kLinear && env.setup.enabled)
+  if (m.quantity == sim::LineQuantity::kLinear && env.setup.enabled) {
     md.emplace_back("beam alignment urad", formatNumber(env.setup.beam_misalignment_rad * 1e6));
+    // The engineer's bound of the reflector's distance from the tool point: the set-up's own
+    // offset and three standard deviations of its unknown part; the rotation range as angular
+    // optics read it along the line.
+    const double range = sim::rotationRange(runs);
+    if (range > 0.0) {
+      md.emplace_back(
+          "abbe offset mm",
+          formatNumber(m.reflector_offset.norm() + 3.0 * env.setup.reflector_offset_mm));
+      md.emplace_back("angular range urad", fmt::format("{:.2f}", range * 1e6));
+    }
+  }
   return md;
 }
 

@@ -116,6 +116,7 @@ void markStated(const detail::json& env, metrology::ConditionOrigins& o) {
   if (has("air_temperature_variation_k")) o.air_temperature_variation = kStated;
   if (has("dead_path_mm")) o.dead_path = kStated;
   if (has("misalignment_rad")) o.misalignment = kStated;
+  if (has("abbe_offset_mm") && has("angular_error_range_rad")) o.abbe = kStated;
   if (!has("air")) return;
   const detail::json& air = env["air"];
   if (air.contains("temperature_c")) o.air_temperature = kStated;

@@ -62,7 +62,7 @@ void RecordedSeries::merge(const RecordedSeries& other) {
 
 bool RecordedConditions::empty() const {
   return !air_temperature_c && !air_pressure_pa && !air_humidity_rh && !material_temperature_c &&
-         !dead_path_mm && !misalignment_rad;
+         !dead_path_mm && !misalignment_rad && !abbe_offset_mm && !angular_range_rad;
 }
 
 void RecordedConditions::merge(const RecordedConditions& other) {
@@ -72,6 +72,8 @@ void RecordedConditions::merge(const RecordedConditions& other) {
   mergeOptional(material_temperature_c, other.material_temperature_c);
   mergeLargest(dead_path_mm, other.dead_path_mm);
   mergeLargest(misalignment_rad, other.misalignment_rad);
+  mergeLargest(abbe_offset_mm, other.abbe_offset_mm);
+  mergeLargest(angular_range_rad, other.angular_range_rad);
 }
 
 UncertaintySources withRecordedConditions(const UncertaintySources& sources,
@@ -121,6 +123,12 @@ UncertaintySources withRecordedConditions(const UncertaintySources& sources,
     o.misalignment = kRec;
     o.misalignment_note = "the set-up's record";
   }
+  if (recorded.abbe_offset_mm && recorded.angular_range_rad) {  // the Abbe term needs both
+    e.abbe_offset_mm = *recorded.abbe_offset_mm;
+    e.angular_error_range_rad = *recorded.angular_range_rad;
+    o.abbe = kRec;
+    o.abbe_note = "the set-up's record";
+  }
   std::string why;
   PKM_CHECK(e.air.isValid(&why), "recorded air: {}", why);
   return out;
@@ -153,6 +161,8 @@ std::vector<BudgetCondition> laserConditions(const UncertaintySources& sources) 
        o.air_temperature_variation_note},
       {"dead path", e.dead_path_mm, "mm", toString(o.dead_path), o.dead_path_note},
       {"beam alignment", e.misalignment_rad, "rad", toString(o.misalignment), o.misalignment_note},
+      {"Abbe offset", e.abbe_offset_mm, "mm", toString(o.abbe), o.abbe_note},
+      {"angular error range", e.angular_error_range_rad, "rad", toString(o.abbe), o.abbe_note},
   };
 }
 

@@ -1,7 +1,9 @@
 #include "pkm/simulation/line_measurement.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/rigid_transform.hpp"
@@ -34,6 +36,11 @@ class LineInstrument {
                 setup.name);
       lateral_ = (l.normalized() + setup.misalignment * beam).normalized();
     }
+  }
+
+  /// The tool's rotation at `pose` since the datum (rotation vector, rad, work frame).
+  [[nodiscard]] Eigen::Vector3d rotation(const geometry::RigidTransform& pose) const {
+    return geometry::so3Log(pose.linear() * datum_.linear().transpose());
   }
 
   /// The true (noise-free) reading at the actual pose.
@@ -125,6 +132,17 @@ std::vector<double> cycleTargets(const PositioningCycle& cycle, RandomStream& rn
   return targets;
 }
 
+double rotationRange(const std::vector<LineRun>& runs) {
+  std::vector<Eigen::Vector3d> w;
+  for (const LineRun& r : runs)
+    for (const LineReading& x : r.readings)
+      if (x.sensed.recorded) w.push_back(x.sensed.rotation_rad);
+  double range = 0.0;
+  for (std::size_t i = 0; i < w.size(); ++i)
+    for (std::size_t j = i + 1; j < w.size(); ++j) range = std::max(range, (w[i] - w[j]).norm());
+  return range;
+}
+
 int readingCount(const LineSetup& setup) {
   const auto moving = static_cast<int>((setup.line.direction.array() != 0.0).count());
   const int per_target = setup.procedure == LineProcedure::kStepDiagonal ? moving : 1;
@@ -169,7 +187,8 @@ struct LineRunner {
     Eigen::VectorXd at = setup.line.at(below);  // the current command
     const auto readAt = [&](double target, int direction, int sub_step) {
       if (conditions != nullptr) conditions->next();
-      const double truth = instrument.truth(environmentPose(conditions, machine.moveTo(at)), s0);
+      const geometry::RigidTransform pose = environmentPose(conditions, machine.moveTo(at));
+      const double truth = instrument.truth(pose, s0);
       run.readings.push_back(
           {target, direction, setup.noise.apply(truth, target - s0, scale, rng), sub_step, {}});
       if (conditions != nullptr && setup.quantity == LineQuantity::kLinear) {
@@ -178,7 +197,8 @@ struct LineRunner {
                                       air.temperature_c,
                                       air.pressure_pa,
                                       air.relative_humidity,
-                                      conditions->sensedMaterialTemperature()};
+                                      conditions->sensedMaterialTemperature(),
+                                      instrument.rotation(pose)};
       }
     };
     const auto read = [&](double s, int direction) {

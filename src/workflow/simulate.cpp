@@ -87,8 +87,9 @@ SimulateResult simulate(const io::Scenario& scenario, std::optional<std::uint64_
     for (const sim::LineRun& run : r.runs)
       files.push_back(
           {fmt::format("{}_run{}.csv", r.setup->name, run.run),
-           io::lineRunCsv(
-               r.setup->quantity, io::lineRunMetadata(scenario, seed, *r.setup, run.run), run)});
+           io::lineRunCsv(r.setup->quantity,
+                          io::lineRunMetadata(scenario, seed, *r.setup, run.run, r.runs),
+                          run)});
   for (const sim::ConstrainedResult& r : sim::runConstrainedMotion(scenario.campaign, seed))
     files.push_back(
         {fmt::format("{}.csv", r.setup->name),

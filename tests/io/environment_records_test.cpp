@@ -73,6 +73,12 @@ TEST(EnvironmentRecords, MetadataGivesFileValuesAndTheSetUp) {
   EXPECT_EQ(*r.dead_path_mm, 120.0);
   EXPECT_NEAR(*r.misalignment_rad, 150e-6, 1e-18);
   EXPECT_TRUE(records("target_mm,run,direction,reading_mm\n0,1,+,0\n").empty());
+  const auto abbe = records("# abbe offset mm: 15\n# angular range urad: 2500\ntarget\n0\n");
+  ASSERT_TRUE(abbe.abbe_offset_mm && abbe.angular_range_rad);
+  EXPECT_EQ(*abbe.abbe_offset_mm, 15.0);
+  EXPECT_NEAR(*abbe.angular_range_rad, 2.5e-3, 1e-15);
+  EXPECT_THAT(errorOf("# angular range urad: -1\ntarget\n0\n"),
+              HasSubstr("metadata 'angular range urad' must be >= 0"));
 }
 
 TEST(EnvironmentRecords, BadRecordsNameTheFileAndLine) {

@@ -5,7 +5,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
+#include <string>
+#include <vector>
 
 namespace pkm::io {
 namespace {
@@ -31,6 +34,28 @@ TEST(SimulationMetadata, LineRunsCarryTheirSetUp) {
     EXPECT_THAT(md.at("noise"),
                 HasSubstr(m.quantity == simulation::LineQuantity::kAngular ? "urad" : "mm"));
   }
+}
+
+TEST(SimulationMetadata, LinearLinesInAWorkshopCarryTheAbbeRecords) {
+  Scenario s = loadScenario("seed004-hexapod-calibration");
+  s.campaign.environment.setup.enabled = true;
+  s.campaign.environment.setup.reflector_offset_mm = 5.0;
+  const simulation::LineSetup* linear = nullptr;
+  for (const simulation::LineSetup& m : s.campaign.measurements)
+    if (m.quantity == simulation::LineQuantity::kLinear) linear = &m;
+  ASSERT_NE(linear, nullptr);
+  std::vector<simulation::LineRun> runs(1);
+  for (const double w : {0.0, 1e-3, -2e-3}) {
+    simulation::LineReading r;
+    r.sensed.recorded = true;
+    r.sensed.rotation_rad = Eigen::Vector3d(w, 0.0, 0.5 * w);
+    runs[0].readings.push_back(r);
+  }
+  const auto md = asMap(lineRunMetadata(s, 3, *linear, 1, runs));
+  // 3 sigma of the unknown offset (plus the set-up's own), and the largest rotation difference.
+  EXPECT_EQ(std::stod(md.at("abbe offset mm")), linear->reflector_offset.norm() + 15.0);
+  EXPECT_NEAR(std::stod(md.at("angular range urad")), 3e3 * std::hypot(1.0, 0.5), 0.005);  // 2 dp
+  EXPECT_EQ(asMap(lineRunMetadata(s, 3, *linear, 1)).count("abbe offset mm"), 0u);  // no rotations
 }
 
 TEST(SimulationMetadata, DialGaugeSetsCarryTheirGeometry) {

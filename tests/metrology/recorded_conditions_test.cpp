@@ -55,7 +55,7 @@ TEST(RecordedConditions, NothingRecordedLeavesEverySourceAndOriginAsItWas) {
   const UncertaintySources out = withRecordedConditions(s, {});
   EXPECT_EQ(out.environment.dead_path_mm, 40.0);
   const std::vector<BudgetCondition> c = laserConditions(out);
-  ASSERT_EQ(c.size(), 7u);
+  ASSERT_EQ(c.size(), 9u);
   EXPECT_EQ(condition(c, "dead path").origin, "stated");
   EXPECT_EQ(condition(c, "material temperature").origin, "default");
   EXPECT_EQ(condition(c, "material temperature").value, 20.0);
@@ -71,6 +71,8 @@ TEST(RecordedConditions, RecordsReplaceTheSourcesAndSayHow) {
   r.material_temperature_c = series({21.2, 20.9, 19.1});
   r.dead_path_mm = 100.0;
   r.misalignment_rad = 2e-4;
+  r.abbe_offset_mm = 15.0;
+  r.angular_range_rad = 1e-3;
   const UncertaintySources out = withRecordedConditions(UncertaintySources{}, r);
   const MeasurementEnvironment& e = out.environment;
   EXPECT_NEAR(e.air.temperature_c, 20.6, kTolArithmetic);
@@ -88,6 +90,20 @@ TEST(RecordedConditions, RecordsReplaceTheSourcesAndSayHow) {
   const UncertaintySources one = withRecordedConditions(UncertaintySources{}, r);
   EXPECT_EQ(one.environment.air_temperature_variation_k, 0.5);
   EXPECT_EQ(condition(laserConditions(one), "air temperature variation").origin, "default");
+}
+
+TEST(RecordedConditions, TheAbbeTermNeedsBothTheOffsetAndTheAngularRange) {
+  RecordedConditions r;
+  r.abbe_offset_mm = 15.0;
+  const UncertaintySources half = withRecordedConditions(UncertaintySources{}, r);
+  EXPECT_EQ(half.environment.abbe_offset_mm, 0.0);  // an offset alone bounds nothing
+  EXPECT_EQ(condition(laserConditions(half), "Abbe offset").origin, "default");
+  r.angular_range_rad = 2.5e-3;
+  const UncertaintySources both = withRecordedConditions(UncertaintySources{}, r);
+  EXPECT_EQ(both.environment.abbe_offset_mm, 15.0);
+  EXPECT_EQ(both.environment.angular_error_range_rad, 2.5e-3);
+  EXPECT_EQ(condition(laserConditions(both), "Abbe offset").origin, "recorded");
+  EXPECT_EQ(condition(laserConditions(both), "angular error range").origin, "recorded");
 }
 
 TEST(RecordedConditions, AnAirStateOutsideEdlensRangeIsRefused) {
@@ -115,7 +131,7 @@ TEST(RecordedConditions, LaserBudgetCarriesItsConditionsAndGrowsWithTheRecordedO
               kTolArithmetic);
   EXPECT_GT(contribution(at_records, "dead path (air change during the test)"), 0.0);
   EXPECT_GT(at_records.combinedStandardUncertainty(), at_default.combinedStandardUncertainty());
-  ASSERT_EQ(at_records.conditions.size(), 7u);
+  ASSERT_EQ(at_records.conditions.size(), 9u);
   EXPECT_EQ(condition(at_records.conditions, "material temperature").value, 21.5);
   EXPECT_EQ(condition(at_default.conditions, "dead path").origin, "default");
 }

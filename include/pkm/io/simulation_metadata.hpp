@@ -16,11 +16,14 @@ namespace pkm::io {
 /// The metadata of run `run` of line measurement `setup` of `scenario` simulated with `seed`:
 /// format, scenario, seed, measurement, quantity, instrument, procedure, run, axes, line start and
 /// direction (angular axes in degrees), reflector offset, noise, and lateral / misalignment where
-/// they apply.
+/// they apply. A linear line in an environment with a set-up also gets the records its budget
+/// uses (docs/formats.md, "Environment records"): dead path, beam alignment and, from `runs`
+/// (the line's readings, their rotations recorded), the Abbe offset bound and the angular range.
 [[nodiscard]] Metadata lineRunMetadata(const Scenario& scenario,
                                        std::uint64_t seed,
                                        const simulation::LineSetup& setup,
-                                       int run);
+                                       int run,
+                                       const std::vector<simulation::LineRun>& runs = {});
 
 /// The metadata of the dial-gauge file of constrained-motion set-up `setup`.
 [[nodiscard]] Metadata dialGaugeMetadata(const Scenario& scenario,

@@ -35,8 +35,10 @@ struct RecordedConditions {
   std::optional<RecordedSeries> air_pressure_pa;         ///< Pa
   std::optional<RecordedSeries> air_humidity_rh;         ///< %RH
   std::optional<RecordedSeries> material_temperature_c;  ///< °C (mean of a reading's sensors)
-  std::optional<double> dead_path_mm;      ///< the set-up's dead path, mm (largest recorded)
-  std::optional<double> misalignment_rad;  ///< the set-up's beam alignment bound, rad (largest)
+  std::optional<double> dead_path_mm;       ///< the set-up's dead path, mm (largest recorded)
+  std::optional<double> misalignment_rad;   ///< the set-up's beam alignment bound, rad (largest)
+  std::optional<double> abbe_offset_mm;     ///< bound of the reflector's offset, mm (largest)
+  std::optional<double> angular_range_rad;  ///< range of the angular error along the line, rad
 
   /// True when nothing is recorded.
   [[nodiscard]] bool empty() const;

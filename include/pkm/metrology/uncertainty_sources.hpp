@@ -115,8 +115,9 @@ struct ConditionOrigins {
   ConditionOrigin air_temperature_variation = ConditionOrigin::kDefault;
   ConditionOrigin dead_path = ConditionOrigin::kDefault;
   ConditionOrigin misalignment = ConditionOrigin::kDefault;
+  ConditionOrigin abbe = ConditionOrigin::kDefault;  ///< Abbe offset and angular error range
   std::string air_temperature_note, air_pressure_note, air_humidity_note, material_temperature_note,
-      air_temperature_variation_note, dead_path_note, misalignment_note;
+      air_temperature_variation_note, dead_path_note, misalignment_note, abbe_note;
 };
 
 /// The environment of a test and the artefact/machine material.

@@ -99,6 +99,9 @@ struct SensedConditions {
   double air_pressure_pa = 101325.0;     ///< Pa
   double air_humidity_rh = 50.0;         ///< %RH
   double material_temperature_c = 20.0;  ///< °C
+  /// The tool's rotation since the datum (rad, work frame, rotation vector), as angular optics
+  /// (or a tracker) read it along the line: the source of the set-up's Abbe record.
+  Eigen::Vector3d rotation_rad = Eigen::Vector3d::Zero();
 };
 
 /// One reading: the target (line coordinate, mm), the approach direction (+1 or −1) and the reading
@@ -168,6 +171,11 @@ struct LineRun {
                                                 RandomStream& rng,
                                                 MeasurementConditions* conditions,
                                                 double scale_z);
+
+/// The largest difference between the tool rotations recorded along a line (rad; readings with
+/// SensedConditions::recorded, all runs): the range of the axis's angular error, which an offset
+/// reflector reads as an Abbe error. 0 without records.
+[[nodiscard]] double rotationRange(const std::vector<LineRun>& runs);
 
 /// The number of readings simulateLine takes (runs × targets × passes × sub-moves per target).
 [[nodiscard]] int readingCount(const LineSetup& setup);

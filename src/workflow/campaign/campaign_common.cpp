@@ -112,11 +112,11 @@ void writeLineFiles(const StepContext& context,
                     const LineData& data) {
   for (const sim::MeasurementResult& r : data.results)
     for (const sim::LineRun& run : r.runs)
-      context.write(
-          outcome,
-          fmt::format("{}/{}_run{}.csv", folder, r.setup->name, run.run),
-          io::lineRunCsv(
-              r.setup->quantity, io::lineRunMetadata(scenario, seed, *r.setup, run.run), run));
+      context.write(outcome,
+                    fmt::format("{}/{}_run{}.csv", folder, r.setup->name, run.run),
+                    io::lineRunCsv(r.setup->quantity,
+                                   io::lineRunMetadata(scenario, seed, *r.setup, run.run, r.runs),
+                                   run));
 }
 
 metrology::Iso230_2Result iso230_2(const std::vector<sim::LineRun>& runs) {
@@ -253,12 +253,28 @@ void writeAxisTables(const StepContext& ctx,
 met::RecordedConditions setupRecords(const sim::Environment& environment) {
   met::RecordedConditions out;
   if (environment.air.enabled) out.dead_path_mm = environment.air.dead_path_mm;
-  if (environment.setup.enabled) out.misalignment_rad = environment.setup.beam_misalignment_rad;
+  if (environment.setup.enabled) {
+    out.misalignment_rad = environment.setup.beam_misalignment_rad;
+    // The bound of the reflector's unknown offset, as the simulated files state it
+    // (io::lineRunMetadata); recordedConditions adds the lines' own offsets and rotation range.
+    out.abbe_offset_mm = 3.0 * environment.setup.reflector_offset_mm;
+  }
   return out;
 }
 
 met::RecordedConditions recordedConditions(const LineData& data) {
   met::RecordedConditions out = data.records;
+  // The Abbe records as the line files state them: the largest of the linear lines.
+  double range = 0.0, offset = 0.0;
+  for (const sim::MeasurementResult& r : data.results)
+    if (r.setup->quantity == sim::LineQuantity::kLinear && sim::rotationRange(r.runs) > range) {
+      range = sim::rotationRange(r.runs);
+      offset = r.setup->reflector_offset.norm();
+    }
+  if (out.abbe_offset_mm && range > 0.0) {  // simulated: the set-up's bound (setupRecords)
+    out.abbe_offset_mm = *out.abbe_offset_mm + offset;
+    out.angular_range_rad = std::max(out.angular_range_rad.value_or(0.0), range);
+  }
   met::RecordedSeries t, p, h, m;
   for (const sim::MeasurementResult& r : data.results)
     for (const sim::LineRun& run : r.runs)
