@@ -235,19 +235,13 @@ class EndTracker {
     if (!b.block_delete)
       for (const Word& w : b.words)
         if (w.letter == 'm' && w.value.isConstant()) {
-          NoParameters none;
-          const double m = w.value.evaluate(none);
+          const double m = w.value.constantValue();
           ended_ = ended_ || m == 2.0 || m == 30.0;
         }
     return ended_;
   }
 
  private:
-  struct NoParameters : ParameterSource {
-    double numbered(int) override { return 0.0; }
-    double named(const std::string&) override { return 0.0; }
-    bool exists(const std::string&) override { return false; }
-  };
   bool ended_ = false;
 };
 

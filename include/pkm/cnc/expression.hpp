@@ -93,6 +93,8 @@ class Expression {
   [[nodiscard]] double evaluate(ParameterSource& params) const {
     return code_ ? run(params) : constant_;
   }
+  /// The value of a constant expression (precondition: isConstant()).
+  [[nodiscard]] double constantValue() const { return constant_; }
 
   /// Parses one real value of `text` (lower-case, no blanks) starting at `pos`, which is advanced
   /// past it: a number with optional sign, `[expression]`, `#n`, `#<name>`, `#[expr]`, or a
