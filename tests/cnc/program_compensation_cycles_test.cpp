@@ -48,13 +48,7 @@ TEST(CompensateProgram, HomeReturnsAreExpanded) {
   ASSERT_EQ(source.moves.size(), 7u);
   EXPECT_EQ(source.moves[4].end[2], 190.0);  // G28 Z: the Z stored by G28.1
   EXPECT_EQ(source.moves[6].end[0], 0.0);    // G30 X: #5181 = 0
-  MoveCollector back;
-  Interpreter b;
-  (void)b.run(Program::parse(r.text, "out.ngc"), back);
-  ASSERT_EQ(back.moves.size(), r.points.size()) << r.text;
-  for (std::size_t i = 0; i < back.moves.size(); ++i)
-    for (std::size_t k = 0; k < 6; ++k)
-      EXPECT_NEAR(back.moves[i].end[k], r.points[i].command[k], kTextDigits) << i << "\n" << r.text;
+  (void)pkm::test::expectReadsBackToCommands(r, kTextDigits);
   HexapodJointConverter n(nominal), c(cal);
   for (const auto& p : r.points) {
     const kin::StrutVector qn = n.solve(p.command), qc = c.solve(p.desired);

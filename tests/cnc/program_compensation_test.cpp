@@ -240,15 +240,7 @@ TEST(CompensateProgram, OffsetsUnitsAndIncrementalReadBackToTheCommands) {
   Interpreter a;
   (void)a.run(Program::parse(program, "p.ngc"), source);
   EXPECT_EQ(r.motion_lines, source.moves.size());
-  MoveCollector moves;
-  Interpreter b;
-  (void)b.run(Program::parse(r.text, "out.ngc"), moves);
-  ASSERT_EQ(moves.moves.size(), r.points.size()) << r.text;
-  for (std::size_t i = 0; i < moves.moves.size(); ++i)
-    for (std::size_t k = 0; k < 6; ++k)
-      EXPECT_NEAR(moves.moves[i].end[k], r.points[i].command[k], kTextDigits * 25.4)
-          << "point " << i << " axis " << k << "\n"
-          << r.text;
+  (void)pkm::test::expectReadsBackToCommands(r, kTextDigits * 25.4);
   // The modes stay on their lines (after the new motion words); G53 is repeated on the inserted
   // segment lines of its motion; no trailing blanks appear.
   EXPECT_NE(r.text.find(" G91\n"), std::string::npos) << r.text;
@@ -311,20 +303,11 @@ TEST(CompensateProgram, CutterCompensationIsWrittenIntoThePath) {
   EXPECT_EQ(r.text.find("D6"), std::string::npos) << r.text;
   EXPECT_NE(r.text.find("(entry) (pkm: cutter compensation is in the path)"), std::string::npos)
       << r.text;
-  MoveCollector source;
-  Interpreter a;
-  (void)a.run(Program::parse(program, "p.ngc"), source);
-  MoveCollector back;
-  Interpreter b;
-  (void)b.run(Program::parse(r.text, "out.ngc"), back);
-  ASSERT_EQ(back.moves.size(), r.points.size()) << r.text;
-  for (std::size_t i = 0; i < back.moves.size(); ++i)
-    for (std::size_t k = 0; k < 6; ++k)
-      EXPECT_NEAR(back.moves[i].end[k], r.points[i].command[k], kTextDigits) << r.text;
+  const std::vector<Move> back = pkm::test::expectReadsBackToCommands(r, kTextDigits);
   // The written path ends each source move where the compensated source move ends.
-  for (const Move& m : source.moves) {
+  for (const Move& m : pkm::test::movesOf(program, "p.ngc")) {
     bool found = false;
-    for (const Move& w : back.moves)
+    for (const Move& w : back)
       found = found || (std::abs(w.end[0] - m.end[0]) < kTextDigits &&
                         std::abs(w.end[1] - m.end[1]) < kTextDigits && w.end[2] == m.end[2]);
     EXPECT_TRUE(found) << "line " << m.line << "\n" << r.text;
