@@ -99,8 +99,9 @@ TEST(CutterComp, NegativeRadiusSwapsTheSide) {
   EXPECT_NEAR(neg.moves[0].end[1], -kR, kTol);
 }
 
-TEST(CutterComp, LineIntoAnArcEndsOnBothOffsets) {
-  // Left of +X, then a clockwise arc bending up and back (tool outside a concave meeting).
+/// The tool left of a line from (0, 0) to (20, 0), then along the arc from (20, 0) to (30, 10)
+/// about (cx, cy) with `turns` (radius 10), then G40.
+Recorder lineThenArc(double cx, double cy, int turns) {
   Recorder rec;
   CutterComp comp;
   comp.start(CompSide::kLeft, kR, Plane::kXY);
@@ -109,12 +110,18 @@ TEST(CutterComp, LineIntoAnArcEndsOnBothOffsets) {
   arc.line = 2;
   arc.kind = MoveKind::kArc;
   arc.end = at(30, 10);
-  arc.centre = {20.0, 10.0, NAN};  // quarter circle of radius 10 counter-clockwise from (20, 0)
-  arc.turns = 1;
+  arc.centre = {cx, cy, NAN};
+  arc.turns = turns;
   arc.feed = kFeed;
-  // Tangent: no corner, the line ends one radius above the arc's start, towards the centre.
   comp.arc(arc, at(20, 0), rec, false);
   comp.stop(rec, false);
+  return rec;
+}
+
+TEST(CutterComp, LineIntoAnArcEndsOnBothOffsets) {
+  // A counter-clockwise quarter circle about (20, 10), tangent to the line: no corner; the line
+  // ends one radius above the arc's start, and the tool runs inside the arc (radius 10 − r).
+  const Recorder rec = lineThenArc(20.0, 10.0, 1);
   ASSERT_EQ(rec.moves.size(), 2u);
   EXPECT_NEAR(rec.moves[0].end[0], 20.0, kTol);
   EXPECT_NEAR(rec.moves[0].end[1], kR, kTol);
@@ -122,21 +129,10 @@ TEST(CutterComp, LineIntoAnArcEndsOnBothOffsets) {
 }
 
 TEST(CutterComp, ConcaveLineToArcMeetsAtOffsetDistances) {
-  // Left of +X to (20, 0), then a clockwise arc (turning left first is concave for the tool on
-  // the left when it leaves the line upwards): meeting point r from the line, R + r from the
-  // centre (tool outside a clockwise arc on the left).
-  Recorder rec;
-  CutterComp comp;
-  comp.start(CompSide::kLeft, kR, Plane::kXY);
-  comp.straight(1, false, at(0, 0), at(20, 0), kFeed, rec, false);
-  Move arc;
-  arc.kind = MoveKind::kArc;
-  arc.end = at(30, 10);
-  arc.centre = {30.0, 0.0, NAN};  // clockwise from (20, 0) up and over to (30, 10), radius 10
-  arc.turns = -1;
-  arc.feed = kFeed;
-  comp.arc(arc, at(20, 0), rec, false);
-  comp.stop(rec, false);
+  // A clockwise arc about (30, 0) leaving the line upwards: a left turn, concave for the tool on
+  // the left, which runs outside the arc. The meeting point is r from the line and R + r from
+  // the centre.
+  const Recorder rec = lineThenArc(30.0, 0.0, -1);
   ASSERT_EQ(rec.moves.size(), 2u);
   const Move& meet = rec.moves[0];
   EXPECT_NEAR(meet.end[1], kR, kTol);

@@ -145,19 +145,22 @@ try {
   expect(error.includes("program.ngc:2"), `program view: an error names its line (${error})`);
   errors.splice(before, errors.length - before, ...errors.slice(before).filter((e) => !e.includes("422")));
 
-  // Blocks view: a program built from blocks.
+  // Blocks view: a program built from blocks (makeTestBlock: a block with its fields, drawn).
   await page.click("button[data-view=blocks]");
-  const blocks = await page.evaluate(async () => {
-    const v = window.pkmApp.views.blocks;
-    const ws = v.workspace;
-    ws.clear();
-    const make = (type, fields) => {
+  await page.evaluate(() => {
+    window.makeTestBlock = (ws, type, fields) => {
       const b = ws.newBlock(type);
       for (const [k, val] of Object.entries(fields)) b.setFieldValue(val, k);
       b.initSvg();
       b.render();
       return b;
     };
+  });
+  const blocks = await page.evaluate(async () => {
+    const v = window.pkmApp.views.blocks;
+    const ws = v.workspace;
+    ws.clear();
+    const make = (type, fields) => window.makeTestBlock(ws, type, fields);
     const feed = make("pkm_feed", { F: 500 });
     const rapid = make("pkm_rapid", { X: 0, Y: 0, Z: 230 });
     const sphere = make("pkm_sphere", { R: 10, X: 0, Y: 0, Z: 190, TR: 2, LEVELS: 2 });
@@ -197,13 +200,7 @@ try {
     const v = window.pkmApp.views.blocks;
     const ws = v.workspace;
     ws.clear();
-    const make = (type, fields) => {
-      const b = ws.newBlock(type);
-      for (const [k, val] of Object.entries(fields)) b.setFieldValue(val, k);
-      b.initSvg();
-      b.render();
-      return b;
-    };
+    const make = (type, fields) => window.makeTestBlock(ws, type, fields);
     const chain = (...bs) => bs.reduce((a, b) => (a.nextConnection.connect(b.previousConnection), b));
     const sub = make("pkm_sub", { NAME: "corner" });
     sub.moveBy(20, 300);
