@@ -22,7 +22,7 @@ if(PKM_CCACHE)
   endif()
 endif()
 
-# lld links the ~170 test programs several times faster than GNU ld (both compilers accept
+# lld links the test programs several times faster than GNU ld (both compilers accept
 # -fuse-ld=lld); GNU ld is used when lld is not installed.
 option(PKM_LLD "Link with lld when it is installed" ON)
 if(PKM_LLD)

@@ -2,7 +2,7 @@
 # libraries, the pkm program and the examples are compiled with all of them, and every program
 # links their runtimes. The test programs' own code (GoogleTest assertions and fixtures) gets
 # AddressSanitizer only (pkm_test_sanitizer_flags(), called in tests/): UndefinedBehaviorSanitizer
-# on ~170 programs full of assertion templates was the largest part of the sanitizer build's time,
+# on the test files full of assertion templates was the largest part of the sanitizer build's time,
 # and the code under test (the libraries, and the pkm program the CLI tests drive) keeps every check.
 # AddressSanitizer itself must stay on everywhere: Eigen allocates differently when it is on, and
 # memory allocated by instrumented code and freed by uninstrumented code is reported as a bad free.

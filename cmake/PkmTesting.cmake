@@ -1,6 +1,7 @@
-# pkm_add_test(<module> <name> [LIBS ...]): builds tests/<module>/<name>_test.cpp as one gtest
-# binary and registers its tests with CTest. It links the module it tests (pkm::<module>, when
-# there is such a library: the CLI tests run the pkm program instead) and LIBS, nothing else.
+# pkm_add_test_program(<target> <module> FILES ... [LIBS ...]): builds the test files (each
+# tests/<module>/<name>_test.cpp, compiled on its own) into one gtest program and registers its
+# tests with CTest, one CTest test per test case. It links the module they test (pkm::<module>,
+# when there is such a library: the CLI tests run the pkm program instead) and LIBS, nothing else.
 include(GoogleTest)
 
 # pkm_test_code_flags(<target>): the test programs' own code (assertions, fixtures, the loops that
@@ -14,10 +15,9 @@ function(pkm_test_code_flags target)
     target_compile_options(${target} PRIVATE -g0)
   endif()
 endfunction()
-function(pkm_add_test module name)
-  cmake_parse_arguments(ARG "" "" "LIBS" ${ARGN})
-  set(target test_${module}_${name})
-  add_executable(${target} ${CMAKE_CURRENT_SOURCE_DIR}/${module}/${name}_test.cpp)
+function(pkm_add_test_program target module)
+  cmake_parse_arguments(ARG "" "" "FILES;LIBS" ${ARGN})
+  add_executable(${target} ${ARG_FILES})
   set(module_lib)
   if(TARGET pkm::${module})
     set(module_lib pkm::${module})
