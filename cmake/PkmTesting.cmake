@@ -28,6 +28,16 @@ function(pkm_add_test_program target module)
   pkm_test_code_flags(${target})
   pkm_use_pch(${target} pkm_pch_test)
   set_target_properties(${target} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
+  # Each test file keeps its helpers in `namespace PKM_TEST_NS { ... }` instead of an anonymous
+  # namespace: in a unity batch PKM_TEST_NS names a namespace of its own per file (CMake's
+  # UNITY_BUILD_UNIQUE_ID), so two files' helpers of the same name neither clash nor overload
+  # each other; without unity builds it is one name, and each file is its own translation unit.
+  if(PKM_UNITY_BUILD)
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8
+                                               UNITY_BUILD_UNIQUE_ID PKM_TEST_NS)
+  else()
+    target_compile_definitions(${target} PRIVATE PKM_TEST_NS=pkm_test_local)
+  endif()
   gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60
                        PROPERTIES ENVIRONMENT "PKM_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
 endfunction()

@@ -40,6 +40,7 @@ Eigen::Vector3d TrackerNoise::point(const Eigen::Vector3d& p, RandomStream& rng)
   const double range = r + rng.normal(rangeSigma(r));
   const double azimuth = std::atan2(p.y(), p.x()) + rng.normal(angle_sigma);
   const double elevation = std::asin(std::clamp(p.z() / r, -1.0, 1.0)) + rng.normal(angle_sigma);
+  if (perfect) return p;
   return range * Eigen::Vector3d(std::cos(elevation) * std::cos(azimuth),
                                  std::cos(elevation) * std::sin(azimuth),
                                  std::sin(elevation));
@@ -49,6 +50,7 @@ Eigen::Matrix3d TrackerNoise::rotation(const Eigen::Matrix3d& R, RandomStream& r
   if (orientation_sigma == 0.0) return R;
   Eigen::Vector3d n;
   for (Eigen::Index k = 0; k < 3; ++k) n[k] = rng.normal(orientation_sigma);
+  if (perfect) return R;
   return geometry::so3Exp(n) * R;
 }
 

@@ -46,11 +46,16 @@ io::Scenario measuredScenario(const std::string& spec,
 
 /// The perfect-instrument twin of `measured`: the same machine (shared, with its geometry and
 /// compliance) in the same thermal and structural state (every random stream stays aligned:
-/// NoiseModel::perfect and Environment::perfect_instrument draw as the measured run does), every
-/// instrument perfect, the probes without lobing and the ring round and at 20 °C.
+/// NoiseModel::perfect, TrackerNoise::perfect and Environment::perfect_instrument draw as the
+/// measured run does), every instrument perfect (laser, dial gauges, trackers, probes), the probes
+/// without lobing and the ring round and at 20 °C.
 io::Scenario perfectTwin(const io::Scenario& measured) {
   io::Scenario t = measured;
   for (sim::LineSetup& m : t.campaign.measurements) m.noise.perfect = true;
+  for (sim::DialGaugeSetup& g : t.campaign.constrained) g.noise.perfect = true;
+  for (sim::TrackerSetup& k : t.campaign.trackers) k.noise.perfect = true;
+  for (sim::ExechonTrackerSetup& k : t.campaign.exechon_trackers) k.noise.perfect = true;
+  for (sim::HybridTrackerSetup& k : t.campaign.hybrid_trackers) k.noise.perfect = true;
   for (sim::TouchProbeSetup& p : t.campaign.probes) {
     p.noise.perfect = true;
     p.lobing = 0.0;

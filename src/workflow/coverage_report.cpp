@@ -161,7 +161,7 @@ std::string coverageReportData(const CoverageResult& r) {
              {"Truth: the value the same test gives on the same virtual machine with a perfect "
               "instrument in perfect conditions (docs/coverage.md); a squareness is also "
               "compared with the injected one (\"vs injected\").",
-              fmt::format("{} of {} quantities hold.", r.holding(), r.quantities.size())}},
+              fmt::format("{} of {} claimed quantities hold.", r.holding(), r.claims())}},
             {"plots", Json::array({std::move(plot)})}}});
   return doc.dump(2) + "\n";
 }

@@ -7,7 +7,7 @@
 #include <limits>
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(ExplainsData, ResidualsBelowAThousandthOfTheMachineAreAccepted) {
   EXPECT_TRUE(explainsData(0.0, 1000.0));
@@ -46,5 +46,5 @@ TEST(ImplausibleChanges, LengthsAgainstTheMachineSizeAnglesInRadians) {
   EXPECT_EQ(implausibleChanges({p[3]}, 1000.0, "mm", 0.25, 0.01).size(), 1U);  // and angle limit
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

@@ -15,7 +15,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::HexapodData;
 using kinematics::HexapodModel;
@@ -118,11 +118,11 @@ TEST(ConstrainedMotion, CalibrationNamesWhatItCannotSeeAndRemovesThePlanarError)
       << "before " << before << " after " << after << " rank " << s.identifiability.rank;
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(ConstrainedMotion, BadSetsAreRejected) {
   const kinematics::HexapodModel nominal = test::millingModel();
@@ -140,11 +140,11 @@ TEST(ConstrainedMotion, BadSetsAreRejected) {
   EXPECT_THROW((void)calibrateHexapod(nominal, data), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 /// One plate height, few stations and noisy strut readings: combinations the gauges see only
 /// weakly. A Tikhonov prior of the plausible geometry error keeps them near the machine file, so
@@ -192,11 +192,11 @@ TEST(ConstrainedMotion, ParameterPriorConvergesOnWeakGaugeData) {
   EXPECT_THROW((void)calibrateHexapod(nominal, data, options), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(ConstrainedMotion, ConvergesInAFewIterationsOnNoisyGauges) {
   // Two plate heights, strut readings with seed 004's repeatability (2 µm), gauges at 1 µm. The
@@ -240,5 +240,5 @@ TEST(ConstrainedMotion, ConvergesInAFewIterationsOnNoisyGauges) {
   EXPECT_LT(after, (1.0 - kRemovedFraction) * before);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

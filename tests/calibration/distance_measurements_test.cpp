@@ -12,7 +12,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::HexapodData;
 using kinematics::HexapodModel;
@@ -115,11 +115,11 @@ TEST(DistanceMeasurements, BadValuesAreRejected) {
   EXPECT_THROW((void)calibrateHexapod(test::millingModel(), data), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(DistanceMeasurements, ConvergesInAFewIterationsOnNoisyDistances) {
   // Interferometer lines and a ball bar, 1 µm noise: rank-deficient (6 placement directions held
@@ -147,5 +147,5 @@ TEST(DistanceMeasurements, ConvergesInAFewIterationsOnNoisyDistances) {
   EXPECT_LT((tight.parameters - s.parameters).cwiseAbs().maxCoeff(), kTolStationary);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

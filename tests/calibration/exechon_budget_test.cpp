@@ -12,7 +12,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::ExechonModel;
 
@@ -179,5 +179,5 @@ TEST(ExechonToolUncertainty, LiesBetweenTheTraceBoundsOfTheLinearisedTargetUncer
                InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

@@ -11,7 +11,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::ExechonModel;
 
@@ -248,11 +248,11 @@ TEST(ExechonCalibration, DirectionsAddEquationsAndAgree) {
   EXPECT_LT(sum.final_cost, 1e-10);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(ExechonCalibration, ConvergesInAFewIterationsOnNoisyTrackerData) {
   // Tracker points in the tracker's frame (5 µm), the frame estimated with the 26 parameters, the
@@ -283,5 +283,5 @@ TEST(ExechonCalibration, ConvergesInAFewIterationsOnNoisyTrackerData) {
   EXPECT_THROW((void)calibrateExechon(f.nominal_model, data, bad), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

@@ -9,7 +9,7 @@
 #include "pkm/io/machine_loader.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kExact = 1e-12;  // round trips through exp/log, relative to 1
 
@@ -67,5 +67,5 @@ TEST(ExechonParameters, NonFiniteParameterThrows) {
   EXPECT_THROW((void)withExechonParameters(m, p, m.world_T_zoppi), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

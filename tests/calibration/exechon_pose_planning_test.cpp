@@ -14,7 +14,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::ExechonConfiguration;
 using kinematics::ExechonModel;
@@ -107,5 +107,5 @@ TEST(ExechonPosePlanning, RejectsBadInput) {
   EXPECT_THROW((void)planExechonPoses(m, pool, o), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

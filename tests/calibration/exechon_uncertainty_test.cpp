@@ -12,7 +12,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::ExechonModel;
 
@@ -200,5 +200,5 @@ TEST(ExechonMonteCarlo, RefusesBadOptions) {
                InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

@@ -13,7 +13,7 @@
 #include "pkm/kinematics/pose_rpy.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kExact = 1e-9;            // mm, exact data
 constexpr double kSigma = 0.005;           // mm, reference noise of the Monte Carlo check
@@ -96,5 +96,5 @@ TEST(FrameRegistration, ExpressInWorldMovesPosesAndPointsAndDropsTheFrame) {
   EXPECT_LT((data.points[0].point - placement() * Eigen::Vector3d(1, 2, 3)).norm(), kExact);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

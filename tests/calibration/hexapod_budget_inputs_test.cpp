@@ -12,7 +12,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::HexapodModel;
 
@@ -129,5 +129,5 @@ TEST(HexapodTcpUncertainty, TheModelsRemainderAddsInQuadrature) {
   EXPECT_THROW(addTcpRemainder(tcp, 0.1, 0.0), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

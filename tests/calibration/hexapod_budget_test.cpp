@@ -14,7 +14,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::HexapodData;
 using kinematics::HexapodModel;
@@ -301,5 +301,5 @@ TEST(HexapodTcpUncertainty, ARigidMotionOfTheWholeMachineIsRemovedWhenAligned) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

@@ -17,7 +17,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::HexapodModel;
 using test::kNoiseFactor;
@@ -123,5 +123,5 @@ TEST(HexapodCalibration, ConvergesInAFewIterationsOnNoisyBidirectionalData) {
         << i;
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

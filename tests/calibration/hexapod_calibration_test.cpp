@@ -27,7 +27,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::HexapodData;
 using kinematics::HexapodModel;
@@ -315,5 +315,5 @@ TEST(HexapodCalibration, ApproachDirectionsFollowTheMeasurementOrder) {
   EXPECT_EQ(d[3], d3);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

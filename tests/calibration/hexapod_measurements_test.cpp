@@ -9,7 +9,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::HexapodData;
 using kinematics::HexapodModel;
@@ -99,5 +99,5 @@ TEST(HexapodMeasurements, FailedForwardKinematicsIsNullopt) {
   EXPECT_FALSE(pointResiduals(model, data, o, model.home).has_value());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

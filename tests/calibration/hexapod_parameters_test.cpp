@@ -10,7 +10,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(HexapodParameters, RoundTripThroughTheModel) {
   const kinematics::HexapodModel model = test::millingModel();
@@ -45,5 +45,5 @@ TEST(HexapodParameters, RejectsNonFiniteValues) {
   EXPECT_THROW((void)withHexapodParameters(test::millingModel(), p), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

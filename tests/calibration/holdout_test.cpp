@@ -17,7 +17,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 using test::kTolRoundTrip;
 
@@ -106,5 +106,5 @@ TEST(HexapodHoldoutErrors, PosesCountWithTheirPositions) {
   EXPECT_NEAR(e.rms, 0.1, kTolRoundTrip);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

@@ -9,7 +9,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kExactSquareness = 1e-8;  // rad, noise-free data
 constexpr double kNoise = 0.005;           // mm, tracker range noise in the noisy test
@@ -126,11 +126,11 @@ TEST(HybridCalibration, BadInputIsRejected) {
   EXPECT_THROW((void)calibrateHybridSquareness(*s.machine.hybrid, s.errors, one), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(HybridCalibration, ConvergesInAFewIterationsOnNoisyTrackerData) {
   constexpr int kMaxIterations = 12;       ///< LM iterations (rejected steps included)
@@ -157,5 +157,5 @@ TEST(HybridCalibration, ConvergesInAFewIterationsOnNoisyTrackerData) {
                InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

@@ -10,7 +10,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(Identifiability, FullRankMatrix) {
   std::mt19937 rng(test::kSeed);
@@ -114,5 +114,5 @@ TEST(ObservabilityIndices, ClosedForms) {
   EXPECT_THROW((void)parseObservabilityIndex("O6"), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

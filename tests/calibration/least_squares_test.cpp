@@ -12,7 +12,7 @@
 #include <vector>
 
 namespace pkm::calibration::detail {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kTol = 1e-9;
 
@@ -96,11 +96,11 @@ TEST(LeastSquaresTest, FixedIndicesListsTheHeldEntries) {
   EXPECT_TRUE(fixedIndices(2, std::vector<bool>{true, true}).empty());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration::detail
 
 namespace pkm::calibration::detail {
-namespace {
+namespace PKM_TEST_NS {
 
 // r_i = |p_i − c| − R: a sphere through tracker points (a nonlinear fit with a residual floor).
 struct SphereDistance {
@@ -157,5 +157,5 @@ TEST(LeastSquaresTest, ConvergesInAFewIterationsOnNoisyData) {
   EXPECT_NEAR(out.final_cost, tight.final_cost, 1e-9 * tight.final_cost);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration::detail

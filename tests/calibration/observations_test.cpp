@@ -11,7 +11,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration::detail {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kStep = 1e-6;  ///< central-difference step (mm, rad)
 
@@ -66,5 +66,5 @@ TEST(CalibrationObservations, FrameJacobiansMatchCentralDifferences) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration::detail

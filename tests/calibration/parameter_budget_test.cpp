@@ -8,7 +8,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 /// A straight line y = a + b·x through x = −1, 0, 1 (J = [1 x]): J⁺ = (JᵀJ)⁻¹Jᵀ with
 /// JᵀJ = diag(3, 2), so δa = mean(δr), δb = (δr₃ − δr₁)/2.
@@ -122,5 +122,5 @@ TEST(PositionExpandedUncertainty, IsKTimesTheLargestStandardDeviation) {
   EXPECT_THROW((void)positionExpandedUncertainty(J, S, 0.0), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

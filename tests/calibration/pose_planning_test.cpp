@@ -12,7 +12,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kReach = 150.0;  ///< mm
 constexpr double kTilt = 0.15;    ///< rad
@@ -83,11 +83,11 @@ TEST(PosePlanning, RejectsBadOptions) {
   EXPECT_THROW((void)planHexapodPoses(model, pool, options), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 /// The generic planner on a hand-made problem: 40 candidates see only the first unknown, one
 /// sees only the second; two poses must include that one (else the information is singular).
@@ -106,5 +106,5 @@ TEST(PlanFromJacobians, FindsTheOnlyCandidateThatSeesAParameter) {
   EXPECT_THROW((void)planFromJacobians(blocks, 2, ObservabilityIndex::kO1, 0), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

@@ -11,7 +11,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::calibration {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::HexapodData;
 using kinematics::HexapodModel;
@@ -114,5 +114,5 @@ TEST(MonteCarlo, AgreesWithTheLinearisedCovarianceAndIsThreadIndependent) {
                InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::calibration

@@ -12,7 +12,7 @@
 
 #include "support/cli_fixture.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::test::CliTest;
 using ::testing::HasSubstr;
@@ -172,4 +172,4 @@ TEST_F(AnalyzeCircleCli, BadInputIsAUsageError) {
                    "two files");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -14,8 +14,9 @@
 
 #include "support/cli_fixture.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
+using pkm::test::CliRun;
 using pkm::test::CliTest;
 using ::testing::HasSubstr;
 
@@ -164,10 +165,7 @@ TEST_F(AnalyzeDiagonalsCli, InputErrors) {
                    "s.csv:2");
 }
 
-}  // namespace
-
-namespace pkm::test {
-namespace {
+// The budget's Monte Carlo check and the step diagonals' budget.
 
 constexpr double kTolMonteCarloVsLinear = 0.05;  // relative: U from 20000 Monte Carlo trials
 
@@ -227,5 +225,4 @@ TEST_F(AnalyzeDiagonalsCli, StepBudgetCarriesEachReadingAndTheBeamAlignment) {
   EXPECT_GT(t["uncertainty"]["squareness_xy"]["U"].get<double>(), 3.5 * U);
 }
 
-}  // namespace
-}  // namespace pkm::test
+}  // namespace PKM_TEST_NS

@@ -11,7 +11,7 @@
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using Json = nlohmann::json;
 using ::testing::HasSubstr;
@@ -373,5 +373,5 @@ TEST_F(AnalyzePositioningCli, HelpStatesTheExitCodes) {
   EXPECT_THAT(r.out, HasSubstr("--error-unit"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

@@ -10,7 +10,7 @@
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using Json = nlohmann::json;
 using ::testing::HasSubstr;
@@ -110,5 +110,5 @@ TEST_F(AnalyzeUncertaintyCli, BudgetsUseTheFilesRecordedConditionsAndShowTheAssu
   EXPECT_THAT(bad.err, HasSubstr("k.csv:3: air temperature 293 is outside the plausible range"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

@@ -11,7 +11,7 @@
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -379,5 +379,5 @@ TEST_F(CalibrateCli, RefusesToOverwriteAndRejectsBadData) {
   EXPECT_FALSE(std::filesystem::exists(path("few.json")));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

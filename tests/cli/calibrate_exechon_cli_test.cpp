@@ -9,7 +9,7 @@
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -271,5 +271,5 @@ TEST_F(CalibrateExechonCli, RefusesBadDataAndOverwrites) {
   EXPECT_FALSE(std::filesystem::exists(path("few.json")));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

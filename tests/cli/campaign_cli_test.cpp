@@ -14,7 +14,7 @@
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using Json = nlohmann::json;
 using ::testing::HasSubstr;
@@ -359,5 +359,5 @@ TEST_F(CampaignCli, TheRealisticEnvironmentLeavesLargerAfterFigures) {
   EXPECT_EQ(real, after("default"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

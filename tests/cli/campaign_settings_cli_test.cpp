@@ -13,7 +13,7 @@
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using Json = nlohmann::json;
 using ::testing::HasSubstr;
@@ -192,5 +192,5 @@ TEST_F(CampaignSettingsCli, SensitivityRefusesBadSourcesAndValues) {
   EXPECT_FALSE(fs::exists(dir_ / "s"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

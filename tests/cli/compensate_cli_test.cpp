@@ -14,7 +14,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using Json = nlohmann::json;
 using ::testing::HasSubstr;
@@ -287,5 +287,5 @@ TEST_F(CompensateCli, MaxPointsResamples) {
   EXPECT_THAT(r.err, HasSubstr("resampled 3 rows to 2"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

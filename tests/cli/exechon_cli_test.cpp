@@ -15,7 +15,7 @@
 #include "support/cli_fixture.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::test::kTolRoundTrip;
 using ::testing::HasSubstr;
@@ -356,4 +356,4 @@ TEST_F(ExechonCli, BadCircleText) {
   EXPECT_EQ(pkm({"exechon", "drm"}).code, kExitUsage);  // --circle is required
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -13,7 +13,7 @@
 #include "support/cli_fixture.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::test::kTolRoundTrip;
 using ::testing::HasSubstr;
@@ -176,4 +176,4 @@ TEST_F(ExechonCli, MalformedMachineFileNamesLine) {
                    m + ":" + std::to_string(line) + ": /tripod/branch/delta2B: ");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

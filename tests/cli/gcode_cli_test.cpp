@@ -7,7 +7,7 @@
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -153,5 +153,5 @@ TEST_F(GcodeCli, DebugSwitchAndTextAfterTheEnd) {
                    "w.ngc:1: parameter #5221 is read-only here");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

@@ -6,7 +6,7 @@
 
 #include "support/cli_fixture.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::test::CliTest;
 using pkm::test::splitLines;
@@ -234,4 +234,4 @@ TEST_F(GcodeCompensateCli, ExechonProgramsInBothOrientations) {
   expectUsageError(pkm({"gcode", "compensate", "--machine", cal, b}), "b.ngc:2:");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -7,7 +7,7 @@
 #include "support/cli_fixture.hpp"
 #include "support/linuxcnc_sample.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::test::CliRun;
 using pkm::test::CliTest;
@@ -301,4 +301,4 @@ TEST_F(GcodeRunCli, RefusesToOverwrite) {
   EXPECT_NE(slurp(path("q.csv")), "keep");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

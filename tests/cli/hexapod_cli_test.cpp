@@ -13,7 +13,7 @@
 #include "support/cli_fixture.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::test::kTolLinuxcnc;
 using pkm::test::kTolRoundTrip;
@@ -261,4 +261,4 @@ TEST_F(HexapodCli, VersionAndHelpExitZero) {
   EXPECT_THAT(h.out, HasSubstr("--poses"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

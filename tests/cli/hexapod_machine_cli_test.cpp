@@ -16,7 +16,7 @@
 #include "support/cli_fixture.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::test::kTolRoundTrip;
 using ::testing::HasSubstr;
@@ -269,4 +269,4 @@ TEST_F(HexapodCli, MissingPoses) {
   EXPECT_THAT(f.err, HasSubstr("--lengths"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -11,7 +11,7 @@
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -76,5 +76,5 @@ TEST_F(CliTest, HistoryNeverCreatesAStoreAndNamesTheMachinesItHas) {
   EXPECT_EQ(slurp(notes), "my notes\n");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

@@ -9,7 +9,7 @@
 #include "support/linuxcnc_sample.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -169,5 +169,5 @@ TEST_F(CliTest, HexapodHalWritesEitherBlock) {
   EXPECT_EQ(pkm({"hexapod", "hal", "--kins", "trivkins"}).code, 2);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

@@ -10,7 +10,7 @@
 
 #include "support/cli_fixture.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -65,4 +65,4 @@ TEST_F(MainCli, AGroupRunsWithOnlyItselfBuilt) {
   EXPECT_THAT(version.out, HasSubstr("pkm "));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -10,7 +10,7 @@
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -136,5 +136,5 @@ TEST_F(CliTest, PlanPosesForAnExechon) {
                    "Exechon machines only");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

@@ -8,7 +8,7 @@
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -57,5 +57,5 @@ TEST_F(CliTest, UsageErrors) {
   EXPECT_EQ(pkm({"report"}).code, kExitUsage);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::cli::SerialWorker;
 
@@ -58,4 +58,4 @@ TEST(SerialWorker, DestructorRunsQueuedJobs) {
   EXPECT_EQ(done.load(), 100);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -12,7 +12,7 @@
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using Json = nlohmann::json;
 
@@ -108,5 +108,5 @@ TEST_F(CliTest, ServeAnswersAsTheCliAndStopsOnCtrlC) {
   EXPECT_EQ(served.interrupt(), 0);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

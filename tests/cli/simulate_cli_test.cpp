@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -131,4 +131,4 @@ TEST_F(SimulateCli, BadInputExitsWithCode2) {
   EXPECT_EQ(pkm({"simulate", "seed001-diagonals"}).code, kExitUsage);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -13,7 +13,7 @@
 #include "pkm/io/tracker_files.hpp"
 #include "support/cli_fixture.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
@@ -79,4 +79,4 @@ TEST_F(SimulateTrackerCli, BadTrackerScenarioExitsWithCode2) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "x"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

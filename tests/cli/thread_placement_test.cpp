@@ -10,7 +10,7 @@
 
 #if defined(__linux__)
 
-namespace {
+namespace PKM_TEST_NS {
 
 /// A thread that waits until released; restores the caller's CPU set when done.
 class Fixture {
@@ -91,6 +91,6 @@ TEST(ThreadPlacement, NothingWithOneCpuAllowed) {
   EXPECT_TRUE(CPU_EQUAL(&theirs, &f.allowed()));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 
 #endif

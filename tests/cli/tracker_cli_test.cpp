@@ -7,7 +7,7 @@
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -38,5 +38,5 @@ TEST_F(CliTest, TrackerJoinWritesATrackerPointFile) {
   EXPECT_THAT(bad.err, HasSubstr("bad.txt:1: Y 'x' is not a finite number"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

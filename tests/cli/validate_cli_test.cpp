@@ -9,7 +9,7 @@
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -132,5 +132,5 @@ TEST_F(CliTest, ValidateCoverageBadInputExitsTwo) {
   EXPECT_THAT(none.err, HasSubstr("--only no such quantity"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

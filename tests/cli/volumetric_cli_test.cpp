@@ -20,7 +20,7 @@
 #include "support/cli_fixture.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using pkm::test::kTolExact;
@@ -348,4 +348,4 @@ TEST_F(VolumetricCli, BadCommandsFile) {
   EXPECT_THAT(r.err, HasSubstr(bad + ":3: column 'yp'"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -10,7 +10,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::test::kTolRoundTrip;
 
@@ -91,5 +91,5 @@ TEST(Arc, RadiusFormatErrors) {
   EXPECT_NO_THROW(arcFromRadius(0, 0, 10, 0, 4.9988, true));           // short by 0.0012
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

@@ -11,7 +11,7 @@
 #include "pkm/cnc/gcode_error.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 class NoParams : public ParameterSource {
  public:
@@ -177,5 +177,5 @@ TEST(Block, PolarWordsProgramLabelsAndEWords) {
   EXPECT_THROW(parseLine("o[1] sub", b), GcodeError);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

@@ -7,7 +7,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 using K = CycleStep::Kind;
 using pkm::test::kTolRoundTrip;
@@ -310,5 +310,5 @@ TEST(CannedCycle, Errors) {
   EXPECT_THROW(expandCycle(q, s), GcodeError);  // runaway repeats
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

@@ -14,7 +14,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -103,5 +103,5 @@ TEST(CommentMessage, EmbeddedPythonIsRefusedNamingTheLine) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

@@ -12,7 +12,7 @@
 #include "pkm/cnc/gcode_error.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kTol = 1e-9;  // mm: closed-form points, exact arithmetic up to rounding
 constexpr double kR = 2.0;     // tool radius, mm
@@ -198,5 +198,5 @@ TEST(CutterComp, ZeroRadiusDoesNotCompensate) {
   EXPECT_FALSE(comp.compensating());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

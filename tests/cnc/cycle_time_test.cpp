@@ -12,7 +12,7 @@
 #include "support/sample_models.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using namespace pkm::cnc;
 namespace kin = pkm::kinematics;
@@ -154,9 +154,9 @@ TEST(CycleTime, PerJointLimits) {
   EXPECT_THROW((void)estimateCycleTime(pts, q, lim), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 
-namespace {
+namespace PKM_TEST_NS {
 
 /// A 100 mm G1 line along X cut into 10 points (move 0 is the start, moves 1 and 2 the halves).
 std::vector<PathPoint> tenPointLine() {
@@ -206,4 +206,4 @@ TEST(CycleTime, DwellsOnPathFollowTheMotionCount) {
   EXPECT_EQ(d[2].seconds, 2.0);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -15,7 +15,7 @@
 #include "pkm/kinematics/exechon_wrist.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using namespace pkm::cnc;
 namespace kin = pkm::kinematics;
@@ -138,4 +138,4 @@ TEST(ExechonPathChecks, BadArguments) {
   EXPECT_THROW((void)exechonJointName(6), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

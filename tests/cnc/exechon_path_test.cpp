@@ -18,7 +18,7 @@
 #include "pkm/kinematics/exechon_wrist.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using namespace pkm::cnc;
 namespace kin = pkm::kinematics;
@@ -258,4 +258,4 @@ TEST(ExechonPath, InterpolationStepKeepsLinearJointsNearThePath) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -16,7 +16,7 @@
 #include "pkm/core/error.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using namespace pkm::cnc;
 namespace kin = pkm::kinematics;
@@ -140,4 +140,4 @@ TEST(ToolAnglesFromDirection, InvertsTheVirtualHead) {
   EXPECT_THROW((void)toolAnglesFromDirection(Eigen::Vector3d::Zero(), 0, 0), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -15,7 +15,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::test::kTolExact;
 
@@ -149,5 +149,5 @@ TEST(Expression, SyntaxErrorsThrow) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

@@ -16,7 +16,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using pkm::test::kSeed;
@@ -199,5 +199,5 @@ TEST(Flatten, ErrorsNameTheSourceLine) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

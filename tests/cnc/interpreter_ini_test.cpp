@@ -11,7 +11,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -154,5 +154,5 @@ TEST(InterpreterIni, ProgramEndIsRequiredWhenAsked) {
   EXPECT_NO_THROW(Interpreter(o).run(Program::parse("G0 X1\n", "s.ngc"), c));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

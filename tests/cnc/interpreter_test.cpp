@@ -14,7 +14,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::test::kTolRoundTrip;
 using ::testing::HasSubstr;
@@ -391,5 +391,5 @@ TEST(InterpreterStream, ErrorsAndTheEndOfTheProgram) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

@@ -16,7 +16,7 @@
 #include "support/sample_models.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using namespace pkm::cnc;
 namespace kin = pkm::kinematics;
@@ -156,4 +156,4 @@ TEST(CheckPath, JointVelocityAndAccelerationAtProgrammedFeed) {
   EXPECT_EQ(r[PathCheck::kJointAcceleration].first.line, 5u);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

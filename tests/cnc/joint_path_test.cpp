@@ -15,7 +15,7 @@
 #include "support/sample_models.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using namespace pkm::cnc;
 namespace kin = pkm::kinematics;
@@ -128,4 +128,4 @@ TEST(JointSpaceInterpolation, RejectsBadTolerance) {
   EXPECT_THROW((void)jointSpaceInterpolation(pkm::test::millingModel(), 0.0), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -10,7 +10,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -66,5 +66,5 @@ TEST(LineReader, OWordScanIsConservative) {
   EXPECT_TRUE(LineReader::mayHaveOWords(long_comment));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

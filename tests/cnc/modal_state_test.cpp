@@ -9,7 +9,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::test::kTolExact;
 
@@ -73,5 +73,5 @@ TEST(ModalState, UnitScaleAppliesToLengthsOnly) {
   EXPECT_EQ(s.axisScale(3), 1.0);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

@@ -12,7 +12,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(Move, CsvRowOfARapidLeavesCentreAndFeedEmpty) {
   Move m;
@@ -100,5 +100,5 @@ TEST(Move, NumbersAreShortestRoundTrip) {
   EXPECT_EQ(xField(100000.0), "100000");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

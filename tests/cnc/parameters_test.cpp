@@ -6,7 +6,7 @@
 #include "pkm/cnc/gcode_error.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(Parameters, LinuxcncLayout) {
   EXPECT_EQ(coordinateSystemBase(1), 5221);
@@ -51,5 +51,5 @@ TEST(Parameters, CallArgumentsAreLocal) {
   EXPECT_EQ(p.get(31), 5.0);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

@@ -13,7 +13,7 @@
 #include "pkm/core/error.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using namespace pkm::cnc;
 using pkm::test::kTolExact;
@@ -157,4 +157,4 @@ TEST(PathInterpolator, RejectsBadOptions) {
   EXPECT_THROW(PathInterpolator{o}, pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -16,7 +16,7 @@
 #include "pkm/cnc/program_compensation.hpp"
 #include "support/sample_models.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using namespace pkm::cnc;
 namespace kin = pkm::kinematics;
@@ -211,4 +211,4 @@ TEST(CompensateProgram, TappingAndBoringCyclesAreExpanded) {
   EXPECT_NE(r.text.find("\nM48 (pkm: line 4 overrides on)\n"), std::string::npos) << r.text;
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

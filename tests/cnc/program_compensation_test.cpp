@@ -19,7 +19,7 @@
 #include "pkm/core/error.hpp"
 #include "support/sample_models.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using namespace pkm::cnc;
 namespace kin = pkm::kinematics;
@@ -282,7 +282,6 @@ TEST(CompensateHybridProgram, AddsTheX2TermAndOptionallyTheBaseFrame) {
                pkm::InvalidArgument);
 }
 
-}  // namespace
 /// A cutter-compensated program is written as its compensated tool path: the G41/G42 and D
 /// words go (the controller must not offset the corrected path again), and the text reads back,
 /// without compensation, to the commands, which follow the compensated path of the source.
@@ -313,3 +312,5 @@ TEST(CompensateProgram, CutterCompensationIsWrittenIntoThePath) {
     EXPECT_TRUE(found) << "line " << m.line << "\n" << r.text;
   }
 }
+
+}  // namespace PKM_TEST_NS

@@ -14,7 +14,7 @@
 #include "support/scratch_files.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 
@@ -61,5 +61,5 @@ TEST(ProgramFile, AMissingFileIsAnIoErrorNamingIt) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

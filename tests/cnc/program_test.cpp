@@ -7,7 +7,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -71,5 +71,5 @@ TEST(Program, LoadMissingFileThrows) {
   EXPECT_THROW((void)Program::load("/nonexistent/x.ngc"), IoError);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

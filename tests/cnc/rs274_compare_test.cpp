@@ -27,7 +27,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 
@@ -375,5 +375,5 @@ TEST(Rs274Compare, EveryMotionMatchesLinuxcnc) {
   EXPECT_GT(compared, 200u);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

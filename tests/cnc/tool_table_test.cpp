@@ -7,7 +7,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::cnc {
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::test::kTolExact;
 
@@ -54,5 +54,5 @@ TEST(ToolTable, OffsetBeyondADoubleInMmIsRefused) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::cnc

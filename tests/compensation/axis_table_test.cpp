@@ -10,7 +10,7 @@
 #include "pkm/core/error.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace comp = pkm::compensation;
 namespace met = pkm::metrology;
@@ -172,4 +172,4 @@ TEST(AxisTable, CrossTableAveragesRepeatedPositionsAndSorts) {
   EXPECT_THROW((void)comp::crossTableFromPoints("X", "Y", bad, two), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

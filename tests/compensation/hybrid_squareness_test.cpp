@@ -13,7 +13,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::compensation {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kExact = 1e-9;          // mm: squareness alone is compensated exactly
 constexpr double kSecondOrder = 1e-6;    // rad: products of two squareness errors (mrad²)
@@ -97,5 +97,5 @@ TEST(HybridSquarenessCompensation, Seed000ParallelismDropsToThePdgeLevel) {
   EXPECT_LT(after, 0.05);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::compensation

@@ -8,7 +8,7 @@
 
 #include "pkm/core/error.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace comp = pkm::compensation;
 
@@ -46,4 +46,4 @@ TEST(IsgComp, Limits) {
   EXPECT_THROW((void)comp::writeIsgCsv({}), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

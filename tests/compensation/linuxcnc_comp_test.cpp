@@ -13,7 +13,7 @@
 #include "pkm/core/error.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace comp = pkm::compensation;
 using pkm::test::kTolExact;
@@ -140,4 +140,4 @@ TEST(LinuxcncComp, ReaderErrorsNameFileAndLine) {
   EXPECT_THROW((void)comp::readLinuxcncComp("/nonexistent/xcomp.txt", 1), pkm::IoError);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

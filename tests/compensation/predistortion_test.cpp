@@ -19,7 +19,7 @@
 #include "support/sample_models.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace comp = pkm::compensation;
 namespace kin = pkm::kinematics;
@@ -138,4 +138,4 @@ TEST(Predistortion, Preconditions) {
   EXPECT_THROW((void)comp::predistort(nominal, nominal, nominal.home, bad), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -19,7 +19,7 @@
 #include "pkm/simulation/line_measurement.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace comp = pkm::compensation;
 namespace sim = pkm::simulation;
@@ -177,4 +177,4 @@ TEST(Remeasurement, SiemensEecTableRemovesMeanDeviationWithTheK3Sign) {
   EXPECT_GE(worse.M, kWrongSignGrowth * before.M);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

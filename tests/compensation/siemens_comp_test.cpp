@@ -11,7 +11,7 @@
 #include "pkm/core/error.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace comp = pkm::compensation;
 using pkm::test::kTolExact;
@@ -170,4 +170,4 @@ TEST(SiemensComp, CecExactTextAndRoundTrip) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -7,7 +7,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kTolNistTable = 1.5e-9;  // the table gives n to 9 decimals (±5e-10) + rounding
 
@@ -72,5 +72,5 @@ TEST(AirRefractiveIndex, RejectsConditionsOutsideTheEquationsRange) {
   EXPECT_THROW((void)refractiveIndexEdlen(AirConditions{}, 10.6), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(EigenBlocking, ProductsBlockWithTheFixedCacheSizesNotTheCpus) {
   EXPECT_EQ(Eigen::l1CacheSize(), 48 * 1024);
@@ -12,4 +12,4 @@ TEST(EigenBlocking, ProductsBlockWithTheFixedCacheSizesNotTheCpus) {
   EXPECT_EQ(Eigen::l3CacheSize(), 16 * 1024 * 1024);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

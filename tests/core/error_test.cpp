@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 namespace pkm {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(Locate, FileAndLine) { EXPECT_EQ(locate("a.csv", 12, "bad"), "a.csv:12: bad"); }
 
@@ -25,5 +25,5 @@ TEST(Errors, HierarchyMatchesStandardExceptions) {
   EXPECT_THROW(throw IoError("x"), std::runtime_error);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm

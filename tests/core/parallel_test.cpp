@@ -8,7 +8,7 @@
 #include <vector>
 
 namespace pkm {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(ParallelTest, EveryItemOnceInConsecutiveChunks) {
   for (const std::size_t n : {std::size_t{0}, std::size_t{3}, std::size_t{100001}}) {
@@ -40,5 +40,5 @@ TEST(ParallelTest, TheLowestChunksExceptionWins) {
   EXPECT_EQ(ran.load(), 4);  // every chunk still ran
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm

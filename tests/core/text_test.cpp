@@ -7,7 +7,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -42,5 +42,5 @@ TEST(Text, IniEntriesWithTheirSectionsAndLines) {
               ::testing::ThrowsMessage<IoError>(HasSubstr("bad.ini:1: unterminated section")));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm

@@ -5,7 +5,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(Units, LengthUnitStringsRoundTrip) {
   for (LengthUnit u : {LengthUnit::kMillimetre, LengthUnit::kInch}) {
@@ -27,5 +27,5 @@ TEST(Units, AngleConversions) {
   EXPECT_NEAR(radToDeg(degToRad(37.25)), 37.25, test::kTolExact);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm

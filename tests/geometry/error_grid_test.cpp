@@ -9,7 +9,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::geometry {
-namespace {
+namespace PKM_TEST_NS {
 
 using test::kTolExact;
 using Axes = std::array<std::vector<double>, 3>;
@@ -158,5 +158,5 @@ TEST(ErrorGrid3d, RejectsBadGrids) {
       InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::geometry

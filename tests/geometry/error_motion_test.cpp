@@ -9,7 +9,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::geometry {
-namespace {
+namespace PKM_TEST_NS {
 
 using test::kTolExact;
 
@@ -87,5 +87,5 @@ TEST(ErrorMotion, ExactAndFirstOrderAgreeToSecondOrder) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::geometry

@@ -10,7 +10,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::geometry {
-namespace {
+namespace PKM_TEST_NS {
 
 using test::kTolExact;
 
@@ -109,5 +109,5 @@ TEST(ErrorTable1d, ErrorMotionTables) {
   EXPECT_THROW((void)sampleTable().evaluateMotion(0.0), InvalidArgument);  // two columns, not six
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::geometry

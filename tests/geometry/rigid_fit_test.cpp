@@ -11,7 +11,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::geometry {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(RigidFit, RecoversAKnownTransformExactly) {
   std::mt19937 rng(test::kSeed);
@@ -48,5 +48,5 @@ TEST(RigidFit, RejectsDegenerateInput) {
   EXPECT_THROW((void)fitRigidTransform(line, {{0, 0, 0}}), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::geometry

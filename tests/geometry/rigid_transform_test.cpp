@@ -9,7 +9,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::geometry {
-namespace {
+namespace PKM_TEST_NS {
 
 using test::kTolExact;
 using test::kTolFiniteDiff;
@@ -163,5 +163,5 @@ TEST(RigidTransform, PerturbationRotatesInPlaceAndShifts) {
   EXPECT_EQ(perturbedTransform(T, Twist::Zero()).matrix(), T.matrix());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::geometry

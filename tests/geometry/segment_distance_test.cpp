@@ -7,7 +7,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::geometry {
-namespace {
+namespace PKM_TEST_NS {
 
 using V = Eigen::Vector3d;
 
@@ -82,5 +82,5 @@ TEST(SegmentDistance, MatchesIndependentSearchOnRandomSegments) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::geometry

@@ -9,7 +9,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::geometry {
-namespace {
+namespace PKM_TEST_NS {
 
 using test::kTolExact;
 
@@ -144,5 +144,5 @@ TEST(So3, NearestRpyOfTheExtractedAnglesIsRpyNear) {
   EXPECT_FALSE(std::signbit(zero.z()));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::geometry

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using Json = nlohmann::ordered_json;
 
@@ -97,5 +97,5 @@ TEST(PointSourcesTest, EachPointKnowsItsInputAndLine) {
 
 TEST(PointSourcesTest, StartsEmpty) { EXPECT_EQ(PointSources().size(), 0u); }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -6,7 +6,7 @@
 #include <cmath>
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(AnalysisTextTest, StraightnessTableWithSixDigitsAndContacts) {
   StraightnessReport r;
@@ -61,5 +61,5 @@ TEST(AnalysisTextTest, CircleContactsNameTheirSource) {
   EXPECT_NE(t.find("MZC contact\touter\t1\t2\tring.csv:3\n"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

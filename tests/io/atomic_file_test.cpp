@@ -14,7 +14,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -98,5 +98,5 @@ TEST_F(AtomicFileTest, OutputDirectoriesAreCreatedAndNotOverwrittenWithoutForce)
   EXPECT_THROW(prepareOutputDirectory(out / "x.txt", true), IoError);  // a file, not a folder
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -8,7 +8,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -101,5 +101,5 @@ TEST(CalibrationFiles, ErrorsNameTheInputAndLine) {
   EXPECT_THAT(errorOf({"cols.csv", "l0,l1,l2,x,y,z\n1,2,3,7,8,9\n"}), HasSubstr("cols.csv"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

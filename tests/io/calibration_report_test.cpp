@@ -9,7 +9,7 @@
 #include <vector>
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using Json = nlohmann::ordered_json;
 
@@ -99,5 +99,5 @@ TEST(HexapodCalibrationJson, OptionalSectionsAppearWhenPresent) {
             std::find(k.begin(), k.end(), "tcp_error_map"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

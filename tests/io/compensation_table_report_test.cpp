@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 CompensationTableSummary axisTable() {
   return {.format = "linuxcnc1",
@@ -46,5 +46,5 @@ TEST(CompensationTableReport, Json) {
   EXPECT_FALSE(j.contains("input_axis"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

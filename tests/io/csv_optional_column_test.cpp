@@ -11,7 +11,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/io/csv.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::IoError;
 using pkm::io::CsvReader;
@@ -160,4 +160,4 @@ TEST_F(CsvTest, PlainAndOtherRowsReadTheSame) {
   EXPECT_THAT(errorOf("a,b\n1,2\n1,2x\n", {"a", "b"}), HasSubstr("data.csv:3"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

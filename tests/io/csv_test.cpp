@@ -17,7 +17,7 @@
 #include "pkm/core/error.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::IoError;
 using pkm::io::CsvReader;
@@ -329,4 +329,4 @@ TEST_F(CsvTest, TextInMemoryReadsAsTheFile) {
   EXPECT_THROW(CsvReader(pkm::io::NamedText{"empty.csv", ""}, {"a"}), IoError);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

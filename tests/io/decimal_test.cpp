@@ -13,7 +13,7 @@
 #include <string>
 
 namespace pkm::io::detail {
-namespace {
+namespace PKM_TEST_NS {
 
 /// from_chars's reading of the whole of `s`, or nullopt.
 std::optional<double> reference(const std::string& s) {
@@ -167,5 +167,5 @@ TEST(DecimalTest, EdgeCases) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io::detail

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
@@ -51,5 +51,5 @@ TEST(DemoReport, ExechonTextLeavesOutThePathWhenItWasNotSolved) {
   EXPECT_THAT(exechonDemoText(r), HasSubstr("  DRM          40 mm ring"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -15,7 +15,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 namespace sim = pkm::simulation;
@@ -153,5 +153,5 @@ TEST(EnvironmentFile, LoadsAPresetOrAFile) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -10,7 +10,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -104,5 +104,5 @@ TEST(EnvironmentRecords, FilesMergeAndARenishawFileRecordsNothing) {
   EXPECT_EQ(*r.dead_path_mm, 100.0);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

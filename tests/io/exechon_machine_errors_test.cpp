@@ -14,7 +14,7 @@
 #include "pkm/io/exechon_machine.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace kin = pkm::kinematics;
 using pkm::IoError;
@@ -256,4 +256,4 @@ TEST(ExechonMachineJsonErrors, RootNotAnObject) {
   EXPECT_THAT(errorOf("[1, 2]\n"), StartsWith(at(1, "/") + "expected an object"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

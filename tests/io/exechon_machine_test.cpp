@@ -18,7 +18,7 @@
 #include "pkm/kinematics/exechon_ik.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace kin = pkm::kinematics;
 using pkm::io::ExechonMachine;
@@ -369,4 +369,4 @@ TEST(ExechonMachineJson, NullBoundOfTheWorkingVolumeIsUnbounded) {
               StartsWith(at(21, "/hybrid/X2_p_P/1") + "expected a number"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

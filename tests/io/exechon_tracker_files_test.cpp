@@ -11,7 +11,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -135,5 +135,5 @@ TEST_F(ExechonTrackerFiles, HybridFilesRoundTrip) {
                IoError);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -7,7 +7,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -74,5 +74,5 @@ TEST(ExportColumns, RolesByAliasOrAssignment) {
   EXPECT_THROW(ExportColumns(t, roles, {{"run", "Counter"}}), IoError);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -91,5 +91,5 @@ TEST(GcodeRunReport, TextHasOneRowPerCheckAndTheViolationLine) {
   EXPECT_THAT(gcodeRunText(r), ::testing::EndsWith("result: all checks pass\n"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

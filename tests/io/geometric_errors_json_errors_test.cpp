@@ -11,7 +11,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/io/geometric_errors.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace kin = pkm::kinematics;
 using pkm::IoError;
@@ -152,4 +152,4 @@ TEST(GeometricErrorsJsonErrors, ReadingAFileNamesIt) {
   EXPECT_THROW((void)readGeometricErrorsJson(path), IoError);  // no such file
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -14,7 +14,7 @@
 #include "pkm/core/error.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace kin = pkm::kinematics;
 namespace geo = pkm::geometry;
@@ -238,4 +238,4 @@ TEST(GeometricErrorsJson, ErrorPolicyOnTheGrid) {
   EXPECT_THROW((void)e.pkm->evaluate({0, 1, 5}), pkm::InvalidArgument);  // y has one node: 0
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

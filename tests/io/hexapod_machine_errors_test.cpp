@@ -10,7 +10,7 @@
 #include "io/hexapod_machine_sample.hpp"
 #include "pkm/io/hexapod_machine.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::test::hexapod_json::at;
 using pkm::test::hexapod_json::errorOf;
@@ -237,4 +237,4 @@ TEST(HexapodMachineJsonErrors, ZeroConeAxis) {
   EXPECT_THAT(msg, StartsWith(at(6) + "/struts/0/base_joint/axis: "));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -21,7 +21,7 @@
 #include "support/sample_models.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 namespace kin = pkm::kinematics;
@@ -259,4 +259,4 @@ TEST(HexapodMachineJson, ReadErrorNamesTheFilePath) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -7,7 +7,7 @@
 #include <string>
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 std::vector<HistoryRow> rows() {
   HistoryRow r;
@@ -48,5 +48,5 @@ TEST(HistoryReport, Json) {
   EXPECT_TRUE(nlohmann::json::parse(historyJson("x", "d", {}))["rows"].empty());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -16,7 +16,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using nlohmann::json;
 using ::testing::HasSubstr;
@@ -298,5 +298,5 @@ TEST(HtmlReport, SyntaxErrorNamesSourceAndLine) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -10,7 +10,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -45,5 +45,5 @@ TEST(IniVelocityLimits, BadValuesNameTheLine) {
                IoError);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

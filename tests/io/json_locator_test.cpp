@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::io::JsonLocator;
 
@@ -117,4 +117,4 @@ TEST(JsonLocator, InvalidInputDoesNotThrow) {
   EXPECT_EQ(loc2.line("/0"), 2u);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -12,7 +12,7 @@
 #include "pkm/kinematics/hexapod_data.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
@@ -65,5 +65,5 @@ TEST(KinematicsCsv, DrmTableWithItsFitOrItsFailure) {
             "# failed at point 2\n");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

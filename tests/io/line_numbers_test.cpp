@@ -6,7 +6,7 @@
 #include <vector>
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(LineNumbersTest, RunsAndJumpsGiveBackEveryLine) {
   std::mt19937 rng(7);
@@ -41,5 +41,5 @@ TEST(LineNumbersTest, EmptyAndSingle) {
   EXPECT_EQ(lines[0], 2u);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -27,7 +27,7 @@
 #include "pkm/kinematics/hexapod_clearance.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace io = pkm::io;
 namespace kin = pkm::kinematics;
@@ -281,4 +281,4 @@ TEST(LinuxcncConfig, NamesComeFromTheMachineName) {
   EXPECT_EQ(io::linuxcncConfigNames("x").params, "x.params");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

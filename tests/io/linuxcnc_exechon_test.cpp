@@ -16,7 +16,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 /// The numbers on the line that starts with `name` (empty when there is none).
 std::vector<double> valuesOf(const std::string& text, const std::string& name) {
@@ -66,5 +66,5 @@ TEST(LinuxcncExechon, OpenRangesAreInfinite) {
   EXPECT_NE(text.find("alpha_range_deg -inf inf\n"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

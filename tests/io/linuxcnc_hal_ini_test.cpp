@@ -21,7 +21,7 @@
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace kin = pkm::kinematics;
 using pkm::io::HalReadOptions;
@@ -344,4 +344,4 @@ TEST(PkmhexkinsSetp, OpenStrokeHasNoLimits) {
   EXPECT_TRUE(joints[2].max_limit.has_value());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -20,7 +20,7 @@
 #include "support/sample_models.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 namespace kin = pkm::kinematics;
@@ -312,4 +312,4 @@ TEST(LinuxcncGenuineConfig, HexapodSimKinematicsHal) {
   EXPECT_EQ(m.joint_rates->acceleration, 200.0);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -12,7 +12,7 @@
 #include "pkm/io/machine_loader.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -115,5 +115,5 @@ TEST(LinuxcncPatch, RoundLimitsStayRound) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

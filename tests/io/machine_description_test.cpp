@@ -10,7 +10,7 @@
 #include "pkm/io/machine_loader.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
@@ -30,5 +30,5 @@ TEST(MachineDescription, DescribesTheDefaultHexapod) {
   EXPECT_EQ(text.back(), '\n');
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

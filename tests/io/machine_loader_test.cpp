@@ -25,7 +25,7 @@ namespace pkm::io::detail {
 const std::vector<std::pair<std::string_view, std::string_view>>& embeddedMachines();
 }  // namespace pkm::io::detail
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 namespace kin = pkm::kinematics;
@@ -320,4 +320,4 @@ TEST_F(MachineLoaderTest, MissingHalFileIsAnErrorNotABuiltinLookup) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

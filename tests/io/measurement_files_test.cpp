@@ -7,7 +7,7 @@
 
 #include "pkm/core/error.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace io = pkm::io;
 namespace sim = pkm::simulation;
@@ -139,4 +139,4 @@ TEST(MeasurementFiles, MalformedFilesGiveFileAndLine) {
   EXPECT_THROW((void)io::readLineRunCsv("/nonexistent/file.csv"), pkm::IoError);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

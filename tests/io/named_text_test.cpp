@@ -14,7 +14,7 @@
 #include "pkm/io/text_table.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using namespace std::string_literals;
@@ -75,5 +75,5 @@ TEST(NamedTextTest, AnUploadGetsTheSameMessageAsTheFile) {
   fs::remove(p);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -14,7 +14,7 @@
 
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::io::appendNumber;
 using pkm::io::formatNumber;
@@ -164,4 +164,4 @@ TEST(NumberFormat, SameTextAsStdToCharsOnAMillionDoubles) {
     expect(v);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -79,5 +79,5 @@ TEST(PosePlanReport, JsonHoldsThePlanAndThePoses) {
   EXPECT_DOUBLE_EQ(j["poses"][0]["rpy_deg"][0].get<double>(), 90.0);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -8,7 +8,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -133,5 +133,5 @@ TEST(PositioningFilesTest, ABadFieldIsLocatedInTheUpload) {
       IoError);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -13,7 +13,7 @@
 #include "pkm/io/scenario.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace io = pkm::io;
 namespace sim = pkm::simulation;
@@ -93,4 +93,4 @@ TEST(ProbeFiles, ScenarioErrorsNameThePointer) {
   EXPECT_THAT(message(bad), HasSubstr("s.json:6: /measurements/0: tp: the ball radius"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

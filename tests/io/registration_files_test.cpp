@@ -9,7 +9,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -59,5 +59,5 @@ TEST(RegistrationFiles, ErrorsNameTheFileAndLine) {
   EXPECT_EQ(errorOf("# frame: tracker\n" + std::string(kHeader) + rows), "");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -10,7 +10,7 @@
 #include "pkm/io/positioning_files.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -87,5 +87,5 @@ TEST(RenishawRtl, ErrorsNameTheLine) {
   EXPECT_THAT(errorOf(wrong + "1 1 0\n"), HasSubstr("bad.rtl:2: Target-count 4 but 3 targets"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -13,7 +13,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -164,5 +164,5 @@ TEST_F(ResultStoreTest, AStoreOfSchemaOneIsMigrated) {
   EXPECT_TRUE(again.integrityOk());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -12,7 +12,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/simulation/hybrid_virtual_machine.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace io = pkm::io;
 namespace sim = pkm::simulation;
@@ -127,9 +127,9 @@ TEST(Scenario, TruthJsonHoldsTheInjectedErrors) {
   EXPECT_EQ(h["errors"]["squareness_urad"]["sxP"], -14740.0);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 
-namespace {
+namespace PKM_TEST_NS {
 
 /// Least-squares slope of reading against target over every reading of a measurement.
 double fittedSlope(const sim::MeasurementResult& r) {
@@ -185,9 +185,9 @@ TEST(Scenario, Seed000StraightnessSlopesGiveTheParallelismErrors) {
       slope("straightness-y2-h") + slope("straightness-py-h"), -0.034e-3 + 2.85e-3, kTolSlope);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 
-namespace {
+namespace PKM_TEST_NS {
 
 std::string withEnvironment(const std::string& environment) {
   std::string text = kMinimal;
@@ -312,9 +312,9 @@ TEST(Scenario, EnvironmentErrorsNameTheLineAndPointer) {
               HasSubstr("/environment/compliance/cartesian/w: unknown key 'w'"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 
-namespace {
+namespace PKM_TEST_NS {
 
 /// The built-in seed 004 scenario with `environment`.
 std::string seed004With(const std::string& environment) {
@@ -370,4 +370,4 @@ TEST(Scenario, EnvironmentGeometryErrorsNameThePointer) {
   EXPECT_THAT(message(R"({"geometry": {"lead_um": 1}})"), HasSubstr("unknown key 'lead_um'"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -15,7 +15,7 @@
 #include "pkm/io/scenario.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace io = pkm::io;
 namespace sim = pkm::simulation;
@@ -135,10 +135,10 @@ TEST(ScenarioTracker, BadTrackerMeasurementsAreLocated) {
               HasSubstr("t: a laser tracker measurement needs a hexapod"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(ScenarioExechonTracker, BuiltinParsesRunsAndWritesTruth) {
   const Scenario s = loadScenario("exechon-calibration");
@@ -177,5 +177,5 @@ TEST(ScenarioExechonTracker, NeedsAHybridMachineWithTripodErrors) {
   EXPECT_THROW((void)parseScenarioJson(bad_box, "s.json"), IoError);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -11,7 +11,7 @@
 #include "pkm/simulation/campaign.hpp"
 #include "pkm/simulation/hybrid_virtual_machine.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace io = pkm::io;
 namespace sim = pkm::simulation;
@@ -119,4 +119,4 @@ TEST(ScenarioTripod, TruthJsonHoldsTheInjectedErrors) {
   EXPECT_DOUBLE_EQ(hybridOf(s2).tripod()->errors().c0, hybridOf(s).tripod()->errors().c0);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

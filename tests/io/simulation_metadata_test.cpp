@@ -11,7 +11,7 @@
 #include <vector>
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -68,5 +68,5 @@ TEST(SimulationMetadata, DialGaugeSetsCarryTheirGeometry) {
   EXPECT_THAT(md.at("noise"), HasSubstr("sigma"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

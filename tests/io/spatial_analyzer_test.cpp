@@ -9,7 +9,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -59,5 +59,5 @@ TEST(SpatialAnalyzerPoints, LayoutsItDoesNotReadAreErrorsAtTheirLine) {
   EXPECT_THAT(errorOf("// only comments\n"), HasSubstr("sa.txt: no points"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -9,7 +9,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 std::string errorOf(const std::string& text) {
   try {
@@ -179,5 +179,5 @@ TEST(TextTable, NumbersReadsColumnsInAnyOrderAndFallsBackForSigns) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

@@ -12,7 +12,7 @@
 #include "pkm/kinematics/pose_rpy.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace io = pkm::io;
 namespace sim = pkm::simulation;
@@ -118,4 +118,4 @@ TEST(TrackerFiles, BadFilesGiveFileAndLine) {
   EXPECT_THROW((void)io::readTrackerCsv("/no/such/dir/t.csv"), pkm::IoError);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

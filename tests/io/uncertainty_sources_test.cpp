@@ -10,7 +10,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -85,5 +85,5 @@ TEST(UncertaintySourcesJson, BadInputNamesFileAndLine) {
   EXPECT_THAT(errorOf(R"({"coverage_factor": 0})"), HasSubstr("coverage_factor"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

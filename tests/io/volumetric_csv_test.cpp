@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 namespace pkm::io {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(VolumetricCsv, RowsOfEachStatus) {
   EXPECT_EQ(volumetricCsvHeader(),
@@ -29,5 +29,5 @@ TEST(VolumetricCsv, RowsOfEachStatus) {
   EXPECT_EQ(o, "1,2,3,10,20,0.5,0.25,-1,,,,,,,,outside_table\n");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::io

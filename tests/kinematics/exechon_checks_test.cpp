@@ -9,7 +9,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 ExechonToolPose homeTool(const ExechonModel& m) {
   ExechonData data(m);
@@ -99,5 +99,5 @@ TEST(ExechonChecks, PoleIsReportedNotViolated) {
   EXPECT_TRUE(r.ok());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

@@ -12,7 +12,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 /// The seed paper's fit quality: the 5th-order model is within 0.1° of the computed DRM.
 constexpr double kPaperFitDeviation = 0.1;  // deg
@@ -134,5 +134,5 @@ TEST(ExechonDrm, BadOptionsThrowAndUnreachableCirclesReportStatus) {
   EXPECT_EQ(r.status, ExechonIkStatus::kUnreachable);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

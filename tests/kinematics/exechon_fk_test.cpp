@@ -13,7 +13,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 Eigen::Vector3d randomE(std::mt19937& rng, const Eigen::Vector3d& centre, double length) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -147,5 +147,5 @@ TEST(ExechonFk, SingularSeedIsReported) {
   EXPECT_EQ(s.iterations, 0);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

@@ -12,7 +12,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 /// Zoppi's Table 2 values are printed with 4 decimals (metres); the model is in mm.
 constexpr double kTolPaper4 = 5e-5;
@@ -289,5 +289,5 @@ TEST(ExechonIk, ExpectedFailuresAreStatuses) {
     EXPECT_NE(toString(s), "unknown");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

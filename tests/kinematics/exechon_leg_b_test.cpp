@@ -16,7 +16,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 /// Zoppi's Table 1 machine with leg B's joint offsets of a few mm (the paper's offsets are
 /// manufacturing errors, small against the ~1 m legs).
@@ -231,5 +231,5 @@ TEST(ExechonLegB, ModelRejectsNonFiniteOffsets) {
   EXPECT_THROW(m.validate(), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

@@ -13,7 +13,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(ExechonModel, SampleModelsAreValid) {
   EXPECT_NO_THROW(test::zoppiTable1Model().validate());
@@ -107,5 +107,5 @@ TEST(ExechonModel, DataHoldsBaseJointsAndConfiguration) {
   EXPECT_EQ(c.a, 5);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

@@ -11,7 +11,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 /// A random configuration near home: alpha, beta ± 10°, h ± 10 % of L, C ± 150°, A in ±[10°, 80°].
 ExechonConfiguration randomConfiguration(std::mt19937& rng, const ExechonModel& m) {
@@ -246,5 +246,5 @@ TEST(ExechonWrist, ToolPointIkFailuresLeaveDataUntouched) {
   EXPECT_EQ(data.world_p_tool, p);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

@@ -7,7 +7,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(HexapodChecks, HomeIsOk) {
   const HexapodModel m = test::millingModel();
@@ -114,5 +114,5 @@ TEST(HexapodChecks, KindStrings) {
   EXPECT_EQ(toString(LimitKind::kDegenerate), "degenerate");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

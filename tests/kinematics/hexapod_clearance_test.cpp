@@ -11,7 +11,7 @@
 #include "pkm/kinematics/hexapod_ik.hpp"
 #include "support/sample_models.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace kin = pkm::kinematics;
 
@@ -96,4 +96,4 @@ TEST(HexapodClearance, AssemblyBranchFlipsAtTheMirrorAndBeyondATiltedSingularity
   EXPECT_EQ(kin::assemblyBranch(m, data, corner), -home);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

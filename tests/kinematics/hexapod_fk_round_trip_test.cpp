@@ -19,7 +19,7 @@
 
 namespace pkm::kinematics {
 
-namespace {
+namespace PKM_TEST_NS {
 
 double rotationError(const PoseRpy& a, const PoseRpy& b) {
   return geometry::so3Log(geometry::rotationFromRpy(a.rpy) *
@@ -145,7 +145,7 @@ TEST_P(HexapodFkRoundTrip, SecondOrderCorrectedStepLandsInOneIteration) {
 
 INSTANTIATE_TEST_SUITE_P(Models, HexapodFkRoundTrip, ::testing::Values(0, 1));
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 
 /// The servo-loop path of HexapodFkSolver beside its general solver.
 struct HexapodFkSolverTestPeer {
@@ -168,7 +168,7 @@ struct HexapodFkSolverTestPeer {
   }
 };
 
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(HexapodFkSolver, ServoLoopPathTakesTheGeneralSolversStepsBitForBit) {
   // solveNear is solveGeneral's damped Newton iteration without its bookkeeping: on a noisy servo
@@ -237,5 +237,5 @@ TEST(HexapodFkSolver, SolvesAsTheFreeFunctionsAndLeavesTheSolutionsLegs) {
   EXPECT_THROW(HexapodFkSolver(m, FkOptions{.tolerance = -1.0}), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

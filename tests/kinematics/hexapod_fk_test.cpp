@@ -18,7 +18,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(HexapodFk, LinuxcncReferencePosesFromHome) {
   const HexapodModel m = test::linuxcncSimModel();
@@ -187,5 +187,5 @@ TEST(HexapodFk, StatusStrings) {
   EXPECT_EQ(toString(FkStatus::kOtherBranch), "other_branch");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

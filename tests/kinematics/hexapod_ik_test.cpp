@@ -9,7 +9,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 PoseRpy pose(double x, double y, double z, double a, double b, double c) {
   return {{x, y, z}, {degToRad(a), degToRad(b), degToRad(c)}};
@@ -114,5 +114,5 @@ TEST(HexapodIk, ConditionNumberIsUnitIndependent) {
   EXPECT_GT(scaledConditionNumber(mm, d1), 1.0);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

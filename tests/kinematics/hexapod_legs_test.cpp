@@ -14,7 +14,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(HexapodLegs, EveryLegAsDefined) {
   for (const HexapodModel& m : {test::linuxcncSimModel(), test::millingModel()}) {
@@ -90,5 +90,5 @@ TEST(HexapodLegs, ALegOfZeroLengthHasNoUnitVector) {
   EXPECT_GT(data.joint_distance[1], 0.0);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

@@ -7,7 +7,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(HexapodModel, SampleModelsValidate) {
   EXPECT_NO_THROW(test::linuxcncSimModel().validate());
@@ -78,5 +78,5 @@ TEST(HexapodModel, RejectsBadLimits) {
   EXPECT_THROW(m.validate(), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

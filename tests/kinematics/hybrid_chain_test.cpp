@@ -13,7 +13,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 using geometry::ErrorMotion;
 using test::kTolExact;
@@ -251,5 +251,5 @@ TEST(HybridChain, RejectsNonFiniteCommands) {
   EXPECT_THROW((void)hybridVolumetricErrorLinear(m, HybridErrorValues{}, c), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

@@ -12,7 +12,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 using geometry::so3Exp;
 using test::kTolExact;
@@ -115,5 +115,5 @@ TEST(GeometricErrors, ScaledMultipliesEveryError) {
   EXPECT_EQ(h.squareness.sz_p, 0.5 * v.squareness.sz_p);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

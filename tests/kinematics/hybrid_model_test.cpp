@@ -10,7 +10,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 using test::kTolExact;
 
@@ -115,5 +115,5 @@ TEST(HybridModel, WithinLimitsIncludesTheEnds) {
   EXPECT_FALSE(hybridWithinLimits(m, c));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

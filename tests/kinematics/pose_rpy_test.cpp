@@ -9,7 +9,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics {
-namespace {
+namespace PKM_TEST_NS {
 
 using test::kTolExact;
 
@@ -47,5 +47,5 @@ TEST(PoseRpy, NearPicksTheContinuousTriple) {
   EXPECT_EQ(near.position, pose.position);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics

@@ -10,7 +10,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::kinematics::detail {
-namespace {
+namespace PKM_TEST_NS {
 
 using M6 = Eigen::Matrix<double, 6, 6>;
 using V6 = Eigen::Matrix<double, 6, 1>;
@@ -107,5 +107,5 @@ TEST(Solve6, SingularMatrixGivesZeroOrTinyPivotRatio) {
   EXPECT_LT(solve6(B, c), 1e-12);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::kinematics::detail

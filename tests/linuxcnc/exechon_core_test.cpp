@@ -18,7 +18,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::ExechonConfiguration;
 using kinematics::ExechonData;
@@ -363,5 +363,5 @@ TEST(ExechonCore, BadParameterFilesAreRejectedWithTheReason) {
   EXPECT_NE(reject(short_line).find("c_axis needs 3 number(s)"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm

@@ -14,7 +14,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::ExechonConfiguration;
 using kinematics::ExechonData;
@@ -143,5 +143,5 @@ TEST(ExechonSafety, AParameterFileBeyondTheBudgetIsRefused) {
   EXPECT_NE(std::string(why).find("fk_max_iterations <= 120"), std::string::npos) << why;
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm

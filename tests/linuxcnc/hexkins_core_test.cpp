@@ -18,7 +18,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::HexapodModel;
 using kinematics::PoseRpy;
@@ -293,5 +293,5 @@ TEST(HexkinsCore, ValidationNamesTheProblem) {
                    machine("hexapod-linuxcnc-sim").characteristicLength());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

@@ -16,7 +16,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 /// Residual-evaluation units of a budget: a Newton step or a step halving each (the component's
 /// limit-iterations default).
@@ -130,5 +130,5 @@ TEST(HexkinsCore, TheMirrorAssemblyIsAnotherBranch) {
   EXPECT_STREQ(pkm_hex_status_name(PKM_HEX_BUDGET_EXHAUSTED), "budget_exhausted");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

@@ -17,7 +17,7 @@
 #include "pkmhexkins_core.h"
 
 namespace pkm::test {
-namespace {
+namespace PKM_TEST_NS {
 
 /// Parses `text`; the reason on failure ("" on success).
 std::string parse(const std::string& text, pkm_hex_params& p) {
@@ -165,5 +165,5 @@ TEST(HexkinsParams, LoadReadsAFileAndNamesAFileItCannotRead) {
   std::remove(path.c_str());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::test

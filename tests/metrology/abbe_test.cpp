@@ -10,7 +10,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 /// Second-order remainder of a 1e-4 rad rotation over a 100 mm arm: |ε|²·r/2 = 5e-7 mm.
 constexpr double kTolFirstOrder = 1e-6;
@@ -66,5 +66,5 @@ TEST(Abbe, RejectsBadInput) {
       InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

@@ -14,7 +14,7 @@
 #include "pkm/simulation/random.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::metrology::BodyDiagonal;
 using pkm::metrology::BodyDiagonalSample;
@@ -162,4 +162,4 @@ TEST(BodyDiagonals, BadInputIsRejected) {
   EXPECT_FALSE(pkm::metrology::parseBodyDiagonal("PPN").has_value());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -9,7 +9,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(MetrologyChecks, AcceptsFiniteValuesAndEnoughPoints) {
   const std::vector<double> values{0.0, -1.5, 2.0e6};
@@ -49,5 +49,5 @@ TEST(MetrologyChecks, LevenbergMarquardtSettings) {
                "cost_tolerance must be in (0, 1)");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

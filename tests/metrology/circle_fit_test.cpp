@@ -14,7 +14,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 using test::kSeed;
 constexpr double kTolFit = 1e-9;          ///< exact data: centre and radius, mm
@@ -191,5 +191,5 @@ TEST(CircleFit, RejectsBadInput) {
   EXPECT_THROW((void)roundnessAbout({}, Point2::Zero()), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

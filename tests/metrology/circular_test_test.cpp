@@ -10,7 +10,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kTolCircular = 1e-9;  ///< G, G(b), H, F of synthetic paths, mm
 
@@ -83,5 +83,5 @@ TEST(CircularTest, RejectsBadInput) {
   EXPECT_THROW((void)evaluateCircularTest(ok, ok, negative), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

@@ -13,7 +13,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kRelTolSigma = 0.05;  ///< noise σ recovered from 3600 readings, relative
 constexpr double kTolExactMm = 1e-15;  ///< contributor values computed in closed form, mm
@@ -147,5 +147,5 @@ TEST(CircularTestUncertainty, RefusesInvalidSourcesAndShortRuns) {
   EXPECT_THROW((void)circularTestUncertainty(three, cw, result, {}), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

@@ -8,7 +8,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(Conformance, TheZonesAreTheSpecificationReducedAndExtendedByU) {
   // E = 10 µm measured with U = 1 µm. Tolerance 12: 10 <= 12 − 1, conforms. Tolerance 11: on the
@@ -32,5 +32,5 @@ TEST(Conformance, NamesAndBadInput) {
   EXPECT_THROW((void)decideConformance(1.0, -1.0, 2.0), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

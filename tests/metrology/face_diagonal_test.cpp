@@ -16,7 +16,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kMrad = 1e-3;
 /// Simulated seed 000 face diagonals: the XL-80 linear noise (≈0.25 µm at 900 mm, 11 targets × 6
@@ -264,5 +264,5 @@ TEST(FaceDiagonal, RecoversSimulatedSeed000Squareness) {
       syP_raw.residual_rms);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

@@ -8,7 +8,7 @@
 #include <vector>
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -73,5 +73,5 @@ TEST(Iso230_2Conformity, DeviationsInMicrometresReadAsMillimetresAreImplausible)
   EXPECT_THAT(w[0], HasSubstr("of the 500 mm travel"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

@@ -15,7 +15,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kTolHand = 1e-12;  ///< hand-computed example with exact binary inputs
 
@@ -246,5 +246,5 @@ TEST(Iso230_2, RecoversSimulatedPositioningProfile) {
   EXPECT_NEAR(noisy.M, exact.M, 2.0 * tolerance);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

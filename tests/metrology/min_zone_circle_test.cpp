@@ -12,7 +12,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 using test::kSeed;
 constexpr double kTolZone = 1e-10;    ///< zone width and centre vs the exact answer, mm
@@ -131,11 +131,11 @@ TEST(MinZoneCircle, RejectsBadInput) {
   EXPECT_THROW((void)fitMinimumZoneCircle(sq, bad), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(MinZoneCircle, NoisyRingFarFromTheOriginIsCertifiedInAFewExchanges) {
   // A 50 mm ring measured at machine coordinates metres from the origin: 3-lobe form of 5 µm,
@@ -171,11 +171,11 @@ TEST(MinZoneCircle, NoisyRingFarFromTheOriginIsCertifiedInAFewExchanges) {
     EXPECT_GT(roundnessAbout(p, z.center + 1e-6 * Point2(std::cos(a), std::sin(a))), z.roundness);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 /// Gander, Golub and Strebel, "Least-squares fitting of circles and ellipses", BIT 34 (1994),
 /// the six points of their §6 (a partial arc).
@@ -249,5 +249,5 @@ TEST(MinZoneCircle, SearchLowerBoundHoldsOnRandomPartialArcs) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

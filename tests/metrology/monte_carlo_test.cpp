@@ -9,7 +9,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kTolMcRelative = 0.01;  // Monte Carlo u vs linear u on 1e5 trials (about 0.3 %)
 constexpr double kTolIntervalRelative = 0.02;  // 95 % interval half-width vs 1.96 u
@@ -105,5 +105,5 @@ TEST(MonteCarlo, RejectsInvalidOptionsAndModels) {
   EXPECT_THROW((void)linearizeModel(MeasurementModel{}, b), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

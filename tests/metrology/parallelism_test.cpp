@@ -14,7 +14,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kMrad = 1e-3;
 /// Seed 000 prints Δγ = 2.81, Δα = -14.7, szX2 = -0.034 and szP = -2.85, sxP = -14.74 mrad: each
@@ -148,5 +148,5 @@ TEST(Parallelism, SecondOrderEq11InvertsTheExactRotation) {
   EXPECT_THROW((void)pkmSquarenessFromSlopes(dgamma, dalpha, szX2, std::nan("")), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

@@ -6,7 +6,7 @@
 #include <vector>
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(PerTargetMeans, AveragesEachTargetAndSortsThem) {
   const std::vector<TargetSample> s = {
@@ -22,5 +22,5 @@ TEST(PerTargetMeans, EmptyInputGivesEmptyOutput) {
   EXPECT_TRUE(m.mean.empty());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

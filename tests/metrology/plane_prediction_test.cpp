@@ -11,7 +11,7 @@
 #include "pkm/core/error.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::metrology::BodyDiagonal;
 using pkm::metrology::kBodyDiagonals;
@@ -132,4 +132,4 @@ TEST(PlanePrediction, BadInputIsRejected) {
                pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

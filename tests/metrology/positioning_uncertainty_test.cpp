@@ -12,7 +12,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kTolBudget = 1e-12;  // mm: the same arithmetic in a different order
 
@@ -209,5 +209,5 @@ TEST(PositioningUncertainty, RejectsInvalidSources) {
   EXPECT_FALSE(src.isValid());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

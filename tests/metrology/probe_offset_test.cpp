@@ -14,7 +14,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 using test::kSeed;
 constexpr double kTolProbe = 1e-10;     ///< exact data: offset, centre, radii, mm
@@ -120,11 +120,11 @@ TEST(ProbeOffset, RejectsUnseparableTouches) {
   EXPECT_THROW((void)effectiveStylusRadius(-1.0, 1.0), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 // Convergence on noisy touches: a probe repeats to about 1 µm, and a criterion below the rounding
 // floor of the fit's sums would run every fit to its iteration limit.
@@ -258,5 +258,5 @@ TEST(ProbeOffset, InvalidOptionsAreRejected) {
   EXPECT_NE(why.find("max_iterations"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

@@ -12,7 +12,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kTolBudget = 1e-12;    // mm
 constexpr double kTolStatistic = 0.25;  // relative: a standard error estimated from 36-200 points
@@ -153,5 +153,5 @@ TEST(ProfileUncertainty, ProbeOffsetCovarianceShrinksWithTouches) {
                InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

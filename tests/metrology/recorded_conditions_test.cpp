@@ -10,7 +10,7 @@
 #include "pkm/metrology/positioning_uncertainty.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kTolArithmetic = 1e-12;  // the same sums in another order
 
@@ -136,5 +136,5 @@ TEST(RecordedConditions, LaserBudgetCarriesItsConditionsAndGrowsWithTheRecordedO
   EXPECT_EQ(condition(at_default.conditions, "dead path").origin, "default");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

@@ -13,7 +13,7 @@
 #include "pkm/simulation/random.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::metrology::BodyDiagonal;
 using pkm::metrology::kBodyDiagonals;
@@ -143,4 +143,4 @@ TEST(ShiftedDiagonal, BadInputIsRejected) {
   EXPECT_THROW((void)pkm::metrology::evaluateShiftedDiagonals(only, size), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -12,7 +12,7 @@
 #include "pkm/metrology/shifted_diagonal.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kTolLinear = 1e-9;       // relative: central differences of a linear model
 constexpr double kTolMonteCarlo = 0.02;   // relative: u from 20000 trials (sd of u ≈ 0.5 %)
@@ -142,5 +142,5 @@ TEST(SquarenessUncertainty, Eq11FromTheParallelismBudget) {
   EXPECT_THROW((void)eq11Uncertainty(p, 300.0, 2, "sxP", 0.0), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

@@ -15,7 +15,7 @@
 #include "pkm/core/error.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::metrology::BodyDiagonal;
 using pkm::metrology::kBodyDiagonals;
@@ -215,4 +215,4 @@ TEST(StepDiagonal, BadInputIsRejected) {
   EXPECT_THROW((void)pkm::metrology::extractStepDiagonal(bad, kBox), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

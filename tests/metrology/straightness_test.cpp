@@ -13,7 +13,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kTolZone = 1e-12;      ///< zone widths of O(1) data compared in double precision
 constexpr double kTolZoneLarge = 1e-9;  ///< zone widths of 1e6 points (rounding accumulates)
@@ -167,5 +167,5 @@ TEST(Straightness, RejectsBadInput) {
   EXPECT_THROW((void)parseStraightnessReference("best"), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::metrology

@@ -11,7 +11,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::metrology {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kTolHand = 1e-9;  // mm: the hand calculation's rounding (12 digits kept)
 
@@ -159,7 +159,7 @@ TEST(UncertaintyBudget, AddContributorLeavesOutSourcesThatDoNotApply) {
   EXPECT_FALSE(UncertaintyBudget{}.largestContributor());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 TEST(UncertaintyBudget, ExpectedNormalRangeMatchesTheControlChartTable) {
   // d2(2) = 2/√π exactly; d2(10) = 3.078 (control-chart tables, 3 decimals); d2(180) = 5.421858
   // (scipy.integrate.quad of the same integral).

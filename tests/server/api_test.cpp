@@ -11,7 +11,7 @@
 #include <thread>
 
 namespace pkm::server {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 using Json = nlohmann::json;
@@ -209,5 +209,5 @@ TEST_F(ApiTest, CampaignsAreListedAndTheirStreamNeedsTheTransport) {
   EXPECT_EQ(get("/api/campaign/7/report.html").status, 404);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::server

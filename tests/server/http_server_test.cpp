@@ -13,7 +13,7 @@
 #include <vector>
 
 namespace pkm::server {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 using Json = nlohmann::json;
@@ -130,5 +130,5 @@ TEST_F(HttpServerTest, ACampaignStreamsItsProgressAndReport) {
   EXPECT_THAT(report->body, HasSubstr("<html"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::server

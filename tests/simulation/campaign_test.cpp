@@ -9,7 +9,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/simulation/cartesian_machine.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace sim = pkm::simulation;
 
@@ -266,4 +266,4 @@ TEST(Campaign, AnInvalidEnvironmentIsRejected) {
   EXPECT_THROW(c.validate(), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

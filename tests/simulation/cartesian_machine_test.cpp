@@ -15,7 +15,7 @@
 #include "support/statistics.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::geometry::ErrorMotion;
 using pkm::geometry::ErrorTable1d;
@@ -243,4 +243,4 @@ TEST(CartesianMachine, RamSagGrowsWithTheCubeOfTheExtensionAndDroops) {
   EXPECT_THROW(machine.setSag(sag), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -9,7 +9,7 @@
 #include "pkm/simulation/cartesian_machine.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace sim = pkm::simulation;
 using pkm::test::kTolRoundTrip;
@@ -87,4 +87,4 @@ TEST(CompensatedMachine, RefusesNullsAndBrokenCompensations) {
   EXPECT_THROW((void)m.moveTo(Eigen::VectorXd(2)), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

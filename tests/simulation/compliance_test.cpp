@@ -16,7 +16,7 @@
 #include "support/sample_models.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace kin = pkm::kinematics;
 namespace sim = pkm::simulation;
@@ -161,4 +161,4 @@ TEST(LegDeflection, ClearanceJumpsByTwiceItselfWhenTheLoadReverses) {
   EXPECT_NEAR(just_pulled - just_compressed, 2 * c, 1e-12);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

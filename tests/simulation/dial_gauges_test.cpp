@@ -10,7 +10,7 @@
 #include "support/sample_models.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace kin = pkm::kinematics;
 namespace sim = pkm::simulation;
@@ -82,4 +82,4 @@ TEST(DialGauges, InvalidSetupsThrow) {
   EXPECT_THROW(s.validate(), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

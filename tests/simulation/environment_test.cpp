@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace sim = pkm::simulation;
 
@@ -82,4 +82,4 @@ TEST(Environment, InvalidValuesAreNamed) {
   EXPECT_FALSE(e.isValid(&why));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

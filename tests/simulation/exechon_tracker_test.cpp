@@ -12,7 +12,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::simulation {
-namespace {
+namespace PKM_TEST_NS {
 
 constexpr double kTilt = 0.4;  // rad
 
@@ -94,5 +94,5 @@ TEST(ExechonTracker, InvalidSetupsThrow) {
   EXPECT_THROW((void)simulateExechonTracker(m, m, {}, s, rng), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::simulation

@@ -13,7 +13,7 @@
 #include "support/statistics.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace kin = pkm::kinematics;
 namespace sim = pkm::simulation;
@@ -253,4 +253,4 @@ TEST(HexapodVirtualMachine, TheTrueModelInTheControllerRemovesTheAssemblyErrors)
   EXPECT_THROW(m.setControllerModel(inch), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -9,7 +9,7 @@
 #include "support/sample_models.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace kin = pkm::kinematics;
 namespace sim = pkm::simulation;
@@ -69,4 +69,4 @@ TEST(HexapodWorkspace, BadInputThrows) {
   EXPECT_TRUE(sim::sampleHexapodWorkspace(model, wideBox(), 0, rng).empty());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

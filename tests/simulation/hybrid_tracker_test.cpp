@@ -8,7 +8,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::simulation {
-namespace {
+namespace PKM_TEST_NS {
 
 HybridTrackerSetup setup() {
   HybridTrackerSetup s;
@@ -59,5 +59,5 @@ TEST(HybridTracker, NoiseIsDrawnAndSetupsAreChecked) {
   EXPECT_THROW((void)simulateHybridTracker(vm, s, a), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::simulation

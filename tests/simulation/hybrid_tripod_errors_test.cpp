@@ -17,7 +17,7 @@
 #include "pkm/simulation/compliance.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace kin = pkm::kinematics;
 using pkm::simulation::ExechonTripodErrors;
@@ -297,4 +297,4 @@ TEST(ExechonCompliance, HeadDropsByTheEnergyOfTheLegsSpringsAndClearance) {
   EXPECT_THROW(tripod.setCompliance(c), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

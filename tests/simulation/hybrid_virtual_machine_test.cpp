@@ -15,7 +15,7 @@
 #include "support/hybrid_samples.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace kin = pkm::kinematics;
 using pkm::simulation::HybridVirtualMachine;
@@ -195,4 +195,4 @@ TEST(HybridVirtualMachine, X2BedSagsUnderThePkmAndTheTableOverhangSags) {
   EXPECT_THROW(m.setSag({AxisSag::Kind::kSpan, 1.0, 0.0, 0.0, 1.0}, {}), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

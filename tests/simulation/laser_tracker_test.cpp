@@ -20,7 +20,7 @@
 #include "support/statistics.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace kin = pkm::kinematics;
 namespace sim = pkm::simulation;
@@ -182,6 +182,23 @@ TEST(LaserTracker, PresetIsTheDatasheetFigureHalved) {
   EXPECT_STREQ(sim::toString(sim::TrackerMode::kPose), "pose");
 }
 
+TEST(LaserTracker, APerfectTrackerReadsTheTruthAndDrawsAsTheNoisyOne) {
+  // The perfect-instrument twin of `pkm validate coverage` keeps its random stream aligned with
+  // the measured run: the same variates are drawn, the true reading returned.
+  sim::TrackerNoise noisy = *sim::trackerNoise("laser-tracker");
+  sim::TrackerNoise perfect = noisy;
+  perfect.perfect = true;
+  const Eigen::Vector3d p(800.0, -300.0, 450.0);
+  const Eigen::Matrix3d R = geo::rotationFromRpy(Eigen::Vector3d(0.1, -0.2, 0.3));
+  sim::RandomStream a(pkm::test::kSeed), b(pkm::test::kSeed);
+  const Eigen::Vector3d measured = noisy.point(p, a);
+  EXPECT_GT((measured - p).norm(), 0.0);
+  EXPECT_EQ(perfect.point(p, b), p);
+  EXPECT_GT((noisy.rotation(R, a) - R).norm(), 0.0);
+  EXPECT_EQ(perfect.rotation(R, b), R);
+  EXPECT_EQ(a.normal(1.0), b.normal(1.0));  // both streams are at the same place
+}
+
 TEST(LaserTracker, BadSetUpsThrow) {
   sim::HexapodVirtualMachine m(pkm::test::millingModel(), {});
   sim::RandomStream rng(pkm::test::kSeed);
@@ -204,4 +221,4 @@ TEST(LaserTracker, BadSetUpsThrow) {
   EXPECT_THROW((void)sim::simulateLaserTracker(m, s, rng), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

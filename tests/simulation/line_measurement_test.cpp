@@ -14,7 +14,7 @@
 #include "support/statistics.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace sim = pkm::simulation;
 using pkm::geometry::ErrorTable1d;
@@ -247,4 +247,4 @@ TEST(LineMeasurement, InvalidSetupsThrow) {
   EXPECT_THROW(s.validate(), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

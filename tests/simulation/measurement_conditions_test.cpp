@@ -13,7 +13,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/rigid_transform.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 namespace sim = pkm::simulation;
 
@@ -236,4 +236,4 @@ TEST(MeasurementConditions, RejectsBadArguments) {
   EXPECT_THROW(sim::MeasurementConditions(bad, 0.0, 60.0, 1, 1), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

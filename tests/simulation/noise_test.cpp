@@ -11,7 +11,7 @@
 #include "support/statistics.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::simulation::instrumentNoise;
 using pkm::simulation::NoiseModel;
@@ -125,4 +125,4 @@ TEST(Noise, PresetsFollowTheDatasheets) {
     EXPECT_TRUE(instrumentNoise(name)) << name;
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -10,7 +10,7 @@
 #include "support/statistics.hpp"
 #include "support/tolerances.hpp"
 
-namespace {
+namespace PKM_TEST_NS {
 
 using pkm::simulation::RandomStream;
 using pkm::simulation::streamSeed;
@@ -83,4 +83,4 @@ TEST(Random, ZeroSigmaDrawsNothing) {
   EXPECT_THROW((void)a.normal(-1.0), pkm::InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS

@@ -15,7 +15,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::simulation {
-namespace {
+namespace PKM_TEST_NS {
 
 using test::kSeed;
 constexpr double kTolNominal = 1e-9;  ///< zero noise: touch geometry and recovered offset, mm
@@ -263,5 +263,5 @@ TEST(TouchProbe, RejectsBadSetups) {
   EXPECT_THROW(s.validate(), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::simulation

@@ -18,7 +18,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::simulation {
-namespace {
+namespace PKM_TEST_NS {
 
 using kinematics::HexapodModel;
 
@@ -189,5 +189,5 @@ TEST(ExechonLegLeadErrors, AddEachLegsErrorToItsReading) {
   EXPECT_EQ(t.c, 0.1);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::simulation

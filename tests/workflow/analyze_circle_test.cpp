@@ -12,7 +12,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -122,5 +122,5 @@ TEST(AnalyzeCircleWorkflow, ProbeOffsetRecoversTheBallOffset) {
   EXPECT_FALSE(rep.paper.has_value());  // no labelled touches
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

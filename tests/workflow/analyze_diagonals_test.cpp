@@ -13,7 +13,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -89,5 +89,5 @@ TEST(AnalyzeDiagonalsWorkflow, StepSubStepsOutOfOrderAreLocated) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

@@ -12,7 +12,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -122,5 +122,5 @@ TEST(AnalyzePositioningWorkflow, SquarenessOfOneFaceDiagonal) {
   EXPECT_NEAR(rep.result.squareness, s, 1e-12);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

@@ -14,7 +14,7 @@
 #include "pkm/workflow/simulate.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -112,5 +112,5 @@ TEST_F(CalibrateExechonWorkflow, HybridDataNeedAHybridMachine) {
   EXPECT_EQ(calibrationErrorsOutput("a/cal.json"), "a/cal.errors.json");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

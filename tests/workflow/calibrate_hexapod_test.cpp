@@ -26,7 +26,7 @@
 #include "pkm/workflow/simulate.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -343,5 +343,5 @@ TEST_F(CalibrateHexapodWorkflow, RequestsAreChecked) {
   EXPECT_EQ(calibrationOutputs("cal").summary, "cal.summary.json");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

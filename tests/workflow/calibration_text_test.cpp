@@ -11,7 +11,7 @@
 #include <string>
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 /// A hexapod result with round figures: 10 poses, 120 equations, 2 unidentifiable directions.
 HexapodCalibrationResult hexapodResult() {
@@ -132,5 +132,5 @@ TEST(ExechonCalibrationText, TripodThenHybridThenTheFilesWritten) {
             expected + "wrote cal.json, cal.summary.json, cal.errors.json\n");
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

@@ -17,7 +17,7 @@
 #include "pkm/workflow/campaign.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 
@@ -62,5 +62,5 @@ TEST(CampaignNoWorse, CompensationDoesNotMakeTheRealisticMachinesWorse) {
   fs::remove_all(dir, ec);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

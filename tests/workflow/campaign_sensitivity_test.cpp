@@ -22,7 +22,7 @@
 #include "pkm/io/scenario.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -197,5 +197,5 @@ TEST_F(SensitivityWorkflow, BadSourcesAndValuesAreRefusedBeforeAnythingRuns) {
   EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

@@ -20,7 +20,7 @@
 #include "pkm/simulation/environment.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -334,5 +334,5 @@ TEST_F(CampaignWorkflow, BuiltInCampaignsAreListedAndDescribed) {
   EXPECT_FALSE(info.description.empty());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

@@ -15,7 +15,7 @@
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -153,5 +153,5 @@ TEST(CompensationTableWorkflow, RefusesBadRequestsAndData) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

@@ -13,7 +13,7 @@
 #include "support/tolerances.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -173,5 +173,5 @@ TEST(Coverage, RejectsFewSeedsAndWritesOnlyWithForce) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

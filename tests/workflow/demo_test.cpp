@@ -8,7 +8,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 TEST(DemoWorkflow, TheRoundTripsReturnEveryPose) {
   DemoRequest q;
@@ -58,5 +58,5 @@ TEST(DemoWorkflow, RefusesABadRequest) {
   EXPECT_THROW((void)runDemo(q), IoError);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

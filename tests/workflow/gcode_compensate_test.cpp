@@ -19,7 +19,7 @@
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -240,5 +240,5 @@ TEST_F(GcodeCompensateWorkflow, WritesTheFileAndRefusesToOverwriteIt) {
   EXPECT_EQ(slurp(q.out), r.compensation.text);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

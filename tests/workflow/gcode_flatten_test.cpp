@@ -14,7 +14,7 @@
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -73,5 +73,5 @@ TEST(GcodeFlattenWorkflow, RejectsBadSettings) {
   EXPECT_THROW((void)flattenGcode(r), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

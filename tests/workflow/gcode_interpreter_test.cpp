@@ -10,7 +10,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 
@@ -49,5 +49,5 @@ TEST(GcodeInterpreterSettings, RejectsBadSettings) {
   EXPECT_THROW((void)s.options(), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

@@ -16,7 +16,7 @@
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -152,5 +152,5 @@ TEST(GcodeMovesWorkflow, CancellationStopsALongProgram) {
   EXPECT_EQ(messages.size(), 4u);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

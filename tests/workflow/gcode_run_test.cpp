@@ -20,7 +20,7 @@
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -284,5 +284,5 @@ TEST(GcodeRunWorkflow, ReportsProgressAndStopsWhenCancelled) {
   EXPECT_FALSE(fs::exists(q.report));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

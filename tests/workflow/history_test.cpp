@@ -11,7 +11,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -63,5 +63,5 @@ TEST(HistoryWorkflow, RefusesAMissingStoreAndAnUnknownMachine) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

@@ -17,7 +17,7 @@
 #include "pkm/kinematics/hexapod_ik.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace kin = pkm::kinematics;
 
@@ -162,5 +162,5 @@ TEST(SolveWristPoint, SolvesTheHomeWristPoint) {
             kin::ExechonIkStatus::kOk);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

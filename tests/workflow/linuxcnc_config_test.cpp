@@ -16,7 +16,7 @@
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::ElementsAre;
@@ -244,5 +244,5 @@ TEST(LinuxcncConfigWorkflow, SamplesAreWhatTheWriterProduces) {
   }
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

@@ -17,7 +17,7 @@
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -92,5 +92,5 @@ TEST(LinuxcncInstall, RefusesWhatItCannotInstall) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

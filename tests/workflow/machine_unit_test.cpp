@@ -12,7 +12,7 @@
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -51,5 +51,5 @@ TEST(MachineUnit, WarnsOnlyForUnstatedUnitsOnAnInchMachine) {
                         "read as mm, but the machine is in inch (sim.ini)"));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

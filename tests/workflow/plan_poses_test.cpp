@@ -16,7 +16,7 @@
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -159,5 +159,5 @@ TEST(PlanPosesWorkflow, RefusesABadRequest) {
   EXPECT_THROW((void)planPoses(q), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

@@ -13,7 +13,7 @@
 #include "pkm/kinematics/exechon_wrist.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -85,5 +85,5 @@ TEST(PoseChecks, BadRequestsAreRefused) {
   EXPECT_THROW((void)checkPoses(q), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

@@ -14,7 +14,7 @@
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -51,5 +51,5 @@ TEST(ReportRenderWorkflow, ABadDocumentIsNamedAndNothingIsWritten) {
   EXPECT_FALSE(fs::exists(q.out));
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

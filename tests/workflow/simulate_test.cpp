@@ -14,7 +14,7 @@
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
@@ -154,5 +154,5 @@ TEST(SimulateWorkflow, WriteSimulationCreatesTheFolder) {
   fs::remove_all(dir.parent_path());
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

@@ -21,7 +21,7 @@
 #include "support/scratch_files.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 namespace kin = pkm::kinematics;
@@ -161,5 +161,5 @@ TEST(TrackerJoin, MatchingRulesAndErrors) {
   EXPECT_THROW((void)joinTrackerPoints(q), InvalidArgument);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

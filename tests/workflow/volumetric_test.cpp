@@ -10,7 +10,7 @@
 #include "pkm/core/error.hpp"
 
 namespace pkm::workflow {
-namespace {
+namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
 
@@ -89,5 +89,5 @@ TEST(VolumetricWorkflow, ParsesAGrid) {
   EXPECT_THROW((void)parseVolumetricGrid("0:10:20000,0:1:1,0:1:1"), IoError);
 }
 
-}  // namespace
+}  // namespace PKM_TEST_NS
 }  // namespace pkm::workflow

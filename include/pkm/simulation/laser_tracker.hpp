@@ -40,6 +40,10 @@ struct TrackerNoise {
   double range_ppm = 0.0;          ///< range term proportional to r, parts per million
   double angle_sigma = 0.0;        ///< azimuth and elevation encoder noise, rad
   double orientation_sigma = 0.0;  ///< 6-DOF probe orientation noise per axis, rad
+  /// A perfect instrument (the perfect-instrument twin of `pkm validate coverage`): point() and
+  /// rotation() draw their variates as the noisy tracker does, so the random stream stays aligned
+  /// with the measured run, and return the true reading.
+  bool perfect = false;
   /// Throws pkm::InvalidArgument when a field is negative or not finite.
   void validate() const;
   /// σ_r at range r (mm).
