@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "detail/exechon_reading_errors.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/so3.hpp"
 
@@ -124,6 +125,12 @@ ExechonParameterUncertainty exechonParameterUncertainty(
   in.residual_sigma = fit.sigma;
   in.residual_unit = unit;
   in.sources = pointSources(data, sources, initial.unit);
+  // The leg readings' errors reach the residuals r = world(y) − p(θ, q) through −∂p/∂q.
+  const Eigen::MatrixXd J_target_legs =
+      detail::exechonTargetLegJacobian(estimated, data, calibration.fk);
+  for (const detail::LegReadingSource& s :
+       detail::exechonLegReadingSources(estimated, data, sources, calibration.fk))
+    in.sources.push_back({s.contributor, -(J_target_legs * s.readings)});
   in.coverage_factor = sources.coverage_factor;
 
   ExechonParameterUncertainty out;

@@ -7,6 +7,7 @@
 
 #include "detail/budget_monte_carlo.hpp"
 #include "detail/exechon_predicted.hpp"
+#include "detail/exechon_reading_errors.hpp"
 #include "detail/hexapod_errors.hpp"
 #include "pkm/calibration/exechon_budget.hpp"
 #include "pkm/core/error.hpp"
@@ -76,6 +77,8 @@ BudgetMonteCarloResult exechonBudgetMonteCarlo(const kinematics::ExechonModel& i
   const ExechonCalibrationData base =
       detail::predictedExechonData(estimate, data, fit.measurement_frame, calibration.fk);
   const PointErrors errors = pointErrors(base, sources, initial.unit, linear.linear.fit_sigma);
+  const std::vector<detail::LegReadingSource> legs =
+      detail::exechonLegReadingSources(estimate, base, sources, calibration.fk);
   const auto n = static_cast<Eigen::Index>(linear.linear.budgets.size());
   std::vector<bool> uncertain;
   for (const metrology::UncertaintyBudget& b : linear.linear.budgets)
@@ -98,6 +101,16 @@ BudgetMonteCarloResult exechonBudgetMonteCarlo(const kinematics::ExechonModel& i
                                                             normal) +
                                           errors.setup_sigma * normal() +
                                           errors.type_a_sigma * normal();
+        // The leg readings' errors: each independent error drawn at unit standard uncertainty
+        // scales its column (the change at the contributor's reference uncertainty).
+        Eigen::VectorXd dq =
+            Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(d.observations.size()));
+        for (const detail::LegReadingSource& s : legs)
+          for (Eigen::Index j = 0; j < s.readings.cols(); ++j)
+            dq += s.readings.col(j) *
+                  detail::drawError(s.contributor.distribution, 1.0, uniform, normal);
+        for (std::size_t i = 0; i < d.observations.size(); ++i)
+          d.observations[i].joints.readings += dq.segment<3>(3 * static_cast<Eigen::Index>(i));
         try {
           return unknownsOf(calibrateExechon(initial, d, calibration), fit, n);
         } catch (const InvalidArgument&) {

@@ -101,15 +101,16 @@ Stacked stackUnknowns(const AtEstimate& at,
 }
 
 /// The effect matrix of one source: per coordinate, the central difference of the residual blocks
-/// it touches (a reference gauge touches every station of its set), scaled by u/u_ref.
+/// it touches (a reference gauge touches every station of its set), scaled by u/u_ref; the
+/// coordinates of one group add into one column.
 Eigen::MatrixXd effectOf(const AtEstimate& at,
                          const HexapodCalibrationData& data,
                          const Stacked& s,
                          const std::vector<ObservationRef>& refs,
                          const detail::CoordinateSource& source) {
   const double u_ref = source.contributor.standardUncertainty();
-  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(s.observation_rows,
-                                            static_cast<Eigen::Index>(source.coordinates.size()));
+  const detail::SourceColumns columns = detail::sourceColumns(source);
+  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(s.observation_rows, columns.count);
   kinematics::HexapodData work(at.model);
   HexapodCalibrationData d = data;
   for (std::size_t j = 0; j < source.coordinates.size(); ++j) {
@@ -129,7 +130,7 @@ Eigen::MatrixXd effectOf(const AtEstimate& at,
       d = data;
       detail::perturbMeasurement(d, plus, -h);
       const Eigen::VectorXd rm = blockResidual(at, work, d, ref);
-      E.block(s.row_offset[b], static_cast<Eigen::Index>(j), ref.rows(), 1) =
+      E.block(s.row_offset[b], columns.column[j], ref.rows(), 1) +=
           (rp - rm) / (2.0 * h) * (u_ref > 0.0 ? c.u / u_ref : 0.0);
     }
   }
@@ -227,7 +228,7 @@ HexapodParameterUncertainty hexapodParameterUncertainty(
   in.residual_sigma = fit.sigma;
   in.residual_unit = unit;
   for (const detail::CoordinateSource& src :
-       detail::hexapodCoordinateSources(data, sources, initial.unit, fit.backlash.has_value()))
+       detail::hexapodCoordinateSources(data, sources, initial, fit.backlash.has_value()))
     in.sources.push_back({src.contributor, effectOf(at, data, s, refs, src)});
   in.coverage_factor = sources.coverage_factor;
 

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <optional>
 
 #include "detail/budget_monte_carlo.hpp"
@@ -66,7 +67,7 @@ BudgetMonteCarloResult hexapodBudgetMonteCarlo(const kinematics::HexapodModel& i
   const kinematics::HexapodModel estimate = withHexapodParameters(initial, fit.parameters);
   const HexapodCalibrationData base = detail::predictedData(estimate, data, fit.measurement_frame);
   std::vector<detail::CoordinateSource> inputs =
-      detail::hexapodCoordinateSources(data, sources, initial.unit, fit.backlash.has_value());
+      detail::hexapodCoordinateSources(data, sources, initial, fit.backlash.has_value());
   if (linear.linear.fit_sigma > 0.0) {
     detail::CoordinateSource typeA;
     typeA.contributor.distribution = metrology::Distribution::kNormal;
@@ -86,10 +87,21 @@ BudgetMonteCarloResult hexapodBudgetMonteCarlo(const kinematics::HexapodModel& i
           detail::GaussianStream& normal,
           detail::UniformStream& uniform) -> std::optional<Eigen::VectorXd> {
         HexapodCalibrationData d = base;
-        for (const detail::CoordinateSource& s : inputs)
-          for (const detail::MeasuredCoordinate& c : s.coordinates)
-            detail::perturbMeasurement(
-                d, c, detail::drawError(s.contributor.distribution, c.u, uniform, normal));
+        for (const detail::CoordinateSource& s : inputs) {
+          // A group's error is drawn once (unit standard uncertainty) and scaled per coordinate.
+          std::map<int, double> shared;
+          for (const detail::MeasuredCoordinate& c : s.coordinates) {
+            if (c.group < 0) {
+              detail::perturbMeasurement(
+                  d, c, detail::drawError(s.contributor.distribution, c.u, uniform, normal));
+              continue;
+            }
+            const auto [it, added] = shared.emplace(c.group, 0.0);
+            if (added)
+              it->second = detail::drawError(s.contributor.distribution, 1.0, uniform, normal);
+            detail::perturbMeasurement(d, c, c.u * it->second);
+          }
+        }
         // The prior's centre (the machine file's free parameters) is an input too: drawn from
         // N(θ₀, σ²), σ as the linear budget's prior contributor states it.
         kinematics::HexapodModel start = initial;

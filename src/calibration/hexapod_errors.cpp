@@ -78,22 +78,6 @@ void add(std::vector<CoordinateSource>& out, CoordinateSource s) {
   if (!s.coordinates.empty() && s.contributor.value > 0.0) out.push_back(std::move(s));
 }
 
-/// Every strut reading of `data` (the reference station's once per set), standard uncertainty 1.
-std::vector<MeasuredCoordinate> strutReadings(const HexapodCalibrationData& data) {
-  std::vector<MeasuredCoordinate> c;
-  for (const ObservationRef& ref : observations(data)) {
-    const bool two_ends = ref.kind == ObservationRef::Kind::kDistance &&
-                          data.distances[ref.index].readings_from.has_value();
-    for (int k = 6; k < 12; ++k) c.push_back({ref, k, 1.0});
-    if (two_ends)
-      for (int k = 12; k < 18; ++k) c.push_back({ref, k, 1.0});
-  }
-  for (std::size_t s = 0; s < data.constrained.size(); ++s)
-    if (!data.constrained[s].stations.empty())
-      for (int k = 12; k < 18; ++k) c.push_back({{ObservationRef::Kind::kGauge, 0, s}, k, 1.0});
-  return c;
-}
-
 /// The machine's strut readings as inputs: encoder resolution (rectangular ±res/2), repeatability
 /// (normal) and backlash (U-shaped ±b/2, independent per reading) unless the fit estimates it.
 void addActuatorSources(std::vector<CoordinateSource>& out,
@@ -145,7 +129,46 @@ void addActuatorSources(std::vector<CoordinateSource>& out,
        lost});
 }
 
+/// The distance instrument: the laser's resolution and wavelength accuracy over each distance.
+CoordinateSource distanceSource(const HexapodCalibrationData& data,
+                                const std::vector<ObservationRef>& refs,
+                                const metrology::LaserInterferometer& laser,
+                                LengthUnit unit) {
+  const double per_mm = 1.0 / millimetresPer(unit);
+  std::vector<MeasuredCoordinate> distances;
+  double longest = 0.0;
+  for (const ObservationRef& ref : refs)
+    if (ref.kind == ObservationRef::Kind::kDistance) {
+      const double d = data.distances[ref.index].distance;
+      const double a =
+          0.5 * laser.resolution_mm * per_mm + laser.wavelength_accuracy_ppm * 1e-6 * d;
+      distances.push_back({ref, 0, a / kSqrt3});
+      longest = std::max(longest, a);
+    }
+  return {contributor("distance instrument (laser resolution and wavelength)",
+                      longest,
+                      std::string(toString(unit)),
+                      Distribution::kRectangular,
+                      "±(res/2 + wavelength accuracy × d) per distance; value at the longest"),
+          distances};
+}
+
 }  // namespace
+
+std::vector<MeasuredCoordinate> strutReadings(const HexapodCalibrationData& data) {
+  std::vector<MeasuredCoordinate> c;
+  for (const ObservationRef& ref : observations(data)) {
+    const bool two_ends = ref.kind == ObservationRef::Kind::kDistance &&
+                          data.distances[ref.index].readings_from.has_value();
+    for (int k = 6; k < 12; ++k) c.push_back({ref, k, 1.0});
+    if (two_ends)
+      for (int k = 12; k < 18; ++k) c.push_back({ref, k, 1.0});
+  }
+  for (std::size_t s = 0; s < data.constrained.size(); ++s)
+    if (!data.constrained[s].stations.empty())
+      for (int k = 12; k < 18; ++k) c.push_back({{ObservationRef::Kind::kGauge, 0, s}, k, 1.0});
+  return c;
+}
 
 bool actsOnWholeSet(const MeasuredCoordinate& c) {
   return c.ref.kind == ObservationRef::Kind::kGauge &&
@@ -154,8 +177,9 @@ bool actsOnWholeSet(const MeasuredCoordinate& c) {
 
 std::vector<CoordinateSource> hexapodCoordinateSources(const HexapodCalibrationData& data,
                                                        const metrology::UncertaintySources& sources,
-                                                       LengthUnit unit,
+                                                       const kinematics::HexapodModel& model,
                                                        bool backlash_estimated) {
+  const LengthUnit unit = model.unit;
   const double per_mm = 1.0 / millimetresPer(unit);
   const std::string u(toString(unit));
   std::vector<CoordinateSource> out;
@@ -199,24 +223,7 @@ std::vector<CoordinateSource> hexapodCoordinateSources(const HexapodCalibrationD
                    Distribution::kRectangular,
                    "half the display resolution, per gauge reading"),
        gauges});
-  // Distances: the laser's wavelength accuracy over the distance and its resolution.
-  std::vector<MeasuredCoordinate> distances;
-  double longest = 0.0;
-  for (const ObservationRef& ref : refs)
-    if (ref.kind == ObservationRef::Kind::kDistance) {
-      const double d = data.distances[ref.index].distance;
-      const double a = 0.5 * sources.laser.resolution_mm * per_mm +
-                       sources.laser.wavelength_accuracy_ppm * 1e-6 * d;
-      distances.push_back({ref, 0, a / kSqrt3});
-      longest = std::max(longest, a);
-    }
-  add(out,
-      {contributor("distance instrument (laser resolution and wavelength)",
-                   longest,
-                   u,
-                   Distribution::kRectangular,
-                   "±(res/2 + wavelength accuracy × d) per distance; value at the longest"),
-       distances});
+  add(out, distanceSource(data, refs, sources.laser, unit));
   const double setup = sources.environment.setup_repeatability_mm * per_mm;
   std::vector<MeasuredCoordinate> positions = every(ObservationRef::Kind::kPose, {0, 1, 2}, setup);
   const std::vector<MeasuredCoordinate> points =
@@ -230,6 +237,8 @@ std::vector<CoordinateSource> hexapodCoordinateSources(const HexapodCalibrationD
                    "environment.setup_repeatability_mm, per coordinate of each tracker reading"),
        positions});
   addActuatorSources(out, data, sources.actuators, unit, backlash_estimated);
+  addLeadSources(out, data, sources.actuators, unit, homeReadings(model));
+  addWeightSource(out, data, sources.hexapod_platform, model);
   return out;
 }
 

@@ -26,10 +26,32 @@ struct Section {
   std::vector<Field> fields;
 };
 
+/// The sections stating the weights the struts and legs carry.
+std::vector<Section> weightSections(metrology::UncertaintySources& s) {
+  return {{"hexapod_platform",
+           &s.hexapod_platform.name,
+           {{"mass_kg", &s.hexapod_platform.mass_kg},
+            {"com_x_mm", &s.hexapod_platform.com_x_mm},
+            {"com_y_mm", &s.hexapod_platform.com_y_mm},
+            {"com_z_mm", &s.hexapod_platform.com_z_mm},
+            {"strut_mass_kg", &s.hexapod_platform.strut_mass_kg},
+            {"strut_com_fraction", &s.hexapod_platform.strut_com_fraction},
+            {"strut_stiffness_n_per_um", &s.hexapod_platform.strut_stiffness_n_per_um},
+            {"joint_clearance_mm", &s.hexapod_platform.joint_clearance_mm}}},
+          {"exechon_head",
+           &s.exechon_head.name,
+           {{"mass_kg", &s.exechon_head.mass_kg},
+            {"com_x_mm", &s.exechon_head.com_x_mm},
+            {"com_y_mm", &s.exechon_head.com_y_mm},
+            {"com_z_mm", &s.exechon_head.com_z_mm},
+            {"leg_stiffness_n_per_um", &s.exechon_head.leg_stiffness_n_per_um},
+            {"joint_clearance_mm", &s.exechon_head.joint_clearance_mm}}}};
+}
+
 std::vector<Section> sections(metrology::UncertaintySources& s) {
   metrology::LaserInterferometer& l = s.laser;
   metrology::MeasurementEnvironment& e = s.environment;
-  return {
+  std::vector<Section> out{
       {"laser",
        &l.name,
        {{"vacuum_wavelength_um", &l.vacuum_wavelength_um},
@@ -66,7 +88,11 @@ std::vector<Section> sections(metrology::UncertaintySources& s) {
        &s.actuators.name,
        {{"resolution_mm", &s.actuators.resolution_mm},
         {"repeatability_mm", &s.actuators.repeatability_mm},
-        {"backlash_mm", &s.actuators.backlash_mm}}},
+        {"backlash_mm", &s.actuators.backlash_mm},
+        {"lead_error_mm_per_m", &s.actuators.lead_error_mm_per_m},
+        {"lead_wave_mm", &s.actuators.lead_wave_mm},
+        {"lead_wave_length_mm", &s.actuators.lead_wave_length_mm},
+        {"lead_periodic_mm", &s.actuators.lead_periodic_mm}}},
       {"ballbar",
        &s.ballbar.name,
        {{"sensor_accuracy_mm", &s.ballbar.sensor_accuracy_mm},
@@ -85,6 +111,10 @@ std::vector<Section> sections(metrology::UncertaintySources& s) {
         {"setup_repeatability_mm", &e.setup_repeatability_mm},
         {"environmental_variation_mm", &e.environmental_variation_mm}}},
   };
+  // The weights after the actuators that carry them (the file's order).
+  const std::vector<Section> weights = weightSections(s);
+  out.insert(out.begin() + 5, weights.begin(), weights.end());
+  return out;
 }
 
 std::vector<Field> airFields(metrology::AirConditions& air) {
@@ -137,6 +167,8 @@ metrology::UncertaintySources readUncertaintySources(const NamedText& text) {
                 "dial_gauge",
                 "tracker",
                 "actuators",
+                "hexapod_platform",
+                "exechon_head",
                 "ballbar",
                 "environment",
                 "coverage_factor"});

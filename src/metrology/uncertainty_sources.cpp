@@ -21,6 +21,42 @@ const char* toString(ConditionOrigin origin) {
   return "default";
 }
 
+namespace {
+
+/// The weights' statements: masses and clearances >= 0, centres finite, stiffness > 0, the
+/// strut share in 0..1; otherwise false with the reason.
+bool weightsValid(const HexapodPlatform& pl, const ExechonHead& h, std::string& reason) {
+  const auto fail = [&](std::string why) {
+    reason = std::move(why);
+    return false;
+  };
+  const std::initializer_list<std::pair<const char*, double>> non_negative{
+      {"hexapod_platform mass_kg", pl.mass_kg},
+      {"hexapod_platform strut_mass_kg", pl.strut_mass_kg},
+      {"hexapod_platform joint_clearance_mm", pl.joint_clearance_mm},
+      {"exechon_head mass_kg", h.mass_kg},
+      {"exechon_head joint_clearance_mm", h.joint_clearance_mm}};
+  for (const auto& [name, v] : non_negative)
+    if (!(std::isfinite(v) && v >= 0.0))
+      return fail(fmt::format("{} must be >= 0, got {}", name, v));
+  if (!(std::isfinite(pl.com_x_mm) && std::isfinite(pl.com_y_mm) && std::isfinite(pl.com_z_mm)))
+    return fail("hexapod_platform com_x_mm, com_y_mm and com_z_mm must be finite");
+  if (!(pl.strut_com_fraction >= 0.0 && pl.strut_com_fraction <= 1.0))
+    return fail(fmt::format("hexapod_platform strut_com_fraction must be in 0..1, got {}",
+                            pl.strut_com_fraction));
+  if (!(std::isfinite(pl.strut_stiffness_n_per_um) && pl.strut_stiffness_n_per_um > 0.0))
+    return fail(fmt::format("hexapod_platform strut_stiffness_n_per_um must be > 0, got {}",
+                            pl.strut_stiffness_n_per_um));
+  if (!(std::isfinite(h.com_x_mm) && std::isfinite(h.com_y_mm) && std::isfinite(h.com_z_mm)))
+    return fail("exechon_head com_x_mm, com_y_mm and com_z_mm must be finite");
+  if (!(std::isfinite(h.leg_stiffness_n_per_um) && h.leg_stiffness_n_per_um > 0.0))
+    return fail(fmt::format("exechon_head leg_stiffness_n_per_um must be > 0, got {}",
+                            h.leg_stiffness_n_per_um));
+  return true;
+}
+
+}  // namespace
+
 bool UncertaintySources::isValid(std::string* why) const {
   const auto fail = [&](std::string reason) {
     if (why) *why = std::move(reason);
@@ -54,6 +90,9 @@ bool UncertaintySources::isValid(std::string* why) const {
       {"actuators resolution_mm", actuators.resolution_mm},
       {"actuators repeatability_mm", actuators.repeatability_mm},
       {"actuators backlash_mm", actuators.backlash_mm},
+      {"actuators lead_error_mm_per_m", actuators.lead_error_mm_per_m},
+      {"actuators lead_wave_mm", actuators.lead_wave_mm},
+      {"actuators lead_periodic_mm", actuators.lead_periodic_mm},
       {"ballbar sensor_accuracy_mm", ballbar.sensor_accuracy_mm},
       {"ballbar resolution_mm", ballbar.resolution_mm},
       {"ballbar length_uncertainty_mm", ballbar.length_uncertainty_mm},
@@ -79,6 +118,11 @@ bool UncertaintySources::isValid(std::string* why) const {
                             e.material_temperature_c));
   if (!std::isfinite(e.expansion_coefficient_per_k))
     return fail("environment expansion_coefficient_per_k must be finite");
+  if (!(std::isfinite(actuators.lead_wave_length_mm) && actuators.lead_wave_length_mm > 0.0))
+    return fail(fmt::format("actuators lead_wave_length_mm must be > 0, got {}",
+                            actuators.lead_wave_length_mm));
+  if (std::string reason; !weightsValid(hexapod_platform, exechon_head, reason))
+    return fail(reason);
   std::string air_why;
   if (!e.air.isValid(&air_why)) return fail("environment air: " + air_why);
   if (!(std::isfinite(coverage_factor) && coverage_factor > 0.0))

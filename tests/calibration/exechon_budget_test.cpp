@@ -7,6 +7,7 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/machine_loader.hpp"
+#include "pkm/simulation/compliance.hpp"
 #include "pkm/simulation/exechon_tracker.hpp"
 #include "pkm/simulation/hybrid_tripod_errors.hpp"
 #include "support/tolerances.hpp"
@@ -65,11 +66,29 @@ const Problem& problem() {
   return p;
 }
 
+/// A tracker of ±half_width per coordinate and perfect leg readings.
 metrology::UncertaintySources tracker(double half_width_mm) {
   metrology::UncertaintySources s;
   s.tracker.accuracy_mm = half_width_mm;
   s.tracker.accuracy_mm_per_m = 0.0;
+  s.actuators.resolution_mm = s.actuators.repeatability_mm = s.actuators.backlash_mm = 0.0;
   return s;
+}
+
+/// The standard uncertainty a budget lists for its contributor whose name contains `part`.
+double contribution(const metrology::UncertaintyBudget& b, const std::string& part) {
+  for (const metrology::UncertaintyContributor& c : b.contributors)
+    if (c.name.find(part) != std::string::npos)
+      return std::abs(c.sensitivity) * c.standardUncertainty();
+  return std::nan("");
+}
+
+/// The change of the estimate when every observation's joints become `change(joints)`.
+template <class Change>
+ExechonParameterVector shiftOf(const Problem& p, Change change) {
+  ExechonCalibrationData d = p.data;
+  for (ExechonObservation& o : d.observations) o.joints = change(o.joints);
+  return calibrateExechon(p.initial, d, p.options).parameters - p.fit.parameters;
 }
 
 TEST(ExechonParameterUncertainty, TheFitScatterAloneIsTheFitCovariance) {
@@ -110,6 +129,74 @@ TEST(ExechonParameterUncertainty, AnInstrumentThatExplainsTheScatterReplacesTheT
   bad.coverage_factor = 0.0;
   EXPECT_THROW((void)exechonParameterUncertainty(p.initial, p.data, p.fit, p.options, bad),
                InvalidArgument);
+}
+
+TEST(ExechonParameterUncertainty, TheHeadsWeightIsTheDeflectionTheSimulatorsStaticsGive) {
+  // The budget's head-weight term is the parameters' shift that the legs' deflection causes,
+  // stated as a standard uncertainty (GUM F.2.4.5). Independent check: the simulator's own
+  // statics (simulation::exechonDeflectedJoints, the virtual machine's compliance) deflect the
+  // readings, and the re-fit's shift is that term. The re-fit is checked at a tenth of the
+  // deflection (ten times as stiff, a tenth of the clearance) and scaled by ten: at the full
+  // deflection it departs from its linearisation by up to 6 % in the two worst-conditioned
+  // parameters (l12A, pC), which is the fit's nonlinearity, not the propagation's error. Named
+  // tolerance: 2 % plus 1e-6 (mm or rad).
+  const Problem& p = problem();
+  metrology::UncertaintySources src = tracker(0.0);
+  src.exechon_head.mass_kg = 250.0;
+  src.exechon_head.com_z_mm = 200.0;
+  src.exechon_head.leg_stiffness_n_per_um = 50.0;
+  src.exechon_head.joint_clearance_mm = 0.004;
+  const ExechonParameterUncertainty u =
+      exechonParameterUncertainty(p.initial, p.data, p.fit, p.options, src);
+  const ExechonModel estimate =
+      withExechonParameters(p.initial, p.fit.parameters, p.initial.world_T_zoppi);
+  simulation::ExechonCompliance head;
+  head.head_mass_kg = 250.0;
+  head.head_com_mm = Eigen::Vector3d(0, 0, 200);
+  head.leg_stiffness_n_per_um = 500.0;
+  head.joint_clearance_mm = 0.0004;
+  const ExechonParameterVector shift =
+      10.0 * shiftOf(p, [&](const kinematics::ExechonJoints& q) {
+        return simulation::exechonDeflectedJoints(estimate, q, estimate.home, p.options.fk, head);
+      });
+  int moved = 0;
+  for (std::size_t b = 0; b < u.linear.budgets.size(); ++b) {
+    const int k = u.parameter_indices[b];
+    if (k < 0) continue;
+    const double expected = std::abs(shift(k));
+    EXPECT_NEAR(contribution(u.linear.budgets[b], "head"), expected, 0.02 * expected + 1e-6)
+        << exechonParameterName(k);
+    moved += expected > 1e-3 ? 1 : 0;
+  }
+  EXPECT_GE(moved, 3);
+}
+
+TEST(ExechonParameterUncertainty, TheLegsLeadErrorIsOneSlopePerLegFromMidStroke) {
+  // As the hexapod's: a slope s on leg l, zero at mid-stroke, shifts the estimate by δθ_l(s); the
+  // budget's term is √(Σ_l δθ_l(e_p)²)/√3. Named tolerance: 2 % plus 1e-6.
+  const Problem& p = problem();
+  metrology::UncertaintySources src = tracker(0.0);
+  src.actuators.lead_error_mm_per_m = 0.1;
+  const ExechonParameterUncertainty u =
+      exechonParameterUncertainty(p.initial, p.data, p.fit, p.options, src);
+  ExechonParameterVector variance = ExechonParameterVector::Zero();
+  for (int l = 0; l < 3; ++l) {
+    const kinematics::ExechonLeg& leg = p.initial.legs[static_cast<std::size_t>(l)];
+    ASSERT_TRUE(std::isfinite(leg.min_reading) && std::isfinite(leg.max_reading));
+    const double mid = 0.5 * (leg.min_reading + leg.max_reading);
+    const ExechonParameterVector shift = shiftOf(p, [&](kinematics::ExechonJoints q) {
+      q.readings(l) += 1e-4 * (q.readings(l) - mid);
+      return q;
+    });
+    variance += shift.array().square().matrix() / 3.0;
+  }
+  for (std::size_t b = 0; b < u.linear.budgets.size(); ++b) {
+    const int k = u.parameter_indices[b];
+    if (k < 0) continue;
+    const double expected = std::sqrt(variance(k));
+    EXPECT_NEAR(contribution(u.linear.budgets[b], "lead error"), expected, 0.02 * expected + 1e-6)
+        << exechonParameterName(k);
+  }
 }
 
 TEST(ExechonBudgetMonteCarlo, AgreesWithTheLinearPropagationOnANearLinearCalibration) {

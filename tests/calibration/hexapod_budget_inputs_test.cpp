@@ -8,6 +8,9 @@
 #include "constrained_samples.hpp"
 #include "pkm/calibration/hexapod_budget.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/kinematics/hexapod_fk.hpp"
+#include "pkm/kinematics/hexapod_ik.hpp"
+#include "pkm/simulation/compliance.hpp"
 #include "support/sample_models.hpp"
 #include "support/tolerances.hpp"
 
@@ -112,6 +115,168 @@ TEST(HexapodParameterUncertainty, StrutReadingsAreInputsAndTheirBacklashUnlessEs
     names += c.name + ";";
   EXPECT_NE(names.find("backlash"), std::string::npos) << names;
   EXPECT_NE(names.find("resolution"), std::string::npos) << names;
+}
+
+/// `data` with every reading r of strut k moved by `shift(r)`.
+template <class Shift>
+HexapodCalibrationData withStrutShift(HexapodCalibrationData data, int k, Shift shift) {
+  for (ConstrainedMotionData& set : data.constrained) {
+    set.reference.readings(k) += shift(set.reference.readings(k));
+    for (GaugeStation& s : set.stations) s.readings(k) += shift(s.readings(k));
+  }
+  return data;
+}
+
+/// The standard uncertainty a budget lists for its contributor whose name contains `part`.
+double contribution(const metrology::UncertaintyBudget& b, const std::string& part) {
+  for (const metrology::UncertaintyContributor& c : b.contributors)
+    if (c.name.find(part) != std::string::npos)
+      return std::abs(c.sensitivity) * c.standardUncertainty();
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+TEST(HexapodParameterUncertainty, TheScrewsLeadErrorIsOneSlopePerStrutAndAWaveOfUnknownPhase) {
+  // Independent check by re-fitting: a slope s on strut k moves the estimate by δθ_k(s); the
+  // budget's lead-error term must be √(Σ_k δθ_k(e_p)²)/√3 (rectangular slopes in ±e_p), and its
+  // wave term √(Σ_k δθ_k(A·sin)² + δθ_k(A·cos)²)/√2 (U-shaped parts of amplitude A). The fit is
+  // linear over such shifts: named tolerance 2 % of the term plus 1e-6 mm.
+  const HexapodModel nominal = test::millingModel();
+  const HexapodCalibrationData data = gaugeData(nominal);
+  const HexapodCalibrationOptions options = priorOptions(2.0);
+  const HexapodCalibrationSummary fit = calibrateHexapod(nominal, data, options);
+  metrology::UncertaintySources lead;
+  lead.dial_gauge.accuracy_mm = lead.dial_gauge.resolution_mm = 0.0;
+  lead.actuators.resolution_mm = lead.actuators.backlash_mm = 0.0;
+  lead.actuators.repeatability_mm = 0.0;
+  lead.actuators.lead_error_mm_per_m = 0.1;
+  lead.actuators.lead_wave_mm = 0.01;
+  lead.actuators.lead_wave_length_mm = 300.0;
+  const HexapodParameterUncertainty u =
+      hexapodParameterUncertainty(nominal, data, fit, options, lead);
+  kinematics::HexapodData work(nominal);
+  const kinematics::StrutVector home = kinematics::inverseKinematics(nominal, work, nominal.home);
+  const double slope = 1e-4, wave = 0.01, omega = 2.0 * M_PI / 300.0;
+  Eigen::VectorXd slope_var = Eigen::VectorXd::Zero(kHexapodParameters);
+  Eigen::VectorXd wave_var = Eigen::VectorXd::Zero(kHexapodParameters);
+  const auto shiftOf = [&](const HexapodCalibrationData& d) -> HexapodParameterVector {
+    return calibrateHexapod(nominal, d, options).parameters - fit.parameters;
+  };
+  for (int k = 0; k < 6; ++k) {
+    const auto r0 = home(k);
+    slope_var += shiftOf(withStrutShift(data, k, [&](double r) { return slope * (r - r0); }))
+                     .array()
+                     .square()
+                     .matrix() /
+                 3.0;
+    wave_var +=
+        shiftOf(withStrutShift(data, k, [&](double r) { return wave * std::sin(omega * r); }))
+            .array()
+            .square()
+            .matrix() /
+        2.0;
+    wave_var +=
+        shiftOf(withStrutShift(data, k, [&](double r) { return wave * std::cos(omega * r); }))
+            .array()
+            .square()
+            .matrix() /
+        2.0;
+  }
+  int checked = 0;
+  for (std::size_t b = 0; b < u.linear.budgets.size(); ++b) {
+    const int k = u.parameter_indices[b];
+    if (k < 0) continue;
+    const metrology::UncertaintyBudget& budget = u.linear.budgets[b];
+    const double expected_slope = std::sqrt(slope_var(k)), expected_wave = std::sqrt(wave_var(k));
+    EXPECT_NEAR(contribution(budget, "lead error"), expected_slope, 0.02 * expected_slope + 1e-6)
+        << budget.quantity;
+    EXPECT_NEAR(contribution(budget, "lead wave"), expected_wave, 0.02 * expected_wave + 1e-6)
+        << budget.quantity;
+    checked += expected_slope > 1e-3 ? 1 : 0;
+  }
+  EXPECT_GE(checked, 6);  // the strut offsets at least, which the slopes move by ~0.1 mm
+  // The Monte Carlo draws one slope per strut for all of its readings: it agrees with the linear
+  // propagation (200 trials: u to about ±10 %, 1σ).
+  lead.actuators.lead_wave_mm = 0.0;
+  const HexapodParameterUncertainty only_slope =
+      hexapodParameterUncertainty(nominal, data, fit, options, lead);
+  BudgetMonteCarloOptions mc;
+  mc.batch = 50;
+  mc.max_trials = 200;
+  const BudgetMonteCarloResult m =
+      hexapodBudgetMonteCarlo(nominal, data, fit, options, lead, only_slope, mc);
+  for (std::size_t b = 0; b < only_slope.linear.budgets.size(); ++b) {
+    const double linear = only_slope.linear.budgets[b].combinedStandardUncertainty();
+    if (linear < 1e-3) continue;
+    EXPECT_NEAR(m.unknowns[b].standard_uncertainty, linear, 0.25 * linear)
+        << only_slope.linear.budgets[b].quantity;
+  }
+}
+
+TEST(HexapodParameterUncertainty, ThePlatformsWeightIsTheDeflectionTheStaticsGive) {
+  // The weight term is the parameters' shift that the struts' deflection causes, stated as a
+  // standard uncertainty (GUM F.2.4.5). Independent check by re-fitting readings deflected by the
+  // simulator's statics at each station's pose (FK of its readings). The gauge fit leans on its
+  // prior in four directions and re-converges there only to about 1e-3 mm, so terms are compared
+  // with the largest shift (0.29 mm); measured: every term within 0.9 % of it. Named tolerance:
+  // 5 % of the largest shift.
+  const HexapodModel nominal = test::millingModel();
+  const HexapodCalibrationData data = gaugeData(nominal);
+  const HexapodCalibrationOptions options = priorOptions(2.0);
+  const HexapodCalibrationSummary fit = calibrateHexapod(nominal, data, options);
+  metrology::UncertaintySources weight;
+  weight.dial_gauge.accuracy_mm = weight.dial_gauge.resolution_mm = 0.0;
+  weight.actuators.resolution_mm = weight.actuators.backlash_mm = 0.0;
+  weight.actuators.repeatability_mm = 0.0;
+  weight.hexapod_platform.mass_kg = 150.0;
+  weight.hexapod_platform.com_z_mm = -100.0;
+  weight.hexapod_platform.strut_mass_kg = 20.0;
+  weight.hexapod_platform.joint_clearance_mm = 0.004;
+  const HexapodParameterUncertainty u =
+      hexapodParameterUncertainty(nominal, data, fit, options, weight);
+  simulation::HexapodCompliance c;
+  c.platform_mass_kg = 150.0;
+  c.platform_com_mm = Eigen::Vector3d(0, 0, -100);
+  c.strut_mass_kg = 20.0;
+  c.joint_clearance_mm = 0.004;
+  kinematics::HexapodData work(nominal);
+  const auto deflect = [&](kinematics::StrutVector& q) {
+    ASSERT_TRUE(kinematics::forwardKinematics(nominal, work, q, nominal.home).ok());
+    (void)kinematics::inverseKinematics(nominal, work, kinematics::PoseRpy(work.pose));
+    const kinematics::StrutVector loads = simulation::hexapodStrutLoads(nominal, work, c);
+    for (int k = 0; k < 6; ++k) {
+      int side = 1;
+      q(k) += simulation::legDeflection(
+          loads(k), c.strut_stiffness_n_per_um, c.joint_clearance_mm, side);
+    }
+  };
+  HexapodCalibrationData deflected = data;
+  for (ConstrainedMotionData& set : deflected.constrained) {
+    deflect(set.reference.readings);
+    for (GaugeStation& st : set.stations) deflect(st.readings);
+  }
+  const HexapodParameterVector shift =
+      calibrateHexapod(nominal, deflected, options).parameters - fit.parameters;
+  const double largest = shift.cwiseAbs().maxCoeff();
+  ASSERT_GT(largest, 0.1);
+  int moved = 0;
+  double worst = 0.0;
+  for (std::size_t b = 0; b < u.linear.budgets.size(); ++b) {
+    const int k = u.parameter_indices[b];
+    if (k < 0) continue;
+    const double expected = std::abs(shift(k));
+    worst = std::max(worst, std::abs(contribution(u.linear.budgets[b], "weight") - expected));
+    EXPECT_NEAR(contribution(u.linear.budgets[b], "weight"), expected, 0.05 * largest)
+        << u.linear.budgets[b].quantity;
+    moved += expected > 0.1 * largest ? 1 : 0;
+  }
+  RecordProperty("largest_shift_mm", std::to_string(largest));
+  RecordProperty("worst_over_largest", std::to_string(worst / largest));
+  EXPECT_GE(moved, 6);
+  // The statics are the mm model's: an inch machine is refused by name.
+  HexapodModel inch = nominal;
+  inch.unit = LengthUnit::kInch;
+  EXPECT_THROW((void)hexapodParameterUncertainty(inch, data, fit, options, weight),
+               InvalidArgument);
 }
 
 TEST(HexapodTcpUncertainty, TheModelsRemainderAddsInQuadrature) {

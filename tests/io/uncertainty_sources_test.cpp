@@ -8,6 +8,7 @@
 #include <string>
 
 #include "pkm/core/error.hpp"
+#include "pkm/io/named_text.hpp"
 
 namespace pkm::io {
 namespace PKM_TEST_NS {
@@ -32,6 +33,12 @@ TEST(UncertaintySourcesJson, RoundTripsEveryField) {
   s.tracker.accuracy_mm = 0.01;
   s.actuators.name = "lab struts";
   s.actuators.backlash_mm = 0.008;
+  s.actuators.lead_error_mm_per_m = 0.1;
+  s.actuators.lead_wave_mm = 0.01;
+  s.hexapod_platform.mass_kg = 150.0;
+  s.hexapod_platform.com_z_mm = -100.0;
+  s.exechon_head.mass_kg = 250.0;
+  s.exechon_head.leg_stiffness_n_per_um = 40.0;
   s.ballbar.name = "lab ballbar";
   s.ballbar.sensor_accuracy_mm = 0.7e-3;
   s.environment.air.temperature_c = 21.7;
@@ -47,6 +54,11 @@ TEST(UncertaintySourcesJson, RoundTripsEveryField) {
   EXPECT_EQ(back.coverage_factor, 2.5);
   EXPECT_EQ(back.actuators.name, "lab struts");
   EXPECT_EQ(back.actuators.backlash_mm, 0.008);
+  EXPECT_EQ(back.actuators.lead_error_mm_per_m, 0.1);
+  EXPECT_EQ(back.actuators.lead_wave_mm, 0.01);
+  EXPECT_EQ(back.hexapod_platform.com_z_mm, -100.0);
+  EXPECT_EQ(back.exechon_head.mass_kg, 250.0);
+  EXPECT_EQ(back.exechon_head.leg_stiffness_n_per_um, 40.0);
   EXPECT_EQ(back.ballbar.name, "lab ballbar");
   EXPECT_EQ(back.ballbar.sensor_accuracy_mm, 0.7e-3);
   EXPECT_THAT(text, HasSubstr(kUncertaintySourcesSchema));
@@ -83,6 +95,24 @@ TEST(UncertaintySourcesJson, BadInputNamesFileAndLine) {
   EXPECT_THAT(errorOf("{\n  \"laser\": [1,\n"), HasSubstr("src.json:"));
   EXPECT_THAT(errorOf(R"({"schema": "other"})"), HasSubstr("unsupported schema"));
   EXPECT_THAT(errorOf(R"({"coverage_factor": 0})"), HasSubstr("coverage_factor"));
+  // The machine's statements: a screw wave of no length, a negative mass, a stiffness of 0.
+  EXPECT_THAT(errorOf(R"({"actuators": {"lead_wave_length_mm": 0}})"),
+              HasSubstr("lead_wave_length_mm must be > 0"));
+  EXPECT_THAT(errorOf(R"({"exechon_head": {"mass_kg": -1}})"),
+              HasSubstr("exechon_head mass_kg must be >= 0"));
+  EXPECT_THAT(errorOf(R"({"hexapod_platform": {"strut_stiffness_n_per_um": 0}})"),
+              HasSubstr("strut_stiffness_n_per_um must be > 0"));
+  EXPECT_THAT(errorOf(R"({"hexapod_platform": {"strut_com_fraction": 2}})"),
+              HasSubstr("strut_com_fraction"));
+}
+
+TEST(UncertaintySourcesJson, TheRealisticWorkshopsStatementReads) {
+  const metrology::UncertaintySources s = readUncertaintySources(
+      readNamedText(std::string(PKM_SOURCE_DIR) + "/data/uncertainty/realistic-workshop.json"));
+  EXPECT_EQ(s.actuators.lead_error_mm_per_m, 0.1);
+  EXPECT_EQ(s.hexapod_platform.mass_kg, 150.0);
+  EXPECT_EQ(s.exechon_head.com_z_mm, 200.0);
+  EXPECT_EQ(s.tracker.accuracy_mm, metrology::LaserTrackerSpec{}.accuracy_mm);  // not stated
 }
 
 }  // namespace PKM_TEST_NS

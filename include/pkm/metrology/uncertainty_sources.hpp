@@ -71,6 +71,53 @@ struct ActuatorReadings {
   double resolution_mm = 1e-3;     ///< encoder resolution (one count), mm: ± half of it
   double repeatability_mm = 2e-3;  ///< positioning repeatability, one standard deviation, mm
   double backlash_mm = 5e-3;       ///< lost motion at a reversal, mm: ± half of it, U-shaped
+  /// The ball screws' progressive lead error (ISO 3408-3 e_p over the used travel): bound of each
+  /// screw's travel deviation per travel from its reference, ± mm per m (e.g. 0.1 for rolled
+  /// screws of grade C7). One unknown slope per screw, rectangular: the deviation grows with the
+  /// reading's distance from where the encoder is referenced (a hexapod's home strut lengths, an
+  /// Exechon leg's mid-stroke). 0: not stated.
+  double lead_error_mm_per_m = 0.0;
+  /// Amplitude of each screw's long-wave travel variation about that line, ± mm (ISO 3408-3's
+  /// V_300p is about twice it): a sinusoid of the reading of wavelength lead_wave_length_mm and
+  /// unknown phase, so its sine and cosine parts are two errors per screw (U-shaped, ± the
+  /// amplitude each), shared by the screw's readings. 0: not stated.
+  double lead_wave_mm = 0.0;
+  double lead_wave_length_mm = 300.0;  ///< wavelength of that variation, mm (> 0)
+  /// Amplitude of the travel variation within one screw revolution, ± mm (ISO 3408-3's V_2πp is
+  /// about twice it): independent per reading (U-shaped). 0: not stated.
+  double lead_periodic_mm = 0.0;
+};
+
+/// The weight of a hexapod's platform (with spindle and payload) and of its struts on the struts:
+/// they shorten or lengthen by a different amount at every pose (axial stiffness, joint clearance
+/// taken up), which the 42-parameter model does not represent. Stated (platform mass > 0), the
+/// deflection the statics predict at every observation enters the hexapod calibration's budgets
+/// as an uncorrected systematic effect (GUM JCGM 100:2008 F.2.4.5). Machines in mm only.
+/// Default: not stated.
+struct HexapodPlatform {
+  std::string name = "the hexapod platform's weight on its struts";
+  double mass_kg = 0.0;  ///< platform, spindle and payload, kg (0: not stated)
+  /// Their centre of mass in the platform frame (the frame of the platform joints), mm.
+  double com_x_mm = 0.0, com_y_mm = 0.0, com_z_mm = 0.0;
+  double strut_mass_kg = 0.0;       ///< one strut's mass, kg
+  double strut_com_fraction = 0.5;  ///< share of a strut's weight on its platform joint, 0..1
+  double strut_stiffness_n_per_um = 50.0;  ///< a strut's axial stiffness, N/µm (> 0)
+  double joint_clearance_mm = 0.0;         ///< a strut's two joints' clearance together, mm
+};
+
+/// The weight of an Exechon's head (platform, wrist and spindle) on its three legs: the legs
+/// shorten by a different amount at every pose (axial stiffness, joint clearance taken up), which
+/// the tripod's kinematic model does not represent, so its calibration absorbs the deflection
+/// into the parameters. Stated (mass > 0), the deflection the statics predict at every
+/// observation enters the Exechon calibration's budgets as an uncorrected systematic effect
+/// (GUM JCGM 100:2008 F.2.4.5). Machines in mm only. Default: not stated.
+struct ExechonHead {
+  std::string name = "the Exechon head's weight on its legs";
+  double mass_kg = 0.0;  ///< platform, wrist and spindle, kg (0: not stated)
+  /// Their centre of mass in the tool frame (origin at the tool point), mm.
+  double com_x_mm = 0.0, com_y_mm = 0.0, com_z_mm = 0.0;
+  double leg_stiffness_n_per_um = 50.0;  ///< a leg's axial stiffness, N/µm (> 0)
+  double joint_clearance_mm = 0.0;       ///< a leg's joint clearance, both ends together, mm
 };
 
 /// A laser tracker (hexapod and Exechon calibration).
@@ -153,6 +200,8 @@ struct UncertaintySources {
   DialGauge dial_gauge;
   LaserTrackerSpec tracker;
   ActuatorReadings actuators;
+  HexapodPlatform hexapod_platform;
+  ExechonHead exechon_head;
   Ballbar ballbar;
   MeasurementEnvironment environment;
   double coverage_factor = 2.0;  ///< k of every expanded uncertainty (ISO/TR 230-9: 2)

@@ -22,6 +22,10 @@ struct MeasuredCoordinate {
   ObservationRef ref;
   int coordinate = 0;
   double u = 0.0;  ///< standard uncertainty of the error on it (model unit or rad)
+  /// −1: an error of its own. ≥ 0: one error shared by every coordinate of the source with this
+  /// group (a screw's lead error on all of its strut's readings), drawn with unit standard
+  /// uncertainty and scaled by `u` on each coordinate.
+  int group = -1;
 };
 
 /// An independent error source: its contributor (value = the reference spread) and every
@@ -37,11 +41,51 @@ struct CoordinateSource {
 /// the machine's strut readings (encoder resolution, repeatability, and backlash unless
 /// `backlash_estimated`). Lengths of `sources` (mm) are converted to `unit`. Sources that act on
 /// nothing are left out.
+/// `model`: the machine file's, for the screws' lead reference (its home strut lengths) and the
+/// platform's statics (addWeightSource).
 [[nodiscard]] std::vector<CoordinateSource> hexapodCoordinateSources(
     const HexapodCalibrationData& data,
     const metrology::UncertaintySources& sources,
-    LengthUnit unit,
+    const kinematics::HexapodModel& model,
     bool backlash_estimated);
+
+/// The strut lengths of `model` at its home pose (where the encoders are referenced).
+[[nodiscard]] kinematics::StrutVector homeReadings(const kinematics::HexapodModel& model);
+
+/// Every strut reading of `data` (coordinates 6–17 of MeasuredCoordinate; the reference station's
+/// once per constrained set), u = 1.
+[[nodiscard]] std::vector<MeasuredCoordinate> strutReadings(const HexapodCalibrationData& data);
+
+/// The value of the strut reading `c` (coordinate 6–17) in `data`.
+[[nodiscard]] double strutReading(const HexapodCalibrationData& data, const MeasuredCoordinate& c);
+
+/// The screws' lead errors as inputs (ActuatorReadings::lead_error_mm_per_m and
+/// lead_variation_mm): one rectangular slope per strut acting on each of its readings in
+/// proportion to its distance from `reference` (grouped), and a rectangular variation per
+/// reading. Sources that act on nothing are left out.
+void addLeadSources(std::vector<CoordinateSource>& out,
+                    const HexapodCalibrationData& data,
+                    const metrology::ActuatorReadings& actuators,
+                    LengthUnit unit,
+                    const kinematics::StrutVector& reference);
+
+/// The platform's and struts' weight as an input (HexapodPlatform, when its mass is stated): one
+/// normal error shared by every strut reading, u on each the deflection the statics predict at
+/// its observation's pose (simulation::hexapodStrutLoads at the FK of its readings with `model`,
+/// simulation::legDeflection); its value the largest. Throws pkm::InvalidArgument for a model
+/// not in mm.
+void addWeightSource(std::vector<CoordinateSource>& out,
+                     const HexapodCalibrationData& data,
+                     const metrology::HexapodPlatform& platform,
+                     const kinematics::HexapodModel& model);
+
+/// The expanded sizes of a source's effect: column of each coordinate (grouped coordinates share
+/// one) and the number of columns.
+struct SourceColumns {
+  std::vector<Eigen::Index> column;
+  Eigen::Index count = 0;
+};
+[[nodiscard]] SourceColumns sourceColumns(const CoordinateSource& source);
 
 /// Whether the coordinate `c` belongs to a whole constrained-motion set (the reference station's
 /// gauges or strut readings) rather than to its own observation.
