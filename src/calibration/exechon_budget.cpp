@@ -7,26 +7,13 @@
 #include <cmath>
 #include <limits>
 
+#include "detail/contributor.hpp"
 #include "detail/exechon_reading_errors.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/geometry/so3.hpp"
 
 namespace pkm::calibration {
 namespace {
-
-metrology::UncertaintyContributor contributor(std::string name,
-                                              double value,
-                                              std::string unit,
-                                              metrology::Distribution distribution,
-                                              std::string source) {
-  metrology::UncertaintyContributor c;
-  c.name = std::move(name);
-  c.value = value;
-  c.unit = std::move(unit);
-  c.distribution = distribution;
-  c.source = std::move(source);
-  return c;
-}
 
 /// The instrument sources on the 3·n point rows: per coordinate, u(e) = (a + b·L_i)/√3.
 std::vector<ObservationErrorSource> pointSources(const ExechonCalibrationData& data,
@@ -50,23 +37,23 @@ std::vector<ObservationErrorSource> pointSources(const ExechonCalibrationData& d
     Eigen::MatrixXd E = Eigen::MatrixXd::Zero(3 * n, 3 * n);
     for (Eigen::Index i = 0; i < n; ++i)
       E.block<3, 3>(3 * i, 3 * i).setIdentity() *= half[static_cast<std::size_t>(i)] / ref;
-    out.push_back(
-        {contributor(fmt::format("{} (±(a + b·L), L = {:.0f} mm)", t.name, longest),
-                     ref,
-                     u,
-                     metrology::Distribution::kRectangular,
-                     fmt::format("specification a = {:g} mm, b = {:g} mm/m, per coordinate",
-                                 t.accuracy_mm,
-                                 t.accuracy_mm_per_m)),
-         E});
+    out.push_back({detail::makeContributor(
+                       fmt::format("{} (±(a + b·L), L = {:.0f} mm)", t.name, longest),
+                       ref,
+                       u,
+                       metrology::Distribution::kRectangular,
+                       fmt::format("specification a = {:g} mm, b = {:g} mm/m, per coordinate",
+                                   t.accuracy_mm,
+                                   t.accuracy_mm_per_m)),
+                   E});
   }
   const double setup = sources.environment.setup_repeatability_mm * per_mm;
   if (setup > 0.0)
-    out.push_back({contributor("set-up repeatability",
-                               setup,
-                               u,
-                               metrology::Distribution::kNormal,
-                               "environment.setup_repeatability_mm, per coordinate"),
+    out.push_back({detail::makeContributor("set-up repeatability",
+                                           setup,
+                                           u,
+                                           metrology::Distribution::kNormal,
+                                           "environment.setup_repeatability_mm, per coordinate"),
                    Eigen::MatrixXd::Identity(3 * n, 3 * n)});
   return out;
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "detail/contributor.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/simulation/compliance.hpp"
 
@@ -13,22 +14,6 @@ namespace pkm::calibration::detail {
 namespace {
 
 using metrology::Distribution;
-
-
-metrology::UncertaintyContributor legContributor(std::string name,
-                                              double value,
-                                              std::string unit,
-                                              Distribution distribution,
-                                              std::string source) {
-  metrology::UncertaintyContributor c;
-  c.name = std::move(name);
-  c.value = value;
-  c.unit = std::move(unit);
-  c.distribution = distribution;
-  c.normal_k = 1.0;
-  c.source = std::move(source);
-  return c;
-}
 
 void addLegSource(std::vector<LegReadingSource>& out, LegReadingSource s) {
   if (s.contributor.value > 0.0 && s.readings.size() > 0) out.push_back(std::move(s));
@@ -98,16 +83,17 @@ void addLeadLegSources(std::vector<LegReadingSource>& out,
     const double longest = t.cwiseAbs().maxCoeff();
     Eigen::MatrixXd cols = Eigen::MatrixXd::Zero(m, 3);
     for (Eigen::Index r = 0; r < m && longest > 0.0; ++r) cols(r, r % 3) = t(r) / longest;
-    addLegSource(out,
-        {legContributor(fmt::format("{} lead error (±{:g} mm/m)", a.name, a.lead_error_mm_per_m),
-                     slope * longest,
-                     u,
-                     Distribution::kRectangular,
-                     fmt::format("ISO 3408-3 e_p: one slope per leg within ±{:g} mm/m, zero at "
-                                 "mid-stroke; value at the longest travel from it, {:.1f} {}",
-                                 a.lead_error_mm_per_m,
-                                 longest,
-                                 u)),
+    addLegSource(
+        out,
+        {makeContributor(fmt::format("{} lead error (±{:g} mm/m)", a.name, a.lead_error_mm_per_m),
+                         slope * longest,
+                         u,
+                         Distribution::kRectangular,
+                         fmt::format("ISO 3408-3 e_p: one slope per leg within ±{:g} mm/m, zero at "
+                                     "mid-stroke; value at the longest travel from it, {:.1f} {}",
+                                     a.lead_error_mm_per_m,
+                                     longest,
+                                     u)),
          cols});
   }
   const double wave = a.lead_wave_mm * per_mm;
@@ -121,24 +107,23 @@ void addLeadLegSources(std::vector<LegReadingSource>& out,
       cols(r, 3 + r % 3) = std::cos(omega * t(r));
     }
     addLegSource(out,
-                 {legContributor(fmt::format("{} lead wave", a.name),
-                                 wave,
-                                 u,
-                                 Distribution::kUShaped,
-                                 fmt::format("ISO 3408-3 V_300p / 2: a wave of {:g} mm wavelength "
-                                             "and unknown phase per leg",
-                                             a.lead_wave_length_mm)),
+                 {makeContributor(fmt::format("{} lead wave", a.name),
+                                  wave,
+                                  u,
+                                  Distribution::kUShaped,
+                                  fmt::format("ISO 3408-3 V_300p / 2: a wave of {:g} mm wavelength "
+                                              "and unknown phase per leg",
+                                              a.lead_wave_length_mm)),
                   cols});
   }
 }
 
 }  // namespace
 
-std::vector<LegReadingSource> exechonLegReadingSources(
-    const kinematics::ExechonModel& model,
-    const ExechonCalibrationData& data,
-    const metrology::UncertaintySources& sources,
-    const kinematics::FkOptions& fk) {
+std::vector<LegReadingSource> exechonLegReadingSources(const kinematics::ExechonModel& model,
+                                                       const ExechonCalibrationData& data,
+                                                       const metrology::UncertaintySources& sources,
+                                                       const kinematics::FkOptions& fk) {
   std::string why;
   PKM_CHECK(sources.isValid(&why), "{}", why);
   const double per_mm = 1.0 / millimetresPer(model.unit);
@@ -147,47 +132,50 @@ std::vector<LegReadingSource> exechonLegReadingSources(
   const Eigen::Index m = 3 * static_cast<Eigen::Index>(data.observations.size());
   const Eigen::MatrixXd each = Eigen::MatrixXd::Identity(m, m);
   std::vector<LegReadingSource> out;
-  addLegSource(out,
-      {legContributor(fmt::format("{} resolution", a.name),
-                   0.5 * a.resolution_mm * per_mm,
-                   u,
-                   Distribution::kRectangular,
-                   "half an encoder count, per leg reading"),
-       each});
-  addLegSource(out,
-      {legContributor(fmt::format("{} repeatability", a.name),
-                   a.repeatability_mm * per_mm,
-                   u,
-                   Distribution::kNormal,
-                   "one standard deviation, per leg reading"),
-       each});
-  addLegSource(out,
-      {legContributor(fmt::format("{} backlash", a.name),
-                   0.5 * a.backlash_mm * per_mm,
-                   u,
-                   Distribution::kUShaped,
-                   "half the lost motion at a reversal, per leg reading"),
-       each});
+  // The errors of each reading on its own: encoder, repeatability, backlash, the screw's
+  // variation within a revolution (name suffix, value, distribution, where it comes from).
+  struct PerReading {
+    const char* what;
+    double value;
+    Distribution distribution;
+    const char* source;
+  };
+  const PerReading per_reading[] = {{"resolution",
+                                     0.5 * a.resolution_mm,
+                                     Distribution::kRectangular,
+                                     "half an encoder count, per leg reading"},
+                                    {"repeatability",
+                                     a.repeatability_mm,
+                                     Distribution::kNormal,
+                                     "one standard deviation, per leg reading"},
+                                    {"backlash",
+                                     0.5 * a.backlash_mm,
+                                     Distribution::kUShaped,
+                                     "half the lost motion at a reversal, per leg reading"},
+                                    {"lead variation per revolution",
+                                     a.lead_periodic_mm,
+                                     Distribution::kUShaped,
+                                     "ISO 3408-3 V_2πp / 2, per leg reading"}};
+  for (const PerReading& e : per_reading)
+    addLegSource(
+        out,
+        {makeContributor(
+             fmt::format("{} {}", a.name, e.what), e.value * per_mm, u, e.distribution, e.source),
+         each});
   addLeadLegSources(out, model, data, a);
-  addLegSource(out,
-               {legContributor(fmt::format("{} lead variation per revolution", a.name),
-                               a.lead_periodic_mm * per_mm,
-                               u,
-                               Distribution::kUShaped,
-                               "ISO 3408-3 V_2πp / 2, per leg reading"),
-                each});
   if (sources.exechon_head.mass_kg > 0.0 && m > 0) {
     const Eigen::VectorXd d = headDeflections(model, data, sources.exechon_head, fk);
     const double largest = d.cwiseAbs().maxCoeff();
     if (largest > 0.0)
-      addLegSource(out,
-          {legContributor(fmt::format("{} ({:g} kg)", sources.exechon_head.name,
-                                   sources.exechon_head.mass_kg),
-                       largest,
-                       u,
-                       Distribution::kNormal,
-                       "the legs' deflection under the head's weight, not corrected (GUM F.2.4.5): "
-                       "standard uncertainty the largest deflection, scaling every reading's"),
+      addLegSource(
+          out,
+          {makeContributor(
+               fmt::format("{} ({:g} kg)", sources.exechon_head.name, sources.exechon_head.mass_kg),
+               largest,
+               u,
+               Distribution::kNormal,
+               "the legs' deflection under the head's weight, not corrected (GUM F.2.4.5): "
+               "standard uncertainty the largest deflection, scaling every reading's"),
            d / largest});
   }
   return out;

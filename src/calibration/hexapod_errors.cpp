@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "detail/contributor.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/pose_rpy.hpp"
 
@@ -17,21 +18,6 @@ using metrology::Distribution;
 using metrology::UncertaintyContributor;
 
 constexpr double kSqrt3 = 1.7320508075688772;
-
-UncertaintyContributor contributor(std::string name,
-                                   double value,
-                                   std::string unit,
-                                   Distribution distribution,
-                                   std::string source) {
-  UncertaintyContributor c;
-  c.name = std::move(name);
-  c.value = value;
-  c.unit = std::move(unit);
-  c.distribution = distribution;
-  c.normal_k = 1.0;
-  c.source = std::move(source);
-  return c;
-}
 
 /// The tracker's a + b·L on every pose and point position (3 coordinates each).
 CoordinateSource trackerSource(const HexapodCalibrationData& data,
@@ -61,7 +47,7 @@ CoordinateSource trackerSource(const HexapodCalibrationData& data,
   }
   for (const auto& [ref, L] : items)
     for (int c = 0; c < 3; ++c) s.coordinates.push_back({ref, c, half_width(L) / kSqrt3});
-  s.contributor = contributor(
+  s.contributor = makeContributor(
       fmt::format("{} (±(a + b·L), L = {:.0f} mm)", t.name, longest),
       half_width(longest),
       std::string(toString(unit)),
@@ -95,19 +81,19 @@ void addActuatorSources(std::vector<CoordinateSource>& out,
   };
   const double half_count = 0.5 * a.resolution_mm * per_mm;
   add(out,
-      {contributor(fmt::format("{} resolution", a.name),
-                   half_count,
-                   u,
-                   Distribution::kRectangular,
-                   "half an encoder count, per strut reading"),
+      {makeContributor(fmt::format("{} resolution", a.name),
+                       half_count,
+                       u,
+                       Distribution::kRectangular,
+                       "half an encoder count, per strut reading"),
        with(half_count / kSqrt3)});
   const double repeat = a.repeatability_mm * per_mm;
   add(out,
-      {contributor(fmt::format("{} repeatability", a.name),
-                   repeat,
-                   u,
-                   Distribution::kNormal,
-                   "one standard deviation, per strut reading"),
+      {makeContributor(fmt::format("{} repeatability", a.name),
+                       repeat,
+                       u,
+                       Distribution::kNormal,
+                       "one standard deviation, per strut reading"),
        with(repeat)});
   if (backlash_estimated) return;
   // Lost motion depends on the approach direction, unknown per reading. A constrained-motion
@@ -120,12 +106,13 @@ void addActuatorSources(std::vector<CoordinateSource>& out,
     if (!data.constrained[s].stations.empty())
       lost.push_back({{ObservationRef::Kind::kGauge, 0, s}, 18, half_lost / std::sqrt(2.0)});
   add(out,
-      {contributor(fmt::format("{} backlash", a.name),
-                   half_lost,
-                   u,
-                   Distribution::kUShaped,
-                   "half the lost motion at a reversal, per strut reading, and at a gauge set's "
-                   "reference for its six struts together"),
+      {makeContributor(
+           fmt::format("{} backlash", a.name),
+           half_lost,
+           u,
+           Distribution::kUShaped,
+           "half the lost motion at a reversal, per strut reading, and at a gauge set's "
+           "reference for its six struts together"),
        lost});
 }
 
@@ -145,11 +132,11 @@ CoordinateSource distanceSource(const HexapodCalibrationData& data,
       distances.push_back({ref, 0, a / kSqrt3});
       longest = std::max(longest, a);
     }
-  return {contributor("distance instrument (laser resolution and wavelength)",
-                      longest,
-                      std::string(toString(unit)),
-                      Distribution::kRectangular,
-                      "±(res/2 + wavelength accuracy × d) per distance; value at the longest"),
+  return {makeContributor("distance instrument (laser resolution and wavelength)",
+                          longest,
+                          std::string(toString(unit)),
+                          Distribution::kRectangular,
+                          "±(res/2 + wavelength accuracy × d) per distance; value at the longest"),
           distances};
 }
 
@@ -194,11 +181,11 @@ std::vector<CoordinateSource> hexapodCoordinateSources(const HexapodCalibrationD
   };
   const double angle = sources.tracker.orientation_accuracy_rad;
   add(out,
-      {contributor("6-DOF probe orientation",
-                   angle,
-                   "rad",
-                   Distribution::kRectangular,
-                   "tracker specification, per rotation axis of each pose reading"),
+      {makeContributor("6-DOF probe orientation",
+                       angle,
+                       "rad",
+                       Distribution::kRectangular,
+                       "tracker specification, per rotation axis of each pose reading"),
        every(ObservationRef::Kind::kPose, {3, 4, 5}, angle / kSqrt3)});
   // Every gauge reading (station and reference) has its own error.
   const double gauge = sources.dial_gauge.accuracy_mm * per_mm;
@@ -209,19 +196,19 @@ std::vector<CoordinateSource> hexapodCoordinateSources(const HexapodCalibrationD
       for (int k = 3; k < 6; ++k) gauges.push_back({{ObservationRef::Kind::kGauge, 0, s}, k, 1.0});
   for (MeasuredCoordinate& c : gauges) c.u = gauge / kSqrt3;
   add(out,
-      {contributor(fmt::format("{} accuracy", sources.dial_gauge.name),
-                   gauge,
-                   u,
-                   Distribution::kRectangular,
-                   "maximum permissible error, per gauge reading (stations and reference)"),
+      {makeContributor(fmt::format("{} accuracy", sources.dial_gauge.name),
+                       gauge,
+                       u,
+                       Distribution::kRectangular,
+                       "maximum permissible error, per gauge reading (stations and reference)"),
        gauges});
   for (MeasuredCoordinate& c : gauges) c.u = resolution / kSqrt3;
   add(out,
-      {contributor(fmt::format("{} resolution", sources.dial_gauge.name),
-                   resolution,
-                   u,
-                   Distribution::kRectangular,
-                   "half the display resolution, per gauge reading"),
+      {makeContributor(fmt::format("{} resolution", sources.dial_gauge.name),
+                       resolution,
+                       u,
+                       Distribution::kRectangular,
+                       "half the display resolution, per gauge reading"),
        gauges});
   add(out, distanceSource(data, refs, sources.laser, unit));
   const double setup = sources.environment.setup_repeatability_mm * per_mm;
@@ -230,11 +217,12 @@ std::vector<CoordinateSource> hexapodCoordinateSources(const HexapodCalibrationD
       every(ObservationRef::Kind::kPoint, {0, 1, 2}, setup);
   positions.insert(positions.end(), points.begin(), points.end());
   add(out,
-      {contributor("set-up repeatability",
-                   setup,
-                   u,
-                   Distribution::kNormal,
-                   "environment.setup_repeatability_mm, per coordinate of each tracker reading"),
+      {makeContributor(
+           "set-up repeatability",
+           setup,
+           u,
+           Distribution::kNormal,
+           "environment.setup_repeatability_mm, per coordinate of each tracker reading"),
        positions});
   addActuatorSources(out, data, sources.actuators, unit, backlash_estimated);
   addLeadSources(out, data, sources.actuators, unit, homeReadings(model));

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 
+#include "detail/contributor.hpp"
 #include "detail/hexapod_errors.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/kinematics/hexapod_fk.hpp"
@@ -20,23 +21,10 @@ constexpr double kLeadSqrt3 = 1.7320508075688772;
 constexpr double kLeadSqrt2 = 1.4142135623730951;
 constexpr double kLeadPi = 3.141592653589793;
 
-metrology::UncertaintyContributor leadContributor(std::string name,
-                                                  double half_width,
-                                                  std::string unit,
-                                                  metrology::Distribution distribution,
-                                                  std::string source) {
-  metrology::UncertaintyContributor c;
-  c.name = std::move(name);
-  c.value = half_width;
-  c.unit = std::move(unit);
-  c.distribution = distribution;
-  c.normal_k = 1.0;
-  c.source = std::move(source);
-  return c;
-}
-
 /// The strut (0–5) of a strut-reading coordinate (6–17).
-int strutOf(const MeasuredCoordinate& c) { return c.coordinate < 12 ? c.coordinate - 6 : c.coordinate - 12; }
+int strutOf(const MeasuredCoordinate& c) {
+  return c.coordinate < 12 ? c.coordinate - 6 : c.coordinate - 12;
+}
 
 }  // namespace
 
@@ -87,7 +75,7 @@ void addLeadSources(std::vector<CoordinateSource>& out,
       longest = std::max(longest, std::abs(travel));
       s.coordinates.push_back(c);
     }
-    s.contributor = leadContributor(
+    s.contributor = makeContributor(
         fmt::format("{} lead error (±{:g} mm/m)", actuators.name, actuators.lead_error_mm_per_m),
         slope * longest,
         u,
@@ -115,13 +103,14 @@ void addLeadSources(std::vector<CoordinateSource>& out,
       c.u = wave / kLeadSqrt2 * std::cos(omega * r);
       s.coordinates.push_back(c);
     }
-    s.contributor = leadContributor(
+    s.contributor = makeContributor(
         fmt::format("{} lead wave", actuators.name),
         wave,
         u,
         metrology::Distribution::kUShaped,
-        fmt::format("ISO 3408-3 V_300p / 2: a wave of {:g} mm wavelength and unknown phase per strut",
-                    actuators.lead_wave_length_mm));
+        fmt::format(
+            "ISO 3408-3 V_300p / 2: a wave of {:g} mm wavelength and unknown phase per strut",
+            actuators.lead_wave_length_mm));
     out.push_back(std::move(s));
   }
   const double periodic = actuators.lead_periodic_mm * per_mm;
@@ -129,7 +118,7 @@ void addLeadSources(std::vector<CoordinateSource>& out,
     CoordinateSource s;
     s.coordinates = readings;
     for (MeasuredCoordinate& c : s.coordinates) c.u = periodic / kLeadSqrt2;
-    s.contributor = leadContributor(fmt::format("{} lead variation per revolution", actuators.name),
+    s.contributor = makeContributor(fmt::format("{} lead variation per revolution", actuators.name),
                                     periodic,
                                     u,
                                     metrology::Distribution::kUShaped,
@@ -141,7 +130,8 @@ void addLeadSources(std::vector<CoordinateSource>& out,
 namespace {
 
 /// All six readings of the observation side that the strut-reading coordinate `c` belongs to.
-kinematics::StrutVector readingsOf(const HexapodCalibrationData& data, const MeasuredCoordinate& c) {
+kinematics::StrutVector readingsOf(const HexapodCalibrationData& data,
+                                   const MeasuredCoordinate& c) {
   kinematics::StrutVector q;
   MeasuredCoordinate each = c;
   const int first = c.coordinate < 12 ? 6 : 12;
@@ -186,7 +176,8 @@ void addWeightSource(std::vector<CoordinateSource>& out,
             toString(model.unit));
   simulation::HexapodCompliance compliance;
   compliance.platform_mass_kg = platform.mass_kg;
-  compliance.platform_com_mm = Eigen::Vector3d(platform.com_x_mm, platform.com_y_mm, platform.com_z_mm);
+  compliance.platform_com_mm =
+      Eigen::Vector3d(platform.com_x_mm, platform.com_y_mm, platform.com_z_mm);
   compliance.strut_mass_kg = platform.strut_mass_kg;
   compliance.strut_com_fraction = platform.strut_com_fraction;
   compliance.strut_stiffness_n_per_um = platform.strut_stiffness_n_per_um;
@@ -205,7 +196,7 @@ void addWeightSource(std::vector<CoordinateSource>& out,
     largest = std::max(largest, std::abs(c.u));
     s.coordinates.push_back(c);
   }
-  s.contributor = leadContributor(
+  s.contributor = makeContributor(
       fmt::format("{} ({:g} kg)", platform.name, platform.mass_kg),
       largest,
       "mm",

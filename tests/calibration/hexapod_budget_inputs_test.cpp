@@ -36,6 +36,14 @@ HexapodCalibrationOptions priorOptions(double prior) {
   return options;
 }
 
+/// Sources with perfect dial gauges and perfect strut readings: what a test adds is all there is.
+metrology::UncertaintySources nothingButWhatIsAdded() {
+  metrology::UncertaintySources s;
+  s.dial_gauge.accuracy_mm = s.dial_gauge.resolution_mm = 0.0;
+  s.actuators.resolution_mm = s.actuators.backlash_mm = s.actuators.repeatability_mm = 0.0;
+  return s;
+}
+
 TEST(HexapodParameterUncertainty, WhereTheDataSeeNothingThePriorsSigmaIsTheUncertainty) {
   // Dial gauges see the platform's height and tilt only: 4 combinations of the base joints are
   // not identifiable. The estimate there is the machine file's value, and its uncertainty is the
@@ -144,10 +152,7 @@ TEST(HexapodParameterUncertainty, TheScrewsLeadErrorIsOneSlopePerStrutAndAWaveOf
   const HexapodCalibrationData data = gaugeData(nominal);
   const HexapodCalibrationOptions options = priorOptions(2.0);
   const HexapodCalibrationSummary fit = calibrateHexapod(nominal, data, options);
-  metrology::UncertaintySources lead;
-  lead.dial_gauge.accuracy_mm = lead.dial_gauge.resolution_mm = 0.0;
-  lead.actuators.resolution_mm = lead.actuators.backlash_mm = 0.0;
-  lead.actuators.repeatability_mm = 0.0;
+  metrology::UncertaintySources lead = nothingButWhatIsAdded();
   lead.actuators.lead_error_mm_per_m = 0.1;
   lead.actuators.lead_wave_mm = 0.01;
   lead.actuators.lead_wave_length_mm = 300.0;
@@ -223,10 +228,7 @@ TEST(HexapodParameterUncertainty, ThePlatformsWeightIsTheDeflectionTheStaticsGiv
   const HexapodCalibrationData data = gaugeData(nominal);
   const HexapodCalibrationOptions options = priorOptions(2.0);
   const HexapodCalibrationSummary fit = calibrateHexapod(nominal, data, options);
-  metrology::UncertaintySources weight;
-  weight.dial_gauge.accuracy_mm = weight.dial_gauge.resolution_mm = 0.0;
-  weight.actuators.resolution_mm = weight.actuators.backlash_mm = 0.0;
-  weight.actuators.repeatability_mm = 0.0;
+  metrology::UncertaintySources weight = nothingButWhatIsAdded();
   weight.hexapod_platform.mass_kg = 150.0;
   weight.hexapod_platform.com_z_mm = -100.0;
   weight.hexapod_platform.strut_mass_kg = 20.0;
