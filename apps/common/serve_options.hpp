@@ -16,7 +16,10 @@ struct ServeOptions {
 
 /// Adds --host, --port and --open to `cmd`, bound to `o`.
 inline void addServeOptions(CLI::App& cmd, ServeOptions& o) {
-  cmd.add_option("--host", o.host, "address to listen on (default 127.0.0.1: this machine only)");
+  cmd.add_option("--host",
+                 o.host,
+                 "address to listen on (default 127.0.0.1: this machine only; any other needs the "
+                 "token in the printed URL)");
   cmd.add_option("--port", o.port, "port (default 8787; 0: any free port)")
       ->check(CLI::Range(0, 65535));
   cmd.add_flag("--open", o.open, "open the page in the desktop's browser");

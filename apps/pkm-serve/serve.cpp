@@ -49,7 +49,10 @@ void runServe(const pkm::cli::ServeOptions& o) {
   options.port = o.port;
   pkm::server::HttpServer http(options);
   const int port = http.bind();
-  const std::string url = fmt::format("http://{}:{}/", options.host, port);
+  // Reachable from other machines: the URL carries the per-launch token (docs/web.md).
+  const std::string& token = http.api().token();
+  const std::string url =
+      fmt::format("http://{}:{}/{}", options.host, port, token.empty() ? "" : "?token=" + token);
   fmt::print("pkm: serving {}\n", url);
   std::fflush(stdout);
   if (o.open) openBrowser(url);

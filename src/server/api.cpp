@@ -1,5 +1,5 @@
 // The API's front door (pkm/server/api.hpp): the server's folder, the security checks every
-// request passes (Host, Origin, size) and the routing to the route files.
+// request passes (Host, token, Origin, size) and the routing to the route files.
 #include "pkm/server/api.hpp"
 
 #include <fmt/format.h>
@@ -32,6 +32,14 @@ std::optional<Response> admit(const Request& r, const Api::State& s) {
                                      r.host,
                                      s.port.load(),
                                      s.port.load()));
+  if (const detail::TokenUse use = detail::tokenUse(r, s.token);
+      use == detail::TokenUse::kMissing || use == detail::TokenUse::kWrong)
+    return detail::error(401,
+                         use == detail::TokenUse::kWrong
+                             ? "wrong token: this server was started again, or the link is not "
+                               "the one `pkm serve` printed; open the URL it printed"
+                             : "this server is reachable from other machines and needs its "
+                               "token: open the URL `pkm serve` printed (…/?token=…)");
   const bool reads = r.method == "GET" || r.method == "HEAD";
   if (!reads && !r.origin.empty() &&
       !(r.origin.starts_with("http://") && allowedHost(r.origin.substr(7), s)))
@@ -142,6 +150,7 @@ Api::Api(ServerOptions options) : state_(std::make_unique<State>()) {
   if (::mkdtemp(dir.data()) == nullptr)
     throw IoError(fmt::format("{}: cannot create the server's folder", dir));
   state_->dir = dir;
+  if (!isLoopbackHost(state_->options.host)) state_->token = detail::newToken();
 }
 
 Api::~Api() {
@@ -151,10 +160,16 @@ Api::~Api() {
 
 void Api::setPort(int port) { state_->port = port; }
 
+const std::string& Api::token() const { return state_->token; }
+
 Response Api::handle(const Request& request) {
   try {
     if (std::optional<Response> refused = admit(request, *state_)) return *refused;
-    return route(request, *state_);
+    Response out = route(request, *state_);
+    // The token came in the URL: a cookie keeps it for the page's own requests.
+    if (detail::tokenUse(request, state_->token) == detail::TokenUse::kQuery)
+      out.set_cookie = detail::tokenCookie(state_->token);
+    return out;
   } catch (...) {
     return failure(*state_);
   }
@@ -165,7 +180,7 @@ Response Api::startCampaign(const Request& request, CampaignJob& job) {
     if (std::optional<Response> refused = admit(request, *state_)) return *refused;
     requireMethod(request, "POST");
     detail::prepareCampaign(*state_, request, job);
-    return {200, "text/event-stream", ""};
+    return {200, "text/event-stream", "", ""};
   } catch (...) {
     return failure(*state_);
   }

@@ -122,7 +122,9 @@ std::string safeName(const std::string& name) {
   return out.empty() ? "upload" : out;
 }
 
-Response json(const Json& j, int status) { return {status, "application/json", j.dump() + "\n"}; }
+Response json(const Json& j, int status) {
+  return {status, "application/json", j.dump() + "\n", ""};
+}
 
 Response error(int status, const std::string& message) {
   Json j{{"error", message}};

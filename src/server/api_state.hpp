@@ -47,6 +47,7 @@ namespace pkm::server {
 struct Api::State {
   ServerOptions options;
   std::atomic<int> port{0};
+  std::string token;                    ///< the per-launch secret ("" : none needed), Api::token()
   std::filesystem::path dir;            ///< the server's own folder (uploads, campaign outputs)
   std::mutex mutex;                     ///< guards uploads, campaigns and the counters
   std::vector<detail::Upload> uploads;  ///< oldest first
@@ -125,6 +126,16 @@ class NamedJob {
 /// An error response {"error": message} (with "name" and "line" when the message starts with
 /// "NAME:LINE:").
 [[nodiscard]] Response error(int status, const std::string& message);
+
+/// How a request carried the server's token (api_token.cpp).
+enum class TokenUse { kNotNeeded, kCookie, kQuery, kMissing, kWrong };
+/// A new per-launch token: 32 bytes of the system's random source as 64 hex digits.
+[[nodiscard]] std::string newToken();
+/// What `r` carries of `token` ("" : none needed): its query parameter or its cookie, compared in
+/// constant time.
+[[nodiscard]] TokenUse tokenUse(const Request& r, const std::string& token);
+/// The Set-Cookie value that keeps `token` for the page's later requests.
+[[nodiscard]] std::string tokenCookie(const std::string& token);
 
 /// A checked pose as JSON (docs/web.md, POST /api/ik).
 [[nodiscard]] Json poseRowJson(const workflow::PoseCheckRow& row);

@@ -13,8 +13,13 @@ namespace {
 constexpr std::size_t kWorkerThreads = 32;
 
 Request requestOf(const httplib::Request& req) {
-  return {
-      req.method, req.path, req.body, req.get_header_value("Host"), req.get_header_value("Origin")};
+  return {req.method,
+          req.path,
+          req.body,
+          req.get_header_value("Host"),
+          req.get_header_value("Origin"),
+          req.get_param_value("token"),
+          req.get_header_value("Cookie")};
 }
 
 void answer(const Response& r, httplib::Response& res) {
@@ -22,6 +27,7 @@ void answer(const Response& r, httplib::Response& res) {
   res.set_content(r.body, r.content_type.c_str());
   res.set_header("X-Content-Type-Options", "nosniff");
   res.set_header("Cache-Control", "no-store");
+  if (!r.set_cookie.empty()) res.set_header("Set-Cookie", r.set_cookie);
 }
 
 }  // namespace

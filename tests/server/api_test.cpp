@@ -1,5 +1,5 @@
 // server::Api in process: the routes' answers, the error statuses (400, 403, 404, 405, 413, 422,
-// 503) and the security rules (Host, Origin, no paths from requests), without a socket.
+// 503) and the security rules (Host, token, Origin, no paths from requests), without a socket.
 #include "pkm/server/api.hpp"
 
 #include <gmock/gmock.h>
@@ -35,10 +35,10 @@ class ApiTest : public ::testing::Test {
     return o;
   }
   Response get(const std::string& path, const std::string& host = "127.0.0.1:8787") {
-    return api_.handle({"GET", path, "", host, ""});
+    return api_.handle({"GET", path, "", host, "", "", ""});
   }
   Response post(const std::string& path, const std::string& body, const std::string& origin = "") {
-    return api_.handle({"POST", path, body, "localhost:8787", origin});
+    return api_.handle({"POST", path, body, "localhost:8787", origin, "", ""});
   }
   static Json body(const Response& r) { return Json::parse(r.body); }
   Api api_;
@@ -91,6 +91,69 @@ TEST_F(ApiTest, ForeignHostsAndOriginsAreRefused) {
   EXPECT_EQ(post("/api/ik", ik, "null").status, 403);
   EXPECT_EQ(post("/api/ik", ik, "http://localhost:8787").status, 200);
   EXPECT_EQ(post("/api/ik", ik).status, 200);  // no Origin: not a browser page
+}
+
+TEST(ApiToken, OnlyALoopbackServerNeedsNoToken) {
+  for (const char* h : {"127.0.0.1", "127.1.2.3", "localhost", "::1", "[::1]"})
+    EXPECT_TRUE(isLoopbackHost(h)) << h;
+  for (const char* h : {"0.0.0.0", "192.168.1.5", "::", "127.0.0.1.evil", "128.0.0.1", "host"})
+    EXPECT_FALSE(isLoopbackHost(h)) << h;
+  ServerOptions o;
+  o.port = kPort;
+  EXPECT_EQ(Api(o).token(), "");
+  o.host = "0.0.0.0";
+  const Api a(o), b(o);
+  EXPECT_EQ(a.token().size(), 64u);
+  EXPECT_EQ(a.token().find_first_not_of("0123456789abcdef"), std::string::npos);
+  EXPECT_NE(a.token(), b.token());  // a new secret at every launch
+}
+
+TEST(ApiToken, AServerReachableFromOtherMachinesAnswersOnlyWithItsToken) {
+  ServerOptions o;
+  o.host = "0.0.0.0";
+  o.port = kPort;
+  Api api(o);
+  const std::string& token = api.token();
+  const auto get =
+      [&](const std::string& path, const std::string& query, const std::string& cookie) {
+        return api.handle({"GET", path, "", "0.0.0.0:8787", "", query, cookie});
+      };
+  // Nothing, not even the page, without the token (401 with what to do).
+  for (const char* path : {"/", "/api/machines", "/index.html"}) {
+    const Response none = get(path, "", "");
+    EXPECT_EQ(none.status, 401) << path;
+    EXPECT_THAT(none.body, HasSubstr("open the URL `pkm serve` printed"));
+  }
+  EXPECT_EQ(get("/api/machines", "0123", "").status, 401);
+  EXPECT_EQ(get("/api/machines", "", std::string(kTokenCookie) + "=" + token + "0").status, 401);
+  EXPECT_EQ(get("/api/machines", token.substr(0, 63), "").status, 401);
+  // The URL's token: answered, with a cookie that keeps it (HttpOnly, this site only).
+  const Response opened = get("/", token, "");
+  EXPECT_EQ(opened.status, 200);
+  EXPECT_EQ(opened.set_cookie,
+            std::string(kTokenCookie) + "=" + token + "; Path=/; HttpOnly; SameSite=Strict");
+  const Response later = get("/api/machines", "", "theme=dark; pkm_token=" + token + "; x=1");
+  EXPECT_EQ(later.status, 200);
+  EXPECT_EQ(later.set_cookie, "");
+  // The token does not lift the other rules: a foreign Origin still may not change anything.
+  const std::string ik = R"({"machine": "hexapod-default", "poses": [[0, 0, 200, 0, 0, 0]]})";
+  EXPECT_EQ(api.handle({"POST",
+                        "/api/ik",
+                        ik,
+                        "0.0.0.0:8787",
+                        "http://evil.example",
+                        "",
+                        "pkm_token=" + token})
+                .status,
+            403);
+  EXPECT_EQ(
+      api.handle({"POST", "/api/ik", ik, "0.0.0.0:8787", "", "", "pkm_token=" + token}).status,
+      200);
+  // A request replayed against the server started again: its token is another.
+  Api again(o);
+  EXPECT_EQ(again.handle({"GET", "/api/machines", "", "0.0.0.0:8787", "", "", "pkm_token=" + token})
+                .status,
+            401);
 }
 
 TEST_F(ApiTest, StatusCodesForBadRequests) {
@@ -202,10 +265,12 @@ TEST_F(ApiTest, CampaignsAreListedAndTheirStreamNeedsTheTransport) {
   const Json j = body(get("/api/campaigns"));
   EXPECT_EQ(j[0]["name"], "default");
   CampaignJob job;
-  EXPECT_EQ(api_.startCampaign(
-                    {"POST", "/api/campaign", R"({"campaign": "nope"})", "localhost:8787", ""}, job)
-                .status,
-            400);
+  EXPECT_EQ(
+      api_.startCampaign(
+              {"POST", "/api/campaign", R"({"campaign": "nope"})", "localhost:8787", "", "", ""},
+              job)
+          .status,
+      400);
   EXPECT_EQ(get("/api/campaign/7/report.html").status, 404);
 }
 

@@ -63,6 +63,35 @@ TEST_F(HttpServerTest, ServesOnAFreePortAndChecksTheHost) {
   EXPECT_THAT(page->get_header_value("Content-Type"), HasSubstr("text/html"));
 }
 
+TEST_F(HttpServerTest, OnAnAddressOfTheNetworkOnlyTheTokenOpensThePage) {
+  // Bound to every address: the URL's ?token= opens the page and sets the cookie a browser sends
+  // with the page's own requests; without it, or with another launch's, 401.
+  ServerOptions o;
+  o.host = "0.0.0.0";
+  start(o);
+  const std::string token = server_->api().token();
+  ASSERT_EQ(token.size(), 64u);
+  httplib::Client c = client();
+  const httplib::Headers host{{"Host", "0.0.0.0:" + std::to_string(port_)}};
+  const auto none = c.Get("/api/machines", host);
+  ASSERT_TRUE(none);
+  EXPECT_EQ(none->status, 401);
+  const auto page = c.Get("/?token=" + token, host);
+  ASSERT_TRUE(page);
+  EXPECT_EQ(page->status, 200);
+  EXPECT_THAT(page->get_header_value("Set-Cookie"), HasSubstr("pkm_token=" + token));
+  EXPECT_THAT(page->get_header_value("Set-Cookie"), HasSubstr("HttpOnly"));
+  httplib::Headers with_cookie = host;
+  with_cookie.emplace("Cookie", "pkm_token=" + token);
+  const auto api = c.Get("/api/machines", with_cookie);
+  ASSERT_TRUE(api);
+  EXPECT_EQ(api->status, 200);
+  httplib::Headers stale = host;
+  stale.emplace("Cookie", "pkm_token=" + std::string(64, '0'));
+  const auto refused = c.Get("/api/machines", stale);
+  ASSERT_TRUE(refused);
+  EXPECT_EQ(refused->status, 401);
+}
 TEST_F(HttpServerTest, BodiesAboveTheLimitGet413) {
   ServerOptions o;
   o.max_body = 1000;

@@ -35,6 +35,8 @@ struct Request {
   std::string body;
   std::string host;    ///< the Host header ("" when absent)
   std::string origin;  ///< the Origin header ("" when absent)
+  std::string token;   ///< the query string's `token` parameter ("" when absent)
+  std::string cookie;  ///< the Cookie header ("" when absent)
 };
 
 /// A complete answer.
@@ -42,7 +44,15 @@ struct Response {
   int status = 200;
   std::string content_type = "application/json";
   std::string body;
+  /// A Set-Cookie header value ("" : none): the server's token after the page opened its URL.
+  std::string set_cookie;
 };
+
+/// Whether `host` (an address or name to bind) is a loopback address: localhost, ::1 or 127.x.y.z.
+[[nodiscard]] bool isLoopbackHost(const std::string& host);
+
+/// The name of the cookie that carries the server's token.
+inline constexpr const char* kTokenCookie = "pkm_token";
 
 /// A campaign admitted by Api::startCampaign, run by Api::runCampaign.
 struct CampaignJob {
@@ -65,8 +75,16 @@ class Api {
   /// The port the transport bound (for the Host and Origin checks when options.port was 0).
   void setPort(int port);
 
+  /// The per-launch secret every request must carry when the server is reachable from other
+  /// machines (options.host not a loopback address): 64 hex digits from the system's random
+  /// source, new at every launch; "" on a loopback address (no token needed). A request carries it
+  /// as `?token=` (the URL `pkm serve` prints; answered with a cookie) or as the cookie
+  /// kTokenCookie; compared in constant time; 401 without it.
+  [[nodiscard]] const std::string& token() const;
+
   /// Answers every route but the campaign stream (docs/web.md): 200 with JSON, 400 for malformed
-  /// JSON or a bad field, 403 for a foreign Host or Origin, 404 for an unknown path, 405 for a
+  /// JSON or a bad field, 401 without the server's token (token()), 403 for a foreign Host or
+  /// Origin, 404 for an unknown path, 405 for a
   /// wrong method, 413 for a body above max_body, 422 {"error", "name", "line"} for a program or
   /// file with an error, 503 when max_jobs long jobs run already. Never throws.
   [[nodiscard]] Response handle(const Request& request);
