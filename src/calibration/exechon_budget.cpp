@@ -113,11 +113,11 @@ ExechonParameterUncertainty exechonParameterUncertainty(
   in.residual_unit = unit;
   in.sources = pointSources(data, sources, initial.unit);
   // The leg readings' errors reach the residuals r = world(y) − p(θ, q) through −∂p/∂q.
-  const Eigen::MatrixXd J_target_legs =
+  const std::vector<Eigen::Matrix3d> J_target_legs =
       detail::exechonTargetLegJacobian(estimated, data, calibration.fk);
   for (const detail::LegReadingSource& s :
        detail::exechonLegReadingSources(estimated, data, sources, calibration.fk))
-    in.sources.push_back({s.contributor, -(J_target_legs * s.readings)});
+    in.sources.push_back({s.contributor, detail::legEffect(J_target_legs, s)});
   in.coverage_factor = sources.coverage_factor;
 
   ExechonParameterUncertainty out;

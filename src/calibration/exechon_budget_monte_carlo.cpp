@@ -105,10 +105,12 @@ BudgetMonteCarloResult exechonBudgetMonteCarlo(const kinematics::ExechonModel& i
         // scales its column (the change at the contributor's reference uncertainty).
         Eigen::VectorXd dq =
             Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(d.observations.size()));
-        for (const detail::LegReadingSource& s : legs)
-          for (Eigen::Index j = 0; j < s.readings.cols(); ++j)
-            dq += s.readings.col(j) *
-                  detail::drawError(s.contributor.distribution, 1.0, uniform, normal);
+        for (const detail::LegReadingSource& s : legs) {
+          Eigen::VectorXd draws(s.errors());
+          for (Eigen::Index j = 0; j < draws.size(); ++j)
+            draws(j) = detail::drawError(s.contributor.distribution, 1.0, uniform, normal);
+          dq += s.change(draws);
+        }
         for (std::size_t i = 0; i < d.observations.size(); ++i)
           d.observations[i].joints.readings += dq.segment<3>(3 * static_cast<Eigen::Index>(i));
         try {

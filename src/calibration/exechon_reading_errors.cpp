@@ -130,7 +130,7 @@ std::vector<LegReadingSource> exechonLegReadingSources(const kinematics::Exechon
   const std::string u(toString(model.unit));
   const metrology::ActuatorReadings& a = sources.actuators;
   const Eigen::Index m = 3 * static_cast<Eigen::Index>(data.observations.size());
-  const Eigen::MatrixXd each = Eigen::MatrixXd::Identity(m, m);
+  const Eigen::MatrixXd each = Eigen::VectorXd::Ones(m);
   std::vector<LegReadingSource> out;
   // The errors of each reading on its own: encoder, repeatability, backlash, the screw's
   // variation within a revolution (name suffix, value, distribution, where it comes from).
@@ -161,7 +161,8 @@ std::vector<LegReadingSource> exechonLegReadingSources(const kinematics::Exechon
         out,
         {makeContributor(
              fmt::format("{} {}", a.name, e.what), e.value * per_mm, u, e.distribution, e.source),
-         each});
+         each,
+         true});
   addLeadLegSources(out, model, data, a);
   if (sources.exechon_head.mass_kg > 0.0 && m > 0) {
     const Eigen::VectorXd d = headDeflections(model, data, sources.exechon_head, fk);
@@ -181,25 +182,40 @@ std::vector<LegReadingSource> exechonLegReadingSources(const kinematics::Exechon
   return out;
 }
 
-Eigen::MatrixXd exechonTargetLegJacobian(const kinematics::ExechonModel& model,
-                                         const ExechonCalibrationData& data,
-                                         const kinematics::FkOptions& fk) {
-  const auto n = static_cast<Eigen::Index>(data.observations.size());
+std::vector<Eigen::Matrix3d> exechonTargetLegJacobian(const kinematics::ExechonModel& model,
+                                                      const ExechonCalibrationData& data,
+                                                      const kinematics::FkOptions& fk) {
   constexpr double h = 1e-3;  // model length unit, as exechonTargetJacobian's length steps
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(3 * n, 3 * n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const ExechonObservation& o = data.observations[static_cast<std::size_t>(i)];
+  std::vector<Eigen::Matrix3d> J(data.observations.size(), Eigen::Matrix3d::Zero());
+  for (std::size_t i = 0; i < J.size(); ++i) {
+    const ExechonObservation& o = data.observations[i];
     for (int l = 0; l < 3; ++l) {
       kinematics::ExechonJoints plus = o.joints, minus = o.joints;
       plus.readings(l) += h;
       minus.readings(l) -= h;
       const auto pp = exechonTarget(model, plus, data.target_offset, model.home, fk);
       const auto pm = exechonTarget(model, minus, data.target_offset, model.home, fk);
-      if (!pp || !pm) continue;
-      J.block<3, 1>(3 * i, 3 * i + l) = (*pp - *pm) / (2.0 * h);
+      if (pp && pm) J[i].col(l) = (*pp - *pm) / (2.0 * h);
     }
   }
   return J;
+}
+
+Eigen::MatrixXd legEffect(const std::vector<Eigen::Matrix3d>& J_target_legs,
+                          const LegReadingSource& source) {
+  const auto m = static_cast<Eigen::Index>(3 * J_target_legs.size());
+  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(m, source.errors());
+  for (Eigen::Index i = 0; i < m / 3; ++i) {
+    const Eigen::Matrix3d& J = J_target_legs[static_cast<std::size_t>(i)];
+    if (source.each) {
+      // Reading 3i + l moves only its own observation's residuals.
+      for (Eigen::Index l = 0; l < 3; ++l)
+        E.block<3, 1>(3 * i, 3 * i + l) = -J.col(l) * source.readings(3 * i + l, 0);
+    } else {
+      E.middleRows<3>(3 * i) = -J * source.readings.middleRows<3>(3 * i);
+    }
+  }
+  return E;
 }
 
 }  // namespace pkm::calibration::detail

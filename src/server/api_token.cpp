@@ -16,8 +16,7 @@ namespace {
 bool sameSecret(std::string_view a, std::string_view b) {
   unsigned char diff = a.size() == b.size() ? 0 : 1;
   const std::string_view ref = a.size() == b.size() ? b : a;  // compare a with itself if unequal
-  for (std::size_t i = 0; i < a.size(); ++i)
-    diff |= static_cast<unsigned char>(a[i] ^ ref[i]);
+  for (std::size_t i = 0; i < a.size(); ++i) diff |= static_cast<unsigned char>(a[i] ^ ref[i]);
   return diff == 0 && !a.empty();
 }
 

@@ -20,7 +20,17 @@ namespace pkm::calibration::detail {
 /// length unit.
 struct LegReadingSource {
   metrology::UncertaintyContributor contributor;
-  Eigen::MatrixXd readings;  ///< 3·n × (independent errors)
+  /// 3·n × (independent errors); for a source `each` reading on its own, 3·n × 1: the column of
+  /// reading r is that entry times the r-th unit vector (the identity, stored as its diagonal).
+  Eigen::MatrixXd readings;
+  bool each = false;  ///< one independent error per reading
+  /// The number of independent errors.
+  [[nodiscard]] Eigen::Index errors() const { return each ? readings.rows() : readings.cols(); }
+  /// The change of the readings for one draw per error (a vector of errors() values).
+  [[nodiscard]] Eigen::VectorXd change(const Eigen::VectorXd& draws) const {
+    return each ? Eigen::VectorXd(readings.col(0).cwiseProduct(draws))
+                : Eigen::VectorXd(readings * draws);
+  }
 };
 
 /// The leg readings' error sources of `data` for a tripod described by `model`: encoder
@@ -39,10 +49,17 @@ struct LegReadingSource {
     const kinematics::FkOptions& fk);
 
 /// ∂p/∂q of the target of every observation with respect to its three leg readings (central
-/// differences through the tool FK seeded with model.home), as the 3·n × 3·n block diagonal;
-/// zero blocks where an FK does not converge.
-[[nodiscard]] Eigen::MatrixXd exechonTargetLegJacobian(const kinematics::ExechonModel& model,
-                                                       const ExechonCalibrationData& data,
-                                                       const kinematics::FkOptions& fk);
+/// differences through the tool FK seeded with model.home): the diagonal blocks of the 3·n × 3·n
+/// block-diagonal Jacobian, one 3 × 3 per observation; zero where an FK does not converge.
+[[nodiscard]] std::vector<Eigen::Matrix3d> exechonTargetLegJacobian(
+    const kinematics::ExechonModel& model,
+    const ExechonCalibrationData& data,
+    const kinematics::FkOptions& fk);
+
+/// The change of the 3·n target residuals per error of `source` (its effect matrix): the
+/// block-diagonal product of `J_target_legs` (exechonTargetLegJacobian) with its reading changes,
+/// negated (r = world(y) − p(θ, q)).
+[[nodiscard]] Eigen::MatrixXd legEffect(const std::vector<Eigen::Matrix3d>& J_target_legs,
+                                        const LegReadingSource& source);
 
 }  // namespace pkm::calibration::detail
