@@ -1,6 +1,6 @@
-// pkm-serve: the program behind `pkm serve [--host 127.0.0.1] [--port 8787] [--open]`, the web
-// application and its JSON API (server::HttpServer, docs/web.md) until Ctrl-C. `pkm serve` checks
-// its options and replaces itself with this program, so that the HTTP server's libraries
+// pkm-serve: the program behind `pkm serve [--host H] [--port P] [--open] [--linuxcnc [INI]]`, the
+// web application and its JSON API (server::HttpServer, docs/web.md) until Ctrl-C. `pkm serve`
+// checks its options and replaces itself with this program, so that the HTTP server's libraries
 // (cpp-httplib, OpenSSL, zlib, brotli) are loaded by the server alone, not by every pkm run
 // (docs/architecture.md, "Programs"). Exit codes as pkm's (docs/formats.md).
 #include <fmt/format.h>
@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <exception>
+#include <filesystem>
 #include <thread>
 
 #include "exit_codes.hpp"
@@ -47,6 +48,9 @@ void runServe(const pkm::cli::ServeOptions& o) {
   pkm::server::ServerOptions options;
   options.host = o.host;
   options.port = o.port;
+  options.linuxcnc = o.linuxcnc;
+  if (!o.linuxcnc_ini.empty())
+    options.linuxcnc_ini = std::filesystem::absolute(o.linuxcnc_ini).string();
   pkm::server::HttpServer http(options);
   const int port = http.bind();
   // Reachable from other machines: the URL carries the per-launch token (docs/web.md).

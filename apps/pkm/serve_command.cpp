@@ -1,7 +1,8 @@
-// `pkm serve [--host 127.0.0.1] [--port 8787] [--open]`: checks the options and replaces this
-// process with the program `pkm-serve` beside it (apps/pkm-serve), which runs the web application.
-// The server's libraries (cpp-httplib with OpenSSL, zlib and brotli) are then loaded only by the
-// server: every other pkm command starts about 2 ms sooner (docs/architecture.md, "Programs").
+// `pkm serve [--host 127.0.0.1] [--port 8787] [--open] [--linuxcnc [INI]]`: checks the options and
+// replaces this process with the program `pkm-serve` beside it (apps/pkm-serve), which runs the web
+// application. The server's libraries (cpp-httplib with OpenSSL, zlib and brotli) are then loaded
+// only by the server: every other pkm command starts about 2 ms sooner (docs/architecture.md,
+// "Programs").
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -34,6 +35,10 @@ std::filesystem::path programDirectory() {
   std::vector<std::string> args = {
       server.string(), "--host", o.host, "--port", std::to_string(o.port)};
   if (o.open) args.emplace_back("--open");
+  if (o.linuxcnc) {
+    args.emplace_back("--linuxcnc");
+    if (!o.linuxcnc_ini.empty()) args.push_back(o.linuxcnc_ini);
+  }
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);

@@ -8,6 +8,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <string_view>
@@ -112,6 +113,21 @@ std::vector<std::string> iniHalFiles(const NamedText& ini) {
           out.emplace_back(value.substr(0, value.find_first_of(" \t")));
       });
   return out;
+}
+
+NamedText genhexkinsHalFile(const NamedText& ini) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(ini.name).parent_path();
+  for (const std::string& entry : iniHalFiles(ini)) {
+    if (entry.starts_with("LIB:")) continue;
+    const fs::path p = fs::path(entry).is_absolute() ? fs::path(entry) : dir / entry;
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec)) continue;
+    NamedText hal = readNamedText(p.string());
+    if (hal.text.find("genhexkins.") != std::string::npos) return hal;
+  }
+  throw IoError(fmt::format(
+      "{}: none of the files its [HAL] HALFILE lines load sets genhexkins pins", ini.name));
 }
 
 std::optional<LengthUnit> iniLinearUnits(const NamedText& ini) {

@@ -95,6 +95,18 @@ Response route(const Request& r, Api::State& s) {
     requireMethod(r, "POST");
     return detail::cancelJob(s, job[1].str());
   }
+  if (p == "/api/live") {
+    requireMethod(r, "GET");
+    return detail::liveStatus(s);
+  }
+  if (p == "/api/live/connect") {
+    requireMethod(r, "POST");
+    return detail::liveConnect(s);
+  }
+  if (p == "/api/live/disconnect") {
+    requireMethod(r, "POST");
+    return detail::liveDisconnect(s);
+  }
   if (p == "/api/campaigns") {
     requireMethod(r, "GET");
     return detail::listCampaigns();
@@ -140,6 +152,10 @@ void ServerOptions::validate() const {
   PKM_CHECK(port >= 0 && port <= 65535, "--port must be 0..65535, got {}", port);
   PKM_CHECK(max_body > 0 && max_jobs > 0 && max_uploads > 0, "server limits must be > 0");
   PKM_CHECK(!host.empty(), "--host must not be empty");
+  live.validate();
+  PKM_CHECK(linuxcnc_ini.empty() || std::filesystem::is_regular_file(linuxcnc_ini),
+            "--linuxcnc {}: no such INI file",
+            linuxcnc_ini);
 }
 
 Api::Api(ServerOptions options) : state_(std::make_unique<State>()) {
@@ -151,6 +167,7 @@ Api::Api(ServerOptions options) : state_(std::make_unique<State>()) {
     throw IoError(fmt::format("{}: cannot create the server's folder", dir));
   state_->dir = dir;
   if (!isLoopbackHost(state_->options.host)) state_->token = detail::newToken();
+  if (state_->options.linuxcnc) (void)detail::liveConnect(*state_);
 }
 
 Api::~Api() {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/live/live_view.hpp"
 #include "pkm/server/api.hpp"
 #include "pkm/workflow/pose_checks.hpp"
 
@@ -57,6 +58,9 @@ struct Api::State {
   int next_upload = 1;
   int next_campaign = 1;
   std::atomic<std::size_t> jobs{0};
+  std::mutex live_mutex;                          ///< guards link and live_machine
+  std::shared_ptr<live::LinuxcncLink> link;       ///< the running LinuxCNC followed (null: none)
+  std::optional<live::LiveMachine> live_machine;  ///< its machine, read once per INI
 
   /// A built-in machine name or an uploaded machine's name as a workflow spec. Throws HttpError
   /// 400 for anything else (a request never names a path).
@@ -151,5 +155,11 @@ enum class TokenUse { kNotNeeded, kCookie, kQuery, kMissing, kWrong };
 /// Checks a campaign request ({"campaign": NAME}) and sets `job` up with a job slot and a number.
 void prepareCampaign(Api::State& s, const Request& r, CampaignJob& job);
 [[nodiscard]] Response campaignReport(Api::State& s, const std::string& id);
+/// GET /api/live: the followed LinuxCNC's state checked on its machine (api_live.cpp).
+[[nodiscard]] Response liveStatus(Api::State& s);
+/// POST /api/live/connect: starts following the LinuxCNC on this host (no-op when following).
+[[nodiscard]] Response liveConnect(Api::State& s);
+/// POST /api/live/disconnect: stops following it.
+[[nodiscard]] Response liveDisconnect(Api::State& s);
 
 }  // namespace pkm::server::detail

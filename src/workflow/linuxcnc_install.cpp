@@ -15,20 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The HAL file of the INI that sets genhexkins pins.
-io::NamedText kinematicsHal(const io::NamedText& ini) {
-  const fs::path dir = fs::path(ini.name).parent_path();
-  for (const std::string& entry : io::iniHalFiles(ini)) {
-    if (entry.starts_with("LIB:")) continue;
-    const fs::path p = fs::path(entry).is_absolute() ? fs::path(entry) : dir / entry;
-    if (!fs::is_regular_file(p)) continue;
-    io::NamedText hal = io::readNamedText(p.string());
-    if (hal.text.find("genhexkins.") != std::string::npos) return hal;
-  }
-  throw IoError(fmt::format(
-      "{}: none of the files its [HAL] HALFILE lines load sets genhexkins pins", ini.name));
-}
-
 /// FILE.pkm-backup, or FILE.pkm-backup.N for the first N that does not exist.
 std::string backupPath(const std::string& file) {
   std::string p = file + ".pkm-backup";
@@ -53,7 +39,7 @@ LinuxcncInstallResult installIntoLinuxcnc(const LinuxcncInstallRequest& request)
   const io::HexapodMachine machine = io::loadHexapodMachine(request.calibration);
   io::requireRegisteredFrame(machine, "pkm linuxcnc install");
   const io::NamedText ini = io::readNamedText(request.ini);
-  const io::NamedText hal = kinematicsHal(ini);
+  const io::NamedText hal = io::genhexkinsHalFile(ini);
   LinuxcncInstallResult result;
   result.patches = {io::patchKinematicsHal(hal, machine), io::patchHexapodIni(ini, machine)};
   for (const io::TextPatch& p : result.patches) result.diff += io::unifiedDiff(p);

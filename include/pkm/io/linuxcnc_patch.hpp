@@ -34,6 +34,11 @@ struct TextPatch {
 /// entries included), in order.
 [[nodiscard]] std::vector<std::string> iniHalFiles(const NamedText& ini);
 
+/// The HAL file among the INI's iniHalFiles (relative to the INI's folder; "LIB:" entries
+/// skipped) that sets genhexkins pins. Throws pkm::IoError "INI: none of the files its [HAL]
+/// HALFILE lines load sets genhexkins pins" when there is none.
+[[nodiscard]] NamedText genhexkinsHalFile(const NamedText& ini);
+
 /// The INI's [TRAJ] LINEAR_UNITS (mm/metric, inch/in/imperial); nullopt when it has none. Throws
 /// pkm::IoError "NAME:LINE: ..." for another value.
 [[nodiscard]] std::optional<LengthUnit> iniLinearUnits(const NamedText& ini);

@@ -13,6 +13,7 @@
 #include <mutex>
 #include <string>
 
+#include "pkm/live/linuxcnc_link.hpp"
 #include "pkm/workflow/progress.hpp"
 
 namespace pkm::server {
@@ -24,7 +25,13 @@ struct ServerOptions {
   std::size_t max_body = 32u << 20;  ///< largest request body, bytes (413 above)
   std::size_t max_jobs = 2;      ///< long jobs at once (runs, compensations, campaigns); 503 above
   std::size_t max_uploads = 32;  ///< machines one server holds (the oldest is dropped)
-  /// Throws pkm::InvalidArgument for a port outside 0..65535 or a zero limit.
+  /// Follow the LinuxCNC running on this host from the start (`pkm serve --linuxcnc`); the page's
+  /// Connect does the same later (POST /api/live/connect).
+  bool linuxcnc = false;
+  /// That LinuxCNC's INI ("": the one LinuxCNC reports it was started with).
+  std::string linuxcnc_ini;
+  live::LinkOptions live;  ///< how the link reads LinuxCNC (rate; the reader, for tests)
+  /// Throws pkm::InvalidArgument for a port outside 0..65535, a zero limit or bad live options.
   void validate() const;
 };
 

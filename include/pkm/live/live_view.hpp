@@ -1,0 +1,49 @@
+/// @file
+/// @brief What a front end draws of a running LinuxCNC (docs/linuxcnc.md, "The live machine"):
+/// the machine the configuration defines, and every status record checked on it by pkm
+/// (strut readings, stroke and cone margins, closest pair, condition number).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "pkm/live/linuxcnc_link.hpp"
+#include "pkm/workflow/pose_checks.hpp"
+
+namespace pkm::live {
+
+/// The machine a LinuxCNC configuration computes with, as files pkm reads.
+struct LiveMachine {
+  std::string ini;   ///< the configuration's INI
+  std::string hal;   ///< its HAL file that sets the genhexkins pins
+  std::string name;  ///< the machine's name for display (the HAL file's)
+  std::string units;  ///< "mm" or "inch" ([TRAJ] LINEAR_UNITS)
+};
+
+/// The machine of the configuration `ini`: the HAL file among its [HAL] HALFILE entries that sets
+/// genhexkins pins, read with the INI (io::readLinuxcncHal). Throws pkm::IoError naming the INI when
+/// no HAL file it loads sets them, or naming the file and line of a malformed entry.
+[[nodiscard]] LiveMachine liveMachine(const std::string& ini);
+
+/// One status record checked on the machine.
+struct LiveFrame {
+  LinkSnapshot link;  ///< connection state and the record
+  /// The record's commanded pose checked by workflow::checkPoses (machine unit, degrees); empty
+  /// without a record.
+  std::optional<workflow::PoseCheckRow> commanded;
+  /// The largest difference between LinuxCNC's commanded joints and pkm's inverse kinematics of
+  /// the commanded pose, machine unit (NaN without a record or a solution): what LinuxCNC
+  /// computes with against what pkm draws.
+  double joint_disagreement = 0.0;
+  /// The state in one word for a status line: "disconnected", "estop", "off", "not homed",
+  /// "running", "paused", "idle".
+  std::string state;
+};
+
+/// The state of `snapshot` in one word (LiveFrame::state).
+[[nodiscard]] std::string liveState(const LinkSnapshot& snapshot);
+
+/// `snapshot` checked on `machine`. Throws pkm::IoError when the machine's files cannot be read.
+[[nodiscard]] LiveFrame liveFrame(const LinkSnapshot& snapshot, const LiveMachine& machine);
+
+}  // namespace pkm::live

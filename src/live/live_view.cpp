@@ -1,0 +1,64 @@
+// A running LinuxCNC's status checked on its machine (pkm/live/live_view.hpp).
+#include "pkm/live/live_view.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "pkm/io/linuxcnc_patch.hpp"
+#include "pkm/core/units.hpp"
+#include "pkm/io/named_text.hpp"
+
+namespace pkm::live {
+
+std::string liveState(const LinkSnapshot& s) {
+  if (!s.connected || !s.status) return "disconnected";
+  const LinuxcncStatus& st = *s.status;
+  if (st.estop || st.task_state == TaskState::kEstop) return "estop";
+  if (!st.enabled || st.task_state != TaskState::kOn) return "off";
+  if (!st.allHomed()) return "not homed";
+  if (st.paused || st.interp_state == InterpState::kPaused) return "paused";
+  if (st.busy()) return "running";
+  return "idle";
+}
+
+LiveMachine liveMachine(const std::string& ini) {
+  const io::NamedText text = io::readNamedText(ini);
+  const io::NamedText hal = io::genhexkinsHalFile(text);
+  LiveMachine m;
+  m.ini = ini;
+  m.hal = hal.name;
+  m.name = std::filesystem::path(hal.name).filename().string();
+  const std::optional<LengthUnit> unit = io::iniLinearUnits(text);
+  m.units = unit == LengthUnit::kInch ? "inch" : "mm";
+  return m;
+}
+
+LiveFrame liveFrame(const LinkSnapshot& snapshot, const LiveMachine& machine) {
+  LiveFrame f;
+  f.link = snapshot;
+  f.state = liveState(snapshot);
+  if (!snapshot.status) {
+    f.joint_disagreement = std::numeric_limits<double>::quiet_NaN();
+    return f;
+  }
+  workflow::PoseCheckRequest q;
+  q.machine = machine.hal;
+  q.ini = machine.ini;
+  q.poses = {snapshot.status->pose_commanded};
+  workflow::PoseCheckResult r = workflow::checkPoses(q);
+  f.commanded = std::move(r.rows.front());
+  const std::vector<double>& lcnc = snapshot.status->joint_commanded;
+  const std::vector<double>& pkm = f.commanded->joints;
+  if (pkm.size() != lcnc.size() || pkm.empty()) {
+    f.joint_disagreement = std::numeric_limits<double>::quiet_NaN();
+  } else {
+    double d = 0.0;
+    for (std::size_t i = 0; i < pkm.size(); ++i) d = std::max(d, std::abs(pkm[i] - lcnc[i]));
+    f.joint_disagreement = d;
+  }
+  return f;
+}
+
+}  // namespace pkm::live

@@ -1,0 +1,127 @@
+// The live routes of server::Api (GET /api/live, POST /api/live/connect and /disconnect) with a
+// stand-in LinuxCNC reader: not following, following from the start (--linuxcnc) and after
+// Connect, the record checked on the configuration's machine, a reader that ends, and the
+// security rules (methods, Origin, token) that every route keeps.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "pkm/core/error.hpp"
+#include "pkm/server/api.hpp"
+#include "support/linuxcnc_record.hpp"
+#include "support/linuxcnc_sample.hpp"
+
+namespace pkm::server {
+namespace PKM_TEST_NS {
+
+using Json = nlohmann::json;
+using ::testing::HasSubstr;
+
+/// LinuxCNC's hexapod-sim at x y z a b c = 2 -1 22 3 -4 10 with genhexkins' strut lengths.
+Json simRecord(const std::string& ini) {
+  return pkm::test::linuxcncRecord(
+      3, {2, -1, 22, 3, -4, 10}, {31.597194, 31.713899, 29.975223, 32.850082, 27.921167, 33.441616},
+      ini);
+}
+
+ServerOptions following(const std::string& line, bool from_start) {
+  ServerOptions o;
+  o.port = 8787;
+  o.linuxcnc = from_start;
+  o.live.command = {"/bin/sh", "-c", "printf '%s\\n' \"$1\"; cat >/dev/null", "reader", line};
+  return o;
+}
+
+Response get(Api& api, const std::string& path) {
+  return api.handle({"GET", path, "", "127.0.0.1:8787", "", "", ""});
+}
+Response post(Api& api, const std::string& path, const std::string& origin = "") {
+  return api.handle({"POST", path, "{}", "127.0.0.1:8787", origin, "", ""});
+}
+
+/// GET /api/live until `done` holds (at most 10 s).
+Json poll(Api& api, const std::function<bool(const Json&)>& done) {
+  Json j;
+  for (int i = 0; i < 1000; ++i) {
+    const Response r = get(api, "/api/live");
+    EXPECT_EQ(r.status, 200) << r.body;
+    j = Json::parse(r.body);
+    if (done(j)) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return j;
+}
+
+TEST(ApiLive, NotFollowingSaysHowToStart) {
+  Api api(following("", false));
+  const Json j = Json::parse(get(api, "/api/live").body);
+  EXPECT_EQ(j["following"], false);
+  EXPECT_EQ(j["state"], "disconnected");
+  EXPECT_THAT(j["reason"].get<std::string>(), HasSubstr("pkm serve --linuxcnc"));
+}
+
+TEST(ApiLive, TheRecordIsCheckedOnTheConfigurationsMachine) {
+  const std::string ini = (pkm::test::linuxcncHexapodSim() / "hexapod.ini").string();
+  if (!std::filesystem::exists(ini)) GTEST_SKIP() << "no LinuxCNC sample at " << ini;
+  Api api(following(simRecord(ini).dump(), true));
+  const Json j = poll(api, [](const Json& j) { return j["connected"] == true; });
+  ASSERT_EQ(j["connected"], true) << j.dump();
+  EXPECT_EQ(j["state"], "idle");
+  EXPECT_EQ(j["machine"]["units"], "inch");
+  EXPECT_EQ(j["status"]["pose_commanded"][2], 22.0);
+  EXPECT_EQ(j["check"]["status"], "ok");
+  EXPECT_LT(j["joint_disagreement"].get<double>(), 1e-6);
+  EXPECT_EQ(j["status"]["mode"], "mdi");
+  EXPECT_EQ(j["status"]["executing_line"], 0);
+}
+
+TEST(ApiLive, ConnectStartsFollowingAndDisconnectStops) {
+  Api api(following(pkm::test::linuxcncRecord(1).dump(), false));
+  EXPECT_EQ(Json::parse(get(api, "/api/live").body)["following"], false);
+  ASSERT_EQ(post(api, "/api/live/connect").status, 200);
+  const Json j = poll(api, [](const Json& j) { return j["connected"] == true; });
+  EXPECT_EQ(j["following"], true);
+  // The record names an INI that does not exist: the state is shown, the machine is not.
+  EXPECT_THAT(j["machine_error"].get<std::string>(), HasSubstr("/nowhere/hexapod.ini"));
+  EXPECT_FALSE(j.contains("check"));
+  ASSERT_EQ(post(api, "/api/live/disconnect").status, 200);
+  EXPECT_EQ(Json::parse(get(api, "/api/live").body)["following"], false);
+}
+
+TEST(ApiLive, AReaderThatEndsIsADisconnection) {
+  ServerOptions o = following(pkm::test::linuxcncRecord(1).dump(), true);
+  o.live.command.back() = R"({"error": "LinuxCNC is not running on this host"})";
+  Api api(o);
+  const Json j = poll(api, [](const Json& j) { return !j["reason"].get<std::string>().starts_with("waiting"); });
+  EXPECT_EQ(j["connected"], false);
+  EXPECT_EQ(j["state"], "disconnected");
+  EXPECT_THAT(j["reason"].get<std::string>(), HasSubstr("not running"));
+}
+
+TEST(ApiLive, MethodsOriginAndTokenAreChecked) {
+  Api api(following(pkm::test::linuxcncRecord(1).dump(), false));
+  EXPECT_EQ(post(api, "/api/live").status, 405);
+  EXPECT_EQ(get(api, "/api/live/connect").status, 405);
+  EXPECT_EQ(post(api, "/api/live/connect", "http://evil.example").status, 403);
+  EXPECT_EQ(Json::parse(get(api, "/api/live").body)["following"], false);  // nothing started
+  ServerOptions remote = following("", false);
+  remote.host = "0.0.0.0";
+  Api open(remote);
+  EXPECT_EQ(open.handle({"GET", "/api/live", "", "0.0.0.0:8787", "", "", ""}).status, 401);
+  EXPECT_EQ(open.handle({"POST", "/api/live/connect", "{}", "0.0.0.0:8787", "", "", ""}).status,
+            401);
+}
+
+TEST(ApiLive, AnIniThatDoesNotExistIsRefusedAtTheStart) {
+  ServerOptions o = following("", true);
+  o.linuxcnc_ini = "/nowhere/at/all.ini";
+  EXPECT_THROW(Api{o}, InvalidArgument);
+}
+
+}  // namespace PKM_TEST_NS
+}  // namespace pkm::server
