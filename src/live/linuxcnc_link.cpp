@@ -138,7 +138,8 @@ pid_t spawn(const std::vector<std::string>& args, int in, int out) {
   const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0)
-    throw IoError(fmt::format("cannot start the LinuxCNC reader {}: {}", args[0], std::strerror(rc)));
+    throw IoError(
+        fmt::format("cannot start the LinuxCNC reader {}: {}", args[0], std::strerror(rc)));
   return pid;
 }
 
@@ -213,9 +214,8 @@ LinkSnapshot LinuxcncLink::waitForRecord(long long after, std::chrono::milliseco
   {
     const State& s = *state_;
     std::unique_lock lock(s.mutex);
-    s.arrived.wait_for(lock, timeout, [&] {
-      return s.ended || (s.status && s.status->sequence > after);
-    });
+    s.arrived.wait_for(
+        lock, timeout, [&] { return s.ended || (s.status && s.status->sequence > after); });
   }
   return snapshot();
 }

@@ -13,9 +13,7 @@ namespace {
 
 using Json = nlohmann::json;
 
-[[noreturn]] void fail(const std::string& message) {
-  throw IoError("reader line: " + message);
-}
+[[noreturn]] void fail(const std::string& message) { throw IoError("reader line: " + message); }
 
 const Json& field(const Json& j, const char* key) {
   const auto it = j.find(key);
@@ -62,9 +60,8 @@ std::vector<double> numbers(const Json& j, const char* key, std::size_t count) {
   std::vector<double> out;
   for (std::size_t i = 0; i < count; ++i) {
     if (!v[i].is_number())
-      fail(fmt::format("\"{}\"[{}] is not a finite number (LinuxCNC reported NaN or infinity)",
-                       key,
-                       i));
+      fail(fmt::format(
+          "\"{}\"[{}] is not a finite number (LinuxCNC reported NaN or infinity)", key, i));
     out.push_back(v[i].get<double>());
   }
   return out;
@@ -135,9 +132,7 @@ bool LinuxcncStatus::allHomed() const {
   return true;
 }
 
-bool LinuxcncStatus::busy() const {
-  return interp_state != InterpState::kIdle;
-}
+bool LinuxcncStatus::busy() const { return interp_state != InterpState::kIdle; }
 
 bool LinuxcncStatus::readyToMove() const {
   return !estop && enabled && task_state == TaskState::kOn && allHomed() && !busy();

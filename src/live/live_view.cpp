@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <limits>
 
-#include "pkm/io/linuxcnc_patch.hpp"
 #include "pkm/core/units.hpp"
+#include "pkm/io/linuxcnc_patch.hpp"
 #include "pkm/io/named_text.hpp"
 
 namespace pkm::live {
@@ -46,11 +46,11 @@ LiveFrame liveFrame(const LinkSnapshot& snapshot, const LiveMachine& machine) {
   workflow::PoseCheckRequest q;
   q.machine = machine.hal;
   q.ini = machine.ini;
-  q.poses = {snapshot.status->pose_commanded};
+  q.poses = {snapshot.status->pose_actual};
   workflow::PoseCheckResult r = workflow::checkPoses(q);
-  f.commanded = std::move(r.rows.front());
-  const std::vector<double>& lcnc = snapshot.status->joint_commanded;
-  const std::vector<double>& pkm = f.commanded->joints;
+  f.pose_check = std::move(r.rows.front());
+  const std::vector<double>& lcnc = snapshot.status->joint_actual;
+  const std::vector<double>& pkm = f.pose_check->joints;
   if (pkm.size() != lcnc.size() || pkm.empty()) {
     f.joint_disagreement = std::numeric_limits<double>::quiet_NaN();
   } else {

@@ -99,6 +99,10 @@ Response route(const Request& r, Api::State& s) {
     requireMethod(r, "GET");
     return detail::liveStatus(s);
   }
+  if (p == "/api/live/program") {
+    requireMethod(r, "GET");
+    return detail::liveProgram(s);
+  }
   if (p == "/api/live/connect") {
     requireMethod(r, "POST");
     return detail::liveConnect(s);

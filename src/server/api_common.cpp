@@ -15,6 +15,13 @@ detail::MachineSpec Api::State::resolveMachine(const std::string& name) {
   for (const char* type : {"hexapod", "exechon"})
     for (const std::string& b : io::builtinMachineNames(type))
       if (b == name) return {name, ""};
+  if (name == detail::kLiveMachine) {
+    const std::lock_guard lock(live_mutex);
+    if (live_machine) return {live_machine->hal, live_machine->ini};
+    throw detail::HttpError(400,
+                            "no LinuxCNC machine: follow a running LinuxCNC first (Connect, or "
+                            "`pkm serve --linuxcnc`)");
+  }
   const std::lock_guard lock(mutex);
   for (const detail::Upload& u : uploads)
     if (u.name == name) return {u.path.string(), u.ini.string()};

@@ -4,25 +4,33 @@
 
 #include "api_state.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/io/hexapod_machine.hpp"
 
 namespace pkm::server::detail {
 namespace {
 
 const char* modeName(live::TaskMode m) {
   switch (m) {
-    case live::TaskMode::kManual: return "manual";
-    case live::TaskMode::kAuto: return "auto";
-    case live::TaskMode::kMdi: return "mdi";
+    case live::TaskMode::kManual:
+      return "manual";
+    case live::TaskMode::kAuto:
+      return "auto";
+    case live::TaskMode::kMdi:
+      return "mdi";
   }
   return "manual";
 }
 
 const char* interpName(live::InterpState i) {
   switch (i) {
-    case live::InterpState::kIdle: return "idle";
-    case live::InterpState::kReading: return "reading";
-    case live::InterpState::kPaused: return "paused";
-    case live::InterpState::kWaiting: return "waiting";
+    case live::InterpState::kIdle:
+      return "idle";
+    case live::InterpState::kReading:
+      return "reading";
+    case live::InterpState::kPaused:
+      return "paused";
+    case live::InterpState::kWaiting:
+      return "waiting";
   }
   return "idle";
 }
@@ -67,8 +75,8 @@ std::optional<live::LiveMachine> machineOf(Api::State& s,
                                            const live::LinkSnapshot& snap,
                                            std::string& error) {
   const std::string ini = !s.options.linuxcnc_ini.empty() ? s.options.linuxcnc_ini
-                          : snap.status                  ? snap.status->ini
-                                                         : std::string();
+                          : snap.status                   ? snap.status->ini
+                                                          : std::string();
   if (ini.empty()) return std::nullopt;
   std::lock_guard lock(s.live_mutex);
   if (s.live_machine && s.live_machine->ini == ini) return s.live_machine;
@@ -82,6 +90,26 @@ std::optional<live::LiveMachine> machineOf(Api::State& s,
 }
 
 }  // namespace
+
+Response liveProgram(Api::State& s) {
+  std::shared_ptr<live::LinuxcncLink> link;
+  {
+    std::lock_guard lock(s.live_mutex);
+    link = s.link;
+  }
+  const live::LinkSnapshot snap = link ? link->snapshot() : live::LinkSnapshot{};
+  if (!snap.status || snap.status->file.empty())
+    throw HttpError(404, "LinuxCNC has no program loaded (or is not followed)");
+  // The path is LinuxCNC's, not the request's: the program it runs, read as a program file.
+  const std::string& file = snap.status->file;
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(file, ec);
+  if (ec) throw HttpError(404, fmt::format("{}: LinuxCNC's program cannot be read here", file));
+  if (size > s.options.max_body)
+    throw HttpError(
+        413, fmt::format("{}: {} bytes, above the limit of {}", file, size, s.options.max_body));
+  return json({{"file", file}, {"text", io::readTextFile(file, s.options.max_body)}});
+}
 
 Response liveConnect(Api::State& s) {
   {
@@ -108,11 +136,11 @@ Response liveStatus(Api::State& s) {
     link = s.link;
   }
   if (!link)
-    return json({{"following", false},
-                 {"connected", false},
-                 {"state", "disconnected"},
-                 {"reason",
-                  "not following LinuxCNC: press Connect, or start `pkm serve --linuxcnc`"}});
+    return json(
+        {{"following", false},
+         {"connected", false},
+         {"state", "disconnected"},
+         {"reason", "not following LinuxCNC: press Connect, or start `pkm serve --linuxcnc`"}});
   const live::LinkSnapshot snap = link->snapshot();
   std::string machine_error;
   const std::optional<live::LiveMachine> machine = machineOf(s, snap, machine_error);
@@ -139,8 +167,8 @@ Response liveStatus(Api::State& s) {
   }
   out["state"] = live::liveState(snap);
   if (snap.status) out["status"] = statusJson(*snap.status);
-  if (frame.commanded) {
-    out["check"] = poseRowJson(*frame.commanded);
+  if (frame.pose_check) {
+    out["check"] = poseRowJson(*frame.pose_check);
     out["joint_disagreement"] = finiteOrNull(frame.joint_disagreement);
   }
   return json(out);

@@ -155,6 +155,11 @@ enum class TokenUse { kNotNeeded, kCookie, kQuery, kMissing, kWrong };
 /// Checks a campaign request ({"campaign": NAME}) and sets `job` up with a job slot and a number.
 void prepareCampaign(Api::State& s, const Request& r, CampaignJob& job);
 [[nodiscard]] Response campaignReport(Api::State& s, const std::string& id);
+/// The name under which the followed LinuxCNC's machine is a machine of every route.
+inline constexpr const char* kLiveMachine = "linuxcnc";
+/// GET /api/live/program: the program the followed LinuxCNC has loaded, {"file", "text"}; 404
+/// when none (api_live.cpp).
+[[nodiscard]] Response liveProgram(Api::State& s);
 /// GET /api/live: the followed LinuxCNC's state checked on its machine (api_live.cpp).
 [[nodiscard]] Response liveStatus(Api::State& s);
 /// POST /api/live/connect: starts following the LinuxCNC on this host (no-op when following).

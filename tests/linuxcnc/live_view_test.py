@@ -9,13 +9,20 @@ is started beside it (port 0). Then, through GET /api/live:
     of the program that moves;
   - E-stop is shown as "estop" within a second;
   - with LinuxCNC stopped, following again reports it not running.
+  - the page (web/app/test/live_browser_test.mjs in headless Chromium) follows a program one of
+    whose moves takes strut 3 below the limit this test sets half-way (not at its ends, where
+    LinuxCNC checks when it queues the move): the drawn machine's joints equal
+    LinuxCNC's within 1e-6 in, the machine moves, the executing line is highlighted and the
+    violation is flagged ahead of it before LinuxCNC gets there; E-stop turns the header red.
 The server never commands LinuxCNC: it has no route that could (checked by its answers to POSTs).
-Exit 77 (skipped) when LinuxCNC, its sample or the harness's user is missing.
+Exit 77 (skipped) when LinuxCNC, its sample or the harness's user is missing; the page's part is
+left out (with a note) without node, Chromium or web/app/node_modules.
 
-Usage: live_view_test.py PKM_BINARY
+Usage: live_view_test.py PKM_BINARY [SCREENSHOT_DIR]
 """
 import json
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -39,6 +46,25 @@ G1 X0 Y-1 Z20
 G0 X0 Y0 Z20
 M2
 """
+
+
+# The page's part: strut 3 may not shorten below MIN_LIMIT (28.5 in here). A straight move of the
+# platform from x = -4.459 to -14.459 (y 0, z 20) keeps it at 28.64 in at both ends, which LinuxCNC
+# checks when it queues the move, but takes it to 28.20 in half-way, which LinuxCNC finds only when
+# the machine gets there; pkm checks the whole path and flags line 7 while lines 2-6 run.
+STRUT3_MIN = 28.5
+VIOLATING = """G20 G90
+G0 X0 Y0 Z20 A0 B0 C0
+G1 X-1 Y0 Z20 F30
+G1 X-2 Y0.5
+G1 X-3 Y0
+G1 X-4.459 Y0
+G1 X-14.459 Y0
+G1 X0 Y0
+M2
+"""
+HERE = os.path.dirname(os.path.abspath(__file__))
+BROWSER_TEST = os.path.join(HERE, "..", "..", "web", "app", "test", "live_browser_test.mjs")
 
 
 def get(port, path="/api/live"):
@@ -78,7 +104,48 @@ def pkm_ik(pkm, cfg, ini, pose, work):
     return [float(v) for v in out.strip().splitlines()[1].split(",")[:6]]
 
 
-def body(pkm, cfg, ini, work, port):
+def page_follows(cnc, port, work, shots, failures):
+    """The page's part (live_browser_test.mjs); False when it cannot run here."""
+    node = shutil.which("node")
+    if not node or not os.path.exists("/usr/bin/chromium"):
+        print("note: no node or chromium here: the page's part is left out")
+        return False
+    program = os.path.join(work, "violating.ngc")
+    with open(program, "w") as f:
+        f.write(VIOLATING)
+    os.chmod(program, 0o644)
+    page = subprocess.Popen([node, BROWSER_TEST, f"http://127.0.0.1:{port}/", shots],
+                            stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    try:
+        first = page.stdout.readline().strip()
+        if first.startswith("SKIP"):
+            print(f"note: {first}: the page's part is left out")
+            page.wait(timeout=10)
+            return False
+        if first != "ready":
+            raise RuntimeError(f"the page test said {first!r}, expected ready")
+        for c in ["set mode auto", f"set open {program}", "set run"]:
+            if "NAK" in cnc.ask(c):
+                raise RuntimeError(f"'{c}' refused")
+        page.stdin.write("running\n")
+        page.stdin.flush()
+        said = page.stdout.readline().strip()
+        cnc.ask("set abort")
+        cnc.ask("set estop on")
+        page.stdin.write("estop\n")
+        page.stdin.flush()
+        result = page.stdout.read().strip()
+        code = page.wait(timeout=30)
+        print(f"page test: {said}, {result}, exit {code}")
+        if said != "seen" or code != 0:
+            failures.append(f"the page did not follow LinuxCNC: {said}, {result}, exit {code}")
+    finally:
+        if page.poll() is None:
+            page.kill()
+    return True
+
+
+def body(pkm, cfg, ini, work, port, shots):
     def check(cnc, failures):
         cnc.home()
         cnc.mdi("G0 X{} Y{} Z{} A{} B{} C{}".format(*POSE))
@@ -118,7 +185,8 @@ def body(pkm, cfg, ini, work, port):
             failures.append(f"program run not followed: running {running}, lines {sorted(lines)}")
         cnc.ask("set mode mdi")
 
-        cnc.ask("set estop on")
+        if not page_follows(cnc, port, work, shots, failures):
+            cnc.ask("set estop on")
         wait_for(port, "E-stop", lambda j: j["state"] == "estop", timeout=5)
         for path in ["/api/live/run", "/api/mdi"]:
             try:
@@ -144,14 +212,16 @@ def main():
     cfg = lh.copy_config(SAMPLE, work, "cfg")
     ini = os.path.join(cfg, "hexapod.ini")
     lh.make_headless(ini)
+    lh.set_ini(ini, "JOINT_3", "MIN_LIMIT", str(STRUT3_MIN))
     with open(os.path.join(cfg, "hexapod.tbl"), "w") as f:
         f.write("T1 P1 D0.125 Z+0.5 ;test tool\n")
+    shots = sys.argv[2] if len(sys.argv) > 2 else os.path.join(work, "screenshots")
     server, port = start_server(pkm, ini)
     try:
         first = get(port)
         if first["following"] is not True:
             sys.exit(f"FAIL: --linuxcnc did not start following: {first}")
-        failures, log = lh.session(ini, [], "live", work, body(pkm, cfg, ini, work, port))
+        failures, log = lh.session(ini, [], "live", work, body(pkm, cfg, ini, work, port, shots))
         if not failures:
             urllib.request.urlopen(urllib.request.Request(
                 f"http://127.0.0.1:{port}/api/live/connect", data=b"{}", method="POST"),

@@ -21,7 +21,8 @@ using pkm::test::linuxcncRecord;
 using ::testing::HasSubstr;
 
 /// A reader that writes `lines`, then waits for its input to close (as the real one does).
-LinkOptions writes(const std::vector<std::string>& lines, const std::string& then = "cat >/dev/null") {
+LinkOptions writes(const std::vector<std::string>& lines,
+                   const std::string& then = "cat >/dev/null") {
   std::string script;
   for (std::size_t i = 0; i < lines.size(); ++i)
     script += "printf '%s\\n' \"$" + std::to_string(i + 1) + "\"; ";
@@ -33,7 +34,8 @@ LinkOptions writes(const std::vector<std::string>& lines, const std::string& the
 }
 
 TEST(LinuxcncLink, KeepsTheLatestRecord) {
-  LinuxcncLink link(writes({linuxcncRecord(1).dump(), linuxcncRecord(2, {1, 2, 21, 0, 0, 0}).dump()}));
+  LinuxcncLink link(
+      writes({linuxcncRecord(1).dump(), linuxcncRecord(2, {1, 2, 21, 0, 0, 0}).dump()}));
   const LinkSnapshot s = link.waitForRecord(1, 10s);
   ASSERT_TRUE(s.status.has_value()) << s.reason;
   EXPECT_TRUE(s.connected) << s.reason;
@@ -77,7 +79,8 @@ TEST(LinuxcncLink, AReaderThatEndsIsReported) {
 }
 
 TEST(LinuxcncLink, AFatalLineIsTheReason) {
-  LinuxcncLink link(writes({R"({"fatal": "python3 cannot import the linuxcnc module"})"}, "exit 3"));
+  LinuxcncLink link(
+      writes({R"({"fatal": "python3 cannot import the linuxcnc module"})"}, "exit 3"));
   (void)link.waitForRecord(0, 10s);
   EXPECT_FALSE(link.snapshot().connected);
   EXPECT_THAT(link.snapshot().reason, HasSubstr("cannot import the linuxcnc module"));
@@ -97,8 +100,8 @@ TEST(LinuxcncLink, MalformedLinesAreReasonsNotCrashes) {
 TEST(LinuxcncLink, AReaderThatIgnoresItsEndIsStoppedWithinSeconds) {
   const auto start = std::chrono::steady_clock::now();
   {
-    LinuxcncLink link(writes({linuxcncRecord(1).dump()},
-                             "trap '' TERM; while :; do sleep 0.05; done"));
+    LinuxcncLink link(
+        writes({linuxcncRecord(1).dump()}, "trap '' TERM; while :; do sleep 0.05; done"));
     ASSERT_TRUE(link.waitForRecord(0, 10s).connected);
   }
   EXPECT_LT(std::chrono::steady_clock::now() - start, 5s);

@@ -23,8 +23,8 @@ using ::testing::HasSubstr;
 
 /// genhexkins' strut lengths of the hexapod-sim at x y z a b c = 2 -1 22 3 -4 10 (inch, degrees),
 /// as LinuxCNC printed them (6 decimals).
-const std::vector<double> kGenhexkins = {31.597194, 31.713899, 29.975223,
-                                         32.850082, 27.921167, 33.441616};
+const std::vector<double> kGenhexkins = {
+    31.597194, 31.713899, 29.975223, 32.850082, 27.921167, 33.441616};
 constexpr double kSixDecimals = 1e-6;  // LinuxCNC printed the lengths rounded to 6 decimals
 
 class LiveViewTest : public ::testing::Test {
@@ -51,22 +51,21 @@ TEST_F(LiveViewTest, TheMachineIsTheConfigurationsGenhexkinsFile) {
 }
 
 TEST_F(LiveViewTest, LinuxcncsJointsAgreeWithPkmsInverseKinematics) {
-  const LiveFrame f =
-      liveFrame(connected(linuxcncRecord(5, {2, -1, 22, 3, -4, 10}, kGenhexkins, ini_)),
-                liveMachine(ini_));
-  ASSERT_TRUE(f.commanded.has_value());
-  EXPECT_EQ(f.commanded->status, "ok");
+  const LiveFrame f = liveFrame(
+      connected(linuxcncRecord(5, {2, -1, 22, 3, -4, 10}, kGenhexkins, ini_)), liveMachine(ini_));
+  ASSERT_TRUE(f.pose_check.has_value());
+  EXPECT_EQ(f.pose_check->status, "ok");
   EXPECT_LT(f.joint_disagreement, kSixDecimals);
-  ASSERT_EQ(f.commanded->joints.size(), 6u);
-  EXPECT_EQ(f.commanded->moving_points.size(), 6u);  // what the page draws
+  ASSERT_EQ(f.pose_check->joints.size(), 6u);
+  EXPECT_EQ(f.pose_check->moving_points.size(), 6u);  // what the page draws
   EXPECT_EQ(f.state, "idle");
 }
 
 TEST_F(LiveViewTest, JointsThatDisagreeAreMeasured) {
   std::vector<double> off = kGenhexkins;
   off[3] += 0.01;
-  const LiveFrame f = liveFrame(connected(linuxcncRecord(5, {2, -1, 22, 3, -4, 10}, off, ini_)),
-                                liveMachine(ini_));
+  const LiveFrame f =
+      liveFrame(connected(linuxcncRecord(5, {2, -1, 22, 3, -4, 10}, off, ini_)), liveMachine(ini_));
   EXPECT_NEAR(f.joint_disagreement, 0.01, kSixDecimals);
 }
 
@@ -86,11 +85,11 @@ TEST_F(LiveViewTest, AStrutBeyondItsLimitIsFlagged) {
       liveFrame(connected(linuxcncRecord(5, {2, -1, 22, 3, -4, 10}, kGenhexkins, ini_)),
                 liveMachine((dir / "hexapod.ini").string()));
   std::filesystem::remove_all(dir);
-  ASSERT_TRUE(f.commanded.has_value());
-  EXPECT_NE(f.commanded->status, "ok");
-  ASSERT_FALSE(f.commanded->violations.empty());
-  EXPECT_THAT(f.commanded->violations.front(), HasSubstr("3"));
-  EXPECT_LT(f.commanded->stroke_margin[3], 0.0);
+  ASSERT_TRUE(f.pose_check.has_value());
+  EXPECT_NE(f.pose_check->status, "ok");
+  ASSERT_FALSE(f.pose_check->violations.empty());
+  EXPECT_THAT(f.pose_check->violations.front(), HasSubstr("3"));
+  EXPECT_LT(f.pose_check->stroke_margin[3], 0.0);
 }
 
 TEST_F(LiveViewTest, TheStateWord) {

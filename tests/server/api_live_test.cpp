@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -25,7 +26,9 @@ using ::testing::HasSubstr;
 /// LinuxCNC's hexapod-sim at x y z a b c = 2 -1 22 3 -4 10 with genhexkins' strut lengths.
 Json simRecord(const std::string& ini) {
   return pkm::test::linuxcncRecord(
-      3, {2, -1, 22, 3, -4, 10}, {31.597194, 31.713899, 29.975223, 32.850082, 27.921167, 33.441616},
+      3,
+      {2, -1, 22, 3, -4, 10},
+      {31.597194, 31.713899, 29.975223, 32.850082, 27.921167, 33.441616},
       ini);
 }
 
@@ -80,6 +83,37 @@ TEST(ApiLive, TheRecordIsCheckedOnTheConfigurationsMachine) {
   EXPECT_EQ(j["status"]["executing_line"], 0);
 }
 
+TEST(ApiLive, TheFollowedMachineAndProgramAreServed) {
+  const std::string ini = (pkm::test::linuxcncHexapodSim() / "hexapod.ini").string();
+  if (!std::filesystem::exists(ini)) GTEST_SKIP() << "no LinuxCNC sample at " << ini;
+  const auto program = std::filesystem::temp_directory_path() / "pkm-api-live-test.ngc";
+  std::ofstream(program) << "G20 G90\nG0 X0 Y0 Z20\nM2\n";
+  Json record = simRecord(ini);
+  record["file"] = program.string();
+  Api api(following(record.dump(), true));
+  EXPECT_EQ(get(api, "/api/machines/linuxcnc").status, 400);  // before the first record
+  (void)poll(api, [](const Json& j) { return j["connected"] == true; });
+  const Json list = Json::parse(get(api, "/api/machines").body);
+  EXPECT_EQ(list.back()["name"], "linuxcnc");
+  EXPECT_EQ(list.back()["live"], true);
+  const Response m = get(api, "/api/machines/linuxcnc");
+  ASSERT_EQ(m.status, 200) << m.body;
+  EXPECT_EQ(Json::parse(m.body)["units"], "inch");
+  const Response p = get(api, "/api/live/program");
+  ASSERT_EQ(p.status, 200) << p.body;
+  EXPECT_EQ(Json::parse(p.body)["text"], "G20 G90\nG0 X0 Y0 Z20\nM2\n");
+  std::filesystem::remove(program);
+  EXPECT_EQ(get(api, "/api/live/program").status, 404);  // LinuxCNC's file is gone
+}
+
+TEST(ApiLive, NoProgramIsNotFound) {
+  Api api(following(pkm::test::linuxcncRecord(1).dump(), true));
+  (void)poll(api, [](const Json& j) { return j["connected"] == true; });
+  EXPECT_EQ(get(api, "/api/live/program").status, 404);
+  Api idle(following("", false));
+  EXPECT_EQ(get(idle, "/api/live/program").status, 404);
+}
+
 TEST(ApiLive, ConnectStartsFollowingAndDisconnectStops) {
   Api api(following(pkm::test::linuxcncRecord(1).dump(), false));
   EXPECT_EQ(Json::parse(get(api, "/api/live").body)["following"], false);
@@ -97,7 +131,8 @@ TEST(ApiLive, AReaderThatEndsIsADisconnection) {
   ServerOptions o = following(pkm::test::linuxcncRecord(1).dump(), true);
   o.live.command.back() = R"({"error": "LinuxCNC is not running on this host"})";
   Api api(o);
-  const Json j = poll(api, [](const Json& j) { return !j["reason"].get<std::string>().starts_with("waiting"); });
+  const Json j = poll(
+      api, [](const Json& j) { return !j["reason"].get<std::string>().starts_with("waiting"); });
   EXPECT_EQ(j["connected"], false);
   EXPECT_EQ(j["state"], "disconnected");
   EXPECT_THAT(j["reason"].get<std::string>(), HasSubstr("not running"));

@@ -58,7 +58,8 @@ class LinuxcncLink {
 
   /// Waits until a status record with sequence > `after` arrives, the reader ends, or `timeout`
   /// passes; returns snapshot().
-  [[nodiscard]] LinkSnapshot waitForRecord(long long after, std::chrono::milliseconds timeout) const;
+  [[nodiscard]] LinkSnapshot waitForRecord(long long after,
+                                           std::chrono::milliseconds timeout) const;
 
   struct State;  ///< the implementation's
 

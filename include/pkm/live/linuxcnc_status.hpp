@@ -21,13 +21,13 @@ enum class InterpState { kIdle = 1, kReading = 2, kPaused = 3, kWaiting = 4 };
 /// angles in degrees, as LinuxCNC reports them; poses are x, y, z, a, b, c in machine
 /// coordinates (no work offsets applied).
 struct LinuxcncStatus {
-  long long sequence = 0;     ///< the reader's record number, 1, 2, ...
-  double time = 0.0;          ///< the reader's monotonic clock, s
-  std::string ini;            ///< the INI LinuxCNC was started with (absolute path)
-  int kinematics_type = 0;    ///< 1 identity, 2 forward only, 3 inverse only, 4 both
-  double linear_units = 1.0;  ///< machine units per mm (1 for mm, 1/25.4 for inch)
-  std::vector<double> joint_actual;     ///< joint feedback positions (strut lengths)
-  std::vector<double> joint_commanded;  ///< joint commanded positions
+  long long sequence = 0;                  ///< the reader's record number, 1, 2, ...
+  double time = 0.0;                       ///< the reader's monotonic clock, s
+  std::string ini;                         ///< the INI LinuxCNC was started with (absolute path)
+  int kinematics_type = 0;                 ///< 1 identity, 2 forward only, 3 inverse only, 4 both
+  double linear_units = 1.0;               ///< machine units per mm (1 for mm, 1/25.4 for inch)
+  std::vector<double> joint_actual;        ///< joint feedback positions (strut lengths)
+  std::vector<double> joint_commanded;     ///< joint commanded positions
   std::array<double, 6> pose_commanded{};  ///< the trajectory planner's commanded pose
   std::array<double, 6> pose_actual{};     ///< the pose forward kinematics gives of the feedback
   bool estop = true;                       ///< emergency stop active
@@ -43,9 +43,9 @@ struct LinuxcncStatus {
   /// The interpreter's current line (LinuxCNC's `current_line`; the interpreter reads ahead of
   /// the motion, so this is usually past the executing line).
   int current_line = 0;
-  int motion_line = 0;  ///< the program line of the motion executing now (0: none)
-  int read_line = 0;    ///< the line the interpreter has read up to
-  int tool = 0;              ///< tool in the spindle (0: none)
+  int motion_line = 0;                  ///< the program line of the motion executing now (0: none)
+  int read_line = 0;                    ///< the line the interpreter has read up to
+  int tool = 0;                         ///< tool in the spindle (0: none)
   std::array<double, 3> tool_offset{};  ///< x, y, z of the active tool length offset
   int g5x_index = 1;                    ///< 1 = G54 ... 9 = G59.3
   std::array<double, 6> g5x_offset{};   ///< the active work offset

@@ -14,26 +14,28 @@ namespace pkm::live {
 
 /// The machine a LinuxCNC configuration computes with, as files pkm reads.
 struct LiveMachine {
-  std::string ini;   ///< the configuration's INI
-  std::string hal;   ///< its HAL file that sets the genhexkins pins
-  std::string name;  ///< the machine's name for display (the HAL file's)
+  std::string ini;    ///< the configuration's INI
+  std::string hal;    ///< its HAL file that sets the genhexkins pins
+  std::string name;   ///< the machine's name for display (the HAL file's)
   std::string units;  ///< "mm" or "inch" ([TRAJ] LINEAR_UNITS)
 };
 
 /// The machine of the configuration `ini`: the HAL file among its [HAL] HALFILE entries that sets
-/// genhexkins pins, read with the INI (io::readLinuxcncHal). Throws pkm::IoError naming the INI when
-/// no HAL file it loads sets them, or naming the file and line of a malformed entry.
+/// genhexkins pins, read with the INI (io::readLinuxcncHal). Throws pkm::IoError naming the INI
+/// when no HAL file it loads sets them, or naming the file and line of a malformed entry.
 [[nodiscard]] LiveMachine liveMachine(const std::string& ini);
 
 /// One status record checked on the machine.
 struct LiveFrame {
   LinkSnapshot link;  ///< connection state and the record
-  /// The record's commanded pose checked by workflow::checkPoses (machine unit, degrees); empty
-  /// without a record.
-  std::optional<workflow::PoseCheckRow> commanded;
-  /// The largest difference between LinuxCNC's commanded joints and pkm's inverse kinematics of
-  /// the commanded pose, machine unit (NaN without a record or a solution): what LinuxCNC
-  /// computes with against what pkm draws.
+  /// Where the machine is: the record's actual pose (LinuxCNC's forward kinematics of its joint
+  /// feedback) checked by workflow::checkPoses (machine unit, degrees); empty without a record.
+  /// The actual pose and joints of one record belong together; the commanded pose and joints do
+  /// not while the machine moves (LinuxCNC samples them apart: 1e-2 in seen at 0.5 in/s).
+  std::optional<workflow::PoseCheckRow> pose_check;
+  /// The largest difference between LinuxCNC's joint feedback and pkm's inverse kinematics of the
+  /// actual pose, machine unit (NaN without a record or a solution): what LinuxCNC computes with
+  /// against what pkm draws.
   double joint_disagreement = 0.0;
   /// The state in one word for a status line: "disconnected", "estop", "off", "not homed",
   /// "running", "paused", "idle".

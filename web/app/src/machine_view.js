@@ -56,6 +56,29 @@ export class MachineView {
     this.update();
   }
 
+  /** A record of the followed LinuxCNC: the machine where LinuxCNC says it is, its tool's trail. */
+  showLive(j) {
+    if (!j.check || !this.m) return;
+    this.liveRow = j.check;
+    this.livePose = j.status.pose_actual;
+    for (const [k, s] of [...this.sliders.querySelectorAll("input")].entries()) {
+      s.disabled = true;
+      s.value = this.livePose[k];
+      s.nextElementSibling.textContent = Number(this.livePose[k]).toFixed(k < 3 ? 3 : 2);
+    }
+    this.render({ rows: [j.check], units: j.machine.units, type: "hexapod", joints: this.m.joints });
+    this.app.scene("machine-canvas").trail(j.check.tool_point);
+  }
+
+  /** Back to the sliders' pose. */
+  endLive() {
+    if (!this.liveRow) return;
+    this.liveRow = null;
+    for (const s of this.sliders.querySelectorAll("input")) s.disabled = false;
+    this.app.scene("machine-canvas").trail(null);
+    this.update();
+  }
+
   /** The pose the sliders give, as POST /api/ik takes it. */
   pose() {
     const v = [...this.sliders.querySelectorAll("input")].map((s) => Number(s.value));

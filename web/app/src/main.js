@@ -7,6 +7,7 @@ import { MachineView } from "./machine_view.js";
 import { ProgramView } from "./program_view.js";
 import { BlocksView } from "./blocks_view.js";
 import { CampaignView } from "./campaign_view.js";
+import { LiveFollower } from "./live.js";
 
 const $ = (s) => document.querySelector(s);
 
@@ -24,6 +25,29 @@ class App {
     $("#machine").addEventListener("change", () => this.selectMachine($("#machine").value));
     $("#compare").addEventListener("change", () => this.selectMachine($("#machine").value));
     $("#upload").addEventListener("change", (e) => this.upload(e.target.files[0]));
+    this.follower = new LiveFollower(this);
+  }
+
+  /** One record of the followed LinuxCNC (GET /api/live): its machine is selected once known. */
+  async live(j) {
+    if (j.machine && this.machine?.name !== "linuxcnc") {
+      if (this.switching) return;
+      this.switching = true;
+      try {
+        await this.loadMachines("linuxcnc");
+      } finally {
+        this.switching = false;
+      }
+    }
+    if (this.machine?.name !== "linuxcnc") return;
+    this.views.machine.showLive(j);
+    await this.views.program.followLive(j);
+  }
+
+  /** Following ended: the views go back to their own poses and programs. */
+  liveStopped() {
+    this.views.machine.endLive();
+    this.views.program.endLive();
   }
 
   /** The 3-D scene in the element with id `id` (made on first use). */
@@ -90,4 +114,4 @@ class App {
 
 const app = new App();
 window.pkmApp = app;
-app.ready = Promise.all([app.loadMachines(), app.views.campaign.load()]);
+app.ready = Promise.all([app.loadMachines(), app.views.campaign.load()]).then(() => app.follower.init());

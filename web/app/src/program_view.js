@@ -8,7 +8,7 @@ import { Decoration } from "@codemirror/view";
 import uPlot from "uplot";
 import "uplot/dist/uPlot.min.css";
 import { gcodeLanguage } from "./gcode_mode.js";
-import { post } from "./api.js";
+import { get, post } from "./api.js";
 
 const markLine = StateEffect.define();
 const lineMarks = StateField.define({
@@ -21,6 +21,18 @@ const lineMarks = StateField.define({
   provide: (f) => EditorView.decorations.from(f),
 });
 const badLine = Decoration.line({ class: "cm-bad-line" });
+// The line the followed LinuxCNC executes (live.js).
+const markLive = StateEffect.define();
+const liveMarks = StateField.define({
+  create: () => Decoration.none,
+  update(marks, tr) {
+    marks = marks.map(tr.changes);
+    for (const e of tr.effects) if (e.is(markLive)) marks = e.value;
+    return marks;
+  },
+  provide: (f) => EditorView.decorations.from(f),
+});
+const liveLine = Decoration.line({ class: "cm-live-line" });
 
 export const EXAMPLE = `(a square and a circle at z 200)
 G21 G90 G17
@@ -222,13 +234,14 @@ export class ProgramView {
           <button id="save-ngc">save .ngc</button>
         </div>
         <div id="editor"></div>
+        <div id="live-ahead"></div>
         <div id="program-error" class="error"></div>
       </div>
       <div class="canvas" id="program-canvas"></div>
       <div class="side wide" id="program-results"></div>`;
     this.editor = new EditorView({
       doc: EXAMPLE,
-      extensions: [basicSetup, gcodeLanguage, lineMarks],
+      extensions: [basicSetup, gcodeLanguage, lineMarks, liveMarks],
       parent: root.querySelector("#editor"),
     });
     this.sim = new Simulator(root.querySelector("#program-results"), app, "program-canvas", {
@@ -265,6 +278,67 @@ export class ProgramView {
     const doc = this.editor.state.doc;
     const marks = n >= 1 && n <= doc.lines ? Decoration.set([badLine.range(doc.line(n).from)]) : Decoration.none;
     this.editor.dispatch({ effects: markLine.of(marks) });
+  }
+
+  /**
+   * A record of the followed LinuxCNC: a newly loaded program is fetched, shown and checked on the
+   * machine; its executing line is marked and the first violation ahead of it named.
+   */
+  async followLive(j) {
+    const s = j.status;
+    if (!j.connected || !s) return;
+    if (s.file && s.file !== this.liveFile && !this.liveLoading) {
+      this.liveLoading = true;
+      try {
+        const p = await get("/api/live/program");
+        this.liveFile = s.file;
+        this.liveName = s.file.split("/").pop();
+        this.setProgram(p.text);
+        this.liveLine = -1;
+        this.liveResult = null;
+        this.liveResult = await this.sim.run(p.text, this.liveName);
+      } catch (e) {
+        this.liveFile = s.file; // not again for the same file
+        document.querySelector("#program-error").textContent = e.message;
+        if (e.line) this.markError(e.line);
+      } finally {
+        this.liveLoading = false;
+      }
+    }
+    if (s.file !== this.liveFile) return;
+    const line = s.executing_line;
+    if (line !== this.liveLine) {
+      this.liveLine = line;
+      const doc = this.editor.state.doc;
+      const marks = line >= 1 && line <= doc.lines ? Decoration.set([liveLine.range(doc.line(line).from)]) : Decoration.none;
+      this.editor.dispatch({ effects: markLive.of(marks), scrollIntoView: false });
+      if (line >= 1 && line <= doc.lines) this.editor.dispatch({ effects: EditorView.scrollIntoView(doc.line(line).from, { y: "center" }) });
+    }
+    this.showAhead(line, j.state);
+  }
+
+  /** The first violation at or after the executing line (the program's own check). */
+  showAhead(line, state) {
+    const box = document.querySelector("#live-ahead");
+    const r = this.liveResult;
+    if (!r) return (box.textContent = "");
+    const next = r.violations.find((v) => v.line >= Math.max(line, 1));
+    box.dataset.line = next ? next.line : "";
+    if (!next) {
+      box.className = "ok";
+      box.textContent = r.ok ? "LinuxCNC's program passes every check" : "no violation ahead of the executing line";
+      return;
+    }
+    box.className = "bad";
+    const where = state === "running" && line > 0 ? `${next.line - line} lines ahead of line ${line}` : "in the loaded program";
+    box.textContent = `violation ahead, line ${next.line} (${where}): ${next.check} ${next.item} ${Number(next.value).toPrecision(5)}, limit ${Number(next.limit).toPrecision(5)} ${next.unit}`;
+  }
+
+  endLive() {
+    this.liveFile = null;
+    this.liveResult = null;
+    this.editor.dispatch({ effects: markLive.of(Decoration.none) });
+    document.querySelector("#live-ahead").textContent = "";
   }
 
   async run() {

@@ -205,6 +205,27 @@ export class MachineScene {
     this.invalidate();
   }
 
+  /** Adds `point` to the tool's trail (at most TRAIL points, the oldest dropped); null clears it. */
+  trail(point) {
+    const TRAIL = 5000;
+    if (!point) {
+      if (this.trailLine) this.scene.remove(this.trailLine);
+      this.trailLine = null;
+      this.trailPoints = [];
+      return this.invalidate();
+    }
+    this.trailPoints = this.trailPoints || [];
+    const last = this.trailPoints.at(-1);
+    if (last && last[0] === point[0] && last[1] === point[1] && last[2] === point[2]) return;
+    this.trailPoints.push(point);
+    if (this.trailPoints.length > TRAIL) this.trailPoints.shift();
+    if (this.trailLine) this.scene.remove(this.trailLine);
+    const geometry = new THREE.BufferGeometry().setFromPoints(this.trailPoints.map((p) => new THREE.Vector3(...p)));
+    this.trailLine = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: 0xf97316 }));
+    this.scene.add(this.trailLine);
+    this.invalidate();
+  }
+
   /** A programmed path (points in the machine unit) and a marker for the animation. */
   showPath(points) {
     if (this.path) this.scene.remove(this.path);
