@@ -13,8 +13,9 @@ import sys
 from pathlib import Path
 
 # Rows the documented table may hold although a build did not configure them: the Python module
-# is built only where pybind11 is (and not in the sanitizer build).
-OPTIONAL_ROWS = ("| Python module |",)
+# is built only where pybind11 is (and not in the sanitizer build); pkm-truth only where LinuxCNC's
+# HAL headers and library are.
+OPTIONAL_ROWS = ("| Python module |", "| program pkm-truth |")
 
 BEGIN = "<!-- module-graph: printed by scripts/module-graph.py from CMake; do not edit -->"
 END = "<!-- /module-graph -->"

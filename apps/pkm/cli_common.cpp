@@ -88,4 +88,10 @@ void setFooter(CLI::App& app, const std::string& footer) {
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) setFooter(*sub, footer);
 }
 
+std::filesystem::path programDirectory() {
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path{} : self.parent_path();
+}
+
 }  // namespace pkm::cli

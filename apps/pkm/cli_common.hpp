@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -59,6 +60,10 @@ void writeTextOutput(const std::string& out, const std::string& text);
 /// "-" is standard input, named "-"; a file that cannot be opened throws pkm::IoError
 /// "PATH: cannot open: REASON".
 [[nodiscard]] io::NamedText readCsvInput(const std::string& path);
+
+/// The folder of the running pkm program (from /proc/self/exe; empty when unknown): its sibling
+/// programs (pkm-serve, pkm-truth) are there.
+[[nodiscard]] std::filesystem::path programDirectory();
 
 /// Prints each notice to stderr as "pkm: note: ...".
 void printNotices(const std::vector<std::string>& notices);

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <filesystem>
 #include <memory>
 
 #include "cli_common.hpp"
@@ -109,13 +110,22 @@ void addConfig(CLI::App& group) {
                    "[DISPLAY] DISPLAY: axis (LinuxCNC's GUI) or linuxcncrsh (headless, telnet "
                    "port 5007)")
       ->capture_default_str();
+  config->add_option("--simulate-truth",
+                     st->request.simulate_truth,
+                     "TRUTH.json of `pkm simulate` (a hexapod in mm): add the simulated physical "
+                     "machine to the loop (pkm-truth: true struts, three dial gauges and a laser "
+                     "along x as HAL pins; docs/linuxcnc.md)");
   config->add_flag("--force", st->request.force, "replace files of the same names in the folder");
   config->add_flag_callback(
       "--no-comp-check",
       [st] { st->request.check_comp_files = false; },
       "use the --comp-file tables even when a correction is larger than 1 % of the joint's travel "
       "(a table of the wrong type or unit is refused without it); their format is still checked");
-  config->callback([st] { runConfig(st->request, st->comp, st->data); });
+  config->callback([st] {
+    const std::filesystem::path truth = programDirectory() / "pkm-truth";
+    if (std::filesystem::exists(truth)) st->request.truth_program = truth.string();
+    runConfig(st->request, st->comp, st->data);
+  });
 }
 
 void addLinuxcnc(CLI::App& app) {

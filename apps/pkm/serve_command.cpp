@@ -23,13 +23,6 @@
 namespace pkm::cli {
 namespace {
 
-/// The directory of the running program (from /proc/self/exe).
-std::filesystem::path programDirectory() {
-  std::error_code ec;
-  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::filesystem::path{} : self.parent_path();
-}
-
 [[noreturn]] void execServe(const ServeOptions& o) {
   const std::filesystem::path server = programDirectory() / "pkm-serve";
   std::vector<std::string> args = {

@@ -79,6 +79,8 @@ std::string linuxcncIni(const IniSpec& spec,
   o += "\n[EMCMOT]\nEMCMOT = motmod\nCOMM_TIMEOUT = 1.0\nSERVO_PERIOD = 1000000\n";
   o += "\n[TASK]\nTASK = milltask\nCYCLE_TIME = 0.010\n";
   o += fmt::format("\n[HAL]\nHALFILE = {}\nHALFILE = {}\n", names.kinematics, names.sim);
+  for (const std::string& extra : options.extra_hal_files)
+    o += fmt::format("HALFILE = {}\n", extra);
   o += fmt::format("\n[TRAJ]\nCOORDINATES = {}\nLINEAR_UNITS = {}\nANGULAR_UNITS = degree\n",
                    coordinates,
                    inch ? "inch" : "mm");
@@ -186,4 +188,31 @@ std::array<double, 2> axisLimits(double home, double below, double above, double
 double limitStep(double length) { return std::pow(10.0, std::floor(std::log10(length)) - 3.0); }
 
 }  // namespace detail
+std::string linuxcncTruthHal(const std::string& program,
+                             const std::string& truth,
+                             const std::vector<double>& joint_offsets) {
+  for (const std::string* v : {&program, &truth})
+    PKM_CHECK(!v->empty() && v->find_first_of(" \t\n#") == std::string::npos,
+              "'{}': a HAL file cannot name it (empty, whitespace or '#')",
+              *v);
+  std::string o =
+      "# The simulated physical machine (written by pkm linuxcnc config --simulate-truth;\n"
+      "# docs/linuxcnc.md, \"A simulated machine in the loop\"): pkm-truth takes each joint's\n"
+      "# motor command as the real struts would, moves the true machine of the truth file and\n"
+      "# gives its sensors as pins: pkmtruth.gauge-0..2 (three dial gauges on the platform, mm),\n"
+      "# pkmtruth.laser-x (a laser along x, mm), pkmtruth.x .. .c (the true pose); a rising edge\n"
+      "# of pkmtruth.zero zeroes them. For the real machine, delete this file and its HALFILE\n"
+      "# line and connect your gauge interface's pins to the names `pkm calibrate hexapod --live\n"
+      "# --gauges` is given.\n";
+  std::string offsets;
+  for (const double v : joint_offsets) offsets += (offsets.empty() ? "" : ",") + formatNumber(v);
+  o += fmt::format("loadusr -Wn pkmtruth {} --truth {} --name pkmtruth --joint-offset {}\n",
+                   program,
+                   truth,
+                   offsets);
+  for (std::size_t j = 0; j < joint_offsets.size(); ++j)
+    o += fmt::format("net j{}-pos => pkmtruth.joint-{}\n", j, j);
+  return o;
+}
+
 }  // namespace pkm::io

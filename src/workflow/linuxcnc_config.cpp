@@ -19,6 +19,7 @@
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/number_format.hpp"
 #include "pkm/io/positioning_files.hpp"
+#include "pkm/io/truth_file.hpp"
 
 namespace pkm::workflow {
 
@@ -175,6 +176,21 @@ std::string configurationName(const std::string& spec, const std::string& name) 
 
 double orOpen(double v, double open) { return std::isfinite(v) ? v : open; }
 
+/// truth.hal (the truth is checked: a hexapod truth in mm), added to `options`' HAL files; the
+/// truth itself is copied as truth.json by configFiles.
+io::NamedText truthFiles(const LinuxcncConfigRequest& request,
+                         const io::HexapodMachine& machine,
+                         io::LinuxcncConfigOptions& options) {
+  if (machine.model.unit != LengthUnit::kMillimetre)
+    throw InvalidArgument("--simulate-truth: the machine must be in mm (the truth is)");
+  (void)io::readHexapodTruth(request.simulate_truth);  // refuses a malformed truth here
+  options.extra_hal_files.push_back("truth.hal");
+  std::vector<double> offsets;  // the INI's HOME_OFFSETs
+  for (const io::PkmhexkinsJointValues& j : io::pkmhexkinsJointValues(machine))
+    offsets.push_back(j.home);
+  return {"truth.hal", io::linuxcncTruthHal(request.truth_program, "truth.json", offsets)};
+}
+
 /// linuxcncConfigFiles, also saying which kind of machine it was.
 std::vector<io::NamedText> configFiles(const LinuxcncConfigRequest& request,
                                        std::vector<std::string>& notices,
@@ -198,6 +214,8 @@ std::vector<io::NamedText> configFiles(const LinuxcncConfigRequest& request,
     for (const kinematics::AngleRange* r : {&m.model.limits.c, &m.model.limits.a})
       ranges.push_back({std::isfinite(r->min) ? radToDeg(r->min) : -kOpen,
                         std::isfinite(r->max) ? radToDeg(r->max) : kOpen});
+    if (!request.simulate_truth.empty())
+      throw InvalidArgument("--simulate-truth: the simulated machine in the loop is a hexapod's");
     tables = compTables(request, ranges, m.model.unit, options, notices);
     files = io::exechonLinuxcncConfig(m, options);
   } else {
@@ -211,9 +229,12 @@ std::vector<io::NamedText> configFiles(const LinuxcncConfigRequest& request,
     for (const io::PkmhexkinsJointValues& j : io::pkmhexkinsJointValues(m))
       ranges.push_back({j.min_limit.value_or(-kOpen), j.max_limit.value_or(kOpen)});
     tables = compTables(request, ranges, m.model.unit, options, notices);
+    if (!request.simulate_truth.empty()) tables.push_back(truthFiles(request, m, options));
     files = io::hexapodLinuxcncConfig(m, options, &notices);
   }
   files.insert(files.end(), tables.begin(), tables.end());
+  if (!request.simulate_truth.empty())
+    files.push_back({"truth.json", io::readTextFile(request.simulate_truth)});
   return files;
 }
 

@@ -53,8 +53,8 @@ def hexapod_body(pkm, machine, work, ini, poses, program, joints=6):
         ch.check(failures, "world after homing", cnc.world(6), home)
         for pose, want in zip(poses, expected):
             cnc.mdi("G0 X{} Y{} Z{} A{} B{} C{}".format(*pose))
-            ch.check(failures, f"joints at MDI {pose}", ch.joint_pins(cnc, joints), want)
-            ch.check(failures, f"world at MDI {pose}", cnc.world(6), pose)
+            ch.check(failures, f"joints at MDI {pose}", lambda: ch.joint_pins(cnc, joints), want)
+            ch.check(failures, f"world at MDI {pose}", lambda: cnc.world(6), pose)
         cnc.mdi("G0 X{} Y{} Z{} A{} B{} C{}".format(*home))  # the program starts at home
 
         def at_stop(k):
@@ -101,8 +101,8 @@ def corners_body(pkm, machine, work, ini):
         cnc.home()
         for pose, want in zip(box, expected):
             cnc.mdi("G0 X{} Y{} Z{} A{} B{} C{}".format(*pose))
-            ch.check(failures, f"world at corner {pose}", cnc.world(6), pose)
-            ch.check(failures, f"joints at corner {pose}", ch.joint_pins(cnc, 6), want)
+            ch.check(failures, f"world at corner {pose}", lambda: cnc.world(6), pose)
+            ch.check(failures, f"joints at corner {pose}", lambda: ch.joint_pins(cnc, 6), want)
             cnc.mdi("G0 X{} Y{} Z{} A{} B{} C{}".format(*home))
         print(f"{len(box)} corners of the axis limits checked")
 

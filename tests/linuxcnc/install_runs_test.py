@@ -18,7 +18,6 @@ import sys
 
 import lcnc_harness as lh
 
-SAMPLE = "/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis/vismach/hexapod-sim"
 POSES = [(1, 1, 21, 0, 0, 0), (-2, 1.5, 19, 3, -2, 5), (0.5, -2, 22.5, -4, 1, -3)]
 # Joint positions agree to what linuxcncrsh prints (6 decimals) plus genhexkins' own forward
 # kinematics tolerance on the commanded pose (its default convergence criterion 1e-9 in).
@@ -37,14 +36,7 @@ def run(cmd, **kw):
 def main():
     pkm = os.path.abspath(sys.argv[1])
     lh.require()
-    if not os.path.isdir(SAMPLE):
-        lh.skip(f"LinuxCNC's sample configuration {SAMPLE} is not installed")
-    work = lh.workdir("pkm-linuxcnc-")
-    cfg = lh.copy_config(SAMPLE, work, "cfg")
-    ini = os.path.join(cfg, "hexapod.ini")
-    lh.make_headless(ini)
-    with open(os.path.join(cfg, "hexapod.tbl"), "w") as f:
-        f.write("T1 P1 D0.125 Z+0.5 ;test tool\n")
+    work, cfg, ini = lh.hexapod_sample("pkm-linuxcnc-")
 
     # A calibration: the sample's machine with three joints moved.
     machine = json.loads(run([pkm, "hexapod", "describe", "--json", "--machine",

@@ -19,6 +19,9 @@ API (everything a test needs; the rest of the module is private):
 
     work = lh.workdir("pkm-foo-")              a temporary folder the LinuxCNC user can read
     cfg = lh.copy_config(src, work, "cfg")     a copy of a configuration folder, writable by USER
+    work, cfg, ini = lh.hexapod_sample("pkm-foo-")
+                                               LinuxCNC's hexapod-sim (genhexkins), copied and
+                                               headless, with a tool table (skips without it)
     lh.make_headless(ini)                      DISPLAY = linuxcncrsh, GUI panels and the manual
                                                tool-change dialog removed
     lh.set_ini(ini, section, key, value)       sets (or adds) one INI entry in place
@@ -76,8 +79,8 @@ from lcnc_process import (HARNESS_LOCK, LOCK, MODULES, USER, WAIT, LinuxCNCProce
                           leftovers, user_prefix, workdir)
 
 __all__ = ["USER", "PORT", "MODULES", "LOCK", "HARNESS_LOCK", "WAIT", "Timeout", "skip", "require",
-           "workdir", "copy_config", "make_headless", "set_ini", "leftovers", "LinuxCNC",
-           "StartResult", "start_fails", "session", "halrun"]
+           "workdir", "copy_config", "HEXAPOD_SAMPLE", "hexapod_sample", "make_headless", "set_ini",
+           "leftovers", "LinuxCNC", "StartResult", "start_fails", "session", "halrun"]
 
 PORT = 5007  # linuxcncrsh's port
 
@@ -139,6 +142,24 @@ def copy_config(src, work, name="cfg"):
     shutil.copytree(src, cfg)
     _open_up(cfg)
     return cfg
+
+
+HEXAPOD_SAMPLE = "/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis/vismach/hexapod-sim"
+
+
+def hexapod_sample(prefix):
+    """LinuxCNC's own hexapod-sim (genhexkins, inch) ready to run headless: (work, cfg, ini). A
+    new work folder, the sample copied into work/cfg, linuxcncrsh as display and a one-tool table.
+    Exit 77 (skipped) when the sample is not installed."""
+    if not os.path.isdir(HEXAPOD_SAMPLE):
+        skip(f"LinuxCNC's sample configuration {HEXAPOD_SAMPLE} is not installed")
+    work = workdir(prefix)
+    cfg = copy_config(HEXAPOD_SAMPLE, work, "cfg")
+    ini = os.path.join(cfg, "hexapod.ini")
+    make_headless(ini)
+    with open(os.path.join(cfg, "hexapod.tbl"), "w") as f:
+        f.write("T1 P1 D0.125 Z+0.5 ;test tool\n")
+    return work, cfg, ini
 
 
 def make_headless(ini):

@@ -31,7 +31,6 @@ import urllib.request
 
 import lcnc_harness as lh
 
-SAMPLE = "/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis/vismach/hexapod-sim"
 POSE = (1.5, -1, 21, 2, -3, 4)
 # The link reads LinuxCNC's status in doubles; the joints are genhexkins' inverse kinematics of the
 # commanded pose, computed in double precision by both programs.
@@ -206,15 +205,8 @@ def body(pkm, cfg, ini, work, port, shots):
 def main():
     pkm = os.path.abspath(sys.argv[1])
     lh.require()
-    if not os.path.isdir(SAMPLE):
-        lh.skip(f"LinuxCNC's sample configuration {SAMPLE} is not installed")
-    work = lh.workdir("pkm-live-")
-    cfg = lh.copy_config(SAMPLE, work, "cfg")
-    ini = os.path.join(cfg, "hexapod.ini")
-    lh.make_headless(ini)
+    work, cfg, ini = lh.hexapod_sample("pkm-live-")
     lh.set_ini(ini, "JOINT_3", "MIN_LIMIT", str(STRUT3_MIN))
-    with open(os.path.join(cfg, "hexapod.tbl"), "w") as f:
-        f.write("T1 P1 D0.125 Z+0.5 ;test tool\n")
     shots = sys.argv[2] if len(sys.argv) > 2 else os.path.join(work, "screenshots")
     server, port = start_server(pkm, ini)
     try:

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <set>
 
 #include "pkm/core/error.hpp"
@@ -14,6 +15,7 @@
 #include "pkm/io/hexapod_machine.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "support/scratch_files.hpp"
+#include "support/truth_text.hpp"
 
 namespace pkm::workflow {
 namespace PKM_TEST_NS {
@@ -44,6 +46,38 @@ TEST(LinuxcncConfigWorkflow, WritesTheHexapodFolder) {
                           (dir / "tool.tbl").string(),
                           (dir / "pkm-hx1200.params").string()));
   for (const std::string& f : res.files) EXPECT_TRUE(fs::is_regular_file(f)) << f;
+}
+
+TEST(LinuxcncConfigWorkflow, TheSimulatedMachineJoinsTheLoop) {
+  const fs::path dir = freshDir("truth");
+  fs::create_directories(dir.parent_path());
+  const fs::path truth = dir.parent_path() / "truth-in.json";
+  std::ofstream(truth) << test::hexapodTruthText();
+  LinuxcncConfigRequest r;
+  r.machine = "hexapod-default";
+  r.out = dir.string();
+  r.simulate_truth = truth.string();
+  r.truth_program = "/opt/pkm/bin/pkm-truth";
+  const LinuxcncConfigResult res = writeLinuxcncConfig(r);
+  EXPECT_THAT(res.files, ::testing::Contains((dir / "truth.hal").string()));
+  EXPECT_THAT(res.files, ::testing::Contains((dir / "truth.json").string()));
+  const std::string hal = test::slurp(dir / "truth.hal");
+  EXPECT_THAT(hal,
+              HasSubstr("loadusr -Wn pkmtruth /opt/pkm/bin/pkm-truth --truth truth.json --name "
+                        "pkmtruth --joint-offset 250.49"));
+  EXPECT_THAT(hal, HasSubstr("net j5-pos => pkmtruth.joint-5\n"));
+  const std::string ini = test::slurp(res.ini);
+  EXPECT_THAT(ini, HasSubstr("HALFILE = sim.hal\nHALFILE = truth.hal\n"));
+  EXPECT_EQ(test::slurp(dir / "truth.json"), test::hexapodTruthText());
+  // Refused: an Exechon, a machine in inch, a malformed truth.
+  r.force = true;
+  r.machine = "mxt700s-like";
+  EXPECT_THROW((void)writeLinuxcncConfig(r), InvalidArgument);
+  r.machine = "hexapod-linuxcnc-sim";
+  EXPECT_THROW((void)writeLinuxcncConfig(r), InvalidArgument);
+  r.machine = "hexapod-default";
+  std::ofstream(truth) << "{";
+  EXPECT_THROW((void)writeLinuxcncConfig(r), IoError);
 }
 
 TEST(LinuxcncConfigWorkflow, RefusesToReplaceWithoutForce) {

@@ -30,10 +30,25 @@ struct LinuxcncConfigOptions {
   /// or any other display program LinuxCNC knows. A word of [A-Za-z0-9_.-].
   std::string display = "axis";
   std::vector<LinuxcncCompReference> comp_files;  ///< at most one per joint
+  /// More HAL files for the INI's [HAL] section, after the kinematics and simulator files (file
+  /// names inside the configuration folder), e.g. linuxcncTruthHal's "truth.hal".
+  std::vector<std::string> extra_hal_files;
   /// Throws pkm::InvalidArgument naming the field: an empty or malformed display, a joint index
   /// outside 0..joints-1 or given twice, an empty or path-like file name, a type other than 0/1.
   void validate(int joints) const;
 };
+
+/// The HAL file of the simulated physical machine in the loop (docs/linuxcnc.md, "A simulated
+/// machine in the loop"): `loadusr -Wn pkmtruth PROGRAM --truth TRUTH --name pkmtruth
+/// --joint-offset O0,..` (the userspace component apps/pkm-truth) and each joint's motor command
+/// (the simulator's signals jN-pos: LinuxCNC's command to the drive, with its backlash and
+/// COMP_FILE corrections) into pkmtruth.joint-N; a strut's reading is its motor position plus the
+/// joint's HOME_OFFSET, `joint_offsets` (one per joint). `program` and `truth` are written as
+/// given (a truth name is relative to the configuration folder); neither may hold whitespace or
+/// '#'. Throws pkm::InvalidArgument otherwise.
+[[nodiscard]] std::string linuxcncTruthHal(const std::string& program,
+                                           const std::string& truth,
+                                           const std::vector<double>& joint_offsets);
 
 /// The file names of a configuration (inside its folder), the INI first.
 struct LinuxcncConfigNames {

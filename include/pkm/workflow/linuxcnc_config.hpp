@@ -41,6 +41,12 @@ struct LinuxcncConfigRequest {
   bool force = false;            ///< replace files of the same names in `out`
   /// Refuse tables with implausible corrections (checkCompPlausible); false = `--no-comp-check`.
   bool check_comp_files = true;
+  /// A hexapod truth.json (`pkm simulate`; `--simulate-truth`): the configuration gets the
+  /// simulated physical machine in its loop, copied as truth.json with truth.hal
+  /// (io::linuxcncTruthHal). "" : none. Hexapods in mm only.
+  std::string simulate_truth;
+  /// The pkm-truth program truth.hal starts (an absolute path, or a name on LinuxCNC's PATH).
+  std::string truth_program = "pkm-truth";
   /// Throws pkm::InvalidArgument naming the option: empty machine or out, tables without a
   /// type 0 or 1, comp_data for a joint without a table.
   void validate() const;

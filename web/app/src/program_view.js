@@ -10,28 +10,24 @@ import "uplot/dist/uPlot.min.css";
 import { gcodeLanguage } from "./gcode_mode.js";
 import { get, post } from "./api.js";
 
+/** A set of line decorations that `effect` replaces (an error's line, the executing line). */
+function lineField(effect) {
+  return StateField.define({
+    create: () => Decoration.none,
+    update(marks, tr) {
+      marks = marks.map(tr.changes);
+      for (const e of tr.effects) if (e.is(effect)) marks = e.value;
+      return marks;
+    },
+    provide: (f) => EditorView.decorations.from(f),
+  });
+}
 const markLine = StateEffect.define();
-const lineMarks = StateField.define({
-  create: () => Decoration.none,
-  update(marks, tr) {
-    marks = marks.map(tr.changes);
-    for (const e of tr.effects) if (e.is(markLine)) marks = e.value;
-    return marks;
-  },
-  provide: (f) => EditorView.decorations.from(f),
-});
+const lineMarks = lineField(markLine);
 const badLine = Decoration.line({ class: "cm-bad-line" });
 // The line the followed LinuxCNC executes (live.js).
 const markLive = StateEffect.define();
-const liveMarks = StateField.define({
-  create: () => Decoration.none,
-  update(marks, tr) {
-    marks = marks.map(tr.changes);
-    for (const e of tr.effects) if (e.is(markLive)) marks = e.value;
-    return marks;
-  },
-  provide: (f) => EditorView.decorations.from(f),
-});
+const liveMarks = lineField(markLive);
 const liveLine = Decoration.line({ class: "cm-live-line" });
 
 export const EXAMPLE = `(a square and a circle at z 200)
