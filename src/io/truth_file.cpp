@@ -19,7 +19,8 @@ using TruthJson = nlohmann::json;
 /// Reads values of one truth text, naming the file, line and JSON pointer of a bad one.
 class TruthReader {
  public:
-  TruthReader(const std::string& text, std::string source) : locator_(text), source_(std::move(source)) {}
+  TruthReader(const std::string& text, std::string source)
+      : locator_(text), source_(std::move(source)) {}
 
   [[noreturn]] void fail(const std::string& pointer, const std::string& message) const {
     throw IoError(locate(source_, locator_.line(pointer), fmt::format("{}: {}", pointer, message)));
@@ -88,14 +89,13 @@ HexapodTruth parseHexapodTruth(const std::string& text, const std::string& sourc
   t.errors.base_joint = r.points(r.at(errors, "/errors", "base_joint"), "/errors/base_joint");
   t.errors.platform_joint =
       r.points(r.at(errors, "/errors", "platform_joint"), "/errors/platform_joint");
-  t.errors.length_offset =
-      r.six(r.at(errors, "/errors", "length_offset"), "/errors/length_offset");
+  t.errors.length_offset = r.six(r.at(errors, "/errors", "length_offset"), "/errors/length_offset");
   const TruthJson& act = r.at(j, "", "actuation");
-  t.actuation.encoder_resolution = r.number(r.at(act, "/actuation", "encoder_resolution"),
-                                            "/actuation/encoder_resolution");
+  t.actuation.encoder_resolution =
+      r.number(r.at(act, "/actuation", "encoder_resolution"), "/actuation/encoder_resolution");
   t.actuation.backlash = r.six(r.at(act, "/actuation", "backlash"), "/actuation/backlash");
-  t.actuation.repeatability_sigma = r.number(r.at(act, "/actuation", "repeatability_sigma"),
-                                             "/actuation/repeatability_sigma");
+  t.actuation.repeatability_sigma =
+      r.number(r.at(act, "/actuation", "repeatability_sigma"), "/actuation/repeatability_sigma");
   try {
     t.actuation.validate();
   } catch (const InvalidArgument& e) {

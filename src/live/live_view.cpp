@@ -8,6 +8,7 @@
 
 #include "pkm/core/units.hpp"
 #include "pkm/io/linuxcnc_patch.hpp"
+#include "pkm/io/machine_loader.hpp"
 #include "pkm/io/named_text.hpp"
 
 namespace pkm::live {
@@ -32,6 +33,9 @@ LiveMachine liveMachine(const std::string& ini) {
   m.name = std::filesystem::path(hal.name).filename().string();
   const std::optional<LengthUnit> unit = io::iniLinearUnits(text);
   m.units = unit == LengthUnit::kInch ? "inch" : "mm";
+  io::HalReadOptions options;
+  options.ini_path = ini;
+  m.machine = io::loadHexapodMachine(m.hal, options);
   return m;
 }
 
@@ -43,12 +47,9 @@ LiveFrame liveFrame(const LinkSnapshot& snapshot, const LiveMachine& machine) {
     f.joint_disagreement = std::numeric_limits<double>::quiet_NaN();
     return f;
   }
-  workflow::PoseCheckRequest q;
-  q.machine = machine.hal;
-  q.ini = machine.ini;
-  q.poses = {snapshot.status->pose_actual};
-  workflow::PoseCheckResult r = workflow::checkPoses(q);
-  f.pose_check = std::move(r.rows.front());
+  kinematics::HexapodData data(machine.machine.model);
+  f.pose_check =
+      workflow::checkHexapodPose(machine.machine.model, data, snapshot.status->pose_actual);
   const std::vector<double>& lcnc = snapshot.status->joint_actual;
   const std::vector<double>& pkm = f.pose_check->joints;
   if (pkm.size() != lcnc.size() || pkm.empty()) {

@@ -35,15 +35,6 @@ std::string describe(const kin::LimitViolation& v) {
                      angle ? radToDeg(v.limit) : v.limit);
 }
 
-PoseCheckRow hexapodRow(const kin::HexapodModel& m,
-                        kin::HexapodData& data,
-                        const std::array<double, 6>& p) {
-  kin::PoseRpy pose;
-  pose.position = {p[0], p[1], p[2]};
-  pose.rpy = Eigen::Vector3d(degToRad(p[3]), degToRad(p[4]), degToRad(p[5]));
-  return detail::hexapodPoseRow(m, data, pose);
-}
-
 PoseCheckRow exechonRow(const io::ExechonMachine& machine,
                         ExechonPosePath& path,
                         const std::array<double, 6>& p) {
@@ -123,6 +114,15 @@ PoseCheckRow exechonDataRow(const kin::ExechonModel& model,
 
 namespace {}  // namespace
 
+PoseCheckRow checkHexapodPose(const kin::HexapodModel& model,
+                              kin::HexapodData& data,
+                              const std::array<double, 6>& p) {
+  kin::PoseRpy pose;
+  pose.position = {p[0], p[1], p[2]};
+  pose.rpy = Eigen::Vector3d(degToRad(p[3]), degToRad(p[4]), degToRad(p[5]));
+  return detail::hexapodPoseRow(model, data, pose);
+}
+
 void PoseCheckRequest::validate() const {
   PKM_CHECK(!poses.empty(), "no poses to check");
   PKM_CHECK(poses.size() <= kMaxPoseChecks,
@@ -178,7 +178,7 @@ PoseCheckResult checkPoses(const PoseCheckRequest& request) {
   r.units = std::string(toString(machine.model.unit));
   for (int i = 0; i < kin::kStruts; ++i) r.joint_names.push_back(fmt::format("strut {}", i));
   kin::HexapodData data(machine.model);
-  for (const auto& p : request.poses) r.rows.push_back(hexapodRow(machine.model, data, p));
+  for (const auto& p : request.poses) r.rows.push_back(checkHexapodPose(machine.model, data, p));
   return r;
 }
 

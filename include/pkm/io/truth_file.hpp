@@ -1,7 +1,8 @@
 /// @file
-/// @brief A hexapod's truth read back from the truth.json that `pkm simulate` writes (docs/formats.md,
-/// "truth.json"): the nominal machine, the injected assembly errors and the actuation, to build the
-/// same true machine again (e.g. the simulated machine in LinuxCNC's loop, docs/linuxcnc.md).
+/// @brief A hexapod's truth read back from the truth.json that `pkm simulate` writes
+/// (docs/formats.md, "truth.json"): the nominal machine, the injected assembly errors and the
+/// actuation, to build the same true machine again (e.g. the simulated machine in LinuxCNC's loop,
+/// docs/linuxcnc.md).
 #pragma once
 
 #include <string>
@@ -13,9 +14,9 @@ namespace pkm::io {
 
 /// A hexapod truth.
 struct HexapodTruth {
-  std::string source;       ///< the file
-  std::string machine;      ///< the nominal machine's spec, as the file names it
-  HexapodMachine nominal;   ///< that machine, loaded (machine_loader.hpp)
+  std::string source;                        ///< the file
+  std::string machine;                       ///< the nominal machine's spec, as the file names it
+  HexapodMachine nominal;                    ///< that machine, loaded (machine_loader.hpp)
   simulation::HexapodAssemblyErrors errors;  ///< true − nominal, mm
   simulation::StrutActuation actuation;      ///< encoder resolution, backlash, repeatability
 };

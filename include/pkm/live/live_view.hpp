@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "pkm/io/hexapod_machine.hpp"
 #include "pkm/live/linuxcnc_link.hpp"
 #include "pkm/workflow/pose_checks.hpp"
 
@@ -14,15 +15,16 @@ namespace pkm::live {
 
 /// The machine a LinuxCNC configuration computes with, as files pkm reads.
 struct LiveMachine {
-  std::string ini;    ///< the configuration's INI
-  std::string hal;    ///< its HAL file that sets the genhexkins pins
-  std::string name;   ///< the machine's name for display (the HAL file's)
-  std::string units;  ///< "mm" or "inch" ([TRAJ] LINEAR_UNITS)
+  std::string ini;             ///< the configuration's INI
+  std::string hal;             ///< its HAL file that sets the genhexkins pins
+  std::string name;            ///< the machine's name for display (the HAL file's)
+  std::string units;           ///< "mm" or "inch" ([TRAJ] LINEAR_UNITS)
+  io::HexapodMachine machine;  ///< the machine, read once (the HAL file with the INI)
 };
 
 /// The machine of the configuration `ini`: the HAL file among its [HAL] HALFILE entries that sets
-/// genhexkins pins, read with the INI (io::readLinuxcncHal). Throws pkm::IoError naming the INI
-/// when no HAL file it loads sets them, or naming the file and line of a malformed entry.
+/// genhexkins pins, read with the INI (io::readLinuxcncHal) once. Throws pkm::IoError naming the
+/// INI when no HAL file it loads sets them, or naming the file and line of a malformed entry.
 [[nodiscard]] LiveMachine liveMachine(const std::string& ini);
 
 /// One status record checked on the machine.
@@ -45,7 +47,7 @@ struct LiveFrame {
 /// The state of `snapshot` in one word (LiveFrame::state).
 [[nodiscard]] std::string liveState(const LinkSnapshot& snapshot);
 
-/// `snapshot` checked on `machine`. Throws pkm::IoError when the machine's files cannot be read.
+/// `snapshot` checked on `machine` (no file is read).
 [[nodiscard]] LiveFrame liveFrame(const LinkSnapshot& snapshot, const LiveMachine& machine);
 
 }  // namespace pkm::live

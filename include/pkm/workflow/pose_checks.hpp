@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "pkm/kinematics/hexapod_data.hpp"
+#include "pkm/kinematics/hexapod_model.hpp"
+
 namespace pkm::workflow {
 
 /// A point or vector in the world frame, machine unit.
@@ -68,6 +71,14 @@ struct PoseCheckResult {
 /// unreadable machine.
 [[nodiscard]] std::array<double, 6> homePose(const std::string& machine,
                                              const std::string& ini = "");
+
+/// One hexapod pose (x, y, z in the model's unit, a, b, c in degrees) solved and checked on an
+/// already loaded model, as checkPoses does for each of its poses; `data` is `model`'s work space
+/// (kinematics::HexapodData(model)). For a caller that checks pose after pose of one machine (the
+/// live view, 20 times a second) without reading its files each time.
+[[nodiscard]] PoseCheckRow checkHexapodPose(const kinematics::HexapodModel& model,
+                                            kinematics::HexapodData& data,
+                                            const std::array<double, 6>& pose);
 
 /// Solves and checks every pose: hexapod IK (kinematics::checkPose), Exechon tool IK by continuity
 /// from the previous pose (workflow::ExechonPosePath). Throws as validate() and pkm::IoError for an
