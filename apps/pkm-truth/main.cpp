@@ -124,8 +124,11 @@ int main(int argc, char** argv) {
     signal(SIGTERM, onSignal);
     signal(SIGINT, onSignal);
     hal_ready(comp);
-    fmt::print(stderr, "pkm-truth: {} follows the joints of the true {} ({})\n", name,
-               truth.machine, truth_path);
+    fmt::print(stderr,
+               "pkm-truth: {} follows the joints of the true {} ({})\n",
+               name,
+               truth.machine,
+               truth_path);
     run(machine, *pins, period_ms, offsets);
     hal_exit(comp);
   } catch (const pkm::IoError& e) {

@@ -53,16 +53,20 @@ TEST(HexapodTruthFile, TheTrueMachineCarriesTheErrors) {
 TEST(HexapodTruthFile, BadFilesAreRefusedWithLineAndPointer) {
   const std::string good = pkm::test::hexapodTruthText();
   EXPECT_THAT(refusal("[1, 2]"), HasSubstr("t.json: not a JSON object"));
-  EXPECT_THAT(refusal(replaced(good, R"("machine_kind": "hexapod")", R"("machine_kind": "exechon")")),
-              HasSubstr("t.json:5: /machine_kind: \"exechon\": only a hexapod truth"));
+  EXPECT_THAT(
+      refusal(replaced(good, R"("machine_kind": "hexapod")", R"("machine_kind": "exechon")")),
+      HasSubstr("t.json:5: /machine_kind: \"exechon\": only a hexapod truth"));
   EXPECT_THAT(refusal(replaced(good, "[1, -2, 3]", "[1, -2]")),
               HasSubstr("/errors/base_joint/0: not [x, y, z]"));
-  EXPECT_THAT(refusal(replaced(good, R"("length_offset": [1, 0, 0, -2, 0, 0.5])",
+  EXPECT_THAT(refusal(replaced(good,
+                               R"("length_offset": [1, 0, 0, -2, 0, 0.5])",
                                R"("length_offset": [1, 0, 0, "x", 0, 0.5])")),
               HasSubstr("/errors/length_offset/3: not a number"));
-  EXPECT_THAT(refusal(replaced(good, R"("repeatability_sigma": 0.002)", R"("repeatability_sigma": -1)")),
-              HasSubstr("/actuation"));
-  EXPECT_THAT(refusal(replaced(good, R"("actuation")", R"("actuator")")), HasSubstr("no \"actuation\""));
+  EXPECT_THAT(
+      refusal(replaced(good, R"("repeatability_sigma": 0.002)", R"("repeatability_sigma": -1)")),
+      HasSubstr("/actuation"));
+  EXPECT_THAT(refusal(replaced(good, R"("actuation")", R"("actuator")")),
+              HasSubstr("no \"actuation\""));
   EXPECT_THAT(refusal(pkm::test::hexapodTruthText("no-such-machine")), HasSubstr("/machine: "));
   EXPECT_THAT(refusal(pkm::test::hexapodTruthText("hexapod-linuxcnc-sim")),
               HasSubstr("/machine: the truth's machine must be in mm"));

@@ -42,7 +42,7 @@ TEST(HexapodMachineInLoop, WithoutErrorsTheSensorsReadTheCommandedMotion) {
   const kin::HexapodModel m = pkm::test::millingModel();
   HexapodMachineInLoop loop(HexapodVirtualMachine(m, HexapodAssemblyErrors{}));
   ASSERT_TRUE(loop.command(readings(m, {0, 0, 200, 0, 0, 0})));
-  for (const double g : loop.gauges()) EXPECT_NEAR(g, 0.0, kTol);  // zeroed at the first command
+  for (const double g : loop.gauges()) EXPECT_NEAR(g, 0.0, kTol);   // zeroed at the first command
   ASSERT_TRUE(loop.command(readings(m, {40, -25, 200, 0, 0, 7})));  // in the table plane
   for (const double g : loop.gauges()) EXPECT_NEAR(g, 0.0, kTol);
   EXPECT_NEAR(loop.laser(), 40.0, kTol);
@@ -59,8 +59,8 @@ TEST(HexapodMachineInLoop, TheTruePoseIsTheTrueModelsForwardKinematics) {
   const HexapodAssemblyErrors errors = someErrors();
   HexapodMachineInLoop loop(HexapodVirtualMachine(m, errors));
   const kin::HexapodModel truth = errors.apply(m);
-  for (const auto& pose : {std::array<double, 6>{0, 0, 200, 0, 0, 0},
-                           std::array<double, 6>{30, 20, 190, 2, -3, 10}}) {
+  for (const auto& pose :
+       {std::array<double, 6>{0, 0, 200, 0, 0, 0}, std::array<double, 6>{30, 20, 190, 2, -3, 10}}) {
     const kin::StrutVector q = readings(m, pose);
     ASSERT_TRUE(loop.command(q));
     kin::HexapodData data(truth);
