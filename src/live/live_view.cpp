@@ -24,6 +24,8 @@ std::string liveState(const LinkSnapshot& s) {
   return "idle";
 }
 
+std::string LiveMachine::units() const { return std::string(toString(machine.model.unit)); }
+
 LiveMachine liveMachine(const std::string& ini) {
   const io::NamedText text = io::readNamedText(ini);
   const io::NamedText hal = io::genhexkinsHalFile(text);
@@ -31,8 +33,6 @@ LiveMachine liveMachine(const std::string& ini) {
   m.ini = ini;
   m.hal = hal.name;
   m.name = std::filesystem::path(hal.name).filename().string();
-  const std::optional<LengthUnit> unit = io::iniLinearUnits(text);
-  m.units = unit == LengthUnit::kInch ? "inch" : "mm";
   io::HalReadOptions options;
   options.ini_path = ini;
   m.machine = io::loadHexapodMachine(m.hal, options);

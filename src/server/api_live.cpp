@@ -71,21 +71,25 @@ Json statusJson(const live::LinuxcncStatus& st) {
 }
 
 /// The followed machine, read once per INI; `error` says why there is none.
-std::optional<live::LiveMachine> machineOf(Api::State& s,
-                                           const live::LinkSnapshot& snap,
-                                           std::string& error) {
+std::shared_ptr<const live::LiveMachine> machineOf(Api::State& s,
+                                                   const live::LinkSnapshot& snap,
+                                                   std::string& error) {
   const std::string ini = !s.options.linuxcnc_ini.empty() ? s.options.linuxcnc_ini
                           : snap.status                   ? snap.status->ini
                                                           : std::string();
-  if (ini.empty()) return std::nullopt;
+  if (ini.empty()) return nullptr;
   std::lock_guard lock(s.live_mutex);
-  if (s.live_machine && s.live_machine->ini == ini) return s.live_machine;
-  try {
-    s.live_machine = live::liveMachine(ini);
-  } catch (const IoError& e) {
-    error = e.what();
-    return std::nullopt;
+  if (s.live_machine_ini != ini) {
+    s.live_machine_ini = ini;
+    s.live_machine.reset();
+    s.live_machine_error.clear();
+    try {
+      s.live_machine = std::make_shared<const live::LiveMachine>(live::liveMachine(ini));
+    } catch (const IoError& e) {
+      s.live_machine_error = e.what();
+    }
   }
+  error = s.live_machine_error;
   return s.live_machine;
 }
 
@@ -143,7 +147,7 @@ Response liveStatus(Api::State& s) {
          {"reason", "not following LinuxCNC: press Connect, or start `pkm serve --linuxcnc`"}});
   const live::LinkSnapshot snap = link->snapshot();
   std::string machine_error;
-  const std::optional<live::LiveMachine> machine = machineOf(s, snap, machine_error);
+  const std::shared_ptr<const live::LiveMachine> machine = machineOf(s, snap, machine_error);
   Json out = {{"following", true},
               {"connected", snap.connected},
               {"reason", snap.reason},
@@ -153,8 +157,8 @@ Response liveStatus(Api::State& s) {
     out["machine"] = {{"name", machine->name},
                       {"ini", machine->ini},
                       {"hal", machine->hal},
-                      {"units", machine->units}};
-  else
+                      {"units", machine->units()}};
+  else if (!machine_error.empty())
     out["machine_error"] = machine_error;
   live::LiveFrame frame;
   if (machine) {

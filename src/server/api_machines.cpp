@@ -95,7 +95,7 @@ Response listMachines(Api::State& s) {
                     {"type", u.type},
                     {"units", load({u.path.string(), u.ini.string()}).units},
                     {"uploaded", true}});
-  std::optional<live::LiveMachine> followed;
+  std::shared_ptr<const live::LiveMachine> followed;
   {
     const std::lock_guard lock(s.live_mutex);
     followed = s.live_machine;
@@ -103,7 +103,7 @@ Response listMachines(Api::State& s) {
   if (followed)
     list.push_back({{"name", kLiveMachine},
                     {"type", "hexapod"},
-                    {"units", followed->units},
+                    {"units", followed->units()},
                     {"uploaded", false},
                     {"live", true}});
   return json(list);

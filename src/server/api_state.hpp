@@ -58,9 +58,13 @@ struct Api::State {
   int next_upload = 1;
   int next_campaign = 1;
   std::atomic<std::size_t> jobs{0};
-  std::mutex live_mutex;                          ///< guards link and live_machine
-  std::shared_ptr<live::LinuxcncLink> link;       ///< the running LinuxCNC followed (null: none)
-  std::optional<live::LiveMachine> live_machine;  ///< its machine, read once per INI
+  std::mutex live_mutex;                     ///< guards link and the live machine's three fields
+  std::shared_ptr<live::LinuxcncLink> link;  ///< the running LinuxCNC followed (null: none)
+  /// Its machine, read once per INI (not copied per request), or why it could not be read
+  /// (remembered too: a failing INI is not read again 20 times a second).
+  std::shared_ptr<const live::LiveMachine> live_machine;
+  std::string live_machine_ini;
+  std::string live_machine_error;
 
   /// A built-in machine name or an uploaded machine's name as a workflow spec. Throws HttpError
   /// 400 for anything else (a request never names a path).

@@ -46,7 +46,7 @@ class LiveViewTest : public ::testing::Test {
 TEST_F(LiveViewTest, TheMachineIsTheConfigurationsGenhexkinsFile) {
   const LiveMachine m = liveMachine(ini_);
   EXPECT_EQ(std::filesystem::path(m.hal).filename(), "kinematics.hal");
-  EXPECT_EQ(m.units, "inch");
+  EXPECT_EQ(m.units(), "inch");
   EXPECT_EQ(m.ini, ini_);
 }
 

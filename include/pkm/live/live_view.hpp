@@ -18,8 +18,9 @@ struct LiveMachine {
   std::string ini;             ///< the configuration's INI
   std::string hal;             ///< its HAL file that sets the genhexkins pins
   std::string name;            ///< the machine's name for display (the HAL file's)
-  std::string units;           ///< "mm" or "inch" ([TRAJ] LINEAR_UNITS)
   io::HexapodMachine machine;  ///< the machine, read once (the HAL file with the INI)
+  /// "mm" or "inch": the machine's unit ([TRAJ] LINEAR_UNITS).
+  [[nodiscard]] std::string units() const;
 };
 
 /// The machine of the configuration `ini`: the HAL file among its [HAL] HALFILE entries that sets

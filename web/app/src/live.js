@@ -69,7 +69,7 @@ export class LiveFollower {
     if (j.connected && s && s.file) text += ` · ${s.file.split("/").pop()}${s.executing_line ? ` line ${s.executing_line}` : ""}`;
     if (!j.connected && j.reason) text += ` (${j.reason})`;
     if (j.machine_error) text += ` · machine: ${j.machine_error}`;
-    this.label.textContent = j.following || j.state !== "not following" ? text : "";
+    this.label.textContent = j.following ? text : "";
     const good = j.connected && ["idle", "running", "paused"].includes(j.state);
     this.label.className = good ? "live-ok" : j.following ? "live-bad" : "";
     document.body.dataset.live = j.state || "";
