@@ -5,6 +5,7 @@
 
 #include "analyze_common.hpp"
 #include "calibrate_common.hpp"
+#include "calibrate_live.hpp"
 #include "cli_common.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
@@ -17,9 +18,18 @@ namespace {
 /// `pkm calibrate hexapod`'s arguments: the shared ones and the --registration path.
 struct HexapodCalibrateArgs : CalibrateArgs<workflow::HexapodCalibrationRequest> {
   std::string registration;  ///< --registration path
+  LiveCalibrateArgs live;    ///< --live and its options
 };
 
 void runCalibrate(HexapodCalibrateArgs args) {
+  if (args.live.live) {
+    if (!args.data.empty() || !args.holdout.empty())
+      throw InvalidArgument("--live measures its own data: leave out --data and --holdout");
+    if (args.request.ini.empty()) throw InvalidArgument("--live needs --ini (the running INI)");
+    runCalibrateLive(args.live, args.request);
+    return;
+  }
+  if (args.data.empty()) throw InvalidArgument("--data is required (or --live)");
   fillCalibrateRequest(args);
   if (!args.registration.empty()) args.request.registration = io::readNamedText(args.registration);
   CliRunControl run;
@@ -39,7 +49,6 @@ void runCalibrate(HexapodCalibrateArgs args) {
 void addCalibrateFitOptions(CLI::App& hex, HexapodCalibrateArgs& args) {
   addMachineOptions(hex, args.request.machine, args.request.ini);
   hex.add_option("--data", args.data, "calibration files (tracker pose/point, constrained motion)")
-      ->required()
       ->check(CLI::ExistingFile);
   hex.add_option("--holdout", args.holdout, "tracker files kept out of the fit, for validation")
       ->check(CLI::ExistingFile);
@@ -132,6 +141,7 @@ void addCalibrateCommand(CLI::App& app) {
       "hexapod", "calibrate a hexapod from laser-tracker pose/point files and dial-gauge files");
   addCalibrateFitOptions(*hex, *args);
   addCalibrateNoiseOptions(*hex, *args);
+  addCalibrateLiveOptions(*hex, args->live);
   hex->callback([args] { runCalibrate(*args); });
   addCalibrateExechon(*calibrate);
 }

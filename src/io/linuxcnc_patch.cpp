@@ -115,6 +115,17 @@ std::vector<std::string> iniHalFiles(const NamedText& ini) {
   return out;
 }
 
+std::optional<IniEntry> iniValue(const NamedText& ini,
+                                 std::string_view section,
+                                 std::string_view key) {
+  std::optional<IniEntry> out;
+  forEachIniEntry(ini,
+                  [&](std::string_view s, std::string_view k, std::string_view v, std::size_t n) {
+                    if (!out && s == section && k == key) out = IniEntry{std::string(v), n};
+                  });
+  return out;
+}
+
 NamedText genhexkinsHalFile(const NamedText& ini) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::path(ini.name).parent_path();

@@ -110,21 +110,27 @@ std::string pointsText(const std::array<Eigen::Vector3d, 3>& points) {
 
 }  // namespace
 
-Metadata dialGaugeMetadata(const Scenario& s, std::uint64_t seed, const sim::DialGaugeSetup& d) {
+Metadata gaugeSetupMetadata(const sim::DialGaugeSetup& d, const std::string& instrument) {
   return {
       {"format", "pkm.constrained-motion/1"},
-      {"scenario", s.campaign.name},
-      {"seed", std::to_string(seed)},
-      {"measurement", d.name},
-      {"instrument", "three dial gauges on the platform, tips on the table (simulated)"},
+      {"instrument", instrument},
       {"gauge points mm", pointsText(d.gauge_points)},
       {"table normal", valuesText(d.table_normal)},
       {"tolerance mm", formatNumber(d.tolerance)},
-      {"noise",
-       fmt::format("sigma {} mm, resolution {} mm",
-                   formatNumber(d.noise.sigma),
-                   formatNumber(d.noise.resolution))},
   };
+}
+
+Metadata dialGaugeMetadata(const Scenario& s, std::uint64_t seed, const sim::DialGaugeSetup& d) {
+  Metadata m =
+      gaugeSetupMetadata(d, "three dial gauges on the platform, tips on the table (simulated)");
+  m.insert(
+      m.begin() + 1,
+      {{"scenario", s.campaign.name}, {"seed", std::to_string(seed)}, {"measurement", d.name}});
+  m.push_back({"noise",
+               fmt::format("sigma {} mm, resolution {} mm",
+                           formatNumber(d.noise.sigma),
+                           formatNumber(d.noise.resolution))});
+  return m;
 }
 
 }  // namespace pkm::io

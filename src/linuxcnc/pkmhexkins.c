@@ -109,6 +109,10 @@ static void take_geometry(const pkm_hex_geometry* g,
 
 /* 0 with the geometry in use in *g; −1 when there is none. Pin changes are checked first. */
 static int current_geometry(pkm_hex_geometry* g, const double* joints) {
+  if (*hal->hold && have_validated) { /* the pins are being changed together: not yet */
+    *g = validated;
+    return 0;
+  }
   pkm_hex_geometry pinned;
   double home[6];
   memset(&pinned, 0, sizeof pinned);

@@ -17,6 +17,7 @@ typedef struct {
   hal_u32_t* limit_iterations;
   hal_float_t* max_error;
   hal_bit_t* in_position;       /* in: geometry changes are taken only while true and still */
+  hal_bit_t* hold;              /* in: while true, pin changes wait (set many pins as one) */
   hal_float_t* still_tolerance; /* in: joints moving less than this per call are still */
   hal_u32_t* last_iterations;
   hal_u32_t* max_iterations;
@@ -99,6 +100,7 @@ static int other_pins(const pkm_hex_params* p) {
   if (r == 0) r = float_pin(&hal->still_tolerance, HAL_IN, 0.0, "still-tolerance");
   if (r == 0) r = bit_pin(&hal->in_position, HAL_IN, "in-position");
   if (r == 0) *hal->in_position = 1;
+  if (r == 0) r = bit_pin(&hal->hold, HAL_IN, "hold");
   if (r == 0) r = u32_pin(&hal->last_iterations, HAL_OUT, 0, "last-iterations");
   if (r == 0) r = u32_pin(&hal->max_iterations, HAL_OUT, 0, "max-iterations");
   if (r == 0) r = u32_pin(&hal->last_call_ns, HAL_OUT, 0, "last-call-ns");

@@ -138,6 +138,14 @@ bool LinuxcncStatus::readyToMove() const {
   return !estop && enabled && task_state == TaskState::kOn && allHomed() && !busy();
 }
 
+std::string motionRefusal(const LinuxcncStatus& s) {
+  if (s.estop || s.task_state == TaskState::kEstop) return "LinuxCNC is in E-stop";
+  if (!s.enabled || s.task_state != TaskState::kOn) return "the machine is off";
+  if (!s.allHomed()) return "not every joint is homed";
+  if (s.busy()) return "LinuxCNC is running a program or command";
+  return "";
+}
+
 ReaderLine parseReaderLine(std::string_view line) {
   const Json j = Json::parse(line, nullptr, /*allow_exceptions=*/false);
   if (j.is_discarded() || !j.is_object())

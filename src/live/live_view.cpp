@@ -7,9 +7,7 @@
 #include <limits>
 
 #include "pkm/core/units.hpp"
-#include "pkm/io/linuxcnc_patch.hpp"
-#include "pkm/io/machine_loader.hpp"
-#include "pkm/io/named_text.hpp"
+#include "pkm/io/linuxcnc_machine.hpp"
 
 namespace pkm::live {
 
@@ -27,15 +25,12 @@ std::string liveState(const LinkSnapshot& s) {
 std::string LiveMachine::units() const { return std::string(toString(machine.model.unit)); }
 
 LiveMachine liveMachine(const std::string& ini) {
-  const io::NamedText text = io::readNamedText(ini);
-  const io::NamedText hal = io::genhexkinsHalFile(text);
+  io::LinuxcncHexapod read = io::readLinuxcncHexapod(ini);
   LiveMachine m;
   m.ini = ini;
-  m.hal = hal.name;
-  m.name = std::filesystem::path(hal.name).filename().string();
-  io::HalReadOptions options;
-  options.ini_path = ini;
-  m.machine = io::loadHexapodMachine(m.hal, options);
+  m.hal = read.file;
+  m.name = std::filesystem::path(read.file).filename().string();
+  m.machine = std::move(read.machine);
   return m;
 }
 

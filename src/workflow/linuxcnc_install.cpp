@@ -7,6 +7,7 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/atomic_file.hpp"
+#include "pkm/io/linuxcnc_machine.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/io/named_text.hpp"
 
@@ -34,14 +35,21 @@ LinuxcncInstallResult installIntoLinuxcnc(const LinuxcncInstallRequest& request)
   request.validate();
   if (io::machineTypeOf(request.calibration) != "hexapod")
     throw InvalidArgument(
-        fmt::format("{}: not a hexapod: LinuxCNC has hexapod kinematics (genhexkins) only",
+        fmt::format("{}: not a hexapod: pkm linuxcnc install writes hexapod kinematics "
+                    "(genhexkins, pkmhexkins) only",
                     request.calibration));
   const io::HexapodMachine machine = io::loadHexapodMachine(request.calibration);
   io::requireRegisteredFrame(machine, "pkm linuxcnc install");
   const io::NamedText ini = io::readNamedText(request.ini);
-  const io::NamedText hal = io::genhexkinsHalFile(ini);
   LinuxcncInstallResult result;
-  result.patches = {io::patchKinematicsHal(hal, machine), io::patchHexapodIni(ini, machine)};
+  if (const std::optional<io::NamedText> params = io::pkmhexkinsParamsFile(ini)) {
+    result.kinematics = "pkmhexkins";
+    result.patches = {io::patchPkmhexkinsParameters(
+        *params, machine, io::iniLinearUnits(ini).value_or(LengthUnit::kMillimetre))};
+  } else {
+    const io::NamedText hal = io::genhexkinsHalFile(ini);
+    result.patches = {io::patchKinematicsHal(hal, machine), io::patchHexapodIni(ini, machine)};
+  }
   for (const io::TextPatch& p : result.patches) result.diff += io::unifiedDiff(p);
   if (!request.force || result.diff.empty()) return result;
   for (const io::TextPatch& p : result.patches) {

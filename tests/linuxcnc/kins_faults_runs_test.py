@@ -13,7 +13,7 @@ is started headless (lcnc_harness.py), homed and moved. Checked:
     cycle); with the glitch removed the kinematics recover (a message); with the fault wired to
     E-stop, the glitch puts the machine in E-stop;
   - a geometry pin set during a move is refused (geometry-ok false, fault, a message), and taken
-    once the machine stands still;
+    once the machine stands still; pins set while `hold` is true wait until it is released;
   - `G0 Z-3` (through the singular plane z = 0 into the mirror assembly; the Z limit lowered
     here to allow it) is refused with the module's message, and the world Z is never shown as the
     mirror's +3.
@@ -130,9 +130,28 @@ def geometry_while_moving(cnc, failures):
         failures.append(f"the geometry change was not taken at a standstill: {still}")
 
 
+def geometry_on_hold(cnc, failures):
+    """Pins set while pkmhexkins.hold is true wait: the geometry in use is kept (the joints do not
+    move) until hold is released, and then taken as one."""
+    before = cnc.joints()
+    cnc.setp("pkmhexkins.hold", 1)
+    cnc.setp("pkmhexkins.length-offset.0", 0.04)
+    time.sleep(0.3)
+    held = cnc.joints()
+    cnc.setp("pkmhexkins.hold", 0)
+    time.sleep(0.5)
+    after = cnc.joints()
+    print(f"length-offset.0 set on hold: joint 0 {before[0]} -> held {held[0]} -> released {after[0]}")
+    if max(abs(a - b) for a, b in zip(before, held)) > 1e-6:
+        failures.append(f"a geometry set on hold was taken: {before} -> {held}")
+    if not abs(after[0] - before[0]) > 0.02:
+        failures.append(f"the geometry set on hold was not taken when released: {after}")
+
+
 def mirror(cnc, failures):
     cnc.home()
     geometry_while_moving(cnc, failures)
+    geometry_on_hold(cnc, failures)
     cnc.ask("set mode mdi")
     reply = cnc.ask("set mdi G0 Z-3")
     cnc.ask("set wait done")

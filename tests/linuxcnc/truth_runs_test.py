@@ -26,7 +26,7 @@ import config_helpers as ch  # noqa: E402
 import lcnc_harness as lh  # noqa: E402
 
 TOL = 1e-6  # mm: both forward kinematics converge to 1e-9 mm
-TIPS = [(100, 0, 0), (-50, 86.6, 0), (-50, -86.6, 0)]  # the gauge tips, tool frame, mm
+TIPS = [(150, 0, 0), (-75, 129.9, 0), (-75, -129.9, 0)]  # the gauge tips, tool frame, mm
 MOVES = [(30, 0, 0, 0, 0, 0), (30, 20, 0, 0, 0, 4), (-20, 25, 5, 0, 0, -3), (0, 0, 10, 2, -1.5, 0),
          (0, 0, 0, 0, 0, 0)]  # from home: dx dy dz (mm) da db dc (deg)
 

@@ -1,6 +1,6 @@
 // Constrained motion with three dial gauges (seed 004): exact nominal lengths without errors; with
 // assembly errors the platform is driven back onto the gauges' plane and the recorded lengths
-// carry the errors.
+// carry the errors; the operator on any rig approaches every command from below.
 #include "pkm/simulation/dial_gauges.hpp"
 
 #include <gtest/gtest.h>
@@ -70,6 +70,53 @@ TEST(DialGauges, AssemblyErrorsAreDrivenOutAndShowInTheLengths) {
   EXPECT_TRUE(sim::simulateDialGauges(m, s, again).back().lengths == stations.back().lengths);
 }
 
+/// A rig that records what the operator does and whose gauges read a fixed height error that
+/// the operator's first correction removes.
+class RecordingRig final : public sim::ConstrainedMotionRig {
+ public:
+  std::vector<std::string> events;
+  kin::StrutVector moveTo(const Eigen::VectorXd& c) override {
+    events.push_back("move z=" + std::to_string(c[2]));
+    last_z_ = c[2];
+    return kin::StrutVector::Constant(c[2]);
+  }
+  void zeroGauges() override { events.push_back("zero"); }
+  Eigen::Vector3d readGauges() override {
+    events.push_back("read");
+    const bool corrected = last_z_ != 200.0;
+    return Eigen::Vector3d::Constant(corrected ? 0.0 : 0.5);  // 0.5 mm high until corrected
+  }
+
+ private:
+  double last_z_ = 0;
+};
+
+TEST(DialGauges, EveryMoveApproachesFromBelowAndTheOperatorReportsEachStation) {
+  sim::DialGaugeSetup s = setup();
+  s.stations.resize(1);
+  s.approach = 1.0;
+  RecordingRig rig;
+  std::vector<int> reported;
+  const auto out = sim::runConstrainedMotion(
+      rig, s, [&](const sim::DialGaugeStation& st) { reported.push_back(st.station); });
+  ASSERT_EQ(out.size(), 2U);
+  EXPECT_EQ(reported, (std::vector<int>{0, 1}));
+  const std::vector<std::string> want = {"move z=199.000000",
+                                         "move z=200.000000",
+                                         "zero",  // the reference
+                                         "move z=199.000000",
+                                         "move z=200.000000",
+                                         "read",  // station 1: 0.5 mm high
+                                         "move z=198.500000",
+                                         "move z=199.500000",
+                                         "read"};  // corrected, from below
+  EXPECT_EQ(rig.events, want);
+  EXPECT_EQ(out[1].iterations, 2);
+  EXPECT_TRUE(out[1].converged);
+  EXPECT_NEAR(out[1].command[2], 199.5, 1e-6);
+  EXPECT_EQ(out[1].lengths[0], out[1].command[2]);  // the last move's commanded readings
+}
+
 TEST(DialGauges, InvalidSetupsThrow) {
   sim::DialGaugeSetup s = setup();
   s.gauge_points[2] = 2 * s.gauge_points[1] - s.gauge_points[0];
@@ -79,6 +126,9 @@ TEST(DialGauges, InvalidSetupsThrow) {
   EXPECT_THROW(s.validate(), pkm::InvalidArgument);
   s = setup();
   s.tolerance = 0;
+  EXPECT_THROW(s.validate(), pkm::InvalidArgument);
+  s = setup();
+  s.approach = -1;
   EXPECT_THROW(s.validate(), pkm::InvalidArgument);
 }
 

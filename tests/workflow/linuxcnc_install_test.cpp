@@ -11,8 +11,11 @@
 #include "pkm/core/error.hpp"
 #include "pkm/io/atomic_file.hpp"
 #include "pkm/io/hexapod_machine.hpp"
+#include "pkm/io/linuxcnc_config.hpp"
 #include "pkm/io/linuxcnc_hal.hpp"
+#include "pkm/io/linuxcnc_machine.hpp"
 #include "pkm/io/machine_loader.hpp"
+#include "pkm/workflow/linuxcnc_config.hpp"
 #include "support/linuxcnc_sample.hpp"
 #include "support/scratch_files.hpp"
 
@@ -74,6 +77,43 @@ TEST(LinuxcncInstall, PatchesTheSampleConfigurationInPlace) {
   const LinuxcncInstallResult again = installIntoLinuxcnc(r);
   EXPECT_EQ(again.backups.at(0), (dir / "kinematics.hal.pkm-backup.1").string());
   EXPECT_EQ(test::slurp(dir / "kinematics.hal.pkm-backup"), hal_before);
+  fs::remove_all(dir);
+}
+
+TEST(LinuxcncInstall, RewritesAPkmhexkinsParameterFileAndKeepsTheIni) {
+  const fs::path dir = test::scratchPath("linuxcnc_install", "pkmhexkins");
+  fs::remove_all(dir);
+  LinuxcncConfigRequest config;
+  config.machine = "hexapod-default";
+  config.out = (dir / "cfg").string();
+  const LinuxcncConfigResult written = writeLinuxcncConfig(config);
+  const std::string params = (dir / "cfg" / io::linuxcncConfigNames("pkm-hx1200").params).string();
+  ASSERT_TRUE(fs::exists(params)) << params;
+  const std::string params_before = test::slurp(params), ini_before = test::slurp(written.ini);
+
+  io::HexapodMachine cal = io::loadHexapodMachine("hexapod-default");
+  cal.model.struts[2].world_p_base.y() += 0.75;
+  cal.model.struts[4].length_offset = 3.25;
+  io::writeFileAtomic(dir / "cal.json", io::writeHexapodJson(cal), io::Overwrite::kAllow);
+  LinuxcncInstallRequest r{(dir / "cal.json").string(), written.ini, false};
+  const LinuxcncInstallResult preview = installIntoLinuxcnc(r);
+  EXPECT_EQ(preview.kinematics, "pkmhexkins");
+  ASSERT_EQ(preview.patches.size(), 1u);
+  ASSERT_EQ(preview.patches[0].changes.size(), 2u);
+  EXPECT_EQ(preview.patches[0].changes[0].key, "base.2");
+  EXPECT_EQ(preview.patches[0].changes[1].key, "length-offset.4");
+  EXPECT_EQ(preview.patches[0].changes[1].after, "3.25");
+  EXPECT_EQ(test::slurp(params), params_before);
+
+  r.force = true;
+  const LinuxcncInstallResult done = installIntoLinuxcnc(r);
+  EXPECT_TRUE(done.written);
+  EXPECT_EQ(done.backups, std::vector<std::string>{params + ".pkm-backup"});
+  EXPECT_EQ(test::slurp(params + ".pkm-backup"), params_before);
+  EXPECT_EQ(test::slurp(written.ini), ini_before);  // the joints are the encoders' readings
+  const io::LinuxcncHexapod back = io::readLinuxcncHexapod(written.ini);
+  EXPECT_EQ(back.machine.model.struts[2].world_p_base, cal.model.struts[2].world_p_base);
+  EXPECT_EQ(back.machine.model.struts[4].length_offset, 3.25);
   fs::remove_all(dir);
 }
 

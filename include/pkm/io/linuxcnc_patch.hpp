@@ -9,6 +9,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pkm/io/hexapod_machine.hpp"
@@ -33,6 +34,17 @@ struct TextPatch {
 /// The files an INI's [HAL] section loads (HALFILE, POSTGUI_HALFILE), as written ("LIB:..."
 /// entries included), in order.
 [[nodiscard]] std::vector<std::string> iniHalFiles(const NamedText& ini);
+
+/// A value of an INI file and its 1-based line.
+struct IniEntry {
+  std::string value;  ///< trimmed
+  std::size_t line = 0;
+};
+
+/// The first `KEY = VALUE` of `section` ("[KINS]", with brackets) in `ini`; nullopt when absent.
+[[nodiscard]] std::optional<IniEntry> iniValue(const NamedText& ini,
+                                               std::string_view section,
+                                               std::string_view key);
 
 /// The HAL file among the INI's iniHalFiles (relative to the INI's folder; "LIB:" entries
 /// skipped) that sets genhexkins pins. Throws pkm::IoError "INI: none of the files its [HAL]

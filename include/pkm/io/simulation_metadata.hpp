@@ -25,6 +25,11 @@ namespace pkm::io {
                                        int run,
                                        const std::vector<simulation::LineRun>& runs = {});
 
+/// The set-up part of a constrained-motion file's metadata (what io::readConstrainedMotionCsv
+/// reads): `format`, `instrument` (as given), `gauge points mm`, `table normal`, `tolerance mm`.
+[[nodiscard]] Metadata gaugeSetupMetadata(const simulation::DialGaugeSetup& setup,
+                                          const std::string& instrument);
+
 /// The metadata of the dial-gauge file of constrained-motion set-up `setup`.
 [[nodiscard]] Metadata dialGaugeMetadata(const Scenario& scenario,
                                          std::uint64_t seed,

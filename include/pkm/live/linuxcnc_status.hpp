@@ -74,4 +74,9 @@ struct ReaderLine {
 /// malformed lines.
 [[nodiscard]] ReaderLine parseReaderLine(std::string_view line);
 
+/// Why LinuxCNC must not be sent motion in state `s` ("" when it may: readyToMove): "LinuxCNC is
+/// in E-stop", "the machine is off", "not every joint is homed" or "LinuxCNC is running a program
+/// or command".
+[[nodiscard]] std::string motionRefusal(const LinuxcncStatus& s);
+
 }  // namespace pkm::live

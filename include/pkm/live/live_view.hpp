@@ -15,17 +15,18 @@ namespace pkm::live {
 
 /// The machine a LinuxCNC configuration computes with, as files pkm reads.
 struct LiveMachine {
-  std::string ini;             ///< the configuration's INI
-  std::string hal;             ///< its HAL file that sets the genhexkins pins
-  std::string name;            ///< the machine's name for display (the HAL file's)
+  std::string ini;   ///< the configuration's INI
+  std::string hal;   ///< the file its geometry is read from: genhexkins HAL or pkmhexkins params
+  std::string name;  ///< the machine's name for display (the HAL file's)
   io::HexapodMachine machine;  ///< the machine, read once (the HAL file with the INI)
   /// "mm" or "inch": the machine's unit ([TRAJ] LINEAR_UNITS).
   [[nodiscard]] std::string units() const;
 };
 
-/// The machine of the configuration `ini`: the HAL file among its [HAL] HALFILE entries that sets
-/// genhexkins pins, read with the INI (io::readLinuxcncHal) once. Throws pkm::IoError naming the
-/// INI when no HAL file it loads sets them, or naming the file and line of a malformed entry.
+/// The machine of the configuration `ini`, read once (io::readLinuxcncHexapod): pkmhexkins'
+/// parameter file, or the HAL file among its [HAL] HALFILE entries that sets genhexkins pins, with
+/// the INI. Throws pkm::IoError naming the INI when it has neither, or naming the file and line of
+/// a malformed entry.
 [[nodiscard]] LiveMachine liveMachine(const std::string& ini);
 
 /// One status record checked on the machine.

@@ -17,9 +17,10 @@ namespace pkm::simulation {
 
 /// Where the sensors are.
 struct LoopSensors {
-  /// The dial-gauge tips in the tool frame, mm (DialGaugeSetup's default: Lee et al.'s triangle).
+  /// The dial-gauge tips in the tool frame, mm: the triangle of seed 004's calibration scenario
+  /// (data/scenarios/seed004-hexapod-calibration.json), 150 mm from the tool point.
   std::array<Eigen::Vector3d, 3> gauge_points{
-      Eigen::Vector3d(100, 0, 0), Eigen::Vector3d(-50, 86.6, 0), Eigen::Vector3d(-50, -86.6, 0)};
+      Eigen::Vector3d(150, 0, 0), Eigen::Vector3d(-75, 129.9, 0), Eigen::Vector3d(-75, -129.9, 0)};
   /// The table's unit normal, world frame: a gauge reads its tip's displacement along it.
   Eigen::Vector3d table_normal = Eigen::Vector3d::UnitZ();
   /// The laser's beam direction, world frame: it reads the tool point's displacement along it.

@@ -24,18 +24,22 @@ struct LinuxcncInstallRequest {
 
 /// What an install changed (or would change).
 struct LinuxcncInstallResult {
-  std::vector<io::TextPatch> patches;  ///< the HAL file, then the INI
+  /// "genhexkins" (the HAL file, then the INI) or "pkmhexkins" (its parameter file).
+  std::string kinematics = "genhexkins";
+  std::vector<io::TextPatch> patches;  ///< the files changed, in that order
   std::string diff;                    ///< the unified diff of both ("" : nothing to change)
   bool written = false;                ///< the files were patched (force, and something changed)
   std::vector<std::string> backups;    ///< the copies of the files as they were
 };
 
-/// Finds the HAL file with genhexkins `setp` lines among the INI's [HAL] HALFILE entries (relative
-/// to the INI's folder), patches it and the INI, and with `force` backs each changed file up as
+/// For a configuration whose [KINS] loads pkmhexkins with a parameter file, replaces that file
+/// (io::patchPkmhexkinsParameters; the INI is kept). Otherwise finds the HAL file with genhexkins
+/// `setp` lines among the INI's [HAL] HALFILE entries (relative to the INI's folder), patches it
+/// and the INI. Then with `force` backs each changed file up as
 /// FILE.pkm-backup (FILE.pkm-backup.1, … when that exists: a backup is never overwritten) and
-/// writes it atomically. Throws pkm::IoError for unreadable files, a configuration without a
-/// genhexkins HAL file, units that differ or missing lines (io::patchKinematicsHal,
-/// io::patchHexapodIni), pkm::InvalidArgument for a calibration that is not a hexapod.
+/// writes it atomically. Throws pkm::IoError for unreadable files, a configuration with neither,
+/// units that differ or missing lines (io::patchKinematicsHal, io::patchHexapodIni),
+/// pkm::InvalidArgument for a calibration that is not a hexapod.
 [[nodiscard]] LinuxcncInstallResult installIntoLinuxcnc(const LinuxcncInstallRequest& request);
 
 }  // namespace pkm::workflow
