@@ -48,7 +48,7 @@ void addCalibrateLiveOptions(CLI::App& hex, LiveCalibrateArgs& args) {
                  "--live: seconds to wait after a move before reading the gauges (default 0.1)");
   hex.add_option("--gauge-samples",
                  args.request.gauge_samples,
-                 "--live: reads of the gauges averaged per reading (default 5)");
+                 "--live: reads of the gauges, 2 ms apart, averaged per reading (default 20)");
   hex.add_flag("--install",
                args.request.install,
                "--live: install the result, apply it to the running LinuxCNC and re-measure, "

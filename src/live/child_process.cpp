@@ -3,11 +3,13 @@
 
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <pthread.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstring>
 #include <thread>
 
@@ -72,6 +74,34 @@ ChildProcess startChild(const std::vector<std::string>& args, const std::string&
   child.to_child = in[1];
   child.from_child = out[0];
   return child;
+}
+
+bool writeToChild(const ChildProcess& child, const std::string& bytes) {
+  sigset_t pipe_signal, pending, old;
+  sigemptyset(&pipe_signal);
+  sigaddset(&pipe_signal, SIGPIPE);
+  sigpending(&pending);
+  const bool was_pending = sigismember(&pending, SIGPIPE) == 1;
+  pthread_sigmask(SIG_BLOCK, &pipe_signal, &old);
+  bool ok = true;
+  for (std::size_t done = 0; done < bytes.size();) {
+    const ssize_t n = ::write(child.to_child, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      ok = false;
+      break;
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (!ok && !was_pending) {  // consume the SIGPIPE this write raised
+    sigpending(&pending);
+    if (sigismember(&pending, SIGPIPE) == 1) {
+      const timespec now{0, 0};
+      (void)sigtimedwait(&pipe_signal, nullptr, &now);
+    }
+  }
+  pthread_sigmask(SIG_SETMASK, &old, nullptr);
+  return ok;
 }
 
 void stopChild(ChildProcess& child, std::chrono::milliseconds grace) {

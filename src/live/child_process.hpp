@@ -24,6 +24,10 @@ struct ChildProcess {
 [[nodiscard]] ChildProcess startChild(const std::vector<std::string>& args,
                                       const std::string& what);
 
+/// Writes all of `bytes` to the child's input; false when the child has closed it (EPIPE). A
+/// SIGPIPE this raises is blocked in this thread and consumed, so an ended child cannot end pkm.
+[[nodiscard]] bool writeToChild(const ChildProcess& child, const std::string& bytes);
+
 /// Closes the child's input and waits `grace` for it to end, then SIGTERM and another `grace`,
 /// then SIGKILL; reaps it. Leaves from_child open (a reading thread may still use it).
 void stopChild(ChildProcess& child, std::chrono::milliseconds grace);

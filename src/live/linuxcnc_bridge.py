@@ -106,7 +106,8 @@ def reader(period):
 #   "status"                          the status record
 #   "mdi", "line", "timeout"          one MDI line, refused unless LinuxCNC is out of E-stop, on,
 #                                     homed and idle; answered when the motion has ended
-#   "hal_get", "pins"                 HAL pin values (this process is a HAL component)
+#   "hal_get", "pins"[, "samples", "interval"]  HAL pin values (this process is a HAL component),
+#                                     the mean of `samples` reads `interval` s apart
 #   "hal_set", "pin", "value"         sets an unconnected input pin or a parameter
 #   "machine", "on"                   machine on (true) or off (false); off needs no motion
 #   "abort"                           stops any motion (LinuxCNC's abort)
@@ -229,7 +230,15 @@ class Commander:
             return {"status": self.mdi(str(request["line"]), float(request.get("timeout", 120)))}
         if op == "hal_get":
             h = self.component()
-            return {"values": [h.get_value(str(p)) for p in request["pins"]]}
+            pins = [str(p) for p in request["pins"]]
+            samples = max(1, int(request.get("samples", 1)))
+            sums = [0.0] * len(pins)
+            for k in range(samples):
+                if k:
+                    time.sleep(float(request.get("interval", 0.002)))
+                for i, p in enumerate(pins):
+                    sums[i] += float(h.get_value(p))
+            return {"values": [v / samples for v in sums]}
         if op == "hal_set":
             self.component().set_p(str(request["pin"]), str(request["value"]))
             return {}

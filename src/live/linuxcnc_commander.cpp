@@ -62,13 +62,8 @@ void LinuxcncCommander::State::send(const Json& request) {
   }
   if (options.on_sent) options.on_sent(line);
   std::lock_guard lock(write_mutex);
-  std::string bytes = line + "\n";
-  for (std::size_t done = 0; done < bytes.size();) {
-    const ssize_t n = ::write(child.to_child, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw IoError("LinuxCNC: the commander has ended (its input is closed)");
-    done += static_cast<std::size_t>(n);
-  }
+  if (!detail::writeToChild(child, line + "\n"))
+    throw IoError("LinuxCNC: the commander has ended (its input is closed)");
 }
 
 std::string LinuxcncCommander::State::readLine(Clock::time_point until) {
@@ -158,8 +153,12 @@ LinuxcncStatus LinuxcncCommander::mdi(const std::string& line) {
       state_->ask({{"op", "mdi"}, {"line", line}, {"timeout", state_->options.move_timeout_s}}));
 }
 
-std::vector<double> LinuxcncCommander::halValues(const std::vector<std::string>& pins) {
-  const Json answer = state_->ask({{"op", "hal_get"}, {"pins", pins}});
+std::vector<double> LinuxcncCommander::halValues(const std::vector<std::string>& pins,
+                                                 int samples,
+                                                 double interval_s) {
+  Json request = {{"op", "hal_get"}, {"pins", pins}};
+  if (samples > 1) request.update({{"samples", samples}, {"interval", interval_s}});
+  const Json answer = state_->ask(request);
   std::vector<double> out;
   for (const Json& v : answer.value("values", Json::array())) {
     if (v.is_boolean())

@@ -64,12 +64,8 @@ kinematics::StrutVector LinuxcncGaugeRig::moveTo(const Eigen::VectorXd& command)
 
 Eigen::Vector3d LinuxcncGaugeRig::raw() {
   settle(settle_s_);
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (int k = 0; k < samples_; ++k) {
-    const std::vector<double> v = cnc_.halValues({pins_[0], pins_[1], pins_[2]});
-    sum += Eigen::Vector3d(v[0], v[1], v[2]);
-  }
-  return sum / samples_;
+  const std::vector<double> v = cnc_.halValues({pins_[0], pins_[1], pins_[2]}, samples_);
+  return {v[0], v[1], v[2]};
 }
 
 void LinuxcncGaugeRig::zeroGauges() { tare_ = raw(); }

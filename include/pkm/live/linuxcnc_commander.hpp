@@ -48,9 +48,12 @@ class LinuxcncCommander {
   /// pkm::IoError "LinuxCNC: refused: ..." when LinuxCNC is in E-stop, off, not homed or busy,
   /// and "LinuxCNC: ..." for LinuxCNC's own error, a move longer than the timeout or an abort.
   LinuxcncStatus mdi(const std::string& line);
-  /// The values of HAL pins (float, bit as 0/1, integers), in order. Throws pkm::IoError naming a
-  /// pin that does not exist.
-  [[nodiscard]] std::vector<double> halValues(const std::vector<std::string>& pins);
+  /// The values of HAL pins (float, bit as 0/1, integers), in order: each the mean of `samples`
+  /// reads `interval_s` apart (a gauge interface's dither). Throws pkm::IoError naming a pin that
+  /// does not exist.
+  [[nodiscard]] std::vector<double> halValues(const std::vector<std::string>& pins,
+                                              int samples = 1,
+                                              double interval_s = 0.002);
   /// Sets an unconnected HAL input pin or a parameter (`halcmd setp`).
   void setPin(const std::string& pin, const std::string& value);
   /// Machine on or off (off is refused while it moves); the state then.
