@@ -46,6 +46,7 @@ struct LinuxcncCommander::State {
   void send(const Json& request);
   std::string readLine(Clock::time_point until);
   Json ask(Json request);
+  std::string lastWords();
 };
 
 void CommanderOptions::validate() const {
@@ -89,10 +90,27 @@ std::string LinuxcncCommander::State::readLine(Clock::time_point until) {
   }
 }
 
+std::string LinuxcncCommander::State::lastWords() {
+  const auto until = Clock::now() + std::chrono::milliseconds(500);
+  try {
+    while (true) {
+      const Json j = Json::parse(readLine(until), nullptr, /*allow_exceptions=*/false);
+      if (j.is_object() && j.contains("fatal") && j["fatal"].is_string()) return j["fatal"];
+    }
+  } catch (const IoError&) {  // its output ended or took too long
+  }
+  return "";
+}
+
 Json LinuxcncCommander::State::ask(Json request) {
   const long long id = next_id++;
   request["id"] = id;
-  send(request);
+  try {
+    send(request);
+  } catch (const IoError&) {  // it has ended: say why when it said so before it went
+    if (const std::string why = lastWords(); !why.empty()) throw IoError(fromLinuxcnc(why));
+    throw;
+  }
   const auto until =
       Clock::now() + std::chrono::duration<double>(options.move_timeout_s + kAnswerMarginS);
   while (true) {

@@ -18,6 +18,9 @@ namespace {
 
 /// LinuxCNC's pose and the calibrated FK of its joints agree within this, mm and degrees.
 constexpr double kAppliedTolerance = 1e-6;
+/// After a move LinuxCNC's commanded pose is the command within this, mm and degrees (the MDI
+/// line's 9 decimals).
+constexpr double kArrivedTolerance = 1e-6;
 /// The laser run approaches its start from this far before it, mm.
 constexpr double kLaserOvershootMm = 5.0;
 
@@ -28,6 +31,25 @@ double halValue(LinuxcncCommander& cnc, const std::string& pin) {
 }
 
 }  // namespace
+
+LinuxcncStatus moveAndCheck(LinuxcncCommander& cnc, const Eigen::VectorXd& command) {
+  const LinuxcncStatus st = cnc.mdi(moveLine(command));
+  const std::array<double, 6> want{command[0],
+                                   command[1],
+                                   command[2],
+                                   radToDeg(command[3]),
+                                   radToDeg(command[4]),
+                                   radToDeg(command[5])};
+  for (std::size_t k = 0; k < 6; ++k)
+    if (!(std::abs(st.pose_commanded[k] - want[k]) <= kArrivedTolerance))
+      throw IoError(
+          fmt::format("LinuxCNC: after the move to {} = {:.6f} it commands {} = {:.6f}: stopped",
+                      "XYZABC"[k],
+                      want[k],
+                      "XYZABC"[k],
+                      st.pose_commanded[k]));
+  return st;
+}
 
 std::string moveLine(const Eigen::VectorXd& c) {
   return fmt::format("G53 G0 X{:.9f} Y{:.9f} Z{:.9f} A{:.9f} B{:.9f} C{:.9f}",
@@ -52,7 +74,7 @@ LinuxcncGaugeRig::LinuxcncGaugeRig(LinuxcncCommander& cnc,
 
 kinematics::StrutVector LinuxcncGaugeRig::moveTo(const Eigen::VectorXd& command) {
   control_.checkCancelled();
-  const LinuxcncStatus st = cnc_.mdi(moveLine(command));
+  const LinuxcncStatus st = moveAndCheck(cnc_, command);
   if (st.joint_commanded.size() != kinematics::kStruts)
     throw IoError(
         fmt::format("LinuxCNC reports {} joints, a hexapod has 6", st.joint_commanded.size()));
@@ -85,12 +107,12 @@ double laserXError(LinuxcncCommander& cnc,
   before[0] -= kLaserOvershootMm;
   for (const Eigen::VectorXd* c : {&before, &start}) {
     control.checkCancelled();
-    (void)cnc.mdi(moveLine(*c));
+    (void)moveAndCheck(cnc, *c);
   }
   settle(settle_s);
   const double at_start = halValue(cnc, pin);
   control.checkCancelled();
-  (void)cnc.mdi(moveLine(end));
+  (void)moveAndCheck(cnc, end);
   settle(settle_s);
   return (halValue(cnc, pin) - at_start) - length;
 }

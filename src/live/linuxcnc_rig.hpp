@@ -17,6 +17,11 @@ namespace pkm::live::detail {
 /// (G53: work offsets do not apply), 9 decimals.
 [[nodiscard]] std::string moveLine(const Eigen::VectorXd& command);
 
+/// Moves to `command` (moveLine) and checks that LinuxCNC then commands that pose (1e-6 mm and
+/// degrees): a move that ended elsewhere (an MDI that was not executed, an offset) stops the
+/// routine. Returns LinuxCNC's state. Throws pkm::IoError.
+LinuxcncStatus moveAndCheck(LinuxcncCommander& cnc, const Eigen::VectorXd& command);
+
 /// LinuxCNC as the rig: moves by MDI, the gauges from HAL pins, each reading the mean of
 /// `samples` reads (zeroed in software: the readings at zeroGauges are subtracted). Cancellation
 /// is checked before each move.

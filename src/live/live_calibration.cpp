@@ -24,6 +24,15 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
+/// The files a run writes into its folder.
+constexpr std::array<const char*, 7> kOutputs{"constrained-motion.csv",
+                                              "constrained-motion-holdout.csv",
+                                              "calibration.json",
+                                              "calibration.hal",
+                                              "calibration.pkmhexkins.hal",
+                                              "calibration.summary.json",
+                                              "commands.log"};
+
 /// [AXIS_L] MIN_LIMIT / MAX_LIMIT of X Y Z A B C (±inf where absent).
 void readAxisLimits(const std::string& ini_path, GaugeStationOptions& o) {
   const io::NamedText ini = io::readNamedText(ini_path);
@@ -120,6 +129,11 @@ class Routine {
   /// The set-up and the stations (nothing moves).
   void plan() {
     checkLinuxcnc(cnc_.status(), r_.ini);
+    if (!r_.force)  // before anything moves, not after an hour of measuring
+      for (const char* name : kOutputs)
+        if (fs::exists(fs::path(r_.out) / name))
+          throw IoError(fmt::format("{}: exists; pass --force to replace the files of that run",
+                                    (fs::path(r_.out) / name).string()));
     fs::create_directories(r_.out);
     setup_.name = "live-constrained-motion";
     setup_.gauge_points = r_.gauge_points;
@@ -184,7 +198,7 @@ class Routine {
           write(held ? "constrained-motion-holdout.csv" : "constrained-motion.csv",
                 io::dialGaugeCsv(meta, into));
     }
-    (void)cnc_.mdi(detail::moveLine(setup_.reference));
+    (void)detail::moveAndCheck(cnc_, setup_.reference);
   }
 
   /// The calibration and the held-out check.
@@ -217,7 +231,7 @@ class Routine {
       result_.laser_error_after = detail::laserXError(
           cnc_, r_.laser, setup_.reference, r_.laser_length, r_.settle_s, control_);
     }
-    (void)cnc_.mdi(detail::moveLine(setup_.reference));
+    (void)detail::moveAndCheck(cnc_, setup_.reference);
   }
 
   /// Writes the log of every line sent.

@@ -32,11 +32,17 @@ Json simRecord(const std::string& ini) {
       ini);
 }
 
-ServerOptions following(const std::string& line, bool from_start) {
+/// A server following a stand-in reader that writes `line` after `delay` seconds.
+ServerOptions following(const std::string& line, bool from_start, const char* delay = "0") {
   ServerOptions o;
   o.port = 8787;
   o.linuxcnc = from_start;
-  o.live.command = {"/bin/sh", "-c", "printf '%s\\n' \"$1\"; cat >/dev/null", "reader", line};
+  o.live.command = {"/bin/sh",
+                    "-c",
+                    "sleep \"$2\"; printf '%s\\n' \"$1\"; cat >/dev/null",
+                    "reader",
+                    line,
+                    delay};
   return o;
 }
 
@@ -90,7 +96,7 @@ TEST(ApiLive, TheFollowedMachineAndProgramAreServed) {
   std::ofstream(program) << "G20 G90\nG0 X0 Y0 Z20\nM2\n";
   Json record = simRecord(ini);
   record["file"] = program.string();
-  Api api(following(record.dump(), true));
+  Api api(following(record.dump(), true, "1"));               // the first record comes after 1 s
   EXPECT_EQ(get(api, "/api/machines/linuxcnc").status, 400);  // before the first record
   (void)poll(api, [](const Json& j) { return j["connected"] == true; });
   const Json list = Json::parse(get(api, "/api/machines").body);
@@ -128,9 +134,7 @@ TEST(ApiLive, ConnectStartsFollowingAndDisconnectStops) {
 }
 
 TEST(ApiLive, AReaderThatEndsIsADisconnection) {
-  ServerOptions o = following(pkm::test::linuxcncRecord(1).dump(), true);
-  o.live.command.back() = R"({"error": "LinuxCNC is not running on this host"})";
-  Api api(o);
+  Api api(following(R"({"error": "LinuxCNC is not running on this host"})", true));
   const Json j = poll(
       api, [](const Json& j) { return !j["reason"].get<std::string>().starts_with("waiting"); });
   EXPECT_EQ(j["connected"], false);
