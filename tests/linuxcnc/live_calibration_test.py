@@ -32,7 +32,7 @@ import lcnc_harness as lh  # noqa: E402
 
 BEFORE = (8.0, 16.0)  # mm: "about 12 mm" over 540 mm before calibration (Lee et al.)
 # mm after calibration. Lee et al. report below 0.5 mm; this routine gives 0.42 ... 0.53 mm here
-# (13 runs): gauges on a table barely see the x scale (a move parallel to the table reads nothing
+# (14 runs): gauges on a table barely see the x scale (a move parallel to the table reads nothing
 # when only its length is wrong), so what is left of it varies with micrometres of data. 0.6 mm
 # keeps the test from failing by chance; docs/linuxcnc.md gives the figures.
 AFTER = 0.6
