@@ -13,6 +13,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/io/atomic_file.hpp"
+#include "pkm/io/csv.hpp"
 #include "pkm/io/linuxcnc_machine.hpp"
 #include "pkm/io/linuxcnc_patch.hpp"
 #include "pkm/io/measurement_files.hpp"
@@ -45,12 +46,9 @@ void readAxisLimits(const std::string& ini_path, GaugeStationOptions& o) {
          {std::pair{"MIN_LIMIT", &o.axis_min[k]}, std::pair{"MAX_LIMIT", &o.axis_max[k]}}) {
       const auto entry = io::iniValue(ini, section, key);
       if (!entry) continue;
-      try {
-        *value = std::stod(entry->value);
-      } catch (const std::exception&) {
+      if (!io::parseFiniteDouble(entry->value, *value))
         throw IoError(
             locate(ini.name, entry->line, fmt::format("{} {}: not a number", section, key)));
-      }
     }
   }
 }
