@@ -53,10 +53,10 @@ void runServe(const pkm::cli::ServeOptions& o) {
     options.linuxcnc_ini = std::filesystem::absolute(o.linuxcnc_ini).string();
   pkm::server::HttpServer http(options);
   const int port = http.bind();
-  // Reachable from other machines: the URL carries the per-launch token (docs/web.md).
-  const std::string& token = http.api().token();
+  // The URL carries the per-launch token (docs/web.md, "Security"): the page opened with it may
+  // command the machine; off loopback, every route needs it.
   const std::string url =
-      fmt::format("http://{}:{}/{}", options.host, port, token.empty() ? "" : "?token=" + token);
+      fmt::format("http://{}:{}/?token={}", options.host, port, http.api().token());
   fmt::print("pkm: serving {}\n", url);
   std::fflush(stdout);
   if (o.open) openBrowser(url);

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "pkm/core/error.hpp"
+#include "pkm/io/linuxcnc_machine.hpp"
 
 namespace pkm::io {
 
@@ -87,6 +88,13 @@ HexapodMachine builtinMachine(const std::string& name) {
 
 HexapodMachine loadHexapodMachine(const std::string& spec, const HalReadOptions& hal) {
   if (spec.ends_with(".hal")) return readLinuxcncHal(spec, hal);
+  // A configuration's parameter file read with the INI that loads it: what LinuxCNC computes with.
+  if (spec.ends_with(".params") && hal.ini_path && isFile(spec)) {
+    LinuxcncHexapod read = readLinuxcncHexapod(*hal.ini_path);
+    std::error_code ec;
+    if (read.kinematics == "pkmhexkins" && std::filesystem::equivalent(read.file, spec, ec))
+      return std::move(read.machine);
+  }
   refuseParameterFile(spec);
   if (isFile(spec)) return readHexapodJson(spec);
   return builtinMachine(spec);

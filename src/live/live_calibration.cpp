@@ -10,6 +10,7 @@
 
 #include "linuxcnc_rig.hpp"
 #include "pkm/calibration/constrained_motion.hpp"
+#include "pkm/calibration/hexapod_parameters.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/io/atomic_file.hpp"
@@ -112,6 +113,14 @@ void LiveCalibrationRequest::validate() const {
   if (!(prior_sigma > 0.0) || !(measurement_sigma > 0.0) || prior_uncertainty < 0.0)
     throw InvalidArgument("--prior-sigma and --measurement-sigma must be > 0");
   stations.validate();
+  // Each station gives three equations (one per gauge); the fit needs one per unknown.
+  const int least = (calibration::kHexapodParameters + 2) / 3;
+  if (stations.count < least)
+    throw InvalidArgument(fmt::format(
+        "--stations: at least {}: three gauge readings a station must give the {} unknowns of "
+        "the hexapod's calibration (the default, 36, follows Lee et al.: three times as many)",
+        least,
+        calibration::kHexapodParameters));
 }
 
 namespace {

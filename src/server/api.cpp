@@ -32,8 +32,11 @@ std::optional<Response> admit(const Request& r, const Api::State& s) {
                                      r.host,
                                      s.port.load(),
                                      s.port.load()));
+  // On a loopback address only the routes that command the machine need the token (they check it
+  // themselves): a stale cookie of an earlier launch does not lock the user out of the rest.
   if (const detail::TokenUse use = detail::tokenUse(r, s.token);
-      use == detail::TokenUse::kMissing || use == detail::TokenUse::kWrong)
+      !isLoopbackHost(s.options.host) &&
+      (use == detail::TokenUse::kMissing || use == detail::TokenUse::kWrong))
     return detail::error(401,
                          use == detail::TokenUse::kWrong
                              ? "wrong token: this server was started again, or the link is not "
@@ -66,6 +69,45 @@ void requireMethod(const Request& r, const char* method) {
     throw detail::HttpError(405, fmt::format("{} {}: use {}", r.method, r.path, method));
 }
 
+/// The routes of the followed LinuxCNC (GET /api/live, ...; api_live.cpp,
+/// api_live_calibration.cpp).
+Response routeLive(const Request& r, Api::State& s) {
+  const std::string& p = r.path;
+  if (p == "/api/live") {
+    requireMethod(r, "GET");
+    return detail::liveStatus(s);
+  }
+  if (p == "/api/live/program") {
+    requireMethod(r, "GET");
+    return detail::liveProgram(s);
+  }
+  if (p == "/api/live/connect") {
+    requireMethod(r, "POST");
+    return detail::liveConnect(s);
+  }
+  if (p == "/api/live/disconnect") {
+    requireMethod(r, "POST");
+    return detail::liveDisconnect(s);
+  }
+  if (p == "/api/live/calibration") {
+    if (r.method == "POST")
+      throw detail::HttpError(400,
+                              "POST /api/live/calibration answers with server-sent events: call "
+                              "it through the HTTP server");
+    requireMethod(r, "GET");
+    return detail::liveCalibrationState(s);
+  }
+  if (p == "/api/live/calibration/cancel") {
+    requireMethod(r, "POST");
+    return detail::cancelLiveCalibration(s, r);
+  }
+  if (p == "/api/live/calibration/confirm") {
+    requireMethod(r, "POST");
+    return detail::confirmLiveCalibration(s, r);
+  }
+  throw detail::HttpError(404, fmt::format("{} {}: no such route (docs/web.md)", r.method, p));
+}
+
 Response route(const Request& r, Api::State& s) {
   const std::string& p = r.path;
   if (p == "/api/machines") {
@@ -95,22 +137,11 @@ Response route(const Request& r, Api::State& s) {
     requireMethod(r, "POST");
     return detail::cancelJob(s, job[1].str());
   }
-  if (p == "/api/live") {
+  if (p == "/api/jobs") {
     requireMethod(r, "GET");
-    return detail::liveStatus(s);
+    return detail::listJobs(s);
   }
-  if (p == "/api/live/program") {
-    requireMethod(r, "GET");
-    return detail::liveProgram(s);
-  }
-  if (p == "/api/live/connect") {
-    requireMethod(r, "POST");
-    return detail::liveConnect(s);
-  }
-  if (p == "/api/live/disconnect") {
-    requireMethod(r, "POST");
-    return detail::liveDisconnect(s);
-  }
+  if (p == "/api/live" || p.starts_with("/api/live/")) return routeLive(r, s);
   if (p == "/api/campaigns") {
     requireMethod(r, "GET");
     return detail::listCampaigns();
@@ -135,9 +166,12 @@ Response failure(const Api::State& s) {
   try {
     throw;
   } catch (const detail::HttpError& e) {
-    return detail::error(e.status, s.clean(e.what()));
+    Response out = detail::error(e.status, s.clean(e.what()));
+    if (e.status == 503) out.retry_after = "2";
+    return out;
   } catch (const workflow::Cancelled&) {
-    return detail::error(409, "cancelled: POST /api/jobs/NAME/cancel stopped it");
+    return detail::error(
+        409, "stopped: the job was cancelled (the stop button, or POST /api/jobs/NAME/cancel)");
   } catch (const IoError& e) {
     return detail::error(422, s.clean(e.what()));
   } catch (const InvalidArgument& e) {
@@ -157,6 +191,8 @@ void ServerOptions::validate() const {
   PKM_CHECK(max_body > 0 && max_jobs > 0 && max_uploads > 0, "server limits must be > 0");
   PKM_CHECK(!host.empty(), "--host must not be empty");
   live.validate();
+  commander.validate();
+  PKM_CHECK(heartbeat_s > 0.0 && heartbeat_s <= 10.0, "heartbeat must be in (0, 10] s");
   PKM_CHECK(linuxcnc_ini.empty() || std::filesystem::is_regular_file(linuxcnc_ini),
             "--linuxcnc {}: no such INI file",
             linuxcnc_ini);
@@ -170,7 +206,7 @@ Api::Api(ServerOptions options) : state_(std::make_unique<State>()) {
   if (::mkdtemp(dir.data()) == nullptr)
     throw IoError(fmt::format("{}: cannot create the server's folder", dir));
   state_->dir = dir;
-  if (!isLoopbackHost(state_->options.host)) state_->token = detail::newToken();
+  state_->token = detail::newToken();
   if (state_->options.linuxcnc) (void)detail::liveConnect(*state_);
 }
 
@@ -196,12 +232,23 @@ Response Api::handle(const Request& request) {
   }
 }
 
+Response Api::startLiveCalibration(const Request& request, LiveCalibrationJob& job) {
+  try {
+    if (std::optional<Response> refused = admit(request, *state_)) return *refused;
+    requireMethod(request, "POST");
+    detail::prepareLiveCalibration(*state_, request, job);
+    return {200, "text/event-stream", "", "", ""};
+  } catch (...) {
+    return failure(*state_);
+  }
+}
+
 Response Api::startCampaign(const Request& request, CampaignJob& job) {
   try {
     if (std::optional<Response> refused = admit(request, *state_)) return *refused;
     requireMethod(request, "POST");
     detail::prepareCampaign(*state_, request, job);
-    return {200, "text/event-stream", "", ""};
+    return {200, "text/event-stream", "", "", ""};
   } catch (...) {
     return failure(*state_);
   }

@@ -42,17 +42,52 @@ std::string Api::State::clean(std::string message) const {
 
 namespace pkm::server::detail {
 
-JobSlot::JobSlot(Api::State& state) : state_(state) {
-  if (state_.jobs.fetch_add(1) >= state_.options.max_jobs) {
-    state_.jobs.fetch_sub(1);
-    throw HttpError(503,
-                    fmt::format("{} jobs are running, the most this server runs at once; try "
-                                "again when one has finished",
-                                state_.options.max_jobs));
+JobSlot::JobSlot(Api::State& state,
+                 const std::string& name,
+                 const workflow::CancellationToken* cancel)
+    : state_(state) {
+  std::unique_lock lock(state_.jobs_mutex);
+  if (state_.jobs_running < state_.options.max_jobs && state_.job_queue.empty()) {
+    ++state_.jobs_running;
+    return;
   }
+  if (state_.job_queue.size() >= state_.options.max_queued)
+    throw HttpError(503,
+                    fmt::format("{} jobs are running and {} waiting, the most this server holds; "
+                                "try again in a few seconds",
+                                state_.jobs_running,
+                                state_.job_queue.size()));
+  const auto mine = state_.job_queue.insert(state_.job_queue.end(), name);
+  state_.jobs_changed.wait(lock, [&] {
+    return (cancel != nullptr && cancel->cancelled()) ||
+           (state_.job_queue.begin() == mine && state_.jobs_running < state_.options.max_jobs);
+  });
+  state_.job_queue.erase(mine);
+  if (cancel != nullptr && cancel->cancelled()) {
+    state_.jobs_changed.notify_all();  // the next in the queue may be first now
+    throw workflow::Cancelled();
+  }
+  ++state_.jobs_running;
+  state_.jobs_changed.notify_all();  // another slot may be free for the next
 }
 
-JobSlot::~JobSlot() { state_.jobs.fetch_sub(1); }
+JobSlot::~JobSlot() {
+  {
+    const std::lock_guard lock(state_.jobs_mutex);
+    --state_.jobs_running;
+  }
+  state_.jobs_changed.notify_all();
+}
+
+Response listJobs(Api::State& s) {
+  const std::lock_guard lock(s.jobs_mutex);
+  Json queued = Json::array();
+  for (const std::string& name : s.job_queue) queued.push_back(name);
+  return json({{"running", s.jobs_running},
+               {"queued", queued},
+               {"max_jobs", s.options.max_jobs},
+               {"max_queued", s.options.max_queued}});
+}
 
 NamedJob::NamedJob(Api::State& state, const std::string& name) : state_(state), name_(name) {
   if (name_.empty()) return;
@@ -81,6 +116,7 @@ Response cancelJob(Api::State& s, const std::string& name) {
   if (it == s.running.end())
     throw HttpError(404, fmt::format("no job named '{}' is running", name));
   it->second->cancel();
+  s.jobs_changed.notify_all();  // it may be waiting in the queue
   return json({{"job", name}, {"cancelled", true}});
 }
 
@@ -130,7 +166,7 @@ std::string safeName(const std::string& name) {
 }
 
 Response json(const Json& j, int status) {
-  return {status, "application/json", j.dump() + "\n", ""};
+  return {status, "application/json", j.dump() + "\n", "", ""};
 }
 
 Response error(int status, const std::string& message) {

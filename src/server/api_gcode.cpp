@@ -84,8 +84,8 @@ Response runGcode(Api::State& s, const Request& r) {
   q.max_violations =
       countField(body, "max_violations", kMaxViolations).value_or(kDefaultViolations);
   q.frames = countField(body, "frames", kMaxFrames).value_or(0);
-  const JobSlot slot(s);
   const NamedJob job(s, stringField(body, "job", ""));
+  const JobSlot slot(s, job.name(), &job.token());
   const workflow::GcodeRunResult result = workflow::runGcode(q, job.control());
   Json j = Json::parse(io::gcodeRunJson(result.report));
   j["path"] = pathJson(result.path);

@@ -95,6 +95,23 @@ std::shared_ptr<const live::LiveMachine> machineOf(Api::State& s,
 
 }  // namespace
 
+std::string followedIni(Api::State& s) {
+  std::shared_ptr<live::LinuxcncLink> link;
+  {
+    std::lock_guard lock(s.live_mutex);
+    link = s.link;
+  }
+  if (!link)
+    throw HttpError(409, "not following LinuxCNC: press Connect, or start `pkm serve --linuxcnc`");
+  if (!s.options.linuxcnc_ini.empty()) return s.options.linuxcnc_ini;
+  const live::LinkSnapshot snap = link->snapshot();
+  if (!snap.status || snap.status->ini.empty())
+    throw HttpError(409,
+                    fmt::format("LinuxCNC does not answer ({}): start it, then try again",
+                                snap.reason.empty() ? "no status yet" : snap.reason));
+  return snap.status->ini;
+}
+
 Response liveProgram(Api::State& s) {
   std::shared_ptr<live::LinuxcncLink> link;
   {

@@ -4,7 +4,9 @@
 
 #include <atomic>
 #include <cmath>
+#include <condition_variable>
 #include <filesystem>
+#include <list>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -12,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "pkm/live/live_calibration.hpp"
 #include "pkm/live/live_view.hpp"
 #include "pkm/server/api.hpp"
 #include "pkm/workflow/pose_checks.hpp"
@@ -45,6 +48,22 @@ struct MachineSpec {
 
 namespace pkm::server {
 
+/// A calibration by constrained motion the server runs (api_live_calibration.cpp): one at a time.
+struct LiveRoutine {
+  /// What the page answered to "install?" (kAsked: the routine waits for it).
+  enum class Answer { kNone, kAsked, kInstall, kKeep };
+  int id = 0;
+  live::LiveCalibrationRequest request;
+  workflow::CancellationToken cancel;
+  std::unique_ptr<live::LinuxcncCommander> cnc;  ///< set before the routine is admitted
+  std::mutex mutex;                              ///< guards answer and stage
+  std::condition_variable changed;               ///< answer given, or cancelled
+  Answer answer = Answer::kNone;
+  std::string stage;  ///< the last progress message
+  /// Cancels the routine and aborts LinuxCNC's motion now (any thread).
+  void stop();
+};
+
 struct Api::State {
   ServerOptions options;
   std::atomic<int> port{0};
@@ -57,7 +76,10 @@ struct Api::State {
   std::map<std::string, workflow::CancellationToken*> running;
   int next_upload = 1;
   int next_campaign = 1;
-  std::atomic<std::size_t> jobs{0};
+  std::mutex jobs_mutex;                     ///< guards the job counters and queue
+  std::condition_variable jobs_changed;      ///< a slot freed, or a queued job was cancelled
+  std::size_t jobs_running = 0;              ///< long jobs holding a slot
+  std::list<std::string> job_queue;          ///< the waiting jobs' names, first served first
   std::mutex live_mutex;                     ///< guards link and the live machine's three fields
   std::shared_ptr<live::LinuxcncLink> link;  ///< the running LinuxCNC followed (null: none)
   /// Its machine, read once per INI (not copied per request), or why it could not be read
@@ -65,6 +87,8 @@ struct Api::State {
   std::shared_ptr<const live::LiveMachine> live_machine;
   std::string live_machine_ini;
   std::string live_machine_error;
+  std::shared_ptr<LiveRoutine> routine;  ///< the calibration running (null: none), under mutex
+  int next_routine = 1;
 
   /// A built-in machine name or an uploaded machine's name as a workflow spec. Throws HttpError
   /// 400 for anything else (a request never names a path).
@@ -77,10 +101,15 @@ struct Api::State {
 
 namespace pkm::server::detail {
 
-/// A long job's slot, released on destruction. Throws HttpError 503 when max_jobs run already.
+/// A long job's slot, released on destruction: when max_jobs run already the job waits in a
+/// queue (first come, first served; its place by `name`: GET /api/jobs) until one has finished.
+/// Throws HttpError 503 (with Retry-After) when max_queued wait already, workflow::Cancelled when
+/// `cancel` is cancelled while it waits.
 class JobSlot {
  public:
-  explicit JobSlot(Api::State& state);
+  explicit JobSlot(Api::State& state,
+                   const std::string& name = "",
+                   const workflow::CancellationToken* cancel = nullptr);
   ~JobSlot();
   JobSlot(const JobSlot&) = delete;
   JobSlot& operator=(const JobSlot&) = delete;
@@ -88,6 +117,9 @@ class JobSlot {
  private:
   Api::State& state_;
 };
+
+/// GET /api/jobs: {"running", "queued": [names, first first], "max_jobs", "max_queued"}.
+[[nodiscard]] Response listJobs(Api::State& s);
 
 /// A job registered under the name a request gave it ("job"; none: not cancellable by name) for
 /// as long as it runs. Throws HttpError 409 when a job of that name runs already, 400 for a name
@@ -100,6 +132,8 @@ class NamedJob {
   NamedJob& operator=(const NamedJob&) = delete;
   /// The job's control: its cancellation token.
   [[nodiscard]] workflow::RunControl control() const;
+  [[nodiscard]] const std::string& name() const { return name_; }
+  [[nodiscard]] const workflow::CancellationToken& token() const { return token_; }
 
  private:
   Api::State& state_;
@@ -144,6 +178,9 @@ enum class TokenUse { kNotNeeded, kCookie, kQuery, kMissing, kWrong };
 [[nodiscard]] TokenUse tokenUse(const Request& r, const std::string& token);
 /// The Set-Cookie value that keeps `token` for the page's later requests.
 [[nodiscard]] std::string tokenCookie(const std::string& token);
+/// Refuses (HttpError 401) a request that commands the machine without this launch's token,
+/// whatever address the server listens on.
+void requireCommandToken(const Request& r, const Api::State& s);
 
 /// A checked pose as JSON (docs/web.md, POST /api/ik).
 [[nodiscard]] Json poseRowJson(const workflow::PoseCheckRow& row);
@@ -170,5 +207,17 @@ inline constexpr const char* kLiveMachine = "linuxcnc";
 [[nodiscard]] Response liveConnect(Api::State& s);
 /// POST /api/live/disconnect: stops following it.
 [[nodiscard]] Response liveDisconnect(Api::State& s);
+/// The INI of the followed LinuxCNC (--linuxcnc INI, else the one it reports); HttpError 409 when
+/// none is followed.
+[[nodiscard]] std::string followedIni(Api::State& s);
+/// GET /api/live/calibration: whether a calibration runs, its stage, whether it waits for an
+/// answer (api_live_calibration.cpp).
+[[nodiscard]] Response liveCalibrationState(Api::State& s);
+/// POST /api/live/calibration/cancel (token): stops the running calibration and the machine.
+[[nodiscard]] Response cancelLiveCalibration(Api::State& s, const Request& r);
+/// POST /api/live/calibration/confirm {"install": bool} (token): the answer the routine waits for.
+[[nodiscard]] Response confirmLiveCalibration(Api::State& s, const Request& r);
+/// Checks a calibration request and sets `job` up: the commander started, LinuxCNC ready.
+void prepareLiveCalibration(Api::State& s, const Request& r, LiveCalibrationJob& job);
 
 }  // namespace pkm::server::detail

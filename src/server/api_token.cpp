@@ -60,6 +60,18 @@ TokenUse tokenUse(const Request& r, const std::string& token) {
   return sameSecret(cookie, token) ? TokenUse::kCookie : TokenUse::kWrong;
 }
 
+void requireCommandToken(const Request& r, const Api::State& s) {
+  const TokenUse use = tokenUse(r, s.token);
+  if (use == TokenUse::kQuery || use == TokenUse::kCookie) return;
+  throw HttpError(401,
+                  use == TokenUse::kWrong
+                      ? "wrong token: this server was started again, or the link is not the one "
+                        "`pkm serve` printed; nothing was sent to the machine; open the URL it "
+                        "printed"
+                      : "commanding the machine needs this launch's token: open the URL `pkm "
+                        "serve` printed (…/?token=…); nothing was sent to the machine");
+}
+
 std::string tokenCookie(const std::string& token) {
   return fmt::format("{}={}; Path=/; HttpOnly; SameSite=Strict", kTokenCookie, token);
 }

@@ -20,7 +20,7 @@ namespace {
 
 Response embedded(const std::vector<std::pair<std::string_view, std::string_view>>& files,
                   const char* type) {
-  return {200, type, files.empty() ? std::string() : std::string(files.front().second), ""};
+  return {200, type, files.empty() ? std::string() : std::string(files.front().second), "", ""};
 }
 
 }  // namespace
@@ -40,7 +40,7 @@ const Response* Api::asset(const std::string& path) {
                                : n.ends_with(".png") ? "image/png"
                                : n.ends_with(".gif") ? "image/gif"
                                                      : "application/octet-stream";
-      m["/media/" + n] = Response{200, type, std::string(bytes), ""};
+      m["/media/" + n] = Response{200, type, std::string(bytes), "", ""};
     }
     return m;
   }();

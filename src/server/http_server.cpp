@@ -3,14 +3,51 @@
 
 #include <fmt/format.h>
 #include <httplib.h>
+#include <sys/socket.h>
 
+#include "connection_gate.hpp"
 #include "pkm/core/error.hpp"
 
 namespace pkm::server {
 namespace {
 
-/// Worker threads of the server (open connections, including a browser's idle ones).
-constexpr std::size_t kWorkerThreads = 32;
+/// Connections the kernel queues before they are accepted.
+constexpr int kListenBacklog = 1024;
+
+/// Threads that hand accepted sockets to the gate (each returns at once).
+constexpr std::size_t kAcceptThreads = 2;
+
+/// httplib's server with its connection handling replaced by the gate (connection_gate.hpp):
+/// httplib accepts and processes requests; the gate decides when a connection has one.
+class GuardedServer : public httplib::Server {
+ public:
+  detail::ConnectionGate* gate = nullptr;
+
+  /// Serves the one request whose header `c`'s buffer holds; true when the connection may be kept.
+  bool serveOne(detail::Connection& c, httplib::Stream& stream, bool last) {
+    bool closed = false;
+    const bool ok = process_request(stream, last, closed, [&c](httplib::Request& req) {
+      req.remote_addr = c.peer_ip;
+      req.remote_port = c.peer_port;
+      req.local_addr = c.local_ip;
+      req.local_port = c.local_port;
+    });
+    return ok && !closed;
+  }
+
+  /// httplib listens with a backlog of 5: a burst of connections (a page's, or hundreds a local
+  /// process opens) saw their SYNs dropped and retried after a second. Listening again on the
+  /// bound socket widens the queue (Linux keeps the socket and takes the new backlog).
+  void widenBacklog(int backlog) {
+    if (const socket_t sock = svr_sock_.load(); sock != INVALID_SOCKET) ::listen(sock, backlog);
+  }
+
+ private:
+  bool process_and_close_socket(socket_t sock) override {
+    gate->admit(sock);
+    return true;
+  }
+};
 
 Request requestOf(const httplib::Request& req) {
   return {req.method,
@@ -28,28 +65,54 @@ void answer(const Response& r, httplib::Response& res) {
   res.set_header("X-Content-Type-Options", "nosniff");
   res.set_header("Cache-Control", "no-store");
   if (!r.set_cookie.empty()) res.set_header("Set-Cookie", r.set_cookie);
+  if (!r.retry_after.empty()) res.set_header("Retry-After", r.retry_after);
+}
+
+/// POST /api/live/calibration: the routine's events as they come; the connection's end stops it.
+void streamLiveCalibration(Api& api, const httplib::Request& req, httplib::Response& res) {
+  auto job = std::make_shared<LiveCalibrationJob>();
+  const Response admitted = api.startLiveCalibration(requestOf(req), *job);
+  if (admitted.status != 200) return answer(admitted, res);
+  res.set_header("Cache-Control", "no-store");
+  res.set_header("X-Content-Type-Options", "nosniff");
+  res.set_chunked_content_provider(
+      "text/event-stream",
+      [&api, job](std::size_t, httplib::DataSink& sink) {
+        api.runLiveCalibration(*job, [&sink](const std::string& chunk) {
+          return sink.is_writable() && sink.write(chunk.data(), chunk.size());
+        });
+        sink.done();
+        return true;
+      },
+      [job](bool) { Api::stopLiveCalibration(*job); });
 }
 
 }  // namespace
 
 struct HttpServer::Impl {
-  explicit Impl(ServerOptions o) : options(o), api(std::move(o)) {}
+  explicit Impl(ServerOptions o)
+      : options(o),
+        api(std::move(o)),
+        gate({}, [this](detail::Connection& c, httplib::Stream& stream) {
+          return http.serveOne(
+              c, stream, c.requests + 1 >= detail::GateOptions{}.max_requests_per_connection);
+        }) {
+    http.gate = &gate;
+  }
   ServerOptions options;
   Api api;
-  httplib::Server http;
+  GuardedServer http;
+  detail::ConnectionGate gate;  // last: stopped and destroyed first
 };
 
 HttpServer::HttpServer(ServerOptions options) : impl_(std::make_unique<Impl>(std::move(options))) {
   httplib::Server& http = impl_->http;
   Api& api = impl_->api;
   http.set_payload_max_length(impl_->options.max_body);
-  // A browser keeps up to six connections open between requests, and httplib serves each open
-  // connection on a worker thread of its own: with its default pool (8 threads on this machine)
-  // new requests waited for idle connections to time out (seconds). A larger pool serves them at
-  // once; long jobs are limited separately (max_jobs).
-  http.new_task_queue = [] { return new httplib::ThreadPool(kWorkerThreads); };
-  http.set_keep_alive_max_count(1000);
-  http.set_keep_alive_timeout(10);
+  // httplib serves each open connection on a worker thread of its own, so idle connections (a
+  // browser's, or 200 a local process opens) held every worker and new requests waited up to a
+  // minute. Accepted sockets go to the gate instead, which gives a worker only a complete request.
+  http.new_task_queue = [] { return new httplib::ThreadPool(kAcceptThreads); };
   // httplib compresses a response with Brotli whenever the client accepts it, at Brotli's slowest
   // quality: seconds for the 2 MB of a run with frames or the 1.7 MB of app.js, where gzip takes
   // milliseconds. The browser's Accept-Encoding is narrowed to gzip before the response is written
@@ -72,6 +135,7 @@ HttpServer::HttpServer(ServerOptions options) : impl_(std::make_unique<Impl>(std
   http.Patch(".*", handle);
   http.Options(".*", handle);
   http.Post(".*", [&api, handle](const httplib::Request& req, httplib::Response& res) {
+    if (req.path == "/api/live/calibration") return streamLiveCalibration(api, req, res);
     if (req.path != "/api/campaign") return handle(req, res);
     auto job = std::make_shared<CampaignJob>();
     const Response admitted = api.startCampaign(requestOf(req), *job);
@@ -103,13 +167,17 @@ int HttpServer::bind() {
   if (port < 0)
     throw IoError(fmt::format(
         "cannot listen on {}:{} (in use, or not an address of this machine)", o.host, o.port));
+  impl_->http.widenBacklog(kListenBacklog);
   impl_->api.setPort(port);
   return port;
 }
 
 void HttpServer::listen() { impl_->http.listen_after_bind(); }
 
-void HttpServer::stop() { impl_->http.stop(); }
+void HttpServer::stop() {
+  impl_->http.stop();
+  impl_->gate.stop();
+}
 
 Api& HttpServer::api() { return impl_->api; }
 

@@ -36,7 +36,8 @@ class Served {
     ::close(out[0]);
     first_line_ = line;
     std::smatch m;
-    if (std::regex_match(line, m, std::regex(R"(pkm: serving http://127\.0\.0\.1:(\d+)/)")))
+    if (std::regex_match(
+            line, m, std::regex(R"(pkm: serving http://127\.0\.0\.1:(\d+)/\?token=[0-9a-f]{64})")))
       port_ = std::stoi(m[1].str());
   }
   ~Served() {

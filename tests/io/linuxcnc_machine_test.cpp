@@ -79,6 +79,18 @@ TEST_F(LinuxcncMachineFiles, APkmhexkinsConfigurationIsReadFromItsParameterFile)
   EXPECT_EQ(got.machine.model.struts[0].min_reading, 1.0);
   EXPECT_EQ(got.machine.model.struts[0].max_reading, 400.0);
   EXPECT_EQ(got.machine.model.unit, LengthUnit::kMillimetre);
+  // The parameter file as a machine (the server's live machine): with the INI that loads it, the
+  // configuration's machine; alone, or with another INI, refused as no machine description.
+  const std::string params = (dir_ / "cfg/m.params").string();
+  HalReadOptions with_ini;
+  with_ini.ini_path = ini;
+  const HexapodMachine loaded = loadHexapodMachine(params, with_ini);
+  EXPECT_EQ(loaded.model.struts[1].length_offset, -3.5);
+  EXPECT_EQ(loaded.model.struts[0].max_reading, 400.0);
+  EXPECT_THROW((void)loadHexapodMachine(params), IoError);
+  with_ini.ini_path = write("other/m.ini", "[KINS]\nKINEMATICS = pkmhexkins params=m.params\n");
+  write("other/m.params", linuxcncHexapodParameters(m));
+  EXPECT_THROW((void)loadHexapodMachine(params, with_ini), IoError);
 }
 
 TEST_F(LinuxcncMachineFiles, AGenhexkinsConfigurationIsReadFromItsHalFile) {

@@ -14,7 +14,9 @@ is started beside it (port 0). Then, through GET /api/live:
     LinuxCNC checks when it queues the move): the drawn machine's joints equal
     LinuxCNC's within 1e-6 in, the machine moves, the executing line is highlighted and the
     violation is flagged ahead of it before LinuxCNC gets there; E-stop turns the header red.
-The server never commands LinuxCNC: it has no route that could (checked by its answers to POSTs).
+The server sends LinuxCNC no command of its own: it has no MDI or run route (404), and its one
+motion routine, the calibration, is refused without the launch's token (401; its routes and the
+routine: tests/server/api_live_calibration_test.cpp, live_calibration_test.py).
 Exit 77 (skipped) when LinuxCNC, its sample or the harness's user is missing; the page's part is
 left out (with a note) without node, Chromium or web/app/node_modules.
 
@@ -90,7 +92,8 @@ def start_server(pkm, ini):
     if "serving http://127.0.0.1:" not in line:
         p.kill()
         raise RuntimeError(f"pkm serve printed {line!r}; stderr {p.stderr.read()}")
-    return p, int(line.rsplit(":", 1)[1].strip(" /\n"))
+    # "pkm: serving http://127.0.0.1:PORT/?token=…" (the token: docs/web.md, "Security")
+    return p, int(line.split("127.0.0.1:", 1)[1].split("/", 1)[0])
 
 
 def pkm_ik(pkm, cfg, ini, pose, work):
@@ -187,14 +190,15 @@ def body(pkm, cfg, ini, work, port, shots):
         if not page_follows(cnc, port, work, shots, failures):
             cnc.ask("set estop on")
         wait_for(port, "E-stop", lambda j: j["state"] == "estop", timeout=5)
-        for path in ["/api/live/run", "/api/mdi"]:
+        for path, code in [("/api/live/run", 404), ("/api/mdi", 404),
+                           ("/api/live/calibration", 401)]:
             try:
                 urllib.request.urlopen(urllib.request.Request(
                     f"http://127.0.0.1:{port}{path}", data=b"{}", method="POST"), timeout=5)
                 failures.append(f"POST {path} was answered: the server must not command")
             except urllib.error.HTTPError as e:
-                if e.code != 404:
-                    failures.append(f"POST {path}: {e.code}, expected 404")
+                if e.code != code:
+                    failures.append(f"POST {path}: {e.code}, expected {code}")
         # The server lets go of LinuxCNC's shared memory before LinuxCNC stops (the harness
         # checks that nothing is left behind); following again afterwards must say it is gone.
         urllib.request.urlopen(urllib.request.Request(

@@ -104,5 +104,14 @@ TEST_F(LiveCalibrationRefusals, AnEarlierRunIsNotOverwrittenWithoutForce) {
   EXPECT_EQ(pkm::test::slurp(dir_ / "run/commands.log"), "an earlier run\n");
 }
 
+TEST_F(LiveCalibrationRefusals, TooFewStationsForTheUnknownsAreRefusedBeforeAnythingIsAsked) {
+  request_.stations.count = 13;  // 39 equations for 42 unknowns
+  const auto [what, sent] = refusal(ready());
+  EXPECT_THAT(what, HasSubstr("--stations: at least 14"));
+  EXPECT_TRUE(sent.empty() || sent.size() == 1);  // the commander's own first status, at most
+  request_.stations.count = 14;
+  EXPECT_NO_THROW(request_.validate());
+}
+
 }  // namespace PKM_TEST_NS
 }  // namespace pkm::live

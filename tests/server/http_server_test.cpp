@@ -7,10 +7,19 @@
 #include <gtest/gtest.h>
 #include <httplib.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <thread>
 #include <vector>
+
+#include "pkm/workflow/linuxcnc_config.hpp"
+#include "support/commander_standin.hpp"
+#include "support/linuxcnc_record.hpp"
 
 namespace pkm::server {
 namespace PKM_TEST_NS {
@@ -101,33 +110,43 @@ TEST_F(HttpServerTest, BodiesAboveTheLimitGet413) {
   EXPECT_EQ(r->status, 413);
 }
 
-TEST_F(HttpServerTest, ALongJobBlocksNeitherReadsNorTheJobLimit) {
+TEST_F(HttpServerTest, LongJobsQueueAndBlockNoReads) {
   ServerOptions o;
   o.max_jobs = 1;
+  o.max_queued = 1;
   start(o);
   const std::string body =
       Json{{"machine", "hexapod-default"}, {"program", longProgram(20'000)}}.dump();
-  // Two long runs at once (each takes over a second): one runs, the other is refused; reads are
-  // answered while the run goes on.
-  std::atomic<int> running{2};
-  int status[2] = {0, 0};
+  // Three long runs at once (each takes over a second) on one slot and a queue of one: one runs,
+  // one waits for it and is answered 200 too, the third finds the queue full: 503 with
+  // Retry-After. Reads are answered while the runs go on, and the queue shows in GET /api/jobs.
+  std::atomic<int> running{3};
+  int status[3] = {0, 0, 0};
+  std::string retry[3];
   std::vector<std::thread> jobs;
-  for (int k = 0; k < 2; ++k)
+  for (int k = 0; k < 3; ++k)
     jobs.emplace_back([&, k] {
       const auto r = client().Post("/api/gcode/run", body, "application/json");
       status[k] = r ? r->status : -1;
+      if (r) retry[k] = r->get_header_value("Retry-After");
       --running;
     });
   int reads_during_run = 0;
+  bool saw_queue = false;
   while (running > 0) {
-    const auto read = client().Get("/api/machines");
+    const auto read = client().Get("/api/jobs");
     ASSERT_TRUE(read);
     EXPECT_EQ(read->status, 200);
+    saw_queue = saw_queue || Json::parse(read->body)["queued"].size() == 1;
     if (running > 0) ++reads_during_run;
   }
   for (std::thread& t : jobs) t.join();
-  EXPECT_EQ(std::min(status[0], status[1]), 200);
-  EXPECT_EQ(std::max(status[0], status[1]), 503);
+  std::sort(std::begin(status), std::end(status));
+  EXPECT_EQ(status[0], 200);
+  EXPECT_EQ(status[1], 200);
+  EXPECT_EQ(status[2], 503);
+  EXPECT_EQ(retry[0] + retry[1] + retry[2], "2");
+  EXPECT_TRUE(saw_queue);
   EXPECT_GT(reads_during_run, 0);
 }
 
@@ -157,6 +176,54 @@ TEST_F(HttpServerTest, ACampaignStreamsItsProgressAndReport) {
   ASSERT_TRUE(report);
   EXPECT_EQ(report->status, 200);
   EXPECT_THAT(report->body, HasSubstr("<html"));
+}
+
+TEST_F(HttpServerTest, ACalibrationStopsTheMachineWhenThePageConnectionDrops) {
+  namespace fs = std::filesystem;
+  const fs::path dir =
+      fs::temp_directory_path() / ("pkm_http_routine_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  workflow::LinuxcncConfigRequest config;
+  config.machine = "hexapod-default";
+  config.out = (dir / "cfg").string();
+  const std::string ini = workflow::writeLinuxcncConfig(config).ini;
+  Json record = pkm::test::linuxcncRecord(1, {0, 0, 200, 0, 0, 0}, {1, 2, 3, 4, 5, 6}, ini);
+  record["linear_units"] = 1.0;
+  const std::string sent = (dir / "sent.log").string();
+  ServerOptions o;
+  o.linuxcnc = true;
+  o.linuxcnc_ini = ini;
+  o.live.command = {"/bin/sh", "-c", "printf '%s\\n' \"$1\"; cat >/dev/null", "r", record.dump()};
+  o.commander.command = {
+      "/usr/bin/python3", "-u", "-c", pkm::test::kCommanderStandIn, record.dump(), sent};
+  start(o);
+  auto sentText = [&] {
+    std::ifstream in(sent);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  };
+  httplib::Client c = client();
+  httplib::Request req;
+  req.method = "POST";
+  req.path = "/api/live/calibration?token=" + server_->api().token();
+  req.body = R"({"confirm": true, "gauges": ["g.0", "g.1", "g.2"], "stations": 14})";
+  req.set_header("Content-Type", "application/json");
+  std::string stream;
+  req.content_receiver = [&](const char* data, std::size_t n, std::uint64_t, std::uint64_t) {
+    stream.append(data, n);
+    // The page goes away once the machine moves (closed tab, dropped network).
+    return sentText().find(R"("op":"mdi")") == std::string::npos;
+  };
+  (void)c.send(req);
+  EXPECT_THAT(stream, HasSubstr("event: started"));
+  bool aborted = false;
+  for (int i = 0; i < 500 && !aborted; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    aborted = sentText().find(R"("op":"abort")") != std::string::npos;
+  }
+  EXPECT_TRUE(aborted) << sentText();
+  fs::remove_all(dir);
 }
 
 }  // namespace PKM_TEST_NS

@@ -34,9 +34,10 @@ inline constexpr const char* kDefaultExechonMachine = "mxt700s-like";
 /// pkm::IoError if there is no hexapod by that name.
 [[nodiscard]] HexapodMachine builtinMachine(const std::string& name);
 
-/// `spec` ending in ".hal": readLinuxcncHal; an existing file: readHexapodJson; otherwise a
-/// built-in name ("default" means kDefaultMachine). Throws pkm::IoError naming the file and line on
-/// bad input.
+/// `spec` ending in ".hal": readLinuxcncHal; a pkmhexkins parameter file (".params") with
+/// hal.ini_path the INI that loads it: that configuration's hexapod (readLinuxcncHexapod); an
+/// existing file: readHexapodJson; otherwise a built-in name ("default" means kDefaultMachine).
+/// Throws pkm::IoError naming the file and line on bad input.
 [[nodiscard]] HexapodMachine loadHexapodMachine(const std::string& spec,
                                                 const HalReadOptions& hal = {});
 

@@ -13,6 +13,7 @@
 #include <mutex>
 #include <string>
 
+#include "pkm/live/linuxcnc_commander.hpp"
 #include "pkm/live/linuxcnc_link.hpp"
 #include "pkm/workflow/progress.hpp"
 
@@ -23,7 +24,8 @@ struct ServerOptions {
   std::string host = "127.0.0.1";    ///< the address to bind (another host only when asked)
   int port = 8787;                   ///< 0: any free port
   std::size_t max_body = 32u << 20;  ///< largest request body, bytes (413 above)
-  std::size_t max_jobs = 2;      ///< long jobs at once (runs, compensations, campaigns); 503 above
+  std::size_t max_jobs = 2;      ///< long jobs at once (runs, compensations, campaigns); more wait
+  std::size_t max_queued = 16;   ///< long jobs waiting for a slot; 503 with Retry-After above
   std::size_t max_uploads = 32;  ///< machines one server holds (the oldest is dropped)
   /// Follow the LinuxCNC running on this host from the start (`pkm serve --linuxcnc`); the page's
   /// Connect does the same later (POST /api/live/connect).
@@ -31,6 +33,12 @@ struct ServerOptions {
   /// That LinuxCNC's INI ("": the one LinuxCNC reports it was started with).
   std::string linuxcnc_ini;
   live::LinkOptions live;  ///< how the link reads LinuxCNC (rate; the reader, for tests)
+  /// How a calibration routine commands LinuxCNC (POST /api/live/calibration; a stand-in, for
+  /// tests).
+  live::CommanderOptions commander;
+  /// Seconds between the heartbeats of a routine's event stream; a heartbeat that cannot be
+  /// written (the page's connection dropped) stops the routine and the machine (> 0).
+  double heartbeat_s = 0.25;
   /// Throws pkm::InvalidArgument for a port outside 0..65535, a zero limit or bad live options.
   void validate() const;
 };
@@ -53,6 +61,8 @@ struct Response {
   std::string body;
   /// A Set-Cookie header value ("" : none): the server's token after the page opened its URL.
   std::string set_cookie;
+  /// A Retry-After header value, seconds ("" : none): a 503 says when to try again.
+  std::string retry_after;
 };
 
 /// Whether `host` (an address or name to bind) is a loopback address: localhost, ::1 or 127.x.y.z.
@@ -69,6 +79,14 @@ struct CampaignJob {
   std::shared_ptr<void> slot;  ///< the job slot it holds, released with the job
 };
 
+struct LiveRoutine;  ///< the server's record of a running calibration (src/server/api_state.hpp)
+
+/// A calibration by constrained motion admitted by Api::startLiveCalibration, run by
+/// Api::runLiveCalibration (docs/web.md, "The automated calibration").
+struct LiveCalibrationJob {
+  std::shared_ptr<LiveRoutine> routine;
+};
+
 /// The API. Uploaded machines and campaign reports live in a folder of the server's own (removed
 /// when the Api is destroyed); a request never names a file system path.
 class Api {
@@ -82,11 +100,11 @@ class Api {
   /// The port the transport bound (for the Host and Origin checks when options.port was 0).
   void setPort(int port);
 
-  /// The per-launch secret every request must carry when the server is reachable from other
-  /// machines (options.host not a loopback address): 64 hex digits from the system's random
-  /// source, new at every launch; "" on a loopback address (no token needed). A request carries it
-  /// as `?token=` (the URL `pkm serve` prints; answered with a cookie) or as the cookie
-  /// kTokenCookie; compared in constant time; 401 without it.
+  /// The per-launch secret: 64 hex digits from the system's random source, new at every launch.
+  /// Every route that commands the machine needs it, and every route at all when the server is
+  /// reachable from other machines (options.host not a loopback address). A request carries it as
+  /// `?token=` (the URL `pkm serve` prints; answered with a cookie) or as the cookie kTokenCookie;
+  /// compared in constant time; 401 without it.
   [[nodiscard]] const std::string& token() const;
 
   /// Answers every route but the campaign stream (docs/web.md): 200 with JSON, 400 for malformed
@@ -102,6 +120,22 @@ class Api {
   /// Runs an admitted campaign, passing each server-sent event (`event: NAME\ndata: JSON\n\n`) to
   /// `write`; `write` returning false (the client left) cancels the campaign. Never throws.
   void runCampaign(CampaignJob& job, const std::function<bool(const std::string&)>& write);
+
+  /// POST /api/live/calibration: checks the request (token, Origin, "confirm": true, the gauges)
+  /// and that LinuxCNC may move (409 with the reason: E-stop, not homed, busy, another routine),
+  /// then starts the commander. Returns status 200 with `job` set up, or the error response (as
+  /// handle()); nothing is sent to LinuxCNC but status requests unless it returns 200. A job that
+  /// was admitted must be run.
+  [[nodiscard]] Response startLiveCalibration(const Request& request, LiveCalibrationJob& job);
+  /// Runs an admitted calibration (live::calibrateLive), passing its server-sent events to
+  /// `write` and a heartbeat every options.heartbeat_s; `write` returning false (the page's
+  /// connection dropped) stops the routine and aborts the machine's motion. After the fit it asks
+  /// the page ("confirm" event) and waits for POST /api/live/calibration/confirm. Never throws.
+  void runLiveCalibration(LiveCalibrationJob& job,
+                          const std::function<bool(const std::string&)>& write);
+
+  /// Stops `job`'s routine and LinuxCNC's motion (the transport: its connection ended).
+  static void stopLiveCalibration(LiveCalibrationJob& job);
 
   /// The embedded front-end asset at `path` ("/" is "/index.html"), if there is one.
   [[nodiscard]] static const Response* asset(const std::string& path);

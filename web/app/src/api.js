@@ -28,14 +28,15 @@ export const post = async (path, body) =>
   );
 
 /**
- * POST /api/campaign: reads the server-sent events as they come and calls onEvent(name, data).
- * Resolves when the stream ends.
+ * POSTs `body` to `path` and reads the server-sent events of the answer as they come, calling
+ * onEvent(name, data) for each. Resolves when the stream ends; `signal` (an AbortSignal) closes it.
  */
-export async function streamCampaign(campaign, onEvent) {
-  const response = await fetch("/api/campaign", {
+export async function streamEvents(path, body, onEvent, signal) {
+  const response = await fetch(path, {
     method: "POST",
     headers: { "Content-Type": "application/json" },
-    body: JSON.stringify({ campaign }),
+    body: JSON.stringify(body),
+    signal,
   });
   if (!response.ok) await parse(response);
   const reader = response.body.getReader();
@@ -55,3 +56,6 @@ export async function streamCampaign(campaign, onEvent) {
     }
   }
 }
+
+/** POST /api/campaign: the campaign's events as they come (streamEvents). */
+export const streamCampaign = (campaign, onEvent) => streamEvents("/api/campaign", { campaign }, onEvent);

@@ -1,7 +1,7 @@
 // Following a running LinuxCNC (docs/linuxcnc.md, "The live machine"): while following, GET
 // /api/live 20 times a second; the Machine view draws the machine as LinuxCNC commands it and the
-// Program view shows LinuxCNC's program, its executing line and the violations ahead of it. The
-// page only reads: it sends LinuxCNC nothing.
+// Program view shows LinuxCNC's program, its executing line and the violations ahead of it.
+// Following only reads; the one routine that moves the machine is live_calibration.js's.
 import { get, post } from "./api.js";
 
 const PERIOD_MS = 50;

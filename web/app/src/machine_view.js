@@ -25,6 +25,7 @@ export class MachineView {
         <div>closest struts <span id="pose-pair"></span></div>
         <table id="pose-table"></table>
         <div id="pose-violations" class="violations"></div>
+        <div id="livecal-panel"></div>
       </div>
       <div class="canvas" id="machine-canvas"></div>`;
     this.sliders = root.querySelector("#pose-sliders");

@@ -8,6 +8,7 @@ import { ProgramView } from "./program_view.js";
 import { BlocksView } from "./blocks_view.js";
 import { CampaignView } from "./campaign_view.js";
 import { LiveFollower } from "./live.js";
+import { LiveCalibration } from "./live_calibration.js";
 
 const $ = (s) => document.querySelector(s);
 
@@ -26,6 +27,7 @@ class App {
     $("#compare").addEventListener("change", () => this.selectMachine($("#machine").value));
     $("#upload").addEventListener("change", (e) => this.upload(e.target.files[0]));
     this.follower = new LiveFollower(this);
+    this.calibration = new LiveCalibration($("#livecal-panel"), this);
   }
 
   /** One record of the followed LinuxCNC (GET /api/live): its machine is selected once known. */

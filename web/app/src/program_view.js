@@ -54,6 +54,7 @@ export class Simulator {
         <select class="speed"><option>0.25</option><option>0.5</option><option selected>1</option><option>2</option><option>5</option><option>20</option></select>×
         <input class="scrub" type="range" min="0" max="1" step="any" value="0">
         <span class="clock">0.00 s</span>
+        <span class="busy"></span>
       </div>
       <div class="summary"></div>
       <div class="plots"></div>
@@ -74,6 +75,19 @@ export class Simulator {
     this.job = `run-${Date.now()}-${Math.floor(Math.random() * 1e6)}`;
     const stop = this.root.querySelector(".stop");
     stop.disabled = false;
+    const busy = this.root.querySelector(".busy");
+    const job = this.job;
+    // While the server works: "checking…", or the run's place when it waits for a free slot.
+    const watch = async () => {
+      const jobs = await get("/api/jobs").catch(() => null);
+      if (this.job !== job) return;
+      const ahead = jobs ? jobs.queued.indexOf(job) : -1;
+      busy.textContent = ahead >= 0 ? `queued: ${ahead + 1} of ${jobs.queued.length} waiting for a free slot` : "checking…";
+      this.watchTimer = setTimeout(watch, 500);
+    };
+    busy.textContent = "checking…";
+    this.watchTimer = setTimeout(watch, 300);
+    document.body.classList.add("busy");
     let r;
     try {
       r = await post("/api/gcode/run", {
@@ -88,6 +102,9 @@ export class Simulator {
     } finally {
       stop.disabled = true;
       this.job = null;
+      clearTimeout(this.watchTimer);
+      busy.textContent = "";
+      document.body.classList.remove("busy");
     }
     this.result = r;
     this.show(r, m);
