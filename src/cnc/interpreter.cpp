@@ -20,6 +20,37 @@ namespace pkm::cnc {
 namespace {
 constexpr const char* kNoProgramEnd =
     "the file ended with no percent sign or program end (M2, M30), which LinuxCNC refuses";
+
+/// Forwards to a sink and refuses the motion past InterpreterOptions::max_moves.
+class MoveBudget : public MoveSink {
+ public:
+  MoveBudget(MoveSink& inner, std::size_t max) : inner_(inner), max_(max) {}
+  [[nodiscard]] bool wantsBlocks() const override { return inner_.wantsBlocks(); }
+  void onBlock(const Block& b, std::size_t index, const std::vector<EvaluatedWord>& w) override {
+    inner_.onBlock(b, index, w);
+  }
+  void onMove(const Move& move) override {
+    if (max_ != 0 && ++moves_ > max_)
+      throw GcodeError(
+          fmt::format("the program makes more than {} motions, the most this run "
+                      "allows (its point budget, --max-points); a runaway loop?",
+                      max_));
+    inner_.onMove(move);
+  }
+  void onDwell(std::size_t line, double seconds) override { inner_.onDwell(line, seconds); }
+  void onCycleAction(std::size_t line, CycleAction action) override {
+    inner_.onCycleAction(line, action);
+  }
+  void onMessage(std::size_t line, CommentKind kind, const std::string& text) override {
+    inner_.onMessage(line, kind, text);
+  }
+
+ private:
+  MoveSink& inner_;
+  std::size_t max_;
+  std::size_t moves_ = 0;
+};
+
 }  // namespace
 
 Interpreter::Interpreter(InterpreterOptions options)
@@ -44,8 +75,9 @@ Interpreter::Interpreter(InterpreterOptions options)
 Interpreter::~Interpreter() = default;
 const MachineState& Interpreter::state() const { return impl_->st; }
 
-RunSummary Interpreter::run(const Program& program, MoveSink& sink) {
+RunSummary Interpreter::run(const Program& program, MoveSink& target) {
   Impl& s = *impl_;
+  MoveBudget sink(target, s.options.max_moves);
   s.summary = RunSummary{};
   s.report_blocks = sink.wantsBlocks();
   const Impl::Outcome outcome = s.runProgram(program, 0, sink, false);
@@ -112,8 +144,9 @@ Interpreter::Impl::Outcome Interpreter::Impl::runProgram(const Program& program,
   return Outcome::kFellOff;
 }
 
-RunSummary Interpreter::runStream(LineReader& reader, MoveSink& sink) {
+RunSummary Interpreter::runStream(LineReader& reader, MoveSink& target) {
   Impl& s = *impl_;
+  MoveBudget sink(target, s.options.max_moves);
   s.summary = RunSummary{};
   s.report_blocks = sink.wantsBlocks();
   s.block_index = kNoBlock;  // streamed blocks have no index in a Program

@@ -188,7 +188,8 @@ Response failure(const Api::State& s) {
 
 void ServerOptions::validate() const {
   PKM_CHECK(port >= 0 && port <= 65535, "--port must be 0..65535, got {}", port);
-  PKM_CHECK(max_body > 0 && max_jobs > 0 && max_uploads > 0, "server limits must be > 0");
+  PKM_CHECK(max_body > 0 && max_jobs > 0 && max_uploads > 0 && max_run_points > 0,
+            "server limits must be > 0");
   PKM_CHECK(!host.empty(), "--host must not be empty");
   live.validate();
   commander.validate();

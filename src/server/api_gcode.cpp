@@ -84,6 +84,7 @@ Response runGcode(Api::State& s, const Request& r) {
   q.max_violations =
       countField(body, "max_violations", kMaxViolations).value_or(kDefaultViolations);
   q.frames = countField(body, "frames", kMaxFrames).value_or(0);
+  q.max_points = s.options.max_run_points;  // a runaway loop is refused long before GBs
   const NamedJob job(s, stringField(body, "job", ""));
   const JobSlot slot(s, job.name(), &job.token());
   const workflow::GcodeRunResult result = workflow::runGcode(q, job.control());

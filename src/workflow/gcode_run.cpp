@@ -73,7 +73,11 @@ cnc::MoveCollector interpret(const GcodeRunRequest& request,
   GcodeInterpreterSettings settings = request.interpreter;
   if (machine != nullptr) takeStartupCode(*machine, settings);
   if (settings.ini.empty()) settings.ini = request.ini;  // the machine's INI sets up rs274 too
-  cnc::Interpreter interpreter(settings.options());
+  cnc::InterpreterOptions options = settings.options();
+  // Each motion makes at least one interpolated point: more motions than the point budget are
+  // refused while interpreting, before their memory is spent.
+  options.max_moves = request.max_points;
+  cnc::Interpreter interpreter(std::move(options));
   const cnc::Program program = cnc::Program::parse(request.program.text, request.program.name);
   lines = program.lineCount();
   cnc::MoveCollector moves;

@@ -281,6 +281,11 @@ TEST(Interpreter, RunawayLoopIsRejected) {
               HasSubstr("t.ngc:3: loop o1 exceeded 1000 iterations"));
   EXPECT_THAT(errorOf("o1 do\no1 while [1]\n", o), HasSubstr("exceeded"));
   EXPECT_THAT(errorOf("o<r> sub\no<r> call\no<r> endsub\no<r> call\n"), HasSubstr("nested deeper"));
+  // A loop within the iteration guard whose motions exceed the run's budget: refused at the
+  // motion past it, before the moves pile up.
+  o.max_moves = 10;
+  EXPECT_THAT(errorOf("#1=0\no1 while [#1 LT 100]\nG1 X#1 F9\n#1=[#1+1]\no1 endwhile\n", o),
+              HasSubstr("t.ngc:3: the program makes more than 10 motions"));
 }
 
 TEST(Interpreter, ErrorsNameTheLine) {

@@ -186,6 +186,13 @@ TEST_F(ApiTest, StatusCodesForBadRequests) {
       "max_points": -1})")
                 .status,
             400);
+  // A runaway loop (within the interpreter's iteration guard) is refused by the server's point
+  // budget at its line in about a second, not after 31 s and 3.5 GB.
+  const Response runaway = post("/api/gcode/run", R"({"machine": "hexapod-default",
+      "name": "r.ngc", "program": "G0 X0 Y0 Z200\nF600\n#1=0\no1 while [#1 LT 9000000]\nG1 X10\nG1 X-10\n#1=[#1+1]\no1 endwhile\nM2\n"})");
+  EXPECT_EQ(runaway.status, 422);
+  EXPECT_EQ(body(runaway)["line"], 6);  // motion 1,000,001: the G0 and 500,000 passes
+  EXPECT_THAT(body(runaway)["error"].get<std::string>(), HasSubstr("more than 1000000 motions"));
 }
 
 TEST_F(ApiTest, PosesCheckedWithMargins) {

@@ -28,6 +28,9 @@ struct InterpreterOptions {
   /// rejected as runaway (no hang on `while [1]`); also the most motions one canned-cycle block
   /// may expand to (L repeats times pecks).
   std::uint64_t max_loop_iterations = 10'000'000;
+  /// Motions one run may send to its sink; more is refused at the line that crosses it (a runaway
+  /// program's memory is bounded before it is spent: 20 million moves took 3.4 GB). 0: no limit.
+  std::size_t max_moves = 0;
   /// Refuse a program that ends without M2/M30 and is not enclosed in `%` lines, as LinuxCNC's
   /// rs274 does ("file ended with no percent sign or program end"); off for snippets.
   bool require_program_end = false;

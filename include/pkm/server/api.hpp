@@ -24,8 +24,11 @@ struct ServerOptions {
   std::string host = "127.0.0.1";    ///< the address to bind (another host only when asked)
   int port = 8787;                   ///< 0: any free port
   std::size_t max_body = 32u << 20;  ///< largest request body, bytes (413 above)
-  std::size_t max_jobs = 2;      ///< long jobs at once (runs, compensations, campaigns); more wait
-  std::size_t max_queued = 16;   ///< long jobs waiting for a slot; 503 with Retry-After above
+  std::size_t max_jobs = 2;     ///< long jobs at once (runs, compensations, campaigns); more wait
+  std::size_t max_queued = 16;  ///< long jobs waiting for a slot; 503 with Retry-After above
+  /// Interpolated points (and motions) one run may make: a runaway loop's memory stays bounded
+  /// (about 0.2 GB per million; the CLI's default of 10 million is for whole CAM programs).
+  std::size_t max_run_points = 1'000'000;
   std::size_t max_uploads = 32;  ///< machines one server holds (the oldest is dropped)
   /// Follow the LinuxCNC running on this host from the start (`pkm serve --linuxcnc`); the page's
   /// Connect does the same later (POST /api/live/connect).
