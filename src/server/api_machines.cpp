@@ -179,7 +179,12 @@ Response uploadMachine(Api::State& s, const Request& r) {
     }
   }
   Json notices = Json::array();
-  for (const std::string& note : l.notices) notices.push_back(s.clean(note));
+  for (std::string note : l.notices) {
+    // The reader's advice is the command line's; the page attaches the INI with the .hal.
+    if (const std::size_t at = note.find("pass --ini"); at != std::string::npos && hal)
+      note.replace(at, 10, "choose the .hal together with its .ini");
+    notices.push_back(s.clean(note));
+  }
   return json({{"name", u.name},
                {"type", u.type},
                {"units", l.units},

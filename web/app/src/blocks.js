@@ -20,8 +20,17 @@ const definitions = [
   { type: "pkm_line", message0: "feed to X %1 Y %2 Z %3", args0: [num("X", 0), num("Y", 0), num("Z", 200)], colour: MOVE },
   {
     type: "pkm_arc",
-    message0: "arc %1 to X %2 Y %3 centre offset I %4 J %5",
-    args0: [{ type: "field_dropdown", name: "DIR", options: [["clockwise", "G2"], ["counter-clockwise", "G3"]] }, num("X", 0), num("Y", 0), num("I", 10), num("J", 0)],
+    // END "FULL": a full circle about the centre offset, valid wherever the tool is (the palette's
+    // default); "XY": to the end point X Y, which must lie on that circle (files saved before).
+    message0: "arc %1 %2 X %3 Y %4 centre offset I %5 J %6",
+    args0: [
+      { type: "field_dropdown", name: "DIR", options: [["clockwise", "G2"], ["counter-clockwise", "G3"]] },
+      { type: "field_dropdown", name: "END", options: [["to", "XY"], ["full circle, ignoring", "FULL"]] },
+      num("X", 0),
+      num("Y", 0),
+      num("I", 10),
+      num("J", 0),
+    ],
     colour: MOVE,
   },
   { type: "pkm_orient", message0: "orient platform A %1 B %2 C %3 (deg)", args0: [num("A", 0), num("B", 0), num("C", 0)], colour: MOVE },
@@ -117,7 +126,7 @@ export function registerBlocks() {
 export const toolbox = {
   kind: "categoryToolbox",
   contents: [
-    { kind: "category", name: "Moves", colour: MOVE, contents: ["pkm_rapid", "pkm_line", "pkm_arc", "pkm_orient", "pkm_param"].map((type) => ({ kind: "block", type })) },
+    { kind: "category", name: "Moves", colour: MOVE, contents: ["pkm_rapid", "pkm_line", "pkm_arc", "pkm_orient", "pkm_param"].map((type) => (type === "pkm_arc" ? { kind: "block", type, fields: { END: "FULL" } } : { kind: "block", type })) },
     { kind: "category", name: "Settings", colour: MODE, contents: ["pkm_mode", "pkm_feed", "pkm_spindle", "pkm_dwell", "pkm_comp"].map((type) => ({ kind: "block", type })) },
     { kind: "category", name: "Flow", colour: FLOW, contents: ["pkm_set", "pkm_add", "pkm_repeat", "pkm_while", "pkm_if", "pkm_sub", "pkm_call", "pkm_call_args"].map((type) => ({ kind: "block", type })) },
     { kind: "category", name: "Machining", colour: COMPOSITE, contents: ["pkm_sphere", "pkm_pocket", "pkm_drill", "pkm_face"].map((type) => ({ kind: "block", type })) },
@@ -193,6 +202,7 @@ function simple(b) {
     case "pkm_line":
       return `G1 X${f(n(b, "X"))} Y${f(n(b, "Y"))} Z${f(n(b, "Z"))}`;
     case "pkm_arc":
+      if (b.getFieldValue("END") === "FULL") return `${b.getFieldValue("DIR")} I${f(n(b, "I"))} J${f(n(b, "J"))}`;
       return `${b.getFieldValue("DIR")} X${f(n(b, "X"))} Y${f(n(b, "Y"))} I${f(n(b, "I"))} J${f(n(b, "J"))}`;
     case "pkm_orient":
       return `G1 A${f(n(b, "A"))} B${f(n(b, "B"))} C${f(n(b, "C"))}`;

@@ -25,7 +25,8 @@ class App {
     for (const b of document.querySelectorAll("#views button")) b.addEventListener("click", () => this.showView(b.dataset.view));
     $("#machine").addEventListener("change", () => this.selectMachine($("#machine").value));
     $("#compare").addEventListener("change", () => this.selectMachine($("#machine").value));
-    $("#upload").addEventListener("change", (e) => this.upload(e.target.files[0]));
+    $("#upload").addEventListener("change", (e) => this.upload([...e.target.files]));
+    $("#message-close").addEventListener("click", () => this.clearMessage());
     this.follower = new LiveFollower(this);
     this.calibration = new LiveCalibration($("#livecal-panel"), this);
   }
@@ -66,9 +67,20 @@ class App {
     this.view = name;
   }
 
+  /** Shows an error (red) or a notice (amber) under the header, where it is seen at any width. */
   error(e) {
-    $("#status").textContent = e.message || String(e);
+    this.say(e.message || String(e), "error");
     console.warn(e);
+  }
+
+  say(text, kind = "notice") {
+    $("#message-text").textContent = text;
+    $("#message").className = kind;
+    $("#message").hidden = !text;
+  }
+
+  clearMessage() {
+    this.say("");
   }
 
   download(name, text) {
@@ -89,27 +101,37 @@ class App {
   }
 
   async selectMachine(name) {
-    $("#status").textContent = "";
+    this.clearMessage();
     try {
       this.machine = await get(`/api/machines/${encodeURIComponent(name)}`);
       const other = $("#compare").value;
       const compare = other && other !== name ? await get(`/api/machines/${encodeURIComponent(other)}`) : null;
       if (compare && compare.type !== this.machine.type) throw new Error(`${other} is not a ${this.machine.type}`);
       this.views.machine.show(this.machine, compare);
+      // Results of the previous machine are not this machine's.
+      for (const v of [this.views.program, this.views.blocks]) v.sim?.clear();
       document.body.dataset.machine = name;
     } catch (e) {
       this.error(e);
     }
   }
 
-  async upload(file) {
-    if (!file) return;
+  /** Uploads a machine file: a .json, or a LinuxCNC .hal with its .ini chosen together. */
+  async upload(files) {
+    if (!files.length) return;
+    const machine = files.find((f) => !f.name.toLowerCase().endsWith(".ini"));
+    const ini = files.find((f) => f.name.toLowerCase().endsWith(".ini"));
     try {
-      const r = await post("/api/machines", { filename: file.name, text: await file.text() });
+      if (!machine) throw new Error(`${ini.name}: choose the machine's .hal (or .json) together with its .ini`);
+      const body = { filename: machine.name, text: await machine.text() };
+      if (ini) body.ini = await ini.text();
+      const r = await post("/api/machines", body);
       await this.loadMachines(r.name);
-      if (r.notices.length) $("#status").textContent = r.notices.join("; ");
+      if (r.notices.length) this.say(r.notices.join("; "));
     } catch (e) {
       this.error(e);
+    } finally {
+      $("#upload").value = "";  // choosing the same files again uploads them again
     }
   }
 }

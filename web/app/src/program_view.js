@@ -111,6 +111,18 @@ export class Simulator {
     return r;
   }
 
+  /** Forgets the last result: nothing of another program or machine stays on screen. */
+  clear() {
+    if (this.playing) this.toggle();
+    this.result = null;
+    const scene = this.app.scene(this.canvasId);
+    scene.clear(0);
+    scene.showPath([]);
+    for (const sel of [".summary", ".plots", ".violations"]) this.root.querySelector(sel).innerHTML = "";
+    this.root.querySelector(".scrub").value = 0;
+    this.root.querySelector(".clock").textContent = "0.00 s";
+  }
+
   show(r, m) {
     const scene = this.app.scene(this.canvasId);
     scene.clear(0);
@@ -266,9 +278,13 @@ export class ProgramView {
       this.toolTable = e.target.files[0] ? await e.target.files[0].text() : "";
     });
     root.querySelector("#open-ngc").addEventListener("change", async (e) => {
-      if (e.target.files[0]) this.setProgram(await e.target.files[0].text());
+      const file = e.target.files[0];
+      if (!file) return;
+      this.setProgram(await file.text());
+      this.fileName = file.name;  // errors and saving name the file the user opened
+      this.sim.clear();
     });
-    root.querySelector("#save-ngc").addEventListener("click", () => this.app.download("program.ngc", this.program()));
+    root.querySelector("#save-ngc").addEventListener("click", () => this.app.download(this.fileName || "program.ngc", this.program()));
   }
 
   program() {
@@ -363,8 +379,9 @@ export class ProgramView {
       const extra = {};
       if (tol) extra.tolerance = Number(tol);
       if (this.toolTable) extra.tool_table = this.toolTable;
-      return await this.sim.run(this.program(), "program.ngc", extra);
+      return await this.sim.run(this.program(), this.fileName || "program.ngc", extra);
     } catch (e) {
+      this.sim.clear();
       err.textContent = e.message;
       if (e.line) {
         this.markError(e.line);

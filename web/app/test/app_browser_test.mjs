@@ -140,9 +140,14 @@ try {
     const v = window.pkmApp.views.program;
     v.setProgram("G0 X0 Y0 Z200\nG1 X1 Q2 F600\n");
     await v.run();
-    return document.querySelector("#program-error").textContent;
+    return {
+      text: document.querySelector("#program-error").textContent,
+      stale: v.sim.result !== null || document.querySelector("#program-results .summary").textContent !== "" ||
+        document.querySelectorAll("#program-results ol.violations li").length > 0,
+    };
   });
-  expect(error.includes("program.ngc:2"), `program view: an error names its line (${error})`);
+  expect(error.text.includes("program.ngc:2"), `program view: an error names its line (${error.text})`);
+  expect(!error.stale, "program view: after an error the previous program's results are gone");
   errors.splice(before, errors.length - before, ...errors.slice(before).filter((e) => !e.includes("422")));
 
   // Blocks view: a program built from blocks (makeTestBlock: a block with its fields, drawn).
@@ -218,6 +223,34 @@ try {
     comp.text.includes("o<corner> sub\nG1 X#1 Y#2 Z#3\no<corner> endsub") && comp.text.includes("G40\nG1 X-20 Y-20 Z230"),
     `blocks view: cutter compensation and a call with arguments run\n${JSON.stringify(comp)}`);
   await page.screenshot({ path: join(outDir, "blocks-comp.png") });
+  // The arc block as the palette makes it is valid after any move: a full circle about its centre.
+  const arc = await page.evaluate(async () => {
+    const v = window.pkmApp.views.blocks;
+    const ws = v.workspace;
+    ws.clear();
+    const palette = ws.options.languageTree.contents.flatMap((c) => c.contents || []);
+    const fields = palette.find((b) => b.type === "pkm_arc").fields || {};
+    const make = (type, f) => window.makeTestBlock(ws, type, f);
+    const chain = (...bs) => bs.reduce((a, b) => (a.nextConnection.connect(b.previousConnection), b));
+    chain(make("pkm_feed", { F: 500 }), make("pkm_rapid", { X: 30, Y: 7, Z: 200 }), make("pkm_arc", fields));
+    const text = v.code().text;
+    const r = await v.run();
+    return { text, ok: r && r.ok };
+  });
+  expect(arc.ok === true && arc.text.includes("G0 X30 Y7 Z200\nG2 I10 J0\n"),
+    `blocks view: the palette's arc block runs after any move\n${JSON.stringify(arc)}`);
+  // Messages show under the header, inside the window at 1,366 px wide.
+  await page.setViewportSize({ width: 1366, height: 768 });
+  const shown = await page.evaluate(async () => {
+    await window.pkmApp.upload([new File(["[TRAJ]\n"], "alone.ini")]);
+    const box = document.querySelector("#message").getBoundingClientRect();
+    return { text: document.querySelector("#message-text").textContent, left: box.left, right: box.right, top: box.top, hidden: document.querySelector("#message").hidden };
+  });
+  expect(!shown.hidden && shown.left >= 0 && shown.right <= 1366 && shown.top < 120 && shown.text.includes("alone.ini"),
+    `an error message is shown inside the window: ${JSON.stringify(shown)}`);
+  await page.screenshot({ path: join(outDir, "message.png") });
+  await page.click("#message-close");
+  await page.setViewportSize({ width: 1400, height: 860 });
 
   // The Exechon: drawn at home, and its example program runs.
   await page.click("button[data-view=machine]");
