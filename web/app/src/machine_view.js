@@ -122,18 +122,24 @@ export class MachineView {
   render(result) {
     const row = result.rows[0];
     const status = document.querySelector("#pose-status");
-    status.textContent = row.status;
+    // Every violated check, not only the first (the list below gives each).
+    const kinds = [...new Set(row.violations.map((v) => v.split(/[ :]/)[0]))];
+    status.textContent = row.status === "ok" || kinds.length < 2 ? row.status : `${row.status} and ${kinds.length - 1} more`;
     status.className = row.status === "ok" ? "ok" : "bad";
     if (row.base_points.length) this.app.scene("machine-canvas").draw(0, row, this.style(this.m));
     const c = row.condition_number;
     document.querySelector("#cond-gauge").value = c ?? 0;
     document.querySelector("#cond-value").textContent = `${fmt(c, 1)} (margin ${fmt(row.condition_margin, 1)})`;
     document.querySelector("#pose-pair").textContent =
-      row.closest_pair[0] >= 0 ? `${row.closest_pair[0]}-${row.closest_pair[1]}: clearance ${fmt(row.clearance)} ${result.units}` : "-";
+      row.closest_pair[0] < 0
+        ? "-"
+        : row.clearance === null
+          ? `${row.closest_pair[0]}-${row.closest_pair[1]} (no strut diameter: clearance not checked)`
+          : `${row.closest_pair[0]}-${row.closest_pair[1]}: clearance ${fmt(row.clearance)} ${result.units}`;
     const hexapod = result.type === "hexapod";
     const rows = result.joints.map(
       (n, i) =>
-        `<tr><td>${n}</td><td>${fmt(row.joints[i])}</td><td class="${row.stroke_margin[i] < 0 ? "bad" : ""}">${fmt(row.stroke_margin[i])}</td>${hexapod ? `<td>${fmt(row.angle_margin[i], 2)}</td>` : ""}</tr>`,
+        `<tr><td>${n}</td><td>${fmt(row.joints[i])}</td><td class="${row.stroke_margin[i] < 0 ? "bad" : ""}">${fmt(row.stroke_margin[i])}</td>${hexapod ? `<td class="${row.angle_margin[i] < 0 ? "bad" : ""}">${fmt(row.angle_margin[i], 2)}</td>` : ""}</tr>`,
     );
     const angles = hexapod
       ? ""

@@ -41,6 +41,24 @@ G2 X0 Y0 I20 J20
 M2
 `;
 
+/**
+ * One entry per line and check: the violated point with the smallest margin, and how many points
+ * of that line violate the check; in line order.
+ */
+export function groupViolations(violations) {
+  const groups = new Map();
+  for (const v of violations) {
+    const key = `${v.line} ${v.check}`;
+    const g = groups.get(key);
+    if (!g) groups.set(key, { ...v, count: 1 });
+    else {
+      g.count += 1;
+      if (v.margin !== null && (g.margin === null || v.margin < g.margin)) Object.assign(g, v, { count: g.count });
+    }
+  }
+  return [...groups.values()].sort((a, b) => a.line - b.line || a.check.localeCompare(b.check));
+}
+
 /** The simulator of one program on one machine; also used by the Blocks view. */
 export class Simulator {
   constructor(root, app, canvasId, { onLine } = {}) {
@@ -138,11 +156,12 @@ export class Simulator {
       `<b class="${r.ok ? "ok" : "bad"}">${r.ok ? "every check passed" : "violations"}</b> ${r.points} points, cycle ${r.cycle_time_s.toFixed(2)} s<br>${checks}`;
     const list = this.root.querySelector(".violations");
     list.innerHTML = "";
-    for (const v of r.violations.slice(0, 500)) {
+    for (const g of groupViolations(r.violations).slice(0, 500)) {
       const li = document.createElement("li");
-      li.textContent = `line ${v.line}: ${v.check} ${v.item} ${Number(v.value).toPrecision(5)} (limit ${Number(v.limit).toPrecision(5)} ${v.unit})`;
-      li.dataset.line = v.line;
-      li.addEventListener("click", () => this.jumpTo(v.line));
+      const at = g.position.slice(0, 3).map((x) => Number(x).toFixed(2)).join(" ");
+      li.textContent = `line ${g.line}: ${g.check} ${g.item} ${Number(g.value).toPrecision(5)} (limit ${Number(g.limit).toPrecision(5)} ${g.unit}, margin ${Number(g.margin).toPrecision(3)}) at X Y Z ${at}${g.count > 1 ? ` · ${g.count} points` : ""}`;
+      li.dataset.line = g.line;
+      li.addEventListener("click", () => this.jumpTo(g.line, g.position));
       list.appendChild(li);
     }
     this.plot(r, m);
@@ -150,12 +169,25 @@ export class Simulator {
     this.seek(0);
   }
 
-  /** Selects `line` (through onLine) and moves the animation to the first moment on it. */
-  jumpTo(line) {
+  /**
+   * Selects `line` (through onLine) and moves the animation to the moment on it nearest to
+   * `position` (x y z a b c, mm and degrees: a violation's worst point), or its first moment.
+   */
+  jumpTo(line, position = null) {
     if (this.onLine) this.onLine(line);
-    const r = this.result;
-    const k = r.path.line.findIndex((l) => l === line);
-    if (k >= 0) this.seek(r.path.t[k]);
+    const p = this.result.path;
+    let best = -1;
+    let bestDistance = Infinity;
+    for (let k = 0; k < p.line.length; ++k) {
+      if (p.line[k] !== line) continue;
+      if (!position) {
+        best = k;
+        break;
+      }
+      const d = p.pose[k].reduce((sum, x, i) => sum + (x - position[i]) ** 2, 0);
+      if (d < bestDistance) [best, bestDistance] = [k, d];
+    }
+    if (best >= 0) this.seek(p.t[best]);
   }
 
   plot(r, m) {

@@ -14,6 +14,25 @@ export function marginColour(margin, scale) {
 
 const up = new THREE.Vector3(0, 1, 0);
 
+/** A label that always faces the camera: `text` on a small white disc (strut numbers). */
+function label(text) {
+  const canvas = document.createElement("canvas");
+  canvas.width = canvas.height = 64;
+  const c = canvas.getContext("2d");
+  c.fillStyle = "rgba(255,255,255,0.85)";
+  c.beginPath();
+  c.arc(32, 32, 26, 0, 2 * Math.PI);
+  c.fill();
+  c.fillStyle = "#111827";
+  c.font = "bold 36px sans-serif";
+  c.textAlign = "center";
+  c.textBaseline = "middle";
+  c.fillText(text, 32, 34);
+  const sprite = new THREE.Sprite(new THREE.SpriteMaterial({ map: new THREE.CanvasTexture(canvas), depthTest: false }));
+  sprite.renderOrder = 10;
+  return sprite;
+}
+
 /** A cylinder of radius r between a and b (THREE.Vector3). */
 function placeCylinder(mesh, a, b, r) {
   const d = new THREE.Vector3().subVectors(b, a);
@@ -98,10 +117,16 @@ export class MachineScene {
     const radius = (diameter > 0 ? diameter : scale * 0.02) / 2;
     const geometry = new THREE.CylinderGeometry(1, 1, 1, 20);
     const ball = new THREE.SphereGeometry(1, 16, 12);
+    g.labels = g.labels || [];
     while (g.struts.length < n) {
       const m = new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({ transparent: translucent, opacity: translucent ? 0.35 : 1 }));
       g.root.add(m);
       g.struts.push(m);
+      if (!translucent) {
+        const l = label(String(g.struts.length - 1)); // the struts' numbers, as the checks name them
+        g.root.add(l);
+        g.labels.push(l);
+      }
       for (let k = 0; k < 2; ++k) {
         const j = new THREE.Mesh(ball, new THREE.MeshStandardMaterial({ transparent: translucent, opacity: translucent ? 0.35 : 1 }));
         g.root.add(j);
@@ -116,7 +141,13 @@ export class MachineScene {
       const b = new THREE.Vector3(...row.moving_points[i]);
       placeCylinder(g.struts[i], a, b, radius);
       const pair = row.closest_pair.includes(i) && row.clearance !== null && row.clearance < radius * 2;
-      g.struts[i].material.color = pair ? new THREE.Color(0x7b2cbf) : marginColour(row.stroke_margin[i], scale * 0.05);
+      // A violated stroke stays red; the closest pair is purple only where that hides nothing.
+      const violated = row.stroke_margin[i] !== null && row.stroke_margin[i] < 0;
+      g.struts[i].material.color = pair && !violated ? new THREE.Color(0x7b2cbf) : marginColour(row.stroke_margin[i], scale * 0.05);
+      if (g.labels[i]) {
+        g.labels[i].position.copy(a).lerp(b, 0.55);
+        g.labels[i].scale.setScalar(Math.max(radius * 3, scale * 0.022));
+      }
       const am = type === "hexapod" ? row.angle_margin[i] : null;
       for (const [k, p] of [[0, a], [1, b]]) {
         const j = g.joints[2 * i + k];

@@ -97,6 +97,23 @@ try {
   await page.waitForTimeout(500);
   expect((await page.textContent("#pose-status")) === "ok", "machine view: the default hexapod at home is ok");
   expect((await drawn("machine-canvas")) > MIN_DRAWN_PIXELS, "machine view: the 3-D canvas has drawn pixels");
+  // A pose that overruns the strokes, its closest pair touching: the struts are numbered, the
+  // violated ones stay red under the pair's purple, and the status names every violated check.
+  const overrun = await page.evaluate(async () => {
+    const app = window.pkmApp;
+    const mv = app.views.machine;
+    const r = await (await fetch("/api/ik", { method: "POST", headers: { "Content-Type": "application/json" },
+      body: JSON.stringify({ machine: app.machine.name, poses: [[0, 0, -300, 0, 0, 0]] }) })).json();
+    r.rows[0].closest_pair = [0, 1];
+    r.rows[0].clearance = 0;
+    mv.render({ ...r, joints: app.machine.joints });
+    const g = app.scene("machine-canvas").groups[0];
+    const out = { labels: g.labels.length, colours: g.struts.map((m) => m.material.color.getHex()), margins: r.rows[0].stroke_margin };
+    await mv.update();
+    return out;
+  });
+  expect(overrun.labels === 6 && overrun.margins.every((m, i) => m >= 0 || overrun.colours[i] === 0xd7263d),
+    `machine view: numbered struts, violated ones red under the closest pair: ${JSON.stringify(overrun)}`);
   await page.screenshot({ path: join(outDir, "machine.png") });
 
   // Program view: sphere.ngc as the CLI checks it.
@@ -125,6 +142,14 @@ try {
   });
   const items = await page.$$("#program-results ol.violations li");
   expect(items.length > 0, "program view: the stroke violation is listed");
+  // One entry per line and check (the move violates at many points), at its worst point.
+  const listed = await page.evaluate(() => {
+    const v = window.pkmApp.views.program;
+    const keys = [...document.querySelectorAll("#program-results ol.violations li")].map((li) => li.textContent.split(" ").slice(0, 3).join(" "));
+    return { keys, raw: v.sim.result.violations.length };
+  });
+  expect(new Set(listed.keys).size === listed.keys.length && listed.raw > listed.keys.length,
+    `program view: ${listed.raw} violated points listed as ${listed.keys.length} entries, one per line and check`);
   if (items.length) {
     expect((await items[0].textContent()).includes("stroke"), "program view: the first violation is the stroke");
     await items[0].click();
@@ -133,6 +158,15 @@ try {
       return ed.state.doc.lineAt(ed.state.selection.main.head).number;
     });
     expect(line === 5, `program view: clicking the violation selects line 5 (got ${line})`);
+    // The animation goes to the worst point of the line (the lowest z), not its first moment.
+    const z = await page.evaluate(() => {
+      const sim = window.pkmApp.views.program.sim;
+      const p = sim.result.path;
+      const t = Number(sim.root.querySelector(".scrub").value);
+      const k = p.t.findIndex((x) => x >= t - 1e-9);
+      return { z: p.pose[k][2], lowest: Math.min(...p.pose.map((q) => q[2])) };
+    });
+    expect(Math.abs(z.z - z.lowest) < 1e-6, `program view: the click goes to the worst moment (z ${z.z}, lowest ${z.lowest})`);
   }
   // A program error shows at its line (the 422 it answers is expected).
   const before = errors.length;
