@@ -238,7 +238,7 @@ Response Api::startLiveCalibration(const Request& request, LiveCalibrationJob& j
     if (std::optional<Response> refused = admit(request, *state_)) return *refused;
     requireMethod(request, "POST");
     detail::prepareLiveCalibration(*state_, request, job);
-    return {200, "text/event-stream", "", "", ""};
+    return {200, "text/event-stream", "", "", "", ""};
   } catch (...) {
     return failure(*state_);
   }
@@ -249,7 +249,7 @@ Response Api::startCampaign(const Request& request, CampaignJob& job) {
     if (std::optional<Response> refused = admit(request, *state_)) return *refused;
     requireMethod(request, "POST");
     detail::prepareCampaign(*state_, request, job);
-    return {200, "text/event-stream", "", "", ""};
+    return {200, "text/event-stream", "", "", "", ""};
   } catch (...) {
     return failure(*state_);
   }

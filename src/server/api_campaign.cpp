@@ -145,7 +145,7 @@ Response campaignReport(Api::State& s, const std::string& id) {
       throw HttpError(404, fmt::format("no campaign {} has finished on this server", id));
     report = it->second;
   }
-  return {200, "text/html; charset=utf-8", io::readFileText(report), "", ""};
+  return {200, "text/html; charset=utf-8", io::readFileText(report), "", "", ""};
 }
 
 }  // namespace pkm::server::detail

@@ -166,7 +166,7 @@ std::string safeName(const std::string& name) {
 }
 
 Response json(const Json& j, int status) {
-  return {status, "application/json", j.dump() + "\n", "", ""};
+  return {status, "application/json", j.dump() + "\n", "", "", ""};
 }
 
 Response error(int status, const std::string& message) {

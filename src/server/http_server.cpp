@@ -63,7 +63,7 @@ void answer(const Response& r, httplib::Response& res) {
   res.status = r.status;
   res.set_content(r.body, r.content_type.c_str());
   res.set_header("X-Content-Type-Options", "nosniff");
-  res.set_header("Cache-Control", "no-store");
+  res.set_header("Cache-Control", r.cache_control.empty() ? "no-store" : r.cache_control);
   if (!r.set_cookie.empty()) res.set_header("Set-Cookie", r.set_cookie);
   if (!r.retry_after.empty()) res.set_header("Retry-After", r.retry_after);
 }

@@ -7,6 +7,7 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <thread>
 
@@ -277,9 +278,17 @@ TEST_F(ApiTest, TheFrontEndIsEmbedded) {
   const Response page = get("/");
   EXPECT_EQ(page.status, 200);
   EXPECT_THAT(page.content_type, HasSubstr("text/html"));
-  EXPECT_THAT(page.body, HasSubstr("/app.js"));
-  EXPECT_EQ(get("/app.js").status, 200);
-  EXPECT_EQ(get("/app.css").status, 200);
+  EXPECT_EQ(page.cache_control, "");  // the page itself: never cached (no-store)
+  // The bundle under its content-hashed name, kept a year; the page names it.
+  std::smatch js, css;
+  ASSERT_TRUE(std::regex_search(page.body, js, std::regex(R"(/app\.([0-9a-f]{16})\.js)")));
+  ASSERT_TRUE(std::regex_search(page.body, css, std::regex(R"(/app\.([0-9a-f]{16})\.css)")));
+  const Response bundle = get(js[0].str());
+  EXPECT_EQ(bundle.status, 200);
+  EXPECT_THAT(bundle.content_type, HasSubstr("javascript"));
+  EXPECT_EQ(bundle.cache_control, "public, max-age=31536000, immutable");
+  EXPECT_EQ(get(css[0].str()).status, 200);
+  EXPECT_EQ(get("/app.0000000000000000.js").status, 404);  // another build's name
 }
 
 TEST_F(ApiTest, CampaignsAreListedAndTheirStreamNeedsTheTransport) {

@@ -66,6 +66,8 @@ struct Response {
   std::string set_cookie;
   /// A Retry-After header value, seconds ("" : none): a 503 says when to try again.
   std::string retry_after;
+  /// The Cache-Control header ("" : no-store): the content-hashed bundle is kept a year.
+  std::string cache_control;
 };
 
 /// Whether `host` (an address or name to bind) is a loopback address: localhost, ::1 or 127.x.y.z.
