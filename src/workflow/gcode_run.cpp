@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "gcode_run_detail.hpp"
 #include "pkm/cnc/interpreter.hpp"
@@ -87,6 +88,35 @@ cnc::MoveCollector interpret(const GcodeRunRequest& request,
   if (moves.moves.empty())
     throw InvalidArgument(fmt::format("{}: no motion", request.program.name));
   return moves;
+}
+
+/// interpret(), and for a program that names a tool no table was given for: again with the
+/// `tools.tbl` beside the program file, when there is one (examples run as shipped), with a note.
+cnc::MoveCollector interpretWithTools(const GcodeRunRequest& request,
+                                      const io::HexapodMachine* machine,
+                                      const detail::GcodeProgress& progress,
+                                      std::size_t& lines,
+                                      const RunControl& control) {
+  const GcodeInterpreterSettings& given = request.interpreter;
+  const std::filesystem::path beside =
+      std::filesystem::path(request.program.name).parent_path() / "tools.tbl";
+  const bool may_look =
+      given.tool_table.empty() && given.tool_table_text.empty() && given.search_working_folder;
+  try {
+    return interpret(request, machine, progress, lines);
+  } catch (const IoError& e) {
+    std::error_code ec;
+    if (!may_look ||
+        std::string_view(e.what()).find("not in the tool table") == std::string::npos ||
+        !std::filesystem::is_regular_file(beside, ec))
+      throw;
+  }
+  GcodeRunRequest with_tools = request;
+  with_tools.interpreter.tool_table = beside.string();
+  control.note({fmt::format("{}: the program names a tool and no --tool-table was given: using {}",
+                            request.program.name,
+                            beside.string())});
+  return interpret(with_tools, machine, progress, lines);
 }
 
 }  // namespace
@@ -184,7 +214,7 @@ GcodeRunResult runGcode(const GcodeRunRequest& request, const RunControl& contro
   }
   std::size_t lines = 0;
   const cnc::MoveCollector moves =
-      interpret(request, hexapod ? &*hexapod : nullptr, progress, lines);
+      interpretWithTools(request, hexapod ? &*hexapod : nullptr, progress, lines, control);
   detail::JointRun run;
   if (exechon)
     detail::runExechon(request, moves, control, progress, run);

@@ -79,6 +79,20 @@ TEST_F(GcodeCli, ShippedExamplesRun) {
   }
 }
 
+/// Every shipped hexapod example passes `gcode run` on the default machine as shipped, without
+/// options: the sphere's G43 finds the tools.tbl beside it (with a note).
+TEST_F(GcodeCli, ShippedHexapodExamplesPassAsShipped) {
+  for (const char* name :
+       {"sphere.ngc", "drilling.ngc", "pocket_loops.ngc", "hexapod_contour.ngc"}) {
+    const CliRun r = pkm({"gcode", "run", std::string(PKM_SOURCE_DIR) + "/examples/gcode/" + name});
+    EXPECT_EQ(r.code, 0) << name << ": " << r.out << r.err;
+    EXPECT_THAT(r.out, HasSubstr("result: all checks pass")) << name;
+  }
+  const CliRun sphere =
+      pkm({"gcode", "run", std::string(PKM_SOURCE_DIR) + "/examples/gcode/sphere.ngc"});
+  EXPECT_THAT(sphere.err, HasSubstr("no --tool-table was given: using"));
+}
+
 /// The shipped sphere (an O-word subroutine called twice) flattens into a program without
 /// O-words that `gcode moves` runs to the same motions.
 TEST_F(GcodeCli, FlattenUnrollsTheSphereSubroutine) {

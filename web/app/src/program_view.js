@@ -287,7 +287,7 @@ export class ProgramView {
           <button id="run">Run</button>
           <label>tolerance <input id="tolerance" type="number" step="any" placeholder="default"></label>
           <label>tool table <input id="tool-table" type="file" accept=".tbl"></label>
-          <label>open <input id="open-ngc" type="file" accept=".ngc,.nc,.txt"></label>
+          <label title="a program, or a program and its tool table (.tbl) chosen together">open <input id="open-ngc" type="file" accept=".ngc,.nc,.txt,.tbl" multiple></label>
           <button id="save-ngc">save .ngc</button>
         </div>
         <div id="editor"></div>
@@ -310,7 +310,11 @@ export class ProgramView {
       this.toolTable = e.target.files[0] ? await e.target.files[0].text() : "";
     });
     root.querySelector("#open-ngc").addEventListener("change", async (e) => {
-      const file = e.target.files[0];
+      const files = [...e.target.files];
+      // A tool table chosen with the program is its tool table (LinuxCNC finds it in the INI).
+      const tbl = files.find((f) => f.name.toLowerCase().endsWith(".tbl"));
+      if (tbl) this.toolTable = await tbl.text();
+      const file = files.find((f) => !f.name.toLowerCase().endsWith(".tbl"));
       if (!file) return;
       this.setProgram(await file.text());
       this.fileName = file.name;  // errors and saving name the file the user opened

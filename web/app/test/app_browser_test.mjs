@@ -133,6 +133,16 @@ try {
     "program view: sphere.ngc's check results equal the CLI's");
   expect((await drawn("program-canvas")) > MIN_DRAWN_PIXELS, "program view: the machine is drawn along the path");
   await page.screenshot({ path: join(outDir, "program.png") });
+  // Opened as a user does: the program and its tool table chosen together; errors would name it.
+  await page.evaluate(() => { window.pkmApp.views.program.toolTable = ""; });
+  await page.setInputFiles("#open-ngc", [join(ex, "sphere.ngc"), join(ex, "tools.tbl")]);
+  const opened = await page.evaluate(async () => {
+    const v = window.pkmApp.views.program;
+    const r = await v.run();
+    return { ok: r && r.ok, name: v.fileName, tools: v.toolTable.length > 0 };
+  });
+  expect(opened.ok === true && opened.name === "sphere.ngc" && opened.tools,
+    `program view: sphere.ngc opened with its tools.tbl runs: ${JSON.stringify(opened)}`);
 
   // A stroke violation: listed, and a click selects its line.
   await page.evaluate(async () => {
@@ -180,7 +190,7 @@ try {
         document.querySelectorAll("#program-results ol.violations li").length > 0,
     };
   });
-  expect(error.text.includes("program.ngc:2"), `program view: an error names its line (${error.text})`);
+  expect(error.text.includes("sphere.ngc:2"), `program view: an error names the opened file and its line (${error.text})`);
   expect(!error.stale, "program view: after an error the previous program's results are gone");
   errors.splice(before, errors.length - before, ...errors.slice(before).filter((e) => !e.includes("422")));
 
