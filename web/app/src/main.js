@@ -109,7 +109,10 @@ class App {
       if (compare && compare.type !== this.machine.type) throw new Error(`${other} is not a ${this.machine.type}`);
       this.views.machine.show(this.machine, compare);
       // Results of the previous machine are not this machine's.
-      for (const v of [this.views.program, this.views.blocks]) v.sim?.clear();
+      for (const v of [this.views.program, this.views.blocks]) {
+        v.sim?.clear();
+        v.sim?.showMachine(this.machine);
+      }
       document.body.dataset.machine = name;
     } catch (e) {
       this.error(e);

@@ -129,6 +129,15 @@ export class Simulator {
     return r;
   }
 
+  /** Draws machine `m` (GET /api/machines/NAME) at home: the 3-D area is never blank. */
+  showMachine(m) {
+    const scene = this.app.scene(this.canvasId);
+    scene.frame(m.drawing);
+    this.scale = scene.size;
+    if (m.drawing.base_points.length)
+      scene.draw(0, m.drawing, { scale: this.scale, diameter: m.machine.strut_diameter || 0, type: m.type, hybrid: m.machine.hybrid });
+  }
+
   /** Forgets the last result: nothing of another program or machine stays on screen. */
   clear() {
     if (this.playing) this.toggle();

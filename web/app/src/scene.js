@@ -53,6 +53,7 @@ export class MachineScene {
     this.camera = new THREE.PerspectiveCamera(40, 1, 0.1, 1e6);
     this.camera.up.set(0, 0, 1);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.zoomSpeed = 0.3; // a wheel notch zooms by about 6 %, not by half
     this.scene.add(new THREE.HemisphereLight(0xffffff, 0x667788, 2.2));
     const sun = new THREE.DirectionalLight(0xffffff, 1.5);
     sun.position.set(1, -2, 3);

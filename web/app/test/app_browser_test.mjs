@@ -118,6 +118,8 @@ try {
 
   // Program view: sphere.ngc as the CLI checks it.
   await page.click("button[data-view=program]");
+  await page.waitForTimeout(300);
+  expect((await drawn("program-canvas")) > MIN_DRAWN_PIXELS, "program view: the machine is drawn before the first run");
   const ex = join(sourceDir, "examples/gcode");
   const sphere = readFileSync(join(ex, "sphere.ngc"), "utf8");
   const tools = readFileSync(join(ex, "tools.tbl"), "utf8");
