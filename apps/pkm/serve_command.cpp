@@ -25,6 +25,12 @@ namespace {
 
 [[noreturn]] void execServe(const ServeOptions& o) {
   const std::filesystem::path server = programDirectory() / "pkm-serve";
+  if (std::error_code ec; !std::filesystem::exists(server, ec))
+    throw IoError(
+        fmt::format("{}: not here: this pkm was built without its web server "
+                    "(PKM_BUILD_SERVER off, or cpp-httplib or node missing: run "
+                    "scripts/setup.sh and build again)",
+                    server.string()));
   std::vector<std::string> args = {
       server.string(), "--host", o.host, "--port", std::to_string(o.port)};
   if (o.open) args.emplace_back("--open");
