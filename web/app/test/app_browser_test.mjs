@@ -138,6 +138,8 @@ try {
   // Opened as a user does: the program and its tool table chosen together; errors would name it.
   await page.evaluate(() => { window.pkmApp.views.program.toolTable = ""; });
   await page.setInputFiles("#open-ngc", [join(ex, "sphere.ngc"), join(ex, "tools.tbl")]);
+  // The page reads the chosen files asynchronously: the run starts once both are in.
+  await page.waitForFunction(() => window.pkmApp.views.program.fileName === "sphere.ngc" && window.pkmApp.views.program.toolTable.length > 0);
   const opened = await page.evaluate(async () => {
     const v = window.pkmApp.views.program;
     const r = await v.run();
