@@ -5,6 +5,9 @@
 #include <httplib.h>
 #include <sys/socket.h>
 
+#include <functional>
+#include <memory>
+
 #include "connection_gate.hpp"
 #include "pkm/core/error.hpp"
 
@@ -68,23 +71,47 @@ void answer(const Response& r, httplib::Response& res) {
   if (!r.retry_after.empty()) res.set_header("Retry-After", r.retry_after);
 }
 
-/// POST /api/live/calibration: the routine's events as they come; the connection's end stops it.
-void streamLiveCalibration(Api& api, const httplib::Request& req, httplib::Response& res) {
-  auto job = std::make_shared<LiveCalibrationJob>();
-  const Response admitted = api.startLiveCalibration(requestOf(req), *job);
-  if (admitted.status != 200) return answer(admitted, res);
+using EventWriter = std::function<bool(const std::string&)>;
+
+/// Answers with server-sent events: `run` writes them (a write returns false once the client has
+/// gone); `stop` is called when the connection ends, however it ends.
+void streamEvents(httplib::Response& res,
+                  std::function<void(const EventWriter&)> run,
+                  std::function<void()> stop) {
   res.set_header("Cache-Control", "no-store");
   res.set_header("X-Content-Type-Options", "nosniff");
   res.set_chunked_content_provider(
       "text/event-stream",
-      [&api, job](std::size_t, httplib::DataSink& sink) {
-        api.runLiveCalibration(*job, [&sink](const std::string& chunk) {
+      [run = std::move(run)](std::size_t, httplib::DataSink& sink) {
+        run([&sink](const std::string& chunk) {
           return sink.is_writable() && sink.write(chunk.data(), chunk.size());
         });
         sink.done();
         return true;
       },
-      [job](bool) { Api::stopLiveCalibration(*job); });
+      [stop = std::move(stop)](bool) { stop(); });
+}
+
+/// POST /api/live/calibration: the routine's events as they come; the connection's end stops it.
+void streamLiveCalibration(Api& api, const httplib::Request& req, httplib::Response& res) {
+  auto job = std::make_shared<LiveCalibrationJob>();
+  const Response admitted = api.startLiveCalibration(requestOf(req), *job);
+  if (admitted.status != 200) return answer(admitted, res);
+  streamEvents(
+      res,
+      [&api, job](const EventWriter& write) { api.runLiveCalibration(*job, write); },
+      [job] { Api::stopLiveCalibration(*job); });
+}
+
+/// POST /api/campaign: the campaign's events; the connection's end cancels it.
+void streamCampaign(Api& api, const httplib::Request& req, httplib::Response& res) {
+  auto job = std::make_shared<CampaignJob>();
+  const Response admitted = api.startCampaign(requestOf(req), *job);
+  if (admitted.status != 200) return answer(admitted, res);
+  streamEvents(
+      res,
+      [&api, job](const EventWriter& write) { api.runCampaign(*job, write); },
+      [job] { job->cancel.cancel(); });
 }
 
 }  // namespace
@@ -136,21 +163,8 @@ HttpServer::HttpServer(ServerOptions options) : impl_(std::make_unique<Impl>(std
   http.Options(".*", handle);
   http.Post(".*", [&api, handle](const httplib::Request& req, httplib::Response& res) {
     if (req.path == "/api/live/calibration") return streamLiveCalibration(api, req, res);
-    if (req.path != "/api/campaign") return handle(req, res);
-    auto job = std::make_shared<CampaignJob>();
-    const Response admitted = api.startCampaign(requestOf(req), *job);
-    if (admitted.status != 200) return answer(admitted, res);
-    res.set_header("Cache-Control", "no-store");
-    res.set_chunked_content_provider(
-        "text/event-stream",
-        [&api, job](std::size_t, httplib::DataSink& sink) {
-          api.runCampaign(*job, [&sink](const std::string& chunk) {
-            return sink.is_writable() && sink.write(chunk.data(), chunk.size());
-          });
-          sink.done();
-          return true;
-        },
-        [job](bool) { job->cancel.cancel(); });
+    if (req.path == "/api/campaign") return streamCampaign(api, req, res);
+    handle(req, res);
   });
 }
 

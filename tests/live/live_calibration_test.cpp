@@ -10,7 +10,7 @@
 #include <filesystem>
 
 #include "pkm/core/error.hpp"
-#include "pkm/workflow/linuxcnc_config.hpp"
+#include "support/linuxcnc_config.hpp"
 #include "support/linuxcnc_record.hpp"
 #include "support/scratch_files.hpp"
 
@@ -36,10 +36,7 @@ class LiveCalibrationRefusals : public pkm::test::ScratchDirTest {
   LiveCalibrationRefusals() : ScratchDirTest("live_calibration") {}
   void SetUp() override {
     ScratchDirTest::SetUp();
-    workflow::LinuxcncConfigRequest config;
-    config.machine = "hexapod-default";
-    config.out = (dir_ / "cfg").string();
-    ini_ = workflow::writeLinuxcncConfig(config).ini;
+    ini_ = pkm::test::writeHexapodDefaultConfig(dir_);
     request_.ini = ini_;
     request_.gauges = {"g.0", "g.1", "g.2"};
     request_.out = (dir_ / "run").string();

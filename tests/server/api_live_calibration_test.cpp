@@ -16,8 +16,8 @@
 #include <thread>
 
 #include "pkm/server/api.hpp"
-#include "pkm/workflow/linuxcnc_config.hpp"
 #include "support/commander_standin.hpp"
+#include "support/linuxcnc_config.hpp"
 #include "support/linuxcnc_record.hpp"
 #include "support/scratch_files.hpp"
 
@@ -33,10 +33,7 @@ class LiveCalibrationRoutes : public pkm::test::ScratchDirTest {
   LiveCalibrationRoutes() : ScratchDirTest("live_cal_routes") {}
   void SetUp() override {
     ScratchDirTest::SetUp();
-    workflow::LinuxcncConfigRequest config;
-    config.machine = "hexapod-default";
-    config.out = (dir_ / "cfg").string();
-    ini_ = workflow::writeLinuxcncConfig(config).ini;
+    ini_ = pkm::test::writeHexapodDefaultConfig(dir_);
     record_ = pkm::test::linuxcncRecord(1, {0, 0, 200, 0, 0, 0}, {1, 2, 3, 4, 5, 6}, ini_);
     record_["linear_units"] = 1.0;
   }

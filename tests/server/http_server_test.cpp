@@ -17,8 +17,8 @@
 #include <thread>
 #include <vector>
 
-#include "pkm/workflow/linuxcnc_config.hpp"
 #include "support/commander_standin.hpp"
+#include "support/linuxcnc_config.hpp"
 #include "support/linuxcnc_record.hpp"
 
 namespace pkm::server {
@@ -183,10 +183,7 @@ TEST_F(HttpServerTest, ACalibrationStopsTheMachineWhenThePageConnectionDrops) {
   const fs::path dir =
       fs::temp_directory_path() / ("pkm_http_routine_" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  workflow::LinuxcncConfigRequest config;
-  config.machine = "hexapod-default";
-  config.out = (dir / "cfg").string();
-  const std::string ini = workflow::writeLinuxcncConfig(config).ini;
+  const std::string ini = pkm::test::writeHexapodDefaultConfig(dir);
   Json record = pkm::test::linuxcncRecord(1, {0, 0, 200, 0, 0, 0}, {1, 2, 3, 4, 5, 6}, ini);
   record["linear_units"] = 1.0;
   const std::string sent = (dir / "sent.log").string();
