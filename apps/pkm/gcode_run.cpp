@@ -29,6 +29,8 @@ struct RunArgs {
   workflow::GcodeRunRequest request;
   RateOption velocity{200.0}, acceleration{2000.0};              ///< machine length unit/s, /s²
   RateOption wrist_velocity{180.0}, wrist_acceleration{1800.0};  ///< deg/s, deg/s² (Exechon)
+  std::string stock;  ///< --stock SPEC ("" : no machining preview)
+  double stock_cell = 0.0;
 };
 
 void runGcode(RunArgs& a) {
@@ -37,6 +39,13 @@ void runGcode(RunArgs& a) {
   q.max_joint_acceleration = a.acceleration.given();
   q.max_wrist_velocity = a.wrist_velocity.given();
   q.max_wrist_acceleration = a.wrist_acceleration.given();
+  if (!a.stock.empty()) {
+    q.machining.emplace();
+    workflow::setStock(*q.machining, a.stock);
+    q.machining->cell = a.stock_cell;
+  } else if (a.stock_cell != 0.0) {
+    throw InvalidArgument("--stock-cell needs --stock");
+  }
   q.validate();  // option errors before the program is read
   q.program = readProgram(a.program);
   CliRunControl control;
@@ -44,6 +53,7 @@ void runGcode(RunArgs& a) {
   control.finish();
   Output out;
   out.text() = io::gcodeRunText(r.report);
+  if (r.machining) out.text() += workflow::machiningText(*r.machining);
   out.flush();
   if (!r.ok()) throw ExitCode{kExitCheckFailed};
 }
@@ -103,6 +113,13 @@ void addGcodeRunCommand(CLI::App& gcode) {
   r->add_option("--report", q.report, "write the check report as JSON to FILE");
   r->add_flag("--force", q.force, "overwrite existing --out/--report files");
   addRateOptions(*r, *a);
+  r->add_option("--stock",
+                a->stock,
+                "machining preview (docs/machining.md): remove material from auto (the feed "
+                "moves' box), box:X0,Y0,Z0,X1,Y1,Z1 or cylinder:CX,CY,R,Z0,Z1 (mm) with the tool "
+                "table's tools, and report collisions (rapids, holder, platform, table)");
+  r->add_option("--stock-cell", a->stock_cell, "the preview's cell size, mm (default: automatic)")
+      ->check(CLI::NonNegativeNumber);
   r->callback([a] { runGcode(*a); });
 }
 

@@ -282,6 +282,10 @@ bool Interpreter::Impl::execute(const Block& block, MoveSink& sink) {
   if (c.non_modal == 100) doG10(rb);
   if (c.non_modal >= 920 || c.non_modal == 520) doG92(rb, c.non_modal);
   if (c.non_modal >= 280 && c.non_modal <= 301) doHome(rb, c.non_modal, sink);
+  if (st.tool_in_spindle != reported_tool) {
+    reported_tool = st.tool_in_spindle;
+    sink.onToolChange(rb.line, reported_tool);
+  }
   const std::size_t moves_before = summary.moves;
   doMotion(rb, c, sink);
   if (c.m_fanuc >= 0) fanuc = fanucRequest(rb, c.m_fanuc);

@@ -41,6 +41,7 @@ class MoveBudget : public MoveSink {
   void onCycleAction(std::size_t line, CycleAction action) override {
     inner_.onCycleAction(line, action);
   }
+  void onToolChange(std::size_t line, int tool) override { inner_.onToolChange(line, tool); }
   void onMessage(std::size_t line, CommentKind kind, const std::string& text) override {
     inner_.onMessage(line, kind, text);
   }
@@ -79,6 +80,7 @@ RunSummary Interpreter::run(const Program& program, MoveSink& target) {
   Impl& s = *impl_;
   MoveBudget sink(target, s.options.max_moves);
   s.summary = RunSummary{};
+  s.reported_tool = -1;
   s.report_blocks = sink.wantsBlocks();
   const Impl::Outcome outcome = s.runProgram(program, 0, sink, false);
   try {

@@ -91,6 +91,7 @@ class CountingSink final : public MoveSink {
   CountingSink(MoveSink& inner, RunSummary& summary, bool inch);
   void onMove(const Move& move) override;
   void onDwell(std::size_t line, double seconds) override;
+  void onToolChange(std::size_t line, int tool) override { inner_.onToolChange(line, tool); }
   void onMessage(std::size_t line, CommentKind kind, const std::string& text) override;
 
  private:
@@ -231,6 +232,7 @@ struct Interpreter::Impl : FlowSource {
   InterpreterOptions options;
   MachineState st;
   std::size_t current_line = 0;  // source line of the block being executed (#<_line>)
+  int reported_tool = -1;        // the tool in the spindle the sink was last told of (-1: none)
   Axes tlo_at_last_motion{};     // the tool offset the last motion was made with (M6 re-read)
   Axes spindle_entry{};          // #5401-#5406: the spindle tool's entry, kept for T0
   FanucRequest fanuc;            // set by execute() for the program flow

@@ -29,6 +29,18 @@ double toMm(double v,
   return mm;
 }
 
+/// Cuts the comment (after ';') off `line` and returns it trimmed ("" without one).
+std::string splitComment(std::string_view& line) {
+  const std::size_t semi = line.find(';');
+  if (semi == std::string_view::npos) return {};
+  std::string_view c = line.substr(semi + 1);
+  line = line.substr(0, semi);
+  const std::size_t first = c.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  c = c.substr(first);
+  return std::string(c.substr(0, c.find_last_not_of(" \t\r") + 1));
+}
+
 }  // namespace
 
 const ToolEntry* ToolTable::find(int t) const {
@@ -46,8 +58,8 @@ ToolTable ToolTable::parse(std::string_view text, double mm_per_unit, const std:
     std::string_view l = text.substr(pos, eol - pos);
     pos = eol + 1;
     ++line;
-    if (const std::size_t semi = l.find(';'); semi != std::string_view::npos) l = l.substr(0, semi);
     ToolEntry e;
+    e.comment = splitComment(l);
     bool have_t = false;
     std::size_t i = 0;
     while (i < l.size()) {

@@ -2,6 +2,7 @@
 // workflow::compensateGcode on a program sent as text.
 #include <fmt/format.h>
 
+#include "api_machining.hpp"
 #include "api_state.hpp"
 #include "pkm/io/gcode_run_report.hpp"
 #include "pkm/workflow/gcode_compensate.hpp"
@@ -85,6 +86,7 @@ Response runGcode(Api::State& s, const Request& r) {
       countField(body, "max_violations", kMaxViolations).value_or(kDefaultViolations);
   q.frames = countField(body, "frames", kMaxFrames).value_or(0);
   q.max_points = s.options.max_run_points;  // a runaway loop is refused long before GBs
+  q.machining = machiningRequest(body);
   const NamedJob job(s, stringField(body, "job", ""));
   const JobSlot slot(s, job.name(), &job.token());
   const workflow::GcodeRunResult result = workflow::runGcode(q, job.control());
@@ -94,6 +96,7 @@ Response runGcode(Api::State& s, const Request& r) {
   Json rows = Json::array();
   for (const workflow::PoseCheckRow& row : result.frames) rows.push_back(poseRowJson(row));
   j["frames"] = {{"t", result.frame_t}, {"index", result.frame_index}, {"rows", rows}};
+  if (result.machining) j["machining"] = machiningJson(*result.machining);
   return json(j);
 }
 

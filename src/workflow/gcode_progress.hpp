@@ -72,6 +72,7 @@ class ProgressMoveSink final : public cnc::MoveSink {
     progress_.every("interpreting", "motions", index_, count_, ++moves_, 0);
   }
   void onDwell(std::size_t line, double seconds) override { inner_.onDwell(line, seconds); }
+  void onToolChange(std::size_t line, int tool) override { inner_.onToolChange(line, tool); }
   void onCycleAction(std::size_t line, cnc::CycleAction action) override {
     inner_.onCycleAction(line, action);
   }

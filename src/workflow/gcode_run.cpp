@@ -70,7 +70,8 @@ void refuseOverwrite(const std::string& path, bool force) {
 cnc::MoveCollector interpret(const GcodeRunRequest& request,
                              const io::HexapodMachine* machine,
                              const detail::GcodeProgress& progress,
-                             std::size_t& lines) {
+                             std::size_t& lines,
+                             cnc::ToolTable& tools) {
   GcodeInterpreterSettings settings = request.interpreter;
   if (machine != nullptr) takeStartupCode(*machine, settings);
   if (settings.ini.empty()) settings.ini = request.ini;  // the machine's INI sets up rs274 too
@@ -78,6 +79,7 @@ cnc::MoveCollector interpret(const GcodeRunRequest& request,
   // Each motion makes at least one interpolated point: more motions than the point budget are
   // refused while interpreting, before their memory is spent.
   options.max_moves = request.max_points;
+  tools = options.tools;
   cnc::Interpreter interpreter(std::move(options));
   const cnc::Program program = cnc::Program::parse(request.program.text, request.program.name);
   lines = program.lineCount();
@@ -96,6 +98,7 @@ cnc::MoveCollector interpretWithTools(const GcodeRunRequest& request,
                                       const io::HexapodMachine* machine,
                                       const detail::GcodeProgress& progress,
                                       std::size_t& lines,
+                                      cnc::ToolTable& tools,
                                       const RunControl& control) {
   const GcodeInterpreterSettings& given = request.interpreter;
   const std::filesystem::path beside =
@@ -103,7 +106,7 @@ cnc::MoveCollector interpretWithTools(const GcodeRunRequest& request,
   const bool may_look =
       given.tool_table.empty() && given.tool_table_text.empty() && given.search_working_folder;
   try {
-    return interpret(request, machine, progress, lines);
+    return interpret(request, machine, progress, lines, tools);
   } catch (const IoError& e) {
     std::error_code ec;
     if (!may_look ||
@@ -116,7 +119,7 @@ cnc::MoveCollector interpretWithTools(const GcodeRunRequest& request,
   control.note({fmt::format("{}: the program names a tool and no --tool-table was given: using {}",
                             request.program.name,
                             beside.string())});
-  return interpret(with_tools, machine, progress, lines);
+  return interpret(with_tools, machine, progress, lines, tools);
 }
 
 }  // namespace
@@ -186,6 +189,7 @@ void GcodeRunRequest::validate() const {
   PKM_CHECK(!strut_diameter || (*strut_diameter > 0.0 && std::isfinite(*strut_diameter)),
             "--strut-diameter must be > 0");
   interpreter.validate();
+  if (machining) machining->validate();
 }
 
 bool GcodeRunRequest::onExechon() const {
@@ -213,8 +217,9 @@ GcodeRunResult runGcode(const GcodeRunRequest& request, const RunControl& contro
                                 hexapod->startup_code)});
   }
   std::size_t lines = 0;
+  cnc::ToolTable tools;
   const cnc::MoveCollector moves =
-      interpretWithTools(request, hexapod ? &*hexapod : nullptr, progress, lines, control);
+      interpretWithTools(request, hexapod ? &*hexapod : nullptr, progress, lines, tools, control);
   detail::JointRun run;
   if (exechon)
     detail::runExechon(request, moves, control, progress, run);
@@ -224,6 +229,11 @@ GcodeRunResult runGcode(const GcodeRunRequest& request, const RunControl& contro
   result.report = detail::runReport(request, lines, moves.moves.size(), run);
   result.path = detail::runPath(run, request.path_points);
   detail::runFrames(run, request.frames, result);
+  if (request.machining) {
+    control.checkCancelled();
+    result.machining =
+        detail::runMachining(*request.machining, run, moves, tools, result.path.index, control);
+  }
   for (std::size_t k = 0; k < cnc::kPathChecks; ++k) {
     const auto c = static_cast<cnc::PathCheck>(k);
     for (const cnc::CheckEvent& e : run.report.stats[k].events)

@@ -74,6 +74,18 @@ void runExechon(const GcodeRunRequest& request,
                 const GcodeProgress& progress,
                 JointRun& run);
 
+/// The machining preview of `run` (workflow/gcode_machining.hpp): `moves` gives the tool
+/// changes, `tools` the tool table, `path_index` the points of GcodeRunResult::path (the
+/// report's path_tools). Cancellation is checked between path points. Throws
+/// pkm::InvalidArgument "machining: ..." for a tool the table lacks or gives no diameter or
+/// length, an auto stock without a feed move, and as HeightField.
+[[nodiscard]] MachiningReport runMachining(const MachiningRequest& request,
+                                           const JointRun& run,
+                                           const cnc::MoveCollector& moves,
+                                           const cnc::ToolTable& tools,
+                                           const std::vector<std::size_t>& path_index,
+                                           const RunControl& control);
+
 /// Writes the joint CSV through io::AtomicFile, in blocks of about 1 MiB.
 void writeJointCsv(const std::string& path, const JointRun& run);
 

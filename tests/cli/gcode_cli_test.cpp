@@ -119,7 +119,7 @@ TEST_F(GcodeCli, FlattenUnrollsTheSphereSubroutine) {
   expectUsageError(pkm({"gcode", "flatten", ex + "sphere.ngc", "--out", path("flat.ngc")}),
                    "--force");
   EXPECT_EQ(slurp(path("flat.ngc")), flat);
-  expectUsageError(pkm({"gcode", "flatten", ex + "sphere.ngc"}), "sphere.ngc:36: tool 1");
+  expectUsageError(pkm({"gcode", "flatten", ex + "sphere.ngc"}), "sphere.ngc:39: tool 1");
   const std::string bad = write("bad.ngc", "o1 sub\nG1 X[1/0]\no1 endsub\no1 call\n");
   expectUsageError(pkm({"gcode", "flatten", bad}), "bad.ngc:2:");
 }

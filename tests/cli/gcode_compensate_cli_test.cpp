@@ -139,7 +139,7 @@ TEST_F(GcodeCompensateCli, ShippedSphereWithTheToolTable) {
                       "--out",
                       path("sphere.ngc")});
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_THAT(r.err, ::testing::HasSubstr("its 104 executed blocks were flattened first"));
+  EXPECT_THAT(r.err, ::testing::HasSubstr("its 110 executed blocks were flattened first"));
   const std::string out = slurp(path("sphere.ngc"));
   EXPECT_THAT(out, ::testing::HasSubstr("\nG43 H1\n"));
   EXPECT_EQ(out.find("o<hemisphere> call"), std::string::npos);
@@ -152,7 +152,7 @@ TEST_F(GcodeCompensateCli, ShippedSphereWithTheToolTable) {
                         ex + "tools.tbl"});
   EXPECT_EQ(run.code, 0) << run.err << run.out;
   expectUsageError(pkm({"gcode", "compensate", "--machine", cal, ex + "sphere.ngc"}),
-                   "sphere.ngc:36: tool 1");
+                   "sphere.ngc:39: tool 1");
 }
 
 TEST_F(GcodeCompensateCli, HybridFrameShiftsThePkmProgramByTheX2Term) {

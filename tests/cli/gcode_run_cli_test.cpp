@@ -85,7 +85,7 @@ TEST_F(GcodeRunCli, ShippedSphereWithTheToolTable) {
   // Away from its tools.tbl (which gcode run would take, docs/gcode.md), without a table: refused.
   const std::string alone = write("alone-sphere.ngc", slurp(ex + "sphere.ngc"));
   expectUsageError(pkm({"gcode", "run", "--machine", "hexapod-default", alone}),
-                   "sphere.ngc:36: tool 1 (G43 H1) is not in the tool table");
+                   "sphere.ngc:39: tool 1 (G43 H1) is not in the tool table");
   expectUsageError(pkm({"gcode",
                         "run",
                         "--machine",
@@ -96,6 +96,34 @@ TEST_F(GcodeRunCli, ShippedSphereWithTheToolTable) {
                         "--tool-units",
                         "cm"}),
                    "--tool-units");
+}
+
+/// --stock: the machining preview's summary after the checks (docs/machining.md); bad specs.
+TEST_F(GcodeRunCli, StockPreviewsTheMachining) {
+  const std::string ex = std::string(PKM_SOURCE_DIR) + "/examples/gcode/";
+  const auto r = pkm({"gcode",
+                      "run",
+                      ex + "sphere.ngc",
+                      "--stock",
+                      "box:25,15,-10,75,65,20",
+                      "--stock-cell",
+                      "0.5"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out,
+              ::testing::HasSubstr("machining: stock box X 25..75 Y 15..65 Z -10..20 mm, "
+                                   "100 x 100 cells of 0.5 mm"));
+  EXPECT_THAT(r.out, ::testing::HasSubstr("tool T1: ball end, diameter 6 mm"));
+  EXPECT_THAT(r.out, ::testing::HasSubstr("no collision"));
+  const std::string rapid =
+      write("rapid.ngc", "G0 X0 Y0 Z210\nG1 Z200 F300\nG1 X40\nG1 Z199\nG1 X0\nG0 X20 Y5\nM2\n");
+  const auto c = pkm({"gcode", "run", rapid, "--stock", "auto"});
+  EXPECT_EQ(c.code, 0) << c.err;  // a collision is reported, not a failed check
+  EXPECT_THAT(c.out, ::testing::HasSubstr("COLLISION rapid line 6: 1.000 mm deep"));
+  expectUsageError(pkm({"gcode", "run", rapid, "--stock", "box:1,2"}), "--stock 'box:1,2'");
+  expectUsageError(pkm({"gcode", "run", rapid, "--stock-cell", "1"}), "--stock-cell needs --stock");
+  expectUsageError(
+      pkm({"gcode", "run", rapid, "--stock", "box:0,0,0,1000,1000,10", "--stock-cell", "0.001"}),
+      "choose a larger cell");
 }
 
 TEST_F(GcodeRunCli, StrokeViolationExitsOneWithLine) {

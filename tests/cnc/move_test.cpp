@@ -1,4 +1,4 @@
-// The moves CSV row format.
+// The moves CSV row format; the tool changes a MoveCollector receives from the interpreter.
 #include "pkm/cnc/move.hpp"
 
 #include <gtest/gtest.h>
@@ -9,6 +9,8 @@
 #include <limits>
 #include <random>
 
+#include "pkm/cnc/interpreter.hpp"
+#include "pkm/cnc/program.hpp"
 #include "support/tolerances.hpp"
 
 namespace pkm::cnc {
@@ -98,6 +100,25 @@ TEST(Move, NumbersAreShortestRoundTrip) {
   EXPECT_EQ(xField(-123456.75), "-123456.75");
   EXPECT_EQ(xField(0.0005), "5e-04");
   EXPECT_EQ(xField(100000.0), "100000");
+}
+
+TEST(Move, TheCollectorKeepsToolChangesWithTheMotionsBeforeThem) {
+  InterpreterOptions options;
+  options.tools = ToolTable::parse("T1 Z50 D6 ;ball\nT2 Z60 D8\n", 1.0, "t.tbl");
+  Interpreter interp(options);
+  MoveCollector c;
+  interp.run(Program::parse("G0 Z10\nT1 M6\nG1 X5 F100\nT2 M6 G0 Z20\nM61 Q0\nM2\n", "t.ngc"), c);
+  // The start's tool (none), then each change with the motions made before it.
+  ASSERT_EQ(c.tool_changes.size(), 4u);
+  EXPECT_EQ(c.tool_changes[0].tool, 0);
+  EXPECT_EQ(c.tool_changes[0].after_moves, 0u);
+  EXPECT_EQ(c.tool_changes[1].tool, 1);
+  EXPECT_EQ(c.tool_changes[1].line, 2u);
+  EXPECT_EQ(c.tool_changes[1].after_moves, 1u);
+  EXPECT_EQ(c.tool_changes[2].tool, 2);
+  EXPECT_EQ(c.tool_changes[2].after_moves, 2u);  // before its own block's G0 Z20
+  EXPECT_EQ(c.tool_changes[3].tool, 0);
+  EXPECT_EQ(c.tool_changes[3].line, 5u);
 }
 
 }  // namespace PKM_TEST_NS

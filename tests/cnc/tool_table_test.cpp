@@ -25,6 +25,8 @@ TEST(ToolTable, ReadsLinuxcncLines) {
   EXPECT_NEAR(t.find(2)->offset[0], 25.4, kTolExact);
   EXPECT_NEAR(t.find(2)->offset[3], 5.0, kTolExact);  // angles are not scaled
   EXPECT_EQ(t.find(3), nullptr);
+  EXPECT_EQ(t.find(1)->comment, "1/8 end mill");  // trimmed; the machining preview reads it
+  EXPECT_EQ(t.find(2)->comment, "");
 }
 
 TEST(ToolTable, ErrorsNameTheLine) {

@@ -111,6 +111,8 @@ run gcode-run-exechon gcode run "$src/examples/gcode/exechon_contour.ngc" \
   --machine mxt700s-like --report report.json
 run gcode-compensate gcode compensate "$src/examples/gcode/hexapod_contour.ngc" \
   --machine "$work/calibrate-hexapod/cal.json" --nominal hexapod-default --out comp.ngc
+run gcode-run-machining gcode run "$src/examples/gcode/sphere.ngc" \
+  --stock box:25,15,-10,75,65,20 --stock-cell 0.5
 run gcode-flatten gcode flatten "$src/examples/gcode/sphere.ngc" \
   --tool-table "$src/examples/gcode/tools.tbl"
 

@@ -102,6 +102,13 @@ class MoveSink {
     (void)line;
     (void)action;
   }
+  /// Called when the tool in the spindle changes (M6, M61), in order with the motions and before
+  /// the motions of the block that changed it, and once, at the first block that does anything,
+  /// with the tool the run starts with: `tool` is its number (0: none). The default ignores it.
+  virtual void onToolChange(std::size_t line, int tool) {
+    (void)line;
+    (void)tool;
+  }
   /// Called for each active comment a block runs (MSG, DEBUG, PRINT, LOG...; ABORT is an error
   /// instead), in order with the motions and before the block's own motions; `text` has its
   /// parameters substituted (but MSG's). The default ignores it.
@@ -126,6 +133,14 @@ struct DwellEvent {
   double seconds = 0.0;
 };
 
+/// A change of the tool in the spindle: `tool` (0: none) from the motion `after_moves` (0-based)
+/// on.
+struct ToolChangeEvent {
+  std::size_t line = 0;         ///< 1-based source line (M6, M61; the first block for the start)
+  std::size_t after_moves = 0;  ///< motions made before it
+  int tool = 0;
+};
+
 /// A sink that keeps every motion and dwell in a vector.
 class MoveCollector final : public MoveSink {
  public:
@@ -136,9 +151,13 @@ class MoveCollector final : public MoveSink {
   void onMessage(std::size_t line, CommentKind kind, const std::string& text) override {
     messages.push_back({line, kind, text});
   }
-  std::vector<Move> moves;             ///< the motions received, in order
-  std::vector<DwellEvent> dwells;      ///< the dwells received, in order
-  std::vector<MessageEvent> messages;  ///< the active comments received, in order
+  void onToolChange(std::size_t line, int tool) override {
+    tool_changes.push_back({line, moves.size(), tool});
+  }
+  std::vector<Move> moves;                    ///< the motions received, in order
+  std::vector<DwellEvent> dwells;             ///< the dwells received, in order
+  std::vector<MessageEvent> messages;         ///< the active comments received, in order
+  std::vector<ToolChangeEvent> tool_changes;  ///< the tools in the spindle, in order
 };
 
 /// Header of the moves CSV: `line,kind,x,y,z,a,b,c,cx,cy,cz,turns,plane,feed`.

@@ -17,6 +17,9 @@ struct ToolEntry {
   int pocket = 0;
   std::array<double, 6> offset{};
   double diameter = 0.0;
+  /// The text after ';' on its line, trimmed ("" without one): LinuxCNC keeps it as the tool's
+  /// description; the machining preview reads the tool's end shape from it (cnc::toolEndOf).
+  std::string comment;
 };
 
 /// A tool table keyed by tool number.

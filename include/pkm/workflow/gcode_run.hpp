@@ -16,6 +16,7 @@
 #include "pkm/io/hexapod_machine.hpp"
 #include "pkm/io/named_text.hpp"
 #include "pkm/workflow/gcode_interpreter.hpp"
+#include "pkm/workflow/gcode_machining.hpp"
 #include "pkm/workflow/pose_checks.hpp"
 #include "pkm/workflow/progress.hpp"
 
@@ -64,6 +65,9 @@ struct GcodeRunRequest {
   /// Drawings of the machine along the path for an animation (GcodeRunResult::frames), evenly
   /// spaced in time (0: none).
   std::size_t frames = 0;
+  /// The machining preview (docs/machining.md): material removed along the whole path, with
+  /// its collisions (unset: none).
+  std::optional<MachiningRequest> machining;
   /// Whether the run is on an Exechon: `exechon` is set, or (without a loaded machine) `machine`
   /// names one (io::machineTypeOf).
   [[nodiscard]] bool onExechon() const;
@@ -104,6 +108,8 @@ struct GcodeRunResult {
   std::vector<double> frame_t;
   std::vector<std::size_t> frame_index;
   std::vector<PoseCheckRow> frames;
+  /// request.machining set: what the preview found (its collisions do not change ok()).
+  std::optional<MachiningReport> machining;
   /// False when a check is violated (the CLI then exits with code 1).
   [[nodiscard]] bool ok() const { return report.ok; }
 };

@@ -9,6 +9,7 @@ import uPlot from "uplot";
 import "uplot/dist/uPlot.min.css";
 import { gcodeLanguage } from "./gcode_mode.js";
 import { get, post } from "./api.js";
+import { StockView } from "./stock.js";
 
 /** A set of line decorations that `effect` replaces (an error's line, the executing line). */
 function lineField(effect) {
@@ -74,6 +75,17 @@ export class Simulator {
         <span class="clock">0.00 s</span>
         <span class="busy"></span>
       </div>
+      <div class="machining" title="material removed as the program plays, with rapids, holder, platform and table checked against the stock (docs/machining.md)">
+        <label><input type="checkbox" class="mach-on"> machining preview</label>
+        <select class="mach-stock">
+          <option value="auto">stock from the program</option>
+          <option value="box">box X0,Y0,Z0,X1,Y1,Z1</option>
+          <option value="cylinder">cylinder CX,CY,R,Z0,Z1</option>
+        </select>
+        <input class="mach-dims" placeholder="mm, comma-separated" size="20" disabled>
+        <button class="mach-zoom" disabled title="frame the camera on the stock (the mouse wheel zooms back out)">zoom to stock</button>
+        <button class="mach-part" disabled title="the part as the program leaves it, without the machine">finished part</button>
+      </div>
       <div class="summary"></div>
       <div class="plots"></div>
       <ol class="violations"></ol>`;
@@ -84,6 +96,33 @@ export class Simulator {
       if (this.job) post(`/api/jobs/${this.job}/cancel`, {}).catch(() => {});
     });
     root.querySelector(".scrub").addEventListener("input", (e) => this.seek(Number(e.target.value)));
+    const kind = root.querySelector(".mach-stock");
+    kind.addEventListener("change", () => (root.querySelector(".mach-dims").disabled = kind.value === "auto"));
+    root.querySelector(".mach-part").addEventListener("click", () => this.showFinished());
+    root.querySelector(".mach-zoom").addEventListener("click", () => this.stockView && this.stockView.zoom());
+  }
+
+  /** The request's "machining" object from the controls, or null when the preview is off. */
+  machiningRequest() {
+    if (!this.root.querySelector(".mach-on").checked) return null;
+    const stock = this.root.querySelector(".mach-stock").value;
+    // 200 cells along the stock's longer side (40,000 on a square): 12 frames/s even in software GL.
+    const q = { stock, frames: 200, auto_cells: 200 };
+    if (stock !== "auto") {
+      const text = this.root.querySelector(".mach-dims").value.trim();
+      q[stock] = text ? text.split(/[\s,]+/).map(Number) : [];
+    }
+    return q;
+  }
+
+  /** The finished part alone: the stock as the program leaves it, the machine hidden. */
+  showFinished() {
+    if (!this.stockView || !this.result || !this.result.machining) return;
+    if (this.playing) this.toggle();
+    const scene = this.app.scene(this.canvasId);
+    if (scene.groups[0]) scene.groups[0].root.visible = false;
+    this.stockView.showFinished();
+    this.stockView.zoom();
   }
 
   /** Runs `program` on the selected machine and shows the result. */
@@ -107,6 +146,8 @@ export class Simulator {
     this.watchTimer = setTimeout(watch, 300);
     document.body.classList.add("busy");
     let r;
+    const machining = this.machiningRequest();
+    if (machining) extra = { ...extra, machining };
     try {
       r = await post("/api/gcode/run", {
         machine: m.name,
@@ -145,6 +186,9 @@ export class Simulator {
     const scene = this.app.scene(this.canvasId);
     scene.clear(0);
     scene.showPath([]);
+    if (this.stockView) this.stockView.clear();
+    this.root.querySelector(".mach-part").disabled = true;
+    this.root.querySelector(".mach-zoom").disabled = true;
     for (const sel of [".summary", ".plots", ".violations"]) this.root.querySelector(sel).innerHTML = "";
     this.root.querySelector(".scrub").value = 0;
     this.root.querySelector(".clock").textContent = "0.00 s";
@@ -173,9 +217,39 @@ export class Simulator {
       li.addEventListener("click", () => this.jumpTo(g.line, g.position));
       list.appendChild(li);
     }
+    this.showMachining(r, toUnit, list);
     this.plot(r, m);
     this.root.querySelector(".scrub").max = r.frames.t.at(-1) || 1;
     this.seek(0);
+  }
+
+  /** The stock of a run with the machining preview, its summary and its collisions. */
+  showMachining(r, toUnit, list) {
+    if (this.stockView) this.stockView.clear();
+    const mach = r.machining;
+    this.root.querySelector(".mach-part").disabled = !mach;
+    this.root.querySelector(".mach-zoom").disabled = !mach;
+    if (!mach) return;
+    this.stockView = this.stockView || new StockView(this.app.scene(this.canvasId));
+    this.stockView.show(mach, r.path, toUnit);
+    const removed = (mach.initial_volume_mm3 - mach.final_volume_mm3) / 1000;
+    const collisions = Object.values(mach.event_counts).reduce((a, b) => a + b, 0);
+    const summary = document.createElement("div");
+    summary.className = "machining-summary";
+    summary.innerHTML = `<b class="${collisions ? "bad" : "ok"}">machining: ${collisions ? `${mach.events.length} collisions` : "no collision"}</b> · ${mach.stock.text}, ${mach.nx}×${mach.ny} cells of ${mach.cell.toPrecision(3)} mm · removed ${removed.toFixed(2)} cm³ in ${mach.seconds.toFixed(2)} s` + (mach.frames_complete ? "" : " · the animation stops early (too many changes): “finished part” shows the end");
+    this.root.querySelector(".summary").appendChild(summary);
+    for (const e of [...mach.events].reverse()) {
+      const li = document.createElement("li");
+      const what = { rapid: "rapid move through the stock", holder: "tool holder in the stock", table: "below the table", platform: "platform in the stock" }[e.kind] || e.kind;
+      li.className = "collision";
+      li.textContent = `line ${e.line}: ${what}, ${e.depth.toFixed(3)} mm deep at tip X Y Z ${e.tip.map((x) => x.toFixed(2)).join(" ")} (t ${e.t.toFixed(2)} s${e.count > 1 ? ` · ${e.count} positions` : ""})`;
+      li.dataset.line = e.line;
+      li.addEventListener("click", () => {
+        if (this.onLine) this.onLine(e.line);
+        this.seek(e.t);
+      });
+      list.insertBefore(li, list.firstChild);
+    }
   }
 
   /**
@@ -263,6 +337,9 @@ export class Simulator {
     const row = r.frames.rows[k];
     if (row.base_points.length)
       this.app.scene(this.canvasId).draw(0, row, { scale: this.scale, diameter: this.app.machine.machine.strut_diameter || 0, type: this.app.machine.type });
+    const scene = this.app.scene(this.canvasId);
+    if (scene.groups[0]) scene.groups[0].root.visible = true;
+    if (this.stockView) this.stockView.at(time);
     this.root.querySelector(".scrub").value = time;
     this.root.querySelector(".clock").textContent = `${time.toFixed(2)} s  line ${r.path.line[r.frames.index[k]] ?? ""}`;
   }

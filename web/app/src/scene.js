@@ -91,9 +91,14 @@ export class MachineScene {
     const box = new THREE.Box3();
     for (const p of [...drawing.base_points, ...drawing.moving_points, drawing.tool_point])
       box.expandByPoint(new THREE.Vector3(...p));
+    this.frameBox(box, false);
+  }
+
+  /** Frames the camera on a THREE.Box3; `keepSize`: the margin colours' scale stays. */
+  frameBox(box, keepSize = true) {
     const centre = box.getCenter(new THREE.Vector3());
     const size = Math.max(box.getSize(new THREE.Vector3()).length(), 1);
-    this.size = size;
+    if (!keepSize) this.size = size;
     this.camera.position.set(centre.x + size * 1.2, centre.y - size * 1.6, centre.z + size * 0.9);
     this.camera.near = size / 1000;
     this.camera.far = size * 100;
