@@ -15,6 +15,7 @@ namespace pkm::cli {
 void addGcodeRunCommand(CLI::App& gcode);         // gcode_run.cpp
 void addGcodeCompensateCommand(CLI::App& gcode);  // gcode_compensate.cpp
 void addGcodeFlattenCommand(CLI::App& gcode);     // gcode_flatten.cpp
+void addGcodeMakeCommand(CLI::App& gcode);        // gcode_make.cpp
 
 namespace {
 
@@ -53,6 +54,7 @@ void addGcodeCommand(CLI::App& app) {
   addGcodeRunCommand(*g);
   addGcodeCompensateCommand(*g);
   addGcodeFlattenCommand(*g);
+  addGcodeMakeCommand(*g);
 }
 
 const CommandRegistration kRegisterGcode{60, "gcode", &addGcodeCommand};

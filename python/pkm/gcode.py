@@ -1,7 +1,17 @@
 """G-code programs (docs/gcode.md): ``moves`` as ``pkm gcode moves``, ``run`` as ``pkm gcode
-run``, ``compensate`` as ``pkm gcode compensate`` and ``flatten`` as ``pkm gcode flatten``, on
-numpy arrays and program texts."""
+run``, ``compensate`` as ``pkm gcode compensate``, ``flatten`` as ``pkm gcode flatten`` and
+``make`` as ``pkm gcode make`` (the composite machining commands), on numpy arrays and program
+texts."""
 
-from ._pkm.gcode import Moves, Run, compensate, flatten, moves, run  # noqa: F401
+from ._pkm.gcode import (  # noqa: F401
+    Moves,
+    Run,
+    compensate,
+    flatten,
+    make,
+    moves,
+    run,
+    shape_parameters,
+)
 
-__all__ = ["Moves", "Run", "compensate", "flatten", "moves", "run"]
+__all__ = ["Moves", "Run", "compensate", "flatten", "make", "moves", "run", "shape_parameters"]

@@ -5,7 +5,7 @@ from typing import Any, List, Optional
 import numpy
 import numpy.typing
 
-__all__ = ["Moves", "Run", "compensate", "flatten", "moves", "run"]
+__all__ = ["Moves", "Run", "compensate", "flatten", "make", "moves", "run", "shape_parameters"]
 
 class Moves:
     def __len__(self) -> int: ...
@@ -66,6 +66,10 @@ def compensate(program: Any, *, machine: Any = ..., nominal: Any = ..., hybrid_f
 
 def flatten(program: Any, *, tool_table: Any = ..., tool_units: str = ..., block_delete: bool = ..., max_iterations: int = ..., ini: Any = ..., out: Any = ..., force: bool = ..., name: Optional[str] = ...) -> tuple: ...
 
+def make(shape: str, *, feed: float = ..., **kwargs) -> str: ...
+
 def moves(program: Any, *, tool_table: Any = ..., tool_units: str = ..., block_delete: bool = ..., max_iterations: int = ..., ini: Any = ..., name: Optional[str] = ...) -> Moves: ...
 
 def run(machine: Any, program: Any, *, tolerance: Optional[float] = ..., strut_diameter: Optional[float] = ..., ini: Any = ..., max_joint_velocity: Optional[float] = ..., max_joint_acceleration: Optional[float] = ..., max_wrist_velocity: Optional[float] = ..., max_wrist_acceleration: Optional[float] = ..., rapid_rate: Optional[float] = ..., orientation: str = ..., tool_table: Any = ..., tool_units: str = ..., block_delete: bool = ..., max_iterations: int = ..., max_points: int = ..., path_points: Optional[int] = ..., max_violations: int = ..., out: Any = ..., report: Any = ..., force: bool = ..., name: Optional[str] = ..., raise_on_violation: bool = ...) -> Run: ...
+
+def shape_parameters(shape: str) -> list: ...

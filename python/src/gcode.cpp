@@ -24,6 +24,7 @@ namespace pkm::python {
 
 void exposeGcodeRun(py::module_& g);         // gcode_run.cpp
 void exposeGcodeTransforms(py::module_& g);  // gcode_transform.cpp
+void exposeGcodeMake(py::module_& g);        // gcode_make.cpp
 
 namespace {
 
@@ -195,6 +196,7 @@ ValueError
     bad option.)doc");
   exposeGcodeRun(g);
   exposeGcodeTransforms(g);
+  exposeGcodeMake(g);
 }
 
 }  // namespace pkm::python

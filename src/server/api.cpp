@@ -127,6 +127,10 @@ Response route(const Request& r, Api::State& s) {
     requireMethod(r, "POST");
     return detail::runGcode(s, r);
   }
+  if (p == "/api/gcode/shape") {
+    requireMethod(r, "POST");
+    return detail::makeShape(r);
+  }
   if (p == "/api/gcode/compensate") {
     requireMethod(r, "POST");
     return detail::compensateGcode(s, r);

@@ -1,9 +1,11 @@
-// POST /api/gcode/run and POST /api/gcode/compensate (docs/web.md): workflow::runGcode and
-// workflow::compensateGcode on a program sent as text.
+// POST /api/gcode/run, POST /api/gcode/compensate and POST /api/gcode/shape (docs/web.md):
+// workflow::runGcode and workflow::compensateGcode on a program sent as text; cnc::shapeLines for
+// the page's composite blocks.
 #include <fmt/format.h>
 
 #include "api_machining.hpp"
 #include "api_state.hpp"
+#include "pkm/cnc/shapes.hpp"
 #include "pkm/io/gcode_run_report.hpp"
 #include "pkm/workflow/gcode_compensate.hpp"
 #include "pkm/workflow/gcode_run.hpp"
@@ -116,6 +118,21 @@ Response compensateGcode(Api::State& s, const Request& r) {
                {"added_lines", c.added_lines},
                {"offset_lines", c.offset_lines},
                {"max_correction_mm", c.max_correction}});
+}
+
+Response makeShape(const Request& r) {
+  const Json body = parseObject(r);
+  cnc::ShapeSpec spec{requiredString(body, "shape"), {}};
+  if (body.contains("values")) {
+    const Json& v = body["values"];
+    if (!v.is_object()) throw HttpError(400, "\"values\" must be an object of numbers");
+    for (const auto& [name, value] : v.items()) {
+      if (!value.is_number())
+        throw HttpError(400, fmt::format("\"values.{}\" must be a number", name));
+      spec.values[name] = value.get<double>();
+    }
+  }
+  return json({{"shape", spec.kind}, {"lines", cnc::shapeLines(spec)}});
 }
 
 }  // namespace pkm::server::detail

@@ -192,6 +192,7 @@ void requireCommandToken(const Request& r, const Api::State& s);
 [[nodiscard]] Response checkPoses(Api::State& s, const Request& r);
 [[nodiscard]] Response runGcode(Api::State& s, const Request& r);
 [[nodiscard]] Response compensateGcode(Api::State& s, const Request& r);
+[[nodiscard]] Response makeShape(const Request& r);
 [[nodiscard]] Response listCampaigns();
 /// Checks a campaign request ({"campaign": NAME}) and sets `job` up with a job slot and a number.
 void prepareCampaign(Api::State& s, const Request& r, CampaignJob& job);

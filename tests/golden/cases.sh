@@ -111,6 +111,7 @@ run gcode-run-exechon gcode run "$src/examples/gcode/exechon_contour.ngc" \
   --machine mxt700s-like --report report.json
 run gcode-compensate gcode compensate "$src/examples/gcode/hexapod_contour.ngc" \
   --machine "$work/calibrate-hexapod/cal.json" --nominal hexapod-default --out comp.ngc
+run gcode-make-sphere gcode make sphere --radius 10 --z 190 --tool-radius 2 --levels 3
 run gcode-run-machining gcode run "$src/examples/gcode/sphere.ngc" \
   --stock box:25,15,-10,75,65,20 --stock-cell 0.5
 run gcode-flatten gcode flatten "$src/examples/gcode/sphere.ngc" \

@@ -56,6 +56,25 @@ def test_moves_from_text_and_options(run_cli, tmp_path):
     assert mine.csv == cli.stdout and len(mine) == 1
 
 
+@pytest.mark.parametrize("shape", ["sphere", "pocket", "drill", "face"])
+def test_make_equals_the_cli_and_runs(run_cli, shape):
+    names = [p[0] for p in pkm.gcode.shape_parameters(shape)]
+    values = {names[0]: 3.0} if shape != "face" else {"step": 7.5}
+    mine = pkm.gcode.make(shape, feed=450, **values)
+    option = "--" + next(iter(values)).replace("_", "-")
+    cli = run_cli(["gcode", "make", shape, option, str(next(iter(values.values()))), "--feed", "450"])
+    assert mine == cli.stdout
+    assert mine.startswith(f"G21 G90 G17 F450 (pkm gcode make {shape})\n") and mine.endswith("M2\n")
+    assert pkm.gcode.run("hexapod-default", mine).ok
+
+
+def test_make_refuses_unknown_parameters():
+    with pytest.raises(ValueError, match="unknown parameter 'radius_mm'"):
+        pkm.gcode.make("sphere", radius_mm=3)
+    with pytest.raises(ValueError, match="unknown shape 'cube'"):
+        pkm.gcode.make("cube")
+
+
 def test_bad_program_line_raises_with_the_line(run_cli, tmp_path):
     bad = tmp_path / "bad.ngc"
     bad.write_text("G0 X0\nG1 X1 F100\nG1 X2 Q\n")

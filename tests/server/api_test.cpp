@@ -243,6 +243,19 @@ TEST_F(ApiTest, AProgramRunsWithPathAndViolations) {
   EXPECT_EQ(j["violations"][0]["line"], 3);
 }
 
+TEST_F(ApiTest, ShapesAreTheLibrarys) {
+  const Response r = post("/api/gcode/shape",
+                          R"({"shape": "drill", "values": {"holes": 2, "radius": 5, "top": 0}})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(body(r)["lines"][0], "G0 X5 Y0 Z2");
+  EXPECT_EQ(body(r)["lines"].size(), 6u);
+  EXPECT_EQ(post("/api/gcode/shape", R"({"shape": "cube"})").status, 400);
+  EXPECT_EQ(post("/api/gcode/shape", R"({"shape": "drill", "values": {"holes": "2"}})").status,
+            400);
+  EXPECT_EQ(post("/api/gcode/shape", R"({"shape": "pocket", "values": {"stepover": 1e-9}})").status,
+            400);
+}
+
 TEST_F(ApiTest, ANamedRunIsCancelled) {
   std::string program = "G0 X0 Y0 Z200\nF600\n";
   for (int i = 0; i < 100'000; ++i) program += i % 2 ? "G1 X10\n" : "G1 X-10\n";

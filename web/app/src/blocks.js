@@ -1,8 +1,8 @@
 // The command icons of Lee et al. ("Development of a Parallel-Typed CNC Machine") as Blockly
 // blocks, and the G-code they generate: moves (rapid, feed, arcs, platform orientation), modes,
 // feed and spindle, dwell, loops and conditions (O-words), subroutines, and composite machining
-// commands (sphere, circular pocket, drilling pattern, face mill). generate() returns the program
-// and, for each of its lines, the block that wrote it.
+// commands (sphere, circular pocket, drilling pattern, face mill, made by the library through the
+// server). generate() returns the program and, for each of its lines, the block that wrote it.
 import * as Blockly from "blockly/core";
 
 const num = (name, value) => ({ type: "field_number", name, value });
@@ -133,66 +133,20 @@ export const toolbox = {
   ],
 };
 
-/** The composite commands' G-code (lines), each a sequence of plain moves. */
+/**
+ * The composite blocks as the library's shapes (cnc/shapes.hpp, POST /api/gcode/shape): the
+ * block's fields as the shape's parameters. The G-code is the server's, one definition for the
+ * page, `pkm gcode make` and Python.
+ */
 const composites = {
-  // The sphere machining of Lee et al. ("Development of a Parallel-Typed CNC Machine") with a
-  // ball-end tool: the tool centre runs on a sphere of radius R + r, as full circles from the
-  // equator up to the pole, finishing with the pole point.
-  pkm_sphere(b) {
-    const R = n(b, "R") + n(b, "TR"), cx = n(b, "X"), cy = n(b, "Y"), cz = n(b, "Z");
-    const levels = Math.max(1, Math.round(n(b, "LEVELS")));
-    const out = [`G0 X${f(cx + R)} Y${f(cy)} Z${f(cz + R * 0.5)}`];
-    for (let k = 0; k < levels; ++k) {
-      const phi = ((Math.PI / 2) * k) / levels;
-      const rho = R * Math.cos(phi), z = cz + R * Math.sin(phi);
-      out.push(`G1 X${f(cx + rho)} Y${f(cy)} Z${f(z)}`);
-      out.push(`G3 X${f(cx + rho)} Y${f(cy)} I${f(-rho)} J0`);
-    }
-    out.push(`G1 X${f(cx)} Y${f(cy)} Z${f(cz + R)}`);
-    return out;
-  },
-  pkm_pocket(b) {
-    const cx = n(b, "X"), cy = n(b, "Y"), R = n(b, "R"), top = n(b, "Z");
-    const depth = n(b, "D"), so = Math.max(n(b, "S"), 0.01), dz = Math.max(n(b, "DZ"), 0.01);
-    const out = [`G0 X${f(cx)} Y${f(cy)} Z${f(top + 2)}`];
-    for (let z = top - dz, last = false; !last; z -= dz) {
-      if (z <= top - depth) (z = top - depth), (last = true);
-      out.push(`G1 X${f(cx)} Y${f(cy)} Z${f(z)}`);
-      for (let r = Math.min(so, R); r <= R + 1e-9; r = r >= R ? R + 1 : Math.min(r + so, R)) {
-        out.push(`G1 X${f(cx + r)} Y${f(cy)}`);
-        out.push(`G3 X${f(cx + r)} Y${f(cy)} I${f(-r)} J0`);
-      }
-    }
-    out.push(`G0 Z${f(top + 2)}`);
-    return out;
-  },
-  pkm_drill(b) {
-    const count = Math.max(1, Math.round(n(b, "N"))), cx = n(b, "X"), cy = n(b, "Y"), R = n(b, "R");
-    const top = n(b, "Z"), depth = n(b, "D");
-    const out = [];
-    for (let k = 0; k < count; ++k) {
-      const a = (2 * Math.PI * k) / count;
-      const x = cx + R * Math.cos(a), y = cy + R * Math.sin(a);
-      out.push(`G0 X${f(x)} Y${f(y)} Z${f(top + 2)}`);
-      out.push(`G1 Z${f(top - depth)}`);
-      out.push(`G0 Z${f(top + 2)}`);
-    }
-    return out;
-  },
-  pkm_face(b) {
-    const x0 = n(b, "X0"), x1 = n(b, "X1"), y0 = n(b, "Y0"), y1 = n(b, "Y1"), z = n(b, "Z");
-    const step = Math.max(n(b, "S"), 0.01);
-    const out = [`G0 X${f(x0)} Y${f(y0)} Z${f(z + 2)}`, `G1 Z${f(z)}`];
-    let forward = true;
-    for (let y = y0; y <= y1 + 1e-9; y += step) {
-      out.push(`G1 Y${f(Math.min(y, y1))}`);
-      out.push(`G1 X${f(forward ? x1 : x0)}`);
-      forward = !forward;
-    }
-    out.push(`G0 Z${f(z + 2)}`);
-    return out;
-  },
+  pkm_sphere: (b) => ({ shape: "sphere", values: { radius: n(b, "R"), x: n(b, "X"), y: n(b, "Y"), z: n(b, "Z"), tool_radius: n(b, "TR"), levels: n(b, "LEVELS") } }),
+  pkm_pocket: (b) => ({ shape: "pocket", values: { x: n(b, "X"), y: n(b, "Y"), radius: n(b, "R"), top: n(b, "Z"), depth: n(b, "D"), stepover: n(b, "S"), stepdown: n(b, "DZ") } }),
+  pkm_drill: (b) => ({ shape: "drill", values: { holes: n(b, "N"), x: n(b, "X"), y: n(b, "Y"), radius: n(b, "R"), top: n(b, "Z"), depth: n(b, "D") } }),
+  pkm_face: (b) => ({ shape: "face", values: { x0: n(b, "X0"), x1: n(b, "X1"), y0: n(b, "Y0"), y1: n(b, "Y1"), z: n(b, "Z"), step: n(b, "S") } }),
 };
+
+/** The cache key of a shape request. */
+export const shapeKey = (spec) => JSON.stringify(spec);
 
 /** The words of a simple block, or null. */
 function simple(b) {
@@ -250,10 +204,14 @@ function name(b, field) {
 
 /**
  * The program of workspace `ws`: subroutines first, then every other top stack in order (top to
- * bottom), between a preamble and M2. Returns { text, blocks }: blocks[i] is the id of the block
- * that wrote line i + 1 (null for the preamble and the end).
+ * bottom), between a preamble and M2. `shapes` maps shapeKey(spec) to the server's lines (or an
+ * Error). Returns { text, blocks, missing, errors }: blocks[i] is the id of the block that wrote
+ * line i + 1 (null for the preamble and the end); `missing` the shape requests not in `shapes`
+ * (their blocks write a comment meanwhile), `errors` [block id, message] of refused ones.
  */
-export function generate(ws) {
+export function generate(ws, shapes = new Map()) {
+  const missing = [];
+  const errors = [];
   const lines = [];
   const blocks = [];
   const emit = (text, id) => {
@@ -266,7 +224,18 @@ export function generate(ws) {
       if (b.isEnabled && !b.isEnabled()) continue;
       const s = simple(b);
       if (s !== null) emit(s, b.id);
-      else if (composites[b.type]) for (const l of composites[b.type](b)) emit(l, b.id);
+      else if (composites[b.type]) {
+        const spec = composites[b.type](b);
+        const lines = shapes.get(shapeKey(spec));
+        if (lines instanceof Error) {
+          errors.push([b.id, lines.message]);
+          emit(`(${spec.shape}: ${lines.message.replace(/[()]/g, "")})`, b.id);
+        } else if (lines) for (const l of lines) emit(l, b.id);
+        else {
+          missing.push(spec);
+          emit(`(${spec.shape}: being made)`, b.id);
+        }
+      }
       else if (b.type === "pkm_repeat" || b.type === "pkm_while" || b.type === "pkm_if") {
         const o = `o${label++}`;
         const [open, close] =
@@ -290,5 +259,5 @@ export function generate(ws) {
   emit("G21 G90 G17 F600 (pkm blocks)", null);
   for (const b of tops.filter((t) => t.type !== "pkm_sub")) walk(b);
   emit("M2", null);
-  return { text: lines.join("\n") + "\n", blocks };
+  return { text: lines.join("\n") + "\n", blocks, missing, errors };
 }

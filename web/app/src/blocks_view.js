@@ -4,7 +4,8 @@
 // from a file (Blockly JSON) and export as .ngc.
 import * as Blockly from "blockly/core";
 import * as En from "blockly/msg/en";
-import { registerBlocks, toolbox, generate } from "./blocks.js";
+import { registerBlocks, toolbox, generate, shapeKey } from "./blocks.js";
+import { post } from "./api.js";
 import { Simulator } from "./program_view.js";
 
 Blockly.setLocale(En);
@@ -27,6 +28,8 @@ const STARTER = {
 export class BlocksView {
   constructor(root, app) {
     this.app = app;
+    this.shapes = new Map(); // shapeKey(spec) -> lines, or the Error the server answered
+    this.shapeWarned = new Set(); // blocks whose warning is a refused shape
     registerBlocks();
     root.innerHTML = `
       <div class="blocks-pane">
@@ -58,7 +61,7 @@ export class BlocksView {
       onLine: (line) => this.selectLine(line),
     });
     root.querySelector("#blocks-run").addEventListener("click", () => this.run());
-    root.querySelector("#blocks-export").addEventListener("click", () => app.download("blocks.ngc", this.code().text));
+    root.querySelector("#blocks-export").addEventListener("click", async () => app.download("blocks.ngc", (await this.ready()).text));
     root.querySelector("#blocks-save").addEventListener("click", () =>
       app.download("program.blocks.json", JSON.stringify(Blockly.serialization.workspaces.save(this.workspace), null, 1)),
     );
@@ -73,6 +76,29 @@ export class BlocksView {
     this.refresh();
   }
 
+  /** Asks the server for the composite blocks' G-code not made yet (all at once). */
+  async fetchShapes(missing) {
+    await Promise.all(
+      missing.map(async (spec) => {
+        const key = shapeKey(spec);
+        if (this.shapes.has(key)) return;
+        try {
+          this.shapes.set(key, (await post("/api/gcode/shape", spec)).lines);
+        } catch (e) {
+          this.shapes.set(key, e instanceof Error ? e : new Error(String(e)));
+        }
+      }),
+    );
+  }
+
+  /** The program with every composite block's G-code made (the server asked as needed). */
+  async ready() {
+    for (let g = this.code(); ; g = this.code()) {
+      if (!g.missing.length) return g;
+      await this.fetchShapes(g.missing);
+    }
+  }
+
   /** Replaces the workspace with a saved program (Blockly JSON). */
   load(state) {
     this.workspace.clear();
@@ -80,15 +106,23 @@ export class BlocksView {
     this.refresh();
   }
 
+  /** The program as far as it is known now (composite blocks not made yet write a comment). */
   code() {
-    return generate(this.workspace);
+    return generate(this.workspace, this.shapes || new Map());
   }
 
   refresh() {
-    document.querySelector("#blocks-code").textContent = this.code()
-      .text.split("\n")
+    const g = this.code();
+    document.querySelector("#blocks-code").textContent = g.text
+      .split("\n")
       .map((l, i) => (l ? `${String(i + 1).padStart(3)}  ${l}` : ""))
       .join("\n");
+    // A refused shape's message on its block, until its fields are fixed.
+    const refused = new Map(g.errors);
+    for (const id of this.shapeWarned) if (!refused.has(id)) this.workspace.getBlockById(id)?.setWarningText(null);
+    for (const [id, message] of refused) this.workspace.getBlockById(id)?.setWarningText(message);
+    this.shapeWarned = new Set(refused.keys());
+    if (g.missing.length) this.fetchShapes(g.missing).then(() => this.refresh());
   }
 
   /** Selects the block that wrote program line `line`. */
@@ -107,7 +141,13 @@ export class BlocksView {
     err.textContent = "";
     for (const b of this.workspace.getAllBlocks(false)) b.setWarningText(null);
     this.marked = new Map(); // block id -> the warning set on it
-    this.generated = this.code();
+    this.generated = await this.ready();
+    if (this.generated.errors.length) {
+      const [id, message] = this.generated.errors[0];
+      this.workspace.getBlockById(id)?.setWarningText(message);
+      err.textContent = message;
+      return null;
+    }
     try {
       const r = await this.sim.run(this.generated.text, "blocks.ngc");
       const marked = new Map();
