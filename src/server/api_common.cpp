@@ -7,6 +7,7 @@
 
 #include "api_state.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/io/linuxcnc_samples.hpp"
 #include "pkm/io/machine_loader.hpp"
 
 namespace pkm::server {
@@ -15,6 +16,8 @@ detail::MachineSpec Api::State::resolveMachine(const std::string& name) {
   for (const char* type : {"hexapod", "exechon"})
     for (const std::string& b : io::builtinMachineNames(type))
       if (b == name) return {name, ""};
+  for (const io::LinuxcncSample& sample : io::installedLinuxcncSamples(options.sample_root))
+    if (sample.name == name) return {sample.hal.string(), sample.ini.string()};
   if (name == detail::kLiveMachine) {
     const std::lock_guard lock(live_mutex);
     if (live_machine) return {live_machine->hal, live_machine->ini};

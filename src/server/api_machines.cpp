@@ -6,6 +6,7 @@
 #include "api_state.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/exechon_machine.hpp"
+#include "pkm/io/linuxcnc_samples.hpp"
 #include "pkm/io/machine_loader.hpp"
 #include "pkm/workflow/pose_checks.hpp"
 
@@ -85,6 +86,17 @@ Response listMachines(Api::State& s) {
     for (const std::string& name : io::builtinMachineNames(type))
       list.push_back(
           {{"name", name}, {"type", type}, {"units", load({name, ""}).units}, {"uploaded", false}});
+  // LinuxCNC's own samples, where LinuxCNC is installed (a sample that does not load is left out).
+  for (const io::LinuxcncSample& sample : io::installedLinuxcncSamples(s.options.sample_root)) {
+    try {
+      list.push_back({{"name", sample.name},
+                      {"type", "hexapod"},
+                      {"units", load({sample.hal.string(), sample.ini.string()}).units},
+                      {"uploaded", false},
+                      {"sample", sample.description}});
+    } catch (const std::exception&) {
+    }
+  }
   std::vector<Upload> uploads;
   {
     const std::lock_guard lock(s.mutex);

@@ -5,11 +5,14 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 #include <thread>
+
+#include "support/linuxcnc_sample.hpp"
 
 namespace pkm::server {
 namespace PKM_TEST_NS {
@@ -56,6 +59,29 @@ TEST_F(ApiTest, ListsTheBuiltInMachines) {
   bool exechon = false;
   for (const Json& m : j) exechon = exechon || m["type"] == "exechon";
   EXPECT_TRUE(exechon);
+}
+
+TEST(ApiSamples, LinuxcncsHexapodSimIsAMachineWhereItIsInstalled) {
+  const std::filesystem::path sim = test::linuxcncHexapodSim();
+  if (!std::filesystem::exists(sim)) GTEST_SKIP() << sim << " absent (scripts/fetch-linuxcnc.sh)";
+  ServerOptions o;
+  o.sample_root = sim.parent_path().parent_path().parent_path().parent_path().string();
+  Api api(o);
+  const Response list = api.handle({"GET", "/api/machines", "", "127.0.0.1:8787", "", "", ""});
+  ASSERT_EQ(list.status, 200);
+  EXPECT_THAT(list.body, HasSubstr(R"("name":"linuxcnc-hexapod-sim")"));
+  const Response m =
+      api.handle({"GET", "/api/machines/linuxcnc-hexapod-sim", "", "127.0.0.1:8787", "", "", ""});
+  ASSERT_EQ(m.status, 200) << m.body;
+  const Response run =
+      api.handle({"POST",
+                  "/api/gcode/run",
+                  R"({"machine": "linuxcnc-hexapod-sim", "program": "G0 X1\nM2\n"})",
+                  "localhost:8787",
+                  "",
+                  "",
+                  ""});
+  EXPECT_EQ(run.status, 200) << run.body;
 }
 
 TEST_F(ApiTest, AMachineWithItsDrawingAtHome) {

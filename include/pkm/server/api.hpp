@@ -13,6 +13,7 @@
 #include <mutex>
 #include <string>
 
+#include "pkm/io/linuxcnc_samples.hpp"
 #include "pkm/live/linuxcnc_commander.hpp"
 #include "pkm/live/linuxcnc_link.hpp"
 #include "pkm/workflow/progress.hpp"
@@ -30,6 +31,9 @@ struct ServerOptions {
   /// (about 0.2 GB per million; the CLI's default of 10 million is for whole CAM programs).
   std::size_t max_run_points = 1'000'000;
   std::size_t max_uploads = 32;  ///< machines one server holds (the oldest is dropped)
+  /// Where LinuxCNC's sample configurations are (io::installedLinuxcncSamples): those pkm reads
+  /// join the machine list.
+  std::string sample_root = io::kLinuxcncSampleRoot;
   /// Follow the LinuxCNC running on this host from the start (`pkm serve --linuxcnc`); the page's
   /// Connect does the same later (POST /api/live/connect).
   bool linuxcnc = false;
