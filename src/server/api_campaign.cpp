@@ -28,23 +28,25 @@ Json significantJson(const workflow::CampaignRow& row) {
   return s ? Json(*s) : Json(nullptr);
 }
 
+Json stepJson(const workflow::CampaignStepResult& st) {
+  Json rows = Json::array();
+  for (const workflow::CampaignRow& row : st.rows)
+    rows.push_back({{"quantity", row.quantity},
+                    {"unit", row.unit},
+                    {"before", finiteOrNull(row.before)},
+                    {"after", finiteOrNull(row.after)},
+                    {"target", row.target ? Json(*row.target) : Json(nullptr)},
+                    {"paper", row.paper},
+                    {"pass", row.pass()},
+                    {"before_U", finiteOrNull(row.before_U)},
+                    {"after_U", finiteOrNull(row.after_U)},
+                    {"significant", significantJson(row)}});
+  return {{"id", st.id}, {"title", st.title}, {"rows", rows}};
+}
+
 Json stepsJson(const workflow::CampaignResult& r) {
   Json steps = Json::array();
-  for (const workflow::CampaignStepResult& st : r.steps) {
-    Json rows = Json::array();
-    for (const workflow::CampaignRow& row : st.rows)
-      rows.push_back({{"quantity", row.quantity},
-                      {"unit", row.unit},
-                      {"before", finiteOrNull(row.before)},
-                      {"after", finiteOrNull(row.after)},
-                      {"target", row.target ? Json(*row.target) : Json(nullptr)},
-                      {"paper", row.paper},
-                      {"pass", row.pass()},
-                      {"before_U", finiteOrNull(row.before_U)},
-                      {"after_U", finiteOrNull(row.after_U)},
-                      {"significant", significantJson(row)}});
-    steps.push_back({{"id", st.id}, {"title", st.title}, {"rows", rows}});
-  }
+  for (const workflow::CampaignStepResult& st : r.steps) steps.push_back(stepJson(st));
   return steps;
 }
 
@@ -81,6 +83,7 @@ void Api::runCampaign(CampaignJob& job, const std::function<bool(const std::stri
     workflow::CampaignOptions o;
     o.campaign = job.campaign;
     o.out = out;
+    o.on_step = [&](const workflow::CampaignStepResult& st) { send(event("step", stepJson(st))); };
     const workflow::CampaignResult r = workflow::runCampaign(o, control);
     {
       // The newest kMaxCampaigns outputs are kept (their reports stay served); older ones go.

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -82,6 +83,9 @@ struct CampaignOptions {
   /// The random seed of every simulated step, replacing the step's "seed" and its scenario's;
   /// nullopt: each step's own.
   std::optional<std::uint64_t> seed;
+  /// Called with each step's result as soon as the step is done, in order (a front end shows the
+  /// results as they arrive); may be empty. The step's files are written at the end.
+  std::function<void(const CampaignStepResult&)> on_step;
   /// Throws pkm::IoError "give --out DIR" when `out` is empty, pkm::InvalidArgument for an
   /// environment or uncertainty sources that are not valid (naming the reason).
   void validate() const;

@@ -318,8 +318,11 @@ CampaignResult runCampaign(const CampaignOptions& options, const RunControl& con
   const auto t0 = Clock::now();
   control.report({"", 0, n, 0.0, result.name});
   std::vector<campaign::StepOutcome> outcomes;
-  for (std::size_t k = 0; k < n; ++k)
+  for (std::size_t k = 0; k < n; ++k) {
     outcomes.push_back(runStep(spec["steps"][k], k, n, source, options, base_dir, control, t0));
+    const campaign::StepOutcome& s = outcomes.back();
+    if (options.on_step) options.on_step({s.id, s.title, s.rows, s.files});
+  }
   control.checkCancelled();
   result.summary_json = writeCampaignFiles(options.out, result, spec, outcomes);
   if (!options.db.empty()) storeResults(options.db, options.out, result.name, outcomes);

@@ -1,5 +1,5 @@
 // The Campaign view: a built-in campaign run on the server with live progress (server-sent
-// events), then its report.
+// events), each step's results as it finishes, then its report.
 import { get, streamCampaign } from "./api.js";
 
 export class CampaignView {
@@ -24,6 +24,24 @@ export class CampaignView {
       .join("");
   }
 
+  /** One finished step: its title and each row's before → after against the target. */
+  showStep(log, step) {
+    const li = document.createElement("li");
+    li.className = "campaign-step";
+    const fmt = (v) => (v === null || v === undefined ? "–" : Number(v).toPrecision(4));
+    const esc = (t) => String(t).replace(/[&<>"]/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;" })[c]);
+    const rows = step.rows
+      .map((r) => {
+        const mark = r.target === null ? "" : r.pass ? "✓" : "✗";
+        const target = r.target === null ? "" : ` (target ${fmt(r.target)})`;
+        return `<tr class="${r.target === null ? "" : r.pass ? "ok" : "bad"}"><td>${mark}</td><td>${esc(r.quantity)}</td><td>${fmt(r.before)} → ${fmt(r.after)} ${esc(r.unit)}${target}</td></tr>`;
+      })
+      .join("");
+    li.innerHTML = `<b></b><table>${rows}</table>`;
+    li.querySelector("b").textContent = `${step.id}: ${step.title}`;
+    log.appendChild(li);
+  }
+
   async run() {
     const log = document.querySelector("#campaign-log");
     const bar = document.querySelector("#campaign-progress");
@@ -42,7 +60,8 @@ export class CampaignView {
         if (name === "progress") {
           if (data.count) bar.value = data.index / data.count;
           line(`${data.elapsed.toFixed(1)} s  ${data.message}`);
-        } else if (name === "notice") line(data.message, "note");
+        } else if (name === "step") this.showStep(log, data);
+        else if (name === "notice") line(data.message, "note");
         else if (name === "result") {
           bar.value = 1;
           line(data.all_pass ? "every target met" : "some targets missed", data.all_pass ? "ok" : "bad");

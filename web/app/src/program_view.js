@@ -384,7 +384,7 @@ export class ProgramView {
       <div class="side wide" id="program-results"></div>`;
     this.editor = new EditorView({
       doc: EXAMPLE,
-      extensions: [basicSetup, gcodeLanguage, lineMarks, liveMarks],
+      extensions: [basicSetup, gcodeLanguage, lineMarks, liveMarks, EditorView.lineWrapping],
       parent: root.querySelector("#editor"),
     });
     this.sim = new Simulator(root.querySelector("#program-results"), app, "program-canvas", {

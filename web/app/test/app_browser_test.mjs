@@ -344,6 +344,8 @@ try {
   await page.waitForTimeout(1000);
   const met = (await page.textContent("#campaign-log")).includes("every target met");
   expect(met, "campaign view: the default campaign meets its targets");
+  const steps = await page.evaluate(() => [...document.querySelectorAll("#campaign-log li.campaign-step")].map((li) => li.querySelectorAll("tr").length));
+  expect(steps.length >= 4 && steps.every((n) => n > 0), `campaign view: each step's results listed as it finished (${JSON.stringify(steps)})`);
   // DevTools may report the streamed POST /api/campaign as aborted (net::ERR_ABORTED) although
   // the page read every event to the end of the stream (the result above arrived): not an error
   // of the page.
