@@ -194,8 +194,10 @@ void Interpreter::Impl::applyPolar(ResolvedBlock& rb) const {
 
 void Interpreter::Impl::checkToolExists(int tool) const {
   // LinuxCNC refuses a tool its table does not hold; without a table pkm knows no tools.
-  if (tool != 0 && !options.tools.tools.empty() && options.tools.find(tool) == nullptr)
+  if (tool != 0 && !options.tools.tools.empty() && options.tools.find(tool) == nullptr) {
+    missing_tool = true;
     throw GcodeError(fmt::format("requested tool {} not found in the tool table", tool));
+  }
 }
 
 void Interpreter::Impl::setFeedSpeedTool(const ResolvedBlock& rb, const BlockCodes& c) {

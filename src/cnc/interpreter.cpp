@@ -75,12 +75,14 @@ Interpreter::Interpreter(InterpreterOptions options)
 }
 Interpreter::~Interpreter() = default;
 const MachineState& Interpreter::state() const { return impl_->st; }
+bool Interpreter::missingTool() const { return impl_->missing_tool; }
 
 RunSummary Interpreter::run(const Program& program, MoveSink& target) {
   Impl& s = *impl_;
   MoveBudget sink(target, s.options.max_moves);
   s.summary = RunSummary{};
   s.reported_tool = -1;
+  s.missing_tool = false;
   s.report_blocks = sink.wantsBlocks();
   const Impl::Outcome outcome = s.runProgram(program, 0, sink, false);
   try {
@@ -150,6 +152,7 @@ RunSummary Interpreter::runStream(LineReader& reader, MoveSink& target) {
   Impl& s = *impl_;
   MoveBudget sink(target, s.options.max_moves);
   s.summary = RunSummary{};
+  s.missing_tool = false;
   s.report_blocks = sink.wantsBlocks();
   s.block_index = kNoBlock;  // streamed blocks have no index in a Program
   Block b;

@@ -231,11 +231,12 @@ struct Interpreter::Impl : FlowSource {
 
   InterpreterOptions options;
   MachineState st;
-  std::size_t current_line = 0;  // source line of the block being executed (#<_line>)
-  int reported_tool = -1;        // the tool in the spindle the sink was last told of (-1: none)
-  Axes tlo_at_last_motion{};     // the tool offset the last motion was made with (M6 re-read)
-  Axes spindle_entry{};          // #5401-#5406: the spindle tool's entry, kept for T0
-  FanucRequest fanuc;            // set by execute() for the program flow
+  std::size_t current_line = 0;       // source line of the block being executed (#<_line>)
+  mutable bool missing_tool = false;  // the run stopped at a tool the table lacks (missingTool())
+  int reported_tool = -1;     // the tool in the spindle the sink was last told of (-1: none)
+  Axes tlo_at_last_motion{};  // the tool offset the last motion was made with (M6 re-read)
+  Axes spindle_entry{};       // #5401-#5406: the spindle tool's entry, kept for T0
+  FanucRequest fanuc;         // set by execute() for the program flow
   struct SavedModes {
     std::optional<MachineState> state;
     bool autorestore = false;  // M73

@@ -81,8 +81,10 @@ void Interpreter::Impl::setTlo(const ResolvedBlock& rb, int code) {
     return;
   }
   const ToolEntry* t = options.tools.find(h);
-  if (t == nullptr)
+  if (t == nullptr) {
+    missing_tool = true;
     throw GcodeError(fmt::format("tool {} (G43 H{}) is not in the tool table", h, h));
+  }
   st.tool_offset = t->offset;
 }
 

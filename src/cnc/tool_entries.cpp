@@ -18,8 +18,10 @@ void Interpreter::Impl::doG10Tool(const ResolvedBlock& rb, int l) {
   const int tool = toInt(rb.word('p'), 'P');
   if (tool < 1) throw GcodeError(fmt::format("G10 L{} P{}: P must be a tool number >= 1", l, tool));
   const auto it = options.tools.tools.find(tool);
-  if (it == options.tools.tools.end())
+  if (it == options.tools.tools.end()) {
+    missing_tool = true;
     throw GcodeError(fmt::format("G10 L{}: tool {} is not in the tool table", l, tool));
+  }
   ToolEntry& entry = it->second;
   if (rb.hasWord('r')) entry.diameter = 2.0 * rb.word('r') * st.scale();
   const Axes words = axisWords(rb);

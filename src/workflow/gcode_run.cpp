@@ -65,6 +65,12 @@ void refuseOverwrite(const std::string& path, bool force) {
     io::checkOverwrite(path, force ? io::Overwrite::kAllow : io::Overwrite::kRefuse);
 }
 
+/// The interpreter stopped at a tool its table lacks (cnc::Interpreter::missingTool).
+class MissingTool : public IoError {
+ public:
+  using IoError::IoError;
+};
+
 /// The program's motions and dwells. Throws pkm::IoError "NAME:LINE: message" for a program the
 /// interpreter rejects, pkm::InvalidArgument for one without motion.
 cnc::MoveCollector interpret(const GcodeRunRequest& request,
@@ -86,7 +92,12 @@ cnc::MoveCollector interpret(const GcodeRunRequest& request,
   cnc::MoveCollector moves;
   progress.report("interpreting", "motions", 1, detail::kRunStages, 0, 0);
   detail::ProgressMoveSink watched(moves, progress, 1, detail::kRunStages, request.program.name);
-  (void)interpreter.run(program, watched);
+  try {
+    (void)interpreter.run(program, watched);
+  } catch (const IoError& e) {
+    if (interpreter.missingTool()) throw MissingTool(e.what());
+    throw;
+  }
   if (moves.moves.empty())
     throw InvalidArgument(fmt::format("{}: no motion", request.program.name));
   return moves;
@@ -107,12 +118,9 @@ cnc::MoveCollector interpretWithTools(const GcodeRunRequest& request,
       given.tool_table.empty() && given.tool_table_text.empty() && given.search_working_folder;
   try {
     return interpret(request, machine, progress, lines, tools);
-  } catch (const IoError& e) {
+  } catch (const MissingTool&) {
     std::error_code ec;
-    if (!may_look ||
-        std::string_view(e.what()).find("not in the tool table") == std::string::npos ||
-        !std::filesystem::is_regular_file(beside, ec))
-      throw;
+    if (!may_look || !std::filesystem::is_regular_file(beside, ec)) throw;
   }
   GcodeRunRequest with_tools = request;
   with_tools.interpreter.tool_table = beside.string();

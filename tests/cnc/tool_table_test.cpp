@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "pkm/cnc/interpreter.hpp"
+#include "pkm/cnc/program.hpp"
 #include "pkm/core/error.hpp"
 #include "support/tolerances.hpp"
 
@@ -54,6 +56,27 @@ TEST(ToolTable, OffsetBeyondADoubleInMmIsRefused) {
       EXPECT_NE(std::string(e.what()).find("is too large"), std::string::npos) << e.what();
     }
   }
+}
+
+/// The interpreter says when it stopped at a tool its table lacks (gcode run then looks for the
+/// tools.tbl beside the program), and only then.
+TEST(ToolTable, TheInterpreterSaysWhenATableLacksATool) {
+  const auto stops = [](const char* program, const char* table) {
+    InterpreterOptions o;
+    o.tools = ToolTable::parse(table, 1.0, "t.tbl");
+    Interpreter interp(o);
+    MoveCollector c;
+    EXPECT_THROW(interp.run(Program::parse(program, "t.ngc"), c), IoError) << program;
+    return interp.missingTool();
+  };
+  EXPECT_TRUE(stops("G43 H2\nM2\n", ""));
+  EXPECT_TRUE(stops("T3 M6\nM2\n", "T1 Z5 D6\n"));
+  EXPECT_TRUE(stops("G10 L1 P4 Z1\nM2\n", "T1 Z5 D6\n"));
+  EXPECT_FALSE(stops("G1 X1\nM2\n", "T1 Z5 D6\n"));  // another error: no feed rate
+  Interpreter fine;
+  MoveCollector c;
+  fine.run(Program::parse("G0 X1\nM2\n", "t.ngc"), c);
+  EXPECT_FALSE(fine.missingTool());
 }
 
 }  // namespace PKM_TEST_NS

@@ -97,6 +97,9 @@ class Interpreter {
 
   /// The modal state and offsets now.
   [[nodiscard]] const MachineState& state() const;
+  /// Whether the last run stopped at a tool its tool table lacks (G43 H, G10 L1/L10/L11, or T
+  /// with a table that does not hold it): a caller may look for the right table and run again.
+  [[nodiscard]] bool missingTool() const;
 
  private:
   struct Impl;
