@@ -21,6 +21,7 @@ namespace {
 struct CircleState {
   AnalyzeIo io;
   UncertaintyArgs uncertainty;
+  std::string fit = "both";
 };
 
 void addCircle(CLI::App& analyze) {
@@ -30,10 +31,16 @@ void addCircle(CLI::App& analyze) {
       "least-squares and minimum-zone circle and roundness; header x,y (files concatenated)");
   st->io.add(*cmd);
   st->uncertainty.add(*cmd);
+  cmd->add_option("--fit",
+                  st->fit,
+                  "lsc: the least-squares circle alone (the fastest), mzc: the minimum-zone "
+                  "circle alone, both (default)");
   cmd->callback([st] {
-    printReport(
-        st->io,
-        workflow::analyzeCircle({io::readNamedTexts(st->io.data), st->uncertainty.parsed()}));
+    workflow::CircleRequest q;
+    q.uncertainty = st->uncertainty.parsed();
+    q.fit = st->fit;
+    q.data = io::readNamedTexts(st->io.data);
+    printReport(st->io, workflow::analyzeCircle(std::move(q)));
   });
 }
 

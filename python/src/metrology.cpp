@@ -3,8 +3,10 @@
 // AnalysisResult made from the command's --json document (io::analysisJson) and its table
 // (io::analysisText): the attributes are the document's keys, so they cannot drift from the CLI.
 #include <fmt/format.h>
+#include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cstdint>
 #include <optional>
 
 #include "common.hpp"
@@ -153,8 +155,31 @@ AnalysisResult diagonals(py::handle data,
   return resultOf("diagonals", released([&] { return workflow::analyzeDiagonals(r); }));
 }
 
-AnalysisResult circle(py::handle data) {
-  workflow::CircleRequest r{tablesOf(data, "data", {"x", "y"})};
+/// An (N, 2) array as points read where they are: float64, C order and aligned as Eigen's 2-vectors
+/// need (a copy in that form otherwise). Nothing for anything that is not such an array.
+std::optional<py::array> circlePoints(py::handle data) {
+  if (!py::isinstance<py::array>(data)) return std::nullopt;
+  py::array a = py::reinterpret_borrow<py::array>(data);
+  if (a.ndim() != 2 || a.shape(1) != 2 || a.shape(0) == 0) return std::nullopt;
+  constexpr auto kForm = py::array::c_style | py::array::forcecast;
+  py::array_t<double, kForm> v = py::array_t<double, kForm>::ensure(a);
+  if (!v) throw InvalidArgument("data: an (N, 2) array of numbers is needed");
+  if (reinterpret_cast<std::uintptr_t>(v.data()) % alignof(metrology::Point2) != 0)
+    v = py::array_t<double, kForm>(v.request());  // a misaligned view: copied once
+  return std::move(v);
+}
+
+AnalysisResult circle(py::handle data, const std::string& fit, bool budget) {
+  workflow::CircleRequest r;
+  r.fit = fit;
+  r.budget = budget;
+  const std::optional<py::array> points = circlePoints(data);
+  if (points) {
+    r.points = {reinterpret_cast<const metrology::Point2*>(points->data()),
+                static_cast<std::size_t>(points->shape(0))};
+  } else {
+    r.data = tablesOf(data, "data", {"x", "y"});
+  }
   return resultOf("circle", released([&] { return workflow::analyzeCircle(r); }));
 }
 
@@ -320,8 +345,15 @@ void defDiagonalAndCircleAnalyses(py::module_& mm) {
   mm.def("circle",
          &circle,
          py::arg("data"),
+         py::kw_only(),
+         py::arg("fit") = "both",
+         py::arg("budget") = true,
          doc("Least-squares and minimum-zone circles and roundness (`pkm analyze circle`).\n\n"
-             "Array columns: x, y (length unit), e.g. circle(xy) with xy of shape (N, 2).")
+             "Array columns: x, y (length unit), e.g. circle(xy) with xy of shape (N, 2); an "
+             "(N, 2) float64 array is read where it is, not copied. fit: 'lsc' (the "
+             "least-squares circle alone, the fastest), 'mzc' (the minimum-zone circle alone) or "
+             "'both' (`--fit`). budget: False leaves the uncertainty budgets out (their probe and "
+             "unit assumptions do not fit unitless points).")
              .c_str());
   mm.def("circular",
          &circular,

@@ -51,21 +51,36 @@ std::string analysisJson(const CircleReport& report) {
                             {"index", c.index},
                             {"file", report.sources[c.index].name},
                             {"line", report.sources[c.index].line}});
-  return detail::documentText(Json{{"center", pair(lsc.circle.center)},
-                                   {"radius", lsc.circle.radius},
-                                   {"diameter", 2.0 * lsc.circle.radius},
-                                   {"roundness_lsc", lsc.roundness},
-                                   {"roundness_mzc", mzc.roundness},
-                                   {"mzc_center", pair(mzc.center)},
-                                   {"mzc_inner_radius", mzc.inner_radius},
-                                   {"mzc_outer_radius", mzc.outer_radius},
-                                   {"mzc_contacts", std::move(contacts)},
-                                   {"mzc_certified", mzc.certified},
-                                   {"rms", lsc.rms},
-                                   {"iterations", lsc.iterations},
-                                   {"converged", lsc.converged},
-                                   {"points", report.sources.size()},
-                                   {"uncertainty", detail::uncertaintyJson(report.uncertainty)}});
+  Json j{{"center", pair(lsc.circle.center)},
+         {"radius", lsc.circle.radius},
+         {"diameter", 2.0 * lsc.circle.radius},
+         {"roundness_lsc", lsc.roundness},
+         {"roundness_mzc", mzc.roundness},
+         {"mzc_center", pair(mzc.center)},
+         {"mzc_inner_radius", mzc.inner_radius},
+         {"mzc_outer_radius", mzc.outer_radius},
+         {"mzc_contacts", std::move(contacts)},
+         {"mzc_certified", mzc.certified},
+         {"rms", lsc.rms},
+         {"iterations", lsc.iterations},
+         {"converged", lsc.converged},
+         {"points", report.sources.size()},
+         {"uncertainty", detail::uncertaintyJson(report.uncertainty)}};
+  // One circle asked for: its keys only, and which it is.
+  if (!report.has_mzc)
+    for (const char* k : {"roundness_mzc",
+                          "mzc_center",
+                          "mzc_inner_radius",
+                          "mzc_outer_radius",
+                          "mzc_contacts",
+                          "mzc_certified"})
+      j.erase(k);
+  if (!report.has_lsc)
+    for (const char* k :
+         {"center", "radius", "diameter", "roundness_lsc", "rms", "iterations", "converged"})
+      j.erase(k);
+  if (!report.has_lsc || !report.has_mzc) j["fit"] = report.has_lsc ? "lsc" : "mzc";
+  return detail::documentText(j);
 }
 
 std::string analysisJson(const CircularReport& report) {

@@ -21,15 +21,18 @@ std::string analysisText(const CircleReport& report) {
   const metrology::CircleFit& lsc = report.lsc;
   const metrology::MinZoneCircle& mzc = report.mzc;
   std::string out = fmt::format("circle ({} points)\n", report.sources.size());
-  out += fmt::format("LSC centre\t{}\t{}\nLSC radius\t{}\nLSC diameter\t{}\n",
-                     num9(lsc.circle.center.x()),
-                     num9(lsc.circle.center.y()),
-                     num9(lsc.circle.radius),
-                     num9(2.0 * lsc.circle.radius));
-  out += fmt::format(
-      "LSC iterations\t{}\nLSC converged\t{}\n", lsc.iterations, lsc.converged ? "yes" : "no");
-  out += fmt::format(
-      "roundness LSC\t{}\nroundness MZC\t{}\n", num9(lsc.roundness), num9(mzc.roundness));
+  if (report.has_lsc) {
+    out += fmt::format("LSC centre\t{}\t{}\nLSC radius\t{}\nLSC diameter\t{}\n",
+                       num9(lsc.circle.center.x()),
+                       num9(lsc.circle.center.y()),
+                       num9(lsc.circle.radius),
+                       num9(2.0 * lsc.circle.radius));
+    out += fmt::format(
+        "LSC iterations\t{}\nLSC converged\t{}\n", lsc.iterations, lsc.converged ? "yes" : "no");
+    out += fmt::format("roundness LSC\t{}\n", num9(lsc.roundness));
+  }
+  if (!report.has_mzc) return out + detail::uncertaintyText(report.uncertainty);
+  out += fmt::format("roundness MZC\t{}\n", num9(mzc.roundness));
   out += fmt::format("MZC centre\t{}\t{}\nMZC radii\t{}\t{}\nMZC certified\t{}\n",
                      num9(mzc.center.x()),
                      num9(mzc.center.y()),

@@ -115,7 +115,13 @@ void readTouches(const io::TextTable& t,
 /// Touches the probe-offset budget needs (five unknowns and one degree of freedom).
 constexpr std::size_t kMinTouchesForUncertainty = 6;
 
-void CircleRequest::validate() const { requireData(data); }
+void CircleRequest::validate() const {
+  if (fit != "lsc" && fit != "mzc" && fit != "both")
+    throw InvalidArgument(fmt::format("--fit '{}': give lsc, mzc or both", fit));
+  if (points.empty()) requireData(data);
+  if (!points.empty() && !data.empty())
+    throw IoError("circle: give data tables or points, not both");
+}
 
 void CircularRequest::validate() const {
   requireData(data);
@@ -149,9 +155,40 @@ void ringCertificate(const io::TextTable& t, metrology::UncertaintySources& sour
   sources.probe.ring_form_mm = v;
 }
 
+/// The fits `request` asks for of `p`, their budgets, into `report`.
+void fitCircles(const CircleRequest& request, std::span<const Point2> p, io::CircleReport& report) {
+  report.has_lsc = request.fit != "mzc";
+  report.has_mzc = request.fit != "lsc";
+  report.lsc = metrology::fitCircle(p);
+  if (report.has_mzc) {
+    metrology::MinZoneOptions opt;
+    opt.start = report.lsc.circle.center;
+    report.mzc = metrology::fitMinimumZoneCircle(p, opt);
+  }
+  if (!request.budget) return;
+  report.uncertainty = metrology::circleUncertainty(report.lsc, report.mzc, request.uncertainty);
+  // Only the budgets of what is reported.
+  std::erase_if(report.uncertainty, [&](const metrology::UncertaintyBudget& b) {
+    return b.quantity == "roundness_mzc" ? !report.has_mzc : !report.has_lsc;
+  });
+}
+
 /// analyzeCircle after the request's check; the texts are moved out of `request`, names kept.
 io::CircleReport circle(CircleRequest& request) {
   io::CircleReport report;
+  if (!request.points.empty()) {
+    for (std::size_t r = 0; r < request.points.size(); ++r)
+      for (Eigen::Index c = 0; c < 2; ++c)
+        if (!std::isfinite(request.points[r][c]))
+          throw IoError(fmt::format(
+              "{}: row {} column {} is not a finite number", request.points_name, r, c));
+    report.sources.beginInput(request.points_name);
+    io::LineNumbers lines;
+    for (std::size_t r = 0; r < request.points.size(); ++r) lines.add(r + 1);
+    report.sources.addLines(lines);
+    fitCircles(request, request.points, report);
+    return report;
+  }
   std::vector<Point2> p;
   for (io::NamedText& in : request.data) {
     // Moved, not copied: a million-point file is tens of megabytes.
@@ -169,11 +206,7 @@ io::CircleReport circle(CircleRequest& request) {
     });
     report.sources.addLines(t.lineNumbers());
   }
-  report.lsc = metrology::fitCircle(p);
-  metrology::MinZoneOptions opt;
-  opt.start = report.lsc.circle.center;
-  report.mzc = metrology::fitMinimumZoneCircle(p, opt);
-  report.uncertainty = metrology::circleUncertainty(report.lsc, report.mzc, request.uncertainty);
+  fitCircles(request, p, report);
   return report;
 }
 

@@ -56,6 +56,21 @@ TEST_F(AnalyzeCircleCli, CircleJsonHasTheContractKeys) {
   EXPECT_THAT(t.out, HasSubstr("roundness MZC"));
 }
 
+TEST_F(AnalyzeCircleCli, FitChoosesTheCircle) {
+  const std::string f = write("c.csv", zoneCircle(10.0, -4.0, 25.0, 0.002));
+  const auto l = pkm({"analyze", "circle", "--data", f, "--fit", "lsc", "--json"});
+  ASSERT_EQ(l.code, 0) << l.err;
+  const auto j = nlohmann::json::parse(l.out);
+  EXPECT_EQ(j["fit"], "lsc");
+  EXPECT_TRUE(j.contains("radius") && !j.contains("roundness_mzc") && !j.contains("mzc_center"));
+  EXPECT_FALSE(j["uncertainty"].contains("roundness_mzc"));
+  const auto m = pkm({"analyze", "circle", "--data", f, "--fit", "mzc"});
+  ASSERT_EQ(m.code, 0) << m.err;
+  EXPECT_THAT(m.out, HasSubstr("roundness MZC"));
+  EXPECT_EQ(m.out.find("LSC radius"), std::string::npos);
+  expectUsageError(pkm({"analyze", "circle", "--data", f, "--fit", "lse"}), "--fit 'lse'");
+}
+
 TEST_F(AnalyzeCircleCli, GanderPointsGiveTheGlobalMinimumZone) {
   // Gander, Golub and Strebel, BIT 34 (1994): the global minimum zone of these six points is
   // 1.353615 wide about (105/22, 9/22); a local search stops at 1.387853 about (4.6, 4.4).

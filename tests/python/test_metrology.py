@@ -81,6 +81,23 @@ def test_circle_from_array(run_cli, tmp_path):
         r.nope
 
 
+def test_circle_fit_and_budget_keywords(run_cli, tmp_path):
+    t = np.linspace(0, 2 * np.pi, 41)[:-1]
+    xy = np.column_stack([1 + 5.01 * np.cos(t), 2 + 4.99 * np.sin(t)])
+    both = pkm.metrology.circle(xy)
+    lsc = pkm.metrology.circle(xy, fit="lsc", budget=False)
+    assert lsc.radius == both.radius and "roundness_mzc" not in dir(lsc)
+    assert lsc.to_dict()["fit"] == "lsc" and lsc.to_dict()["uncertainty"] == {"coverage_factor": 2.0} or not lsc.to_dict()["uncertainty"].get("radius")
+    mzc = pkm.metrology.circle(xy, fit="mzc")
+    assert mzc.roundness_mzc == both.roundness_mzc and "radius" not in dir(mzc)
+    # A view of a wider array (not contiguous) and float32 give the same circle.
+    wide = np.column_stack([xy, np.zeros(len(xy))])
+    assert pkm.metrology.circle(wide[:, :2], fit="lsc").radius == pytest.approx(both.radius, abs=1e-12)
+    assert pkm.metrology.circle(xy.astype(np.float32), fit="lsc").radius == pytest.approx(both.radius, abs=1e-5)
+    with pytest.raises(ValueError, match="--fit 'lse'"):
+        pkm.metrology.circle(xy, fit="lse")
+
+
 def test_circular_and_probe_offset_from_arrays(sims, run_cli):
     s3 = sims["s3"]
     files = [str(s3 / "probe_circle_uncompensated.csv"), str(s3 / "probe_circle_compensated.csv")]

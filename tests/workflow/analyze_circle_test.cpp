@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "pkm/core/error.hpp"
 
@@ -35,6 +36,50 @@ TEST(AnalyzeCircleWorkflow, FitsTheCircleAndNamesTheContacts) {
   ASSERT_EQ(r.sources.size(), 12u);
   EXPECT_EQ(r.sources[0].name, "ring upload");
   EXPECT_EQ(r.sources[0].line, 2u);
+}
+
+TEST(AnalyzeCircleWorkflow, OneCircleWhenOneIsAskedAndPointsFromMemory) {
+  // An oval: the two circles differ, so each report shows which one it holds.
+  std::string text = "x,y\n";
+  std::vector<metrology::Point2> points;
+  for (int k = 0; k < 40; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / 40;
+    points.emplace_back(3.0 + 5.01 * std::cos(a), -1.0 + 4.99 * std::sin(a));
+    text += fmt::format("{},{}\n", points.back().x(), points.back().y());
+  }
+  CircleRequest both{{{"oval.csv", text}}};
+  const io::CircleReport all = analyzeCircle(both);
+  CircleRequest lsc{{{"oval.csv", text}}};
+  lsc.fit = "lsc";
+  const io::CircleReport l = analyzeCircle(lsc);
+  EXPECT_TRUE(l.has_lsc && !l.has_mzc);
+  EXPECT_EQ(l.lsc.circle.radius, all.lsc.circle.radius);
+  ASSERT_EQ(l.uncertainty.size(), 2u);  // radius and roundness_lsc
+  EXPECT_EQ(l.uncertainty[1].quantity, "roundness_lsc");
+  CircleRequest mzc{{{"oval.csv", text}}};
+  mzc.fit = "mzc";
+  mzc.budget = false;
+  const io::CircleReport m = analyzeCircle(mzc);
+  EXPECT_TRUE(!m.has_lsc && m.has_mzc);
+  EXPECT_EQ(m.mzc.roundness, all.mzc.roundness);
+  EXPECT_TRUE(m.uncertainty.empty());
+  // The same points from memory: the same circles, the contacts named by row.
+  CircleRequest mem;
+  mem.points = points;
+  mem.points_name = "xy";
+  const io::CircleReport p = analyzeCircle(mem);
+  EXPECT_EQ(p.lsc.circle.radius, all.lsc.circle.radius);
+  EXPECT_EQ(p.mzc.roundness, all.mzc.roundness);
+  ASSERT_FALSE(p.mzc.contacts.empty());
+  const std::size_t i = p.mzc.contacts[0].index;
+  EXPECT_EQ(p.sources[i].name, "xy");
+  EXPECT_EQ(p.sources[i].line, i + 1);
+  CircleRequest bad{{{"oval.csv", text}}};
+  bad.fit = "lse";
+  EXPECT_THROW((void)analyzeCircle(bad), InvalidArgument);
+  bad.fit = "lsc";
+  bad.points = points;
+  EXPECT_THROW((void)analyzeCircle(bad), IoError);  // tables and points
 }
 
 TEST(AnalyzeCircleWorkflow, TheRingsCertificateInTheFileEntersTheBudget) {

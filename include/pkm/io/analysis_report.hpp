@@ -152,6 +152,8 @@ class PointSources {
 struct CircleReport {
   metrology::CircleFit lsc;
   metrology::MinZoneCircle mzc;
+  /// Which of the two the text and JSON report (workflow::CircleRequest::fit).
+  bool has_lsc = true, has_mzc = true;
   PointSources sources;  ///< per point, in input order (the contacts' origins)
   /// Budgets of radius, roundness_lsc and roundness_mzc (metrology::circleUncertainty).
   std::vector<metrology::UncertaintyBudget> uncertainty;

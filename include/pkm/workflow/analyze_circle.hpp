@@ -7,6 +7,8 @@
 #pragma once
 
 #include <optional>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "pkm/io/analysis_report.hpp"
@@ -17,16 +19,27 @@ namespace pkm::workflow {
 
 /// Circle fits of `x,y` points (x_mm, y_mm accepted).
 struct CircleRequest {
-  std::vector<io::NamedText> data;  ///< `x,y` tables, concatenated (required)
+  std::vector<io::NamedText> data;  ///< `x,y` tables, concatenated (this or `points`)
   /// The probe and environment of the budgets (metrology::circleUncertainty).
   metrology::UncertaintySources uncertainty{};
-  /// Throws pkm::IoError without data.
+  /// Which circles: "lsc" (least squares alone), "mzc" (the minimum zone alone; the least-squares
+  /// centre it starts from is not reported) or "both".
+  std::string fit = "both";
+  /// The budgets of what is fitted (metrology::circleUncertainty); false: none.
+  bool budget = true;
+  /// Points held by the caller instead of `data` (e.g. a numpy array, read where it is, not
+  /// copied): x, y in the data's length unit, named `points_name` in the report (row r as line
+  /// r + 1). Must outlive the call.
+  std::span<const metrology::Point2> points;
+  std::string points_name = "data";
+  /// Throws pkm::IoError without data and points or with both, pkm::InvalidArgument for another
+  /// `fit`.
   void validate() const;
 };
 
 /// Least-squares circle (metrology::fitCircle) and minimum-zone circle started from its centre
-/// (metrology::fitMinimumZoneCircle). Throws as validate(), pkm::IoError for a bad input,
-/// pkm::InvalidArgument for too few or degenerate points.
+/// (metrology::fitMinimumZoneCircle), as `fit` asks, with their budgets. Throws as validate(),
+/// pkm::IoError for a bad input, pkm::InvalidArgument for too few or degenerate points.
 [[nodiscard]] io::CircleReport analyzeCircle(CircleRequest request);
 
 /// ISO 230-4:2005 circular test.
