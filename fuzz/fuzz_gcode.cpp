@@ -24,7 +24,7 @@ pkm::cnc::InterpreterOptions fuzzOptions() {
   pkm::cnc::InterpreterOptions options;
   options.max_loop_iterations = 2000;
   options.max_call_depth = 16;
-  options.tools.tools[1] = pkm::cnc::ToolEntry{1, 1, {0, 0, 10, 0, 0, 0}, 3};
+  options.tools.tools[1] = pkm::cnc::ToolEntry{1, 1, {0, 0, 10, 0, 0, 0}, 3, ""};
   return options;
 }
 

@@ -19,7 +19,7 @@ struct ToolEntry {
   double diameter = 0.0;
   /// The text after ';' on its line, trimmed ("" without one): LinuxCNC keeps it as the tool's
   /// description; the machining preview reads the tool's end shape from it (cnc::toolEndOf).
-  std::string comment;
+  std::string comment{};
 };
 
 /// A tool table keyed by tool number.

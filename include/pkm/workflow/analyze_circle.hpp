@@ -30,7 +30,7 @@ struct CircleRequest {
   /// Points held by the caller instead of `data` (e.g. a numpy array, read where it is, not
   /// copied): x, y in the data's length unit, named `points_name` in the report (row r as line
   /// r + 1). Must outlive the call.
-  std::span<const metrology::Point2> points;
+  std::span<const metrology::Point2> points{};
   std::string points_name = "data";
   /// Throws pkm::IoError without data and points or with both, pkm::InvalidArgument for another
   /// `fit`.

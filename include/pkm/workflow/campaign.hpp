@@ -85,7 +85,7 @@ struct CampaignOptions {
   std::optional<std::uint64_t> seed;
   /// Called with each step's result as soon as the step is done, in order (a front end shows the
   /// results as they arrive); may be empty. The step's files are written at the end.
-  std::function<void(const CampaignStepResult&)> on_step;
+  std::function<void(const CampaignStepResult&)> on_step{};
   /// Throws pkm::IoError "give --out DIR" when `out` is empty, pkm::InvalidArgument for an
   /// environment or uncertainty sources that are not valid (naming the reason).
   void validate() const;

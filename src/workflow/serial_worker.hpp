@@ -1,5 +1,5 @@
-// A background thread that runs posted jobs one at a time, in the order they were posted (the CLI's
-// pipelines: `pkm hexapod fk` prints and reads on it while the main thread solves).
+// A background thread that runs posted jobs one at a time, in the order they were posted (the
+// pipelines: workflow::solveHexapodFkFile prints and reads on it while the caller's thread solves).
 #pragma once
 
 #include <condition_variable>
@@ -10,7 +10,7 @@
 #include <thread>
 #include <utility>
 
-namespace pkm::cli {
+namespace pkm::workflow::detail {
 
 class SerialWorker {
  public:
@@ -36,6 +36,12 @@ class SerialWorker {
       jobs_.push_back(std::move(job));
     }
     wake_.notify_all();
+  }
+
+  /// Whether a job failed (drain() rethrows it).
+  [[nodiscard]] bool failed() {
+    const std::lock_guard lock(mutex_);
+    return error_ != nullptr;
   }
 
   /// The worker thread (for its placement on a CPU: thread_placement.hpp).
@@ -84,4 +90,4 @@ class SerialWorker {
   std::thread thread_;  // last: started once the members above exist
 };
 
-}  // namespace pkm::cli
+}  // namespace pkm::workflow::detail

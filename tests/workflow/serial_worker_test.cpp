@@ -1,6 +1,7 @@
-// apps/pkm/serial_worker.hpp: jobs run one at a time in the order posted, drain() waits for them
-// and rethrows the first failure (later jobs skipped), the destructor runs what is still queued.
-#include "../../apps/pkm/serial_worker.hpp"
+// src/workflow/serial_worker.hpp: jobs run one at a time in the order posted, drain() waits for
+// them and rethrows the first failure (later jobs skipped), the destructor runs what is still
+// queued.
+#include "workflow/serial_worker.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +11,7 @@
 
 namespace PKM_TEST_NS {
 
-using pkm::cli::SerialWorker;
+using pkm::workflow::detail::SerialWorker;
 
 TEST(SerialWorker, RunsJobsInOrderOneAtATime) {
   std::vector<int> seen;  // touched by the worker only, read after drain()

@@ -1,4 +1,4 @@
-// Placement of the CLI's two-thread pipelines (`pkm hexapod fk`) on the machine's CPUs.
+// Placement of the two-thread pipelines (workflow::solveHexapodFkFile) on the machine's CPUs.
 #pragma once
 
 #include <cstdlib>
@@ -10,7 +10,7 @@
 #include <sched.h>
 #endif
 
-namespace pkm::cli {
+namespace pkm::workflow::detail {
 
 /// Keeps the calling thread on the CPU it runs on and `worker` on another CPU of the process's
 /// allowed set (the next one after it, cyclically), when at least two are allowed. Returns whether
@@ -55,4 +55,4 @@ inline bool placePipelineThreads(std::thread& worker) {
 #endif
 }
 
-}  // namespace pkm::cli
+}  // namespace pkm::workflow::detail
