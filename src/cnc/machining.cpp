@@ -123,34 +123,23 @@ void MachiningSimulator::cutAt(const ToolPose& pose, double t, std::size_t line,
   if (bottom < field_.bottom() - eps) event("table", line, t, pose, field_.bottom() - bottom);
   if (bottom < field_.top()) {
     const auto box = solid.footprint(false);
-    const auto cols = field_.columns(box[0], box[2]);
-    const auto rows = field_.rows(box[1], box[3]);
     double deepest = 0.0;
-    for (std::ptrdiff_t j = rows[0]; j <= rows[1]; ++j)
-      for (std::ptrdiff_t i = cols[0]; i <= cols[1]; ++i) {
-        const auto k = static_cast<std::size_t>(j) * field_.nx() + static_cast<std::size_t>(i);
-        const double z = solid.cutterZ(field_.cx(static_cast<std::size_t>(i)),
-                                       field_.cy(static_cast<std::size_t>(j)));
-        if (!(z < field_.height(k))) continue;
-        const double d = field_.lower(k, z);
-        if (d <= 0.0) continue;
-        record(k);
-        if (rapid) deepest = std::max(deepest, rapid_removed_[k] += d);
-      }
+    field_.forEachCell(box[0], box[1], box[2], box[3], [&](std::size_t k, double x, double y) {
+      const double z = solid.cutterZ(x, y);
+      if (!(z < field_.height(k))) return;
+      const double d = field_.lower(k, z);
+      if (d <= 0.0) return;
+      record(k);
+      if (rapid) deepest = std::max(deepest, rapid_removed_[k] += d);
+    });
     if (rapid && deepest > eps) event("rapid", line, t, pose, deepest);
   }
   if (solid.holderBottom() >= field_.top()) return;
   const auto box = solid.footprint(true);
-  const auto cols = field_.columns(box[0], box[2]);
-  const auto rows = field_.rows(box[1], box[3]);
   double deepest = 0.0;
-  for (std::ptrdiff_t j = rows[0]; j <= rows[1]; ++j)
-    for (std::ptrdiff_t i = cols[0]; i <= cols[1]; ++i) {
-      const auto k = static_cast<std::size_t>(j) * field_.nx() + static_cast<std::size_t>(i);
-      const double z = solid.holderZ(field_.cx(static_cast<std::size_t>(i)),
-                                     field_.cy(static_cast<std::size_t>(j)));
-      deepest = std::max(deepest, static_cast<double>(field_.height(k)) - z);
-    }
+  field_.forEachCell(box[0], box[1], box[2], box[3], [&](std::size_t k, double x, double y) {
+    deepest = std::max(deepest, static_cast<double>(field_.height(k)) - solid.holderZ(x, y));
+  });
   if (deepest > eps) event("holder", line, t, pose, deepest);
 }
 
@@ -184,18 +173,12 @@ void MachiningSimulator::checkPart(const std::string& kind,
     y0 = std::min(y0, p[1]);
     y1 = std::max(y1, p[1]);
   }
-  const auto cols = field_.columns(x0, x1);
-  const auto rows = field_.rows(y0, y1);
   double deepest = 0.0;
-  for (std::ptrdiff_t j = rows[0]; j <= rows[1]; ++j)
-    for (std::ptrdiff_t i = cols[0]; i <= cols[1]; ++i) {
-      const double x = field_.cx(static_cast<std::size_t>(i)),
-                   y = field_.cy(static_cast<std::size_t>(j));
-      if (!insideHull(h, {x, y})) continue;
-      const double z = c[2] - (n[0] * (x - c[0]) + n[1] * (y - c[1])) / n[2];
-      const auto k = static_cast<std::size_t>(j) * field_.nx() + static_cast<std::size_t>(i);
-      deepest = std::max(deepest, static_cast<double>(field_.height(k)) - z);
-    }
+  field_.forEachCell(x0, y0, x1, y1, [&](std::size_t k, double x, double y) {
+    if (!insideHull(h, {x, y})) return;
+    const double z = c[2] - (n[0] * (x - c[0]) + n[1] * (y - c[1])) / n[2];
+    deepest = std::max(deepest, static_cast<double>(field_.height(k)) - z);
+  });
   if (deepest > eps) event(kind, line, t, where, deepest);
 }
 

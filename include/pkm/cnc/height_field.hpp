@@ -67,6 +67,18 @@ class HeightField {
   [[nodiscard]] std::array<std::ptrdiff_t, 2> columns(double a, double b) const;
   /// The same along y.
   [[nodiscard]] std::array<std::ptrdiff_t, 2> rows(double a, double b) const;
+  /// Calls f(k, x, y) for each cell k whose centre (x, y) may lie in [x0, x1] × [y0, y1] (the
+  /// spans of columns() and rows()), row by row.
+  template <typename F>
+  void forEachCell(double x0, double y0, double x1, double y1, F&& f) const {
+    const auto c = columns(x0, x1);
+    const auto r = rows(y0, y1);
+    for (std::ptrdiff_t j = r[0]; j <= r[1]; ++j)
+      for (std::ptrdiff_t i = c[0]; i <= c[1]; ++i) {
+        const auto ui = static_cast<std::size_t>(i), uj = static_cast<std::size_t>(j);
+        f(uj * nx_ + ui, cx(ui), cy(uj));
+      }
+  }
   /// Material volume, mm³ (Σ (height − bottom) · cell²).
   [[nodiscard]] double volume() const;
 

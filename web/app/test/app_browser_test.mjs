@@ -9,34 +9,22 @@
 //   node app_browser_test.mjs PKM_BINARY SOURCE_DIR OUT_DIR
 //
 // Exit codes: 0 pass, 1 fail, 77 skipped (no chromium or no web/app/node_modules).
-import { spawn, spawnSync } from "node:child_process";
-import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync } from "node:fs";
+import { spawnSync } from "node:child_process";
+import { mkdirSync, mkdtempSync, readFileSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
-import { dirname, join } from "node:path";
-import { fileURLToPath } from "node:url";
+import { join } from "node:path";
+import { checker, chromiumOrSkip, drawnPixels, launch, startServer, watchedPage } from "./harness.mjs";
 
-const SKIP = 77;
-const CHROMIUM = process.env.PKM_CHROMIUM || "/usr/bin/chromium";
 const MIN_DRAWN_PIXELS = 2000; // a drawn machine covers far more of the canvas than this
-const here = dirname(fileURLToPath(import.meta.url));
 
 const [pkmBinary, sourceDir, outDir] = process.argv.slice(2);
 if (!pkmBinary || !sourceDir || !outDir) {
   console.error("usage: app_browser_test.mjs PKM_BINARY SOURCE_DIR OUT_DIR");
   process.exit(1);
 }
-if (!existsSync(CHROMIUM) || !existsSync(join(here, "../node_modules/playwright-core"))) {
-  console.log(`SKIP: ${CHROMIUM} or web/app/node_modules missing (scripts/setup.sh)`);
-  process.exit(SKIP);
-}
-const { chromium } = await import("playwright-core");
+const chromium = await chromiumOrSkip();
 mkdirSync(outDir, { recursive: true });
-
-const failures = [];
-const expect = (ok, what) => {
-  if (!ok) failures.push(what);
-  console.log(`${ok ? "ok  " : "FAIL"} ${what}`);
-};
+const { expect, failed: failures } = checker();
 
 /** `pkm gcode run --report` of an example: the CLI's report. */
 function cliReport(args) {
@@ -49,49 +37,17 @@ function cliReport(args) {
   return json;
 }
 
-const server = spawn(pkmBinary, ["serve", "--port", "0"], { stdio: ["ignore", "pipe", "inherit"] });
-const url = await new Promise((resolve, reject) => {
-  server.stdout.on("data", (d) => {
-    const m = /pkm: serving (http:\/\/127\.0\.0\.1:\d+\/)/.exec(String(d));
-    if (m) resolve(m[1]);
-  });
-  server.on("exit", (code) => reject(new Error(`pkm serve exited ${code}`)));
-});
-
-const browser = await chromium.launch({
-  executablePath: CHROMIUM,
-  args: ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-    "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-});
+const { server, url } = await startServer(pkmBinary);
+const browser = await launch(chromium);
 const errors = [];
 const foreign = [];
 try {
-  const page = await browser.newPage({ viewport: { width: 1400, height: 860 } });
-  page.on("console", (m) => m.type() === "error" && errors.push(m.text()));
-  page.on("pageerror", (e) => errors.push(`page error: ${e.message}`));
-  page.on("requestfailed", (r) => errors.push(`request failed: ${r.url()} (${r.failure()?.errorText})`));
-  page.on("response", (r) => r.status() >= 400 && errors.push(`HTTP ${r.status()} ${r.url()}`));
-  page.on("request", (r) => {
-    const u = r.url();
-    if (!u.startsWith(url) && !u.startsWith("blob:") && !u.startsWith("data:")) foreign.push(u);
-  });
+  const page = await watchedPage(browser, new URL(url).origin, { width: 1400, height: 860 }, errors, foreign);
   await page.goto(url);
   await page.evaluate(() => window.pkmApp.ready);
 
   /** Drawn (non-background) pixels of the canvas in element `id`. */
-  const drawn = (id) =>
-    page.evaluate((id) => {
-      const src = document.querySelector(`#${id} canvas`);
-      const c = document.createElement("canvas");
-      c.width = src.width;
-      c.height = src.height;
-      const g = c.getContext("2d");
-      g.drawImage(src, 0, 0);
-      const d = g.getImageData(0, 0, c.width, c.height).data;
-      let n = 0;
-      for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - 247) + Math.abs(d[i + 1] - 248) + Math.abs(d[i + 2] - 250) > 30) ++n;
-      return n;
-    }, id);
+  const drawn = (id) => drawnPixels(page, id);
 
   // Machine view.
   await page.waitForTimeout(500);
