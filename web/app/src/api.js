@@ -18,12 +18,13 @@ async function parse(response) {
 
 export const get = async (path) => parse(await fetch(path));
 
-export const post = async (path, body) =>
+export const post = async (path, body, signal) =>
   parse(
     await fetch(path, {
       method: "POST",
       headers: { "Content-Type": "application/json" },
       body: JSON.stringify(body),
+      signal,
     }),
   );
 

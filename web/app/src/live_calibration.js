@@ -147,14 +147,28 @@ export class LiveCalibration {
       <b>${fmt(d.holdout_rms_after)} mm</b> calibrated</div>${laser}`;
   }
 
+  /**
+   * Sends the answer; one that gets no reply within 5 s is sent again (at most 4 times: a
+   * connection the browser reused as the server closed it must not leave the routine waiting).
+   * A 409 "not asking now" means an earlier attempt arrived.
+   */
   async answer(install) {
     this.$("#livecal-install").close();
-    try {
-      await post("/api/live/calibration/confirm", { install });
-      this.line(install ? "install: yes" : "install: no (the configuration is kept)");
-    } catch (e) {
-      this.app.error(e);
+    for (let attempt = 1; ; ++attempt) {
+      const abort = new AbortController();
+      const timer = setTimeout(() => abort.abort(), 5000);
+      try {
+        await post("/api/live/calibration/confirm", { install }, abort.signal);
+        break;
+      } catch (e) {
+        if (e.status === 409) break;
+        if (attempt >= 4) return this.app.error(e);
+        this.line(`the answer got no reply (${e.message}): sent again`, "bad");
+      } finally {
+        clearTimeout(timer);
+      }
     }
+    this.line(install ? "install: yes" : "install: no (the configuration is kept)");
   }
 
   async stop() {
