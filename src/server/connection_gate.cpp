@@ -246,7 +246,12 @@ void ConnectionGate::State::expire() {
   for (auto it = waiting.begin(); it != waiting.end();) {
     const Connection& c = *it->second;
     const double limit = c.requests == 0 || c.unread() > 0 ? o.header_timeout_s : o.idle_timeout_s;
-    if (std::chrono::duration<double>(now - c.waiting_since).count() > limit) {
+    // An idle keep-alive connection whose next request has just arrived (not read yet: its
+    // event comes with the next epoll_wait) is not closed under it: a browser that sent a POST
+    // on it would wait for an answer that never comes. If the header then stays incomplete, the
+    // header timeout, counted from the same moment, closes it at the next pass.
+    const bool arrived = c.requests > 0 && c.unread() == 0 && waitFor(it->first, POLLIN, 0);
+    if (!arrived && std::chrono::duration<double>(now - c.waiting_since).count() > limit) {
       ::epoll_ctl(epoll, EPOLL_CTL_DEL, it->first, nullptr);
       it = waiting.erase(it);
     } else {
