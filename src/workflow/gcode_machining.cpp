@@ -75,11 +75,13 @@ MachiningTool toolFor(int number,
 std::array<double, 3> toolAxis(const detail::JointRun& run, std::size_t i) {
   const cnc::Axes& p = run.points[i].pos;
   if (run.exechon) {
+    // The drawn direction is the Exechon's world_u_tool, from the spindle point towards the tool
+    // point (world_p_tool = world_p_S + length·world_u_tool): the tool axis is its opposite.
     const PoseCheckRow row = run.frame_at(i);
     std::array<double, 3> u = row.tool_direction;
     const double n = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
     if (n > 0.0)
-      for (double& x : u) x /= n;
+      for (double& x : u) x /= -n;
     return n > 0.0 ? u : std::array<double, 3>{0.0, 0.0, 1.0};
   }
   constexpr double kDeg = 3.14159265358979323846 / 180.0;

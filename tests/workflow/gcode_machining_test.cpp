@@ -122,6 +122,28 @@ TEST(GcodeMachining, AutoStockAndRapidsThroughIt) {
   EXPECT_THAT(machiningText(m2), HasSubstr("COLLISION rapid line 7"));
 }
 
+TEST(GcodeMachining, TheExechonsToolPointsDownItsAxis) {
+  // The Exechon example: a 50 mm circle at Z0 with a vertical tool, then a pass at Z10 tilted
+  // 15°. The tool's solid reaches up the axis from the tip (the drawn direction, spindle to tip,
+  // reversed): the circle cuts a groove to Z0, the centre of the ring keeps the top, and nothing
+  // reaches the table or puts the holder in the stock.
+  GcodeRunRequest r;
+  const std::string path = std::string(PKM_SOURCE_DIR) + "/examples/gcode/exechon_contour.ngc";
+  r.program = {path, slurp(path)};
+  r.machine = "mxt700s-like";
+  r.machining.emplace();
+  r.machining->cell = 0.5;
+  const MachiningReport m = *runGcode(r).machining;
+  EXPECT_TRUE(m.result.events.empty()) << machiningText(m);
+  const auto at = [&m](double x, double y) {
+    const auto i = static_cast<std::size_t>((x - m.x0) / m.cell);
+    const auto j = static_cast<std::size_t>((y - m.y0) / m.cell);
+    return m.heights[j * m.nx + i];
+  };
+  EXPECT_NEAR(at(25.1, 0.1), 0.0, 1e-3);         // on the circle: down to the tip
+  EXPECT_NEAR(at(0.1, 0.1), m.stock.top, 1e-3);  // inside the ring: untouched
+}
+
 TEST(GcodeMachining, BadRequestsAreRefused) {
   MachiningRequest q;
   EXPECT_THROW(setStock(q, "box:1,2,3"), InvalidArgument);
