@@ -250,8 +250,9 @@ void ConnectionGate::State::expire() {
     // event comes with the next epoll_wait) is not closed under it: a browser that sent a POST
     // on it would wait for an answer that never comes. If the header then stays incomplete, the
     // header timeout, counted from the same moment, closes it at the next pass.
-    const bool arrived = c.requests > 0 && c.unread() == 0 && waitFor(it->first, POLLIN, 0);
-    if (!arrived && std::chrono::duration<double>(now - c.waiting_since).count() > limit) {
+    // (Polled only for a connection about to be closed: not every waiting one every pass.)
+    const bool expired = std::chrono::duration<double>(now - c.waiting_since).count() > limit;
+    if (expired && !(c.requests > 0 && c.unread() == 0 && waitFor(it->first, POLLIN, 0))) {
       ::epoll_ctl(epoll, EPOLL_CTL_DEL, it->first, nullptr);
       it = waiting.erase(it);
     } else {

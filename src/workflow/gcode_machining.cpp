@@ -11,6 +11,7 @@
 
 #include "gcode_run_detail.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/core/units.hpp"
 #include "pkm/geometry/so3.hpp"
 
 namespace pkm::workflow {
@@ -84,8 +85,8 @@ std::array<double, 3> toolAxis(const detail::JointRun& run, std::size_t i) {
       for (double& x : u) x /= -n;
     return n > 0.0 ? u : std::array<double, 3>{0.0, 0.0, 1.0};
   }
-  constexpr double kDeg = 3.14159265358979323846 / 180.0;
-  const Eigen::Matrix3d R = geometry::rotationFromRpy({p[3] * kDeg, p[4] * kDeg, p[5] * kDeg});
+  const Eigen::Matrix3d R =
+      geometry::rotationFromRpy({degToRad(p[3]), degToRad(p[4]), degToRad(p[5])});
   return {R(0, 2), R(1, 2), R(2, 2)};
 }
 
