@@ -31,8 +31,8 @@ struct Fixture {
     const kinematics::HexapodModel truth = calibration::withHexapodParameters(nominal, p);
     kinematics::HexapodData work(truth);
     geometry::RigidTransform f;
-    f.rotation = geometry::rotationFromRpy(Eigen::Vector3d(0.001, -0.002, 2.6));
-    f.translation = Eigen::Vector3d(1500, -900, 350);
+    f.linear() = geometry::rotationFromRpy(Eigen::Vector3d(0.001, -0.002, 2.6));
+    f.translation() = Eigen::Vector3d(1500, -900, 350);
     for (int k = 0; k < 200; ++k) {
       const kinematics::PoseRpy pose = test::randomPose(rng, truth.home, 120.0, 0.12);
       calibration::PoseObservation o;
@@ -40,9 +40,9 @@ struct Fixture {
       o.pose = pose;
       for (int i = 0; i < 3; ++i) o.pose.position(i) += n(rng);
       data.poses.push_back(o);
-      o.pose.position = f.rotation.transpose() * (o.pose.position - f.translation);
+      o.pose.position = f.linear().transpose() * (o.pose.position - f.translation());
       o.pose.rpy =
-          geometry::rpyFromRotation(f.rotation.transpose() * geometry::rotationFromRpy(o.pose.rpy));
+          geometry::rpyFromRotation(f.linear().transpose() * geometry::rotationFromRpy(o.pose.rpy));
       tracker.poses.push_back(o);
     }
     tracker.measurement_frame = calibration::initialMeasurementFrame(nominal, tracker);

@@ -39,7 +39,7 @@ void addCircle(CLI::App& analyze) {
     workflow::CircleRequest q;
     q.uncertainty = st->uncertainty.parsed();
     q.fit = st->fit;
-    q.data = io::readNamedTexts(st->io.data);
+    q.data_files = st->io.data;
     printReport(st->io, workflow::analyzeCircle(std::move(q)));
   });
 }

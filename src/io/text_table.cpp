@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "io/detail/decimal.hpp"
+#include "io/detail/table_preamble.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/core/parallel.hpp"
 #include "pkm/io/csv.hpp"
@@ -95,44 +96,12 @@ TextTable TextTable::parse(std::string text, const std::string& source) {
   // found again when read.
   if (all.size() >= std::numeric_limits<std::uint32_t>::max())
     throw IoError(locate(source, 0, "larger than 4 GiB; split the file"));
-  std::size_t pos = 0;
-  std::size_t line_no = 0;
-  // Metadata, comments and the header.
-  while (pos < all.size() && t.header_.empty()) {
-    const void* nl = std::memchr(all.data() + pos, '\n', all.size() - pos);
-    const std::size_t end =
-        nl == nullptr ? all.size()
-                      : static_cast<std::size_t>(static_cast<const char*>(nl) - all.data());
-    std::string_view line = trimmedLine(all, pos, end);
-    pos = end + 1;
-    ++line_no;
-    if (line_no == 1 && line.starts_with("\xEF\xBB\xBF")) line = trimBlanks(line.substr(3));
-    if (line.empty()) continue;
-    if (line.front() == '#') {
-      const std::string_view body = trimBlanks(line.substr(1));
-      const std::size_t colon = body.find(':');
-      if (colon != std::string_view::npos)
-        t.metadata_.emplace_back(trimBlanks(body.substr(0, colon)),
-                                 trimBlanks(body.substr(colon + 1)));
-      continue;
-    }
-    std::size_t start = 0;
-    while (true) {
-      const std::size_t comma = line.find(',', start);
-      const std::string name(trimBlanks(line.substr(start, comma - start)));
-      if (name.empty())
-        throw IoError(
-            locate(source, line_no, fmt::format("header field {} is empty", t.header_.size() + 1)));
-      for (const std::string& seen : t.header_)
-        if (seen == name)
-          throw IoError(locate(source, line_no, fmt::format("column '{}' appears twice", name)));
-      t.header_.push_back(name);
-      if (comma == std::string_view::npos) break;
-      start = comma + 1;
-    }
-    t.header_line_ = line_no;
-  }
-  if (t.header_.empty()) throw IoError(locate(source, 0, "no header row"));
+  detail::TablePreamble pre = detail::readTablePreamble(all, source, false);
+  t.header_ = std::move(pre.header);
+  t.metadata_ = std::move(pre.metadata);
+  t.header_line_ = pre.header_line;
+  const std::size_t pos = pre.data_begin;
+  const std::size_t line_no = pre.header_line;
 
   // The data rows, in chunks of whole lines on the machine's cores (a large file), then joined.
   const std::size_t begin = std::min(pos, all.size());

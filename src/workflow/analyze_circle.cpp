@@ -13,6 +13,7 @@
 #include "pkm/core/error.hpp"
 #include "pkm/core/parallel.hpp"
 #include "pkm/core/units.hpp"
+#include "pkm/io/number_table.hpp"
 #include "pkm/io/text_table.hpp"
 #include "pkm/metrology/circular_uncertainty.hpp"
 #include "pkm/metrology/profile_uncertainty.hpp"
@@ -118,8 +119,8 @@ constexpr std::size_t kMinTouchesForUncertainty = 6;
 void CircleRequest::validate() const {
   if (fit != "lsc" && fit != "mzc" && fit != "both")
     throw InvalidArgument(fmt::format("--fit '{}': give lsc, mzc or both", fit));
-  if (points.empty()) requireData(data);
-  if (!points.empty() && !data.empty())
+  if (points.empty() && data_files.empty()) requireData(data);
+  if (!points.empty() && !(data.empty() && data_files.empty()))
     throw IoError("circle: give data tables or points, not both");
 }
 
@@ -140,7 +141,7 @@ namespace {
 /// A master ring's certificate in the file (`# ring form mm`): its form deviation replaces the
 /// sources' probe.ring_form_mm. Throws pkm::IoError naming the file for a value that is not a
 /// length >= 0.
-void ringCertificate(const io::TextTable& t, metrology::UncertaintySources& sources) {
+void ringCertificate(const io::NumberTable& t, metrology::UncertaintySources& sources) {
   const std::optional<std::string> form = t.meta("ring form mm");
   if (!form) return;
   double v = std::nan("");
@@ -153,6 +154,12 @@ void ringCertificate(const io::TextTable& t, metrology::UncertaintySources& sour
   if (!(std::isfinite(v) && v >= 0.0))
     t.failHeader(fmt::format("metadata 'ring form mm' must be a length >= 0, got '{}'", *form));
   sources.probe.ring_form_mm = v;
+}
+
+/// The rows of a table of two columns as points, where they are.
+std::span<const Point2> pointsOf(const io::NumberTable& t) {
+  static_assert(sizeof(Point2) == 2 * sizeof(double));
+  return {reinterpret_cast<const Point2*>(t.values().data()), t.rows()};
 }
 
 /// The fits `request` asks for of `p`, their budgets, into `report`.
@@ -189,22 +196,31 @@ io::CircleReport circle(CircleRequest& request) {
     fitCircles(request, request.points, report);
     return report;
   }
-  std::vector<Point2> p;
-  for (io::NamedText& in : request.data) {
-    // Moved, not copied: a million-point file is tens of megabytes.
-    const io::TextTable t = io::TextTable::parseData(std::move(in.text), in.name);
-    const std::size_t cx = t.column({"x", "x_mm"});
-    const std::size_t cy = t.column({"y", "y_mm"});
+  // Each table read in one pass on the cores (io::NumberTable); a file named by path is mapped,
+  // not copied.
+  std::vector<io::NumberTable> tables;
+  const std::vector<io::ColumnNames> columns = {{"x", "x_mm"}, {"y", "y_mm"}};
+  for (const io::NamedText& in : request.data)
+    tables.push_back(io::NumberTable::parse(in.text, in.name, columns));
+  for (const std::string& path : request.data_files)
+    tables.push_back(io::NumberTable::read(path, columns));
+  std::size_t rows = 0;
+  for (const io::NumberTable& t : tables) {
     report.sources.beginInput(t.source());
     ringCertificate(t, request.uncertainty);
-    const std::array<std::size_t, 2> cols{cx, cy};
-    const std::size_t base = p.size();
-    p.resize(base + t.rows());
-    // Rows in chunks on the machine's cores; the first bad row's error is the one thrown.
-    forEachChunk(t.rows(), kParallelChunks, [&](std::size_t, std::size_t b, std::size_t e) {
-      for (std::size_t r = b; r < e; ++r) t.numbers(r, cols, {p[base + r].data(), 2});
-    });
     report.sources.addLines(t.lineNumbers());
+    rows += t.rows();
+  }
+  // One table is fitted where it is (its rows are x, y pairs, as Point2's two doubles).
+  if (tables.size() == 1) {
+    fitCircles(request, pointsOf(tables.front()), report);
+    return report;
+  }
+  std::vector<Point2> p;
+  p.reserve(rows);
+  for (const io::NumberTable& t : tables) {
+    const std::span<const Point2> q = pointsOf(t);
+    p.insert(p.end(), q.begin(), q.end());
   }
   fitCircles(request, p, report);
   return report;

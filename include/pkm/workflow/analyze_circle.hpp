@@ -19,7 +19,10 @@ namespace pkm::workflow {
 
 /// Circle fits of `x,y` points (x_mm, y_mm accepted).
 struct CircleRequest {
-  std::vector<io::NamedText> data;  ///< `x,y` tables, concatenated (this or `points`)
+  std::vector<io::NamedText> data;  ///< `x,y` tables, concatenated (these, files or `points`)
+  /// `x,y` table files ("-": standard input) read by the call itself after `data`, mapped rather
+  /// than copied (io::NumberTable::read): the fastest way to read a large file.
+  std::vector<std::string> data_files{};
   /// The probe and environment of the budgets (metrology::circleUncertainty).
   metrology::UncertaintySources uncertainty{};
   /// Which circles: "lsc" (least squares alone), "mzc" (the minimum zone alone; the least-squares
