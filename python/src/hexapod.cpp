@@ -13,6 +13,7 @@
 #include "pkm/io/machine_description.hpp"
 #include "pkm/kinematics/hexapod_checks.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
+#include "pkm/workflow/hexapod_ik_rows.hpp"
 #include "pkm/workflow/kinematics_path.hpp"
 
 namespace pkm::python {
@@ -37,23 +38,12 @@ py::object hexapodIk(const Hexapod& h, py::handle poses_obj, bool status, bool r
   py::array_t<double> out = newArray(n, 6);
   const double* in = poses.data();
   double* o = out.mutable_data();
-  const kin::HexapodModel& model = modelOf(h);
   std::vector<std::string_view> words;
-  const bool checks = status || raise;
+  if (status || raise) words.resize(static_cast<std::size_t>(n));
   {
     py::gil_scoped_release release;
-    kin::HexapodData data(model);
-    if (checks) words.resize(static_cast<std::size_t>(n));
-    for (py::ssize_t i = 0; i < n; ++i) {
-      if (checks) {
-        const kin::HexapodCheckResult c = kin::checkPose(model, data, poseAt(in + 6 * i));
-        Eigen::Map<kin::StrutVector>(o + 6 * i) = c.readings;
-        words[static_cast<std::size_t>(i)] = c.status();
-      } else {
-        Eigen::Map<kin::StrutVector>(o + 6 * i) =
-            kin::inverseKinematics(model, data, poseAt(in + 6 * i));
-      }
-    }
+    const auto size = static_cast<std::size_t>(6 * n);
+    workflow::hexapodIkRows(modelOf(h), {in, size}, {o, size}, words);
   }
   if (raise) raiseOnFailure(words, "Hexapod.ik", true);
   py::object readings = single ? py::object(out.reshape({py::ssize_t{6}})) : py::object(out);

@@ -6,20 +6,29 @@
 #include <cstring>
 #include <memory>
 #include <optional>
+#include <semaphore>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "gcode_progress.hpp"
 #include "pkm/cnc/interpreter.hpp"
 #include "pkm/cnc/line_reader.hpp"
 #include "pkm/core/error.hpp"
 #include "pkm/io/atomic_file.hpp"
+#include "serial_worker.hpp"
+#include "thread_placement.hpp"
+#include "vector_pool.hpp"
 
 namespace pkm::workflow {
 
 namespace {
 
-/// Formats CSV rows into one buffer and hands them on in blocks of about 1 MiB.
+/// Formats the CSV rows and hands them on in blocks of about 1 MiB, on a second thread: the
+/// interpreter (this thread) passes its moves in batches, and the other formats and writes them
+/// in order while the next batch is interpreted (formatting the numbers costs about as much as
+/// interpreting the lines). At most kQueued batches wait, so that the memory stays bounded when
+/// writing is the slower side. Only the second thread calls `write`.
 class CsvSink final : public cnc::MoveSink {
  public:
   explicit CsvSink(TextOutput write)
@@ -28,21 +37,55 @@ class CsvSink final : public cnc::MoveSink {
     std::memcpy(buffer_.get(), header.data(), header.size());
     used_ = header.size();
     buffer_[used_++] = '\n';
+    batch_.reserve(kBatch);
   }
   void onMove(const cnc::Move& m) override {
-    used_ = static_cast<std::size_t>(cnc::writeMoveCsv(buffer_.get() + used_, m) - buffer_.get());
-    if (used_ > kFlush) flush();
+    batch_.push_back(m);
+    if (batch_.size() == kBatch) post();
+  }
+  /// Formats and writes what is left, and waits for it; rethrows a failure of `write`.
+  void finish() {
+    post();
+    worker_.post([this] { flush(); });
+    worker_.drain();
+  }
+
+ private:
+  static constexpr std::size_t kFlush = 1 << 20;
+  static constexpr std::size_t kBatch = 2048;
+  static constexpr std::ptrdiff_t kQueued = 8;
+
+  void post() {
+    if (batch_.empty()) return;
+    if (worker_.failed()) worker_.drain();  // rethrows the failure of `write`
+    room_.acquire();
+    auto batch = std::make_shared<std::vector<cnc::Move>>(std::move(batch_));
+    batch_ = pool_.take();
+    batch_.reserve(kBatch);
+    // The batch's room is given back when its job is done with, run or dropped.
+    std::shared_ptr<void> permit(nullptr, [this](void*) { room_.release(); });
+    worker_.post([this, batch, permit = std::move(permit)] {
+      for (const cnc::Move& m : *batch) {
+        used_ =
+            static_cast<std::size_t>(cnc::writeMoveCsv(buffer_.get() + used_, m) - buffer_.get());
+        if (used_ > kFlush) flush();
+      }
+      pool_.giveBack(std::move(*batch));
+    });
   }
   void flush() {
     if (used_ > 0) write_(std::string_view(buffer_.get(), used_));
     used_ = 0;
   }
 
- private:
-  static constexpr std::size_t kFlush = 1 << 20;
   TextOutput write_;
-  std::unique_ptr<char[]> buffer_;  // kFlush + one row
+  std::unique_ptr<char[]> buffer_;  // kFlush + one row; the worker's alone
   std::size_t used_ = 0;
+  std::vector<cnc::Move> batch_;
+  std::counting_semaphore<kQueued> room_{kQueued};
+  detail::VectorPool<cnc::Move> pool_;
+  detail::SerialWorker worker_;                            // its jobs use the above
+  detail::PipelinePlacement placement_{worker_.thread()};  // each thread on its own CPU
 };
 
 }  // namespace
@@ -80,7 +123,7 @@ GcodeMovesResult runGcodeMoves(const GcodeMovesRequest& request,
   detail::ProgressMoveSink watched(sink, progress, 0, 0, name);
   const cnc::RunSummary s =
       program ? interpreter.run(*program, watched) : interpreter.runStream(reader, watched);
-  sink.flush();
+  sink.finish();
   if (file) file->commit();
   result.lines = program ? program->lineCount() : reader.lines();
   result.blocks = s.blocks;

@@ -20,6 +20,7 @@
 #include "pkm/workflow/kinematics_path.hpp"
 #include "serial_worker.hpp"
 #include "thread_placement.hpp"
+#include "vector_pool.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -71,34 +72,6 @@ struct FkInputChunk {
   std::exception_ptr error;
 };
 
-/// Vectors handed between the threads and back for reuse: fresh memory for every piece and chunk
-/// would cost a page fault per 4 KiB. Thread-safe.
-template <typename T>
-class VectorPool {
- public:
-  /// An empty vector, with the capacity of one given back earlier if there is one.
-  std::vector<T> take() {
-    const std::lock_guard lock(mutex_);
-    if (free_.empty()) return {};
-    std::vector<T> v = std::move(free_.back());
-    free_.pop_back();
-    return v;
-  }
-  /// Keeps `v` for a later take() (or frees it, when even that fails: does not throw).
-  void giveBack(std::vector<T>&& v) noexcept {
-    v.clear();
-    try {
-      const std::lock_guard lock(mutex_);
-      free_.push_back(std::move(v));
-    } catch (...) {  // out of memory or a failed lock: v is freed instead of kept
-    }
-  }
-
- private:
-  std::mutex mutex_;
-  std::vector<std::vector<T>> free_;
-};
-
 FkInputChunk readFkChunk(io::CsvReader& reader,
                          std::size_t rows,
                          std::vector<kin::StrutVector>&& storage) {
@@ -131,8 +104,8 @@ struct FkPipeline {
   std::unique_ptr<char[]> text = std::make_unique_for_overwrite<char[]>(kFkPiece * kFkRowRoom);
   std::counting_semaphore<kFkPiecesQueued> room{kFkPiecesQueued};
   std::atomic<int> queued{0};  // pieces posted and not yet printed
-  VectorPool<kin::StrutVector> chunk_pool;
-  VectorPool<FkStep> piece_pool;
+  detail::VectorPool<kin::StrutVector> chunk_pool;
+  detail::VectorPool<FkStep> piece_pool;
   detail::SerialWorker printer;  // last: its jobs use the above
 
   /// The next `rows` readings, read on the second thread.
@@ -160,7 +133,7 @@ HexapodFkFileSummary solveHexapodFkFile(const io::HexapodMachine& machine,
   // Printing (angles, shortest round-trip text, the writes) may cost more than solving, on long
   // numbers: then this thread converts the rotations to angles too, and at most kFkPiecesQueued
   // pieces wait, so that the memory stays bounded.
-  detail::placePipelineThreads(p.printer.thread());  // each of the two on its own CPU
+  const detail::PipelinePlacement placement(p.printer.thread());  // each on its own CPU
   HexapodFkFileSummary summary;
   std::size_t chunk_rows = kFkPiece;
   FkInputChunk chunk = p.readAhead(chunk_rows).get();

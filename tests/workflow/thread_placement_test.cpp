@@ -1,5 +1,6 @@
 // src/workflow/thread_placement.hpp: the calling thread and the worker each on one CPU of the
-// allowed set, two different ones; nothing with PKM_PIN_THREADS=0 or with one CPU allowed.
+// allowed set, two different ones, the caller's CPUs back at the end; nothing with
+// PKM_PIN_THREADS=0 or with one CPU allowed.
 #include "workflow/thread_placement.hpp"
 
 #include <gtest/gtest.h>
@@ -53,7 +54,8 @@ int onlyCpu(const cpu_set_t& set) {
 TEST(ThreadPlacement, EachThreadOnItsOwnAllowedCpu) {
   Fixture f;
   unsetenv("PKM_PIN_THREADS");
-  const bool placed = pkm::workflow::detail::placePipelineThreads(f.worker());
+  const pkm::workflow::detail::PipelinePlacement placement(f.worker());
+  const bool placed = placement.placed();
   if (CPU_COUNT(&f.allowed()) < 2) {
     EXPECT_FALSE(placed);
     GTEST_SKIP() << "one CPU allowed: nothing to place";
@@ -71,7 +73,7 @@ TEST(ThreadPlacement, EachThreadOnItsOwnAllowedCpu) {
 TEST(ThreadPlacement, SwitchedOffByTheEnvironment) {
   Fixture f;
   setenv("PKM_PIN_THREADS", "0", 1);
-  EXPECT_FALSE(pkm::workflow::detail::placePipelineThreads(f.worker()));
+  EXPECT_FALSE(pkm::workflow::detail::PipelinePlacement(f.worker()).placed());
   unsetenv("PKM_PIN_THREADS");
   const cpu_set_t mine = affinityOf(pthread_self());
   const cpu_set_t theirs = affinityOf(f.worker().native_handle());
@@ -86,9 +88,18 @@ TEST(ThreadPlacement, NothingWithOneCpuAllowed) {
   CPU_ZERO(&one);
   CPU_SET(sched_getcpu(), &one);
   ASSERT_EQ(sched_setaffinity(0, sizeof one, &one), 0);  // this thread only; restored by f
-  EXPECT_FALSE(pkm::workflow::detail::placePipelineThreads(f.worker()));
+  EXPECT_FALSE(pkm::workflow::detail::PipelinePlacement(f.worker()).placed());
   const cpu_set_t theirs = affinityOf(f.worker().native_handle());
   EXPECT_TRUE(CPU_EQUAL(&theirs, &f.allowed()));
+}
+
+/// The calling thread has its CPUs back when the placement ends (a server's thread goes on).
+TEST(ThreadPlacement, GivesTheCallerItsCpusBack) {
+  Fixture f;
+  unsetenv("PKM_PIN_THREADS");
+  { const pkm::workflow::detail::PipelinePlacement placement(f.worker()); }
+  const cpu_set_t mine = affinityOf(pthread_self());
+  EXPECT_TRUE(CPU_EQUAL(&mine, &f.allowed()));
 }
 
 }  // namespace PKM_TEST_NS
