@@ -92,3 +92,6 @@ if d > 1e-6 * rr:
 PY
 printf '  scipy (np.loadtxt + least_squares lm, %s evaluations): median %.3f s -> pkm --fit lsc is %.1fx faster\n' \
   "$nfev" "$ref_med" "$(echo "$ref_med / $pkm_med" | bc -l)"
+# For benchmarks/summary.sh: job | pkm s | reference | reference s | target ratio.
+printf 'bench-row|analyze circle --fit lsc, %d noisy points|%s|scipy (loadtxt + least_squares)|%s|10\n' \
+  "$points" "$pkm_med" "$ref_med"

@@ -84,6 +84,9 @@ run_case() {
     END { printf "  genhexkins: %d not converged; max |pkm - genhexkins| %.3g in, %.3g deg\n", fail, maxp, maxa }'
   printf '  genhexkins (Debian genhexkins.so, same rows and seeding): median %.3f s -> pkm is %.1fx faster\n' \
     "$ref_med" "$(echo "$ref_med / $pkm_med" | bc -l)"
+  # For benchmarks/summary.sh: job | pkm s | reference | reference s | target ratio.
+  printf 'bench-row|hexapod fk, %d-row path, %s lengths|%s|genhexkins (LinuxCNC)|%s|20\n' \
+    "$rows" "$name" "$pkm_med" "$ref_med"
 }
 
 run_case exact "$work/exact.csv"

@@ -162,6 +162,9 @@ printf 'LinuxCNC rs274 (%s), whole process: %d moves in %.3f s (median of %d; ru
   "$rs274" "$ref" "$(echo "$rs_us / 1000000" | bc -l)" "$pairs" \
   "$(awk '{ printf "%s%.3f", (NR > 1 ? " " : ""), $1 / 1e6 }' "$work/t_rs274")"
 printf '  speed-up of pkm over rs274: %.1fx\n' "$(echo "$rs_us / $pkm_us" | bc -l)"
+# For benchmarks/summary.sh: job | pkm s | reference | reference s | target ratio.
+printf 'bench-row|gcode moves, %d-line CAM program|%s|rs274 (LinuxCNC), output-file argument|%s|20\n' \
+  "$lines" "$(echo "$pkm_us / 1000000" | bc -l)" "$(echo "$rs_us / 1000000" | bc -l)"
 
 # Same motions: rs274's canonical calls (XY plane, no offsets in this program, so its program
 # coordinates are machine coordinates) against pkm's rows, within rs274's printing precision.

@@ -49,4 +49,7 @@ awk -v c="$cat_med" -v r="$read_s" -v l="$loop_s" -v rows="$rows" -v n="$numbers
   printf "table read: %d rows, %d numbers, %.1f MB; cat %.4f s + from_chars loop %.4f s = limit %.4f s\n", rows, n, b / 1e6, c, l, c + l
   printf "  pkm io::NumberTable::read %.4f s (%.0f MB/s) = %.2f of the limit\n", r, b / 1e6 / r, r / (c + l)
 }'
+# For benchmarks/summary.sh: job | pkm s | reference | reference s | target ratio (none).
+printf 'bench-row|table read, %d rows (io::NumberTable)|%s|cat + one from_chars loop (the limit)|%s|-\n' \
+  "$rows" "$read_s" "$(echo "$cat_med + $loop_s" | bc -l)"
 echo "  machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"

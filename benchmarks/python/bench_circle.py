@@ -65,6 +65,9 @@ def main():
           f"-> {statistics.median(ref) / statistics.median(lsc):.1f}x scipy")
     print(f"  pkm.metrology.circle() (both circles, budgets): {statistics.median(both):.3f} s")
     print(f"  centre and radius agree within {d:.2g} mm" + (" (ok)" if d <= 1e-9 * 50 else " (DIFFER)"))
+    # For benchmarks/summary.sh: job | pkm s | reference | reference s | target ratio.
+    print(f"bench-row|pkm.metrology.circle in Python, 1M points in memory|{statistics.median(lsc)}"
+          f"|scipy least_squares|{statistics.median(ref)}|3")
     if d > 1e-9 * 50:
         sys.exit(1)
 

@@ -319,6 +319,7 @@ void exposeHexapod(py::module_& m) {
       [](const Hexapod& h) { return io::writeHexapodJson(*h.machine); },
       "The machine as a pkm JSON machine file (`pkm hexapod describe --json`).");
   defHexapodKinematics(cls);
+  defHexapodFkFile(cls);
 }
 
 }  // namespace pkm::python

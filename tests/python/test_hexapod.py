@@ -43,6 +43,35 @@ def test_ik_equals_cli(hexapod, run_cli):
     assert hexapod.ik(POSES[1]).shape == (6,)
 
 
+def test_ik_of_many_poses_on_the_cores_equals_one_by_one(hexapod):
+    rng = np.random.default_rng(3)
+    scale = np.where(np.arange(100_000)[:, None] % 2 == 0, 0.1, 3.0)  # within and beyond the limits
+    poses = hexapod.home + scale * rng.uniform(-1, 1, (100_000, 6)) * [80, 80, 60, 10, 10, 20]
+    readings, status = hexapod.ik(poses, status=True)
+    for i in range(0, len(poses), 4999):
+        np.testing.assert_array_equal(readings[i], hexapod.ik(poses[i]))
+        assert status[i] == hexapod.ik(poses[i:i + 1], status=True)[1][0]
+    assert (status != "ok").any() and (status == "ok").any()
+
+
+def test_fk_file_equals_cli(hexapod, run_cli, tmp_path):
+    lengths = hexapod.ik(random_path(hexapod))
+    src = tmp_path / "l.csv"
+    src.write_text(csv_text([f"l{i}" for i in range(6)], lengths))
+    out = tmp_path / "poses.csv"
+    summary = hexapod.fk_file(src, out)
+    assert summary == {"rows": len(lengths), "failed": 0}
+    cli = run_cli(["hexapod", "fk", "-m", "hexapod-default", "-l", str(src)]).stdout
+    assert out.read_text() == cli
+    with pytest.raises(ValueError, match="exists"):
+        hexapod.fk_file(src, out)
+    bad = tmp_path / "bad.csv"
+    bad.write_text("l0,l1,l2,l3,l4,l5\n1,2,3\n")
+    with pytest.raises(ValueError, match="bad.csv:2"):
+        hexapod.fk_file(bad, tmp_path / "none.csv")
+    assert not (tmp_path / "none.csv").exists()
+
+
 def test_ik_raise_on_failure(hexapod):
     with pytest.raises(pkm.LimitError, match="row 2: stroke"):
         hexapod.ik(POSES, raise_on_failure=True)
