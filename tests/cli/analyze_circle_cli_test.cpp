@@ -56,6 +56,29 @@ TEST_F(AnalyzeCircleCli, CircleJsonHasTheContractKeys) {
   EXPECT_THAT(t.out, HasSubstr("roundness MZC"));
 }
 
+/// Blank-separated text (a CMM's export) and several files: the same circle, contacts located in
+/// their own file and line.
+TEST_F(AnalyzeCircleCli, ReadsBlankSeparatedFilesAndConcatenates) {
+  std::string text = zoneCircle(10.0, -4.0, 25.0, 0.002);
+  const std::string csv = write("c.csv", text);
+  for (char& c : text) c = c == ',' ? ' ' : c;
+  const std::string txt = write("c.txt", "# exported\n" + text);
+  const auto a = pkm({"analyze", "circle", "--data", csv, "--json"});
+  const auto b = pkm({"analyze", "circle", "--data", txt, "--json"});
+  ASSERT_EQ(b.code, 0) << b.err;
+  const auto ja = nlohmann::json::parse(a.out), jb = nlohmann::json::parse(b.out);
+  EXPECT_EQ(ja["radius"], jb["radius"]);
+  EXPECT_EQ(ja["mzc_contacts"][0]["line"].get<int>() + 1, jb["mzc_contacts"][0]["line"].get<int>());
+  const auto both = pkm({"analyze", "circle", "--data", csv, txt, "--json"});
+  ASSERT_EQ(both.code, 0) << both.err;
+  const auto j = nlohmann::json::parse(both.out);
+  EXPECT_EQ(j["points"].get<int>(), 72);
+  EXPECT_NEAR(j["radius"].get<double>(), ja["radius"].get<double>(), kTolCli);
+  const auto bad = pkm({"analyze", "circle", "--data", write("bad.txt", "x y\n1 2\n3 4 5\n")});
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("bad.txt:3: expected 2 fields, found 3"));
+}
+
 TEST_F(AnalyzeCircleCli, FitChoosesTheCircle) {
   const std::string f = write("c.csv", zoneCircle(10.0, -4.0, 25.0, 0.002));
   const auto l = pkm({"analyze", "circle", "--data", f, "--fit", "lsc", "--json"});

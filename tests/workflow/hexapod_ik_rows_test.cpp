@@ -18,7 +18,7 @@ namespace PKM_TEST_NS {
 TEST(HexapodIkRows, EqualsTheOnePoseFunctionsOnEveryRow) {
   const kinematics::HexapodModel model = test::millingModel();
   std::mt19937 rng(7u);
-  const std::size_t rows = 200000;  // several chunks, on every core
+  const std::size_t rows = 70000;  // above kParallelMinItems: chunks on every core
   std::vector<double> poses(6 * rows);
   for (std::size_t i = 0; i < rows; ++i) {
     const kinematics::PoseRpy p = test::randomPose(rng, model.home, 300.0, 0.6);
