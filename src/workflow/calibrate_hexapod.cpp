@@ -343,10 +343,12 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   rep.worst = worstObservations(cal::withHexapodParameters(model, s.parameters), input, s);
   reportWorkspaceErrors(
       r, machine, result.calibrated.model, model, input, held, options, rep, control);
-  result.summary_json = io::hexapodCalibrationJson(rep);
   result.notices = hexapodResultNotices(machine, input, rep);
-  if (r.out.empty()) return result;
-  writeHexapodCalibration(result, r.out, r.force);
+  if (r.out.empty()) {
+    result.summary_json = io::hexapodCalibrationJson(rep);
+    return result;
+  }
+  writeHexapodCalibration(result, r.out, r.force);  // the summary with its output paths
   recordHexapodRun(r, machine, model, result);
   return result;
 }
@@ -359,12 +361,11 @@ void writeHexapodCalibration(HexapodCalibrationResult& result, const std::string
   rep.out_machine = paths.machine;
   rep.out_hal = paths.hal;
   rep.out_summary = paths.summary;
-  result.summary_json = io::hexapodCalibrationJson(rep);
   const io::Overwrite overwrite = force ? io::Overwrite::kAllow : io::Overwrite::kRefuse;
   // A model whose world frame is not the machine's goes into no controller: no setp blocks.
   const bool controller_blocks = !result.calibrated.world_frame_unregistered;
   if (!controller_blocks) rep.out_hal.clear();
-  result.summary_json = io::hexapodCalibrationJson(rep);
+  result.summary_json = io::hexapodCalibrationJson(rep);  // once, with the paths written
   io::writeFileAtomic(paths.machine, io::writeHexapodJson(result.calibrated), overwrite);
   if (controller_blocks) {
     io::writeFileAtomic(paths.hal, io::writeLinuxcncSetp(result.calibrated), overwrite);
