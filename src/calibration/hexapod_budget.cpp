@@ -13,6 +13,7 @@
 
 #include "detail/hexapod_errors.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/core/parallel.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 
@@ -258,21 +259,25 @@ HexapodParameterUncertainty hexapodParameterUncertainty(
   for (const int k : fit.free_indices) in.values(v++) = fit.parameters(k);
   for (Eigen::Index k = 0; k < (at.has_frame ? 6 : 0); ++k) in.values(v++) = 0.0;
   for (Eigen::Index k = 0; k < (at.backlash ? 6 : 0); ++k) in.values(v++) = (*at.backlash)(k);
-  if (calibration.parameter_prior_sigma > 0.0) {
+  const bool prior = calibration.parameter_prior_sigma > 0.0;
+  // The inverse (an SVD) and the sources' effects are independent: the SVD on a spare core.
+  auto inverse = alongside([&] {
     // With a prior every direction is determined (by the data or by the prior): the inverse of
     // the whole stacked system, its prior columns carrying the prior's own uncertainty.
-    const Eigen::MatrixXd all = identificationInverse(s.J, numericalRank(s.J), s.J.rows());
-    in.inverse = all.leftCols(s.observation_rows);
-    in.prior_inverse = all.rightCols(s.J.rows() - s.observation_rows);
-    in.prior = priorSource(calibration, initial.unit, in.prior_inverse.cols());
-  } else {
-    in.inverse = identificationInverse(s.J, fit.identifiability.rank, s.observation_rows);
-  }
+    return prior ? identificationInverse(s.J, numericalRank(s.J), s.J.rows())
+                 : identificationInverse(s.J, fit.identifiability.rank, s.observation_rows);
+  });
   in.residual_sigma = fit.sigma;
   in.residual_unit = unit;
   for (const detail::CoordinateSource& src :
        detail::hexapodCoordinateSources(data, sources, initial, fit.backlash.has_value()))
     in.sources.push_back({src.contributor, effectOf(at, data, s, refs, src)});
+  const Eigen::MatrixXd all = inverse.get();
+  in.inverse = all.leftCols(s.observation_rows);
+  if (prior) {
+    in.prior_inverse = all.rightCols(s.J.rows() - s.observation_rows);
+    in.prior = priorSource(calibration, initial.unit, in.prior_inverse.cols());
+  }
   in.coverage_factor = sources.coverage_factor;
 
   HexapodParameterUncertainty out;
