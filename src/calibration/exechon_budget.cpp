@@ -45,7 +45,7 @@ std::vector<ObservationErrorSource> pointSources(const ExechonCalibrationData& d
                        fmt::format("specification a = {:g} mm, b = {:g} mm/m, per coordinate",
                                    t.accuracy_mm,
                                    t.accuracy_mm_per_m)),
-                   E});
+                   E.sparseView()});
   }
   const double setup = sources.environment.setup_repeatability_mm * per_mm;
   if (setup > 0.0)
@@ -54,7 +54,7 @@ std::vector<ObservationErrorSource> pointSources(const ExechonCalibrationData& d
                                            u,
                                            metrology::Distribution::kNormal,
                                            "environment.setup_repeatability_mm, per coordinate"),
-                   Eigen::MatrixXd::Identity(3 * n, 3 * n)});
+                   Eigen::MatrixXd::Identity(3 * n, 3 * n).sparseView()});
   return out;
 }
 
@@ -117,7 +117,7 @@ ExechonParameterUncertainty exechonParameterUncertainty(
       detail::exechonTargetLegJacobian(estimated, data, calibration.fk);
   for (const detail::LegReadingSource& s :
        detail::exechonLegReadingSources(estimated, data, sources, calibration.fk))
-    in.sources.push_back({s.contributor, detail::legEffect(J_target_legs, s)});
+    in.sources.push_back({s.contributor, detail::legEffect(J_target_legs, s).sparseView()});
   in.coverage_factor = sources.coverage_factor;
 
   ExechonParameterUncertainty out;

@@ -6,12 +6,14 @@
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "detail/hexapod_errors.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/core/parallel.hpp"
 #include "pkm/geometry/so3.hpp"
 #include "pkm/kinematics/hexapod_ik.hpp"
 
@@ -100,40 +102,81 @@ Stacked stackUnknowns(const AtEstimate& at,
   return s;
 }
 
+/// The first block (in observations order) of each kind of observation and of each constrained
+/// set: the block of a coordinate's own observation without a search.
+struct BlockIndex {
+  std::size_t points = 0, distances = 0;
+  std::vector<std::size_t> gauge_sets;
+  explicit BlockIndex(const HexapodCalibrationData& data) : points(data.poses.size()) {
+    std::size_t next = points + data.points.size();
+    for (const ConstrainedMotionData& c : data.constrained) {
+      gauge_sets.push_back(next);
+      next += c.stations.size();
+    }
+    distances = next;
+  }
+  /// The blocks `c` touches: its own observation's, or every station of its set (a reference
+  /// gauge or reading), as [first, last).
+  [[nodiscard]] std::pair<std::size_t, std::size_t> touched(
+      const HexapodCalibrationData& data, const detail::MeasuredCoordinate& c) const {
+    switch (c.ref.kind) {
+      case ObservationRef::Kind::kPose:
+        return {c.ref.index, c.ref.index + 1};
+      case ObservationRef::Kind::kPoint:
+        return {points + c.ref.index, points + c.ref.index + 1};
+      case ObservationRef::Kind::kGauge: {
+        const std::size_t first = gauge_sets[c.ref.set];
+        if (detail::actsOnWholeSet(c))
+          return {first, first + data.constrained[c.ref.set].stations.size()};
+        return {first + c.ref.index, first + c.ref.index + 1};
+      }
+      case ObservationRef::Kind::kDistance:
+        return {distances + c.ref.index, distances + c.ref.index + 1};
+    }
+    return {0, 0};
+  }
+};
+
 /// The effect matrix of one source: per coordinate, the central difference of the residual blocks
 /// it touches (a reference gauge touches every station of its set), scaled by u/u_ref; the
-/// coordinates of one group add into one column.
-Eigen::MatrixXd effectOf(const AtEstimate& at,
-                         const HexapodCalibrationData& data,
-                         const Stacked& s,
-                         const std::vector<ObservationRef>& refs,
-                         const detail::CoordinateSource& source) {
+/// coordinates of one group add into one column. Sparse: a coordinate touches only its own
+/// observation's rows (or its constrained set's); exact zeros are not stored.
+Eigen::SparseMatrix<double> effectOf(const AtEstimate& at,
+                                     const HexapodCalibrationData& data,
+                                     const Stacked& s,
+                                     const std::vector<ObservationRef>& refs,
+                                     const detail::CoordinateSource& source) {
   const double u_ref = source.contributor.standardUncertainty();
   const detail::SourceColumns columns = detail::sourceColumns(source);
-  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(s.observation_rows, columns.count);
+  const BlockIndex blocks(data);
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(source.coordinates.size() * 6);
   kinematics::HexapodData work(at.model);
+  // One copy of the data: each perturbation is undone by restoring the observation from `data`.
   HexapodCalibrationData d = data;
   for (std::size_t j = 0; j < source.coordinates.size(); ++j) {
     const detail::MeasuredCoordinate& c = source.coordinates[j];
     const bool rotation =
         c.ref.kind == ObservationRef::Kind::kPose && c.coordinate >= 3 && c.coordinate < 6;
     const double h = rotation ? 1e-6 : 1e-6 * at.model.characteristicLength();
-    for (std::size_t b = 0; b < refs.size(); ++b) {
+    const double scale = u_ref > 0.0 ? c.u / u_ref : 0.0;
+    const auto [first, last] = blocks.touched(data, c);
+    for (std::size_t b = first; b < last; ++b) {
       const ObservationRef& ref = refs[b];
-      const bool touched = ref.kind == c.ref.kind && ref.set == c.ref.set &&
-                           (ref.index == c.ref.index || detail::actsOnWholeSet(c));
-      if (!touched) continue;
-      detail::MeasuredCoordinate plus = c;
-      d = data;
-      detail::perturbMeasurement(d, plus, h);
+      detail::perturbMeasurement(d, c, h);
       const Eigen::VectorXd rp = blockResidual(at, work, d, ref);
-      d = data;
-      detail::perturbMeasurement(d, plus, -h);
+      detail::restoreMeasurement(d, data, c);
+      detail::perturbMeasurement(d, c, -h);
       const Eigen::VectorXd rm = blockResidual(at, work, d, ref);
-      E.block(s.row_offset[b], columns.column[j], ref.rows(), 1) +=
-          (rp - rm) / (2.0 * h) * (u_ref > 0.0 ? c.u / u_ref : 0.0);
+      detail::restoreMeasurement(d, data, c);
+      for (Eigen::Index k = 0; k < ref.rows(); ++k) {
+        const double v = (rp(k) - rm(k)) / (2.0 * h) * scale;
+        if (v != 0.0) entries.emplace_back(s.row_offset[b] + k, columns.column[j], v);
+      }
     }
   }
+  Eigen::SparseMatrix<double> E(s.observation_rows, columns.count);
+  E.setFromTriplets(entries.begin(), entries.end());  // a group's coordinates add up
   return E;
 }
 
@@ -168,8 +211,9 @@ ObservationErrorSource priorSource(const HexapodCalibrationOptions& calibration,
       calibration.parameter_prior_sigma,
       toString(unit));
   // Prior row k is w·(θ_k − θ₀_k), w = σ_r/σ_prior: an error e in θ₀_k changes it by −w·e.
-  prior.effect = Eigen::MatrixXd::Identity(p, p) *
-                 (calibration.measurement_sigma / calibration.parameter_prior_sigma);
+  prior.effect.resize(p, p);
+  prior.effect.setIdentity();
+  prior.effect *= calibration.measurement_sigma / calibration.parameter_prior_sigma;
   return prior;
 }
 
@@ -215,21 +259,25 @@ HexapodParameterUncertainty hexapodParameterUncertainty(
   for (const int k : fit.free_indices) in.values(v++) = fit.parameters(k);
   for (Eigen::Index k = 0; k < (at.has_frame ? 6 : 0); ++k) in.values(v++) = 0.0;
   for (Eigen::Index k = 0; k < (at.backlash ? 6 : 0); ++k) in.values(v++) = (*at.backlash)(k);
-  if (calibration.parameter_prior_sigma > 0.0) {
+  const bool prior = calibration.parameter_prior_sigma > 0.0;
+  // The inverse (an SVD) and the sources' effects are independent: the SVD on a spare core.
+  auto inverse = alongside([&] {
     // With a prior every direction is determined (by the data or by the prior): the inverse of
     // the whole stacked system, its prior columns carrying the prior's own uncertainty.
-    const Eigen::MatrixXd all = identificationInverse(s.J, numericalRank(s.J), s.J.rows());
-    in.inverse = all.leftCols(s.observation_rows);
-    in.prior_inverse = all.rightCols(s.J.rows() - s.observation_rows);
-    in.prior = priorSource(calibration, initial.unit, in.prior_inverse.cols());
-  } else {
-    in.inverse = identificationInverse(s.J, fit.identifiability.rank, s.observation_rows);
-  }
+    return prior ? identificationInverse(s.J, numericalRank(s.J), s.J.rows())
+                 : identificationInverse(s.J, fit.identifiability.rank, s.observation_rows);
+  });
   in.residual_sigma = fit.sigma;
   in.residual_unit = unit;
   for (const detail::CoordinateSource& src :
        detail::hexapodCoordinateSources(data, sources, initial, fit.backlash.has_value()))
     in.sources.push_back({src.contributor, effectOf(at, data, s, refs, src)});
+  const Eigen::MatrixXd all = inverse.get();
+  in.inverse = all.leftCols(s.observation_rows);
+  if (prior) {
+    in.prior_inverse = all.rightCols(s.J.rows() - s.observation_rows);
+    in.prior = priorSource(calibration, initial.unit, in.prior_inverse.cols());
+  }
   in.coverage_factor = sources.coverage_factor;
 
   HexapodParameterUncertainty out;

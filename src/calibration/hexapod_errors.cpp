@@ -297,4 +297,28 @@ void perturbMeasurement(HexapodCalibrationData& data, const MeasuredCoordinate& 
   }
 }
 
+void restoreMeasurement(HexapodCalibrationData& data,
+                        const HexapodCalibrationData& original,
+                        const MeasuredCoordinate& c) {
+  const std::size_t i = c.ref.index;
+  switch (c.ref.kind) {
+    case ObservationRef::Kind::kPose:
+      data.poses[i] = original.poses[i];
+      return;
+    case ObservationRef::Kind::kPoint:
+      data.points[i] = original.points[i];
+      return;
+    case ObservationRef::Kind::kGauge: {
+      ConstrainedMotionData& set = data.constrained[c.ref.set];
+      const ConstrainedMotionData& from = original.constrained[c.ref.set];
+      set.reference = from.reference;
+      if (i < set.stations.size()) set.stations[i] = from.stations[i];
+      return;
+    }
+    case ObservationRef::Kind::kDistance:
+      data.distances[i] = original.distances[i];
+      return;
+  }
+}
+
 }  // namespace pkm::calibration::detail

@@ -20,16 +20,15 @@ Eigen::MatrixXd identificationInverse(const Eigen::MatrixXd& J,
             "identification inverse: {} observation rows of a {}-row Jacobian",
             observation_rows,
             J.rows());
-  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(J.cols(), observation_rows);
-  if (J.size() == 0) return out;
+  if (J.size() == 0) return Eigen::MatrixXd::Zero(J.cols(), observation_rows);
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  const Eigen::Index r = std::min<Eigen::Index>(rank, svd.singularValues().size());
-  for (Eigen::Index k = 0; k < r; ++k) {
-    const double s = svd.singularValues()(k);
-    if (s <= 0.0) break;
-    out += (svd.matrixV().col(k) / s) * svd.matrixU().col(k).head(observation_rows).transpose();
-  }
-  return out;
+  const Eigen::VectorXd& s = svd.singularValues();
+  Eigen::Index r = 0;  // the leading singular values used: at most `rank`, all > 0
+  while (r < std::min<Eigen::Index>(rank, s.size()) && s(r) > 0.0) ++r;
+  // Σ_k v_k·u_kᵀ/s_k over k < r, as one product (V_r·Σ_r⁻¹)·U_rᵀ of the observation rows.
+  const Eigen::MatrixXd V_scaled =
+      svd.matrixV().leftCols(r) * s.head(r).cwiseInverse().asDiagonal();
+  return V_scaled * svd.matrixU().topLeftCorner(observation_rows, r).transpose();
 }
 
 bool ParameterBudgetInput::isValid(std::string* why) const {

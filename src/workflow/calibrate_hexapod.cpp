@@ -15,6 +15,7 @@
 #include "pkm/calibration/holdout.hpp"
 #include "pkm/calibration/uncertainty.hpp"
 #include "pkm/core/error.hpp"
+#include "pkm/core/parallel.hpp"
 #include "pkm/core/units.hpp"
 #include "pkm/io/atomic_file.hpp"
 #include "pkm/io/calibration_files.hpp"
@@ -222,11 +223,12 @@ io::HexapodMachine calibratedHexapodMachine(const io::HexapodMachine& machine,
   return calibrated;
 }
 
-/// The TCP error over the workspace of machine.model (rep.workspace_poses, the registration's
-/// tcp_U): the nominal controller on the `calibrated` machine (rep.tcp_before, what calibration
-/// removes), with --monte-carlo the spread the calibration itself leaves (rep.monte_carlo), and
-/// the uncertainty budgets (rep.uncertainty). Reads rep.fit.
+/// The TCP error over the `workspace` poses of machine.model (workspacePoses; rep.workspace_poses,
+/// the registration's tcp_U): the nominal controller on the `calibrated` machine (rep.tcp_before,
+/// what calibration removes), with --monte-carlo the spread the calibration itself leaves
+/// (rep.monte_carlo), and the uncertainty budgets (rep.uncertainty). Reads rep.fit.
 void reportWorkspaceErrors(const HexapodCalibrationRequest& r,
+                           const std::vector<kinematics::PoseRpy>& workspace,
                            const io::HexapodMachine& machine,
                            const kinematics::HexapodModel& calibrated,
                            const kinematics::HexapodModel& model,
@@ -236,7 +238,6 @@ void reportWorkspaceErrors(const HexapodCalibrationRequest& r,
                            io::HexapodCalibrationReport& rep,
                            const RunControl& control) {
   const cal::HexapodCalibrationSummary& s = rep.fit;
-  const std::vector<kinematics::PoseRpy> workspace = workspacePoses(machine.model);
   rep.workspace_poses = static_cast<int>(workspace.size());
   if (rep.registration)
     for (const kinematics::PoseRpy& p : workspace)
@@ -310,6 +311,8 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   const io::HexapodMachine machine = r.loaded ? *r.loaded : io::loadHexapodMachine(r.machine, hal);
   control.note(machine.notices);
   if (!r.out.empty()) checkOutputs(calibrationOutputs(r.out), r.force);
+  // The workspace poses depend on the machine alone: sampled on a spare core during the fit.
+  auto workspace = alongside([&machine] { return workspacePoses(machine.model); }, r.threads != 1);
   io::CalibrationInput input, held;
   readHexapodInputs(r, input, held, control);
 
@@ -341,12 +344,22 @@ HexapodCalibrationResult calibrateHexapod(const HexapodCalibrationRequest& r,
   if (!held.data.poses.empty() || !held.data.points.empty())
     rep.holdout = holdout(machine, result.calibrated, model, input, held, s, use_frame, target);
   rep.worst = worstObservations(cal::withHexapodParameters(model, s.parameters), input, s);
-  reportWorkspaceErrors(
-      r, machine, result.calibrated.model, model, input, held, options, rep, control);
-  result.summary_json = io::hexapodCalibrationJson(rep);
+  reportWorkspaceErrors(r,
+                        workspace.get(),
+                        machine,
+                        result.calibrated.model,
+                        model,
+                        input,
+                        held,
+                        options,
+                        rep,
+                        control);
   result.notices = hexapodResultNotices(machine, input, rep);
-  if (r.out.empty()) return result;
-  writeHexapodCalibration(result, r.out, r.force);
+  if (r.out.empty()) {
+    result.summary_json = io::hexapodCalibrationJson(rep);
+    return result;
+  }
+  writeHexapodCalibration(result, r.out, r.force);  // the summary with its output paths
   recordHexapodRun(r, machine, model, result);
   return result;
 }
@@ -359,12 +372,11 @@ void writeHexapodCalibration(HexapodCalibrationResult& result, const std::string
   rep.out_machine = paths.machine;
   rep.out_hal = paths.hal;
   rep.out_summary = paths.summary;
-  result.summary_json = io::hexapodCalibrationJson(rep);
   const io::Overwrite overwrite = force ? io::Overwrite::kAllow : io::Overwrite::kRefuse;
   // A model whose world frame is not the machine's goes into no controller: no setp blocks.
   const bool controller_blocks = !result.calibrated.world_frame_unregistered;
   if (!controller_blocks) rep.out_hal.clear();
-  result.summary_json = io::hexapodCalibrationJson(rep);
+  result.summary_json = io::hexapodCalibrationJson(rep);  // once, with the paths written
   io::writeFileAtomic(paths.machine, io::writeHexapodJson(result.calibrated), overwrite);
   if (controller_blocks) {
     io::writeFileAtomic(paths.hal, io::writeLinuxcncSetp(result.calibrated), overwrite);

@@ -54,7 +54,7 @@ TEST(ParameterBudgets, LineFitByHand) {
   in.values = Eigen::Vector2d(1.0, 0.5);
   in.inverse = identificationInverse(lineJacobian(), 2, 3);
   in.residual_sigma = 0.02;
-  in.sources.push_back({rectangular(0.03), Eigen::MatrixXd::Identity(3, 3)});
+  in.sources.push_back({rectangular(0.03), Eigen::MatrixXd::Identity(3, 3).sparseView()});
   const ParameterUncertainty p = parameterBudgets(in);
   ASSERT_EQ(p.budgets.size(), 2u);
   EXPECT_NEAR(p.instrument_sigma, 0.017320508, 1e-9);
@@ -82,7 +82,7 @@ TEST(ParameterBudgets, ScatterBelowTheInstrumentAddsNoTypeAContributor) {
   in.values = Eigen::Vector2d::Zero();
   in.inverse = identificationInverse(lineJacobian(), 2, 3);
   in.residual_sigma = 0.01;  // below the instrument's 0.0173
-  in.sources.push_back({rectangular(0.03), Eigen::MatrixXd::Identity(3, 3)});
+  in.sources.push_back({rectangular(0.03), Eigen::MatrixXd::Identity(3, 3).sparseView()});
   const ParameterUncertainty p = parameterBudgets(in);
   EXPECT_EQ(p.fit_sigma, 0.0);
   EXPECT_EQ(p.budgets[0].contributors.size(), 1u);  // zero contributions are not listed
@@ -99,7 +99,7 @@ TEST(ParameterBudgets, RejectsInconsistentInput) {
   EXPECT_NE(why.find("must agree"), std::string::npos);
   EXPECT_THROW((void)parameterBudgets(in), InvalidArgument);
   in.inverse = Eigen::MatrixXd::Zero(1, 3);
-  in.sources.push_back({rectangular(1.0), Eigen::MatrixXd::Identity(2, 2)});
+  in.sources.push_back({rectangular(1.0), Eigen::MatrixXd::Identity(2, 2).sparseView()});
   EXPECT_FALSE(in.isValid(&why));
   EXPECT_NE(why.find("instrument"), std::string::npos);
   in.sources.clear();

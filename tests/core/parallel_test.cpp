@@ -40,5 +40,30 @@ TEST(ParallelTest, TheLowestChunksExceptionWins) {
   EXPECT_EQ(ran.load(), 4);  // every chunk still ran
 }
 
+TEST(ParallelTest, AlongsideGivesTheResultOrTheExceptionEitherWay) {
+  for (const bool allowed : {true, false}) {
+    std::vector<int> out;
+    auto task = alongside(
+        [&out] {
+          for (int i = 0; i < 1000; ++i) out.push_back(i);
+          return static_cast<int>(out.size());
+        },
+        allowed);
+    EXPECT_EQ(task.get(), 1000);
+    EXPECT_EQ(out.back(), 999);
+    auto failing = alongside([]() -> int { throw std::runtime_error("task"); }, allowed);
+    EXPECT_THROW((void)failing.get(), std::runtime_error);
+  }
+}
+
+TEST(ParallelTest, AlongsideNotAllowedRunsOnTheCallersThreadWhenAskedFor) {
+  const std::thread::id caller = std::this_thread::get_id();
+  std::thread::id ran;
+  auto task = alongside([&ran] { ran = std::this_thread::get_id(); }, false);
+  EXPECT_EQ(ran, std::thread::id{});  // not started yet
+  task.get();
+  EXPECT_EQ(ran, caller);
+}
+
 }  // namespace PKM_TEST_NS
 }  // namespace pkm

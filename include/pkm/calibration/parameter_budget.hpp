@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <string>
 #include <vector>
 
@@ -25,8 +26,11 @@ struct ObservationErrorSource {
   /// m × q: column j is the change of the m stacked residuals caused by the j-th independent
   /// error of this source at one reference standard uncertainty u_ref =
   /// contributor.standardUncertainty() (∂r/∂e_j · u(e_j)/u_ref). The q errors are independent
-  /// and share the contributor's distribution; u(e_j) may differ (a tracker's a + b·L).
-  Eigen::MatrixXd effect;
+  /// and share the contributor's distribution; u(e_j) may differ (a tracker's a + b·L). Sparse:
+  /// an error moves only the residuals of its own observation (or of its constrained set), so a
+  /// source of one error per reading is m × m with a few entries per column (only the stored
+  /// entries are multiplied).
+  Eigen::SparseMatrix<double> effect;
 };
 
 /// The least-squares inverse of an identification Jacobian restricted to its `rank` largest

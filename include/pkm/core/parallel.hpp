@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <exception>
+#include <future>
 #include <thread>
 #include <vector>
 
@@ -50,6 +51,17 @@ void forEachChunk(std::size_t n, std::size_t chunks, Fn&& fn) {
   for (std::thread& th : pool) th.join();
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);
+}
+
+/// Starts fn() on another thread to run alongside the caller's own work, when the machine has more
+/// than one hardware thread and `allowed`; otherwise fn runs on the caller's thread when the
+/// result is asked for (get()). For a few independent tasks of a millisecond or more (a thread
+/// costs tens of microseconds to start); fn's exception is rethrown by get(). The future's
+/// destructor waits for a started task.
+template <typename Fn>
+[[nodiscard]] auto alongside(Fn&& fn, bool allowed = true) {
+  const bool spare = allowed && std::thread::hardware_concurrency() > 1;
+  return std::async(spare ? std::launch::async : std::launch::deferred, std::forward<Fn>(fn));
 }
 
 }  // namespace pkm

@@ -99,6 +99,13 @@ struct SourceColumns {
 /// Adds `delta` to the measured coordinate `c` of `data`.
 void perturbMeasurement(HexapodCalibrationData& data, const MeasuredCoordinate& c, double delta);
 
+/// Undoes perturbMeasurement of `c` on `data`: copies the observation `c` belongs to (for a
+/// gauge station also its set's reference station) back from `original`, which `data` was
+/// copied from.
+void restoreMeasurement(HexapodCalibrationData& data,
+                        const HexapodCalibrationData& original,
+                        const MeasuredCoordinate& c);
+
 /// One draw of an error of `distribution` with standard uncertainty `u` from a uniform variate
 /// source `uniform` (values in (0, 1)) and a normal variate source `normal`.
 template <class Uniform, class Normal>
