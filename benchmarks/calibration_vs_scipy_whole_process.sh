@@ -177,3 +177,6 @@ printf '  scipy (np.loadtxt + least_squares %s, analytic Jacobian; lm %.3f s, tr
   "$method" "${pick[lm]}" "${pick[trf]}" "$ref_med" "$(min_max "${ref_times[@]}")"
 printf '  -> pkm is %.1fx faster (load average after: %s)\n' \
   "$(echo "$ref_med / $pkm_med" | bc -l)" "$(cut -d' ' -f1-3 /proc/loadavg)"
+# For benchmarks/summary.sh: job | pkm s | reference | reference s | target ratio.
+printf 'bench-row|calibrate hexapod, 80 tracker poses, 42 parameters|%s|scipy (loadtxt + least_squares %s, analytic Jacobian)|%s|50\n' \
+  "$pkm_med" "$method" "$ref_med"

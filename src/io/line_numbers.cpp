@@ -5,12 +5,6 @@
 
 namespace pkm::io {
 
-void LineNumbers::add(std::size_t line) {
-  if (runs_.empty() || runs_.back().first_line + (size_ - runs_.back().first_row) != line)
-    runs_.push_back({size_, line});
-  ++size_;
-}
-
 void LineNumbers::append(const LineNumbers& other, std::size_t line_offset) {
   for (std::size_t i = 0; i < other.runs_.size(); ++i) {
     const Run& run = other.runs_[i];

@@ -44,7 +44,11 @@ class NumberTableParser {
         p = nl == nullptr ? end : static_cast<const char*>(nl) + 1;
         continue;
       }
-      p = t_.comma_ ? readCommaRow(p, end, out) : readBlankRow(p, end, out);
+      if (const char* next = plain_ ? readPlainRow(p, end, out) : nullptr; next != nullptr) {
+        p = next;
+      } else {
+        p = t_.comma_ ? readCommaRow(p, end, out) : readBlankRow(p, end, out);
+      }
       if (p == nullptr) {
         c.error_line = line;
         c.error = std::move(error_);
@@ -56,7 +60,10 @@ class NumberTableParser {
     }
   }
 
-  void setWidth(std::size_t width) { slots_wanted_ = width; }
+  void setWidth(std::size_t width) {
+    slots_wanted_ = width;
+    plain_ = t_.comma_ && std::find(slots_.begin(), slots_.end(), -1) == slots_.end();
+  }
 
  private:
   int slotOf(std::size_t field) const { return field < slots_.size() ? slots_[field] : -1; }
@@ -79,6 +86,23 @@ class NumberTableParser {
       return nullptr;
     }
     return e;
+  }
+
+  /// The common row of a CSV file whose every column is wanted: plain numbers (the fast path's)
+  /// and single commas, nothing else; returns the next line's start, or nullptr (values partly
+  /// written) for anything else, which the general reading then reads or names.
+  const char* readPlainRow(const char* p, const char* end, double* out) const {
+    const std::size_t last = slots_.size() - 1;
+    for (std::size_t f = 0;; ++f) {
+      const char* q = detail::scanSimpleDecimal(p, end, out[slots_[f]]);
+      if (q == nullptr || q == end) return f == last ? q : nullptr;
+      if (f == last) {
+        if (*q == '\n') return q + 1;
+        return *q == '\r' && q + 1 < end && q[1] == '\n' ? q + 2 : nullptr;
+      }
+      if (*q != ',') return nullptr;
+      p = q + 1;
+    }
   }
 
   const char* readCommaRow(const char* p, const char* end, double* out) const {
@@ -126,6 +150,7 @@ class NumberTableParser {
   const NumberTable& t_;
   std::span<const int> slots_;
   std::size_t slots_wanted_ = 0;
+  bool plain_ = false;  ///< comma-separated, every column wanted: readPlainRow first
   mutable std::string error_;
 };
 

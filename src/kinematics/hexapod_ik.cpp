@@ -15,7 +15,9 @@ HexapodData::HexapodData(const HexapodModel& /*model*/) {}
 const StrutVector& inverseKinematics(const HexapodModel& model,
                                      HexapodData& data,
                                      const PoseRpy& pose) {
-  inverseKinematics(model, data, pose.position, geometry::rotationFromRpy(pose.rpy));
+  // The legs alone: the matrix overload's angles (three atan2, a quarter of an IK) would be
+  // overwritten by the pose's own.
+  detail::computeLegs(model, data, pose.position, geometry::rotationFromRpy(pose.rpy));
   data.pose = pose;
   return data.readings;
 }

@@ -39,12 +39,20 @@ struct Frame {
 
 Frame conditioningFrame(std::span<const Point2> points) {
   const auto n = static_cast<double>(points.size());
+  // One pass: the sums of q and |q|² with q = p − p₀ (the first point: shifted sums keep the
+  // centroid's and the spread's digits, which raw sums of large coordinates lose). A point that is
+  // not finite makes them not finite; requirePoints then names it.
+  const Point2 p0 = points.front();
+  const Eigen::Vector3d s = sumOver<3>(points, [&](const Point2& p) {
+    const Point2 q = p - p0;
+    return Eigen::Vector3d(q.x(), q.y(), q.squaredNorm());
+  });
+  if (!s.allFinite()) requirePoints(points, 3, "circle fit");
+  const Point2 mean = s.head<2>() / n;
   Frame frame;
-  frame.origin = sumOver<2>(points, [](const Point2& p) { return p; }) / n;
-  const double sq = sumOver<1>(points, [&](const Point2& p) {
-    return Eigen::Matrix<double, 1, 1>((p - frame.origin).squaredNorm());
-  })(0);
-  frame.scale = std::sqrt(sq / n);
+  frame.origin = p0 + mean;
+  // Σ|p − origin|² = Σ|q|² − n·|mean|², never below 0 in exact arithmetic.
+  frame.scale = std::sqrt(std::max(s(2) / n - mean.squaredNorm(), 0.0));
   PKM_CHECK(frame.scale > 0.0 && std::isfinite(frame.scale), "circle fit: the points all coincide");
   return frame;
 }
@@ -91,23 +99,52 @@ Linearisation linearise(std::span<const Point2> points,
   const double ox = frame.origin.x() + frame.scale * params(0);
   const double oy = frame.origin.y() + frame.scale * params(1);
   const double radius = params(2);
-  // Σ of e², c², cs, s², c, s, ce, se, e with (c, s) the unit direction from the centre.
-  const Eigen::Matrix<double, 9, 1> t = sumOver<9>(points, [&](const Point2& p) {
-    const double dx = (p.x() - ox) * inv_scale;
-    const double dy = (p.y() - oy) * inv_scale;
-    const double d = std::sqrt(dx * dx + dy * dy);
-    const double e = d - radius;
-    const double inv_d = d > 0.0 ? 1.0 / d : 0.0;
-    const double c = dx * inv_d;
-    const double s = dy * inv_d;
-    Eigen::Matrix<double, 9, 1> v;
-    v << e * e, c * c, c * s, s * s, c, s, c * e, s * e, e;
-    return v;
-  });
+  // Σ of e², c², cs, s², c, s, ce, se, e with (c, s) the unit direction from the centre; two
+  // points at a time (packed square roots and divisions, which bound this loop), in two lanes
+  // added at the end of each chunk.
+  using A2 = Eigen::Array2d;
+  using Sums = std::array<double, 9>;
+  std::array<Sums, kParallelChunks> part{};
+  forEachChunk(
+      points.size(), kParallelChunks, [&](std::size_t chunk, std::size_t b, std::size_t end) {
+        std::array<A2, 9> acc;
+        acc.fill(A2::Zero());
+        const auto add = [&](const A2& dx, const A2& dy, const A2& mask) {
+          const A2 d = (dx * dx + dy * dy).sqrt();
+          const A2 e = (d - radius) * mask;
+          const A2 inv_d = (d > 0.0).select(d.inverse(), 0.0) * mask;
+          const A2 c = dx * inv_d;
+          const A2 sn = dy * inv_d;
+          acc[0] += e * e;
+          acc[1] += c * c;
+          acc[2] += c * sn;
+          acc[3] += sn * sn;
+          acc[4] += c;
+          acc[5] += sn;
+          acc[6] += c * e;
+          acc[7] += sn * e;
+          acc[8] += e;
+        };
+        std::size_t k = b;
+        for (; k + 1 < end; k += 2) {
+          const A2 dx((points[k].x() - ox) * inv_scale, (points[k + 1].x() - ox) * inv_scale);
+          const A2 dy((points[k].y() - oy) * inv_scale, (points[k + 1].y() - oy) * inv_scale);
+          add(dx, dy, A2::Ones());
+        }
+        if (k < end) {  // an odd point: the second lane adds nothing
+          const A2 dx((points[k].x() - ox) * inv_scale, 0.0);
+          const A2 dy((points[k].y() - oy) * inv_scale, 0.0);
+          add(dx, dy, A2(1.0, 0.0));
+        }
+        for (std::size_t i = 0; i < 9; ++i) part[chunk][i] = acc[i].sum();
+      });
+  Sums t{};
+  for (const Sums& p : part)
+    for (std::size_t i = 0; i < 9; ++i) t[i] += p[i];
   Linearisation lin;
-  lin.cost = t(0);
-  lin.jtj << t(1), t(2), t(4), t(2), t(3), t(5), t(4), t(5), static_cast<double>(points.size());
-  lin.jte << -t(6), -t(7), -t(8);
+  lin.cost = t[0];
+  lin.jtj << t[1], t[2], t[4], t[2], t[3], t[5], t[4], t[5], static_cast<double>(points.size());
+  lin.jte << -t[6], -t[7], -t[8];
   return lin;
 }
 
@@ -143,7 +180,7 @@ bool CircleFitOptions::isValid(std::string* why) const {
 CircleFit fitCircle(std::span<const Point2> points, const CircleFitOptions& options) {
   std::string why;
   PKM_CHECK(options.isValid(&why), "circle fit: {}", why);
-  requirePoints(points, 3, "circle fit");
+  requireCount(points.size(), 3, "circle fit");  // finiteness: conditioningFrame
   const Frame frame = conditioningFrame(points);
   const Circle start = kasaConditioned(points, frame);
   Eigen::Vector3d params(start.center.x(), start.center.y(), start.radius);

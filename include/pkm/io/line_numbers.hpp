@@ -12,7 +12,11 @@ namespace pkm::io {
 class LineNumbers {
  public:
   /// Appends the next row's 1-based line.
-  void add(std::size_t line);
+  void add(std::size_t line) {
+    if (runs_.empty() || runs_.back().first_line + (size_ - runs_.back().first_row) != line)
+      runs_.push_back({size_, line});
+    ++size_;
+  }
   /// Appends every row of `other`, in order, its lines shifted by `line_offset`.
   void append(const LineNumbers& other, std::size_t line_offset = 0);
   /// Number of rows.
