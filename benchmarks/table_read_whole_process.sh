@@ -23,17 +23,7 @@ if ! "$python" -c 'import numpy' 2>/dev/null; then
 fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-"$python" - "$work/ring.csv" "$points" <<'PY'
-import sys
-import numpy as np
-rng = np.random.default_rng(20261126)
-n = int(sys.argv[2])
-t = rng.uniform(0.0, 2.0 * np.pi, n)
-r = 50.0 + 0.005 * np.cos(3 * t + 0.4) + 0.002 * np.sin(5 * t) + rng.normal(0.0, 0.001, n)
-with open(sys.argv[1], "w") as f:
-    f.write("x,y\n")
-    np.savetxt(f, np.c_[12.3 + r * np.cos(t), -4.56 + r * np.sin(t)], fmt="%.6f", delimiter=",")
-PY
+"$python" "$(dirname "$0")/python/make_ring.py" "$work/ring.csv" "$points"
 export LC_ALL=C
 cat "$work/ring.csv" > /dev/null  # in the page cache, as for every reader timed here
 cat_times=()
