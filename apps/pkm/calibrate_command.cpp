@@ -102,7 +102,10 @@ void addCalibrateNoiseOptions(CLI::App& hex, HexapodCalibrateArgs& args) {
       args.request.sigma_gauge,
       "Monte Carlo: dial-gauge noise, machine unit (default: the fitted residual sigma)");
   hex.add_option(
-      "--threads", args.request.threads, "Monte Carlo worker threads (default: all cores)");
+      "--threads",
+      args.request.threads,
+      "worker threads of the Monte Carlo trials and of the workspace sampling beside the fit "
+      "(default: all cores)");
   hex.add_option(
       "--db", args.request.db, "also record the calibration in this result store (pkm.db)");
   hex.add_option("--prior-sigma",

@@ -55,8 +55,9 @@ struct HexapodCalibrationRequest {
   double sigma_position = 0.0;          ///< Monte Carlo position noise (0: the fitted σ)
   double sigma_orientation_urad = 0.0;  ///< Monte Carlo 6-DOF orientation noise, µrad
   double sigma_gauge = 0.0;             ///< Monte Carlo gauge noise (0: the fitted σ)
-  int threads = 0;                      ///< Monte Carlo worker threads (0: all cores)
-  std::string db;                       ///< result store to record the calibration in ("" : none)
+  int threads =
+      0;  ///< worker threads: Monte Carlo trials, workspace sampling beside the fit (0: all cores)
+  std::string db;  ///< result store to record the calibration in ("" : none)
   /// Instruments of the uncertainty budgets (`--uncertainty FILE`; default: typical datasheet
   /// values; docs/calibration.md, "Uncertainty budgets").
   metrology::UncertaintySources uncertainty;
