@@ -226,8 +226,9 @@ NumberTable NumberTable::parse(std::string_view all,
   std::vector<std::size_t> first_slot(chunks + 1, 0);
   for (std::size_t c = 0; c < chunks; ++c) first_slot[c + 1] = first_slot[c] + parts[c].lines;
   const std::size_t width = t.width();
-  if (first_slot[chunks] * std::max<std::size_t>(width, 1) > 0)
-    t.values_.reset(new double[first_slot[chunks] * std::max<std::size_t>(width, 1)]);
+  // At most one row a line: 8·width bytes a line, allocated once and not zeroed (every slot a row
+  // takes is written; the ones of blank and comment lines are closed up below).
+  if (first_slot[chunks] * width > 0) t.values_.reset(new double[first_slot[chunks] * width]);
   NumberTableParser parser(t, slots);
   parser.setWidth(width);
   forEachChunk(all.size() - bounds[0], chunks, [&](std::size_t c, std::size_t, std::size_t) {

@@ -11,6 +11,8 @@
 namespace pkm::io {
 
 /// A whole input file held for reading. Move-only; the bytes stay valid while it lives.
+/// Precondition: a mapped file is not truncated by another program while it lives (its pages
+/// past the new end could no longer be read).
 class MappedFile {
  public:
   /// Largest file accepted, bytes (4 GiB − 1: tables index rows with 32 bits).
