@@ -28,7 +28,7 @@ endfunction()
 function(pkm_write_module_graph)
   set(lines "")
   foreach(target pkm_core pkm_geometry pkm_kinematics pkm_simulation pkm_metrology
-                 pkm_calibration pkm_compensation pkm_cnc pkm_io pkm_workflow pkm_live pkm_server
+                 pkm_calibration pkm_compensation pkm_cnc pkm_io pkm_store pkm_workflow pkm_live pkm_server
                  pkm_linuxcnc pkm pkm-serve pkm-truth pkm_python)
     if(NOT TARGET ${target})
       continue()

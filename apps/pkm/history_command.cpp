@@ -1,9 +1,9 @@
 // `pkm history --machine NAME [--db pkm.db]`: how a machine's results evolve across campaigns
-// (the result store, pkm/io/result_store.hpp; docs/formats.md, "Result store").
+// (the result store, pkm/store/result_store.hpp; docs/formats.md, "Result store").
 #include <memory>
 
 #include "cli_common.hpp"
-#include "pkm/io/history_report.hpp"
+#include "pkm/store/history_report.hpp"
 #include "pkm/workflow/history.hpp"
 
 namespace pkm::cli {
@@ -17,8 +17,8 @@ struct HistoryArgs {
 void runHistory(HistoryArgs& args) {
   args.request.require_rows = !args.json;
   const workflow::HistoryResult r = workflow::queryHistory(args.request);
-  writeTextOutput("",
-                  args.json ? io::historyJson(r.machine, r.db, r.rows) : io::historyText(r.rows));
+  writeTextOutput(
+      "", args.json ? store::historyJson(r.machine, r.db, r.rows) : store::historyText(r.rows));
 }
 
 void addHistory(CLI::App& app) {

@@ -9,7 +9,7 @@
 
 #include "pkm/core/error.hpp"
 #include "pkm/io/atomic_file.hpp"
-#include "pkm/io/result_store.hpp"
+#include "pkm/store/result_store.hpp"
 
 namespace pkm::workflow {
 namespace {
@@ -22,7 +22,7 @@ void addLeaves(const ordered_json& j,
                const std::string& prefix,
                const std::string& stage,
                const std::string& unit,
-               std::vector<io::ResultRecord>& out) {
+               std::vector<store::ResultRecord>& out) {
   if (j.is_number()) {
     const double v = j.get<double>();
     if (std::isfinite(v)) out.push_back({prefix, stage.empty() ? "estimate" : stage, v, unit});
@@ -55,7 +55,7 @@ void recordCalibration(const std::string& db, const CalibrationRecord& r) {
   } catch (const nlohmann::json::parse_error& e) {
     throw IoError(fmt::format("calibration summary: invalid JSON ({})", e.what()));
   }
-  io::CampaignRecord c;
+  store::CampaignRecord c;
   c.machine = r.machine;
   c.machine_type = r.machine_type;
   c.name = r.campaign;
@@ -74,8 +74,8 @@ void recordCalibration(const std::string& db, const CalibrationRecord& r) {
   }
   for (const auto& [target, path] : r.compensations)
     c.compensations.push_back({target, path, io::readFileText(path)});
-  io::ResultStore store(db);
-  (void)store.store(c);
+  store::ResultStore results(db);
+  (void)results.store(c);
 }
 
 }  // namespace pkm::workflow

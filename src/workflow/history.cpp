@@ -19,12 +19,12 @@ void HistoryRequest::validate() const {
 
 HistoryResult queryHistory(const HistoryRequest& request) {
   request.validate();
-  io::ResultStore store(request.db);
+  store::ResultStore results(request.db);
   std::optional<std::string> quantity;
   if (!request.quantity.empty()) quantity = request.quantity;
-  HistoryResult result{request.machine, request.db, store.history(request.machine, quantity)};
+  HistoryResult result{request.machine, request.db, results.history(request.machine, quantity)};
   if (result.rows.empty() && request.require_rows) {
-    const std::vector<std::string> known = store.machines();
+    const std::vector<std::string> known = results.machines();
     throw InvalidArgument(
         fmt::format("{}: no results for machine '{}' (machines in the store: {})",
                     request.db,

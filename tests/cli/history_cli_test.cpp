@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "pkm/io/result_store.hpp"
+#include "pkm/store/result_store.hpp"
 #include "support/cli_fixture.hpp"
 
 namespace pkm::test {
@@ -49,8 +49,8 @@ TEST_F(CliTest, CalibrationsRunAtOnceAllLandInTheHistory) {
       EXPECT_LT(row["value"].get<double>(), 0.015);
     }
   }
-  io::ResultStore store(path("pkm.db"));
-  EXPECT_TRUE(store.integrityOk());
+  store::ResultStore results(path("pkm.db"));
+  EXPECT_TRUE(results.integrityOk());
   // The readable table lists every stored quantity of the machine.
   const CliRun table = pkm({"history", "--machine", "pkm-hx1200", "--db", path("pkm.db")});
   ASSERT_EQ(table.code, 0) << table.err;
@@ -62,13 +62,13 @@ TEST_F(CliTest, HistoryNeverCreatesAStoreAndNamesTheMachinesItHas) {
   expectUsageError(pkm({"history", "--machine", "x", "--db", path("none.db")}), "no result store");
   EXPECT_FALSE(std::filesystem::exists(path("none.db")));
   {
-    io::ResultStore store(path("pkm.db"));
-    io::CampaignRecord c;
+    store::ResultStore results(path("pkm.db"));
+    store::CampaignRecord c;
     c.machine = "alpha";
     c.machine_type = "hexapod";
     c.name = "test";
     c.results.push_back({"q", "after", 1.5, "mm"});
-    (void)store.store(c);
+    (void)results.store(c);
   }
   expectUsageError(pkm({"history", "--machine", "beta", "--db", path("pkm.db")}), "alpha");
   const std::string notes = write("notes.txt", "my notes\n");

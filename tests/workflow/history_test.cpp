@@ -20,15 +20,15 @@ std::string storeWithTwoResults() {
   const fs::path db =
       fs::temp_directory_path() / ("pkm_workflow_history_" + std::to_string(::getpid()) + ".db");
   fs::remove(db);
-  io::ResultStore store(db.string());
-  io::CampaignRecord c;
+  store::ResultStore results(db.string());
+  store::CampaignRecord c;
   c.machine = "hx1";
   c.machine_type = "hexapod";
   c.name = "calibrate hexapod";
   c.results = {{"holdout.rms", "before", 0.25, "mm"},
                {"holdout.rms", "after", 0.002, "mm"},
                {"parallelism", "estimate", 1e-5, "rad"}};
-  (void)store.store(c);
+  (void)results.store(c);
   return db.string();
 }
 

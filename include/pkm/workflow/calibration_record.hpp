@@ -1,5 +1,5 @@
 /// @file
-/// @brief A calibration in the result store (io::ResultStore, `pkm history`): the data files as
+/// @brief A calibration in the result store (store::ResultStore, `pkm history`): the data files as
 /// measurements, the summary's figures as results, the files for the controller as
 /// compensations.
 #pragma once

@@ -1,12 +1,12 @@
 /// @file
 /// @brief `pkm history` as a workflow: how a machine's results evolve across campaigns, read from
-/// the result store (io/result_store.hpp; docs/formats.md, "Result store").
+/// the result store (store/result_store.hpp; docs/formats.md, "Result store").
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "pkm/io/result_store.hpp"
+#include "pkm/store/result_store.hpp"
 
 namespace pkm::workflow {
 
@@ -26,7 +26,8 @@ struct HistoryRequest {
 /// A machine's history.
 struct HistoryResult {
   std::string machine, db;
-  std::vector<io::HistoryRow> rows;  ///< in campaign order (io::historyText, io::historyJson)
+  std::vector<store::HistoryRow>
+      rows;  ///< in campaign order (store::historyText, store::historyJson)
 };
 
 /// Reads the history. Throws as validate(), pkm::IoError for a store that cannot be read,

@@ -248,7 +248,7 @@ void storeResults(const std::string& db,
                   const fs::path& out,
                   const std::string& name,
                   std::vector<campaign::StepOutcome>& outcomes) {
-  io::ResultStore store(db);
+  store::ResultStore results(db);
   for (campaign::StepOutcome& s : outcomes) {
     s.record.name = fmt::format("campaign {} / {}", name, s.id);
     for (const std::string& f : s.files) {
@@ -256,7 +256,7 @@ void storeResults(const std::string& db,
       s.record.measurements.push_back(
           {fs::path(f).stem().string(), "measurement", (out / f).string(), 0});
     }
-    store.store(s.record);
+    results.store(s.record);
   }
 }
 

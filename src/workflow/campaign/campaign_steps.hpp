@@ -20,7 +20,6 @@
 #include <vector>
 
 #include "pkm/core/error.hpp"
-#include "pkm/io/result_store.hpp"
 #include "pkm/io/scenario.hpp"
 #include "pkm/io/text_table.hpp"
 #include "pkm/metrology/iso230_2.hpp"
@@ -29,6 +28,7 @@
 #include "pkm/metrology/uncertainty_sources.hpp"
 #include "pkm/simulation/campaign.hpp"
 #include "pkm/simulation/touch_probe.hpp"
+#include "pkm/store/result_store.hpp"
 #include "pkm/workflow/campaign.hpp"
 
 namespace pkm::workflow::campaign {
@@ -45,7 +45,7 @@ struct StepOutcome {
   std::vector<SummaryRow> rows;
   Json section;  ///< the report section (pkm.report/1 "sections" entry)
   /// What goes into the result store besides the summary rows (the command adds those).
-  io::CampaignRecord record;
+  store::CampaignRecord record;
   std::vector<std::string> files;  ///< files written, relative to the campaign's --out
 };
 

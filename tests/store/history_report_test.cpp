@@ -1,12 +1,12 @@
-// io::historyText / historyJson: the aligned table and the JSON rows.
-#include "pkm/io/history_report.hpp"
+// store::historyText / historyJson: the aligned table and the JSON rows.
+#include "pkm/store/history_report.hpp"
 
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace pkm::io {
+namespace pkm::store {
 namespace PKM_TEST_NS {
 
 std::vector<HistoryRow> rows() {
@@ -49,4 +49,4 @@ TEST(HistoryReport, Json) {
 }
 
 }  // namespace PKM_TEST_NS
-}  // namespace pkm::io
+}  // namespace pkm::store

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "pkm/io/result_store.hpp"
+#include "pkm/store/result_store.hpp"
 
-namespace pkm::io {
+namespace pkm::store {
 
 /// The rows as a table with a header line: campaign, time, campaign name, quantity, stage,
 /// "value ± U" (6 and 2 significant digits; the value alone where there is no U), unit, in
@@ -21,4 +21,4 @@ namespace pkm::io {
                                       const std::string& db,
                                       const std::vector<HistoryRow>& rows);
 
-}  // namespace pkm::io
+}  // namespace pkm::store

@@ -1,5 +1,5 @@
 // The SQLite result store (result_store.hpp).
-#include "pkm/io/result_store.hpp"
+#include "pkm/store/result_store.hpp"
 
 #include <fmt/format.h>
 #include <sqlite3.h>
@@ -10,7 +10,7 @@
 
 #include "pkm/core/error.hpp"
 
-namespace pkm::io {
+namespace pkm::store {
 namespace {
 
 /// Schema 1: the tables below without results.U; schema 2 adds results.U (the expanded
@@ -305,4 +305,4 @@ bool ResultStore::integrityOk() {
   return q.step() && q.columnText(0) == "ok";
 }
 
-}  // namespace pkm::io
+}  // namespace pkm::store

@@ -1,4 +1,4 @@
-#include "pkm/io/result_store.hpp"
+#include "pkm/store/result_store.hpp"
 
 #include <fmt/format.h>
 #include <gmock/gmock.h>
@@ -12,7 +12,7 @@
 
 #include "pkm/core/error.hpp"
 
-namespace pkm::io {
+namespace pkm::store {
 namespace PKM_TEST_NS {
 
 using ::testing::HasSubstr;
@@ -165,4 +165,4 @@ TEST_F(ResultStoreTest, AStoreOfSchemaOneIsMigrated) {
 }
 
 }  // namespace PKM_TEST_NS
-}  // namespace pkm::io
+}  // namespace pkm::store

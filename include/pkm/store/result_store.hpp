@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-namespace pkm::io {
+namespace pkm::store {
 
 /// A measurement file a campaign used.
 struct MeasurementRecord {
@@ -99,4 +99,4 @@ class ResultStore {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace pkm::io
+}  // namespace pkm::store

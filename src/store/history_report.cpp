@@ -1,12 +1,12 @@
 // A machine's history as text and JSON (history_report.hpp).
-#include "pkm/io/history_report.hpp"
+#include "pkm/store/history_report.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-namespace pkm::io {
+namespace pkm::store {
 
 namespace {
 
@@ -59,4 +59,4 @@ std::string historyJson(const std::string& machine,
   return j.dump(2) + "\n";
 }
 
-}  // namespace pkm::io
+}  // namespace pkm::store
