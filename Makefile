@@ -55,15 +55,13 @@ test: check-size test-release test-asan
 BENCH_VS_REFERENCE = $(addprefix benchmarks/,fk_vs_genhexkins_whole_process.sh \
   gcode_vs_rs274_whole_process.sh circle_vs_scipy_whole_process.sh table_read_whole_process.sh \
   calibration_vs_scipy_whole_process.sh)
-# LinuxCNC's genhexkins runner of the workplace, when there is one (never copied into pkm).
-GENHEXKINS_BENCH_DEFAULT = $(wildcard $(CURDIR)/../shared/tools/genhexkins-bench/run.sh)
 bench: setup
 	@cmake -S . -B $(BENCH_BUILD) -G Ninja -DCMAKE_CXX_COMPILER=$(PKM_CXX) -DCMAKE_BUILD_TYPE=Release -DPKM_BUILD_BENCHMARKS=ON -DPKM_BUILD_TESTS=OFF >/dev/null
 	@cmake --build $(BENCH_BUILD) -j $(JOBS)
 	@for b in $(BENCH_BUILD)/bin/bench_*; do echo "== $$b"; $$b || exit 1; done
 	@for s in $(filter-out $(BENCH_VS_REFERENCE),$(wildcard benchmarks/*_whole_process.sh)); do \
 	  echo "== $$s"; bash $$s $(BENCH_BUILD)/bin/pkm || exit 1; done
-	@GENHEXKINS_BENCH=$${GENHEXKINS_BENCH:-$(GENHEXKINS_BENCH_DEFAULT)} bash benchmarks/summary.sh $(BENCH_BUILD)
+	@bash benchmarks/summary.sh $(BENCH_BUILD)
 
 # The fuzz harnesses (docs/fuzzing.md): built with clang++-14, libFuzzer, ASan and UBSan in
 # build-fuzz/, each run for FUZZ_SECONDS on its corpus (fuzz/corpus/<name>), one after the other;

@@ -22,21 +22,7 @@ if ! "$python" -c 'import numpy' 2>/dev/null; then
   exit 0
 fi
 "$python" "$(dirname "$0")/python/make_ring.py" "$work/ring.csv" "$points"
-cat > "$work/reference.py" <<'PY'
-import sys
-import numpy as np
-from scipy.optimize import least_squares
-xy = np.loadtxt(sys.argv[1], delimiter=",", skiprows=1)
-x, y = xy[:, 0], xy[:, 1]
-def residual(p):
-    return np.hypot(x - p[0], y - p[1]) - p[2]
-def jacobian(p):
-    d = np.hypot(x - p[0], y - p[1])
-    return np.column_stack(((p[0] - x) / d, (p[1] - y) / d, -np.ones_like(d)))
-start = [x.mean(), y.mean(), np.hypot(x - x.mean(), y - y.mean()).mean()]
-fit = least_squares(residual, start, jac=jacobian, method="lm")
-print(f"{fit.x[0]:.12f} {fit.x[1]:.12f} {fit.x[2]:.12f} {fit.nfev}")
-PY
+cp "$(dirname "$0")/python/circle_reference.py" "$work/reference.py"
 have_scipy=1
 "$python" -c 'import scipy.optimize' 2>/dev/null || have_scipy=0
 

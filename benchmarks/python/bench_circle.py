@@ -15,30 +15,10 @@ import sys
 import time
 
 import numpy as np
-from scipy.optimize import least_squares
+from circle_reference import scipy_circle
+from make_ring import ring
 
 import pkm
-
-
-def ring(n):
-    rng = np.random.default_rng(20261126)
-    t = rng.uniform(0.0, 2.0 * np.pi, n)
-    r = 50.0 + 0.005 * np.cos(3 * t + 0.4) + 0.002 * np.sin(5 * t) + rng.normal(0.0, 0.001, n)
-    return np.column_stack([12.3 + r * np.cos(t), -4.56 + r * np.sin(t)])
-
-
-def scipy_circle(xy):
-    x, y = xy[:, 0], xy[:, 1]
-
-    def residual(p):
-        return np.hypot(x - p[0], y - p[1]) - p[2]
-
-    def jacobian(p):
-        d = np.hypot(x - p[0], y - p[1])
-        return np.column_stack(((p[0] - x) / d, (p[1] - y) / d, -np.ones_like(d)))
-
-    start = [x.mean(), y.mean(), np.hypot(x - x.mean(), y - y.mean()).mean()]
-    return least_squares(residual, start, jac=jacobian, method="lm").x
 
 
 def timed(f):
@@ -52,7 +32,7 @@ def main():
     xy = ring(1_000_000)
     ref, lsc, both = [], [], []
     for _ in range(runs):
-        t, s = timed(lambda: scipy_circle(xy))
+        t, s = timed(lambda: scipy_circle(xy).x)
         ref.append(t)
         t, p = timed(lambda: pkm.metrology.circle(xy, fit="lsc", budget=False))
         lsc.append(t)

@@ -10,14 +10,18 @@ import sys
 import numpy as np
 
 
-def main(path, n):
+def ring(n):
+    """The ring's points as an (n, 2) array (full precision)."""
     rng = np.random.default_rng(20261126)
     t = rng.uniform(0.0, 2.0 * np.pi, n)
     r = 50.0 + 0.005 * np.cos(3 * t + 0.4) + 0.002 * np.sin(5 * t) + rng.normal(0.0, 0.001, n)
+    return np.column_stack([12.3 + r * np.cos(t), -4.56 + r * np.sin(t)])
+
+
+def main(path, n):
     with open(path, "w") as f:
         f.write("x,y\n")
-        np.savetxt(f, np.c_[12.3 + r * np.cos(t), -4.56 + r * np.sin(t)], fmt="%.6f",
-                   delimiter=",")
+        np.savetxt(f, ring(n), fmt="%.6f", delimiter=",")
 
 
 if __name__ == "__main__":
