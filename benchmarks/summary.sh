@@ -43,4 +43,12 @@ grep '^bench-row|' "$log" | awk -F'|' '{
   if (target == "-") { shown = sprintf("%.2f of the limit", $3 / $5) } else { shown = sprintf("%.1fx", ratio) }
   printf "| %s | %.3f s | %s | %.3f s | %s | %s | %s |\n", $2, $3, $4, $5, shown, (target == "-" ? "-" : ">= " target "x"), holds
 }'
+# A comparison whose reference is not installed prints no row: say which.
+for job in "hexapod fk:genhexkins (GENHEXKINS_BENCH unset or not found)" \
+           "gcode moves:LinuxCNC's rs274 (Debian linuxcnc-uspace)" \
+           "analyze circle:scipy (Debian python3-scipy)" \
+           "calibrate hexapod:scipy (Debian python3-scipy)" \
+           "Hexapod.ik:the Python module (pybind11)"; do
+  grep -q "^bench-row|${job%%:*}" "$log" || echo "(no ${job%%:*} row: ${job#*:} missing)"
+done
 exit "$failed"
