@@ -14,11 +14,15 @@
 
 namespace pkm::io {
 
-/// Reads the data rows of one chunk of whole lines (see NumberTable::parse).
+/// Reads the data rows of one chunk of whole lines (see NumberTable::parse). One per chunk: it
+/// keeps the chunk's error message, so chunks read on different threads share nothing written.
 class NumberTableParser {
  public:
-  NumberTableParser(const NumberTable& t, std::span<const int> slot_of_field)
-      : t_(t), slots_(slot_of_field) {}
+  NumberTableParser(const NumberTable& t, std::span<const int> slot_of_field, std::size_t width)
+      : t_(t),
+        slots_(slot_of_field),
+        slots_wanted_(width),
+        plain_(t.comma_ && std::find(slots_.begin(), slots_.end(), -1) == slots_.end()) {}
 
   /// What one chunk of lines gave.
   struct Chunk {
@@ -58,11 +62,6 @@ class NumberTableParser {
       c.line_numbers.add(line);
       ++c.rows;
     }
-  }
-
-  void setWidth(std::size_t width) {
-    slots_wanted_ = width;
-    plain_ = t_.comma_ && std::find(slots_.begin(), slots_.end(), -1) == slots_.end();
   }
 
  private:
@@ -229,10 +228,8 @@ NumberTable NumberTable::parse(std::string_view all,
   // At most one row a line: 8·width bytes a line, allocated once and not zeroed (every slot a row
   // takes is written; the ones of blank and comment lines are closed up below).
   if (first_slot[chunks] * width > 0) t.values_.reset(new double[first_slot[chunks] * width]);
-  NumberTableParser parser(t, slots);
-  parser.setWidth(width);
   forEachChunk(all.size() - bounds[0], chunks, [&](std::size_t c, std::size_t, std::size_t) {
-    parser.read(all, parts[c], t.values_.get() + first_slot[c] * width);
+    NumberTableParser(t, slots, width).read(all, parts[c], t.values_.get() + first_slot[c] * width);
   });
 
   // Errors in file order; the rows moved together where blank or comment lines left gaps.

@@ -118,6 +118,18 @@ TEST(NumberTable, LargeTablesAgreeWithTheRowReader) {
               std::string::npos)
         << e.what();
   }
+  // Errors in two chunks at once (read on two threads): the earlier line's own message.
+  const std::size_t middle = bad.find('\n', bad.size() / 2) + 1;
+  bad.insert(middle, "abc,1,2\n");
+  const auto middle_line =
+      static_cast<std::size_t>(std::count(bad.begin(), bad.begin() + middle, '\n')) + 1;
+  try {
+    (void)NumberTable::parse(bad, "big.csv", {{"x"}});
+    FAIL() << "no error";
+  } catch (const IoError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              fmt::format("big.csv:{}: column 'x': 'abc' is not a finite number", middle_line));
+  }
 }
 
 TEST(NumberTable, ReadsAFileThroughItsMapping) {
